@@ -1,0 +1,187 @@
+// boneless-cli eval: reconstruct a ground-truth sequence from K of its vertices and measure it.
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "Commands.h"
+#include "boneless/Error.h"
+#include "boneless/Sampling.h"
+#include "boneless/SequenceEvaluation.h"
+
+using namespace boneless;
+
+namespace {
+
+struct EvalArgs {
+    std::string sequence;
+    int markers = 0;
+    std::string markersFile;
+    std::string frames;
+    std::string method = "boneless";
+    double drop = 0;
+    unsigned seed = 1;
+    int maxIterations = SolverOptions{}.maxIterations;
+    double tolerance = SolverOptions{}.relativeTolerance;
+    bool json = false;
+    bool quiet = false;
+};
+
+std::vector<int> readMarkerFile(const std::string& path, int vertexCount) {
+    std::ifstream in(path);
+    if (!in) throw Error(path + ": cannot open the marker file");
+    std::vector<int> ids;
+    std::string line;
+    for (int lineNo = 1; std::getline(in, line); ++lineNo) {
+        const auto first = line.find_first_not_of(" \t\r");
+        if (first == std::string::npos || line[first] == '#') continue;
+        std::size_t used = 0;
+        int id = -1;
+        try {
+            id = std::stoi(line.substr(first), &used);
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        if (used == 0 || line.find_first_not_of(" \t\r", first + used) != std::string::npos)
+            throw Error(path + ":" + std::to_string(lineNo) + ": expected one vertex id, got '" +
+                        line + "'");
+        if (id < 0 || id >= vertexCount)
+            throw Error(path + ":" + std::to_string(lineNo) + ": vertex " + std::to_string(id) +
+                        " is out of range (the mesh has " + std::to_string(vertexCount) +
+                        " vertices)");
+        ids.push_back(id);
+    }
+    if (ids.empty()) throw Error(path + ": no vertex ids in the marker file");
+    return ids;
+}
+
+// "A:B" (half-open, 0-based), "A:" or ":B".
+void parseFrames(const std::string& text, EvaluationOptions& options) {
+    const auto colon = text.find(':');
+    if (colon == std::string::npos) throw Error("--frames expects A:B, got '" + text + "'");
+    try {
+        const std::string a = text.substr(0, colon), b = text.substr(colon + 1);
+        if (!a.empty()) options.firstFrame = std::stoi(a);
+        if (!b.empty()) options.endFrame = std::stoi(b);
+    } catch (const std::exception&) {
+        throw Error("--frames expects A:B with whole numbers, got '" + text + "'");
+    }
+}
+
+nlohmann::json summaryJson(const EvaluationSummary& s) {
+    return {{"frames", s.frames},
+            {"rms_pct_mean", s.rmsPctMean},
+            {"rms_pct_worst_frame", s.rmsPctWorstFrame},
+            {"max_pct_worst_frame", s.maxPctWorstFrame},
+            {"flipped_faces_max", s.flippedFacesMax},
+            {"flipped_faces_mean", s.flippedFacesMean},
+            {"ms_per_frame_median", s.msPerFrameMedian},
+            {"iterations_mean", s.iterationsMean}};
+}
+
+void printSummary(const char* name, const EvaluationSummary& s) {
+    std::printf(
+        "%-9s frames %d  RMS %% mean %.3f  RMS %% worst frame %.3f  max %% worst frame %.3f  "
+        "flipped max %d (mean %.1f)  ms/frame median %.1f  iterations mean %.1f\n",
+        name, s.frames, s.rmsPctMean, s.rmsPctWorstFrame, s.maxPctWorstFrame, s.flippedFacesMax,
+        s.flippedFacesMean, s.msPerFrameMedian, s.iterationsMean);
+}
+
+void run(const EvalArgs& args) {
+    const MeshSequence sequence = readMeshSequence(args.sequence);
+    EvaluationOptions options;
+    options.markers = args.markersFile.empty()
+                          ? geodesicFarthestPoints(sequence.rest, args.markers, 0)
+                          : readMarkerFile(args.markersFile, sequence.rest.vertexCount());
+    if (!args.frames.empty()) parseFrames(args.frames, options);
+    options.dropPercent = args.drop;
+    options.seed = args.seed;
+    options.solver.maxIterations = args.maxIterations;
+    options.solver.relativeTolerance = args.tolerance;
+
+    std::vector<EvaluationOptions::Method> methods;
+    if (args.method == "boneless" || args.method == "both")
+        methods.push_back(EvaluationOptions::Method::Boneless);
+    if (args.method == "arap" || args.method == "both")
+        methods.push_back(EvaluationOptions::Method::Arap);
+
+    if (!args.json)
+        std::printf("%s: %zu frames, %d vertices, %d faces, %zu markers%s\n", args.sequence.c_str(),
+                    sequence.frames.size(), sequence.rest.vertexCount(), sequence.rest.faceCount(),
+                    options.markers.size(),
+                    args.drop > 0
+                        ? (", " + std::to_string(args.drop) + " % dropped per frame").c_str()
+                        : "");
+    std::vector<Evaluation> results;
+    for (auto method : methods) {
+        options.method = method;
+        const bool perFrame = !args.json && !args.quiet;
+        if (perFrame)
+            std::printf("%-9s %6s %9s %9s %8s %6s %9s\n", methodName(method), "frame", "RMS %",
+                        "max %", "flipped", "iters", "ms");
+        results.push_back(evaluateSequence(sequence, options, [&](const FrameEvaluation& f) {
+            if (perFrame)
+                std::printf("%-9s %6d %9.4f %9.4f %8d %6d %9.1f\n", "", f.frame, f.rmsPct, f.maxPct,
+                            f.flippedFaces, f.iterations, f.milliseconds);
+        }));
+    }
+    if (args.json) {
+        nlohmann::json out = summaryJson(results[0].summary);
+        out["method"] = methodName(methods[0]);
+        out["sequence"] = args.sequence;
+        out["vertices"] = sequence.rest.vertexCount();
+        out["faces"] = sequence.rest.faceCount();
+        out["markers"] = options.markers.size();
+        out["drop_pct"] = args.drop;
+        nlohmann::json perFrame = nlohmann::json::array();
+        for (const auto& f : results[0].frames)
+            perFrame.push_back({{"frame", f.frame},
+                                {"rms_pct", f.rmsPct},
+                                {"max_pct", f.maxPct},
+                                {"flipped_faces", f.flippedFaces},
+                                {"iterations", f.iterations},
+                                {"ms", f.milliseconds}});
+        out["per_frame"] = perFrame;
+        for (size_t i = 1; i < results.size(); ++i)
+            out[methodName(methods[i])] = summaryJson(results[i].summary);
+        std::cout << out.dump(2) << "\n";
+    } else {
+        std::printf("summary over the frames after the rest pose:\n");
+        for (size_t i = 0; i < results.size(); ++i)
+            printSummary(methodName(methods[i]), results[i].summary);
+    }
+}
+
+}  // namespace
+
+void registerEvalCommand(CLI::App& app) {
+    auto args = std::make_shared<EvalArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "eval",
+        "Reconstruct a ground-truth mesh sequence from K of its vertices and measure the error");
+    cmd->add_option("--sequence", args->sequence,
+                    "Folder with one OBJ per frame (first = rest pose)")
+        ->required();
+    auto* k = cmd->add_option("--markers", args->markers,
+                              "Number of marker vertices (farthest-point sampled from vertex 0)")
+                  ->check(CLI::PositiveNumber);
+    auto* file = cmd->add_option("--markers-file", args->markersFile,
+                                 "File with one marker vertex id per line (instead of --markers)");
+    k->excludes(file);
+    cmd->add_option("--frames", args->frames, "Frame range A:B (0-based, B excluded; A: or :B)");
+    cmd->add_option("--method", args->method, "boneless, arap, or both (side by side)")
+        ->check(CLI::IsMember({"boneless", "arap", "both"}));
+    cmd->add_option("--drop", args->drop, "Percentage of markers missing in each frame (seeded)")
+        ->check(CLI::Range(0.0, 100.0));
+    cmd->add_option("--seed", args->seed, "Seed for --drop");
+    cmd->add_option("--max-iterations", args->maxIterations, "Gauss–Newton iterations per frame");
+    cmd->add_option("--tolerance", args->tolerance, "Relative energy decrease that stops a frame");
+    cmd->add_flag("--json", args->json, "Print one JSON object");
+    cmd->add_flag("--quiet", args->quiet, "No per-frame lines");
+    cmd->callback([args, k, file] {
+        if (k->count() == 0 && file->count() == 0)
+            throw CLI::RequiredError("--markers or --markers-file");
+        run(*args);
+    });
+}

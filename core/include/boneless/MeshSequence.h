@@ -1,0 +1,22 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "boneless/TriMesh.h"
+
+namespace boneless {
+
+// A ground-truth animation: one mesh file per frame, same connectivity, frames in file-name order;
+// frame 0 is the rest pose.
+struct MeshSequence {
+    TriMesh rest;                   // frame 0
+    std::vector<Positions> frames;  // every frame, frame 0 included
+    std::vector<std::string> files;
+};
+
+// Reads every .obj in `directory`; throws MeshError naming the file whose vertex count or faces
+// differ from the first one's.
+MeshSequence readMeshSequence(const std::string& directory);
+
+}  // namespace boneless

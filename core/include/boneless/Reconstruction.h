@@ -1,0 +1,81 @@
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "boneless/ShapeEncoding.h"
+#include "boneless/TriMesh.h"
+
+namespace boneless {
+
+class BlockSystem;
+
+struct SolverOptions {
+    // Hard: marker vertices are placed exactly on their targets. Soft: they are pulled there with
+    // weight softWeight (dimensionless: the energy and the pull are both squared lengths).
+    enum class Constraints { Hard, Soft };
+    Constraints constraints = Constraints::Hard;
+    double softWeight = 100.0;
+    int maxIterations = 30;
+    // Stop once an iteration lowers the energy by less than this fraction.
+    double relativeTolerance = 1e-3;
+};
+
+struct SolveReport {
+    int iterations = 0;
+    double energyBefore = 0;  // at the initial guess (markers already on their targets if hard)
+    double energyAfter = 0;
+    double milliseconds = 0;
+    bool converged = false;        // the relative-decrease test was met
+    std::vector<double> energies;  // after each accepted iteration, energies[0] = energyBefore
+};
+
+struct SolveResult {
+    Positions V;  // #V by 3
+    SolveReport report;
+};
+
+// "Prepare once, solve per frame" (libigl's precomputation/solve; CGAL's preprocess/deform):
+//   Reconstruction r;  r.prepare(rest, markers);
+//   for each frame: result = r.solve(targets, &previous.V);
+// It minimises G(V) = ½ Σ_i |v_i − F_i(V)|² over the free vertices by Gauss–Newton with the exact
+// Jacobian and a backtracking line search, so that the energy never goes up.
+class Reconstruction {
+  public:
+    Reconstruction();
+    ~Reconstruction();
+    Reconstruction(Reconstruction&&) noexcept;
+    Reconstruction& operator=(Reconstruction&&) noexcept;
+
+    // markerVertices: K distinct vertex ids, the k-th marker drives vertex markerVertices[k].
+    void prepare(const TriMesh& rest, std::vector<int> markerVertices, SolverOptions options = {});
+
+    // targets: K by 3; a row with a NaN is a missing marker, whose vertex is then solved for like
+    // any other. guess: #V by 3 (for instance the previous frame's result); without one the rest
+    // pose is moved rigidly onto the markers first.
+    SolveResult solve(const Positions& targets, const Positions* guess = nullptr);
+
+    // The energy the solver minimises, for the given targets (soft term included when soft).
+    double energy(const Positions& V, const Positions& targets) const;
+
+    const TriMesh& rest() const;
+    const ShapeEncoding& encoding() const;
+    const std::vector<int>& markerVertices() const;
+    const SolverOptions& options() const;
+    void setOptions(const SolverOptions& options);
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+// The rigid motion (rotation, translation) that best maps from[k] onto to[k], skipping rows with a
+// NaN in either; identity when fewer than three rows remain.
+struct RigidMotion {
+    Mat3 R = Mat3::Identity();
+    Vec3 t = Vec3::Zero();
+    Vec3 apply(const Vec3& x) const { return R * x + t; }
+};
+RigidMotion fitRigidMotion(const Positions& from, const Positions& to);
+
+}  // namespace boneless

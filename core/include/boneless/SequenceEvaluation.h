@@ -1,0 +1,55 @@
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "boneless/MeshSequence.h"
+#include "boneless/Reconstruction.h"
+
+namespace boneless {
+
+// Drives marker vertices of a ground-truth sequence with their true positions, reconstructs every
+// frame (each warm-started from the previous one) and measures the result against the truth. This
+// is how a user finds out how many markers a mesh needs, and how Boneless is compared with ARAP.
+struct EvaluationOptions {
+    enum class Method { Boneless, Arap };
+    Method method = Method::Boneless;
+    std::vector<int> markers;  // vertex ids
+    int firstFrame = 0;
+    int endFrame = -1;       // one past the last frame; -1 = the end of the sequence
+    double dropPercent = 0;  // each frame, this share of the markers goes missing (seeded)
+    unsigned seed = 1;
+    SolverOptions solver;
+    int arapIterations = 10;
+};
+
+struct FrameEvaluation {
+    int frame = 0;
+    double rmsPct = 0;  // RMS vertex error, % of the rest pose's bounding-box diagonal
+    double maxPct = 0;
+    int flippedFaces = 0;
+    int iterations = 0;
+    double milliseconds = 0;
+    int markersUsed = 0;
+};
+
+struct EvaluationSummary {
+    int frames = 0;  // frames summarised: those after the rest pose
+    double rmsPctMean = 0, rmsPctWorstFrame = 0, maxPctWorstFrame = 0;
+    int flippedFacesMax = 0;
+    double flippedFacesMean = 0;
+    double msPerFrameMedian = 0, iterationsMean = 0;
+};
+
+struct Evaluation {
+    std::vector<FrameEvaluation> frames;
+    EvaluationSummary summary;
+};
+
+const char* methodName(EvaluationOptions::Method method);
+
+Evaluation evaluateSequence(const MeshSequence& sequence, const EvaluationOptions& options,
+                            const std::function<void(const FrameEvaluation&)>& onFrame = {});
+
+}  // namespace boneless

@@ -1,0 +1,171 @@
+#include "boneless/ArapDeformer.h"
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/LU>
+#include <Eigen/SVD>
+#include <Eigen/Sparse>
+#include <chrono>
+#include <string>
+
+#include "boneless/Error.h"
+
+namespace boneless {
+
+struct ArapDeformer::Impl {
+    TriMesh rest;
+    std::vector<int> markers;
+    Options options;
+    // Per face and edge (opposite corner c): half the cotangent of the angle at c.
+    Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> cotangent;
+    Eigen::SparseMatrix<double> laplacian;  // Σ w (e_j − e_k)(e_j − e_k)ᵀ, positive semidefinite
+    std::vector<char> activeKey;            // markers present when the factorisation was made
+    std::vector<int> freeIndex;             // vertex -> row in the free system, or -1
+    Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> factor;
+    Eigen::SparseMatrix<double> freeToFixed;
+
+    void refactorise(const std::vector<char>& active) {
+        const int n = rest.vertexCount();
+        std::vector<char> fixed(n, 0);
+        for (size_t k = 0; k < markers.size(); ++k)
+            if (active[k]) fixed[markers[k]] = 1;
+        freeIndex.assign(n, -1);
+        std::vector<int> fixedIndex(n, -1);
+        int nf = 0, nc = 0;
+        for (int v = 0; v < n; ++v) (fixed[v] ? fixedIndex[v] = nc++ : freeIndex[v] = nf++);
+        std::vector<Eigen::Triplet<double>> ff, fc;
+        for (int col = 0; col < laplacian.outerSize(); ++col)
+            for (Eigen::SparseMatrix<double>::InnerIterator it(laplacian, col); it; ++it) {
+                const int r = static_cast<int>(it.row());
+                if (freeIndex[r] < 0) continue;
+                if (freeIndex[col] >= 0)
+                    ff.emplace_back(freeIndex[r], freeIndex[col], it.value());
+                else
+                    fc.emplace_back(freeIndex[r], fixedIndex[col], it.value());
+            }
+        Eigen::SparseMatrix<double> Lff(nf, nf);
+        Lff.setFromTriplets(ff.begin(), ff.end());
+        // Vertices with no faces have an empty row: give them an identity row so they stay put.
+        for (int v = 0; v < n; ++v)
+            if (freeIndex[v] >= 0 && laplacian.col(v).nonZeros() == 0)
+                Lff.coeffRef(freeIndex[v], freeIndex[v]) = 1.0;
+        freeToFixed.resize(nf, nc);
+        freeToFixed.setFromTriplets(fc.begin(), fc.end());
+        factor.compute(Lff);
+        if (factor.info() != Eigen::Success)
+            throw SolverError(
+                "ARAP: the constrained Laplacian is not positive definite (a "
+                "component without markers?)");
+        activeKey = active;
+    }
+};
+
+ArapDeformer::ArapDeformer() : impl_(std::make_unique<Impl>()) {}
+ArapDeformer::~ArapDeformer() = default;
+
+void ArapDeformer::prepare(const TriMesh& rest, std::vector<int> markerVertices, Options options) {
+    auto impl = std::make_unique<Impl>();
+    impl->rest = rest;
+    impl->markers = std::move(markerVertices);
+    impl->options = options;
+    const int n = rest.vertexCount();
+    for (int v : impl->markers)
+        if (v < 0 || v >= n)
+            throw SolverError("marker vertex " + std::to_string(v) + " out of range");
+    impl->cotangent.resize(rest.faceCount(), 3);
+    std::vector<Eigen::Triplet<double>> t;
+    for (int f = 0; f < rest.faceCount(); ++f)
+        for (int c = 0; c < 3; ++c) {
+            const int o = rest.F(f, c), j = rest.F(f, (c + 1) % 3), k = rest.F(f, (c + 2) % 3);
+            const Vec3 a = rest.V.row(j) - rest.V.row(o), b = rest.V.row(k) - rest.V.row(o);
+            const double sine = a.cross(b).norm();
+            const double w = sine > 1e-300 ? 0.5 * a.dot(b) / sine : 0.0;
+            impl->cotangent(f, c) = w;
+            t.emplace_back(j, j, w);
+            t.emplace_back(k, k, w);
+            t.emplace_back(j, k, -w);
+            t.emplace_back(k, j, -w);
+        }
+    impl->laplacian.resize(n, n);
+    impl->laplacian.setFromTriplets(t.begin(), t.end());
+    impl_ = std::move(impl);
+}
+
+SolveResult ArapDeformer::solve(const Positions& targets, const Positions* guess) {
+    Impl& s = *impl_;
+    const auto start = std::chrono::steady_clock::now();
+    const int n = s.rest.vertexCount(), K = static_cast<int>(s.markers.size());
+    if (targets.rows() != K) throw SolverError("ARAP: wrong number of marker targets");
+    std::vector<char> active(K);
+    for (int k = 0; k < K; ++k) active[k] = targets.row(k).allFinite();
+    if (active != s.activeKey) s.refactorise(active);
+
+    Positions restMarkers(K, 3);
+    for (int k = 0; k < K; ++k) restMarkers.row(k) = s.rest.V.row(s.markers[k]);
+    SolveResult result;
+    if (guess) {
+        result.V = *guess;
+    } else {
+        const RigidMotion motion = fitRigidMotion(restMarkers, targets);
+        result.V.resize(n, 3);
+        for (int v = 0; v < n; ++v)
+            result.V.row(v) = motion.apply(s.rest.V.row(v).transpose()).transpose();
+    }
+    Positions& V = result.V;
+    Eigen::MatrixXd fixedPositions(s.freeToFixed.cols(), 3);
+    for (int k = 0, c = 0; k < K; ++k)
+        if (active[k]) {
+            V.row(s.markers[k]) = targets.row(k);
+            fixedPositions.row(c++) = targets.row(k);
+        }
+
+    std::vector<Mat3> R(n);
+    for (int it = 0; it < s.options.iterations; ++it) {
+        // Local step: each vertex's best rotation over the edges of its faces (spokes and rims).
+        std::vector<Mat3> S(n, Mat3::Zero());
+        for (int f = 0; f < s.rest.faceCount(); ++f) {
+            Mat3 cov = Mat3::Zero();
+            for (int c = 0; c < 3; ++c) {
+                const int j = s.rest.F(f, (c + 1) % 3), k = s.rest.F(f, (c + 2) % 3);
+                const Vec3 e0 = s.rest.V.row(j) - s.rest.V.row(k);
+                const Vec3 e = V.row(j) - V.row(k);
+                cov += s.cotangent(f, c) * e0 * e.transpose();
+            }
+            for (int c = 0; c < 3; ++c) S[s.rest.F(f, c)] += cov;
+        }
+        for (int v = 0; v < n; ++v) {
+            Eigen::JacobiSVD<Mat3> svd(S[v], Eigen::ComputeFullU | Eigen::ComputeFullV);
+            Mat3 U = svd.matrixU();
+            R[v] = svd.matrixV() * U.transpose();
+            if (R[v].determinant() < 0) {
+                U.col(2) *= -1;
+                R[v] = svd.matrixV() * U.transpose();
+            }
+        }
+        // Global step: L V = b with the rotated rest edges on the right.
+        Eigen::MatrixXd b = Eigen::MatrixXd::Zero(n, 3);
+        for (int f = 0; f < s.rest.faceCount(); ++f) {
+            const Mat3 Rf = (R[s.rest.F(f, 0)] + R[s.rest.F(f, 1)] + R[s.rest.F(f, 2)]) / 3.0;
+            for (int c = 0; c < 3; ++c) {
+                const int j = s.rest.F(f, (c + 1) % 3), k = s.rest.F(f, (c + 2) % 3);
+                const Vec3 e0 = s.rest.V.row(j) - s.rest.V.row(k);
+                const Vec3 rotated = s.cotangent(f, c) * (Rf * e0);
+                b.row(j) += rotated.transpose();
+                b.row(k) -= rotated.transpose();
+            }
+        }
+        Eigen::MatrixXd bFree(s.freeToFixed.rows(), 3);
+        for (int v = 0; v < n; ++v)
+            if (s.freeIndex[v] >= 0) bFree.row(s.freeIndex[v]) = b.row(v);
+        bFree -= s.freeToFixed * fixedPositions;
+        const Eigen::MatrixXd x = s.factor.solve(bFree);
+        for (int v = 0; v < n; ++v)
+            if (s.freeIndex[v] >= 0 && s.laplacian.col(v).nonZeros() > 0)
+                V.row(v) = x.row(s.freeIndex[v]);
+        result.report.iterations = it + 1;
+    }
+    result.report.milliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return result;
+}
+
+}  // namespace boneless

@@ -1,0 +1,119 @@
+#include "BlockSystem.h"
+
+#include <algorithm>
+
+namespace boneless {
+
+BlockSystem::BlockSystem(int vertexCount, const std::vector<std::vector<int>>& stencils) {
+    // Block pattern: every pair of vertices sharing a stencil, plus the diagonal.
+    std::vector<std::vector<int>> columns(vertexCount);
+    for (int v = 0; v < vertexCount; ++v) columns[v].push_back(v);
+    for (const auto& s : stencils)
+        for (int a : s)
+            for (int b : s) columns[b].push_back(a);
+    for (auto& c : columns) {
+        std::sort(c.begin(), c.end());
+        c.erase(std::unique(c.begin(), c.end()), c.end());
+    }
+    const int n = 3 * vertexCount;
+    std::vector<int> outer(n + 1, 0);
+    long nnz = 0;
+    for (int b = 0; b < vertexCount; ++b)
+        for (int c = 0; c < 3; ++c) {
+            outer[3 * b + c] = static_cast<int>(nnz);
+            nnz += 3 * static_cast<long>(columns[b].size());
+        }
+    outer[n] = static_cast<int>(nnz);
+    matrix_.resize(n, n);
+    matrix_.resizeNonZeros(nnz);
+    std::copy(outer.begin(), outer.end(), matrix_.outerIndexPtr());
+    int* inner = matrix_.innerIndexPtr();
+    for (int b = 0; b < vertexCount; ++b)
+        for (int c = 0; c < 3; ++c) {
+            int at = outer[3 * b + c];
+            for (int a : columns[b])
+                for (int row = 0; row < 3; ++row) inner[at++] = 3 * a + row;
+        }
+    matrix_.makeCompressed();
+
+    auto slotOf = [&](int a, int b) {
+        const auto& col = columns[b];
+        const int pos = static_cast<int>(std::lower_bound(col.begin(), col.end(), a) - col.begin());
+        return pos;
+    };
+    stencilSizes_.resize(stencils.size());
+    slotOffset_.resize(stencils.size() + 1, 0);
+    for (size_t r = 0; r < stencils.size(); ++r) {
+        const long m = static_cast<long>(stencils[r].size());
+        stencilSizes_[r] = static_cast<int>(m);
+        slotOffset_[r + 1] = slotOffset_[r] + 3 * m * m;
+    }
+    slots_.resize(slotOffset_.back());
+    for (size_t r = 0; r < stencils.size(); ++r) {
+        const auto& s = stencils[r];
+        const int m = static_cast<int>(s.size());
+        for (int i = 0; i < m; ++i)
+            for (int j = 0; j < m; ++j) {
+                const int pos = slotOf(s[i], s[j]);
+                for (int c = 0; c < 3; ++c)
+                    slots_[slotOffset_[r] + 3 * (i * m + j) + c] = outer[3 * s[j] + c] + 3 * pos;
+            }
+    }
+    diagonalSlots_.resize(vertexCount);
+    for (int v = 0; v < vertexCount; ++v) diagonalSlots_[v] = slotOf(v, v);
+}
+
+void BlockSystem::clear() {
+    std::fill_n(matrix_.valuePtr(), matrix_.nonZeros(), 0.0);
+}
+
+void BlockSystem::addDiagonal(int v, const Mat3& M) {
+    double* values = matrix_.valuePtr();
+    for (int c = 0; c < 3; ++c) {
+        const int at = matrix_.outerIndexPtr()[3 * v + c] + 3 * diagonalSlots_[v];
+        for (int row = 0; row < 3; ++row) values[at + row] += M(row, c);
+    }
+}
+
+void BlockSystem::pin(int v) {
+    double* values = matrix_.valuePtr();
+    const int* outer = matrix_.outerIndexPtr();
+    const int* inner = matrix_.innerIndexPtr();
+    // The column is cleared directly; the row is cleared through the symmetric columns that hold
+    // it.
+    for (int c = 0; c < 3; ++c) {
+        const int col = 3 * v + c;
+        for (int at = outer[col]; at < outer[col + 1]; ++at) {
+            const int row = inner[at];
+            values[at] = (row == col) ? 1.0 : 0.0;
+            if (row / 3 != v) {
+                const int* first = inner + outer[row];
+                const int* last = inner + outer[row + 1];
+                const int* hit = std::lower_bound(first, last, col);
+                values[hit - inner] = 0.0;
+            }
+        }
+    }
+}
+
+bool BlockSystem::factorize(double tikhonov) {
+    if (tikhonov != 0) {
+        const int n = static_cast<int>(matrix_.rows()) / 3;
+        for (int v = 0; v < n; ++v) addDiagonal(v, tikhonov * Mat3::Identity());
+    }
+    if (!analysed_) {
+        solver_.analyzePattern(matrix_);
+        analysed_ = true;
+    }
+    solver_.factorize(matrix_);
+    return solver_.info() == Eigen::Success;
+}
+
+double BlockSystem::meanDiagonal() const {
+    double sum = 0;
+    const int n = static_cast<int>(matrix_.rows());
+    for (int col = 0; col < n; ++col) sum += matrix_.coeff(col, col);
+    return n ? sum / n : 0.0;
+}
+
+}  // namespace boneless

@@ -1,0 +1,51 @@
+#pragma once
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/Sparse>
+#include <vector>
+
+#include "boneless/ShapeEncoding.h"
+
+namespace boneless {
+
+// The Gauss–Newton normal matrix AᵀA over all vertices, with 3×3 blocks. Its pattern (the 2-ring)
+// is fixed by the stencils given once, so the symbolic analysis is done once; each iteration only
+// fills values through precomputed slots and refactorises numerically.
+class BlockSystem {
+  public:
+    // stencils[r] = the vertices residual r depends on; every residual's stencil lists each
+    // vertex at most once.
+    BlockSystem(int vertexCount, const std::vector<std::vector<int>>& stencils);
+
+    void clear();
+    // H_ab += M for the a-th and b-th vertex of residual r's stencil.
+    void add(int residual, int a, int b, const Mat3& M) {
+        const int* slot =
+            slots_.data() + slotOffset_[residual] + 3 * (a * stencilSize(residual) + b);
+        double* values = matrix_.valuePtr();
+        for (int c = 0; c < 3; ++c)
+            for (int row = 0; row < 3; ++row) values[slot[c] + row] += M(row, c);
+    }
+    // H_vv += M (diagonal block, independent of any residual).
+    void addDiagonal(int v, const Mat3& M);
+    // Turns vertex v into a fixed one: its rows and columns become those of the identity.
+    void pin(int v);
+    // Factorises H + tikhonov·I; false when the matrix is not positive definite.
+    bool factorize(double tikhonov);
+    Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const { return solver_.solve(rhs); }
+    double meanDiagonal() const;
+
+  private:
+    int stencilSize(int r) const { return stencilSizes_[r]; }
+    int slotOfBlock(int a, int b) const;
+
+    Eigen::SparseMatrix<double> matrix_;
+    Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver_;
+    std::vector<int> stencilSizes_;
+    std::vector<long> slotOffset_;
+    std::vector<int> slots_;  // value index of the first row of each block column
+    std::vector<int> diagonalSlots_;
+    bool analysed_ = false;
+};
+
+}  // namespace boneless

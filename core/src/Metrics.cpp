@@ -1,0 +1,45 @@
+#include "boneless/Metrics.h"
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+namespace boneless {
+
+double rmsVertexError(const Positions& V, const Positions& T) {
+    return V.rows() ? std::sqrt((V - T).rowwise().squaredNorm().mean()) : 0.0;
+}
+
+double maxVertexError(const Positions& V, const Positions& T) {
+    return V.rows() ? (V - T).rowwise().norm().maxCoeff() : 0.0;
+}
+
+namespace {
+Eigen::Vector3d faceNormal(const Faces& F, const Positions& P, int f) {
+    const Eigen::Vector3d a = P.row(F(f, 0)), b = P.row(F(f, 1)), c = P.row(F(f, 2));
+    return (b - a).cross(c - a);
+}
+}  // namespace
+
+int flippedFaceCount(const Faces& F, const Positions& V, const Positions& T) {
+    int flipped = 0;
+    for (int f = 0; f < F.rows(); ++f)
+        if (faceNormal(F, V, f).dot(faceNormal(F, T, f)) < 0) ++flipped;
+    return flipped;
+}
+
+double edgeLengthDistortion(const Faces& F, const Positions& V, const Positions& rest) {
+    double sum = 0;
+    long count = 0;
+    for (int f = 0; f < F.rows(); ++f)
+        for (int c = 0; c < 3; ++c) {
+            const int a = F(f, c), b = F(f, (c + 1) % 3);
+            const double restLength = (rest.row(a) - rest.row(b)).norm();
+            if (restLength <= 0) continue;
+            const double ratio = (V.row(a) - V.row(b)).norm() / restLength - 1.0;
+            sum += ratio * ratio;
+            ++count;
+        }
+    return count ? std::sqrt(sum / count) : 0.0;
+}
+
+}  // namespace boneless

@@ -1,0 +1,274 @@
+#include "boneless/Reconstruction.h"
+
+#include <Eigen/Geometry>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "BlockSystem.h"
+#include "boneless/Error.h"
+
+namespace boneless {
+
+namespace {
+
+bool rowIsFinite(const Positions& P, int r) {
+    return P.row(r).allFinite();
+}
+
+}  // namespace
+
+RigidMotion fitRigidMotion(const Positions& from, const Positions& to) {
+    std::vector<int> rows;
+    for (int r = 0; r < static_cast<int>(from.rows()); ++r)
+        if (rowIsFinite(from, r) && rowIsFinite(to, r)) rows.push_back(r);
+    RigidMotion motion;
+    if (rows.size() < 3) return motion;
+    Eigen::Matrix3Xd a(3, rows.size()), b(3, rows.size());
+    for (size_t i = 0; i < rows.size(); ++i) {
+        a.col(i) = from.row(rows[i]).transpose();
+        b.col(i) = to.row(rows[i]).transpose();
+    }
+    const Eigen::Matrix4d T = Eigen::umeyama(a, b, false);
+    motion.R = T.topLeftCorner<3, 3>();
+    motion.t = T.topRightCorner<3, 1>();
+    return motion;
+}
+
+struct Reconstruction::Impl {
+    TriMesh rest;
+    std::unique_ptr<MeshTopology> topology;
+    std::unique_ptr<ShapeEncoding> encoding;
+    std::vector<int> markers;
+    std::vector<int> markerOf;    // vertex -> marker index, or -1
+    std::vector<int> residualOf;  // residual -> vertex
+    std::unique_ptr<BlockSystem> system;
+    SolverOptions options;
+
+    // Per-iteration scratch, kept to avoid reallocations per frame.
+    std::vector<Vec3> residual;
+    std::vector<std::vector<Mat3>> jacobian;
+
+    bool softMarkers() const { return options.constraints == SolverOptions::Constraints::Soft; }
+
+    double energy(const Positions& V, const Positions& targets) const {
+        double e = 0;
+        for (int v : residualOf) e += (V.row(v).transpose() - encoding->decode(v, V)).squaredNorm();
+        if (softMarkers())
+            for (size_t k = 0; k < markers.size(); ++k)
+                if (rowIsFinite(targets, static_cast<int>(k)))
+                    e += options.softWeight * (V.row(markers[k]) - targets.row(k)).squaredNorm();
+        return 0.5 * e;
+    }
+
+    // Fills residuals and Jacobians, returns the energy.
+    double linearise(const Positions& V, const Positions& targets) {
+        const int count = static_cast<int>(residualOf.size());
+        residual.resize(count);
+        jacobian.resize(count);
+        double e = 0;
+        for (int r = 0; r < count; ++r) {
+            const int v = residualOf[r];
+            Vec3 F;
+            encoding->decodeWithJacobian(v, V, F, jacobian[r]);
+            residual[r] = V.row(v).transpose() - F;
+            e += residual[r].squaredNorm();
+        }
+        if (softMarkers())
+            for (size_t k = 0; k < markers.size(); ++k)
+                if (rowIsFinite(targets, static_cast<int>(k)))
+                    e += options.softWeight * (V.row(markers[k]) - targets.row(k)).squaredNorm();
+        return 0.5 * e;
+    }
+
+    // Assembles AᵀA and Aᵀr for the current linearisation.
+    void assemble(const Positions& V, const Positions& targets, Eigen::VectorXd& gradient) {
+        const int n = rest.vertexCount();
+        gradient.setZero(3 * n);
+        system->clear();
+        const auto& topo = *topology;
+        for (int r = 0; r < static_cast<int>(residualOf.size()); ++r) {
+            const int v = residualOf[r];
+            const int m = topo.valence(v);
+            const int* ring = topo.ring(v);
+            const auto& J = jacobian[r];
+            const Vec3& res = residual[r];
+            // Stencil slot 0 is v itself (∂r/∂v = I), slot k+1 its k-th neighbour (∂r/∂p_k = −J_k).
+            system->add(r, 0, 0, Mat3::Identity());
+            gradient.segment<3>(3 * v) += res;
+            for (int k = 0; k < m; ++k) {
+                const Mat3 Jt = J[k].transpose();
+                system->add(r, 0, k + 1, -J[k]);
+                system->add(r, k + 1, 0, -Jt);
+                gradient.segment<3>(3 * ring[k]) -= Jt * res;
+                for (int l = 0; l < m; ++l) system->add(r, k + 1, l + 1, Jt * J[l]);
+            }
+        }
+        if (softMarkers())
+            for (size_t k = 0; k < markers.size(); ++k)
+                if (rowIsFinite(targets, static_cast<int>(k))) {
+                    const int v = markers[k];
+                    system->addDiagonal(v, options.softWeight * Mat3::Identity());
+                    gradient.segment<3>(3 * v) +=
+                        options.softWeight * (V.row(v) - targets.row(k)).transpose();
+                }
+    }
+};
+
+Reconstruction::Reconstruction() : impl_(std::make_unique<Impl>()) {}
+Reconstruction::~Reconstruction() = default;
+Reconstruction::Reconstruction(Reconstruction&&) noexcept = default;
+Reconstruction& Reconstruction::operator=(Reconstruction&&) noexcept = default;
+
+void Reconstruction::prepare(const TriMesh& rest, std::vector<int> markerVertices,
+                             SolverOptions options) {
+    auto impl = std::make_unique<Impl>();
+    impl->rest = rest;
+    impl->options = options;
+    impl->topology = std::make_unique<MeshTopology>(impl->rest);
+    impl->encoding = std::make_unique<ShapeEncoding>(impl->rest, *impl->topology);
+    const int n = rest.vertexCount();
+    impl->markerOf.assign(n, -1);
+    for (size_t k = 0; k < markerVertices.size(); ++k) {
+        const int v = markerVertices[k];
+        if (v < 0 || v >= n)
+            throw SolverError("marker " + std::to_string(k) + " is attached to vertex " +
+                              std::to_string(v) + ", but the mesh has " + std::to_string(n) +
+                              " vertices");
+        if (impl->markerOf[v] != -1)
+            throw SolverError("markers " + std::to_string(impl->markerOf[v]) + " and " +
+                              std::to_string(k) + " are both attached to vertex " +
+                              std::to_string(v));
+        impl->markerOf[v] = static_cast<int>(k);
+    }
+    impl->markers = std::move(markerVertices);
+
+    std::vector<std::vector<int>> stencils;
+    for (int v = 0; v < n; ++v) {
+        if (!impl->encoding->encoded(v)) continue;
+        impl->residualOf.push_back(v);
+        std::vector<int> s{v};
+        const int* ring = impl->topology->ring(v);
+        s.insert(s.end(), ring, ring + impl->topology->valence(v));
+        stencils.push_back(std::move(s));
+    }
+    impl->system = std::make_unique<BlockSystem>(n, stencils);
+    impl_ = std::move(impl);
+}
+
+SolveResult Reconstruction::solve(const Positions& targets, const Positions* guess) {
+    Impl& s = *impl_;
+    if (!s.topology) throw SolverError("solve() called before prepare()");
+    const int n = s.rest.vertexCount();
+    const int K = static_cast<int>(s.markers.size());
+    if (targets.rows() != K)
+        throw SolverError("expected " + std::to_string(K) + " marker targets, got " +
+                          std::to_string(targets.rows()));
+    if (guess && guess->rows() != n)
+        throw SolverError("the initial guess has " + std::to_string(guess->rows()) +
+                          " vertices, the mesh " + std::to_string(n));
+    const auto start = std::chrono::steady_clock::now();
+
+    Positions restMarkers(K, 3);
+    for (int k = 0; k < K; ++k) restMarkers.row(k) = s.rest.V.row(s.markers[k]);
+    const RigidMotion motion = fitRigidMotion(restMarkers, targets);
+
+    SolveResult result;
+    if (guess) {
+        result.V = *guess;
+    } else {
+        result.V.resize(n, 3);
+        for (int v = 0; v < n; ++v)
+            result.V.row(v) = motion.apply(s.rest.V.row(v).transpose()).transpose();
+    }
+    Positions& V = result.V;
+    // Isolated vertices have no shape to keep; they follow the markers' overall rigid motion.
+    for (int v = 0; v < n; ++v)
+        if (s.topology->isIsolated(v))
+            V.row(v) = motion.apply(s.rest.V.row(v).transpose()).transpose();
+    const bool hard = !s.softMarkers();
+    if (hard)
+        for (int k = 0; k < K; ++k)
+            if (rowIsFinite(targets, k)) V.row(s.markers[k]) = targets.row(k);
+
+    Eigen::VectorXd gradient;
+    double E = s.linearise(V, targets);
+    result.report.energyBefore = E;
+    result.report.energies.push_back(E);
+    for (int it = 0; it < s.options.maxIterations && E > 0; ++it) {
+        auto buildSystem = [&] {
+            s.assemble(V, targets, gradient);
+            for (int v = 0; v < n; ++v)
+                if (s.topology->isIsolated(v)) s.system->pin(v);
+            if (hard)
+                for (int k = 0; k < K; ++k)
+                    if (rowIsFinite(targets, k)) {
+                        s.system->pin(s.markers[k]);
+                        gradient.segment<3>(3 * s.markers[k]).setZero();
+                    }
+        };
+        buildSystem();
+        // A tiny Tikhonov term keeps directions the markers do not pin down (a component without
+        // markers, a ring-less vertex) from making the matrix singular.
+        double tikhonov = 1e-9 * s.system->meanDiagonal();
+        if (!s.system->factorize(tikhonov)) {
+            buildSystem();  // factorize() added the first term to the values already
+            if (!s.system->factorize(tikhonov * 1e4)) break;
+        }
+        const Eigen::VectorXd step = -s.system->solve(gradient);
+        if (!step.allFinite()) break;
+
+        const double slope = gradient.dot(step);
+        double alpha = 1.0, Enew = E;
+        Positions trial(n, 3);
+        bool accepted = false;
+        for (int tries = 0; tries < 12; ++tries, alpha *= 0.5) {
+            for (int v = 0; v < n; ++v)
+                trial.row(v) = V.row(v) + alpha * step.segment<3>(3 * v).transpose();
+            Enew = s.energy(trial, targets);
+            if (Enew <= E + 1e-4 * alpha * slope) {
+                accepted = true;
+                break;
+            }
+        }
+        if (!accepted) {
+            result.report.converged = true;  // no descent left along the Gauss–Newton direction
+            break;
+        }
+        V.swap(trial);
+        const double decrease = (E - Enew) / E;
+        result.report.iterations = it + 1;
+        E = s.linearise(V, targets);
+        result.report.energies.push_back(E);
+        if (decrease < s.options.relativeTolerance) {
+            result.report.converged = true;
+            break;
+        }
+    }
+    result.report.energyAfter = E;
+    result.report.milliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return result;
+}
+
+double Reconstruction::energy(const Positions& V, const Positions& targets) const {
+    return impl_->energy(V, targets);
+}
+const TriMesh& Reconstruction::rest() const {
+    return impl_->rest;
+}
+const ShapeEncoding& Reconstruction::encoding() const {
+    return *impl_->encoding;
+}
+const std::vector<int>& Reconstruction::markerVertices() const {
+    return impl_->markers;
+}
+const SolverOptions& Reconstruction::options() const {
+    return impl_->options;
+}
+void Reconstruction::setOptions(const SolverOptions& options) {
+    impl_->options = options;
+}
+
+}  // namespace boneless

@@ -1,0 +1,108 @@
+#include "boneless/SequenceEvaluation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <optional>
+#include <random>
+
+#include "boneless/ArapDeformer.h"
+#include "boneless/Error.h"
+#include "boneless/Metrics.h"
+
+namespace boneless {
+
+const char* methodName(EvaluationOptions::Method method) {
+    return method == EvaluationOptions::Method::Arap ? "arap" : "boneless";
+}
+
+namespace {
+
+EvaluationSummary summarise(const std::vector<FrameEvaluation>& frames) {
+    EvaluationSummary s;
+    std::vector<double> ms;
+    double iterations = 0;
+    for (const auto& f : frames) {
+        if (f.frame == 0) continue;  // the rest pose is reproduced by construction
+        ++s.frames;
+        s.rmsPctMean += f.rmsPct;
+        s.rmsPctWorstFrame = std::max(s.rmsPctWorstFrame, f.rmsPct);
+        s.maxPctWorstFrame = std::max(s.maxPctWorstFrame, f.maxPct);
+        s.flippedFacesMax = std::max(s.flippedFacesMax, f.flippedFaces);
+        s.flippedFacesMean += f.flippedFaces;
+        iterations += f.iterations;
+        ms.push_back(f.milliseconds);
+    }
+    if (s.frames > 0) {
+        s.rmsPctMean /= s.frames;
+        s.flippedFacesMean /= s.frames;
+        s.iterationsMean = iterations / s.frames;
+        std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
+        s.msPerFrameMedian = ms[ms.size() / 2];
+        if (ms.size() % 2 == 0) {
+            const double lower = *std::max_element(ms.begin(), ms.begin() + ms.size() / 2);
+            s.msPerFrameMedian = 0.5 * (s.msPerFrameMedian + lower);
+        }
+    }
+    return s;
+}
+
+}  // namespace
+
+Evaluation evaluateSequence(const MeshSequence& sequence, const EvaluationOptions& options,
+                            const std::function<void(const FrameEvaluation&)>& onFrame) {
+    const int frameCount = static_cast<int>(sequence.frames.size());
+    const int end = options.endFrame < 0 ? frameCount : std::min(options.endFrame, frameCount);
+    if (options.firstFrame < 0 || options.firstFrame >= end)
+        throw Error("frame range " + std::to_string(options.firstFrame) + ":" +
+                    std::to_string(end) + " is empty (the sequence has " +
+                    std::to_string(frameCount) + " frames)");
+    const auto& markers = options.markers;
+    const int K = static_cast<int>(markers.size());
+    const double diagonal = boundingBoxDiagonal(sequence.rest.V);
+
+    Reconstruction boneless;
+    ArapDeformer arap;
+    const bool useArap = options.method == EvaluationOptions::Method::Arap;
+    if (useArap)
+        arap.prepare(sequence.rest, markers, {options.arapIterations});
+    else
+        boneless.prepare(sequence.rest, markers, options.solver);
+
+    std::mt19937 rng(options.seed);
+    const int dropCount = static_cast<int>(std::lround(K * options.dropPercent / 100.0));
+    std::vector<int> order(K);
+    std::optional<Positions> previous;
+    if (options.firstFrame == 0) previous = sequence.rest.V;
+
+    Evaluation evaluation;
+    for (int frame = options.firstFrame; frame < end; ++frame) {
+        const Positions& truth = sequence.frames[frame];
+        Positions targets(K, 3);
+        for (int k = 0; k < K; ++k) targets.row(k) = truth.row(markers[k]);
+        if (dropCount > 0) {
+            std::iota(order.begin(), order.end(), 0);
+            std::shuffle(order.begin(), order.end(), rng);
+            for (int i = 0; i < dropCount; ++i)
+                targets.row(order[i]).setConstant(std::numeric_limits<double>::quiet_NaN());
+        }
+        const Positions* guess = previous ? &*previous : nullptr;
+        SolveResult result = useArap ? arap.solve(targets, guess) : boneless.solve(targets, guess);
+
+        FrameEvaluation f;
+        f.frame = frame;
+        f.rmsPct = 100.0 * rmsVertexError(result.V, truth) / diagonal;
+        f.maxPct = 100.0 * maxVertexError(result.V, truth) / diagonal;
+        f.flippedFaces = flippedFaceCount(sequence.rest.F, result.V, truth);
+        f.iterations = result.report.iterations;
+        f.milliseconds = result.report.milliseconds;
+        f.markersUsed = K - dropCount;
+        evaluation.frames.push_back(f);
+        if (onFrame) onFrame(f);
+        previous = std::move(result.V);
+    }
+    evaluation.summary = summarise(evaluation.frames);
+    return evaluation;
+}
+
+}  // namespace boneless

@@ -1,0 +1,137 @@
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "TestMeshes.h"
+#include "boneless/Error.h"
+#include "boneless/Reconstruction.h"
+
+using namespace boneless;
+using namespace boneless::testing;
+
+namespace {
+
+std::vector<int> everyNth(int n, int step) {
+    std::vector<int> ids;
+    for (int v = 0; v < n; v += step) ids.push_back(v);
+    return ids;
+}
+
+double maxDistance(const Positions& a, const Positions& b) {
+    return (a - b).rowwise().norm().maxCoeff();
+}
+
+}  // namespace
+
+TEST(Reconstruction, RestPoseTargetsGiveBackTheRestMesh) {
+    for (const TriMesh& mesh : {icosphere(2), tube(8, 12, 4.0)}) {
+        Reconstruction solver;
+        const auto markers = everyNth(mesh.vertexCount(), 9);
+        solver.prepare(mesh, markers);
+        const SolveResult r = solver.solve(rows(mesh.V, markers));
+        EXPECT_LE(maxDistance(r.V, mesh.V), 1e-9 * boundingBoxDiagonal(mesh.V));
+    }
+}
+
+TEST(Reconstruction, RigidMotionOfTheMarkersMovesTheMeshRigidly) {
+    const TriMesh mesh = tube(10, 12, 4.0);
+    const auto markers = everyNth(mesh.vertexCount(), 11);
+    std::mt19937 rng(11);
+    for (int trial = 0; trial < 3; ++trial) {
+        const Mat3 R = randomRotation(rng);
+        const Vec3 t(trial, 2.0 - trial, 0.5);
+        Positions expected(mesh.vertexCount(), 3);
+        for (int v = 0; v < mesh.vertexCount(); ++v)
+            expected.row(v) = (R * mesh.V.row(v).transpose() + t).transpose();
+        Reconstruction solver;
+        solver.prepare(mesh, markers);
+        // From the rest pose as it is (not pre-aligned): Gauss–Newton has to find the rotation.
+        const SolveResult fromRest = solver.solve(rows(expected, markers), &mesh.V);
+        EXPECT_LE(maxDistance(fromRest.V, expected), 1e-6 * boundingBoxDiagonal(mesh.V))
+            << "trial " << trial << ", " << fromRest.report.iterations << " iterations";
+        const SolveResult aligned = solver.solve(rows(expected, markers));
+        EXPECT_LE(maxDistance(aligned.V, expected), 1e-6 * boundingBoxDiagonal(mesh.V));
+    }
+}
+
+TEST(Reconstruction, EnergyNeverIncreasesAndDropsFromTheStart) {
+    const TriMesh mesh = tube(12, 14, 5.0);
+    const auto markers = everyNth(mesh.vertexCount(), 13);
+    Reconstruction solver;
+    SolverOptions options;
+    options.relativeTolerance = 1e-9;
+    options.maxIterations = 25;
+    solver.prepare(mesh, markers, options);
+    const Positions pose = bent(mesh.V, 0.6);
+    const SolveResult r = solver.solve(rows(pose, markers), &mesh.V);
+    ASSERT_GE(r.report.energies.size(), 3u);
+    for (size_t i = 1; i < r.report.energies.size(); ++i)
+        EXPECT_LE(r.report.energies[i], r.report.energies[i - 1]) << "iteration " << i;
+    EXPECT_LT(r.report.energyAfter, 1e-2 * r.report.energyBefore);
+    EXPECT_DOUBLE_EQ(r.report.energyAfter, solver.energy(r.V, rows(pose, markers)));
+    for (size_t k = 0; k < markers.size(); ++k)
+        EXPECT_EQ(r.V.row(markers[k]), pose.row(markers[k]));  // hard constraints are exact
+}
+
+TEST(Reconstruction, ReconstructsASmoothBendCloselyFromFewMarkers) {
+    const TriMesh mesh = tube(16, 16, 6.0);
+    const auto markers = everyNth(mesh.vertexCount(), 7);
+    Reconstruction solver;
+    solver.prepare(mesh, markers);
+    const Positions pose = bent(mesh.V, 0.15);
+    const SolveResult r = solver.solve(rows(pose, markers));
+    const double rms = std::sqrt((r.V - pose).rowwise().squaredNorm().mean());
+    EXPECT_LT(rms, 0.01 * boundingBoxDiagonal(mesh.V));
+}
+
+TEST(Reconstruction, MissingMarkersAreSolvedForAndStayFinite) {
+    const TriMesh mesh = icosphere(3);
+    const auto markers = everyNth(mesh.vertexCount(), 17);
+    Reconstruction solver;
+    solver.prepare(mesh, markers);
+    Positions pose = mesh.V;
+    pose.col(0) *= 1.2;  // a squash
+    Positions targets = rows(pose, markers);
+    targets.row(1).setConstant(std::numeric_limits<double>::quiet_NaN());
+    const SolveResult r = solver.solve(targets, &mesh.V);
+    EXPECT_TRUE(r.V.allFinite());
+    EXPECT_GT((r.V.row(markers[1]) - mesh.V.row(markers[1])).norm(), 0.0);  // it moved freely
+}
+
+TEST(Reconstruction, SoftConstraintsApproachTheTargetsAsTheWeightGrows) {
+    const TriMesh mesh = tube(10, 10, 4.0);
+    const auto markers = everyNth(mesh.vertexCount(), 9);
+    const Positions pose = bent(mesh.V, 0.3);
+    double previous = std::numeric_limits<double>::infinity();
+    for (double weight : {1.0, 100.0, 1e4}) {
+        SolverOptions options;
+        options.constraints = SolverOptions::Constraints::Soft;
+        options.softWeight = weight;
+        Reconstruction solver;
+        solver.prepare(mesh, markers, options);
+        const SolveResult r = solver.solve(rows(pose, markers));
+        const double miss = maxDistance(rows(r.V, markers), rows(pose, markers));
+        EXPECT_LT(miss, previous);
+        previous = miss;
+    }
+    EXPECT_LT(previous, 1e-3);
+}
+
+TEST(Reconstruction, MeshesWithBoundariesAndDegenerateFacesGiveFiniteResults) {
+    TriMesh mesh = tube(8, 10, 3.0);
+    mesh.V.row(25) = mesh.V.row(26);  // two zero-area faces
+    const auto markers = everyNth(mesh.vertexCount(), 8);
+    Reconstruction solver;
+    solver.prepare(mesh, markers);
+    const SolveResult r = solver.solve(rows(bent(mesh.V, 0.5), markers));
+    EXPECT_TRUE(r.V.allFinite());
+}
+
+TEST(Reconstruction, RejectsBadMarkerSetsAndTargets) {
+    const TriMesh mesh = icosphere(1);
+    Reconstruction solver;
+    EXPECT_THROW(solver.prepare(mesh, {0, 5, 5}), SolverError);
+    EXPECT_THROW(solver.prepare(mesh, {0, 500}), SolverError);
+    solver.prepare(mesh, {0, 1, 2});
+    EXPECT_THROW(solver.solve(Positions::Zero(2, 3)), SolverError);
+}
