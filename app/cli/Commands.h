@@ -1,0 +1,7 @@
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+// Each boneless-cli subcommand lives in its own file and registers itself here.
+void registerEvalCommand(CLI::App& app);
+void registerInspectCommand(CLI::App& app);
