@@ -1,0 +1,151 @@
+#include "boneless/MeshReader.h"
+
+#include <cmath>
+
+#include "OpenMeshPrecheck.h"
+#include "PolygonSoup.h"
+#include "boneless/Error.h"
+
+namespace boneless {
+
+using namespace detail;
+
+namespace {
+
+std::string plural(int n, const std::string& word, const std::string& words = {}) {
+    return std::to_string(n) + " " + (n == 1 ? word : words.empty() ? word + "s" : words);
+}
+
+std::string faceList(const PolygonSoup& soup, const std::vector<int>& faces) {
+    std::string s;
+    for (size_t i = 0; i < faces.size() && i < 5; ++i)
+        s += (i ? ", " : "") + faceWhere(soup, faces[i]);
+    return faces.size() > 5 ? s + ", ..." : s;
+}
+
+bool hasRepeatedCorner(const int* c, int n) {
+    for (int i = 0; i < n; ++i)
+        for (int j = i + 1; j < n; ++j)
+            if (c[i] == c[j]) return true;
+    return false;
+}
+
+}  // namespace
+
+MeshReadResult readMesh(const std::string& path, const MeshReadOptions& options) {
+    const bool obj = lowerExtension(path) == "obj";
+    if (!options.group.empty() && !obj)
+        throw MeshError(path, "only OBJ files have groups", "group '" + options.group + "'");
+    const PolygonSoup soup = obj ? readObj(path, options.group) : readWithOpenMesh(path);
+
+    MeshReadResult r;
+    r.warnings = soup.warnings;
+    r.sourceVertexCount = soup.vertexCount();
+    r.sourceFaceCount = soup.faceCount();
+    const int nv = soup.vertexCount();
+
+    std::vector<int> kept, dropped;
+    for (int f = 0; f < soup.faceCount(); ++f) {
+        const int* c = soup.faceIndex.data() + soup.faceStart[f];
+        const int n = soup.faceStart[f + 1] - soup.faceStart[f];
+        if (n < 3) throw MeshError(path, "face with " + plural(n, "corner"), faceWhere(soup, f));
+        for (int i = 0; i < n; ++i) {
+            if (c[i] < 0 || c[i] >= nv)
+                throw MeshError(path,
+                                "face uses vertex " + std::to_string(c[i]) + " but the file has " +
+                                    plural(nv, "vertex", "vertices") + " (0-based)",
+                                faceWhere(soup, f));
+        }
+        (hasRepeatedCorner(c, n) ? dropped : kept).push_back(f);
+    }
+
+    // Whole file: every vertex, so that vertex i stays file vertex i. Group: the vertices its
+    // faces use, in file order.
+    std::vector<int> meshIndex(nv, -1);
+    if (options.group.empty()) {
+        for (int v = 0; v < nv; ++v) meshIndex[v] = v;
+    } else {
+        for (int i : soup.faceIndex) meshIndex[i] = 0;
+    }
+    for (int v = 0; v < nv; ++v) {
+        if (meshIndex[v] < 0) continue;
+        meshIndex[v] = static_cast<int>(r.sourceVertexIndex.size());
+        r.sourceVertexIndex.push_back(v);
+    }
+
+    Positions& V = r.mesh.V;
+    V.resize(static_cast<Eigen::Index>(r.sourceVertexIndex.size()), 3);
+    for (int i = 0; i < V.rows(); ++i) {
+        const int v = r.sourceVertexIndex[i];
+        for (int k = 0; k < 3; ++k) V(i, k) = soup.xyz[3 * size_t(v) + k];
+        if (!V.row(i).allFinite())
+            throw MeshError(path, "non-finite vertex coordinate", vertexWhere(soup, v));
+    }
+
+    std::vector<int> tris, polygon, triFace;  // triFace: soup face of each triangle
+    for (int f : kept) {
+        const int n = soup.faceStart[f + 1] - soup.faceStart[f];
+        polygon.assign(soup.faceIndex.begin() + soup.faceStart[f],
+                       soup.faceIndex.begin() + soup.faceStart[f] + n);
+        for (int& c : polygon) c = meshIndex[c];
+        triangulatePolygon(V, polygon.data(), n, tris);
+        triFace.insert(triFace.end(), n - 2, f);
+        if (n > 3) ++r.polygonsTriangulated;
+    }
+    r.droppedFaces = static_cast<int>(dropped.size());
+    for (int f : triFace) r.sourceFaceIndex.push_back(soup.fileFaceOf(f));
+    if (tris.empty()) {
+        const std::string what = !options.group.empty()
+                                     ? "group '" + options.group + "' has no usable faces"
+                                 : soup.faceCount() == 0 ? "no faces (nothing to animate)"
+                                                         : "no usable faces";
+        throw MeshError(path, what, dropped.empty() ? "" : "every face repeats a vertex");
+    }
+    r.mesh.F = Eigen::Map<const Faces>(tris.data(), static_cast<Eigen::Index>(tris.size() / 3), 3);
+
+    const TopologySummary topo =
+        checkManifold(path, r.mesh.F, r.mesh.vertexCount(), triFace, soup, r.sourceVertexIndex);
+    r.boundaryEdges = topo.boundaryEdges;
+    r.boundaryLoops = topo.boundaryLoops;
+    r.components = topo.components;
+    r.isolatedVertices = topo.isolatedVertices;
+
+    // Relative to the model's size, so that float-rounded collinear corners count as degenerate.
+    const double diagonal = boundingBoxDiagonal(V);
+    std::vector<int> zeroArea;
+    for (int t = 0; t < r.mesh.faceCount(); ++t) {
+        const Eigen::Vector3d a = V.row(r.mesh.F(t, 0)), b = V.row(r.mesh.F(t, 1)),
+                              c = V.row(r.mesh.F(t, 2));
+        if ((b - a).cross(c - a).norm() <= 1e-12 * diagonal * diagonal) {
+            ++r.zeroAreaFaces;
+            if (zeroArea.size() < 5) zeroArea.push_back(triFace[t]);
+        }
+    }
+
+    auto& w = r.warnings;
+    if (!dropped.empty())
+        w.push_back("dropped " + plural(r.droppedFaces, "face") +
+                    " with a repeated vertex: " + faceList(soup, dropped));
+    if (r.boundaryEdges > 0)
+        w.push_back("open surface: " + plural(r.boundaryEdges, "boundary edge") + " in " +
+                    plural(r.boundaryLoops, "loop"));
+    if (r.components > 1) w.push_back(plural(r.components, "connected component"));
+    if (r.isolatedVertices > 0) {
+        std::string list;
+        for (size_t i = 0; i < topo.isolated.size(); ++i)
+            list += (i ? ", " : "") + std::to_string(topo.isolated[i]);
+        w.push_back(plural(r.isolatedVertices, "isolated vertex", "isolated vertices") +
+                    " (kept, used by no face): " + list + (r.isolatedVertices > 5 ? ", ..." : ""));
+    }
+    if (r.zeroAreaFaces > 0)
+        w.push_back(plural(r.zeroAreaFaces, "zero-area triangle") + ", from " +
+                    faceList(soup, zeroArea));
+    return r;
+}
+
+std::vector<std::string> objGroups(const std::string& path) {
+    if (lowerExtension(path) != "obj") return {};
+    return readObjGroupNames(path);
+}
+
+}  // namespace boneless

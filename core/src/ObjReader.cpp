@@ -1,0 +1,231 @@
+// Own OBJ parser: OpenMesh's OBJ reader cannot select a group, builds topology while reading
+// (duplicating vertices at non-manifold spots) and is slower on large files.
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <string_view>
+
+#include "PolygonSoup.h"
+#include "boneless/Error.h"
+
+namespace boneless::detail {
+
+namespace {
+
+std::string slurp(const std::string& path) {
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) throw MeshError(path, std::string("cannot open file: ") + std::strerror(errno));
+    std::string data;
+    char buf[1 << 16];
+    size_t n;
+    while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) data.append(buf, n);
+    const bool failed = std::ferror(f);
+    std::fclose(f);
+    if (failed) throw MeshError(path, "cannot read file");
+    return data;
+}
+
+bool isBlank(char c) {
+    return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
+}
+
+// Walks logical lines: a line ending in '\' continues on the next physical line.
+class LineReader {
+  public:
+    explicit LineReader(const std::string& data) : data_(data) {}
+
+    bool next(std::string_view& line, int& lineNumber) {
+        if (pos_ >= data_.size()) return false;
+        lineNumber = ++physical_;
+        std::string_view part = physicalLine();
+        if (!continues(part)) {
+            line = part;
+            return true;
+        }
+        joined_.clear();
+        while (continues(part) && pos_ < data_.size()) {
+            joined_.append(trimmedRight(part).substr(0, trimmedRight(part).size() - 1));
+            joined_.push_back(' ');
+            ++physical_;
+            part = physicalLine();
+        }
+        joined_.append(part);
+        line = joined_;
+        return true;
+    }
+
+  private:
+    std::string_view physicalLine() {
+        const size_t end = std::min(data_.find('\n', pos_), data_.size());
+        std::string_view part(data_.data() + pos_, end - pos_);
+        pos_ = end + 1;
+        return part;
+    }
+    static std::string_view trimmedRight(std::string_view s) {
+        while (!s.empty() && isBlank(s.back())) s.remove_suffix(1);
+        return s;
+    }
+    static bool continues(std::string_view s) {
+        s = trimmedRight(s);
+        return !s.empty() && s.back() == '\\';
+    }
+
+    const std::string& data_;
+    size_t pos_ = 0;
+    int physical_ = 0;
+    std::string joined_;
+};
+
+std::string_view nextToken(std::string_view& rest) {
+    size_t i = 0;
+    while (i < rest.size() && isBlank(rest[i])) ++i;
+    size_t j = i;
+    while (j < rest.size() && !isBlank(rest[j])) ++j;
+    std::string_view token = rest.substr(i, j - i);
+    rest.remove_prefix(j);
+    if (!token.empty() && token[0] == '#') {  // trailing comment
+        rest = {};
+        return {};
+    }
+    return token;
+}
+
+bool parseDouble(std::string_view t, double& value) {
+    if (!t.empty() && t[0] == '+') t.remove_prefix(1);
+    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
+    return ec == std::errc() && end == t.data() + t.size();
+}
+
+class ObjParser {
+  public:
+    ObjParser(std::string path, std::string group)
+        : path_(std::move(path)), group_(std::move(group)) {}
+
+    PolygonSoup parse(bool namesOnly) {
+        const std::string data = slurp(path_);
+        LineReader lines(data);
+        std::string_view line;
+        while (lines.next(line, line_)) {
+            std::string_view rest = line;
+            const std::string_view key = nextToken(rest);
+            if (key == "v") {
+                if (!namesOnly) vertex(rest);
+                ++vertexCount_;
+            } else if (key == "f") {
+                if (!namesOnly && selected_) face(rest);
+                ++fileFaces_;
+            } else if (key == "g") {
+                currentG_.clear();
+                for (auto t = nextToken(rest); !t.empty(); t = nextToken(rest)) {
+                    currentG_.emplace_back(t);
+                    addName(currentG_.back());
+                }
+                updateSelected();
+            } else if (key == "o") {
+                currentO_ = std::string(nextToken(rest));
+                if (!currentO_.empty()) addName(currentO_);
+                updateSelected();
+            } else if (!key.empty() && !isKnownIgnored(key)) {
+                ++unknown_[std::string(key)];
+            }
+        }
+        for (const auto& [key, count] : unknown_)
+            soup_.warnings.push_back("ignored " + std::to_string(count) +
+                                     " OBJ line(s) starting with '" + key + "'");
+        if (!group_.empty() && std::find(names_.begin(), names_.end(), group_) == names_.end())
+            throw MeshError(path_, "no group named '" + group_ + "'", "groups: " + nameList());
+        return std::move(soup_);
+    }
+
+    const std::vector<std::string>& names() const { return names_; }
+
+  private:
+    static bool isKnownIgnored(std::string_view key) {
+        return key[0] == '#' || key == "vt" || key == "vn" || key == "vp" || key == "s" ||
+               key == "usemtl" || key == "mtllib" || key == "l" || key == "p";
+    }
+
+    [[noreturn]] void fail(const std::string& what) const {
+        throw MeshError(path_, what, "line " + std::to_string(line_));
+    }
+
+    void vertex(std::string_view rest) {
+        for (int k = 0; k < 3; ++k) {
+            const std::string_view t = nextToken(rest);
+            double value;
+            if (t.empty())
+                fail("vertex " + std::to_string(vertexCount_) + " has fewer than 3 coordinates");
+            if (!parseDouble(t, value)) fail("invalid coordinate '" + std::string(t) + "'");
+            soup_.xyz.push_back(value);
+        }
+        soup_.vertexLine.push_back(line_);
+    }
+
+    void face(std::string_view rest) {
+        const size_t first = soup_.faceIndex.size();
+        for (auto t = nextToken(rest); !t.empty(); t = nextToken(rest)) {
+            // Only the position index matters: "7", "7/1", "7//3", "7/1/3".
+            int index = 0;
+            const char* end = t.data() + t.size();
+            const auto [stop, ec] = std::from_chars(t.data(), end, index);
+            if (ec != std::errc() || (stop != end && *stop != '/'))
+                fail("invalid vertex reference '" + std::string(t) + "'");
+            if (index == 0) fail("vertex index 0 (OBJ indices start at 1)");
+            // Relative indices count back from the vertices read so far.
+            const int resolved = index > 0 ? index - 1 : vertexCount_ + index;
+            if (resolved < 0)
+                fail("relative index " + std::to_string(index) + " points before the first vertex");
+            soup_.faceIndex.push_back(resolved);
+        }
+        if (soup_.faceIndex.size() - first < 3)
+            fail("face with " + std::to_string(soup_.faceIndex.size() - first) +
+                 " corner(s); a face needs at least 3");
+        soup_.endFace();
+        soup_.faceLine.push_back(line_);
+        if (!group_.empty()) soup_.fileFace.push_back(fileFaces_);
+    }
+
+    void addName(const std::string& name) {
+        if (std::find(names_.begin(), names_.end(), name) == names_.end()) names_.push_back(name);
+    }
+
+    void updateSelected() {
+        selected_ = group_.empty() || currentO_ == group_ ||
+                    std::find(currentG_.begin(), currentG_.end(), group_) != currentG_.end();
+    }
+
+    std::string nameList() const {
+        std::string list;
+        for (size_t i = 0; i < names_.size() && i < 12; ++i) list += (i ? ", " : "") + names_[i];
+        if (names_.size() > 12) list += ", ... (" + std::to_string(names_.size()) + " in all)";
+        return names_.empty() ? "none" : list;
+    }
+
+    std::string path_, group_;
+    PolygonSoup soup_;
+    int line_ = 0;
+    int vertexCount_ = 0;
+    int fileFaces_ = 0;
+    bool selected_ = group_.empty();
+    std::vector<std::string> currentG_, names_;
+    std::string currentO_;
+    std::map<std::string, int> unknown_;
+};
+
+}  // namespace
+
+PolygonSoup readObj(const std::string& path, const std::string& group) {
+    return ObjParser(path, group).parse(false);
+}
+
+std::vector<std::string> readObjGroupNames(const std::string& path) {
+    ObjParser parser(path, {});
+    parser.parse(true);
+    return parser.names();
+}
+
+}  // namespace boneless::detail

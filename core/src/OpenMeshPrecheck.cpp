@@ -1,0 +1,251 @@
+#include "OpenMeshPrecheck.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include "boneless/Error.h"
+
+namespace boneless::detail {
+
+namespace {
+
+std::string readAll(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw MeshError(path, std::string("cannot open file: ") + std::strerror(errno));
+    std::ostringstream s;
+    s << in.rdbuf();
+    if (in.bad()) throw MeshError(path, "cannot read file");
+    return s.str();
+}
+
+std::vector<std::string> tokens(const std::string& line) {
+    std::vector<std::string> out;
+    std::istringstream in(line);
+    for (std::string t; in >> t;) out.push_back(t);
+    return out;
+}
+
+enum class Number { Finite, NonFinite, Invalid };
+
+Number classify(const std::string& t) {
+    double v;
+    const char* b = t.data() + (!t.empty() && t[0] == '+');
+    const auto [end, ec] = std::from_chars(b, t.data() + t.size(), v);
+    if (ec != std::errc() || end != t.data() + t.size()) return Number::Invalid;
+    return std::isfinite(v) ? Number::Finite : Number::NonFinite;
+}
+
+bool isInteger(const std::string& t) {
+    long long v;
+    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    return ec == std::errc() && end == t.data() + t.size();
+}
+
+std::string at(int line) {
+    return "line " + std::to_string(line);
+}
+
+// Checks the tokens of a line that must all be numbers; `what` names the element for messages.
+void requireNumbers(const std::string& path, const std::vector<std::string>& toks, int line,
+                    const std::string& what) {
+    for (const auto& t : toks) {
+        const Number n = classify(t);
+        if (n == Number::NonFinite)
+            throw MeshError(path, what + " has a non-finite coordinate '" + t + "'", at(line));
+        if (n == Number::Invalid)
+            throw MeshError(path, what + ": '" + t + "' is not a number", at(line));
+    }
+}
+
+// Content lines (comments and blank lines removed) with their 1-based line numbers.
+std::vector<std::pair<int, std::string>> contentLines(const std::string& text, char comment) {
+    std::vector<std::pair<int, std::string>> out;
+    std::istringstream in(text);
+    int n = 0;
+    for (std::string line; std::getline(in, line);) {
+        ++n;
+        if (comment) line = line.substr(0, line.find(comment));
+        if (line.find_first_not_of(" \t\r") != std::string::npos) out.emplace_back(n, line);
+    }
+    return out;
+}
+
+Precheck checkOff(const std::string& path) {
+    const auto lines = contentLines(readAll(path), '#');
+    if (lines.empty()) throw MeshError(path, "empty OFF file");
+    auto head = tokens(lines[0].second);
+    const std::string keyword = head[0];
+    if (keyword.size() < 3 || keyword.compare(keyword.size() - 3, 3, "OFF") != 0)
+        throw MeshError(path, "not an OFF file: first word is '" + keyword + "'",
+                        at(lines[0].first));
+    // Binary OFF and the dimension-prefixed variants are left to OpenMesh alone.
+    if (keyword.find_first_of("4n") != std::string::npos ||
+        (head.size() > 1 && head[1] == "BINARY"))
+        return {};
+    size_t next = 1;
+    std::vector<std::string> counts(head.begin() + 1, head.end());
+    if (counts.empty()) {
+        if (lines.size() < 2) throw MeshError(path, "OFF header lacks the vertex and face counts");
+        counts = tokens(lines[next++].second);
+    }
+    if (counts.size() < 2 || !isInteger(counts[0]) || !isInteger(counts[1]))
+        throw MeshError(path, "OFF header lacks the vertex and face counts",
+                        at(lines[next - 1].first));
+    Precheck p;
+    p.declaredVertices = std::stoll(counts[0]);
+    p.declaredFaces = std::stoll(counts[1]);
+    for (long long v = 0; v < p.declaredVertices; ++v, ++next) {
+        if (next >= lines.size())
+            throw MeshError(path, "file ends after " + std::to_string(v) + " of " +
+                                      std::to_string(p.declaredVertices) + " vertices");
+        const auto toks = tokens(lines[next].second);
+        const std::string what = "vertex " + std::to_string(v);
+        if (toks.size() < 3)
+            throw MeshError(path, what + " has fewer than 3 coordinates", at(lines[next].first));
+        requireNumbers(path, toks, lines[next].first, what);
+    }
+    const size_t firstVertex = next - p.declaredVertices;
+    for (long long f = 0; f < p.declaredFaces; ++f, ++next) {
+        if (next >= lines.size())
+            throw MeshError(path, "file ends after " + std::to_string(f) + " of " +
+                                      std::to_string(p.declaredFaces) + " faces");
+        const auto toks = tokens(lines[next].second);
+        const std::string what = "face " + std::to_string(f);
+        const int line = lines[next].first;
+        if (!isInteger(toks[0]))
+            throw MeshError(path, what + ": bad corner count '" + toks[0] + "'", at(line));
+        const long long k = std::stoll(toks[0]);
+        if (k < 3 || static_cast<long long>(toks.size()) < k + 1)
+            throw MeshError(path, what + " lists fewer than 3 corners or fewer than announced",
+                            at(line));
+        for (long long i = 1; i <= k; ++i)
+            if (!isInteger(toks[i]))
+                throw MeshError(path, what + ": '" + toks[i] + "' is not a vertex index", at(line));
+    }
+    p.offText = keyword + "\n" + counts[0] + " " + counts[1] + " 0\n";
+    for (size_t i = firstVertex; i < next; ++i) p.offText += lines[i].second + "\n";
+    return p;
+}
+
+Precheck checkPly(const std::string& path) {
+    const std::string text = readAll(path);
+    const size_t headerEnd = text.find("end_header");
+    if (text.compare(0, 3, "ply") != 0 || headerEnd == std::string::npos)
+        throw MeshError(path, "not a PLY file (no 'ply' ... 'end_header' header)");
+    std::istringstream header(text.substr(0, headerEnd));
+    std::vector<std::pair<std::string, long long>> elements;
+    bool ascii = false;
+    for (std::string line; std::getline(header, line);) {
+        const auto t = tokens(line);
+        if (t.size() >= 2 && t[0] == "format") ascii = t[1] == "ascii";
+        if (t.size() >= 3 && t[0] == "element" && isInteger(t[2]))
+            elements.emplace_back(t[1], std::stoll(t[2]));
+    }
+    Precheck p;
+    for (const auto& [name, count] : elements) {
+        if (name == "vertex") p.declaredVertices = count;
+        if (name == "face") p.declaredFaces = count;
+    }
+    // Every element takes at least one byte (binary) or one line (ascii); more than that is a
+    // broken header, on which OpenMesh would try to reserve absurd amounts of memory.
+    const size_t bodySize = text.size() - headerEnd;
+    for (const auto& [name, count] : elements)
+        if (count < 0 || static_cast<unsigned long long>(count) > bodySize)
+            throw MeshError(path, "header announces " + std::to_string(count) + " " + name +
+                                      " elements, more than the file holds");
+    if (!ascii) return p;
+
+    int lineNumber = static_cast<int>(std::count(text.begin(), text.begin() + headerEnd, '\n')) + 1;
+    std::istringstream body(text.substr(text.find('\n', headerEnd) + 1));
+    std::string line;
+    for (const auto& [name, count] : elements) {
+        for (long long i = 0; i < count; ++i) {
+            do {
+                if (!std::getline(body, line))
+                    throw MeshError(path, "file ends after " + std::to_string(i) + " of " +
+                                              std::to_string(count) + " " + name + " lines");
+                ++lineNumber;
+            } while (line.find_first_not_of(" \t\r") == std::string::npos);
+            requireNumbers(path, tokens(line), lineNumber, name + " " + std::to_string(i));
+        }
+    }
+    return p;
+}
+
+bool isBinaryStl(const std::string& path, const std::string& data) {
+    const std::string ext = lowerExtension(path);
+    if (ext == "stlb") return true;
+    if (ext == "stla" || data.size() < 84) return false;
+    uint32_t n;
+    std::memcpy(&n, data.data() + 80, 4);  // little-endian, as on every platform we build for
+    return data.size() == 84 + 50 * uint64_t(n);  // the rule OpenMesh applies
+}
+
+Precheck checkStl(const std::string& path) {
+    const std::string data = readAll(path);
+    Precheck p;
+    p.stl = true;
+    if (isBinaryStl(path, data)) {
+        uint32_t n = 0;
+        if (data.size() >= 84) std::memcpy(&n, data.data() + 80, 4);
+        if (data.size() < 84 + 50 * uint64_t(n))
+            throw MeshError(path, "binary STL file is truncated");
+        for (uint32_t t = 0; t < n; ++t) {
+            float xyz[9];
+            std::memcpy(xyz, data.data() + 84 + 50 * size_t(t) + 12, sizeof xyz);
+            for (float c : xyz)
+                if (!std::isfinite(c))
+                    throw MeshError(path, "non-finite coordinate", "triangle " + std::to_string(t));
+        }
+        p.triangles = n;
+        return p;
+    }
+    const auto lines = contentLines(data, 0);
+    p.triangles = 0;
+    for (size_t i = 0; i < lines.size(); ++i) {
+        const auto t = tokens(lines[i].second);
+        if (t[0] != "outer" && t[0] != "OUTER") continue;
+        const std::string what = "triangle " + std::to_string(p.triangles);
+        for (size_t k = 1; k <= 3; ++k) {
+            const auto v =
+                i + k < lines.size() ? tokens(lines[i + k].second) : std::vector<std::string>{};
+            const int line = i + k < lines.size() ? lines[i + k].first : lines[i].first;
+            if (v.size() != 4 || (v[0] != "vertex" && v[0] != "VERTEX"))
+                throw MeshError(path, what + ": expected 'vertex x y z'", at(line));
+            requireNumbers(path, {v.begin() + 1, v.end()}, line, what);
+        }
+        ++p.triangles;
+    }
+    return p;
+}
+
+}  // namespace
+
+std::string lowerExtension(const std::string& path) {
+    const size_t slash = path.find_last_of("/\\");
+    const size_t dot = path.find_last_of('.');
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return {};
+    std::string ext = path.substr(dot + 1);
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
+    return ext;
+}
+
+Precheck precheckForOpenMesh(const std::string& path) {
+    const std::string ext = lowerExtension(path);
+    if (ext == "off") return checkOff(path);
+    if (ext == "ply") return checkPly(path);
+    if (ext == "stl" || ext == "stla" || ext == "stlb") return checkStl(path);
+    throw MeshError(path, "unknown mesh file extension '" + ext + "'",
+                    "supported: .obj, .ply, .off, .stl");
+}
+
+}  // namespace boneless::detail

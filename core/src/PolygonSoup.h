@@ -1,0 +1,55 @@
+#pragma once
+
+// Internal to the mesh reader: what a format reader hands over before any checking.
+
+#include <string>
+#include <vector>
+
+#include "boneless/TriMesh.h"
+
+namespace boneless::detail {
+
+// Vertices and polygons exactly as the file lists them: no merging, no topology, indices 0-based
+// but not yet range-checked. Lines are 1-based, 0 where the format has none (binary files).
+struct PolygonSoup {
+    std::vector<double> xyz;        // 3 per vertex
+    std::vector<int> vertexLine;    // per vertex, or empty
+    std::vector<int> faceStart{0};  // face f is faceIndex[faceStart[f] .. faceStart[f+1])
+    std::vector<int> faceIndex;
+    std::vector<int> faceLine;  // per face, or empty
+    std::vector<int> fileFace;  // per face its number among all the file's faces; empty = same
+    std::vector<std::string> warnings;
+
+    int vertexCount() const { return static_cast<int>(xyz.size() / 3); }
+    int faceCount() const { return static_cast<int>(faceStart.size()) - 1; }
+    int fileFaceOf(int f) const { return fileFace.empty() ? f : fileFace[f]; }
+    void endFace() { faceStart.push_back(static_cast<int>(faceIndex.size())); }
+};
+
+// "face 12 (line 40)", "vertex 3"
+std::string faceWhere(const PolygonSoup& soup, int face);
+std::string vertexWhere(const PolygonSoup& soup, int vertex);
+
+// OBJ, own parser. group empty = every face; otherwise only faces of that "g"/"o" group.
+PolygonSoup readObj(const std::string& path, const std::string& group);
+std::vector<std::string> readObjGroupNames(const std::string& path);
+
+// OFF, PLY, STL through OpenMesh (plus a plausibility pass over the text formats, whose OpenMesh
+// parsers turn malformed numbers into silent garbage).
+PolygonSoup readWithOpenMesh(const std::string& path);
+
+// Splits polygon `corners` (>= 3 vertex indices into V) into corners.size() - 2 triangles
+// appended to `out`, never creating a triangle that folds over the polygon when an ear exists.
+void triangulatePolygon(const Positions& V, const int* corners, int n, std::vector<int>& out);
+
+// Throws MeshError for non-manifold edges, inconsistent orientation and non-manifold vertices;
+// fills the boundary and component counts of `result`. F rows come from soup faces `faceOf`.
+struct TopologySummary {
+    int boundaryEdges = 0, boundaryLoops = 0, components = 0, isolatedVertices = 0;
+    std::vector<int> isolated;  // first few isolated vertices, for the warning
+};
+TopologySummary checkManifold(const std::string& file, const Faces& F, int vertexCount,
+                              const std::vector<int>& faceOf, const PolygonSoup& soup,
+                              const std::vector<int>& vertexOf);
+
+}  // namespace boneless::detail

@@ -1,0 +1,617 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include "boneless/Error.h"
+#include "boneless/MeshReader.h"
+
+using namespace boneless;
+namespace fs = std::filesystem;
+
+namespace {
+
+using Polygons = std::vector<std::vector<int>>;
+
+std::string workPath(const std::string& name) {
+    const fs::path dir = fs::path(BONELESS_TEST_WORK_DIR) / "mesh-reader";
+    fs::create_directories(dir);
+    return (dir / name).string();
+}
+
+std::string writeFile(const std::string& name, const std::string& bytes) {
+    const std::string path = workPath(name);
+    std::ofstream(path, std::ios::binary) << bytes;
+    return path;
+}
+
+template <typename T>
+void put(std::string& out, T value) {
+    out.append(reinterpret_cast<const char*>(&value), sizeof value);
+}
+
+std::string objText(const Positions& V, const Polygons& P) {
+    std::ostringstream s;
+    s.precision(17);
+    for (int i = 0; i < V.rows(); ++i)
+        s << "v " << V(i, 0) << ' ' << V(i, 1) << ' ' << V(i, 2) << '\n';
+    for (const auto& f : P) {
+        s << 'f';
+        for (int v : f) s << ' ' << v + 1;
+        s << '\n';
+    }
+    return s.str();
+}
+
+std::string offText(const Positions& V, const Polygons& P) {
+    std::ostringstream s;
+    s.precision(9);
+    s << "OFF\n# comment\n" << V.rows() << ' ' << P.size() << " 0\n";
+    for (int i = 0; i < V.rows(); ++i) s << V(i, 0) << ' ' << V(i, 1) << ' ' << V(i, 2) << '\n';
+    for (const auto& f : P) {
+        s << f.size();
+        for (int v : f) s << ' ' << v;
+        s << '\n';
+    }
+    return s.str();
+}
+
+std::string plyHeader(const char* format, int nv, size_t nf) {
+    return std::string("ply\nformat ") + format + " 1.0\ncomment made by a test\nelement vertex " +
+           std::to_string(nv) +
+           "\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\n"
+           "element face " +
+           std::to_string(nf) + "\nproperty list uchar int vertex_indices\nend_header\n";
+}
+
+std::string plyAscii(const Positions& V, const Polygons& P) {
+    std::ostringstream s;
+    s.precision(9);
+    s << plyHeader("ascii", int(V.rows()), P.size());
+    for (int i = 0; i < V.rows(); ++i) s << V(i, 0) << ' ' << V(i, 1) << ' ' << V(i, 2) << " 200\n";
+    for (const auto& f : P) {
+        s << f.size();
+        for (int v : f) s << ' ' << v;
+        s << '\n';
+    }
+    return s.str();
+}
+
+std::string plyBinary(const Positions& V, const Polygons& P) {
+    std::string s = plyHeader("binary_little_endian", int(V.rows()), P.size());
+    for (int i = 0; i < V.rows(); ++i) {
+        for (int k = 0; k < 3; ++k) put(s, float(V(i, k)));
+        put(s, uint8_t(200));
+    }
+    for (const auto& f : P) {
+        put(s, uint8_t(f.size()));
+        for (int v : f) put(s, int32_t(v));
+    }
+    return s;
+}
+
+std::string stlAscii(const Positions& V, const Faces& F) {
+    std::ostringstream s;
+    s.precision(9);
+    s << "solid test\n";
+    for (int t = 0; t < F.rows(); ++t) {
+        s << "  facet normal 0 0 1\n    outer loop\n";
+        for (int k = 0; k < 3; ++k)
+            s << "      vertex " << V(F(t, k), 0) << ' ' << V(F(t, k), 1) << ' ' << V(F(t, k), 2)
+              << '\n';
+        s << "    endloop\n  endfacet\n";
+    }
+    return s.str() + "endsolid test\n";
+}
+
+std::string stlBinary(const Positions& V, const Faces& F) {
+    std::string s(80, ' ');
+    put(s, uint32_t(F.rows()));
+    for (int t = 0; t < F.rows(); ++t) {
+        for (int k = 0; k < 3; ++k) put(s, 0.0f);
+        for (int k = 0; k < 9; ++k) put(s, float(V(F(t, k / 3), k % 3)));
+        put(s, uint16_t(0));
+    }
+    return s;
+}
+
+// An open pyramid (no floor): 4 triangles around the apex, which is the *last* vertex in the
+// file but the first corner of every face, so file order and first-use order differ.
+Positions tentV() {
+    Positions V(5, 3);
+    V << 1, 0, 0, 0, 1, 0, -1, 0, 0, 0, -1, 0, 0, 0, 0.5;
+    return V;
+}
+const Polygons tentP = {{4, 0, 1}, {4, 1, 2}, {4, 2, 3}, {4, 3, 0}};
+
+Faces toFaces(const Polygons& P) {
+    Faces F(P.size(), 3);
+    for (size_t t = 0; t < P.size(); ++t) F.row(t) << P[t][0], P[t][1], P[t][2];
+    return F;
+}
+
+// Runs `read`, expects a MeshError and returns its message after checking it names the file.
+std::string errorOf(const std::string& path, const std::function<void()>& read) {
+    try {
+        read();
+    } catch (const MeshError& e) {
+        const std::string msg = e.what();
+        EXPECT_NE(msg.find(path), std::string::npos) << msg;
+        EXPECT_EQ(e.file(), path);
+        return msg;
+    }
+    ADD_FAILURE() << "no MeshError for " << path;
+    return {};
+}
+
+std::string errorOf(const std::string& path) {
+    return errorOf(path, [&] { readMesh(path); });
+}
+
+#define EXPECT_CONTAINS(text, part)                            \
+    EXPECT_NE(std::string(text).find(part), std::string::npos) \
+        << "'" << (text) << "' lacks '" << (part) << "'"
+
+bool anyWarningContains(const MeshReadResult& r, const std::string& part) {
+    for (const auto& w : r.warnings)
+        if (w.find(part) != std::string::npos) return true;
+    return false;
+}
+
+std::string dataPath(const std::string& relative) {
+    return (fs::path(BONELESS_SHARED_DATA) / relative).string();
+}
+
+}  // namespace
+
+// ---- Formats and vertex order ----------------------------------------------------------------
+
+TEST(MeshReaderFormats, EveryFormatKeepsTheFileVertexOrderAndFaces) {
+    const Positions V = tentV();
+    const std::map<std::string, std::string> files = {{"tent.obj", objText(V, tentP)},
+                                                      {"tent.off", offText(V, tentP)},
+                                                      {"tent_ascii.ply", plyAscii(V, tentP)},
+                                                      {"tent_binary.ply", plyBinary(V, tentP)}};
+    for (const auto& [name, bytes] : files) {
+        SCOPED_TRACE(name);
+        const MeshReadResult r = readMesh(writeFile(name, bytes));
+        EXPECT_EQ(r.mesh.V, V);  // values are exact in float, so even OpenMesh's floats match
+        EXPECT_EQ(r.mesh.F, toFaces(tentP));
+        EXPECT_EQ(r.sourceVertexCount, 5);
+        EXPECT_EQ(r.sourceVertexIndex, (std::vector<int>{0, 1, 2, 3, 4}));
+        EXPECT_EQ(r.sourceFaceIndex, (std::vector<int>{0, 1, 2, 3}));
+    }
+}
+
+TEST(MeshReaderFormats, StlVerticesComeInOrderOfFirstAppearance) {
+    const Positions V = tentV();
+    // Corners in face order: 4 0 1 | 4 1 2 | 4 2 3 | 4 3 0 -> distinct positions 4 0 1 2 3.
+    Positions expectedV(5, 3);
+    for (int i = 0; i < 5; ++i) expectedV.row(i) = V.row(std::vector<int>{4, 0, 1, 2, 3}[i]);
+    Faces expectedF(4, 3);
+    expectedF << 0, 1, 2, 0, 2, 3, 0, 3, 4, 0, 4, 1;
+    for (const auto& [name, bytes] :
+         std::map<std::string, std::string>{{"tent_ascii.stl", stlAscii(V, toFaces(tentP))},
+                                            {"tent_binary.stl", stlBinary(V, toFaces(tentP))}}) {
+        SCOPED_TRACE(name);
+        const MeshReadResult r = readMesh(writeFile(name, bytes));
+        EXPECT_EQ(r.mesh.V, expectedV);
+        EXPECT_EQ(r.mesh.F, expectedF);
+    }
+}
+
+TEST(MeshReaderFormats, StlTriangleWhoseCornersMergeIsDroppedWithAWarning) {
+    Positions V = tentV();
+    Faces F(5, 3);
+    F << 4, 0, 1, 4, 1, 2, 4, 2, 3, 4, 3, 0, 0, 0, 1;  // last one repeats a corner position
+    const MeshReadResult r = readMesh(writeFile("degenerate.stl", stlBinary(V, F)));
+    EXPECT_EQ(r.mesh.faceCount(), 4);
+    EXPECT_TRUE(anyWarningContains(r, "1 STL triangle(s) with coinciding corners dropped"));
+}
+
+TEST(MeshReaderFormats, ObjSyntaxVariants) {
+    const std::string path = writeFile("syntax.obj",
+                                       "# comment\n"
+                                       "o thing\n"
+                                       "v 0 0 0\n"
+                                       "v 1 0 0 1.0\n"   // optional w
+                                       "v 1 \\\n 1 0\n"  // continued line
+                                       "vt 0 0\nvn 0 0 1\n"
+                                       "v +0 1 0 # trailing comment\r\n"
+                                       "usemtl skin\ns 1\n"
+                                       "f 1/1/1 2/1/1 3/1/1\n"
+                                       "f -4//1 -2//1 -1//1\n"  // relative: 1 3 4
+                                       "curv 0 1 1 2\n");
+    const MeshReadResult r = readMesh(path);
+    Positions V(4, 3);
+    V << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0;
+    Faces F(2, 3);
+    F << 0, 1, 2, 0, 2, 3;
+    EXPECT_EQ(r.mesh.V, V);
+    EXPECT_EQ(r.mesh.F, F);
+    EXPECT_TRUE(anyWarningContains(r, "'curv'"));
+}
+
+TEST(MeshReaderFormats, OffWithCommentsAndCountsOnTheKeywordLine) {
+    // OpenMesh's OFF reader alone reads garbage counts from both of these.
+    const std::string path = writeFile("comments.off",
+                                       "# made by hand\nOFF 4 2 0\n0 0 0\n1 0 0 # right\n"
+                                       "\n1 1 0\n# between\n0 1 0\n3 0 1 2\n3 0 2 3\n");
+    const MeshReadResult r = readMesh(path);
+    Faces F(2, 3);
+    F << 0, 1, 2, 0, 2, 3;
+    EXPECT_EQ(r.mesh.vertexCount(), 4);
+    EXPECT_EQ(r.mesh.V.row(2), Eigen::RowVector3d(1, 1, 0));
+    EXPECT_EQ(r.mesh.F, F);
+}
+
+TEST(MeshReaderFormats, ObjKeepsDoublePrecision) {
+    const std::string path = writeFile("precise.obj", "v 0.1 0.2 0.3\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    const MeshReadResult r = readMesh(path);
+    EXPECT_EQ(r.mesh.V(0, 0), 0.1);
+    EXPECT_EQ(r.mesh.V(0, 2), 0.3);
+}
+
+// ---- Validation errors -----------------------------------------------------------------------
+
+TEST(MeshReaderErrors, MissingFileAndUnknownExtension) {
+    for (const std::string name : {"missing.obj", "missing.ply", "missing.stl"}) {
+        const std::string path = workPath(name);
+        fs::remove(path);
+        EXPECT_CONTAINS(errorOf(path), "cannot open file");
+    }
+    const std::string xyz = writeFile("points.xyz", "1 2 3\n");
+    EXPECT_CONTAINS(errorOf(xyz), "unknown mesh file extension 'xyz'");
+}
+
+TEST(MeshReaderErrors, EmptyMesh) {
+    EXPECT_CONTAINS(errorOf(writeFile("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n")), "no faces");
+    EXPECT_CONTAINS(errorOf(writeFile("empty.off", "OFF\n0 0 0\n")), "no faces");
+    EXPECT_CONTAINS(errorOf(writeFile("empty.stl", "solid x\nendsolid x\n")), "no faces");
+    // Every face repeats a vertex: nothing left after dropping them.
+    EXPECT_CONTAINS(errorOf(writeFile("allbad.obj", "v 0 0 0\nv 1 0 0\nf 1 2 2\n")),
+                    "no usable faces");
+}
+
+TEST(MeshReaderErrors, NonFiniteCoordinates) {
+    const std::string obj = writeFile("nan.obj", "v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n");
+    const std::string msg = errorOf(obj);
+    EXPECT_CONTAINS(msg, "non-finite");
+    EXPECT_CONTAINS(msg, "vertex 1 (line 2)");
+
+    EXPECT_CONTAINS(errorOf(writeFile("inf.obj", "v 0 0 0\nv 1 0 0\nv 0 1 -inf\nf 1 2 3\n")),
+                    "vertex 2 (line 3)");
+
+    Positions V = tentV();
+    V(2, 1) = std::numeric_limits<double>::quiet_NaN();
+    const std::string off = errorOf(writeFile("nan.off", offText(V, tentP)));
+    EXPECT_CONTAINS(off, "vertex 2 has a non-finite coordinate");
+    EXPECT_CONTAINS(off, "line 6");
+    EXPECT_CONTAINS(errorOf(writeFile("nan_ascii.ply", plyAscii(V, tentP))),
+                    "vertex 2 has a non-finite");
+    const std::string ply = errorOf(writeFile("nan_binary.ply", plyBinary(V, tentP)));
+    EXPECT_CONTAINS(ply, "non-finite");
+    EXPECT_CONTAINS(ply, "vertex 2");
+    EXPECT_CONTAINS(errorOf(writeFile("nan_ascii.stl", stlAscii(V, toFaces(tentP)))), "triangle 1");
+    const std::string stl = errorOf(writeFile("nan_binary.stl", stlBinary(V, toFaces(tentP))));
+    EXPECT_CONTAINS(stl, "non-finite");
+    EXPECT_CONTAINS(stl, "triangle 1");
+}
+
+TEST(MeshReaderErrors, FaceReferencesMissingVertex) {
+    const std::string obj =
+        errorOf(writeFile("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 3 9\n"));
+    EXPECT_CONTAINS(obj, "face uses vertex 8 but the file has 3 vertices");
+    EXPECT_CONTAINS(obj, "face 1 (line 5)");
+    EXPECT_CONTAINS(errorOf(writeFile("relative.obj", "v 0 0 0\nv 1 0 0\nf -1 -2 -3\n")),
+                    "relative index -3 points before the first vertex");
+    EXPECT_CONTAINS(errorOf(writeFile("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n")),
+                    "vertex index 0");
+    Polygons P = tentP;
+    P[2][1] = 7;
+    const std::string off = errorOf(writeFile("range.off", offText(tentV(), P)));
+    EXPECT_CONTAINS(off, "face uses vertex 7");
+    EXPECT_CONTAINS(off, "face 2");
+    EXPECT_CONTAINS(errorOf(writeFile("range.ply", plyBinary(tentV(), P))), "face uses vertex 7");
+}
+
+TEST(MeshReaderErrors, MalformedTextThatOpenMeshWouldAccept) {
+    // OpenMesh's OFF reader reads "x" as 0 and runs past the end of a short file.
+    std::string off = offText(tentV(), tentP);
+    off.replace(off.rfind("4 3 0"), 5, "4 3 x");
+    EXPECT_CONTAINS(errorOf(writeFile("token.off", off)), "'x' is not a vertex index");
+    EXPECT_CONTAINS(errorOf(writeFile("short.off", "OFF\n5 4 0\n1 0 0\n0 1 0\n")),
+                    "file ends after 2 of 5 vertices");
+    EXPECT_CONTAINS(
+        errorOf(writeFile("short.ply", plyHeader("ascii", 5, 1) + "1 0 0 200\n0 1 0 200\n")),
+        "file ends after 2 of 5 vertex lines");
+    EXPECT_CONTAINS(
+        errorOf(writeFile("huge.ply", plyHeader("binary_little_endian", 2000000000, 1) + "xx")),
+        "header announces 2000000000 vertex elements, more than the file holds");
+    EXPECT_CONTAINS(errorOf(writeFile("bad.obj", "v 0 zero 0\n")), "invalid coordinate 'zero'");
+    EXPECT_CONTAINS(errorOf(writeFile("two.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n")),
+                    "face with 2 corner(s)");
+    EXPECT_CONTAINS(
+        errorOf(writeFile("nope.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0\n")),
+        "expected 'vertex x y z'");
+}
+
+TEST(MeshReaderErrors, OpenMeshMessagesEndUpInTheErrorNotOnTheConsole) {
+    std::string bytes = plyBinary(tentV(), tentP);
+    bytes.resize(bytes.size() - 10);
+    const std::string path = writeFile("truncated_binary.ply", bytes);
+    ::testing::internal::CaptureStderr();
+    const std::string msg = errorOf(path);
+    const std::string console = ::testing::internal::GetCapturedStderr();
+    EXPECT_CONTAINS(msg, "OpenMesh could not read the file");
+    EXPECT_CONTAINS(msg, "Unexpected end of file");
+    EXPECT_EQ(console, "");
+}
+
+TEST(MeshReaderErrors, EdgeSharedByThreeFaces) {
+    const std::string path = writeFile("fin.obj",
+                                       "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\n"
+                                       "f 1 2 3\nf 2 1 4\nf 1 2 5\n");
+    const std::string msg = errorOf(path);
+    EXPECT_CONTAINS(msg, "non-manifold edge 0-1: shared by 3 faces");
+    EXPECT_CONTAINS(msg, "face 2 (line 8)");
+}
+
+TEST(MeshReaderErrors, TwoFacesUsingTheSameDirectedEdge) {
+    // Second triangle runs 0->1 like the first: one of them is flipped.
+    const std::string path =
+        writeFile("flip.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nf 1 2 3\nf 1 2 4\n");
+    const std::string msg = errorOf(path);
+    EXPECT_CONTAINS(msg, "inconsistent orientation");
+    EXPECT_CONTAINS(msg, "edge 0->1");
+    EXPECT_CONTAINS(msg, "face 0 (line 5) and face 1 (line 6)");
+}
+
+TEST(MeshReaderErrors, VertexWhereTwoFansMeet) {
+    // Two triangles touching only at vertex 2 (a bow tie), then a valid third one elsewhere.
+    const std::string path = writeFile("bowtie.off",
+                                       "OFF\n5 2 0\n-1 -1 0\n-1 1 0\n0 0 0\n1 -1 0\n1 1 0\n"
+                                       "3 0 2 1\n3 2 3 4\n");
+    const std::string msg = errorOf(path);
+    EXPECT_CONTAINS(msg, "non-manifold vertex 2: its faces form 2 separate fans");
+    // Same through OBJ, where the vertex line is known.
+    const std::string obj = errorOf(writeFile("bowtie.obj",
+                                              "v -1 -1 0\nv -1 1 0\nv 0 0 0\nv 1 -1 0\nv 1 1 0\n"
+                                              "f 1 3 2\nf 3 4 5\n"));
+    EXPECT_CONTAINS(obj, "vertex 2 (line 3)");
+}
+
+TEST(MeshReaderErrors, GroupOnlyForObjAndMustExist) {
+    const std::string ply = writeFile("tent_group.ply", plyAscii(tentV(), tentP));
+    EXPECT_CONTAINS(errorOf(ply, [&] { readMesh(ply, {"body"}); }), "only OBJ files have groups");
+    const std::string obj =
+        writeFile("groups_missing.obj", "g a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\ng b\n");
+    const std::string msg = errorOf(obj, [&] { readMesh(obj, {"body"}); });
+    EXPECT_CONTAINS(msg, "no group named 'body'");
+    EXPECT_CONTAINS(msg, "groups: a, b");
+    EXPECT_CONTAINS(errorOf(obj, [&] { readMesh(obj, {"b"}); }), "group 'b' has no usable faces");
+}
+
+// ---- Accepted with warnings ------------------------------------------------------------------
+
+TEST(MeshReaderWarnings, OpenSurfaceReportsBoundaryLoops) {
+    const MeshReadResult r = readMesh(writeFile("tent_open.obj", objText(tentV(), tentP)));
+    EXPECT_EQ(r.boundaryEdges, 4);
+    EXPECT_EQ(r.boundaryLoops, 1);
+    EXPECT_EQ(r.components, 1);
+    EXPECT_TRUE(anyWarningContains(r, "4 boundary edges in 1 loop"));
+}
+
+TEST(MeshReaderWarnings, ClosedSurfaceHasNoWarnings) {
+    Positions V(4, 3);
+    V << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1;
+    const MeshReadResult r = readMesh(
+        writeFile("tetra.ply", plyBinary(V, {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}})));
+    EXPECT_EQ(r.boundaryEdges, 0);
+    EXPECT_EQ(r.components, 1);
+    EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
+}
+
+TEST(MeshReaderWarnings, SeveralComponentsIsolatedVerticesZeroAreaAndRepeatedCorners) {
+    const std::string path = writeFile("mixed.obj",
+                                       "v 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                                       "v 9 9 9\n"  // isolated, between the components
+                                       "v 5 0 0\nv 6 0 0\nv 7 0 0\n"  // collinear: zero area
+                                       "f 1 2 3\n"
+                                       "f 5 6 7\n"
+                                       "f 1 2 2\n");  // repeated corner: dropped
+    const MeshReadResult r = readMesh(path);
+    EXPECT_EQ(r.mesh.vertexCount(), 7);
+    EXPECT_EQ(r.mesh.V.row(3), Eigen::RowVector3d(9, 9, 9));  // kept in place
+    EXPECT_EQ(r.mesh.faceCount(), 2);
+    EXPECT_EQ(r.components, 2);
+    EXPECT_EQ(r.isolatedVertices, 1);
+    EXPECT_EQ(r.zeroAreaFaces, 1);
+    EXPECT_EQ(r.droppedFaces, 1);
+    EXPECT_TRUE(anyWarningContains(r, "2 connected components"));
+    EXPECT_TRUE(anyWarningContains(r, "1 isolated vertex (kept, used by no face): 3"));
+    EXPECT_TRUE(anyWarningContains(r, "1 zero-area triangle, from face 1 (line 9)"));
+    EXPECT_TRUE(anyWarningContains(r, "dropped 1 face with a repeated vertex: face 2 (line 10)"));
+}
+
+// ---- Triangulation ---------------------------------------------------------------------------
+
+namespace {
+
+// Signed area of triangle t along +z, for meshes in the z = 0 plane.
+double areaZ(const TriMesh& m, int t) {
+    const Eigen::Vector3d a = m.V.row(m.F(t, 0)), b = m.V.row(m.F(t, 1)), c = m.V.row(m.F(t, 2));
+    return 0.5 * (b - a).cross(c - a).z();
+}
+
+bool usesEdge(const TriMesh& m, int a, int b) {
+    for (int t = 0; t < m.faceCount(); ++t)
+        for (int k = 0; k < 3; ++k)
+            if (std::minmax(m.F(t, k), m.F(t, (k + 1) % 3)) == std::minmax(a, b)) return true;
+    return false;
+}
+
+MeshReadResult readPolygon(const std::string& name, const Positions& V,
+                           const std::vector<int>& polygon) {
+    return readMesh(writeFile(name, objText(V, {polygon})));
+}
+
+}  // namespace
+
+TEST(MeshReaderTriangulation, ConvexQuadTakesTheShorterDiagonalWhereverItStarts) {
+    Positions V(4, 3);
+    V << 0, 0, 0, 4, 0, 0, 5, 1, 0, 0, 1, 0;  // diagonal 1-3 is shorter than 0-2
+    for (const auto& quad : {std::vector<int>{0, 1, 2, 3}, {1, 2, 3, 0}}) {
+        const MeshReadResult r = readPolygon("quad.obj", V, quad);
+        EXPECT_EQ(r.polygonsTriangulated, 1);
+        ASSERT_EQ(r.mesh.faceCount(), 2);
+        EXPECT_TRUE(usesEdge(r.mesh, 1, 3));
+        EXPECT_FALSE(usesEdge(r.mesh, 0, 2));
+        EXPECT_EQ(r.sourceFaceIndex, (std::vector<int>{0, 0}));
+    }
+}
+
+TEST(MeshReaderTriangulation, DartQuadAvoidsTheShorterButOutsideDiagonal) {
+    Positions V(4, 3);
+    V << -1, 0, 0, 0, 10, 0, 1, 0, 0, 0, 0.1, 0;  // reflex at vertex 3; 0-2 is short but outside
+    const MeshReadResult r = readPolygon("dart.obj", V, {0, 3, 2, 1});
+    ASSERT_EQ(r.mesh.faceCount(), 2);
+    EXPECT_TRUE(usesEdge(r.mesh, 1, 3));
+    for (int t = 0; t < 2; ++t) EXPECT_GT(areaZ(r.mesh, t), 0.0);  // no fold-over
+}
+
+TEST(MeshReaderTriangulation, NonConvexHexagonCoversItsAreaWithoutFolds) {
+    Positions V(6, 3);  // an L shape, counter-clockwise, area 3
+    V << 0, 0, 0, 2, 0, 0, 2, 1, 0, 1, 1, 0, 1, 2, 0, 0, 2, 0;
+    for (int start = 0; start < 6; ++start) {
+        std::vector<int> polygon;
+        for (int i = 0; i < 6; ++i) polygon.push_back((start + i) % 6);
+        const MeshReadResult r = readPolygon("ell.obj", V, polygon);
+        ASSERT_EQ(r.mesh.faceCount(), 4);
+        double area = 0;
+        for (int t = 0; t < 4; ++t) {
+            EXPECT_GT(areaZ(r.mesh, t), 0.0) << "start " << start << " triangle " << t;
+            area += areaZ(r.mesh, t);
+        }
+        EXPECT_NEAR(area, 3.0, 1e-12);
+    }
+}
+
+// ---- OBJ groups ------------------------------------------------------------------------------
+
+TEST(MeshReaderGroups, SelectedGroupKeepsItsVerticesInFileOrder) {
+    const std::string path = writeFile("groups.obj",
+                                       "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 2 0 0\nv 2 1 0\n"
+                                       "g left\nf 1 2 3\nf 2 4 3\n"
+                                       "g right shared\nf 2 5 6\nf -5 6 4\n"
+                                       "o lonely\ng\nf 1 2 3\n");  // bare "g": back to no group
+    EXPECT_EQ(objGroups(path), (std::vector<std::string>{"left", "right", "shared", "lonely"}));
+
+    const MeshReadResult r = readMesh(path, {"right"});
+    EXPECT_EQ(r.sourceVertexCount, 6);
+    EXPECT_EQ(r.sourceVertexIndex, (std::vector<int>{1, 3, 4, 5}));
+    Faces F(2, 3);
+    F << 0, 2, 3, 0, 3, 1;  // file faces (1 4 5) and (1 5 3) remapped
+    EXPECT_EQ(r.mesh.F, F);
+    EXPECT_EQ(r.mesh.V.row(1), Eigen::RowVector3d(1, 1, 0));
+    EXPECT_EQ(r.sourceFaceCount, 2);
+    EXPECT_EQ(r.sourceFaceIndex, (std::vector<int>{2, 3}));  // numbered among all the file's faces
+    // Messages name file faces and lines too.
+    const std::string bad = writeFile(
+        "groups_bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nf 1 2 3\ng g\nf 1 2 3\nf 1 2 4\n");
+    EXPECT_CONTAINS(errorOf(bad, [&] { readMesh(bad, {"g"}); }),
+                    "face 1 (line 7) and face 2 (line 8)");
+
+    // A second name on the same "g" line selects the same faces; "o" names work too.
+    EXPECT_EQ(readMesh(path, {"shared"}).mesh.F, F);
+    EXPECT_EQ(readMesh(path, {"lonely"}).sourceVertexIndex, (std::vector<int>{0, 1, 2}));
+}
+
+TEST(MeshReaderGroups, NonObjFilesHaveNoGroups) {
+    EXPECT_TRUE(objGroups(writeFile("nogroups.off", offText(tentV(), tentP))).empty());
+    EXPECT_TRUE(objGroups(writeFile("nogroups.obj", objText(tentV(), tentP))).empty());
+}
+
+// ---- Real data (skipped without ../shared/data) ----------------------------------------------
+
+TEST(MeshReaderRealData, MakeHumanWholeFileAndBodyGroup) {
+    const std::string path = dataPath("meshes/makehuman/makehuman_base.obj");
+    if (!fs::exists(path)) GTEST_SKIP() << "no " << path;
+    const auto groups = objGroups(path);
+    ASSERT_FALSE(groups.empty());
+    EXPECT_EQ(groups.front(), "body");
+
+    const MeshReadResult all = readMesh(path);
+    EXPECT_EQ(all.mesh.vertexCount(), 19158);
+    EXPECT_EQ(all.sourceFaceCount, 18486);
+    EXPECT_EQ(all.polygonsTriangulated, 18486);  // all quads
+    EXPECT_EQ(all.mesh.faceCount(), 2 * 18486);
+
+    const MeshReadResult body = readMesh(path, {"body"});
+    EXPECT_EQ(body.mesh.vertexCount(), 13380);
+    EXPECT_EQ(body.sourceFaceCount, 13378);
+    EXPECT_EQ(body.mesh.faceCount(), 2 * 13378);
+    EXPECT_EQ(body.components, 1);
+    EXPECT_EQ(body.boundaryEdges, 0);
+    EXPECT_EQ(body.isolatedVertices, 0);
+    for (int i = 0; i < body.mesh.vertexCount(); i += 97) {
+        const int v = body.sourceVertexIndex[i];
+        if (i > 0) EXPECT_LT(body.sourceVertexIndex[i - 1], v);
+        EXPECT_EQ(body.mesh.V.row(i), all.mesh.V.row(v));
+    }
+}
+
+TEST(MeshReaderRealData, KoalaIsOneClosedSurface) {
+    const std::string path = dataPath("meshes/koala/koala.obj");
+    if (!fs::exists(path)) GTEST_SKIP() << "no " << path;
+    const MeshReadResult r = readMesh(path);
+    EXPECT_EQ(r.mesh.vertexCount(), 49999);
+    EXPECT_EQ(r.mesh.faceCount(), 99994);
+    EXPECT_EQ(r.boundaryEdges, 0);
+    EXPECT_EQ(r.components, 1);
+    EXPECT_EQ(r.mesh.V.row(0), Eigen::RowVector3d(-0.777853, 2.740647, 3.930020));
+}
+
+TEST(MeshReaderRealData, HorseThroughEveryFormat) {
+    const std::string path = dataPath("sequences/horse-gallop/horse-gallop_0001.obj");
+    if (!fs::exists(path)) GTEST_SKIP() << "no " << path;
+    const MeshReadResult obj = readMesh(path);
+    EXPECT_EQ(obj.mesh.vertexCount(), 8431);
+    EXPECT_EQ(obj.mesh.faceCount(), 16843);
+    EXPECT_EQ(obj.boundaryEdges, 19);
+    EXPECT_EQ(obj.boundaryLoops, 2);
+
+    // OpenMesh delivers floats: compare with the float-rounded OBJ positions.
+    const Positions asFloat = obj.mesh.V.cast<float>().cast<double>();
+    Polygons P;
+    for (int t = 0; t < obj.mesh.faceCount(); ++t)
+        P.push_back({obj.mesh.F(t, 0), obj.mesh.F(t, 1), obj.mesh.F(t, 2)});
+    for (const auto& [name, bytes] : std::map<std::string, std::string>{
+             {"horse.ply", plyBinary(asFloat, P)}, {"horse.off", offText(asFloat, P)}}) {
+        SCOPED_TRACE(name);
+        const MeshReadResult r = readMesh(writeFile(name, bytes));
+        EXPECT_EQ(r.mesh.V, asFloat);
+        EXPECT_EQ(r.mesh.F, obj.mesh.F);
+        EXPECT_EQ(r.boundaryLoops, 2);
+    }
+    // STL: vertex i is the i-th position to appear.
+    const MeshReadResult stl = readMesh(writeFile("horse.stl", stlBinary(obj.mesh.V, obj.mesh.F)));
+    std::vector<int> firstUse;
+    std::vector<char> seen(obj.mesh.vertexCount(), 0);
+    for (int c = 0; c < 3 * obj.mesh.faceCount(); ++c) {
+        const int v = obj.mesh.F(c / 3, c % 3);
+        if (!seen[v]) seen[v] = 1, firstUse.push_back(v);
+    }
+    ASSERT_EQ(stl.mesh.vertexCount(), static_cast<int>(firstUse.size()));
+    for (int i = 0; i < stl.mesh.vertexCount(); ++i)
+        ASSERT_EQ(stl.mesh.V.row(i), asFloat.row(firstUse[i])) << i;
+    EXPECT_EQ(stl.mesh.faceCount(), obj.mesh.faceCount());
+    EXPECT_EQ(stl.boundaryLoops, 2);
+}
