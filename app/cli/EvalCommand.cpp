@@ -24,6 +24,7 @@ struct EvalArgs {
     unsigned seed = 1;
     int maxIterations = SolverOptions{}.maxIterations;
     double tolerance = SolverOptions{}.relativeTolerance;
+    double rigidity = SolverOptions{}.rigidityWeight;
     bool json = false;
     bool quiet = false;
 };
@@ -99,6 +100,7 @@ void run(const EvalArgs& args) {
     options.seed = args.seed;
     options.solver.maxIterations = args.maxIterations;
     options.solver.relativeTolerance = args.tolerance;
+    options.solver.rigidityWeight = args.rigidity;
 
     std::vector<EvaluationOptions::Method> methods;
     if (args.method == "boneless" || args.method == "both")
@@ -177,6 +179,7 @@ void registerEvalCommand(CLI::App& app) {
     cmd->add_option("--seed", args->seed, "Seed for --drop");
     cmd->add_option("--max-iterations", args->maxIterations, "Gauss–Newton iterations per frame");
     cmd->add_option("--tolerance", args->tolerance, "Relative energy decrease that stops a frame");
+    cmd->add_option("--rigidity", args->rigidity, "Weight of the fold guard (0 = paper's energy)");
     cmd->add_flag("--json", args->json, "Print one JSON object");
     cmd->add_flag("--quiet", args->quiet, "No per-frame lines");
     cmd->callback([args, k, file] {

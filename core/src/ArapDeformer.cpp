@@ -1,12 +1,11 @@
 #include "boneless/ArapDeformer.h"
 
 #include <Eigen/CholmodSupport>
-#include <Eigen/LU>
-#include <Eigen/SVD>
 #include <Eigen/Sparse>
 #include <chrono>
 #include <string>
 
+#include "ArapEnergy.h"
 #include "boneless/Error.h"
 
 namespace boneless {
@@ -15,11 +14,11 @@ struct ArapDeformer::Impl {
     TriMesh rest;
     std::vector<int> markers;
     Options options;
-    // Per face and edge (opposite corner c): half the cotangent of the angle at c.
-    Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> cotangent;
-    Eigen::SparseMatrix<double> laplacian;  // Σ w (e_j − e_k)(e_j − e_k)ᵀ, positive semidefinite
-    std::vector<char> activeKey;            // markers present when the factorisation was made
-    std::vector<int> freeIndex;             // vertex -> row in the free system, or -1
+    std::unique_ptr<ArapEnergy> energy;
+    Eigen::SparseMatrix<double> laplacian;
+    std::vector<char> activeKey;  // markers present when the factorisation was made
+    std::vector<int> freeIndex;   // vertex -> row in the free system, or -1
+    std::vector<int> fixedIndex;  // vertex -> column of freeToFixed, or -1
     Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> factor;
     Eigen::SparseMatrix<double> freeToFixed;
 
@@ -29,7 +28,7 @@ struct ArapDeformer::Impl {
         for (size_t k = 0; k < markers.size(); ++k)
             if (active[k]) fixed[markers[k]] = 1;
         freeIndex.assign(n, -1);
-        std::vector<int> fixedIndex(n, -1);
+        fixedIndex.assign(n, -1);
         int nf = 0, nc = 0;
         for (int v = 0; v < n; ++v) (fixed[v] ? fixedIndex[v] = nc++ : freeIndex[v] = nf++);
         std::vector<Eigen::Triplet<double>> ff, fc;
@@ -71,22 +70,8 @@ void ArapDeformer::prepare(const TriMesh& rest, std::vector<int> markerVertices,
     for (int v : impl->markers)
         if (v < 0 || v >= n)
             throw SolverError("marker vertex " + std::to_string(v) + " out of range");
-    impl->cotangent.resize(rest.faceCount(), 3);
-    std::vector<Eigen::Triplet<double>> t;
-    for (int f = 0; f < rest.faceCount(); ++f)
-        for (int c = 0; c < 3; ++c) {
-            const int o = rest.F(f, c), j = rest.F(f, (c + 1) % 3), k = rest.F(f, (c + 2) % 3);
-            const Vec3 a = rest.V.row(j) - rest.V.row(o), b = rest.V.row(k) - rest.V.row(o);
-            const double sine = a.cross(b).norm();
-            const double w = sine > 1e-300 ? 0.5 * a.dot(b) / sine : 0.0;
-            impl->cotangent(f, c) = w;
-            t.emplace_back(j, j, w);
-            t.emplace_back(k, k, w);
-            t.emplace_back(j, k, -w);
-            t.emplace_back(k, j, -w);
-        }
-    impl->laplacian.resize(n, n);
-    impl->laplacian.setFromTriplets(t.begin(), t.end());
+    impl->energy = std::make_unique<ArapEnergy>(impl->rest);
+    impl->laplacian = impl->energy->laplacian();
     impl_ = std::move(impl);
 }
 
@@ -112,47 +97,17 @@ SolveResult ArapDeformer::solve(const Positions& targets, const Positions* guess
     }
     Positions& V = result.V;
     Eigen::MatrixXd fixedPositions(s.freeToFixed.cols(), 3);
-    for (int k = 0, c = 0; k < K; ++k)
+    for (int k = 0; k < K; ++k)
         if (active[k]) {
             V.row(s.markers[k]) = targets.row(k);
-            fixedPositions.row(c++) = targets.row(k);
+            fixedPositions.row(s.fixedIndex[s.markers[k]]) = targets.row(k);
         }
 
     std::vector<Mat3> R(n);
     for (int it = 0; it < s.options.iterations; ++it) {
-        // Local step: each vertex's best rotation over the edges of its faces (spokes and rims).
-        std::vector<Mat3> S(n, Mat3::Zero());
-        for (int f = 0; f < s.rest.faceCount(); ++f) {
-            Mat3 cov = Mat3::Zero();
-            for (int c = 0; c < 3; ++c) {
-                const int j = s.rest.F(f, (c + 1) % 3), k = s.rest.F(f, (c + 2) % 3);
-                const Vec3 e0 = s.rest.V.row(j) - s.rest.V.row(k);
-                const Vec3 e = V.row(j) - V.row(k);
-                cov += s.cotangent(f, c) * e0 * e.transpose();
-            }
-            for (int c = 0; c < 3; ++c) S[s.rest.F(f, c)] += cov;
-        }
-        for (int v = 0; v < n; ++v) {
-            Eigen::JacobiSVD<Mat3> svd(S[v], Eigen::ComputeFullU | Eigen::ComputeFullV);
-            Mat3 U = svd.matrixU();
-            R[v] = svd.matrixV() * U.transpose();
-            if (R[v].determinant() < 0) {
-                U.col(2) *= -1;
-                R[v] = svd.matrixV() * U.transpose();
-            }
-        }
-        // Global step: L V = b with the rotated rest edges on the right.
-        Eigen::MatrixXd b = Eigen::MatrixXd::Zero(n, 3);
-        for (int f = 0; f < s.rest.faceCount(); ++f) {
-            const Mat3 Rf = (R[s.rest.F(f, 0)] + R[s.rest.F(f, 1)] + R[s.rest.F(f, 2)]) / 3.0;
-            for (int c = 0; c < 3; ++c) {
-                const int j = s.rest.F(f, (c + 1) % 3), k = s.rest.F(f, (c + 2) % 3);
-                const Vec3 e0 = s.rest.V.row(j) - s.rest.V.row(k);
-                const Vec3 rotated = s.cotangent(f, c) * (Rf * e0);
-                b.row(j) += rotated.transpose();
-                b.row(k) -= rotated.transpose();
-            }
-        }
+        // Local step: each vertex's best rotation; global step: L V = b / 3 for those rotations.
+        s.energy->fitRotations(V, R);
+        const Eigen::MatrixXd b = s.energy->rotatedRestEdges(R) / 3.0;
         Eigen::MatrixXd bFree(s.freeToFixed.rows(), 3);
         for (int v = 0; v < n; ++v)
             if (s.freeIndex[v] >= 0) bFree.row(s.freeIndex[v]) = b.row(v);

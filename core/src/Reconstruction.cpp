@@ -6,6 +6,7 @@
 #include <limits>
 #include <string>
 
+#include "ArapEnergy.h"
 #include "BlockSystem.h"
 #include "boneless/Error.h"
 
@@ -44,11 +45,19 @@ struct Reconstruction::Impl {
     std::vector<int> markerOf;    // vertex -> marker index, or -1
     std::vector<int> residualOf;  // residual -> vertex
     std::unique_ptr<BlockSystem> system;
+    std::unique_ptr<ArapEnergy> rigidity;
     SolverOptions options;
 
     // Per-iteration scratch, kept to avoid reallocations per frame.
     std::vector<Vec3> residual;
     std::vector<std::vector<Mat3>> jacobian;
+    std::vector<Mat3> rotations;
+
+    bool rigid() const { return options.rigidityWeight > 0; }
+    double rigidityEnergy(const Positions& V, std::vector<Mat3>& R) const {
+        rigidity->fitRotations(V, R);
+        return options.rigidityWeight * rigidity->energy(V, R);
+    }
 
     bool softMarkers() const { return options.constraints == SolverOptions::Constraints::Soft; }
 
@@ -59,7 +68,12 @@ struct Reconstruction::Impl {
             for (size_t k = 0; k < markers.size(); ++k)
                 if (rowIsFinite(targets, static_cast<int>(k)))
                     e += options.softWeight * (V.row(markers[k]) - targets.row(k)).squaredNorm();
-        return 0.5 * e;
+        e *= 0.5;
+        if (rigid()) {
+            std::vector<Mat3> R;
+            e += rigidityEnergy(V, R);
+        }
+        return e;
     }
 
     // Fills residuals and Jacobians, returns the energy.
@@ -79,7 +93,9 @@ struct Reconstruction::Impl {
             for (size_t k = 0; k < markers.size(); ++k)
                 if (rowIsFinite(targets, static_cast<int>(k)))
                     e += options.softWeight * (V.row(markers[k]) - targets.row(k)).squaredNorm();
-        return 0.5 * e;
+        e *= 0.5;
+        if (rigid()) e += rigidityEnergy(V, rotations);
+        return e;
     }
 
     // Assembles AᵀA and Aᵀr for the current linearisation.
@@ -104,6 +120,24 @@ struct Reconstruction::Impl {
                 gradient.segment<3>(3 * ring[k]) -= Jt * res;
                 for (int l = 0; l < m; ++l) system->add(r, k + 1, l + 1, Jt * J[l]);
             }
+        }
+        if (rigid()) {
+            // For the rotations fitted at V: Hessian 6αL ⊗ I, gradient α(6 L V − 2 b).
+            const double a = options.rigidityWeight;
+            const int firstFaceStencil = static_cast<int>(residualOf.size());
+            for (int f = 0; f < rest.faceCount(); ++f)
+                for (int c = 0; c < 3; ++c) {
+                    const Mat3 W = 6.0 * a * rigidity->cotangent(f, c) * Mat3::Identity();
+                    const int j = (c + 1) % 3, k = (c + 2) % 3;
+                    system->add(firstFaceStencil + f, j, j, W);
+                    system->add(firstFaceStencil + f, k, k, W);
+                    system->add(firstFaceStencil + f, j, k, -W);
+                    system->add(firstFaceStencil + f, k, j, -W);
+                }
+            const Eigen::MatrixXd b = rigidity->rotatedRestEdges(rotations);
+            const Eigen::MatrixXd LV = rigidity->laplacian() * V;
+            for (int v = 0; v < n; ++v)
+                gradient.segment<3>(3 * v) += a * (6.0 * LV.row(v) - 2.0 * b.row(v)).transpose();
         }
         if (softMarkers())
             for (size_t k = 0; k < markers.size(); ++k)
@@ -153,7 +187,11 @@ void Reconstruction::prepare(const TriMesh& rest, std::vector<int> markerVertice
         s.insert(s.end(), ring, ring + impl->topology->valence(v));
         stencils.push_back(std::move(s));
     }
+    // Faces are stencils too, for the fold guard's terms (no residual of their own).
+    for (int f = 0; f < rest.faceCount(); ++f)
+        stencils.push_back({rest.F(f, 0), rest.F(f, 1), rest.F(f, 2)});
     impl->system = std::make_unique<BlockSystem>(n, stencils);
+    impl->rigidity = std::make_unique<ArapEnergy>(impl->rest);
     impl_ = std::move(impl);
 }
 

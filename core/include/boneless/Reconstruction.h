@@ -16,6 +16,10 @@ struct SolverOptions {
     enum class Constraints { Hard, Soft };
     Constraints constraints = Constraints::Hard;
     double softWeight = 100.0;
+    // The fold guard: weight of a weak as-rigid-as-possible term added to G (0 = the paper's energy
+    // alone). G is blind to in-plane affine maps of flat and thin regions, mirror images included,
+    // so without it thin parts fold; see README "Solver".
+    double rigidityWeight = 0.0;
     int maxIterations = 30;
     // Stop once an iteration lowers the energy by less than this fraction.
     double relativeTolerance = 1e-3;
