@@ -7,6 +7,7 @@ int main(int argc, char** argv) {
     CLI::App app{"boneless-cli: skeleton-free mesh animation from motion-capture markers"};
     app.require_subcommand(1);
     registerEvalCommand(app);
+    registerDemoCommand(app);
     registerInspectCommand(app);
     try {
         app.parse(argc, argv);
