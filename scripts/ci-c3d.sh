@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# CI for the C3D reader: its unit tests under AddressSanitizer + UndefinedBehaviorSanitizer, then
+# a short libFuzzer run seeded with the real files in ../shared/data/c3d (when present).
+#
+#   scripts/ci-c3d.sh                 # 60 s of fuzzing
+#   FUZZ_SECONDS=600 scripts/ci-c3d.sh
+#
+# Exits non-zero on a test failure, a sanitizer report or a fuzzer crash (the crashing input is
+# left in $FUZZ_BUILD/fuzz-ci/ for reproduction: boneless-fuzz-c3d <file>).
+set -euo pipefail
+
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+ASAN_BUILD="${ASAN_BUILD:-$ROOT/build-c3d-asan}"
+FUZZ_BUILD="${FUZZ_BUILD:-$ROOT/build-fuzz}"
+FUZZ_SECONDS="${FUZZ_SECONDS:-60}"
+JOBS="${JOBS:-2}"
+
+echo "== C3D unit tests, ASan + UBSan ($ASAN_BUILD)"
+cmake -S "$ROOT" -B "$ASAN_BUILD" -G Ninja -DBONELESS_SANITIZE=ON -DCMAKE_BUILD_TYPE=Debug >/dev/null
+cmake --build "$ASAN_BUILD" --target boneless_tests boneless-cli -j"$JOBS"
+ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+    "$ASAN_BUILD/bin/boneless_tests" --gtest_filter='C3d*' --gtest_brief=1
+
+echo "== C3D reader fuzzing, ${FUZZ_SECONDS} s ($FUZZ_BUILD)"
+CC=clang CXX=clang++ cmake -S "$ROOT" -B "$FUZZ_BUILD" -G Ninja -DBONELESS_FUZZ=ON \
+    -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+cmake --build "$FUZZ_BUILD" --target boneless-fuzz-c3d -j"$JOBS"
+work="$FUZZ_BUILD/fuzz-ci"
+mkdir -p "$work/corpus" "$work/seeds"
+shared="$ROOT/../shared/data/c3d"
+if [ -d "$shared" ]; then
+    find "$shared" -name '*.c3d' -size +0 -exec cp -f {} "$work/seeds/" \;
+fi
+set +e
+"$FUZZ_BUILD/bin/boneless-fuzz-c3d" -max_total_time="$FUZZ_SECONDS" -max_len=4096 \
+    -dict="$ROOT/tests/fuzz/c3d.dict" -artifact_prefix="$work/" -print_final_stats=1 \
+    "$work/corpus" "$work/seeds" 2>&1 | grep -E '^(stat::|Done)|ERROR|SUMMARY|crash'
+status=${PIPESTATUS[0]}  # libFuzzer's, not grep's
+set -e
+if [ "$status" -ne 0 ]; then
+    echo "fuzzer failed (status $status); inputs in $work" >&2
+    exit "$status"
+fi
+echo "== C3D CI passed"

@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Installs every Debian bookworm package Boneless needs to build, test and run (as root).
+set -euo pipefail
+packages=(
+  # toolchain
+  g++ cmake ninja-build pkg-config git xz-utils
+  # core
+  libeigen3-dev libopenmesh-dev libsuitesparse-dev libopenblas-dev
+  # CLI
+  nlohmann-json3-dev libcli11-dev
+  # tests, benchmarks, fuzzing (clang's libFuzzer and sanitizer runtimes)
+  libgtest-dev libbenchmark-dev clang libclang-rt-14-dev
+)
+if [ "$(id -u)" -ne 0 ]; then
+  echo "install-deps.sh: run as root (it calls apt-get)" >&2
+  exit 1
+fi
+export DEBIAN_FRONTEND=noninteractive
+apt-get update -q
+apt-get install -y -q --no-install-recommends "${packages[@]}"

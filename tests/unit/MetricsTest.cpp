@@ -1,0 +1,55 @@
+#include <gtest/gtest.h>
+
+#include "TestMeshes.h"
+#include "boneless/Metrics.h"
+
+using namespace boneless;
+using namespace boneless::testing;
+
+TEST(Metrics, ErrorsOfAKnownDisplacement) {
+    const TriMesh mesh = icosphere(1);
+    Positions moved = mesh.V;
+    moved(3, 0) += 0.3;
+    moved(7, 1) -= 0.4;
+    EXPECT_DOUBLE_EQ(maxVertexError(moved, mesh.V), 0.4);
+    EXPECT_NEAR(rmsVertexError(moved, mesh.V), std::sqrt((0.09 + 0.16) / mesh.vertexCount()),
+                1e-15);
+    EXPECT_EQ(rmsVertexError(mesh.V, mesh.V), 0.0);
+}
+
+namespace {
+// A flat n x n grid in the xy plane, faces facing +z.
+TriMesh grid(int n) {
+    TriMesh m;
+    m.V.resize(n * n, 3);
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) m.V.row(i * n + j) << j, i, 0;
+    m.F.resize(2 * (n - 1) * (n - 1), 3);
+    int f = 0;
+    for (int i = 0; i + 1 < n; ++i)
+        for (int j = 0; j + 1 < n; ++j) {
+            const int a = i * n + j;
+            m.F.row(f++) << a, a + 1, a + n + 1;
+            m.F.row(f++) << a, a + n + 1, a + n;
+        }
+    return m;
+}
+}  // namespace
+
+TEST(Metrics, FlippedFacesAreThoseFacingAgainstTheTruth) {
+    const TriMesh mesh = grid(5);
+    EXPECT_EQ(flippedFaceCount(mesh.F, mesh.V, mesh.V), 0);
+    Positions mirrored = mesh.V;
+    mirrored.col(0) *= -1;  // a mirror image turns every face of the sheet over
+    EXPECT_EQ(flippedFaceCount(mesh.F, mirrored, mesh.V), mesh.faceCount());
+    Positions dragged = mesh.V;
+    dragged.row(12) << 3.5, 2.0, 0;  // the centre vertex dragged past its right neighbour
+    const int flipped = flippedFaceCount(mesh.F, dragged, mesh.V);
+    EXPECT_GE(flipped, 1);
+    EXPECT_LE(flipped, 6);  // only its own fan can turn over
+}
+
+TEST(Metrics, EdgeLengthDistortionOfAUniformScale) {
+    const TriMesh mesh = icosphere(1);
+    EXPECT_NEAR(edgeLengthDistortion(mesh.F, 1.1 * mesh.V, mesh.V), 0.1, 1e-12);
+}
