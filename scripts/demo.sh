@@ -4,9 +4,7 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${BONELESS_BUILD_DIR:-$root/build}
-"$root/scripts/install-deps.sh"
+"$root/scripts/build.sh" --target boneless-cli
 export OPENBLAS_NUM_THREADS=1
-cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release
-cmake --build "$build" -j"$(nproc)" --target boneless-cli
 "$build/bin/boneless-cli" demo --out "$build/demo"
 "$build/bin/boneless-cli" eval --sequence "$build/demo" --markers 30 --method both

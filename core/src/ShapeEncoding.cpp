@@ -119,21 +119,36 @@ int ShapeEncoding::encodedCount() const {
     return static_cast<int>(std::count(kind_.begin(), kind_.end(), Kind::Full));
 }
 
-Vec3 ShapeEncoding::decode(int v, const Positions& V) const {
-    const int m = topology_->valence(v);
-    const int* ring = topology_->ring(v);
-    const double* w = weights(v);
+namespace {
+
+// What decoding needs of a ring in pose V: centroid l, mean-value combination q, normal N.
+struct RingState {
     Vec3 l = Vec3::Zero(), q = Vec3::Zero(), N = Vec3::Zero();
+    double length = 0;  // |N|
+    bool healthy = false;
+    Vec3 n = Vec3::Zero();
+};
+
+RingState ringState(const int* ring, int m, const double* w, const Positions& V) {
+    RingState r;
     for (int k = 0; k < m; ++k) {
         const Vec3 pk = V.row(ring[k]).transpose();
-        l += pk;
-        q += w[k] * pk;
-        N += pk.cross(V.row(ring[(k + 1) % m]).transpose());
+        r.l += pk;
+        r.q += w[k] * pk;
+        r.N += pk.cross(V.row(ring[(k + 1) % m]).transpose());
     }
-    l /= m;
-    const double len = N.norm();
-    const Vec3 n = len > 0 ? Vec3(N / len) : Vec3::Zero();
-    return q + (height_[v] - (q - l).dot(n)) * n;
+    r.l /= m;
+    r.length = r.N.norm();
+    r.healthy = r.length > 1e-300 && std::isfinite(r.length);
+    if (r.healthy) r.n = r.N / r.length;
+    return r;
+}
+
+}  // namespace
+
+Vec3 ShapeEncoding::decode(int v, const Positions& V) const {
+    const RingState r = ringState(topology_->ring(v), topology_->valence(v), weights(v), V);
+    return r.q + (height_[v] - (r.q - r.l).dot(r.n)) * r.n;
 }
 
 bool ShapeEncoding::decodeWithJacobian(int v, const Positions& V, Vec3& F,
@@ -142,17 +157,10 @@ bool ShapeEncoding::decodeWithJacobian(int v, const Positions& V, Vec3& F,
     const int* ring = topology_->ring(v);
     const double* w = weights(v);
     J.resize(m);
-    Vec3 l = Vec3::Zero(), q = Vec3::Zero(), N = Vec3::Zero();
-    for (int k = 0; k < m; ++k) {
-        const Vec3 pk = V.row(ring[k]).transpose();
-        l += pk;
-        q += w[k] * pk;
-        N += pk.cross(V.row(ring[(k + 1) % m]).transpose());
-    }
-    l /= m;
-    const double len = N.norm();
-    const bool healthy = len > 1e-300 && std::isfinite(len);
-    const Vec3 n = healthy ? Vec3(N / len) : Vec3::Zero();
+    const RingState r = ringState(ring, m, w, V);
+    const Vec3 &l = r.l, &q = r.q, &n = r.n;
+    const double len = r.length;
+    const bool healthy = r.healthy;
     const double s = height_[v] - (q - l).dot(n);
     F = q + s * n;
     const Mat3 nnT = n * n.transpose();
