@@ -1,0 +1,45 @@
+#pragma once
+
+#include <vector>
+
+#include "boneless/ShapeEncoding.h"
+#include "boneless/TriMesh.h"
+
+namespace boneless {
+
+struct C3dTake;
+
+// x ↦ scale · R x + t: how a take's coordinates map onto the rest mesh's.
+struct Similarity {
+    double scale = 1.0;
+    Mat3 R = Mat3::Identity();
+    Vec3 t = Vec3::Zero();
+    Vec3 apply(const Vec3& x) const { return scale * (R * x) + t; }
+};
+
+// Least-squares similarity (Umeyama 1991) mapping from[k] onto to[k]; rows with a NaN in either
+// are skipped. Throws Error when fewer than three usable rows remain or they are collinear.
+Similarity fitSimilarity(const Positions& from, const Positions& to);
+
+// RMS distance between the mapped `from` rows and the `to` rows (finite rows only).
+double alignmentResidual(const Similarity& s, const Positions& from, const Positions& to);
+
+// The take's frame chosen to align it with the rest mesh, and the alignment found there.
+struct Calibration {
+    int frame = -1;  // 0-based frame of the take
+    Similarity takeToMesh;
+    double residual = 0;     // RMS marker distance after alignment, in mesh units
+    int visibleMarkers = 0;  // markers seen at that frame (all of them unless the take is gappy)
+};
+
+// Among the frames where every given point is visible, the one that is closest to the rest pose
+// after its own similarity alignment (algorithm.md §4.1); when no frame shows them all, among the
+// frames that show the most. restPositions: the mapped vertices' rest positions, one row per entry
+// of `points`. Throws Error when no frame shows three usable markers.
+Calibration calibrate(const C3dTake& take, const std::vector<std::size_t>& points,
+                      const Positions& restPositions);
+
+// The take's positions of `points` at `frame`, NaN rows where missing.
+Positions takeFrame(const C3dTake& take, const std::vector<std::size_t>& points, int frame);
+
+}  // namespace boneless

@@ -1,0 +1,154 @@
+#include "boneless/Correspondence.h"
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "boneless/C3dTake.h"
+#include "boneless/Error.h"
+#include "boneless/ObjWriter.h"
+
+namespace boneless {
+
+namespace {
+
+using nlohmann::json;
+
+constexpr const char* kFormat = "boneless-correspondence";
+constexpr int kVersion = 1;
+
+[[noreturn]] void fail(const std::string& file, const std::string& what) {
+    throw Error(file + ": " + what);
+}
+
+template <typename T>
+T get(const json& object, const char* key, const std::string& file, const std::string& where) {
+    if (!object.contains(key)) fail(file, where + " has no \"" + key + "\"");
+    try {
+        return object.at(key).get<T>();
+    } catch (const json::exception&) {
+        fail(file, where + ": \"" + key + "\" has the wrong type");
+    }
+}
+
+json withoutKeys(json object, std::initializer_list<const char*> keys) {
+    for (const char* k : keys) object.erase(k);
+    return object;
+}
+
+}  // namespace
+
+Correspondence Correspondence::read(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) fail(path, "cannot open the correspondence file");
+    json doc;
+    try {
+        doc = json::parse(in);
+    } catch (const json::parse_error& e) {
+        fail(path, std::string("is not valid JSON (") + e.what() + ")");
+    }
+    if (!doc.is_object()) fail(path, "is not a JSON object");
+    if (doc.value("format", std::string()) != kFormat)
+        fail(path, std::string("is not a Boneless correspondence file (\"format\" must be \"") +
+                       kFormat + "\")");
+    const int version = get<int>(doc, "version", path, "the file");
+    if (version != kVersion)
+        fail(path, "has version " + std::to_string(version) + "; this Boneless reads version " +
+                       std::to_string(kVersion));
+    Correspondence c;
+    c.source_ = path;
+    const json mesh = doc.contains("mesh") ? doc["mesh"] : json::object();
+    if (!mesh.is_object()) fail(path, "\"mesh\" must be an object");
+    c.meshFile = mesh.value("file", std::string());
+    c.meshVertices = mesh.contains("vertices") ? get<int>(mesh, "vertices", path, "\"mesh\"") : 0;
+    if (!doc.contains("markers") || !doc["markers"].is_array())
+        fail(path, "has no \"markers\" list");
+    std::set<std::string> labels;
+    std::set<int> vertices;
+    const json& list = doc["markers"];
+    for (size_t i = 0; i < list.size(); ++i) {
+        const std::string where = "marker " + std::to_string(i);
+        const json& m = list[i];
+        if (!m.is_object()) fail(path, where + " is not an object");
+        MarkerMapping mapping;
+        mapping.label = get<std::string>(m, "label", path, where);
+        mapping.vertex = get<int>(m, "vertex", path, where + " (" + mapping.label + ")");
+        mapping.offsetMm = m.value("offset_mm", 0.0);
+        mapping.extraJson = withoutKeys(m, {"label", "vertex", "offset_mm"}).dump();
+        if (mapping.vertex < 0)
+            fail(path, where + " (" + mapping.label + "): vertex " +
+                           std::to_string(mapping.vertex) + " is negative");
+        if (!labels.insert(mapping.label).second)
+            fail(path, where + ": label " + mapping.label + " is mapped twice");
+        if (!vertices.insert(mapping.vertex).second)
+            fail(path, where + " (" + mapping.label + "): vertex " +
+                           std::to_string(mapping.vertex) + " already carries another marker");
+        c.markers.push_back(std::move(mapping));
+    }
+    json extra = withoutKeys(doc, {"format", "version", "markers"});
+    if (extra.contains("mesh")) extra["mesh"] = withoutKeys(extra["mesh"], {"file", "vertices"});
+    c.extraJson_ = extra.dump();
+    return c;
+}
+
+std::string Correspondence::toJson() const {
+    json doc = json::parse(extraJson_);
+    doc["format"] = kFormat;
+    doc["version"] = kVersion;
+    json mesh = doc.contains("mesh") ? doc["mesh"] : json::object();
+    mesh["file"] = meshFile;
+    mesh["vertices"] = meshVertices;
+    doc["mesh"] = mesh;
+    json list = json::array();
+    for (const auto& m : markers) {
+        json entry = m.extraJson.empty() ? json::object() : json::parse(m.extraJson);
+        entry["label"] = m.label;
+        entry["vertex"] = m.vertex;
+        entry["offset_mm"] = m.offsetMm;
+        list.push_back(entry);
+    }
+    doc["markers"] = list;
+    return doc.dump(2) + "\n";
+}
+
+void Correspondence::write(const std::string& path) const {
+    writeFileAtomically(path, toJson());
+}
+
+void Correspondence::checkMesh(int vertexCount, const std::string& meshPath) const {
+    const std::string file = source_.empty() ? "correspondence" : source_;
+    if (meshVertices != 0 && meshVertices != vertexCount)
+        fail(file, "was made for a mesh of " + std::to_string(meshVertices) + " vertices, but " +
+                       meshPath + " has " + std::to_string(vertexCount));
+    for (const auto& m : markers)
+        if (m.vertex >= vertexCount)
+            fail(file, "marker " + m.label + ": vertex " + std::to_string(m.vertex) +
+                           " is out of range (" + meshPath + " has " + std::to_string(vertexCount) +
+                           " vertices)");
+}
+
+std::vector<std::size_t> Correspondence::resolve(const C3dTake& take) const {
+    std::vector<std::size_t> points;
+    std::string unknown;
+    for (const auto& m : markers) {
+        const auto index = take.findPoint(m.label);
+        if (!index) {
+            unknown += (unknown.empty() ? "" : ", ") + m.label;
+            continue;
+        }
+        points.push_back(*index);
+    }
+    if (!unknown.empty())
+        fail(source_.empty() ? "correspondence" : source_,
+             "labels not found in " + take.file + ": " + unknown);
+    return points;
+}
+
+const MarkerMapping* Correspondence::find(const std::string& label) const {
+    for (const auto& m : markers)
+        if (m.label == label) return &m;
+    return nullptr;
+}
+
+}  // namespace boneless

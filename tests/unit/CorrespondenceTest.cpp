@@ -1,0 +1,111 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "boneless/C3dTake.h"
+#include "boneless/Correspondence.h"
+#include "boneless/Error.h"
+
+using namespace boneless;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string writeText(const std::string& name, const std::string& text) {
+    const fs::path dir = fs::path(BONELESS_TEST_WORK_DIR) / "correspondence";
+    fs::create_directories(dir);
+    const std::string path = (dir / name).string();
+    std::ofstream(path) << text;
+    return path;
+}
+
+std::string errorOf(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+const char* kValid = R"({"format": "boneless-correspondence", "version": 1,
+  "mesh": {"file": "body.obj", "vertices": 100, "units": "dm"},
+  "author": "test",
+  "markers": [{"label": "LFHD", "vertex": 12, "offset_mm": 9.5, "note": "left front head"},
+              {"label": "RFHD", "vertex": 40}]})";
+
+}  // namespace
+
+TEST(Correspondence, ReadsTheDocumentedFormat) {
+    const Correspondence c = Correspondence::read(writeText("valid.json", kValid));
+    EXPECT_EQ(c.meshFile, "body.obj");
+    EXPECT_EQ(c.meshVertices, 100);
+    ASSERT_EQ(c.markers.size(), 2u);
+    EXPECT_EQ(c.markers[0].label, "LFHD");
+    EXPECT_EQ(c.markers[0].vertex, 12);
+    EXPECT_DOUBLE_EQ(c.markers[0].offsetMm, 9.5);
+    EXPECT_DOUBLE_EQ(c.markers[1].offsetMm, 0.0);
+}
+
+TEST(Correspondence, KeepsUnknownKeysOnRewrite) {
+    Correspondence c = Correspondence::read(writeText("extra.json", kValid));
+    c.markers[1].vertex = 41;
+    const std::string out = writeText("rewritten.json", "");
+    c.write(out);
+    const auto j = nlohmann::json::parse(std::ifstream(out));
+    EXPECT_EQ(j["author"], "test");
+    EXPECT_EQ(j["mesh"]["units"], "dm");
+    EXPECT_EQ(j["markers"][0]["note"], "left front head");
+    EXPECT_EQ(j["markers"][1]["vertex"], 41);
+    const Correspondence back = Correspondence::read(out);
+    EXPECT_EQ(back.markers[1].vertex, 41);
+    EXPECT_EQ(back.toJson(), c.toJson());
+}
+
+TEST(Correspondence, RejectsBadFilesNamingFileAndEntry) {
+    std::string e = errorOf([] { Correspondence::read(writeText("bad.json", "{not json")); });
+    EXPECT_NE(e.find("bad.json"), std::string::npos);
+    EXPECT_NE(e.find("not valid JSON"), std::string::npos) << e;
+
+    e = errorOf([] {
+        Correspondence::read(writeText("dup.json", R"({"format": "boneless-correspondence",
+          "version": 1, "markers": [{"label": "A", "vertex": 3}, {"label": "B", "vertex": 3}]})"));
+    });
+    EXPECT_NE(e.find("marker 1 (B): vertex 3 already carries another marker"), std::string::npos)
+        << e;
+
+    e = errorOf([] {
+        Correspondence::read(writeText("v2.json", R"({"format": "boneless-correspondence",
+          "version": 2, "markers": []})"));
+    });
+    EXPECT_NE(e.find("version 2"), std::string::npos) << e;
+
+    e = errorOf([] {
+        Correspondence::read(writeText("nolabel.json", R"({"format": "boneless-correspondence",
+          "version": 1, "markers": [{"vertex": 3}]})"));
+    });
+    EXPECT_NE(e.find("marker 0 has no \"label\""), std::string::npos) << e;
+}
+
+TEST(Correspondence, ChecksTheMeshAndTheTake) {
+    const Correspondence c = Correspondence::read(writeText("valid2.json", kValid));
+    EXPECT_NO_THROW(c.checkMesh(100, "body.obj"));
+    EXPECT_NE(errorOf([&] { c.checkMesh(99, "other.obj"); }).find("99"), std::string::npos);
+
+    C3dTake take;
+    take.file = "take.c3d";
+    for (const char* label : {"actor:RFHD", "actor:LFHD", "actor:C7"}) {
+        C3dPoint p;
+        p.label = label;
+        splitC3dLabel(label, p.subject, p.name);
+        take.points.push_back(p);
+    }
+    const auto points = c.resolve(take);
+    EXPECT_EQ(points, (std::vector<std::size_t>{1, 0}));  // prefixes ignored, file order kept
+    take.points.erase(take.points.begin());
+    const std::string e = errorOf([&] { c.resolve(take); });
+    EXPECT_NE(e.find("RFHD"), std::string::npos) << e;
+    EXPECT_NE(e.find("take.c3d"), std::string::npos) << e;
+}
