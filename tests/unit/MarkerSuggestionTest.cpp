@@ -1,0 +1,66 @@
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "TestMeshes.h"
+#include "boneless/C3dTake.h"
+#include "boneless/Error.h"
+#include "boneless/MarkerSuggestion.h"
+
+using namespace boneless;
+using namespace boneless::testing;
+
+namespace {
+
+// A take whose markers sit on the given vertices of `mesh` (from the `liftFrom`-th marker on,
+// `lift` off the skin), seen in millimetres from another orientation and origin.
+C3dTake takeOnVertices(const TriMesh& mesh, const std::vector<int>& ids, double lift,
+                       size_t liftFrom) {
+    std::mt19937 rng(9);
+    const Mat3 R = randomRotation(rng);
+    C3dTake take;
+    take.file = "synthetic.c3d";
+    take.samples = C3dSamples(3, ids.size());
+    for (size_t k = 0; k < ids.size(); ++k) {
+        C3dPoint p;
+        p.label = "actor:M" + std::to_string(k);
+        splitC3dLabel(p.label, p.subject, p.name);
+        take.points.push_back(p);
+        const Vec3 onSkin = mesh.V.row(ids[k]).transpose();
+        const Vec3 x = onSkin * (k >= liftFrom ? 1.0 + lift : 1.0);  // normal = position
+        for (int f = 0; f < 3; ++f) {
+            const Vec3 y = 1000.0 * R * x + Vec3(100, 200, 300 + f);
+            take.samples.set(f, k, y.x(), y.y(), y.z());
+        }
+    }
+    return take;
+}
+
+}  // namespace
+
+TEST(MarkerSuggestion, FindsTheVerticesUnderTheUnmappedMarkers) {
+    const TriMesh mesh = icosphere(2);
+    const std::vector<int> ids{0, 7, 19, 33, 48, 77, 101, 150};
+    const C3dTake take = takeOnVertices(mesh, ids, 0.01, 4);
+    Correspondence partial;
+    partial.meshVertices = mesh.vertexCount();
+    for (int k = 0; k < 4; ++k)
+        partial.markers.push_back({"M" + std::to_string(k), ids[k], 0, "{}"});
+    const Suggestion s = suggestMappings(mesh, take, partial);
+    EXPECT_EQ(s.suggested, 4);
+    ASSERT_EQ(s.map.markers.size(), 8u);
+    for (size_t k = 4; k < 8; ++k) {
+        EXPECT_EQ(s.map.markers[k].label, "M" + std::to_string(k));
+        EXPECT_EQ(s.map.markers[k].vertex, ids[k]);
+        EXPECT_NEAR(s.map.markers[k].offsetMm, 10.0, 0.5);  // 1 % of a 1 m radius, in mm
+    }
+    EXPECT_NEAR(s.calibration.takeToMesh.scale, 1e-3, 1e-12);
+}
+
+TEST(MarkerSuggestion, NeedsFourMappedMarkers) {
+    const TriMesh mesh = icosphere(1);
+    const C3dTake take = takeOnVertices(mesh, {0, 1, 2, 3, 4}, 0.0, 0);
+    Correspondence partial;
+    for (int k = 0; k < 3; ++k) partial.markers.push_back({"M" + std::to_string(k), k, 0, "{}"});
+    EXPECT_THROW(suggestMappings(mesh, take, partial), Error);
+}
