@@ -5,4 +5,5 @@
 // Each boneless-cli subcommand lives in its own file and registers itself here.
 void registerEvalCommand(CLI::App& app);
 void registerDemoCommand(CLI::App& app);
+void registerMapCommand(CLI::App& app);
 void registerInspectCommand(CLI::App& app);

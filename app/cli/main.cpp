@@ -8,6 +8,7 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     registerEvalCommand(app);
     registerDemoCommand(app);
+    registerMapCommand(app);
     registerInspectCommand(app);
     try {
         app.parse(argc, argv);

@@ -1,0 +1,152 @@
+// boneless-cli inspect TAKE.c3d [--json] [--csv OUT.csv]
+
+#include <charconv>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "Commands.h"
+#include "boneless/C3dReader.h"
+
+namespace {
+
+struct InspectOptions {
+    std::string take;
+    bool json = false;
+    std::string csv;
+    bool keepZero = false;
+};
+
+nlohmann::json toJson(const boneless::C3dTake& t) {
+    using boneless::toString;
+    nlohmann::json j;
+    j["file"] = t.file;
+    j["frames"] = t.frameCount();
+    j["rate"] = t.rate;
+    j["units"] = t.units;
+    j["unit_to_mm"] = t.unitToMm;
+    j["processor"] = toString(t.processor);
+    j["storage"] = toString(t.storage);
+    j["scale"] = t.pointScale;
+    j["first_frame"] = t.firstFrameWord;
+    j["last_frame"] = t.lastFrameWord;
+    j["first_frame_number"] = t.firstFrame;
+    j["analog_channels"] = t.analogChannels;
+    j["analog_rate"] = t.analogRate;
+    j["points"] = nlohmann::json::array();
+    for (std::size_t i = 0; i < t.points.size(); ++i) {
+        const auto& p = t.points[i];
+        j["points"].push_back({{"label", p.label},
+                               {"subject", p.subject},
+                               {"name", p.name},
+                               {"description", p.description},
+                               {"kind", toString(p.kind)},
+                               {"missing_frames", t.samples.missingFrames(i)}});
+    }
+    j["warnings"] = t.warnings;
+    return j;
+}
+
+void printSummary(const boneless::C3dTake& t, std::ostream& out) {
+    using boneless::toString;
+    const std::size_t samples = t.frameCount() * t.points.size();
+    const std::size_t missing = t.samples.missingCount();
+    std::size_t byKind[7] = {};
+    for (const auto& p : t.points) ++byKind[static_cast<int>(p.kind)];
+    out << t.file << "\n";
+    out << "  format    " << toString(t.processor) << ", " << toString(t.storage)
+        << " (POINT:SCALE " << t.pointScale << ")\n";
+    out << "  frames    " << t.frameCount() << " @ " << t.rate << " Hz (header frames "
+        << t.firstFrameWord << ".." << t.lastFrameWord << ")\n";
+    out << "  units     " << t.units << " (x" << t.unitToMm << " to mm)\n";
+    out << "  analog    " << t.analogChannels << " channels @ " << t.analogRate << " Hz\n";
+    out << "  points    " << t.points.size();
+    const char* sep = " (";
+    for (int k = 0; k < 7; ++k) {
+        if (!byKind[k]) continue;
+        out << sep << byKind[k] << " " << toString(static_cast<boneless::C3dPointKind>(k));
+        sep = ", ";
+    }
+    out << (t.points.empty() ? "" : ")") << "\n";
+    char pct[32];
+    std::snprintf(pct, sizeof pct, "%.1f",
+                  samples ? 100.0 * double(missing) / double(samples) : 0.0);
+    out << "  missing   " << missing << " of " << samples << " samples (" << pct << " %)\n";
+    for (const auto& w : t.warnings) out << "  warning   " << w << "\n";
+    out << "\n  #    label                          kind     missing\n";
+    for (std::size_t i = 0; i < t.points.size(); ++i) {
+        char line[512];
+        std::snprintf(line, sizeof line, "  %-4zu %-30s %-8s %zu\n", i, t.points[i].label.c_str(),
+                      toString(t.points[i].kind), t.samples.missingFrames(i));
+        out << line;
+    }
+}
+
+std::string csvField(const std::string& s) {
+    if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+    std::string q = "\"";
+    for (char c : s) q += (c == '"') ? std::string("\"\"") : std::string(1, c);
+    return q + "\"";
+}
+
+void writeCsv(const boneless::C3dTake& t, const std::string& path) {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    if (!out) throw boneless::Error(path + ": cannot open for writing");
+    std::vector<std::string> labels;
+    for (const auto& p : t.points) labels.push_back(csvField(p.label));
+    std::string buf = "frame,label,x,y,z,valid\n";
+    char num[64];
+    auto put = [&](auto v) {
+        auto r = std::to_chars(num, num + sizeof num, v);
+        buf.append(num, r.ptr);
+    };
+    for (std::size_t f = 0; f < t.frameCount(); ++f) {
+        for (std::size_t k = 0; k < t.points.size(); ++k) {
+            put(f);
+            buf += ',';
+            buf += labels[k];
+            if (auto p = t.samples.position(f, k)) {
+                for (int c = 0; c < 3; ++c) {
+                    buf += ',';
+                    put((*p)[c]);
+                }
+                buf += ",1\n";
+            } else {
+                buf += ",,,,0\n";
+            }
+        }
+        if (buf.size() > (1u << 20)) {
+            out.write(buf.data(), std::streamsize(buf.size()));
+            buf.clear();
+        }
+    }
+    out.write(buf.data(), std::streamsize(buf.size()));
+    if (!out) throw boneless::Error(path + ": write failed");
+}
+
+}  // namespace
+
+void registerInspectCommand(CLI::App& app) {
+    auto opts = std::make_shared<InspectOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "inspect", "Summarise a C3D take: format, frames, rate, units, points and their gaps");
+    cmd->add_option("take", opts->take, "C3D file")->required();
+    cmd->add_flag("--json", opts->json, "print one JSON object instead of the summary");
+    cmd->add_option("--csv", opts->csv,
+                    "write frame,label,x,y,z,valid rows (frame 0-based, file units, empty x/y/z "
+                    "where missing)");
+    cmd->add_flag("--keep-zero", opts->keepZero,
+                  "keep samples at exactly (0,0,0) instead of treating them as missing");
+    cmd->callback([opts]() {
+        boneless::C3dReadOptions ro;
+        ro.keepZeroSamples = opts->keepZero;
+        const boneless::C3dTake take = boneless::readC3d(opts->take, ro);
+        if (!opts->csv.empty()) writeCsv(take, opts->csv);
+        if (opts->json)
+            std::cout << toJson(take).dump(2) << "\n";
+        else
+            printSummary(take, std::cout);
+    });
+}

@@ -1,0 +1,112 @@
+#pragma once
+
+// One motion-capture take read from (or to be written to) a C3D file.
+
+#include <Eigen/Core>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "boneless/C3dNumbers.h"
+#include "boneless/C3dParameters.h"
+
+namespace boneless {
+
+enum class C3dStorage { Int16, Float };
+
+enum class C3dPointKind { Marker, Angle, Force, Moment, Power, Scalar, Virtual };
+
+const char* toString(C3dProcessor processor);  // "intel", "dec", "mips"
+const char* toString(C3dStorage storage);      // "int16", "float"
+const char* toString(C3dPointKind kind);       // "marker", "angle", ...
+
+// Frames x points samples. A missing sample has no position: position() returns nullopt and the
+// raw coordinate block holds NaN there, so forgetting to check validity poisons results instead
+// of silently using a stale or (0,0,0) position.
+class C3dSamples {
+  public:
+    C3dSamples() = default;
+    C3dSamples(std::size_t frames, std::size_t points);  // all missing
+
+    std::size_t frames() const { return frames_; }
+    std::size_t points() const { return points_; }
+
+    bool valid(std::size_t frame, std::size_t point) const;
+    std::optional<Eigen::Vector3d> position(std::size_t frame, std::size_t point) const;
+    // Residual in the file's units (>= 0) for a valid sample, -1 for a missing one.
+    float residual(std::size_t frame, std::size_t point) const;
+    std::size_t missingFrames(std::size_t point) const;
+    std::size_t missingCount() const;
+
+    // A non-finite position is stored as missing: it is not a position either.
+    void set(std::size_t frame, std::size_t point, double x, double y, double z,
+             float residual = 0.0f) {
+        const std::size_t i = frame * points_ + point;
+        if (!(std::isfinite(x) && std::isfinite(y) && std::isfinite(z))) {
+            setMissingAt(i);
+            return;
+        }
+        xyz_[3 * i] = x;
+        xyz_[3 * i + 1] = y;
+        xyz_[3 * i + 2] = z;
+        valid_[i] = 1;
+        residual_[i] = residual < 0.0f ? 0.0f : residual;
+    }
+    void setMissing(std::size_t frame, std::size_t point) { setMissingAt(frame * points_ + point); }
+
+    // Row-major frame, point, xyz; NaN where missing.
+    const double* xyzData() const { return xyz_.data(); }
+
+  private:
+    void setMissingAt(std::size_t i);
+    void check(std::size_t frame, std::size_t point) const;
+
+    std::size_t frames_ = 0, points_ = 0;
+    std::vector<double> xyz_;
+    std::vector<std::uint8_t> valid_;
+    std::vector<float> residual_;
+};
+
+struct C3dPoint {
+    std::string label;        // as stored, e.g. "male:LFHD"
+    std::string subject;      // "male", empty without a prefix
+    std::string name;         // "LFHD"
+    std::string description;  // from POINT:DESCRIPTIONS
+    C3dPointKind kind = C3dPointKind::Marker;
+};
+
+struct C3dTake {
+    std::string file;
+    C3dProcessor processor = C3dProcessor::Intel;
+    C3dStorage storage = C3dStorage::Float;
+    double pointScale = -1.0;  // POINT:SCALE as stored (sign gives the storage)
+    double rate = 0.0;         // frames per second
+    std::string units = "mm";  // POINT:UNITS as stored
+    double unitToMm = 1.0;     // multiply coordinates by this to get millimetres
+    int firstFrameWord = 1;    // header words 4 and 5 (1-based, 16-bit)
+    int lastFrameWord = 0;
+    std::int64_t firstFrame = 1;  // first frame number, from TRIAL when the header cannot hold it
+    int analogChannels = 0;
+    double analogRate = 0.0;
+    int analogSamplesPerFrame = 0;
+
+    std::vector<C3dPoint> points;
+    C3dSamples samples;
+    C3dParameters parameters;
+    std::vector<std::string> warnings;  // header/parameter disagreements, truncation, ...
+
+    std::size_t frameCount() const { return samples.frames(); }
+    // Index of the point whose label, or whose name without the subject prefix, equals label
+    // (case-insensitive, surrounding spaces ignored). An exact full-label match wins; otherwise
+    // the first point in file order whose name matches.
+    std::optional<std::size_t> findPoint(std::string_view label) const;
+    std::vector<std::size_t> markerIndices() const;
+};
+
+// Splits "subject:NAME" at the first colon.
+void splitC3dLabel(std::string_view label, std::string& subject, std::string& name);
+
+}  // namespace boneless

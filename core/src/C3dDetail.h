@@ -1,0 +1,76 @@
+#pragma once
+
+// Internal pieces of the C3D reader, shared between its source files; not installed.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "boneless/C3dError.h"
+#include "boneless/C3dNumbers.h"
+#include "boneless/C3dParameters.h"
+#include "boneless/C3dTake.h"
+
+namespace boneless::c3d_detail {
+
+constexpr std::size_t kBlock = 512;
+
+struct Source {
+    const std::uint8_t* data;
+    std::size_t size;
+    const std::string& file;
+
+    [[noreturn]] void fail(std::uint64_t offset, std::string cause) const {
+        throw C3dError(file, offset, std::move(cause));
+    }
+};
+
+struct HeaderWords {
+    std::uint8_t parameterBlock = 0;          // word 1, low byte
+    std::uint16_t pointCount = 0;             // word 2
+    std::uint16_t analogPerFrame = 0;         // word 3: channels x samples per frame
+    std::uint16_t firstFrame = 0;             // word 4
+    std::uint16_t lastFrame = 0;              // word 5
+    float scale = 0.0f;                       // words 7-8
+    std::uint16_t dataStartBlock = 0;         // word 9
+    std::uint16_t analogSamplesPerFrame = 0;  // word 10
+    float rate = 0.0f;                        // words 11-12
+};
+
+HeaderWords readHeaderWords(const Source& src, C3dProcessor proc);
+// Without a parameter section the processor is unknown: pick the one whose header reads sanely.
+C3dProcessor guessHeaderProcessor(const Source& src);
+
+// Parses the records starting 4 bytes after start, up to limit (exclusive). limitWhat names what
+// lies at limit, for messages ("the 3D data section", "the end of the file").
+C3dParameters readParameterSection(const Source& src, std::size_t start, std::size_t limit,
+                                   const char* limitWhat, C3dProcessor proc, int declaredBlocks,
+                                   std::vector<std::string>& warnings);
+
+struct PointLayout {
+    std::size_t dataStart = 0;  // byte offset of frame 0
+    std::size_t frames = 0;
+    std::size_t points = 0;
+    std::size_t analogWords = 0;  // analog values following the points in each frame
+    C3dStorage storage = C3dStorage::Float;
+    double scale = 1.0;  // POINT:SCALE
+    C3dProcessor processor = C3dProcessor::Intel;
+    bool keepZeroSamples = false;
+
+    std::size_t wordBytes() const { return storage == C3dStorage::Int16 ? 2 : 4; }
+    std::size_t frameBytes() const { return (points * 4 + analogWords) * wordBytes(); }
+};
+
+struct DecodeStats {
+    std::size_t nonFinite = 0;    // valid residual but NaN/Inf coordinates
+    std::size_t zeroSamples = 0;  // (0,0,0) with a valid residual
+};
+
+// The caller guarantees dataStart + frames * frameBytes() <= src.size.
+DecodeStats decodePoints(const Source& src, const PointLayout& layout, C3dSamples& samples);
+
+// Fills kind (and subject/name) of every point from POINT:ANGLES, FORCES, ... and known
+// model-output names.
+void classifyPoints(const C3dParameters& params, std::vector<C3dPoint>& points);
+
+}  // namespace boneless::c3d_detail

@@ -1,0 +1,144 @@
+#include "boneless/C3dTake.h"
+
+#include <limits>
+#include <stdexcept>
+
+namespace boneless {
+
+const char* toString(C3dProcessor processor) {
+    switch (processor) {
+        case C3dProcessor::Dec:
+            return "dec";
+        case C3dProcessor::Mips:
+            return "mips";
+        case C3dProcessor::Intel:
+        default:
+            return "intel";
+    }
+}
+
+const char* toString(C3dStorage storage) {
+    return storage == C3dStorage::Int16 ? "int16" : "float";
+}
+
+const char* toString(C3dPointKind kind) {
+    switch (kind) {
+        case C3dPointKind::Angle:
+            return "angle";
+        case C3dPointKind::Force:
+            return "force";
+        case C3dPointKind::Moment:
+            return "moment";
+        case C3dPointKind::Power:
+            return "power";
+        case C3dPointKind::Scalar:
+            return "scalar";
+        case C3dPointKind::Virtual:
+            return "virtual";
+        case C3dPointKind::Marker:
+        default:
+            return "marker";
+    }
+}
+
+namespace {
+// frames x points, refusing sizes whose coordinate block (x3) would overflow before any vector
+// is sized from them.
+std::size_t sampleCount(std::size_t frames, std::size_t points) {
+    if (points != 0 && frames > std::numeric_limits<std::size_t>::max() / 3 / points)
+        throw std::length_error("C3dSamples: frames x points overflows");
+    return frames * points;
+}
+}  // namespace
+
+C3dSamples::C3dSamples(std::size_t frames, std::size_t points)
+    : frames_(frames),
+      points_(points),
+      xyz_(3 * sampleCount(frames, points), std::numeric_limits<double>::quiet_NaN()),
+      valid_(frames * points, 0),
+      residual_(frames * points, -1.0f) {}
+
+void C3dSamples::setMissingAt(std::size_t i) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    xyz_[3 * i] = xyz_[3 * i + 1] = xyz_[3 * i + 2] = nan;
+    valid_[i] = 0;
+    residual_[i] = -1.0f;
+}
+
+void C3dSamples::check(std::size_t frame, std::size_t point) const {
+    if (frame >= frames_ || point >= points_)
+        throw std::out_of_range("C3dSamples: sample (" + std::to_string(frame) + ", " +
+                                std::to_string(point) + ") outside " + std::to_string(frames_) +
+                                " x " + std::to_string(points_));
+}
+
+bool C3dSamples::valid(std::size_t frame, std::size_t point) const {
+    check(frame, point);
+    return valid_[frame * points_ + point] != 0;
+}
+
+std::optional<Eigen::Vector3d> C3dSamples::position(std::size_t frame, std::size_t point) const {
+    check(frame, point);
+    const std::size_t i = frame * points_ + point;
+    if (!valid_[i]) return std::nullopt;
+    return Eigen::Vector3d(xyz_[3 * i], xyz_[3 * i + 1], xyz_[3 * i + 2]);
+}
+
+float C3dSamples::residual(std::size_t frame, std::size_t point) const {
+    check(frame, point);
+    return residual_[frame * points_ + point];
+}
+
+std::size_t C3dSamples::missingFrames(std::size_t point) const {
+    if (point >= points_) throw std::out_of_range("C3dSamples: point index out of range");
+    std::size_t n = 0;
+    for (std::size_t f = 0; f < frames_; ++f) n += valid_[f * points_ + point] ? 0 : 1;
+    return n;
+}
+
+std::size_t C3dSamples::missingCount() const {
+    std::size_t n = 0;
+    for (std::uint8_t v : valid_) n += v ? 0 : 1;
+    return n;
+}
+
+void splitC3dLabel(std::string_view label, std::string& subject, std::string& name) {
+    const std::size_t colon = label.find(':');
+    if (colon == std::string_view::npos) {
+        subject.clear();
+        name = std::string(label);
+        return;
+    }
+    subject = std::string(label.substr(0, colon));
+    name = std::string(label.substr(colon + 1));
+}
+
+namespace {
+std::string_view trimView(std::string_view s) {
+    while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+    while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\0'))
+        s.remove_suffix(1);
+    return s;
+}
+}  // namespace
+
+std::optional<std::size_t> C3dTake::findPoint(std::string_view label) const {
+    label = trimView(label);
+    for (std::size_t i = 0; i < points.size(); ++i)
+        if (c3dNameEquals(trimView(points[i].label), label)) return i;
+    // The caller may give "subject:NAME" for a file without prefixes, or "NAME" for one with.
+    std::string subject, name;
+    splitC3dLabel(label, subject, name);
+    for (std::size_t i = 0; i < points.size(); ++i)
+        if (c3dNameEquals(trimView(points[i].name), trimView(name))) return i;
+    return std::nullopt;
+}
+
+std::vector<std::size_t> C3dTake::markerIndices() const {
+    std::vector<std::size_t> out;
+    for (std::size_t i = 0; i < points.size(); ++i)
+        if (points[i].kind == C3dPointKind::Marker) out.push_back(i);
+    return out;
+}
+
+}  // namespace boneless

@@ -1,0 +1,303 @@
+// Writing a take as an Intel, float C3D file.
+
+#include "boneless/C3dWriter.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <stdexcept>
+
+#include "boneless/C3dError.h"
+
+namespace boneless {
+
+namespace {
+
+constexpr std::size_t kBlock = 512;
+constexpr C3dProcessor kIntel = C3dProcessor::Intel;
+
+std::int16_t asWord(std::size_t v) {
+    return static_cast<std::int16_t>(static_cast<std::uint16_t>(v));
+}
+
+bool isContinuation(const std::string& name, const char* base) {
+    const std::size_t n = std::strlen(base);
+    if (name.size() <= n || !c3dNameEquals(std::string_view(name).substr(0, n), base)) return false;
+    for (std::size_t i = n; i < name.size(); ++i)
+        if (!std::isdigit(static_cast<unsigned char>(name[i]))) return false;
+    return true;
+}
+
+void removeList(C3dGroup& g, const char* base) {
+    g.remove(base);
+    auto& ps = g.parameters;
+    ps.erase(std::remove_if(ps.begin(), ps.end(),
+                            [&](const C3dParameter& p) { return isContinuation(p.name, base); }),
+             ps.end());
+}
+
+// NAME, NAME2, NAME3, ...: at most 255 strings each, and few enough that the record's 16-bit
+// offset can still reach the next one.
+void setList(C3dGroup& g, const char* base, const std::vector<std::string>& values) {
+    removeList(g, base);
+    if (values.empty()) return;
+    std::size_t width = 1;
+    for (const auto& v : values) width = std::max(width, v.size());
+    if (width > 255)
+        throw std::invalid_argument(std::string("C3D writer: a POINT:") + base +
+                                    " entry is longer than 255 characters");
+    const std::size_t perParam = std::min<std::size_t>(255, 32000 / width);
+    for (std::size_t first = 0, k = 1; first < values.size(); first += perParam, ++k) {
+        const std::size_t last = std::min(values.size(), first + perParam);
+        std::vector<std::string> chunk(values.begin() + first, values.begin() + last);
+        C3dParameter p =
+            C3dParameter::chars(k == 1 ? base : base + std::to_string(k), chunk, width);
+        // A single string must still be an array of one, or readers take it as one long string.
+        if (p.dims().size() == 1)
+            p.assign(C3dParamType::Char, {int(width), 1}, p.rawBytes(), {}, {});
+        g.parameters.push_back(std::move(p));
+    }
+}
+
+class Out {
+  public:
+    std::vector<std::uint8_t> bytes;
+    void u8(std::uint8_t v) { bytes.push_back(v); }
+    void i8(int v) { bytes.push_back(static_cast<std::uint8_t>(static_cast<std::int8_t>(v))); }
+    void u16(std::uint16_t v) {
+        bytes.push_back(static_cast<std::uint8_t>(v & 0xFF));
+        bytes.push_back(static_cast<std::uint8_t>(v >> 8));
+    }
+    void f32(float v) {
+        const std::size_t at = bytes.size();
+        bytes.resize(at + 4);
+        c3d::putF32(bytes.data() + at, v);
+    }
+    void str(const std::string& s) { bytes.insert(bytes.end(), s.begin(), s.end()); }
+};
+
+void checkName(const std::string& name) {
+    if (name.empty() || name.size() > 127)
+        throw std::invalid_argument("C3D writer: name \"" + name +
+                                    "\" must have 1..127 characters");
+    for (unsigned char c : name)
+        if (c < 0x21 || c > 0x7E)
+            throw std::invalid_argument("C3D writer: name \"" + name +
+                                        "\" has a character outside printable ASCII");
+}
+
+std::string clipped(const std::string& s) {
+    return s.size() > 255 ? s.substr(0, 255) : s;
+}
+
+std::vector<std::uint8_t> encodeParameters(const C3dParameters& ps) {
+    Out o;
+    o.u8(1);
+    o.u8(0x50);
+    o.u8(0);  // block count, patched below
+    o.u8(static_cast<std::uint8_t>(kIntel));
+    std::size_t lastOffsetAt = 0;
+    const auto& groups = ps.groups();
+    if (groups.size() > 127) throw std::invalid_argument("C3D writer: more than 127 groups");
+    for (std::size_t gi = 0; gi < groups.size(); ++gi) {
+        const C3dGroup& g = groups[gi];
+        const int id = int(gi) + 1;
+        checkName(g.name);
+        const std::string gdesc = clipped(g.description);
+        o.i8(g.locked ? -int(g.name.size()) : int(g.name.size()));
+        o.i8(-id);
+        o.str(g.name);
+        lastOffsetAt = o.bytes.size();
+        o.u16(static_cast<std::uint16_t>(2 + 1 + gdesc.size()));
+        o.u8(static_cast<std::uint8_t>(gdesc.size()));
+        o.str(gdesc);
+        for (const C3dParameter& p : g.parameters) {
+            checkName(p.name);
+            const std::string desc = clipped(p.description);
+            const std::size_t elem = p.type() == C3dParamType::Int16   ? 2
+                                     : p.type() == C3dParamType::Float ? 4
+                                                                       : 1;
+            const std::size_t dataSize = p.elementCount() * elem;
+            const std::size_t offset = 2 + 1 + 1 + p.dims().size() + dataSize + 1 + desc.size();
+            if (offset > 32767)
+                throw std::invalid_argument("C3D writer: parameter " + g.name + ":" + p.name +
+                                            " is too large for one record");
+            o.i8(p.locked ? -int(p.name.size()) : int(p.name.size()));
+            o.i8(id);
+            o.str(p.name);
+            lastOffsetAt = o.bytes.size();
+            o.u16(static_cast<std::uint16_t>(offset));
+            o.i8(static_cast<int>(p.type()));
+            o.u8(static_cast<std::uint8_t>(p.dims().size()));
+            for (int d : p.dims()) o.u8(static_cast<std::uint8_t>(d));
+            if (p.type() == C3dParamType::Int16) {
+                for (std::int16_t v : p.rawInt16s()) o.u16(static_cast<std::uint16_t>(v));
+            } else if (p.type() == C3dParamType::Float) {
+                for (float v : p.rawFloats()) o.f32(v);
+            } else {
+                o.bytes.insert(o.bytes.end(), p.rawBytes().begin(), p.rawBytes().end());
+            }
+            o.u8(static_cast<std::uint8_t>(desc.size()));
+            o.str(desc);
+        }
+    }
+    // The last record's offset is 0; zero padding after it ends the section for readers that
+    // look for a zero name length instead.
+    if (lastOffsetAt) o.bytes[lastOffsetAt] = o.bytes[lastOffsetAt + 1] = 0;
+    const std::size_t blocks = (o.bytes.size() + 1 + kBlock - 1) / kBlock;
+    if (blocks > 255)
+        throw std::invalid_argument("C3D writer: parameter section exceeds 255 blocks");
+    o.bytes.resize(blocks * kBlock, 0);
+    o.bytes[2] = static_cast<std::uint8_t>(blocks);
+    return std::move(o.bytes);
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> encodeC3d(const C3dTake& take, const C3dWriteOptions& options) {
+    const std::size_t frames = take.samples.frames();
+    const std::size_t points = take.samples.points();
+    if (take.points.size() != points)
+        throw std::invalid_argument("C3D writer: " + std::to_string(take.points.size()) +
+                                    " point descriptions for " + std::to_string(points) +
+                                    " sample columns");
+    if (points > 65535) throw std::invalid_argument("C3D writer: more than 65535 points");
+    if (frames > 2147483647u) throw std::invalid_argument("C3D writer: too many frames");
+    // Float storage: every value must fit a float (converting one that does not is undefined).
+    const auto fitsFloat = [](double v) {
+        return !(std::fabs(v) > double(std::numeric_limits<float>::max()));
+    };
+    if (!fitsFloat(take.rate) || !fitsFloat(take.pointScale))
+        throw std::invalid_argument("C3D writer: rate or scale outside the float range");
+    const float scale = (std::isfinite(take.pointScale) && take.pointScale != 0.0)
+                            ? -static_cast<float>(std::fabs(take.pointScale))
+                            : -1.0f;
+    const float rate = static_cast<float>(take.rate);
+    const std::int64_t first = take.firstFrame >= 1 ? take.firstFrame : 1;
+    const std::int64_t last = first + std::int64_t(frames) - 1;
+    const bool long32 = frames > 65535 || last > 65535;
+
+    C3dParameters ps = take.parameters;
+    C3dGroup& pt = ps.addGroup("POINT", "3-D point parameters");
+    // Lists named by a previous TYPE_GROUPS would go stale; the standard names replace them.
+    if (const C3dParameter* tg = pt.find("TYPE_GROUPS")) {
+        const auto s = tg->strings();
+        for (std::size_t i = 0; i < s.size(); i += 2) removeList(pt, s[i].c_str());
+        pt.remove("TYPE_GROUPS");
+    }
+    pt.set(C3dParameter::int16s("USED", {asWord(points)}, {}));
+    pt.set(C3dParameter::floats("SCALE", {scale}, {}));
+    pt.set(C3dParameter::floats("RATE", {rate}, {}));
+    pt.set(C3dParameter::chars("UNITS", {take.units.empty() ? std::string("mm") : take.units}));
+    pt.remove("LONG_FRAMES");
+    if (!long32) {
+        pt.set(C3dParameter::int16s("FRAMES", {asWord(frames)}, {}));
+    } else if (options.trialFrameRange || options.longFrames) {
+        pt.set(C3dParameter::int16s("FRAMES", {asWord(65535)}, {}));
+        if (options.longFrames) pt.set(C3dParameter::floats("LONG_FRAMES", {float(frames)}, {}));
+    } else {
+        pt.set(C3dParameter::floats("FRAMES", {float(frames)}, {}));
+    }
+    std::vector<std::string> labels, descriptions;
+    std::vector<std::string> byKind[7];
+    bool anyDescription = false;
+    for (const C3dPoint& p : take.points) {
+        labels.push_back(p.label);
+        descriptions.push_back(p.description);
+        anyDescription = anyDescription || !p.description.empty();
+        byKind[static_cast<int>(p.kind)].push_back(p.label);
+    }
+    setList(pt, "LABELS", labels);
+    setList(pt, "DESCRIPTIONS", anyDescription ? descriptions : std::vector<std::string>{});
+    setList(pt, "ANGLES", byKind[int(C3dPointKind::Angle)]);
+    setList(pt, "FORCES", byKind[int(C3dPointKind::Force)]);
+    setList(pt, "MOMENTS", byKind[int(C3dPointKind::Moment)]);
+    setList(pt, "POWERS", byKind[int(C3dPointKind::Power)]);
+    setList(pt, "SCALARS", byKind[int(C3dPointKind::Scalar)]);
+    removeList(pt, "REACTIONS");
+
+    ps.addGroup("ANALOG", "analog data parameters");
+    ps.set("ANALOG", C3dParameter::int16s("USED", {0}, {}));
+    ps.set("ANALOG", C3dParameter::floats("RATE", {rate}, {}));
+
+    const C3dGroup* trial = ps.group("TRIAL");
+    if ((long32 && options.trialFrameRange) || (trial && trial->find("ACTUAL_START_FIELD"))) {
+        C3dGroup& tr = ps.addGroup("TRIAL");
+        auto words = [](std::int64_t v) {
+            return std::vector<std::int16_t>{asWord(std::size_t(v) & 0xFFFF),
+                                             asWord((std::size_t(v) >> 16) & 0xFFFF)};
+        };
+        tr.set(C3dParameter::int16s("ACTUAL_START_FIELD", words(first), {2}));
+        tr.set(C3dParameter::int16s("ACTUAL_END_FIELD", words(std::max(first, last)), {2}));
+    }
+
+    // DATA_START depends on the section's size, which DATA_START itself is part of: write a
+    // placeholder of the same size first. (Adding groups above may have moved POINT, so no
+    // reference to it is kept across them.)
+    ps.set("POINT", C3dParameter::int16s("DATA_START", {0}, {}));
+    std::vector<std::uint8_t> params = encodeParameters(ps);
+    const std::size_t dataBlock = 2 + params.size() / kBlock;
+    if (dataBlock > 32767) throw std::invalid_argument("C3D writer: parameter section too large");
+    ps.set("POINT", C3dParameter::int16s("DATA_START", {asWord(dataBlock)}, {}));
+    params = encodeParameters(ps);
+
+    // One allocation for the whole file: header, parameters, then the frames.
+    const std::size_t dataAt = kBlock + params.size();
+    std::vector<std::uint8_t> out(dataAt + frames * points * 16, 0);
+    std::memcpy(out.data() + kBlock, params.data(), params.size());
+    out[0] = 2;
+    out[1] = 0x50;
+    c3d::putU16(&out[2], static_cast<std::uint16_t>(points));
+    c3d::putU16(&out[4], 0);
+    const std::uint16_t firstWord = long32 ? 1 : static_cast<std::uint16_t>(first);
+    const std::uint16_t lastWord =
+        long32 ? 65535 : static_cast<std::uint16_t>(frames == 0 ? 0 : last);
+    c3d::putU16(&out[6], firstWord);
+    c3d::putU16(&out[8], lastWord);
+    c3d::putU16(&out[10], 10);
+    c3d::putF32(&out[12], scale);
+    c3d::putU16(&out[16], static_cast<std::uint16_t>(dataBlock));
+    c3d::putU16(&out[18], 0);
+    c3d::putF32(&out[20], rate);
+    c3d::putU16(&out[298], 0x3039);  // word 150: event labels are 4 characters
+
+    const float residualStep = std::fabs(scale);
+    std::uint8_t* w = out.data() + dataAt;
+    const double* xyz = take.samples.xyzData();
+    for (std::size_t f = 0; f < frames && points > 0; ++f) {
+        for (std::size_t k = 0; k < points; ++k, w += 16, xyz += 3) {
+            if (!take.samples.valid(f, k)) {
+                c3d::putF32(w, 0.0f);
+                c3d::putF32(w + 4, 0.0f);
+                c3d::putF32(w + 8, 0.0f);
+                c3d::putF32(w + 12, -1.0f);
+                continue;
+            }
+            if (!fitsFloat(xyz[0]) || !fitsFloat(xyz[1]) || !fitsFloat(xyz[2]))
+                throw std::invalid_argument("C3D writer: sample (" + std::to_string(f) + ", " +
+                                            std::to_string(k) + ") is outside the float range");
+            c3d::putF32(w, static_cast<float>(xyz[0]));
+            c3d::putF32(w + 4, static_cast<float>(xyz[1]));
+            c3d::putF32(w + 8, static_cast<float>(xyz[2]));
+            const double r = std::round(take.samples.residual(f, k) / residualStep);
+            c3d::putF32(w + 12, static_cast<float>(std::clamp(r, 0.0, 255.0)));
+        }
+    }
+    return out;
+}
+
+void writeC3d(const C3dTake& take, const std::string& path, const C3dWriteOptions& options) {
+    const std::vector<std::uint8_t> bytes = encodeC3d(take, options);
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    if (!out)
+        throw C3dError(path, C3dError::kNoOffset,
+                       std::string("cannot write: ") + std::strerror(errno));
+    out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    if (!out) throw C3dError(path, C3dError::kNoOffset, "write failed");
+}
+
+}  // namespace boneless

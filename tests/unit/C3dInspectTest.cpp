@@ -1,0 +1,124 @@
+// boneless-cli inspect, run as a user would.
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "C3dTestSupport.h"
+
+using namespace boneless;
+
+namespace {
+
+struct CliRun {
+    int exitCode;
+    std::string out, err;
+};
+
+std::string slurp(const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+CliRun inspect(const std::string& args) {
+    const auto dir = c3dtest::workDir();
+    const auto out = dir / "inspect.out", err = dir / "inspect.err";
+    const std::string cmd = std::string("\"") + BONELESS_CLI + "\" inspect " + args + " >\"" +
+                            out.string() + "\" 2>\"" + err.string() + "\"";
+    const int status = std::system(cmd.c_str());
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+}
+
+std::string quoted(const std::string& s) {
+    return "\"" + s + "\"";
+}
+
+std::string demoFile() {
+    C3dTake t = c3dtest::syntheticTake(5, {"bob:LFHD", "bob:LKneeAngles", "RFHD"});
+    t.points[1].kind = C3dPointKind::Angle;
+    t.rate = 60.0;
+    for (std::size_t f = 0; f < 5; ++f) t.samples.set(f, 0, 1.5, -2.25, 3.0);
+    t.samples.setMissing(2, 0);
+    const std::string path = (c3dtest::workDir() / "inspect-demo.c3d").string();
+    writeC3d(t, path);
+    return path;
+}
+
+}  // namespace
+
+TEST(C3dInspect, JsonDescribesTheTake) {
+    const CliRun r = inspect(quoted(demoFile()) + " --json");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["frames"], 5);
+    EXPECT_EQ(j["rate"], 60.0);
+    EXPECT_EQ(j["units"], "mm");
+    EXPECT_EQ(j["processor"], "intel");
+    EXPECT_EQ(j["storage"], "float");
+    EXPECT_EQ(j["first_frame"], 1);
+    EXPECT_EQ(j["last_frame"], 5);
+    EXPECT_EQ(j["analog_channels"], 0);
+    EXPECT_EQ(j["analog_rate"], 0.0);
+    ASSERT_EQ(j["points"].size(), 3u);
+    EXPECT_EQ(j["points"][0]["label"], "bob:LFHD");
+    EXPECT_EQ(j["points"][0]["subject"], "bob");
+    EXPECT_EQ(j["points"][0]["kind"], "marker");
+    EXPECT_EQ(j["points"][0]["missing_frames"], 1);
+    EXPECT_EQ(j["points"][1]["kind"], "angle");
+    EXPECT_EQ(j["points"][2]["subject"], "");
+}
+
+TEST(C3dInspect, CsvHasOneRowPerSampleAndEmptyMissing) {
+    const auto csv = c3dtest::workDir() / "inspect-demo.csv";
+    std::filesystem::remove(csv);
+    const CliRun r = inspect(quoted(demoFile()) + " --csv " + quoted(csv.string()));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("frames"), std::string::npos);  // the summary still prints
+    std::ifstream in(csv);
+    std::string line;
+    ASSERT_TRUE(std::getline(in, line));
+    EXPECT_EQ(line, "frame,label,x,y,z,valid");
+    std::vector<std::string> rows;
+    while (std::getline(in, line)) rows.push_back(line);
+    ASSERT_EQ(rows.size(), 15u);
+    EXPECT_EQ(rows[0], "0,bob:LFHD,1.5,-2.25,3,1");
+    EXPECT_EQ(rows[6], "2,bob:LFHD,,,,0");
+}
+
+TEST(C3dInspect, UnreadableFileExitsNonZeroWithOneLine) {
+    const auto bad = c3dtest::workDir() / "not-a-c3d.c3d";
+    std::ofstream(bad) << "hello, this is not a motion capture file\n";
+    const CliRun r = inspect(quoted(bad.string()));
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_TRUE(r.out.empty());
+    ASSERT_FALSE(r.err.empty());
+    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << r.err;  // exactly one line
+    EXPECT_NE(r.err.find(bad.string()), std::string::npos) << r.err;
+    const CliRun missing = inspect(quoted((c3dtest::workDir() / "no-such.c3d").string()));
+    EXPECT_NE(missing.exitCode, 0);
+    EXPECT_NE(missing.err.find("cannot open"), std::string::npos) << missing.err;
+}
+
+TEST(C3dInspect, RealFilesJson) {
+    C3D_SHARED_OR_SKIP(mips, "c3d-org/sample01/Eb015si.c3d");
+    const CliRun r = inspect(quoted(mips) + " --json");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["processor"], "mips");
+    EXPECT_EQ(j["storage"], "int16");
+    EXPECT_EQ(j["frames"], 450);
+    EXPECT_EQ(j["analog_channels"], 16);
+    EXPECT_EQ(j["analog_rate"], 200.0);
+    EXPECT_EQ(j["points"].size(), 26u);
+    C3D_SHARED_OR_SKIP(empty, "btk/Empty.c3d");
+    const CliRun e = inspect(quoted(empty));
+    EXPECT_EQ(e.exitCode, 1);
+    EXPECT_NE(e.err.find("Empty.c3d"), std::string::npos);
+    EXPECT_NE(e.err.find("empty"), std::string::npos);
+}
