@@ -8,3 +8,5 @@ build=${BONELESS_BUILD_DIR:-$root/build}
 # CHOLMOD's OpenMP threads and OpenBLAS's would otherwise compete for the same cores.
 export OPENBLAS_NUM_THREADS=1
 ctest --test-dir "$build" --output-on-failure -j"$(nproc)"
+# The C3D reader reads untrusted files: its tests again under ASan/UBSan, then a short fuzzing run.
+ASAN_BUILD="$build-asan" FUZZ_BUILD="$build-fuzz" "$root/scripts/ci-c3d.sh"
