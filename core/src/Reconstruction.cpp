@@ -42,8 +42,9 @@ struct Reconstruction::Impl {
     std::unique_ptr<MeshTopology> topology;
     std::unique_ptr<ShapeEncoding> encoding;
     std::vector<int> markers;
-    std::vector<int> markerOf;    // vertex -> marker index, or -1
-    std::vector<int> residualOf;  // residual -> vertex
+    std::vector<int> markerOf;       // vertex -> marker index, or -1
+    std::vector<int> residualOf;     // residual -> vertex
+    std::vector<int> residualIndex;  // vertex -> residual, or -1
     std::unique_ptr<BlockSystem> system;
     std::unique_ptr<ArapEnergy> rigidity;
     SolverOptions options;
@@ -61,13 +62,30 @@ struct Reconstruction::Impl {
 
     bool softMarkers() const { return options.constraints == SolverOptions::Constraints::Soft; }
 
-    double energy(const Positions& V, const Positions& targets) const {
+    double offset(size_t k) const {
+        return k < options.markerOffsets.size() ? options.markerOffsets[k] : 0.0;
+    }
+    // Where marker k sits for the pose V: its vertex, plus its offset along the ring's normal.
+    Vec3 markerPoint(size_t k, const Positions& V, std::vector<Mat3>* dn = nullptr) const {
+        const int v = markers[k];
+        Vec3 x = V.row(v).transpose();
+        const double d = offset(k);
+        if (d != 0 && encoding->encoded(v)) x += d * encoding->ringNormal(v, V, dn);
+        return x;
+    }
+    double markerEnergy(const Positions& V, const Positions& targets) const {
         double e = 0;
-        for (int v : residualOf) e += (V.row(v).transpose() - encoding->decode(v, V)).squaredNorm();
         if (softMarkers())
             for (size_t k = 0; k < markers.size(); ++k)
                 if (rowIsFinite(targets, static_cast<int>(k)))
-                    e += options.softWeight * (V.row(markers[k]) - targets.row(k)).squaredNorm();
+                    e += options.softWeight *
+                         (markerPoint(k, V) - targets.row(k).transpose()).squaredNorm();
+        return e;
+    }
+
+    double energy(const Positions& V, const Positions& targets) const {
+        double e = markerEnergy(V, targets);
+        for (int v : residualOf) e += (V.row(v).transpose() - encoding->decode(v, V)).squaredNorm();
         e *= 0.5;
         if (rigid()) {
             std::vector<Mat3> R;
@@ -89,10 +107,7 @@ struct Reconstruction::Impl {
             residual[r] = V.row(v).transpose() - F;
             e += residual[r].squaredNorm();
         }
-        if (softMarkers())
-            for (size_t k = 0; k < markers.size(); ++k)
-                if (rowIsFinite(targets, static_cast<int>(k)))
-                    e += options.softWeight * (V.row(markers[k]) - targets.row(k)).squaredNorm();
+        e += markerEnergy(V, targets);
         e *= 0.5;
         if (rigid()) e += rigidityEnergy(V, rotations);
         return e;
@@ -140,13 +155,32 @@ struct Reconstruction::Impl {
                 gradient.segment<3>(3 * v) += a * (6.0 * LV.row(v) - 2.0 * b.row(v)).transpose();
         }
         if (softMarkers())
-            for (size_t k = 0; k < markers.size(); ++k)
-                if (rowIsFinite(targets, static_cast<int>(k))) {
-                    const int v = markers[k];
-                    system->addDiagonal(v, options.softWeight * Mat3::Identity());
-                    gradient.segment<3>(3 * v) +=
-                        options.softWeight * (V.row(v) - targets.row(k)).transpose();
+            for (size_t k = 0; k < markers.size(); ++k) {
+                if (!rowIsFinite(targets, static_cast<int>(k))) continue;
+                const int v = markers[k];
+                const double lambda = options.softWeight;
+                std::vector<Mat3> dn;
+                const Vec3 miss = markerPoint(k, V, &dn) - targets.row(k).transpose();
+                gradient.segment<3>(3 * v) += lambda * miss;
+                if (dn.empty() || residualIndex[v] < 0) {
+                    system->addDiagonal(v, lambda * Mat3::Identity());
+                    continue;
                 }
+                // ∂g/∂v = I, ∂g/∂p_j = δ ∂n/∂p_j: the stencil of v's own residual holds them all.
+                const double d = offset(k);
+                const int r = residualIndex[v];
+                const int* ring = topology->ring(v);
+                const int m = topology->valence(v);
+                system->add(r, 0, 0, lambda * Mat3::Identity());
+                for (int j = 0; j < m; ++j) {
+                    const Mat3 Aj = d * dn[j];
+                    gradient.segment<3>(3 * ring[j]) += lambda * Aj.transpose() * miss;
+                    system->add(r, 0, j + 1, lambda * Aj);
+                    system->add(r, j + 1, 0, lambda * Aj.transpose());
+                    for (int i = 0; i < m; ++i)
+                        system->add(r, j + 1, i + 1, lambda * Aj.transpose() * (d * dn[i]));
+                }
+            }
     }
 };
 
@@ -178,9 +212,20 @@ void Reconstruction::prepare(const TriMesh& rest, std::vector<int> markerVertice
     }
     impl->markers = std::move(markerVertices);
 
+    if (!options.markerOffsets.empty() && options.markerOffsets.size() != impl->markers.size())
+        throw SolverError(std::to_string(options.markerOffsets.size()) + " marker offsets for " +
+                          std::to_string(impl->markers.size()) + " markers");
+    if (options.constraints == SolverOptions::Constraints::Hard)
+        for (double d : options.markerOffsets)
+            if (d != 0)
+                throw SolverError(
+                    "marker offsets need soft constraints (a hard constraint puts the "
+                    "vertex itself on the marker)");
     std::vector<std::vector<int>> stencils;
+    impl->residualIndex.assign(n, -1);
     for (int v = 0; v < n; ++v) {
         if (!impl->encoding->encoded(v)) continue;
+        impl->residualIndex[v] = static_cast<int>(impl->residualOf.size());
         impl->residualOf.push_back(v);
         std::vector<int> s{v};
         const int* ring = impl->topology->ring(v);

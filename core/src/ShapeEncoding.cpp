@@ -176,4 +176,22 @@ bool ShapeEncoding::decodeWithJacobian(int v, const Positions& V, Vec3& F,
     return healthy;
 }
 
+Vec3 ShapeEncoding::ringNormal(int v, const Positions& V, std::vector<Mat3>* dn) const {
+    const int m = topology_->valence(v);
+    const int* ring = topology_->ring(v);
+    const RingState r = ringState(ring, m, weights(v), V);
+    if (dn) {
+        dn->assign(m, Mat3::Zero());
+        if (r.healthy) {
+            const Mat3 P = Mat3::Identity() - r.n * r.n.transpose();
+            for (int k = 0; k < m; ++k) {
+                const Vec3 d =
+                    V.row(ring[(k + m - 1) % m]).transpose() - V.row(ring[(k + 1) % m]).transpose();
+                (*dn)[k] = P * cross(d) / r.length;
+            }
+        }
+    }
+    return r.n;
+}
+
 }  // namespace boneless

@@ -149,3 +149,55 @@ TEST(Reconstruction, RejectsBadMarkerSetsAndTargets) {
     solver.prepare(mesh, {0, 1, 2});
     EXPECT_THROW(solver.solve(Positions::Zero(2, 3)), SolverError);
 }
+
+namespace {
+// Markers sitting `offset` off the skin of `pose`, along each marker vertex's ring normal.
+Positions offsetTargets(const Reconstruction& solver, const Positions& pose,
+                        const std::vector<int>& markers, double offset) {
+    Positions targets(markers.size(), 3);
+    for (size_t k = 0; k < markers.size(); ++k)
+        targets.row(k) = pose.row(markers[k]) +
+                         offset * solver.encoding().ringNormal(markers[k], pose).transpose();
+    return targets;
+}
+}  // namespace
+
+TEST(Reconstruction, MarkersOffTheSkinGiveBackTheRestMeshAndMoveRigidly) {
+    const TriMesh mesh = tube(10, 12, 4.0);
+    const auto markers = everyNth(mesh.vertexCount(), 9);
+    SolverOptions options;
+    options.constraints = SolverOptions::Constraints::Soft;
+    options.markerOffsets.assign(markers.size(), 0.15);
+    options.maxIterations = 100;
+    options.relativeTolerance = 1e-14;
+    Reconstruction solver;
+    solver.prepare(mesh, markers, options);
+    const double tolerance = 1e-6 * boundingBoxDiagonal(mesh.V);
+
+    const SolveResult rest = solver.solve(offsetTargets(solver, mesh.V, markers, 0.15), &mesh.V);
+    EXPECT_LE(maxDistance(rest.V, mesh.V), 1e-9 * boundingBoxDiagonal(mesh.V));
+
+    std::mt19937 rng(21);
+    const Positions expected = moved(mesh.V, randomRotation(rng), Vec3(1, 2, 3));
+    const SolveResult r = solver.solve(offsetTargets(solver, expected, markers, 0.15));
+    EXPECT_LE(maxDistance(r.V, expected), tolerance);
+
+    // Ignoring the offset would swell the tube towards the markers: the model matters.
+    SolverOptions onSkin = options;
+    onSkin.markerOffsets.clear();
+    Reconstruction naive;
+    naive.prepare(mesh, markers, onSkin);
+    const SolveResult swollen = naive.solve(offsetTargets(naive, expected, markers, 0.15));
+    EXPECT_GT(maxDistance(swollen.V, expected), 0.05);
+}
+
+TEST(Reconstruction, OffsetsNeedSoftConstraintsAndOnePerMarker) {
+    const TriMesh mesh = icosphere(1);
+    SolverOptions options;
+    options.markerOffsets = {0.1, 0.1, 0.1};
+    Reconstruction solver;
+    EXPECT_THROW(solver.prepare(mesh, {0, 1, 2}, options), SolverError);
+    options.constraints = SolverOptions::Constraints::Soft;
+    EXPECT_THROW(solver.prepare(mesh, {0, 1}, options), SolverError);
+    EXPECT_NO_THROW(solver.prepare(mesh, {0, 1, 2}, options));
+}

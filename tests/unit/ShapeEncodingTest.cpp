@@ -121,6 +121,27 @@ TEST(ShapeEncoding, JacobianMatchesFiniteDifferences) {
     EXPECT_LT(worst, 1e-7);
 }
 
+TEST(ShapeEncoding, RingNormalJacobianMatchesFiniteDifferences) {
+    const TriMesh mesh = tube(5, 7, 2.0);
+    MeshTopology topo(mesh);
+    ShapeEncoding code(mesh, topo);
+    const Positions V = bent(mesh.V, 0.4);
+    const double h = 1e-6;
+    for (int v : {3, 10, 17}) {
+        std::vector<Mat3> dn;
+        const Vec3 n = code.ringNormal(v, V, &dn);
+        EXPECT_NEAR(n.norm(), 1.0, 1e-14);
+        for (int k = 0; k < topo.valence(v); ++k)
+            for (int c = 0; c < 3; ++c) {
+                Positions plus = V, minus = V;
+                plus(topo.ring(v)[k], c) += h;
+                minus(topo.ring(v)[k], c) -= h;
+                const Vec3 fd = (code.ringNormal(v, plus) - code.ringNormal(v, minus)) / (2 * h);
+                EXPECT_LT((fd - dn[k].col(c)).norm(), 1e-7) << v << " " << k << " " << c;
+            }
+    }
+}
+
 TEST(ShapeEncoding, DegenerateRingsGiveNoResidualAndNoNaN) {
     TriMesh mesh = tube(4, 6, 1.0);
     // Collapse one vertex onto its neighbour: two faces get zero area.

@@ -22,6 +22,9 @@ struct SolverOptions {
     // horse gallop at K = 20, 40, 80 (fewest flips and lowest error together).
     double rigidityWeight = 0.01;
     int maxIterations = 10;
+    // Soft constraints only: how far each marker sits off the skin (mesh units, along the outward
+    // normal of its vertex's ring, algorithm.md §4.3); empty = every marker on the skin.
+    std::vector<double> markerOffsets;
     // Stop once an iteration lowers the energy by less than this fraction.
     double relativeTolerance = 1e-3;
 };

@@ -40,6 +40,10 @@ class ShapeEncoding {
     // ring has collapsed (|N| ≈ 0); then J holds the frozen-normal part only.
     bool decodeWithJacobian(int v, const Positions& V, Vec3& F, std::vector<Mat3>& J) const;
 
+    // The unit normal n_i(V) of v's ring polygon and ∂n_i/∂p_k for each ring neighbour (zero
+    // blocks when the ring has collapsed). Markers off the skin sit along it.
+    Vec3 ringNormal(int v, const Positions& V, std::vector<Mat3>* dn = nullptr) const;
+
   private:
     const MeshTopology* topology_;
     std::vector<Kind> kind_;
