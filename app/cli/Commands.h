@@ -6,4 +6,5 @@
 void registerEvalCommand(CLI::App& app);
 void registerDemoCommand(CLI::App& app);
 void registerMapCommand(CLI::App& app);
+void registerSolveCommand(CLI::App& app);
 void registerInspectCommand(CLI::App& app);

@@ -9,6 +9,7 @@ int main(int argc, char** argv) {
     registerEvalCommand(app);
     registerDemoCommand(app);
     registerMapCommand(app);
+    registerSolveCommand(app);
     registerInspectCommand(app);
     try {
         app.parse(argc, argv);

@@ -13,9 +13,9 @@ struct CliResult {
     std::string out;  // stdout and stderr together
 };
 
-inline CliResult runCli(const std::string& arguments) {
+// Runs a shell command line, capturing stdout and stderr together.
+inline CliResult runShell(const std::string& command) {
     CliResult result;
-    const std::string command = std::string(BONELESS_CLI) + " " + arguments + " 2>&1";
     FILE* pipe = popen(command.c_str(), "r");
     if (!pipe) return result;
     std::array<char, 4096> buffer;
@@ -25,6 +25,10 @@ inline CliResult runCli(const std::string& arguments) {
     const int status = pclose(pipe);
     result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return result;
+}
+
+inline CliResult runCli(const std::string& arguments) {
+    return runShell(std::string(BONELESS_CLI) + " " + arguments + " 2>&1");
 }
 
 }  // namespace boneless::testing

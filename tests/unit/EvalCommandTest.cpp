@@ -18,7 +18,7 @@ const std::string& demoFolder() {
         fs::remove_all(d);
         const CliResult r = runCli("demo --out " + d.string() + " --frames 16");
         EXPECT_EQ(r.exitCode, 0) << r.out;
-        return d.string();
+        return (d / "truth").string();
     }();
     return dir;
 }

@@ -1,0 +1,61 @@
+#pragma once
+
+#include <optional>
+
+#include "boneless/Alignment.h"
+#include "boneless/C3dTake.h"
+#include "boneless/Correspondence.h"
+#include "boneless/Reconstruction.h"
+
+namespace boneless {
+
+struct TakeSolveOptions {
+    double markerWeight = 100.0;  // soft-constraint weight (dimensionless)
+    int continuationSteps = 4;    // the first frame is approached from the aligned rest pose
+    double lowPassHz = 0.0;       // 0 = no filtering of the trajectories
+    int calibrationFrame = -1;    // -1 = chosen automatically (see calibrate())
+    std::optional<Similarity> alignment;  // overrides the automatic alignment
+    SolverOptions solver;                 // constraints and offsets are set by the TakeSolver
+};
+
+// How well a solved frame meets its markers.
+struct FrameReport {
+    int frame = 0;
+    int visibleMarkers = 0;
+    double residualRmsMm = 0, residualMaxMm = 0;  // marker to its predicted position, mm
+    int iterations = 0;
+    double milliseconds = 0;
+};
+
+// Turns a take into an animation of the rest mesh: aligns the take onto the mesh (a similarity
+// applied to the take, never to the mesh, so the encoding's heights keep their meaning), filters
+// the trajectories if asked, and solves frames in order, each warm-started from the previous one,
+// with soft constraints that model each marker's offset from the skin. Missing markers drop out
+// of their frame.
+class TakeSolver {
+  public:
+    TakeSolver(const TriMesh& rest, const C3dTake& take, const Correspondence& map,
+               TakeSolveOptions options = {});
+
+    const Calibration& calibration() const { return calibration_; }
+    int frameCount() const { return static_cast<int>(take_.frameCount()); }
+    // The markers' targets at `frame` in mesh coordinates (K by 3, NaN rows where missing).
+    Positions targets(int frame) const;
+    // Solves `frame`, starting from the last frame solved (or by continuation from the rest pose
+    // for the first). Never returns NaN: a frame that fails keeps the previous shape.
+    Positions solve(int frame, FrameReport& report);
+    // Where each marker sits on the posed mesh V: its vertex plus its offset along the normal.
+    Positions predictedMarkers(const Positions& V) const;
+
+  private:
+    TriMesh rest_;
+    C3dTake take_;
+    std::vector<std::size_t> points_;
+    TakeSolveOptions options_;
+    Calibration calibration_;
+    Reconstruction solver_;
+    std::optional<Positions> previous_;
+    double meshUnitsPerMm_ = 1.0;
+};
+
+}  // namespace boneless

@@ -1,0 +1,143 @@
+#include "boneless/TakeSolver.h"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "boneless/Error.h"
+#include "boneless/TrajectoryFilter.h"
+
+namespace boneless {
+
+TakeSolver::TakeSolver(const TriMesh& rest, const C3dTake& take, const Correspondence& map,
+                       TakeSolveOptions options)
+    : rest_(rest), take_(take), options_(std::move(options)) {
+    map.checkMesh(rest.vertexCount(), "the mesh");
+    points_ = map.resolve(take_);
+    if (options_.lowPassHz > 0) lowPassFilter(take_.samples, take_.rate, options_.lowPassHz);
+
+    SolverOptions solverOptions = options_.solver;
+    solverOptions.constraints = SolverOptions::Constraints::Soft;
+    solverOptions.softWeight = options_.markerWeight;
+    solverOptions.markerOffsets.clear();
+    std::vector<int> vertices;
+    for (const auto& m : map.markers) vertices.push_back(m.vertex);
+    solver_.prepare(rest_, vertices, solverOptions);
+
+    // The markers sit off the skin, so the rest pose's marker positions depend on the mesh's
+    // unit, which the alignment finds: align, place the markers with that scale, align again.
+    // Without this, a 1 cm offset on a small mesh inflates the scale by a few percent.
+    auto restMarkers = [&](double meshUnitsPerMm) {
+        Positions R(points_.size(), 3);
+        for (size_t k = 0; k < points_.size(); ++k) {
+            const int v = vertices[k];
+            Vec3 x = rest_.V.row(v).transpose();
+            if (solver_.encoding().encoded(v))
+                x += map.markers[k].offsetMm * meshUnitsPerMm *
+                     solver_.encoding().ringNormal(v, rest_.V);
+            R.row(k) = x.transpose();
+        }
+        return R;
+    };
+    if (options_.calibrationFrame >= frameCount())
+        throw Error(take.file + ": calibration frame " + std::to_string(options_.calibrationFrame) +
+                    " is past the take's " + std::to_string(frameCount()) + " frames");
+    if (options_.alignment) {
+        calibration_.takeToMesh = *options_.alignment;
+        calibration_.frame = options_.calibrationFrame;
+    } else {
+        double meshUnitsPerMm = 0;  // first pass: markers on the skin
+        for (int pass = 0; pass < 3; ++pass) {
+            const Positions R = restMarkers(meshUnitsPerMm);
+            if (options_.calibrationFrame >= 0) {
+                const Positions P = takeFrame(take_, points_, options_.calibrationFrame);
+                calibration_.frame = options_.calibrationFrame;
+                calibration_.takeToMesh = fitSimilarity(P, R);
+                calibration_.residual = alignmentResidual(calibration_.takeToMesh, P, R);
+            } else {
+                calibration_ = calibrate(take_, points_, R);
+            }
+            meshUnitsPerMm = calibration_.takeToMesh.scale / take_.unitToMm;
+        }
+    }
+    // Offsets are given in millimetres of the take; the solver works in mesh units.
+    meshUnitsPerMm_ = calibration_.takeToMesh.scale / take_.unitToMm;
+    for (const auto& m : map.markers)
+        solverOptions.markerOffsets.push_back(m.offsetMm * meshUnitsPerMm_);
+    solver_.setOptions(solverOptions);
+}
+
+Positions TakeSolver::predictedMarkers(const Positions& V) const {
+    const auto& markers = solver_.markerVertices();
+    const auto& offsets = solver_.options().markerOffsets;
+    Positions P(markers.size(), 3);
+    for (size_t k = 0; k < markers.size(); ++k) {
+        Vec3 x = V.row(markers[k]).transpose();
+        if (k < offsets.size() && offsets[k] != 0 && solver_.encoding().encoded(markers[k]))
+            x += offsets[k] * solver_.encoding().ringNormal(markers[k], V);
+        P.row(k) = x.transpose();
+    }
+    return P;
+}
+
+Positions TakeSolver::targets(int frame) const {
+    Positions T = takeFrame(take_, points_, frame);
+    for (int k = 0; k < T.rows(); ++k)
+        if (T.row(k).allFinite())
+            T.row(k) = calibration_.takeToMesh.apply(T.row(k).transpose()).transpose();
+    return T;
+}
+
+Positions TakeSolver::solve(int frame, FrameReport& report) {
+    if (frame < 0 || frame >= frameCount())
+        throw Error(take_.file + ": frame " + std::to_string(frame) + " is outside the take");
+    const auto start = std::chrono::steady_clock::now();
+    const Positions T = targets(frame);
+    report = {};
+    report.frame = frame;
+    SolveResult result;
+    if (!previous_) {
+        // Continuation (algorithm.md §4.2): from the rest pose moved rigidly onto the markers,
+        // the targets travel to the frame's in a few steps, so a first frame far from the rest
+        // pose is reached through poses near each other.
+        Positions restMarkers(T.rows(), 3);
+        for (int k = 0; k < T.rows(); ++k)
+            restMarkers.row(k) = rest_.V.row(solver_.markerVertices()[k]);
+        const RigidMotion motion = fitRigidMotion(restMarkers, T);
+        Positions V(rest_.V.rows(), 3);
+        for (int v = 0; v < V.rows(); ++v)
+            V.row(v) = motion.apply(rest_.V.row(v).transpose()).transpose();
+        const Positions from = predictedMarkers(V);
+        const int steps = std::max(1, options_.continuationSteps);
+        int iterations = 0;
+        for (int s = 1; s <= steps; ++s) {
+            const double a = static_cast<double>(s) / steps;
+            result = solver_.solve((1 - a) * from + a * T, &V);  // NaN rows stay missing
+            iterations += result.report.iterations;
+            V = result.V;
+        }
+        result.report.iterations = iterations;
+    } else {
+        result = solver_.solve(T, &*previous_);
+    }
+    if (!result.V.allFinite()) {
+        result.V = previous_ ? *previous_ : rest_.V;  // keep the last good shape, never NaN
+    }
+    const Positions predicted = predictedMarkers(result.V);
+    double sum = 0;
+    for (int k = 0; k < T.rows(); ++k) {
+        if (!T.row(k).allFinite()) continue;
+        const double mm = (predicted.row(k) - T.row(k)).norm() / meshUnitsPerMm_;
+        sum += mm * mm;
+        report.residualMaxMm = std::max(report.residualMaxMm, mm);
+        ++report.visibleMarkers;
+    }
+    report.residualRmsMm = report.visibleMarkers ? std::sqrt(sum / report.visibleMarkers) : 0.0;
+    report.iterations = result.report.iterations;
+    previous_ = result.V;
+    report.milliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return result.V;
+}
+
+}  // namespace boneless
