@@ -251,7 +251,7 @@ C3dTake readC3dMemory(const std::uint8_t* data, std::size_t size, const std::str
                        std::to_string(h.lastFrame) + " (" + std::to_string(headerFrames) +
                        ") disagree with the parameters (" + std::to_string(declaredFrames) +
                        "); using the parameters");
-    take.firstFrame = trialOk ? *trialStart : std::int64_t(h.firstFrame);
+    take.firstFrame = trialStart ? *trialStart : std::int64_t(h.firstFrame);
 
     // Storage.
     PointLayout L;

@@ -179,7 +179,12 @@ std::vector<std::uint8_t> encodeC3d(const C3dTake& take, const C3dWriteOptions& 
     const float rate = static_cast<float>(take.rate);
     const std::int64_t first = take.firstFrame >= 1 ? take.firstFrame : 1;
     const std::int64_t last = first + std::int64_t(frames) - 1;
-    const bool long32 = frames > 65535 || last > 65535;
+    if (last > 4294967295LL)
+        throw std::invalid_argument("C3D writer: frame numbers beyond 32 bits");
+    // Two separate limits of 16-bit fields: the frame count (POINT:FRAMES) and the frame numbers
+    // (header words 4 and 5; a first frame beyond them survives only in TRIAL).
+    const bool longCount = frames > 65535;
+    const bool headerRange = last <= 65535;
 
     C3dParameters ps = take.parameters;
     C3dGroup& pt = ps.addGroup("POINT", "3-D point parameters");
@@ -194,7 +199,7 @@ std::vector<std::uint8_t> encodeC3d(const C3dTake& take, const C3dWriteOptions& 
     pt.set(C3dParameter::floats("RATE", {rate}, {}));
     pt.set(C3dParameter::chars("UNITS", {take.units.empty() ? std::string("mm") : take.units}));
     pt.remove("LONG_FRAMES");
-    if (!long32) {
+    if (!longCount) {
         pt.set(C3dParameter::int16s("FRAMES", {asWord(frames)}, {}));
     } else if (options.trialFrameRange || options.longFrames) {
         pt.set(C3dParameter::int16s("FRAMES", {asWord(65535)}, {}));
@@ -225,14 +230,17 @@ std::vector<std::uint8_t> encodeC3d(const C3dTake& take, const C3dWriteOptions& 
     ps.set("ANALOG", C3dParameter::floats("RATE", {rate}, {}));
 
     const C3dGroup* trial = ps.group("TRIAL");
-    if ((long32 && options.trialFrameRange) || (trial && trial->find("ACTUAL_START_FIELD"))) {
+    if ((longCount && options.trialFrameRange) || first > 65535 ||
+        (trial && trial->find("ACTUAL_START_FIELD"))) {
         C3dGroup& tr = ps.addGroup("TRIAL");
         auto words = [](std::int64_t v) {
             return std::vector<std::int16_t>{asWord(std::size_t(v) & 0xFFFF),
                                              asWord((std::size_t(v) >> 16) & 0xFFFF)};
         };
         tr.set(C3dParameter::int16s("ACTUAL_START_FIELD", words(first), {2}));
-        tr.set(C3dParameter::int16s("ACTUAL_END_FIELD", words(std::max(first, last)), {2}));
+        // Without frames the range is empty; end = start keeps it well-formed, and POINT:FRAMES
+        // (0, not 65535) is what readers take the count from.
+        tr.set(C3dParameter::int16s("ACTUAL_END_FIELD", words(frames ? last : first), {2}));
     }
 
     // DATA_START depends on the section's size, which DATA_START itself is part of: write a
@@ -253,9 +261,11 @@ std::vector<std::uint8_t> encodeC3d(const C3dTake& take, const C3dWriteOptions& 
     out[1] = 0x50;
     c3d::putU16(&out[2], static_cast<std::uint16_t>(points));
     c3d::putU16(&out[4], 0);
-    const std::uint16_t firstWord = long32 ? 1 : static_cast<std::uint16_t>(first);
+    const std::uint16_t firstWord = headerRange ? static_cast<std::uint16_t>(first) : 1;
     const std::uint16_t lastWord =
-        long32 ? 65535 : static_cast<std::uint16_t>(frames == 0 ? 0 : last);
+        frames == 0 ? 0
+                    : static_cast<std::uint16_t>(
+                          headerRange ? last : std::min<std::int64_t>(std::int64_t(frames), 65535));
     c3d::putU16(&out[6], firstWord);
     c3d::putU16(&out[8], lastWord);
     c3d::putU16(&out[10], 10);

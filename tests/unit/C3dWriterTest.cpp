@@ -182,6 +182,20 @@ TEST(C3dWriter, MoreThan65535FramesEveryVendorConvention) {
     }
 }
 
+// Found by the fuzzer: a take with no frames whose first frame number needs TRIAL was written
+// with a one-frame TRIAL range, and the file did not read back.
+TEST(C3dWriter, EmptyTakeWithLargeFirstFrameReadsBack) {
+    for (std::size_t frames : {0u, 1u, 65535u}) {
+        SCOPED_TRACE(frames);
+        C3dTake t = syntheticTake(frames, {"A", "B"});
+        t.firstFrame = 70000;
+        const C3dTake r = roundTrip(t);
+        EXPECT_EQ(r.frameCount(), frames);
+        EXPECT_EQ(r.firstFrame, 70000);
+        EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
+    }
+}
+
 TEST(C3dWriter, Int16StorageIsScaled) {
     const C3dTake t = syntheticTake(20, {"A", "B", "C"});
     const float scale = 0.125f;
