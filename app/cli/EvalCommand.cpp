@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "Commands.h"
+#include "FrameRange.h"
 #include "boneless/Error.h"
 #include "boneless/Sampling.h"
 #include "boneless/SequenceEvaluation.h"
@@ -57,19 +58,6 @@ std::vector<int> readMarkerFile(const std::string& path, int vertexCount) {
     return ids;
 }
 
-// "A:B" (half-open, 0-based), "A:" or ":B".
-void parseFrames(const std::string& text, EvaluationOptions& options) {
-    const auto colon = text.find(':');
-    if (colon == std::string::npos) throw Error("--frames expects A:B, got '" + text + "'");
-    try {
-        const std::string a = text.substr(0, colon), b = text.substr(colon + 1);
-        if (!a.empty()) options.firstFrame = std::stoi(a);
-        if (!b.empty()) options.endFrame = std::stoi(b);
-    } catch (const std::exception&) {
-        throw Error("--frames expects A:B with whole numbers, got '" + text + "'");
-    }
-}
-
 nlohmann::json summaryJson(const EvaluationSummary& s) {
     return {{"frames", s.frames},
             {"rms_pct_mean", s.rmsPctMean},
@@ -95,7 +83,9 @@ void run(const EvalArgs& args) {
     options.markers = args.markersFile.empty()
                           ? geodesicFarthestPoints(sequence.rest, args.markers, 0)
                           : readMarkerFile(args.markersFile, sequence.rest.vertexCount());
-    if (!args.frames.empty()) parseFrames(args.frames, options);
+    const FrameRange range = parseFrameRange(args.frames);
+    options.firstFrame = range.first;
+    options.endFrame = range.end;
     options.dropPercent = args.drop;
     options.seed = args.seed;
     options.solver.maxIterations = args.maxIterations;

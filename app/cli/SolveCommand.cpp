@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "Commands.h"
+#include "FrameRange.h"
 #include "boneless/C3dReader.h"
 #include "boneless/Error.h"
 #include "boneless/MeshReader.h"
@@ -86,21 +87,12 @@ void run(const SolveArgs& args) {
     options.continuationSteps = args.continuation;
     TakeSolver solver(mesh, take, map, options);
 
-    int first = 0, end = solver.frameCount();
-    if (!args.frames.empty()) {
-        const auto colon = args.frames.find(':');
-        try {
-            if (colon == std::string::npos) throw std::invalid_argument("no colon");
-            if (colon > 0) first = std::stoi(args.frames.substr(0, colon));
-            if (colon + 1 < args.frames.size()) end = std::stoi(args.frames.substr(colon + 1));
-        } catch (const std::exception&) {
-            throw Error("--frames expects A:B (0-based, B excluded), got '" + args.frames + "'");
-        }
-        end = std::min(end, solver.frameCount());
-        if (first < 0 || first >= end)
-            throw Error("--frames " + args.frames + " selects no frame of " + args.c3d + " (" +
-                        std::to_string(solver.frameCount()) + " frames)");
-    }
+    const FrameRange range = parseFrameRange(args.frames);
+    const int first = range.first;
+    const int end = range.end < 0 ? solver.frameCount() : std::min(range.end, solver.frameCount());
+    if (first < 0 || first >= end)
+        throw Error("--frames " + args.frames + " selects no frame of " + args.c3d + " (" +
+                    std::to_string(solver.frameCount()) + " frames)");
 
     std::error_code ec;
     fs::create_directories(args.out, ec);
