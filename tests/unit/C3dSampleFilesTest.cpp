@@ -58,6 +58,40 @@ struct Encoding {
 
 }  // namespace
 
+namespace {
+
+// What every encoding of one trial must agree on.
+struct Trial {
+    std::size_t frames, points;
+    double invalidShare;
+};
+
+// Each file of an encoding matrix decodes to the reference's coordinates, within one scale step
+// for int16 storage.
+void expectEncodingsAgree(const std::string& folder, const Encoding (&encodings)[6],
+                          const std::string& referenceFile, const Trial& trial) {
+    const C3dTake reference = readKeepingZeros(folder + "/" + referenceFile);
+    for (const auto& e : encodings) {
+        SCOPED_TRACE(e.file);
+        const C3dTake t = readKeepingZeros(folder + "/" + e.file);
+        EXPECT_EQ(t.processor, e.processor);
+        EXPECT_EQ(t.storage, e.storage);
+        EXPECT_EQ(t.frameCount(), trial.frames);
+        EXPECT_DOUBLE_EQ(t.rate, 50.0);
+        EXPECT_EQ(t.points.size(), trial.points);
+        EXPECT_EQ(t.analogChannels, 16);
+        EXPECT_DOUBLE_EQ(t.analogRate, 200.0);
+        EXPECT_EQ(t.units, "mm");
+        EXPECT_EQ(t.firstFrameWord, 1);
+        EXPECT_EQ(t.lastFrameWord, static_cast<int>(trial.frames));
+        EXPECT_NEAR(invalidShare(t), trial.invalidShare, 0.0015);
+        const double step = e.storage == C3dStorage::Int16 ? std::fabs(t.pointScale) : 1e-3;
+        expectSameData(t, reference, step);
+    }
+}
+
+}  // namespace
+
 TEST(C3dSampleFiles, Sample01SixEncodingsAgree) {
     C3D_SHARED_OR_SKIP(s01, "c3d-org/sample01");
     const Encoding encodings[] = {{"Eb015pi.c3d", C3dProcessor::Intel, C3dStorage::Int16},
@@ -66,25 +100,8 @@ TEST(C3dSampleFiles, Sample01SixEncodingsAgree) {
                                   {"Eb015vr.c3d", C3dProcessor::Dec, C3dStorage::Float},
                                   {"Eb015si.c3d", C3dProcessor::Mips, C3dStorage::Int16},
                                   {"Eb015sr.c3d", C3dProcessor::Mips, C3dStorage::Float}};
-    const C3dTake reference = readKeepingZeros(s01 + "/Eb015pr.c3d");
-    for (const auto& e : encodings) {
-        SCOPED_TRACE(e.file);
-        const C3dTake t = readKeepingZeros(s01 + "/" + e.file);
-        EXPECT_EQ(t.processor, e.processor);
-        EXPECT_EQ(t.storage, e.storage);
-        EXPECT_EQ(t.frameCount(), 450u);
-        EXPECT_DOUBLE_EQ(t.rate, 50.0);
-        EXPECT_EQ(t.points.size(), 26u);
-        EXPECT_EQ(t.analogChannels, 16);
-        EXPECT_DOUBLE_EQ(t.analogRate, 200.0);
-        EXPECT_EQ(t.units, "mm");
-        EXPECT_EQ(t.firstFrameWord, 1);
-        EXPECT_EQ(t.lastFrameWord, 450);
-        EXPECT_NEAR(invalidShare(t), 0.019, 0.0015);
-        EXPECT_EQ(pointsWithGaps(t), 10u);
-        const double step = e.storage == C3dStorage::Int16 ? std::fabs(t.pointScale) : 1e-3;
-        expectSameData(t, reference, step);
-    }
+    expectEncodingsAgree(s01, encodings, "Eb015pr.c3d", {450, 26, 0.019});
+    EXPECT_EQ(pointsWithGaps(readKeepingZeros(s01 + "/Eb015pi.c3d")), 10u);
 }
 
 TEST(C3dSampleFiles, Sample02SixEncodingsAgree) {
@@ -95,21 +112,7 @@ TEST(C3dSampleFiles, Sample02SixEncodingsAgree) {
                                   {"dec_real.c3d", C3dProcessor::Dec, C3dStorage::Float},
                                   {"sgi_int.c3d", C3dProcessor::Mips, C3dStorage::Int16},
                                   {"sgi_real.c3d", C3dProcessor::Mips, C3dStorage::Float}};
-    const C3dTake reference = readKeepingZeros(s02 + "/pc_real.c3d");
-    for (const auto& e : encodings) {
-        SCOPED_TRACE(e.file);
-        const C3dTake t = readKeepingZeros(s02 + "/" + e.file);
-        EXPECT_EQ(t.processor, e.processor);
-        EXPECT_EQ(t.storage, e.storage);
-        EXPECT_EQ(t.frameCount(), 89u);
-        EXPECT_DOUBLE_EQ(t.rate, 50.0);
-        EXPECT_EQ(t.points.size(), 36u);
-        EXPECT_EQ(t.analogChannels, 16);
-        EXPECT_DOUBLE_EQ(t.analogRate, 200.0);
-        EXPECT_NEAR(invalidShare(t), 0.071, 0.0015);
-        const double step = e.storage == C3dStorage::Int16 ? std::fabs(t.pointScale) : 1e-3;
-        expectSameData(t, reference, step);
-    }
+    expectEncodingsAgree(s02, encodings, "pc_real.c3d", {89, 36, 0.071});
 }
 
 TEST(C3dSampleFiles, Sample08ParameterSectionFollowsHeaderPointer) {

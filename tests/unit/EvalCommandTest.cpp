@@ -14,8 +14,7 @@ namespace {
 // The generated demo, written once by `boneless-cli demo` for all tests here.
 const std::string& demoFolder() {
     static const std::string dir = [] {
-        const fs::path d = fs::path(BONELESS_TEST_WORK_DIR) / "eval-demo";
-        fs::remove_all(d);
+        const fs::path d = freshTestDir("eval-demo");
         const CliResult r = runCli("demo --out " + d.string() + " --frames 16");
         EXPECT_EQ(r.exitCode, 0) << r.out;
         return (d / "truth").string();

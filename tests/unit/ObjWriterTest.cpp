@@ -13,9 +13,7 @@ using namespace boneless::testing;
 namespace fs = std::filesystem;
 
 TEST(ObjWriter, RoundTripsPositionsBitForBitAndLeavesNoTemporaryFile) {
-    const fs::path dir = fs::path(BONELESS_TEST_WORK_DIR) / "obj-writer";
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const fs::path dir = freshTestDir("obj-writer");
     TriMesh mesh = icosphere(2);
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> noise(-1e-3, 1e-3);

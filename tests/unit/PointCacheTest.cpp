@@ -12,9 +12,7 @@ using namespace boneless::testing;
 namespace fs = std::filesystem;
 
 TEST(PointCache, RoundTripsFramesWithTheDocumentedLayout) {
-    const fs::path dir = fs::path(BONELESS_TEST_WORK_DIR) / "pc2";
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const fs::path dir = freshTestDir("pc2");
     const std::string path = (dir / "sphere.pc2").string();
     const TriMesh mesh = icosphere(1);
     {
@@ -34,9 +32,7 @@ TEST(PointCache, RoundTripsFramesWithTheDocumentedLayout) {
 }
 
 TEST(PointCache, AnAbandonedCacheLeavesNothingBehind) {
-    const fs::path dir = fs::path(BONELESS_TEST_WORK_DIR) / "pc2-abandoned";
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const fs::path dir = freshTestDir("pc2-abandoned");
     const TriMesh mesh = icosphere(0);
     {
         PointCacheWriter writer((dir / "x.pc2").string(), mesh.vertexCount(), 0.0);

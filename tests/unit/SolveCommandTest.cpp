@@ -16,8 +16,7 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path makeDemo(int frames, double offsetMm = 10) {
-    const fs::path dir = fs::path(BONELESS_TEST_WORK_DIR) / "demo";
-    fs::remove_all(dir);
+    const fs::path dir = freshTestDir("demo");
     const CliResult r = runCli("demo --out " + dir.string() + " --frames " +
                                std::to_string(frames) + " --offset-mm " + std::to_string(offsetMm));
     EXPECT_EQ(r.exitCode, 0) << r.out;

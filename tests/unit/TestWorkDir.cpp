@@ -12,3 +12,10 @@ std::string bonelessTestWorkDir() {
     std::filesystem::create_directories(dir);
     return dir.string();
 }
+
+std::string freshTestDir(const std::string& name) {
+    const auto dir = std::filesystem::path(bonelessTestWorkDir()) / name;
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir.string();
+}

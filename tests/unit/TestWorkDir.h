@@ -7,3 +7,6 @@
 
 std::string bonelessTestWorkDir();
 #define BONELESS_TEST_WORK_DIR bonelessTestWorkDir()
+
+// An empty folder `name` inside the test's scratch folder (emptied if an earlier run left it).
+std::string freshTestDir(const std::string& name);
