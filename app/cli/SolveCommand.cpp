@@ -1,4 +1,5 @@
 // boneless-cli solve: a take and a mesh in, an OBJ sequence or a PC2 cache out.
+#include <unistd.h>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -61,14 +62,17 @@ std::string guessUpAxis(const Similarity& s) {
 }
 
 void progress(int done, int total, double elapsedSeconds, const FrameReport& last) {
+    // On a terminal the bar redraws in place; into a log it is a line every tenth of the take.
+    static const bool terminal = ::isatty(STDERR_FILENO);
+    if (!terminal && done != total && done % std::max(1, total / 10) != 0) return;
     const int width = 30;
     const int filled = total ? width * done / total : width;
     const double perFrame = done ? elapsedSeconds / done : 0;
     const int eta = static_cast<int>(perFrame * (total - done) + 0.5);
-    std::fprintf(stderr, "\r[%.*s%.*s] %d/%d frames  %.2f s/frame  ETA %d:%02d  residual %.1f mm ",
-                 filled, "##############################", width - filled,
+    std::fprintf(stderr, "%s[%.*s%.*s] %d/%d frames  %.2f s/frame  ETA %d:%02d  residual %.1f mm%s",
+                 terminal ? "\r" : "", filled, "##############################", width - filled,
                  "..............................", done, total, perFrame, eta / 60, eta % 60,
-                 last.residualRmsMm);
+                 last.residualRmsMm, terminal ? " " : "\n");
     std::fflush(stderr);
 }
 
@@ -141,7 +145,7 @@ void run(const SolveArgs& args) {
         if (!args.quiet) progress(done, end - first, elapsed, report);
     }
     std::signal(SIGINT, previousHandler);
-    if (!args.quiet) std::fprintf(stderr, "\n");
+    if (!args.quiet && ::isatty(STDERR_FILENO)) std::fprintf(stderr, "\n");
     if (cache) cache->finish();
 
     const Similarity& s = c.takeToMesh;
