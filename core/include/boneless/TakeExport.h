@@ -1,0 +1,56 @@
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "boneless/C3dTake.h"
+#include "boneless/Correspondence.h"
+#include "boneless/TakeSolver.h"
+#include "boneless/TriMesh.h"
+
+namespace boneless {
+
+// What `boneless-cli solve` and the application's export both write, so that the two produce the
+// same files: DIR/<stem>_<frame:04>.obj (input vertex order, same faces) or DIR/<stem>.pc2, plus
+// the sidecar DIR/<stem>.json (fps, frame range, units, up axis, sources, alignment, solver
+// settings, per-frame residuals). Every file appears atomically.
+struct ExportRequest {
+    enum class Format { Obj, Pc2 };
+    // As the user named them; recorded in the sidecar and the OBJ comments.
+    std::string meshPath, group, c3dPath, mapPath;
+    std::string outDir;
+    Format format = Format::Obj;
+    int first = 0;  // 0-based take frames [first, end); end < 0 = to the take's end
+    int end = -1;
+    TakeSolveOptions options;
+};
+
+struct ExportResult {
+    int first = 0;
+    int framesWritten = 0;
+    bool cancelled = false;
+    std::string sidecarPath;
+};
+
+// Called after each frame is written; return false to stop (the files written so far and the
+// sidecar stay complete).
+using ExportProgress = std::function<bool(int done, int total, const FrameReport& last)>;
+
+// The file stem outputs are named after: the group if one is given, else the mesh file's stem.
+std::string exportStem(const ExportRequest& request);
+
+// Told the alignment once it is found, before the first frame is solved.
+using ExportCalibrated = std::function<void(const Calibration&)>;
+
+// Solves and writes the frames. Throws Error naming the file or option for bad input.
+ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspondence& map,
+                        const ExportRequest& request, const ExportProgress& progress = {},
+                        const ExportCalibrated& calibrated = {});
+
+// The nearest of mm/cm/dm/m to the mesh's unit, from how many mesh units a millimetre is.
+const char* guessMeshUnits(double meshUnitsPerMm);
+
+// The mesh axis ("+y", "-z", …) the take's vertical (C3D: +z) maps onto.
+std::string guessUpAxis(const Similarity& takeToMesh);
+
+}  // namespace boneless
