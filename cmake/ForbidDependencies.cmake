@@ -1,10 +1,10 @@
-# boneless_forbid_dependencies(<target> PATTERNS <regex>...)
+# boneless_forbid_dependencies(<target> PATTERNS <regex>... [HEADERS <regex>])
 #
 # Fails the configure step when <target> links, directly or through its interface, a library whose
-# name matches one of the patterns, or when one of its sources includes a header that does. This is
+# name matches one of the patterns, or when one of its sources includes a header matching HEADERS. This is
 # how the one-way dependency rule (app -> ui -> core) is enforced rather than hoped for.
 function(boneless_forbid_dependencies target)
-  cmake_parse_arguments(ARG "" "" "PATTERNS" ${ARGN})
+  cmake_parse_arguments(ARG "" "HEADERS" "PATTERNS" ${ARGN})
   get_target_property(libs ${target} LINK_LIBRARIES)
   get_target_property(ilibs ${target} INTERFACE_LINK_LIBRARIES)
   foreach(lib IN LISTS libs ilibs)
@@ -14,6 +14,9 @@ function(boneless_forbid_dependencies target)
       endif()
     endforeach()
   endforeach()
+  if(NOT ARG_HEADERS)
+    return()
+  endif()
   get_target_property(sources ${target} SOURCES)
   get_target_property(source_dir ${target} SOURCE_DIR)
   file(GLOB_RECURSE headers "${source_dir}/*.h")
@@ -24,7 +27,7 @@ function(boneless_forbid_dependencies target)
     if(EXISTS "${src}")
       file(STRINGS "${src}" includes REGEX "^[ \t]*#[ \t]*include")
       foreach(line IN LISTS includes)
-        if(line MATCHES "[<\"](Q[A-Z][A-Za-z]*|Qt[A-Za-z]*/|vtk[A-Za-z0-9_]*\\.h)")
+        if(line MATCHES "${ARG_HEADERS}")
           message(FATAL_ERROR "${src} includes a forbidden header: ${line}")
         endif()
       endforeach()
