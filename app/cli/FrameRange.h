@@ -16,8 +16,15 @@ inline FrameRange parseFrameRange(const std::string& text) {
     const auto colon = text.find(':');
     try {
         if (colon == std::string::npos) throw std::invalid_argument("no colon");
-        if (colon > 0) range.first = std::stoi(text.substr(0, colon));
-        if (colon + 1 < text.size()) range.end = std::stoi(text.substr(colon + 1));
+        // stoi alone would read "0:810:40" as 0:810; every character must belong to a number.
+        auto number = [](const std::string& part) {
+            std::size_t used = 0;
+            const int value = std::stoi(part, &used);
+            if (used != part.size()) throw std::invalid_argument("trailing characters");
+            return value;
+        };
+        if (colon > 0) range.first = number(text.substr(0, colon));
+        if (colon + 1 < text.size()) range.end = number(text.substr(colon + 1));
     } catch (const std::exception&) {
         throw boneless::Error("--frames expects A:B (0-based, B excluded), got '" + text + "'");
     }

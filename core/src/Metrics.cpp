@@ -2,6 +2,9 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <vector>
+
+#include "boneless/Reconstruction.h"
 
 namespace boneless {
 
@@ -25,6 +28,31 @@ int flippedFaceCount(const Faces& F, const Positions& V, const Positions& T) {
     for (int f = 0; f < F.rows(); ++f)
         if (faceNormal(F, V, f).dot(faceNormal(F, T, f)) < 0) ++flipped;
     return flipped;
+}
+
+std::vector<int> foldedFaces(const Faces& F, const Positions& V, const Positions& rest) {
+    std::vector<std::vector<int>> ring(rest.rows());
+    for (int f = 0; f < F.rows(); ++f)
+        for (int c = 0; c < 3; ++c) ring[F(f, c)].push_back(F(f, (c + 1) % 3));
+    std::vector<Mat3> rotation(rest.rows(), Mat3::Identity());
+    for (int v = 0; v < rest.rows(); ++v) {
+        Positions from(ring[v].size() + 1, 3), to(ring[v].size() + 1, 3);
+        from.row(0) = rest.row(v);
+        to.row(0) = V.row(v);
+        for (std::size_t k = 0; k < ring[v].size(); ++k) {
+            from.row(k + 1) = rest.row(ring[v][k]);
+            to.row(k + 1) = V.row(ring[v][k]);
+        }
+        rotation[v] = fitRigidMotion(from, to).R;
+    }
+    std::vector<int> folded;
+    for (int f = 0; f < F.rows(); ++f) {
+        const Eigen::Vector3d restNormal = faceNormal(F, rest, f);
+        const Eigen::Vector3d carried =
+            (rotation[F(f, 0)] + rotation[F(f, 1)] + rotation[F(f, 2)]) * restNormal;
+        if (faceNormal(F, V, f).dot(carried) < 0) folded.push_back(f);
+    }
+    return folded;
 }
 
 double edgeLengthDistortion(const Faces& F, const Positions& V, const Positions& rest) {

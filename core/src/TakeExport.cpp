@@ -1,5 +1,6 @@
 #include "boneless/TakeExport.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -8,6 +9,7 @@
 #include <optional>
 
 #include "boneless/Error.h"
+#include "boneless/Metrics.h"
 #include "boneless/ObjWriter.h"
 #include "boneless/PointCacheWriter.h"
 
@@ -42,6 +44,26 @@ std::string exportStem(const ExportRequest& request) {
 }
 
 namespace {
+
+json summaryJson(const json& perFrame) {
+    double residualSum = 0, residualWorst = 0, distortionWorst = 0;
+    int foldedWorst = 0;
+    std::vector<double> ms;
+    for (const json& f : perFrame) {
+        residualSum += f["residual_rms_mm"].get<double>();
+        residualWorst = std::max(residualWorst, f["residual_rms_mm"].get<double>());
+        distortionWorst = std::max(distortionWorst, f["edge_distortion"].get<double>());
+        foldedWorst = std::max(foldedWorst, f["folded_faces"].get<int>());
+        ms.push_back(f["ms"].get<double>());
+    }
+    std::sort(ms.begin(), ms.end());
+    const std::size_t n = perFrame.size();
+    return {{"residual_rms_mm_mean", n ? residualSum / n : 0.0},
+            {"residual_rms_mm_worst_frame", residualWorst},
+            {"edge_distortion_worst_frame", distortionWorst},
+            {"folded_faces_worst_frame", foldedWorst},
+            {"ms_per_frame_median", n ? ms[n / 2] : 0.0}};
+}
 
 json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibration& c,
                  const ExportResult& result, json perFrame) {
@@ -81,6 +103,7 @@ json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibr
               {"continuation_steps", o.continuationSteps},
               {"rigidity_weight", o.solver.rigidityWeight},
               {"max_iterations", o.solver.maxIterations}}},
+            {"summary", summaryJson(perFrame)},
             {"per_frame", std::move(perFrame)}};
 }
 
@@ -122,10 +145,13 @@ ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspo
             writeObj((out / (stem + name)).string(), V, mesh.F,
                      "Boneless: " + request.c3dPath + " frame " + std::to_string(f));
         }
+        // Quality a user checks before importing: stretch against the rest pose, and folds.
         perFrame.push_back({{"frame", f},
                             {"visible_markers", report.visibleMarkers},
                             {"residual_rms_mm", report.residualRmsMm},
                             {"residual_max_mm", report.residualMaxMm},
+                            {"edge_distortion", edgeLengthDistortion(mesh.F, V, mesh.V)},
+                            {"folded_faces", foldedFaceCount(mesh.F, V, mesh.V)},
                             {"iterations", report.iterations},
                             {"ms", report.milliseconds}});
         ++result.framesWritten;

@@ -53,3 +53,19 @@ TEST(Metrics, EdgeLengthDistortionOfAUniformScale) {
     const TriMesh mesh = icosphere(1);
     EXPECT_NEAR(edgeLengthDistortion(mesh.F, 1.1 * mesh.V, mesh.V), 0.1, 1e-12);
 }
+
+TEST(Metrics, ATurnedMeshFoldsNothingAPinchedVertexFolds) {
+    const TriMesh mesh = icosphere(2);
+    // Upside down as a whole: every face's normal turned, none folded.
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(3.0, Eigen::Vector3d(1, 2, 3).normalized()).matrix();
+    const Positions turned = (mesh.V * R.transpose()).eval();
+    EXPECT_GT(flippedFaceCount(mesh.F, turned, mesh.V), 0);
+    EXPECT_EQ(foldedFaceCount(mesh.F, turned, mesh.V), 0);
+    // One vertex dragged across a neighbour, past its own ring: the faces it drags over fold.
+    Positions pinched = turned;
+    const int a = mesh.F(0, 0), b = mesh.F(0, 1);
+    pinched.row(a) = 2.5 * turned.row(b) - 1.5 * turned.row(a);
+    const int folded = foldedFaceCount(mesh.F, pinched, mesh.V);
+    EXPECT_GE(folded, 1);
+    EXPECT_LE(folded, 12);
+}

@@ -135,3 +135,14 @@ TEST(SolveCommand, BadInputIsOneClearLine) {
     EXPECT_NE(r.out.find("NOPE"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("bad.map.json"), std::string::npos) << r.out;
 }
+
+TEST(SolveCommand, AFrameRangeWithTrailingCharactersIsRefused) {
+    const fs::path demo = makeDemo(3);
+    const CliResult r = runCli("solve --mesh " + (demo / "creature.obj").string() + " --c3d " +
+                               (demo / "creature.c3d").string() + " --map " +
+                               (demo / "creature.map.json").string() + " --out " +
+                               (demo / "x").string() + " --frames 0:2:1");
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.out.find("0:2:1"), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(demo / "x" / "creature_0000.obj"));
+}

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <vector>
+
 #include "boneless/TriMesh.h"
 
 namespace boneless {
@@ -9,6 +11,14 @@ double rmsVertexError(const Positions& V, const Positions& T);
 double maxVertexError(const Positions& V, const Positions& T);
 // Faces whose normal points against the true face's normal (a fold or a mirrored triangle).
 int flippedFaceCount(const Faces& F, const Positions& V, const Positions& T);
+// Faces folded over relative to their own neighbourhood, for poses with no ground truth: each
+// vertex's one-ring is fitted rigidly from `rest` to V, and a face counts when its posed normal
+// points against its rest normal carried by those local rotations. A limb that turns as a whole,
+// however far, folds nothing.
+std::vector<int> foldedFaces(const Faces& F, const Positions& V, const Positions& rest);
+inline int foldedFaceCount(const Faces& F, const Positions& V, const Positions& rest) {
+    return static_cast<int>(foldedFaces(F, V, rest).size());
+}
 // RMS over edges of |len/restLen − 1|: how much a pose stretches or squashes the mesh.
 double edgeLengthDistortion(const Faces& F, const Positions& V, const Positions& rest);
 
