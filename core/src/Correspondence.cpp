@@ -42,14 +42,20 @@ json withoutKeys(json object, std::initializer_list<const char*> keys) {
 Correspondence Correspondence::read(const std::string& path) {
     std::ifstream in(path);
     if (!in) fail(path, "cannot open the correspondence file");
+    std::stringstream text;
+    text << in.rdbuf();
+    return fromJson(text.str(), path);
+}
+
+Correspondence Correspondence::fromJson(const std::string& text, const std::string& path) {
     json doc;
     try {
-        doc = json::parse(in);
+        doc = json::parse(text);
     } catch (const json::parse_error& e) {
         fail(path, std::string("is not valid JSON (") + e.what() + ")");
     }
     if (!doc.is_object()) fail(path, "is not a JSON object");
-    if (doc.value("format", std::string()) != kFormat)
+    if (!doc.contains("format") || !doc["format"].is_string() || doc["format"] != kFormat)
         fail(path, std::string("is not a Boneless correspondence file (\"format\" must be \"") +
                        kFormat + "\")");
     const int version = get<int>(doc, "version", path, "the file");
@@ -60,7 +66,7 @@ Correspondence Correspondence::read(const std::string& path) {
     c.source_ = path;
     const json mesh = doc.contains("mesh") ? doc["mesh"] : json::object();
     if (!mesh.is_object()) fail(path, "\"mesh\" must be an object");
-    c.meshFile = mesh.value("file", std::string());
+    c.meshFile = mesh.contains("file") ? get<std::string>(mesh, "file", path, "\"mesh\"") : "";
     c.meshVertices = mesh.contains("vertices") ? get<int>(mesh, "vertices", path, "\"mesh\"") : 0;
     if (!doc.contains("markers") || !doc["markers"].is_array())
         fail(path, "has no \"markers\" list");
@@ -74,7 +80,7 @@ Correspondence Correspondence::read(const std::string& path) {
         MarkerMapping mapping;
         mapping.label = get<std::string>(m, "label", path, where);
         mapping.vertex = get<int>(m, "vertex", path, where + " (" + mapping.label + ")");
-        mapping.offsetMm = m.value("offset_mm", 0.0);
+        mapping.offsetMm = m.contains("offset_mm") ? get<double>(m, "offset_mm", path, where) : 0.0;
         mapping.extraJson = withoutKeys(m, {"label", "vertex", "offset_mm"}).dump();
         if (mapping.vertex < 0)
             fail(path, where + " (" + mapping.label + "): vertex " +

@@ -109,3 +109,27 @@ TEST(Correspondence, ChecksTheMeshAndTheTake) {
     EXPECT_NE(e.find("RFHD"), std::string::npos) << e;
     EXPECT_NE(e.find("take.c3d"), std::string::npos) << e;
 }
+
+TEST(Correspondence, FromJsonTextMatchesTheFileAndNamesItsSource) {
+    Correspondence c;
+    c.meshFile = "body.obj";
+    c.meshVertices = 10;
+    c.markers.push_back({"LFHD", 3, 9.5, "{}"});
+    const Correspondence back = Correspondence::fromJson(c.toJson(), "project.boneless");
+    EXPECT_EQ(back.toJson(), c.toJson());
+    // Wrong types are the user's mistake too: a message naming the source, not a JSON exception.
+    for (
+        const char* text :
+        {R"({"format": 1})",
+         R"({"format": "boneless-correspondence", "version": 1, "mesh": {"file": 3}, "markers": []})",
+         R"({"format": "boneless-correspondence", "version": 1,
+              "markers": [{"label": "A", "vertex": 1, "offset_mm": "ten"}]})"}) {
+        try {
+            Correspondence::fromJson(text, "project.boneless");
+            ADD_FAILURE() << "accepted " << text;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("project.boneless"), std::string::npos)
+                << e.what();
+        }
+    }
+}

@@ -29,6 +29,8 @@ class Correspondence {
     // Throws Error naming the file and the entry for malformed JSON, a wrong format or version,
     // missing keys, negative ids, duplicate labels or duplicate vertices.
     static Correspondence read(const std::string& path);
+    // The same from JSON text (a project file embeds it); `source` names it in messages.
+    static Correspondence fromJson(const std::string& text, const std::string& source);
     // Atomic (temporary file, then rename).
     void write(const std::string& path) const;
     std::string toJson() const;
