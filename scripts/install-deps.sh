@@ -8,6 +8,10 @@ packages=(
   libeigen3-dev libopenmesh-dev libsuitesparse-dev libopenblas-dev
   # CLI
   nlohmann-json3-dev libcli11-dev
+  # application: Qt6 and VTK 9.1 (never libvtk9-qt-dev: Debian builds it for Qt5)
+  qt6-base-dev libqt6opengl6-dev libvtk9-dev fonts-dejavu-core
+  # GUI tests: a virtual X server with Mesa's software OpenGL
+  xvfb xauth x11-utils libgl1-mesa-dri mesa-utils
   # tests, benchmarks, fuzzing (clang's libFuzzer and sanitizer runtimes)
   libgtest-dev libbenchmark-dev clang libclang-rt-14-dev
 )
