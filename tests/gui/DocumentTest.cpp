@@ -1,0 +1,292 @@
+// Document: loading, undoable map edits, alignment, and failures that become messages.
+#include <QFile>
+#include <QSignalSpy>
+#include <QUndoStack>
+#include <QtTest>
+
+#include "ModelTestFixtures.h"
+#include "boneless/ui/FrameSolver.h"
+#include "boneless/ui/MarkerListModel.h"
+
+using namespace boneless;
+using namespace boneless::ui;
+
+namespace {
+
+// The vertex `map` gives the document's marker row (labels resolve through the take, as in core).
+int vertexInMap(const Document& d, const Correspondence& map, int marker) {
+    for (const auto& m : map.markers)
+        if (d.take().findPoint(m.label) == std::size_t(d.markerPoint(marker))) return m.vertex;
+    return -1;
+}
+
+}  // namespace
+
+class DocumentTest : public QObject {
+    Q_OBJECT
+    QString work_, demo_;
+
+  private slots:
+    void initTestCase() {
+        test::isolateSettings("DocumentTest");
+        work_ = test::scratchFolder("DocumentTest");
+        demo_ = work_ + "/demo";
+        test::demoProject(demo_);
+    }
+
+    void loadsTheDemo() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        QVERIFY(d.hasMesh());
+        QVERIFY(d.hasTake());
+        QCOMPARE(d.markerCount(), 30);
+        QCOMPARE(d.mappedCount(), 30);
+        QCOMPARE(d.frameCount(), 60);
+        QVERIFY(d.frameRate() > 0);
+        QVERIFY(!d.correspondenceModified());
+        QString why;
+        QVERIFY2(d.canSolve(&why), qPrintable(why));
+        QVERIFY(!d.alignment());
+        // Every mapped vertex leads back to its marker.
+        for (int m = 0; m < d.markerCount(); ++m) QCOMPARE(d.markerForVertex(d.mappedVertex(m)), m);
+    }
+
+    void markersAreDrawnNextToTheirVertices() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        const Calibration c = d.displayAlignment();
+        const Positions P = d.markerPositions(c.frame);
+        const double diagonal = boundingBoxDiagonal(d.mesh().V);
+        int near = 0;
+        for (int m = 0; m < d.markerCount(); ++m) {
+            if (!P.row(m).allFinite()) continue;
+            const double distance = (P.row(m) - d.mesh().V.row(d.mappedVertex(m))).norm();
+            near += distance < 0.05 * diagonal;
+        }
+        // At the calibration frame the take is closest to the rest pose.
+        QVERIFY2(near >= 25, qPrintable(QString::number(near)));
+    }
+
+    void missingFilesAndCorruptTakesAreMessages() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        QSignalSpy errors(&d, &Document::errorOccurred);
+
+        QVERIFY(!d.loadMesh(work_ + "/nope.obj"));
+        QCOMPARE(errors.count(), 1);
+        QVERIFY(errors.last().at(0).toString().contains("nope.obj"));
+
+        const QString corrupt = work_ + "/corrupt.c3d";
+        QFile take(demo_ + "/creature.c3d");
+        QVERIFY(take.open(QIODevice::ReadOnly));
+        QByteArray bytes = take.readAll().left(700);  // header and parameters cut short
+        QFile out(corrupt);
+        QVERIFY(out.open(QIODevice::WriteOnly));
+        out.write(bytes);
+        out.close();
+        QVERIFY(!d.loadTake(corrupt));
+        QCOMPARE(errors.count(), 2);
+        QVERIFY(errors.last().at(0).toString().contains("corrupt.c3d"));
+
+        QVERIFY(!d.loadCorrespondence(work_ + "/corrupt.c3d"));  // not JSON
+        QCOMPARE(errors.count(), 3);
+
+        // Nothing of the session was lost.
+        QCOMPARE(d.frameCount(), 60);
+        QCOMPARE(d.mappedCount(), 30);
+        QVERIFY(d.canSolve());
+    }
+
+    void assignUndoRedo() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        QSignalSpy changes(&d, &Document::correspondenceChanged);
+        const int m = 3;
+        const int before = d.mappedVertex(m);
+        QVERIFY(d.clearMapping(m));
+        QCOMPARE(d.mappedVertex(m), -1);
+        QCOMPARE(d.markerForVertex(before), -1);
+        QVERIFY(d.correspondenceModified());
+
+        int free = 0;
+        while (d.markerForVertex(free) >= 0) ++free;
+        QVERIFY(d.assign(m, free));
+        QCOMPARE(d.mappedVertex(m), free);
+        QCOMPARE(d.markerForVertex(free), m);
+        QCOMPARE(d.undoStack()->count(), 2);
+
+        d.undoStack()->undo();
+        QCOMPARE(d.mappedVertex(m), -1);
+        d.undoStack()->undo();
+        QCOMPARE(d.mappedVertex(m), before);
+        QVERIFY(!d.correspondenceModified());  // back to the file's content
+        d.undoStack()->redo();
+        d.undoStack()->redo();
+        QCOMPARE(d.mappedVertex(m), free);
+        QCOMPARE(changes.count(), 6);
+        // The map written out is the edited one.
+        QCOMPARE(vertexInMap(d, d.correspondence(), m), free);
+    }
+
+    void aVertexCarriesOneMarker() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        QSignalSpy errors(&d, &Document::errorOccurred);
+        const int taken = d.mappedVertex(0);
+        QVERIFY(!d.assign(1, taken));
+        QCOMPARE(errors.count(), 1);
+        QVERIFY(errors.last().at(0).toString().contains(d.markerLabel(0)));
+        QCOMPARE(d.mappedVertex(0), taken);
+        QCOMPARE(d.undoStack()->count(), 0);
+        QVERIFY(!d.assign(0, d.mesh().vertexCount()));  // out of range
+        QVERIFY(!d.assign(-1, 0));                      // no marker
+    }
+
+    void suggestCompletesTheMapInOneStep() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        const Correspondence truth = d.correspondence();
+        for (int m = 4; m < d.markerCount(); ++m) QVERIFY(d.clearMapping(m));
+        QCOMPARE(d.mappedCount(), 4);
+        const int steps = d.undoStack()->count();
+        QVERIFY2(d.suggestMappings(), qPrintable(d.lastError()));
+        QCOMPARE(d.undoStack()->count(), steps + 1);
+        QCOMPARE(d.mappedCount(), 30);
+        int same = 0;
+        for (int m = 4; m < d.markerCount(); ++m) {
+            QVERIFY(d.markerSuggested(m));
+            same += vertexInMap(d, truth, m) == d.mappedVertex(m);
+        }
+        // The demo's markers sit 10 mm off the skin; nearly all land on their own vertex.
+        QVERIFY2(same >= 20, qPrintable(QString::number(same)));
+        // Editing a suggestion makes it the user's own entry.
+        int free = 0;
+        while (d.markerForVertex(free) >= 0) ++free;
+        QVERIFY(d.assign(5, free));
+        QVERIFY(!d.markerSuggested(5));
+        d.undoStack()->undo();
+        d.undoStack()->undo();
+        QCOMPARE(d.mappedCount(), 4);
+    }
+
+    void suggestNeedsFourMarkers() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        QVERIFY(d.clearAllMappings());
+        QVERIFY(!d.canSolve());
+        QVERIFY(!d.suggestMappings());
+        QVERIFY(!d.lastError().isEmpty());
+        QVERIFY(!d.align());
+    }
+
+    void alignIsAnUndoableEditTheSolverUses() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        QSignalSpy aligned(&d, &Document::alignmentChanged);
+        QVERIFY2(d.align(10), qPrintable(d.lastError()));
+        QVERIFY(d.alignment());
+        QCOMPARE(d.alignment()->frame, 10);
+        QCOMPARE(aligned.count(), 1);
+        const TakeSolveOptions o = d.solveOptions();
+        QVERIFY(o.alignment);
+        QCOMPARE(o.alignment->scale, d.alignment()->takeToMesh.scale);
+        QVERIFY(!d.settings().alignment);
+        d.undoStack()->undo();
+        QVERIFY(!d.alignment());
+        QVERIFY(!d.solveOptions().alignment);
+        QCOMPARE(aligned.count(), 2);
+    }
+
+    void exportRequestNamesTheFilesLikeTheCli() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        ExportRequest r = d.exportRequest(work_ + "/out", ExportRequest::Format::Pc2, "project");
+        QCOMPARE(QString::fromStdString(r.mapPath), d.correspondencePath());
+        QCOMPARE(QString::fromStdString(r.c3dPath), d.takePath());
+        QCOMPARE(QString::fromStdString(exportStem(r)), QString("creature"));
+        QVERIFY(d.clearMapping(0));
+        r = d.exportRequest(work_ + "/out", ExportRequest::Format::Pc2, "project");
+        QCOMPARE(QString::fromStdString(r.mapPath), QString("project"));  // unsaved edits
+        const QString saved = work_ + "/saved.map.json";
+        QVERIFY(d.saveCorrespondence(saved));
+        QVERIFY(!d.correspondenceModified());
+        QCOMPARE(d.correspondencePath(), saved);
+        QCOMPARE(Correspondence::read(saved.toStdString()).markers.size(), std::size_t(29));
+    }
+
+    void selectionIsShared() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        QSignalSpy selected(&d, &Document::selectionChanged);
+        d.setSelectedMarker(7);
+        d.setSelectedMarker(7);
+        QCOMPARE(selected.count(), 1);
+        QCOMPARE(d.selectedMarker(), 7);
+        d.setSelectedMarker(999);
+        QCOMPARE(d.selectedMarker(), -1);
+        QCOMPARE(d.markerByLabel(d.markerLabel(4).toLower()), 4);
+    }
+
+    void markerListAndFilter() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        MarkerListModel model(&d);
+        MarkerFilterProxy proxy;
+        proxy.setSourceModel(&model);
+        QCOMPARE(model.rowCount(), 30);
+        QCOMPARE(model.columnCount(), int(MarkerListModel::ColumnCount));
+
+        // A frame where some marker is missing, and one where it is seen.
+        int missingFrame = -1, hidden = -1;
+        for (int f = 0; f < d.frameCount() && hidden < 0; ++f)
+            for (int m = 0; m < d.markerCount() && hidden < 0; ++m)
+                if (!d.markerVisible(m, f)) missingFrame = f, hidden = m;
+        QVERIFY(hidden >= 0);
+        int seenFrame = 0;
+        while (!d.markerVisible(hidden, seenFrame)) ++seenFrame;
+
+        model.setFrame(seenFrame);
+        proxy.setState(MarkerFilterProxy::State::Missing);
+        QVERIFY(proxy.rowOfMarker(hidden) < 0);
+        model.setFrame(missingFrame);  // the filter follows the frame
+        QVERIFY(proxy.rowOfMarker(hidden) >= 0);
+        QCOMPARE(proxy.markerAt(proxy.rowOfMarker(hidden)), hidden);
+        QCOMPARE(model.index(hidden, MarkerListModel::VisibleColumn).data().toString(),
+                 QString("missing"));
+
+        proxy.setState(MarkerFilterProxy::State::Unmapped);
+        QCOMPARE(proxy.rowCount(), 0);
+        QVERIFY(d.clearMapping(4));
+        QCOMPARE(proxy.rowCount(), 1);
+        QCOMPARE(proxy.markerAt(0), 4);
+        QCOMPARE(model.index(4, MarkerListModel::VertexColumn).data().toString(), QString("—"));
+        d.undoStack()->undo();
+        QCOMPARE(proxy.rowCount(), 0);
+
+        proxy.setState(MarkerFilterProxy::State::All);
+        const QString label = d.markerLabel(7);
+        proxy.setText(label.right(3).toLower());
+        QVERIFY(proxy.rowOfMarker(7) >= 0);
+        QVERIFY(proxy.rowCount() < 30);
+
+        FrameResult r;
+        r.frame = 9;
+        r.residualMm.assign(30, std::numeric_limits<double>::quiet_NaN());
+        r.residualMm[7] = 1.234;
+        model.setFrameResult(r);
+        QCOMPARE(model.index(7, MarkerListModel::ResidualColumn).data().toString(),
+                 QString("1.23"));
+        QCOMPARE(model.index(6, MarkerListModel::ResidualColumn).data().toString(), QString());
+        QCOMPARE(model.residualFrame(), 9);
+        QVERIFY(model.index(7, MarkerListModel::ResidualColumn)
+                    .data(Qt::ToolTipRole)
+                    .toString()
+                    .contains("9"));
+        QVERIFY(d.assign(7, d.mappedVertex(7)));  // no change: nothing to undo
+        QVERIFY(d.clearMapping(7));               // residuals belonged to the old map
+        QCOMPARE(model.index(7, MarkerListModel::ResidualColumn).data().toString(), QString());
+    }
+};
+
+QTEST_MAIN(DocumentTest)
+#include "DocumentTest.moc"

@@ -1,0 +1,179 @@
+// FrameSolver: frames solved off the caller's thread, stale requests dropped, LRU cache, and
+// following the document's edits.
+#include <QSignalSpy>
+#include <QThread>
+#include <QtTest>
+#include <cmath>
+
+#include "ModelTestFixtures.h"
+#include "boneless/ui/FrameSolver.h"
+
+using namespace boneless;
+using namespace boneless::ui;
+
+namespace {
+
+FrameResult resultOf(const QSignalSpy& spy, int i) {
+    return spy.at(i).at(0).value<FrameResult>();
+}
+
+}  // namespace
+
+class FrameSolverTest : public QObject {
+    Q_OBJECT
+    QString demo_;
+
+  private slots:
+    void initTestCase() {
+        test::isolateSettings("FrameSolverTest");
+        demo_ = test::scratchFolder("FrameSolverTest", "demo");
+        test::demoProject(demo_);
+    }
+
+    void solvesAFrameThenServesItFromTheCache() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        FrameSolver solver;
+        QString why;
+        QVERIFY2(solver.setProblem(d, &why), qPrintable(why));
+        QSignalSpy ready(&solver, &FrameSolver::frameReady);
+        solver.requestFrame(5);
+        QVERIFY(solver.isBusy());
+        QCOMPARE(ready.count(), 0);  // never solved inside the call
+        QVERIFY(ready.wait(30000));
+        const FrameResult r = resultOf(ready, 0);
+        QCOMPARE(r.frame, 5);
+        QVERIFY(!r.fromCache);
+        QVERIFY(r.solveMs > 0);
+        QCOMPARE(r.V.rows(), Eigen::Index(d.mesh().vertexCount()));
+        QVERIFY(r.V.allFinite());
+        QCOMPARE(r.markers.rows(), Eigen::Index(d.markerCount()));
+        QCOMPARE(int(r.residualMm.size()), d.markerCount());
+        int measured = 0;
+        for (int m = 0; m < d.markerCount(); ++m) {
+            // A residual exactly where the marker is mapped and seen.
+            QCOMPARE(std::isfinite(r.residualMm[m]), d.markerVisible(m, 5));
+            measured += std::isfinite(r.residualMm[m]);
+        }
+        QVERIFY(measured >= 20);
+        QVERIFY(r.report.residualRmsMm < 20.0);
+        QVERIFY(!solver.isBusy());
+
+        solver.requestFrame(5);
+        QCOMPARE(ready.count(), 1);  // a hit is delivered asynchronously too
+        QVERIFY(ready.wait(5000));
+        const FrameResult hit = resultOf(ready, 1);
+        QVERIFY(hit.fromCache);
+        QCOMPARE(hit.solveMs, 0.0);
+        QVERIFY(hit.V == r.V);
+        QCOMPARE(solver.cachedFrames(), 1);
+    }
+
+    void aNewerRequestDropsTheQueuedOnes() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        FrameSolver solver;
+        QVERIFY(solver.setProblem(d));
+        QSignalSpy ready(&solver, &FrameSolver::frameReady);
+        for (int f = 0; f < 40; ++f) solver.requestFrame(f);
+        while (ready.isEmpty() || resultOf(ready, ready.count() - 1).frame != 39)
+            QVERIFY(ready.wait(30000));
+        QTest::qWait(200);  // nothing else is still coming
+        // The worker took at most the first request or two before the last one arrived.
+        QVERIFY2(ready.count() <= 3, qPrintable(QString::number(ready.count())));
+        QCOMPARE(resultOf(ready, ready.count() - 1).frame, 39);
+        QVERIFY(!solver.isCached(20));
+    }
+
+    void theCacheKeepsTheMostRecentlyUsedWithinItsCap() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        FrameSolver solver;
+        QVERIFY(solver.setProblem(d));
+        QSignalSpy ready(&solver, &FrameSolver::frameReady);
+        solver.requestFrame(0);
+        QVERIFY(ready.wait(30000));
+        const std::size_t perFrame = resultOf(ready, 0).bytes();
+        solver.setCacheLimit(3 * perFrame + perFrame / 2);
+        for (int f : {1, 2, 0, 3}) {  // 0 is used again, so 1 is the least recently used
+            solver.requestFrame(f);
+            QVERIFY(ready.wait(30000));
+        }
+        QCOMPARE(solver.cachedFrames(), 3);
+        QVERIFY(!solver.isCached(1));
+        QVERIFY(solver.isCached(0));
+        QVERIFY(solver.isCached(2));
+        QVERIFY(solver.isCached(3));
+        QVERIFY(solver.cacheBytes() <= solver.cacheLimit());
+        solver.setCacheLimit(perFrame);
+        QCOMPARE(solver.cachedFrames(), 1);
+    }
+
+    void shapeErrorOnDemand() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        FrameSolver solver;
+        solver.setShapeErrorEnabled(true);
+        QVERIFY(solver.setProblem(d));
+        QSignalSpy ready(&solver, &FrameSolver::frameReady);
+        solver.requestFrame(30);
+        QVERIFY(ready.wait(30000));
+        const FrameResult r = resultOf(ready, 0);
+        QCOMPARE(int(r.shapeError.size()), d.mesh().vertexCount());
+        double largest = 0;
+        for (double e : r.shapeError) {
+            QVERIFY(std::isfinite(e) && e >= 0);
+            largest = std::max(largest, e);
+        }
+        QVERIFY(largest > 0);  // a deformed frame strains somewhere
+        QVERIFY(largest < boundingBoxDiagonal(d.mesh().V));
+    }
+
+    void followsTheDocument() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        FrameSolver solver;
+        QSignalSpy problem(&solver, &FrameSolver::problemChanged);
+        QSignalSpy ready(&solver, &FrameSolver::frameReady);
+        solver.watch(&d);
+        QVERIFY(problem.wait(5000));
+        QVERIFY(problem.last().at(0).toBool());
+        solver.requestFrame(2);
+        QVERIFY(ready.wait(30000));
+        QVERIFY(solver.isCached(2));
+        const quint64 generation = solver.generation();
+
+        // Several edits in one turn of the event loop: one new problem.
+        QVERIFY(d.clearMapping(0));
+        QVERIFY(d.clearMapping(1));
+        QVERIFY(problem.wait(5000));
+        QCOMPARE(problem.count(), 2);
+        QCOMPARE(solver.generation(), generation + 1);
+        QVERIFY(!solver.isCached(2));  // solved with the old map
+
+        QVERIFY(d.clearAllMappings());
+        QVERIFY(problem.wait(5000));
+        QVERIFY(!problem.last().at(0).toBool());
+        QVERIFY(!problem.last().at(1).toString().isEmpty());
+        solver.requestFrame(3);  // nothing to solve: ignored, no crash
+        QVERIFY(!solver.isBusy());
+    }
+
+    void aMapTheTakeCannotResolveIsRefused() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        Correspondence map = d.correspondence();
+        map.markers[0].label = "NOT_IN_TAKE";
+        const QString path = test::scratchFolder("FrameSolverTest", "bad") + "/bad.map.json";
+        map.write(path.toStdString());
+        QVERIFY(d.loadCorrespondence(path));
+        FrameSolver solver;
+        QString why;
+        QVERIFY(!solver.setProblem(d, &why));
+        QVERIFY2(why.contains("NOT_IN_TAKE"), qPrintable(why));
+        QVERIFY(!solver.hasProblem());
+    }
+};
+
+QTEST_MAIN(FrameSolverTest)
+#include "FrameSolverTest.moc"

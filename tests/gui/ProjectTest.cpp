@@ -1,0 +1,211 @@
+// The .boneless project: save, reload, compare; relative paths; autosave; recent files; demo.
+#include <QDir>
+#include <QFile>
+#include <QFileInfo>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QSignalSpy>
+#include <QUndoStack>
+#include <QtTest>
+
+#include "ModelTestFixtures.h"
+
+using namespace boneless;
+using namespace boneless::ui;
+
+namespace {
+
+QJsonObject readJson(const QString& path) {
+    QFile f(path);
+    if (!f.open(QIODevice::ReadOnly)) return {};
+    return QJsonDocument::fromJson(f.readAll()).object();
+}
+
+void copyFolder(const QString& from, const QString& to) {
+    QDir().mkpath(to);
+    for (const QFileInfo& f : QDir(from).entryInfoList(QDir::Files))
+        QFile::copy(f.absoluteFilePath(), to + "/" + f.fileName());
+}
+
+}  // namespace
+
+class ProjectTest : public QObject {
+    Q_OBJECT
+    QString work_, demo_;
+
+  private slots:
+    void initTestCase() {
+        test::isolateSettings("ProjectTest");
+        work_ = test::scratchFolder("ProjectTest");
+        demo_ = work_ + "/demo";
+        test::demoProject(demo_);
+    }
+
+    void saveReloadCompare() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        // Edit everything the project stores.
+        int free = 0;
+        while (d.markerForVertex(free) >= 0) ++free;
+        QVERIFY(d.clearMapping(2));
+        QVERIFY(d.assign(2, free));
+        QVERIFY(d.align(12));
+        TakeSolveOptions settings = d.settings();
+        settings.markerWeight = 42;
+        settings.lowPassHz = 6;
+        d.setSettings(settings);
+        d.setViewSetting("labels", true);
+        d.setViewSetting("trailFrames", 8);
+
+        const QString path = work_ + "/session/edited.boneless";
+        QDir().mkpath(work_ + "/session");
+        QString error;
+        QVERIFY2(Project::save(d, path, &error), qPrintable(error));
+
+        Document e;
+        QVERIFY2(Project::load(e, path, &error), qPrintable(error));
+        QCOMPARE(Project::toJson(e, path), Project::toJson(d, path));
+        QCOMPARE(e.mappedVertex(2), free);
+        QVERIFY(e.correspondenceModified());
+        QVERIFY(e.alignment());
+        QCOMPARE(e.alignment()->frame, 12);
+        QCOMPARE(e.alignment()->takeToMesh.R, d.alignment()->takeToMesh.R);  // exact doubles
+        QCOMPARE(e.alignment()->takeToMesh.t, d.alignment()->takeToMesh.t);
+        QCOMPARE(e.settings().markerWeight, 42.0);
+        QCOMPARE(e.settings().lowPassHz, 6.0);
+        QCOMPARE(e.viewSettings().value("trailFrames").toInt(), 8);
+        QCOMPARE(e.undoStack()->count(), 0);
+        QCOMPARE(e.meshPath(), QFileInfo(demo_ + "/creature.obj").absoluteFilePath());
+    }
+
+    void pathsAreRelativeSoTheFolderCanMove() {
+        const QString moved = work_ + "/moved/elsewhere";
+        copyFolder(demo_, moved);
+        const QJsonObject json = readJson(moved + "/demo.boneless");
+        QCOMPARE(json["mesh"].toObject()["file"].toString(), QString("creature.obj"));
+        QCOMPARE(json["take"].toObject()["file"].toString(), QString("creature.c3d"));
+        Document d;
+        QString error;
+        QVERIFY2(Project::load(d, moved + "/demo.boneless", &error), qPrintable(error));
+        QCOMPARE(d.takePath(), moved + "/creature.c3d");
+        QVERIFY(!d.correspondenceModified());
+    }
+
+    void aBrokenProjectLeavesTheDocumentAlone() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        QString error;
+
+        const QString notJson = work_ + "/broken.boneless";
+        QFile f(notJson);
+        QVERIFY(f.open(QIODevice::WriteOnly));
+        f.write("{\"format\": \"boneless-project\", ");
+        f.close();
+        QVERIFY(!Project::load(d, notJson, &error));
+        QVERIFY(error.contains("broken.boneless"));
+
+        // A project whose take is corrupt.
+        const QString folder = work_ + "/corrupt-take";
+        copyFolder(demo_, folder);
+        QFile take(folder + "/creature.c3d");
+        QVERIFY(take.resize(600));
+        QVERIFY(!Project::load(d, folder + "/demo.boneless", &error));
+        QVERIFY2(error.contains("creature.c3d"), qPrintable(error));
+
+        QVERIFY(!Project::load(d, work_ + "/missing.boneless", &error));
+        QVERIFY(!Project::save(d, work_ + "/no/such/folder/p.boneless", &error));
+        QVERIFY(!error.isEmpty());
+
+        QCOMPARE(d.takePath(), QFileInfo(demo_ + "/creature.c3d").absoluteFilePath());
+        QCOMPARE(d.frameCount(), 60);
+        QVERIFY(d.canSolve());
+    }
+
+    void autosaveKeepsTheProjectCurrent() {
+        const QString folder = work_ + "/autosave";
+        copyFolder(demo_, folder);
+        const QString path = folder + "/demo.boneless";
+        Document d;
+        QVERIFY(Project::load(d, path));
+        ProjectAutosave autosave(&d);
+        autosave.setProjectPath(path);
+        autosave.setDelay(50);
+        QSignalSpy saved(&autosave, &ProjectAutosave::saved);
+        QVERIFY(d.clearMapping(0));
+        QVERIFY(d.clearMapping(1));
+        QVERIFY(autosave.isPending());
+        QVERIFY(saved.wait(5000));
+        QCOMPARE(saved.count(), 1);  // two edits, one save
+        QVERIFY(!autosave.isPending());
+
+        // What a crash right now would leave on disk.
+        Document reopened;
+        QVERIFY(Project::load(reopened, path));
+        QCOMPARE(reopened.mappedCount(), 28);
+
+        // Undo is an edit like any other.
+        d.undoStack()->undo();
+        QVERIFY(autosave.saveNow());
+        Document again;
+        QVERIFY(Project::load(again, path));
+        QCOMPARE(again.mappedCount(), 29);
+
+        // Loading is a change of the document too, but the file already holds it.
+        QVERIFY(Project::load(d, path));
+        QVERIFY(autosave.isPending());
+        autosave.discardPending();
+        QVERIFY(!autosave.isPending());
+    }
+
+    void untitledSessionsGoToTheRecoveryFile() {
+        QFile::remove(ProjectAutosave::recoveryPath());
+        Document d;
+        ProjectAutosave autosave(&d);
+        QVERIFY(d.loadMesh(demo_ + "/creature.obj"));
+        QVERIFY(autosave.saveNow());
+        QVERIFY(QFileInfo::exists(ProjectAutosave::recoveryPath()));
+        Document recovered;
+        QVERIFY(Project::load(recovered, ProjectAutosave::recoveryPath()));
+        QVERIFY(recovered.hasMesh());
+        QVERIFY(!recovered.hasTake());
+    }
+
+    void recentFiles() {
+        RecentFiles::clear();
+        QStringList files;
+        for (int i = 0; i < 12; ++i) {
+            files << work_ + QString("/recent%1.boneless").arg(i);
+            QFile f(files.last());
+            QVERIFY(f.open(QIODevice::WriteOnly));
+        }
+        for (const QString& f : files) RecentFiles::add(f);
+        RecentFiles::add(files[5]);
+        const QStringList recent = RecentFiles::list();
+        QCOMPARE(recent.size(), 10);
+        QCOMPARE(recent[0], files[5]);
+        QCOMPARE(recent[1], files[11]);
+        QVERIFY(!recent.contains(files[0]));
+        QFile::remove(files[11]);
+        QVERIFY(!RecentFiles::list().contains(files[11]));
+        RecentFiles::remove(files[5]);
+        QCOMPARE(RecentFiles::list().first(), files[10]);
+    }
+
+    void theDemoIsWrittenOnce() {
+        const QString folder = work_ + "/demo-once";
+        QString error;
+        const QString path = DemoProject::ensure(folder, &error);
+        QVERIFY2(!path.isEmpty(), qPrintable(error));
+        const QDateTime written = QFileInfo(folder + "/creature.c3d").lastModified();
+        QCOMPARE(DemoProject::ensure(folder), path);
+        QCOMPARE(QFileInfo(folder + "/creature.c3d").lastModified(), written);
+        Document d;
+        QVERIFY(Project::load(d, path));
+        QCOMPARE(d.mappedCount(), 30);
+        QVERIFY(!d.alignment());
+        QVERIFY(DemoProject::defaultFolder().endsWith("/demo"));
+    }
+};
+
+QTEST_MAIN(ProjectTest)
+#include "ProjectTest.moc"

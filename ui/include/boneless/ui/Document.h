@@ -1,0 +1,203 @@
+#pragma once
+
+#include <QObject>
+#include <QString>
+#include <QStringList>
+#include <QVariantMap>
+#include <optional>
+#include <vector>
+
+#include "boneless/Alignment.h"
+#include "boneless/C3dTake.h"
+#include "boneless/Correspondence.h"
+#include "boneless/TakeExport.h"
+#include "boneless/TakeSolver.h"
+#include "boneless/TriMesh.h"
+
+class QUndoStack;
+
+namespace boneless::ui {
+
+// The open session: one rest mesh, one take, the marker-to-vertex map being authored, the
+// alignment and the solver settings. Every edit of the map or the alignment is an undo command on
+// undoStack(); loading never throws: a failure leaves the previous state and emits errorOccurred
+// with boneless::Error's complete message.
+//
+// Markers are the rows the user works with: the take's points classified as markers, in file
+// order (without a take: the map's entries). A marker is "mapped" when the map has an entry whose
+// label the take resolves to it.
+class Document : public QObject {
+    Q_OBJECT
+  public:
+    explicit Document(QObject* parent = nullptr);
+    ~Document() override;
+
+    // --- files -----------------------------------------------------------------------------
+    bool loadMesh(const QString& path, const QString& group = {});
+    bool loadTake(const QString& path);
+    // Replaces the map (one undo step). Entries that do not fit the mesh are an error.
+    bool loadCorrespondence(const QString& path);
+    // Writes the map as a correspondence file (atomic); remembers the path.
+    bool saveCorrespondence(const QString& path);
+    // Back to an empty session: no mesh, no take, empty map, default settings, empty undo stack.
+    void reset();
+
+    bool hasMesh() const { return hasMesh_; }
+    const TriMesh& mesh() const { return mesh_; }
+    QString meshPath() const { return meshPath_; }
+    QString meshGroup() const { return meshGroup_; }
+    QStringList meshWarnings() const { return meshWarnings_; }
+
+    bool hasTake() const { return hasTake_; }
+    const C3dTake& take() const { return take_; }
+    QString takePath() const { return takePath_; }
+    int frameCount() const;    // 0 without a take
+    double frameRate() const;  // frames per second, 0 without a take
+
+    const Correspondence& correspondence() const { return map_; }
+    // The correspondence file the map came from or was last saved to (may be empty).
+    QString correspondencePath() const { return mapPath_; }
+
+    // --- markers ---------------------------------------------------------------------------
+    int markerCount() const { return static_cast<int>(markers_.size()); }
+    QString markerLabel(int marker) const;
+    int markerPoint(int marker) const;   // the take's point index, -1 without a take
+    int mappedVertex(int marker) const;  // -1 when unmapped
+    double markerOffsetMm(int marker) const;
+    bool markerSuggested(int marker) const;  // the entry came from "suggest" and was not edited
+    int markerForVertex(int vertex) const;   // -1 when no marker sits on that vertex
+    int markerByLabel(const QString& label) const;    // -1 when none
+    bool markerVisible(int marker, int frame) const;  // false without a take or when missing
+    int mappedCount() const;
+
+    // The markers' positions at `frame` in mesh coordinates (markerCount() by 3, NaN rows where
+    // missing), placed with displayAlignment(). Empty without a take.
+    Positions markerPositions(int frame) const;
+
+    // --- alignment -------------------------------------------------------------------------
+    // The alignment the user fixed (align, suggest, or a loaded project); empty = the solver
+    // chooses one itself, as boneless-cli solve does.
+    const std::optional<Calibration>& alignment() const { return alignment_; }
+    // What the view places markers with: alignment() if set, else the automatic calibration
+    // from the mapped markers (at least 3), else a rough fit of the take's extent onto the mesh.
+    Calibration displayAlignment() const;
+
+    // --- settings --------------------------------------------------------------------------
+    // Solver settings of this session (saved in the project). options().alignment is always
+    // empty here; solveOptions() fills it from alignment().
+    const TakeSolveOptions& settings() const { return settings_; }
+    void setSettings(const TakeSolveOptions& settings);
+    // What the solver and the export use: settings() plus the fixed alignment, if any.
+    TakeSolveOptions solveOptions() const;
+    // Free-form view state the window keeps in the project (labels, trails, heat map, ...).
+    QVariantMap viewSettings() const { return viewSettings_; }
+    void setViewSetting(const QString& key, const QVariant& value);
+    void setViewSettings(const QVariantMap& settings);
+
+    // --- selection (shared by the marker list and the 3D view; not undoable) ---------------
+    int selectedMarker() const { return selected_; }
+    void setSelectedMarker(int marker);  // -1 = none
+
+    // --- edits: each one undo command; false (and errorOccurred) when refused ---------------
+    // Maps `marker` to `vertex`. Refused when another marker already sits on that vertex.
+    bool assign(int marker, int vertex);
+    bool clearMapping(int marker);
+    bool clearAllMappings();
+    // Proposes a vertex for every unmapped marker (needs at least 4 mapped). The alignment is
+    // left as it is: the proposals' own alignment is only used to place them.
+    bool suggestMappings();
+    // Fixes the alignment from the mapped markers (at least 3); calibrationFrame -1 = automatic.
+    bool align(int calibrationFrame = -1);
+    bool clearAlignment();
+    QUndoStack* undoStack() const { return undoStack_; }
+
+    // --- solving and export ----------------------------------------------------------------
+    // True when a frame can be solved: mesh, take, at least 3 mapped markers. Else *why says
+    // what is missing.
+    bool canSolve(QString* why = nullptr) const;
+    // The request `boneless-cli solve` would make for the same inputs. mapPath is the
+    // correspondence file when the map is unchanged since it was read or saved, else `mapLabel`.
+    ExportRequest exportRequest(const QString& outDir, ExportRequest::Format format,
+                                const QString& mapLabel = {}) const;
+    // True when the map differs from correspondencePath()'s content (or there is no file).
+    bool correspondenceModified() const;
+
+    // A whole session at once: Project::load reads the files into one of these and hands it over
+    // with restoreState(), so that a failed load leaves the document untouched.
+    struct State {
+        bool hasMesh = false;
+        TriMesh mesh;
+        QString meshPath, meshGroup;
+        QStringList meshWarnings;
+        bool hasTake = false;
+        C3dTake take;
+        QString takePath;
+        Correspondence map;
+        QString mapPath;
+        std::optional<Calibration> alignment;
+        TakeSolveOptions settings;
+        QVariantMap viewSettings;
+    };
+    // Read a file into `state` (mesh: also its warnings); false with *error, state untouched.
+    static bool readMeshFile(const QString& path, const QString& group, State& state,
+                             QString* error);
+    static bool readTakeFile(const QString& path, State& state, QString* error);
+    // Replaces everything (map checked against the mesh); clears the undo stack and selection.
+    bool restoreState(State state);
+
+    QString lastError() const { return lastError_; }
+
+  signals:
+    void meshChanged();
+    void takeChanged();
+    // The map changed (edit, undo, redo, load): rows' mapped vertices and offsets.
+    void correspondenceChanged();
+    void alignmentChanged();
+    void settingsChanged();
+    void viewSettingsChanged();
+    void selectionChanged(int marker);
+    // Anything the project file stores changed: the autosave listens to this one.
+    void changed();
+    void errorOccurred(const QString& message);
+
+  private:
+    friend class MapEditCommand;
+    struct MapState {
+        Correspondence map;
+        QString mapPath;
+        std::optional<Calibration> alignment;
+    };
+    MapState mapState() const;
+    void applyMapState(const MapState& state);  // used by the undo commands
+    void pushMapEdit(const QString& text, MapState after);
+    void rebuildMarkers();
+    bool fail(const QString& message);
+    Correspondence emptyMap() const;
+
+    bool hasMesh_ = false, hasTake_ = false;
+    TriMesh mesh_;
+    QString meshPath_, meshGroup_;
+    QStringList meshWarnings_;
+    C3dTake take_;
+    QString takePath_;
+    Correspondence map_;
+    QString mapPath_;
+    std::string savedMapJson_;  // the map as in mapPath_'s file, to tell unsaved edits
+    std::optional<Calibration> alignment_;
+    mutable std::optional<Calibration> autoAlignment_;  // cache of displayAlignment()'s fallback
+    TakeSolveOptions settings_;
+    QVariantMap viewSettings_;
+    int selected_ = -1;
+    QUndoStack* undoStack_;
+    QString lastError_;
+
+    struct Marker {
+        QString label;
+        int point = -1;    // take point index
+        int mapping = -1;  // index into map_.markers
+    };
+    std::vector<Marker> markers_;
+    std::vector<int> markerOfVertex_;  // vertex -> marker row, -1
+};
+
+}  // namespace boneless::ui

@@ -1,0 +1,76 @@
+#pragma once
+
+#include <QObject>
+#include <QPointer>
+#include <QString>
+#include <QStringList>
+
+class QTimer;
+
+namespace boneless::ui {
+
+class Document;
+
+// The `.boneless` project file: JSON with the mesh (and group), take and correspondence file
+// paths relative to the project file, the map itself, the fixed alignment, the solver settings
+// and the view settings:
+//   {"format": "boneless-project", "version": 1,
+//    "mesh": {"file": "creature.obj", "group": ""}, "take": {"file": "creature.c3d"},
+//    "correspondence": {"file": "creature.map.json", "modified": false, "map": {...}},
+//    "alignment": null | {"calibration_frame", "scale", "rotation", "translation", ...},
+//    "settings": {"marker_weight", ...}, "view": {...}}
+// The map is stored whole, so unsaved edits of a correspondence file are kept by the project.
+namespace Project {
+
+// Writes the document's state (atomically, QSaveFile). false with *error on failure.
+bool save(const Document& document, const QString& path, QString* error = nullptr);
+// Loads the files the project names into the document and restores its state; on failure the
+// document is left as it was and *error holds a message naming the project and the cause.
+bool load(Document& document, const QString& path, QString* error = nullptr);
+// The project's JSON text (what save() writes), for tests and comparisons.
+QByteArray toJson(const Document& document, const QString& path);
+
+}  // namespace Project
+
+// Keeps a project file up to date: after each change of the document (Document::changed) it
+// saves the project within a short delay, so a crash loses at most that delay's edits. Without a
+// project path it saves to recoveryPath() instead, which the window can offer to reopen.
+class ProjectAutosave : public QObject {
+    Q_OBJECT
+  public:
+    explicit ProjectAutosave(Document* document, QObject* parent = nullptr);
+    ~ProjectAutosave() override;  // saves a pending change
+
+    void setProjectPath(const QString& path);  // empty = untitled
+    QString projectPath() const { return path_; }
+    void setDelay(int ms);  // default 1000
+    bool isPending() const;
+    // Where an untitled session is kept (in the per-user data folder).
+    static QString recoveryPath();
+
+  public slots:
+    bool saveNow();  // writes at once if a change is pending; true when nothing failed
+    // Forgets the pending change, e.g. the one a Project::load just caused: the file on disk
+    // already is that state.
+    void discardPending();
+
+  signals:
+    void saved(const QString& path);
+    void failed(const QString& message);
+
+  private:
+    QPointer<Document> document_;
+    QString path_;
+    QTimer* timer_;
+    bool pending_ = false;
+};
+
+// Recently opened projects and files, newest first, kept in QSettings ("recentFiles").
+namespace RecentFiles {
+QStringList list();
+void add(const QString& path);  // moves it to the front; keeps at most 10; drops missing files
+void remove(const QString& path);
+void clear();
+}  // namespace RecentFiles
+
+}  // namespace boneless::ui

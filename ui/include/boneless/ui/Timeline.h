@@ -1,0 +1,82 @@
+#pragma once
+
+#include <QObject>
+#include <functional>
+
+class QTimer;
+
+namespace boneless::ui {
+
+// The playhead: frame, play/pause, step, loop and speed, without any widget. Realtime speeds
+// place the playhead by the wall clock (frame = start + elapsed × rate × speed), so playback skips
+// frames rather than falling behind when frames take longer to show than they last. EveryFrame
+// advances one frame per tick, and only once the current frame was shown (frameShown()).
+class Timeline : public QObject {
+    Q_OBJECT
+  public:
+    enum class Speed { Realtime, Half, Quarter, EveryFrame };
+    Q_ENUM(Speed)
+
+    explicit Timeline(QObject* parent = nullptr);
+
+    void setFrameCount(int frames);  // keeps the frame in range; 0 = nothing to play
+    int frameCount() const { return frameCount_; }
+    void setRate(double framesPerSecond);  // the take's rate; <= 0 is treated as 30
+    double rate() const { return rate_; }
+
+    int frame() const { return frame_; }
+    bool isPlaying() const { return playing_; }
+    bool loops() const { return loop_; }
+    Speed speed() const { return speed_; }
+    static double speedFactor(Speed speed);  // 1, 0.5, 0.25; 0 for EveryFrame
+
+    // Milliseconds since an arbitrary origin; replaceable so that tests drive time themselves.
+    void setClock(std::function<qint64()> clock);
+    // The playback timer's period (ms); 0 stops the internal timer, so only tick() advances.
+    void setTickInterval(int ms);
+
+  public slots:
+    // Moves the playhead (clamped) without touching playback.
+    void setFrame(int frame);
+    // What the user does: scrubbing, stepping and first/last also stop playback.
+    void scrubTo(int frame);
+    void play();
+    void pause();
+    void togglePlay();
+    void stepForward(int frames = 1);
+    void stepBackward(int frames = 1);
+    void goToFirst();
+    void goToLast();
+    void setLoop(bool loop);
+    void setSpeed(boneless::ui::Timeline::Speed speed);
+    // The view reports the frame it has displayed; EveryFrame playback waits for it.
+    void frameShown(int frame);
+    // One playback step (the timer calls it; tests may too).
+    void tick();
+
+  signals:
+    void frameChanged(int frame);
+    void playingChanged(bool playing);
+    void loopChanged(bool loop);
+    void speedChanged(boneless::ui::Timeline::Speed speed);
+    void frameCountChanged(int frames);
+
+  private:
+    void restartClock();
+    void changeFrame(int frame);
+    int lastFrame() const { return frameCount_ > 0 ? frameCount_ - 1 : 0; }
+
+    int frameCount_ = 0;
+    double rate_ = 30.0;
+    int frame_ = 0;
+    bool playing_ = false;
+    bool loop_ = true;
+    Speed speed_ = Speed::Realtime;
+    int shownFrame_ = -1;
+    std::function<qint64()> clock_;
+    qint64 startMs_ = 0;  // clock at startFrame_
+    int startFrame_ = 0;
+    QTimer* timer_;
+};
+
+}  // namespace boneless::ui

@@ -1,0 +1,40 @@
+#pragma once
+
+#include <QWidget>
+
+class QSlider;
+class QSpinBox;
+class QToolButton;
+class QComboBox;
+class QLabel;
+
+namespace boneless::ui {
+
+class Timeline;
+
+// Slider, frame number, first/previous/play/next/last, loop and speed for a Timeline. Dragging
+// the slider or typing a frame scrubs (and so stops playback). Keyboard shortcuts belong to the
+// window, which calls the Timeline's slots.
+class TimelineWidget : public QWidget {
+    Q_OBJECT
+  public:
+    explicit TimelineWidget(Timeline* timeline, QWidget* parent = nullptr);
+
+    QSlider* slider() const { return slider_; }
+    QSpinBox* frameBox() const { return frameBox_; }
+    QToolButton* playButton() const { return play_; }
+    QComboBox* speedBox() const { return speed_; }
+
+  private:
+    void syncFrame(int frame);
+    void syncRange(int frames);
+
+    Timeline* timeline_;
+    QSlider* slider_;
+    QSpinBox* frameBox_;
+    QLabel* countLabel_;
+    QToolButton *first_, *previous_, *play_, *next_, *last_, *loop_;
+    QComboBox* speed_;
+};
+
+}  // namespace boneless::ui

@@ -1,0 +1,44 @@
+#include "boneless/ui/DemoProject.h"
+
+#include <QDir>
+#include <QFileInfo>
+#include <QStandardPaths>
+
+#include "boneless/DemoFiles.h"
+#include "boneless/ui/Document.h"
+#include "boneless/ui/Project.h"
+
+namespace boneless::ui::DemoProject {
+
+QString defaultFolder() {
+    return QStandardPaths::writableLocation(QStandardPaths::AppDataLocation) + "/demo";
+}
+
+QString ensure(const QString& folder, QString* error) {
+    const QDir dir(folder.isEmpty() ? defaultFolder() : folder);
+    const QString project = dir.absoluteFilePath("demo.boneless");
+    const QString mesh = dir.absoluteFilePath("creature.obj");
+    const QString take = dir.absoluteFilePath("creature.c3d");
+    const QString map = dir.absoluteFilePath("creature.map.json");
+    // An existing demo project is the user's own session by now (autosaved edits): keep it.
+    if (QFileInfo::exists(project) && QFileInfo::exists(mesh) && QFileInfo::exists(take) &&
+        QFileInfo::exists(map))
+        return project;
+
+    try {
+        // No true motion: the application has no use for it, and it is the bulk of the files.
+        writeDemoFiles(dir.absolutePath().toStdString(), 60, 10.0, /*withTruth=*/false);
+    } catch (const std::exception& e) {
+        if (error) *error = QString::fromStdString(e.what());
+        return {};
+    }
+    Document document;
+    if (!document.loadMesh(mesh) || !document.loadTake(take) || !document.loadCorrespondence(map)) {
+        if (error) *error = document.lastError();
+        return {};
+    }
+    if (!Project::save(document, project, error)) return {};
+    return project;
+}
+
+}  // namespace boneless::ui::DemoProject

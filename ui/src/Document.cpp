@@ -1,0 +1,335 @@
+#include "boneless/ui/Document.h"
+
+#include <QFileInfo>
+#include <QUndoStack>
+#include <cmath>
+#include <limits>
+#include <nlohmann/json.hpp>
+
+#include "MapEditCommand.h"
+#include "boneless/C3dReader.h"
+#include "boneless/Error.h"
+#include "boneless/MeshReader.h"
+
+namespace boneless::ui {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::string std8(const QString& s) {
+    return s.toStdString();
+}
+
+}  // namespace
+
+Document::Document(QObject* parent) : QObject(parent), undoStack_(new QUndoStack(this)) {
+    map_ = emptyMap();
+}
+
+Document::~Document() = default;
+
+bool Document::fail(const QString& message) {
+    lastError_ = message;
+    emit errorOccurred(message);
+    return false;
+}
+
+Correspondence Document::emptyMap() const {
+    Correspondence map;
+    if (hasMesh_) {
+        map.meshFile = std8(QFileInfo(meshPath_).fileName());
+        map.meshVertices = mesh_.vertexCount();
+    }
+    return map;
+}
+
+bool Document::readMeshFile(const QString& path, const QString& group, State& state,
+                            QString* error) {
+    try {
+        MeshReadOptions options;
+        options.group = std8(group);
+        MeshReadResult read = readMesh(std8(path), options);
+        state.mesh = std::move(read.mesh);
+        state.meshWarnings.clear();
+        for (const auto& w : read.warnings) state.meshWarnings << QString::fromStdString(w);
+    } catch (const std::exception& e) {
+        if (error) *error = QString::fromStdString(e.what());
+        return false;
+    }
+    state.hasMesh = true;
+    state.meshPath = path;
+    state.meshGroup = group;
+    return true;
+}
+
+bool Document::readTakeFile(const QString& path, State& state, QString* error) {
+    try {
+        state.take = readC3d(std8(path));
+    } catch (const std::exception& e) {
+        if (error) *error = QString::fromStdString(e.what());
+        return false;
+    }
+    if (state.take.frameCount() == 0) {
+        if (error) *error = path + ": the take has no frames";
+        return false;
+    }
+    state.hasTake = true;
+    state.takePath = path;
+    return true;
+}
+
+bool Document::loadMesh(const QString& path, const QString& group) {
+    State s;
+    QString error;
+    if (!readMeshFile(path, group, s, &error)) return fail(error);
+    hasMesh_ = true;
+    mesh_ = std::move(s.mesh);
+    meshPath_ = path;
+    meshGroup_ = group;
+    meshWarnings_ = s.meshWarnings;
+    // A map made for another mesh means nothing on this one.
+    try {
+        map_.checkMesh(mesh_.vertexCount(), std8(path));
+    } catch (const Error&) {
+        meshWarnings_
+            << tr("The marker map (%1 markers) was made for another mesh and was cleared.")
+                   .arg(map_.markers.size());
+        map_ = emptyMap();
+        mapPath_.clear();
+        savedMapJson_.clear();
+    }
+    if (map_.markers.empty()) map_ = emptyMap();
+    alignment_.reset();
+    undoStack_->clear();
+    rebuildMarkers();
+    emit meshChanged();
+    emit correspondenceChanged();
+    emit alignmentChanged();
+    emit changed();
+    return true;
+}
+
+bool Document::loadTake(const QString& path) {
+    State s;
+    QString error;
+    if (!readTakeFile(path, s, &error)) return fail(error);
+    hasTake_ = true;
+    take_ = std::move(s.take);
+    takePath_ = path;
+    alignment_.reset();
+    undoStack_->clear();
+    selected_ = -1;
+    rebuildMarkers();
+    emit takeChanged();
+    emit correspondenceChanged();
+    emit alignmentChanged();
+    emit selectionChanged(-1);
+    emit changed();
+    return true;
+}
+
+bool Document::loadCorrespondence(const QString& path) {
+    MapState after = mapState();
+    try {
+        after.map = Correspondence::read(std8(path));
+        if (hasMesh_) after.map.checkMesh(mesh_.vertexCount(), std8(meshPath_));
+    } catch (const std::exception& e) {
+        return fail(QString::fromStdString(e.what()));
+    }
+    after.mapPath = path;
+    savedMapJson_ = after.map.toJson();
+    pushMapEdit(tr("Load correspondence"), std::move(after));
+    return true;
+}
+
+bool Document::saveCorrespondence(const QString& path) {
+    Correspondence map = map_;
+    if (hasMesh_) {
+        map.meshFile = std8(QFileInfo(meshPath_).fileName());
+        map.meshVertices = mesh_.vertexCount();
+    }
+    try {
+        map.write(std8(path));
+    } catch (const std::exception& e) {
+        return fail(QString::fromStdString(e.what()));
+    }
+    map_ = map;
+    mapPath_ = path;
+    savedMapJson_ = map_.toJson();
+    emit correspondenceChanged();
+    emit changed();
+    return true;
+}
+
+void Document::reset() {
+    hasMesh_ = hasTake_ = false;
+    mesh_ = TriMesh();
+    take_ = C3dTake();
+    meshPath_.clear();
+    meshGroup_.clear();
+    meshWarnings_.clear();
+    takePath_.clear();
+    map_ = emptyMap();
+    mapPath_.clear();
+    savedMapJson_.clear();
+    alignment_.reset();
+    autoAlignment_.reset();
+    settings_ = TakeSolveOptions();
+    viewSettings_.clear();
+    selected_ = -1;
+    undoStack_->clear();
+    rebuildMarkers();
+    emit meshChanged();
+    emit takeChanged();
+    emit correspondenceChanged();
+    emit alignmentChanged();
+    emit settingsChanged();
+    emit viewSettingsChanged();
+    emit selectionChanged(-1);
+    emit changed();
+}
+
+bool Document::restoreState(State state) {
+    if (state.hasMesh) {
+        try {
+            state.map.checkMesh(state.mesh.vertexCount(), std8(state.meshPath));
+        } catch (const std::exception& e) {
+            return fail(QString::fromStdString(e.what()));
+        }
+    }
+    hasMesh_ = state.hasMesh;
+    mesh_ = std::move(state.mesh);
+    meshPath_ = state.meshPath;
+    meshGroup_ = state.meshGroup;
+    meshWarnings_ = state.meshWarnings;
+    hasTake_ = state.hasTake;
+    take_ = std::move(state.take);
+    takePath_ = state.takePath;
+    map_ = std::move(state.map);
+    if (map_.markers.empty()) map_ = emptyMap();
+    mapPath_ = state.mapPath;
+    savedMapJson_.clear();
+    if (!mapPath_.isEmpty() && QFileInfo::exists(mapPath_)) {
+        try {
+            savedMapJson_ = Correspondence::read(std8(mapPath_)).toJson();
+        } catch (const std::exception&) {
+            // An unreadable file just means the project's map counts as unsaved.
+        }
+    }
+    alignment_ = state.alignment;
+    settings_ = state.settings;
+    settings_.alignment.reset();
+    viewSettings_ = state.viewSettings;
+    selected_ = -1;
+    undoStack_->clear();
+    rebuildMarkers();
+    emit meshChanged();
+    emit takeChanged();
+    emit correspondenceChanged();
+    emit alignmentChanged();
+    emit settingsChanged();
+    emit viewSettingsChanged();
+    emit selectionChanged(-1);
+    emit changed();
+    return true;
+}
+
+int Document::frameCount() const {
+    return hasTake_ ? static_cast<int>(take_.frameCount()) : 0;
+}
+
+double Document::frameRate() const {
+    return hasTake_ ? take_.rate : 0.0;
+}
+
+void Document::rebuildMarkers() {
+    autoAlignment_.reset();
+    markers_.clear();
+    if (hasTake_) {
+        for (std::size_t p : take_.markerIndices())
+            markers_.push_back({QString::fromStdString(take_.points[p].label), int(p), -1});
+    }
+    for (int i = 0; i < static_cast<int>(map_.markers.size()); ++i) {
+        const MarkerMapping& m = map_.markers[i];
+        if (!hasTake_) {
+            markers_.push_back({QString::fromStdString(m.label), -1, i});
+            continue;
+        }
+        const auto point = take_.findPoint(m.label);
+        if (!point) continue;
+        for (auto& row : markers_)
+            if (row.point == int(*point)) row.mapping = i;
+    }
+    markerOfVertex_.assign(hasMesh_ ? mesh_.vertexCount() : 0, -1);
+    for (int r = 0; r < markerCount(); ++r) {
+        const int v = mappedVertex(r);
+        if (v >= 0 && v < int(markerOfVertex_.size())) markerOfVertex_[v] = r;
+    }
+    if (selected_ >= markerCount()) selected_ = -1;
+}
+
+QString Document::markerLabel(int marker) const {
+    return marker >= 0 && marker < markerCount() ? markers_[marker].label : QString();
+}
+
+int Document::markerPoint(int marker) const {
+    return marker >= 0 && marker < markerCount() ? markers_[marker].point : -1;
+}
+
+int Document::mappedVertex(int marker) const {
+    if (marker < 0 || marker >= markerCount() || markers_[marker].mapping < 0) return -1;
+    return map_.markers[markers_[marker].mapping].vertex;
+}
+
+double Document::markerOffsetMm(int marker) const {
+    if (marker < 0 || marker >= markerCount() || markers_[marker].mapping < 0) return 0.0;
+    return map_.markers[markers_[marker].mapping].offsetMm;
+}
+
+bool Document::markerSuggested(int marker) const {
+    if (marker < 0 || marker >= markerCount() || markers_[marker].mapping < 0) return false;
+    const auto extra =
+        nlohmann::json::parse(map_.markers[markers_[marker].mapping].extraJson, nullptr, false);
+    return extra.is_object() && extra.value("suggested", false) == true;
+}
+
+int Document::markerForVertex(int vertex) const {
+    return vertex >= 0 && vertex < int(markerOfVertex_.size()) ? markerOfVertex_[vertex] : -1;
+}
+
+int Document::markerByLabel(const QString& label) const {
+    for (int r = 0; r < markerCount(); ++r)
+        if (markers_[r].label.compare(label, Qt::CaseInsensitive) == 0) return r;
+    if (hasTake_) {  // "LFHD" for "actor:LFHD"
+        const auto point = take_.findPoint(std8(label));
+        for (int r = 0; point && r < markerCount(); ++r)
+            if (markers_[r].point == int(*point)) return r;
+    }
+    return -1;
+}
+
+bool Document::markerVisible(int marker, int frame) const {
+    const int p = markerPoint(marker);
+    if (p < 0 || frame < 0 || frame >= frameCount()) return false;
+    return take_.samples.valid(frame, p);
+}
+
+int Document::mappedCount() const {
+    int n = 0;
+    for (const auto& m : markers_) n += m.mapping >= 0;
+    return n;
+}
+
+Positions Document::markerPositions(int frame) const {
+    if (!hasTake_) return Positions();
+    Positions P = Positions::Constant(markerCount(), 3, kNaN);
+    if (frame < 0 || frame >= frameCount()) return P;
+    const Similarity s = displayAlignment().takeToMesh;
+    for (int r = 0; r < markerCount(); ++r)
+        if (const auto x = take_.samples.position(frame, markers_[r].point))
+            P.row(r) = s.apply(*x).transpose();
+    return P;
+}
+
+}  // namespace boneless::ui

@@ -1,0 +1,271 @@
+// Document: the undoable edits of the map and alignment, settings, and what solving needs.
+#include <QFileInfo>
+#include <QUndoStack>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "MapEditCommand.h"
+#include "boneless/Error.h"
+#include "boneless/MarkerSuggestion.h"
+#include "boneless/ui/Document.h"
+
+namespace boneless::ui {
+
+namespace {
+
+std::string withoutSuggested(const std::string& extraJson) {
+    nlohmann::json extra =
+        nlohmann::json::parse(extraJson.empty() ? "{}" : extraJson, nullptr, false);
+    if (!extra.is_object()) return "{}";
+    extra.erase("suggested");
+    return extra.dump();
+}
+
+}  // namespace
+
+Document::MapState Document::mapState() const {
+    return {map_, mapPath_, alignment_};
+}
+
+void Document::applyMapState(const MapState& state) {
+    const bool alignmentChangedToo =
+        alignment_.has_value() != state.alignment.has_value() ||
+        (alignment_ && state.alignment &&
+         (alignment_->takeToMesh.R != state.alignment->takeToMesh.R ||
+          alignment_->takeToMesh.t != state.alignment->takeToMesh.t ||
+          alignment_->takeToMesh.scale != state.alignment->takeToMesh.scale));
+    map_ = state.map;
+    mapPath_ = state.mapPath;
+    alignment_ = state.alignment;
+    rebuildMarkers();
+    emit correspondenceChanged();
+    if (alignmentChangedToo) emit alignmentChanged();
+    emit changed();
+}
+
+void Document::pushMapEdit(const QString& text, MapState after) {
+    if (hasMesh_) {
+        after.map.meshVertices = mesh_.vertexCount();
+        if (after.map.meshFile.empty())
+            after.map.meshFile = QFileInfo(meshPath_).fileName().toStdString();
+    }
+    undoStack_->push(new MapEditCommand(this, text, mapState(), std::move(after)));
+}
+
+bool Document::assign(int marker, int vertex) {
+    if (!hasMesh_) return fail(tr("Load a mesh before mapping markers."));
+    if (marker < 0 || marker >= markerCount()) return fail(tr("No marker is selected."));
+    if (vertex < 0 || vertex >= mesh_.vertexCount())
+        return fail(
+            tr("Vertex %1 is not on the mesh (%2 vertices).").arg(vertex).arg(mesh_.vertexCount()));
+    const int other = markerForVertex(vertex);
+    if (other == marker) return true;
+    if (other >= 0)
+        return fail(tr("Vertex %1 already carries marker %2; clear that marker first.")
+                        .arg(vertex)
+                        .arg(markerLabel(other)));
+    MapState after = mapState();
+    const int mapping = markers_[marker].mapping;
+    if (mapping >= 0) {
+        after.map.markers[mapping].vertex = vertex;
+        after.map.markers[mapping].extraJson =
+            withoutSuggested(after.map.markers[mapping].extraJson);
+    } else {
+        MarkerMapping m;
+        // The bare name ("LFHD" of "actor:LFHD") keeps the map usable for other actors' takes,
+        // as long as it still names this point.
+        m.label = markers_[marker].label.toStdString();
+        if (hasTake_) {
+            const C3dPoint& point = take_.points[markers_[marker].point];
+            if (take_.findPoint(point.name) == std::size_t(markers_[marker].point))
+                m.label = point.name;
+        }
+        m.vertex = vertex;
+        m.extraJson = "{}";
+        after.map.markers.push_back(std::move(m));
+    }
+    pushMapEdit(tr("Map %1 to vertex %2").arg(markerLabel(marker)).arg(vertex), std::move(after));
+    return true;
+}
+
+bool Document::clearMapping(int marker) {
+    if (marker < 0 || marker >= markerCount()) return fail(tr("No marker is selected."));
+    const int mapping = markers_[marker].mapping;
+    if (mapping < 0) return true;
+    MapState after = mapState();
+    after.map.markers.erase(after.map.markers.begin() + mapping);
+    pushMapEdit(tr("Clear %1").arg(markerLabel(marker)), std::move(after));
+    return true;
+}
+
+bool Document::clearAllMappings() {
+    if (map_.markers.empty()) return true;
+    MapState after = mapState();
+    after.map.markers.clear();
+    pushMapEdit(tr("Clear all markers"), std::move(after));
+    return true;
+}
+
+bool Document::suggestMappings() {
+    if (!hasMesh_ || !hasTake_) return fail(tr("Suggesting needs a mesh and a take."));
+    MapState after = mapState();
+    int suggested = 0;
+    try {
+        Suggestion s = boneless::suggestMappings(mesh_, take_, map_);
+        after.map = std::move(s.map);
+        suggested = s.suggested;
+    } catch (const std::exception& e) {
+        return fail(QString::fromStdString(e.what()));
+    }
+    if (suggested == 0) return true;
+    pushMapEdit(tr("Suggest %n marker(s)", nullptr, suggested), std::move(after));
+    return true;
+}
+
+bool Document::align(int calibrationFrame) {
+    QString why;
+    if (!canSolve(&why)) return fail(why);
+    MapState after = mapState();
+    try {
+        // The solver's own calibration also corrects for the markers' offsets off the skin, so
+        // a fixed alignment is exactly what an automatic solve would have used.
+        TakeSolveOptions options = settings_;
+        options.alignment.reset();
+        options.calibrationFrame = calibrationFrame;
+        TakeSolver solver(mesh_, take_, map_, options);
+        after.alignment = solver.calibration();
+    } catch (const std::exception& e) {
+        return fail(QString::fromStdString(e.what()));
+    }
+    pushMapEdit(tr("Align take"), std::move(after));
+    return true;
+}
+
+bool Document::clearAlignment() {
+    if (!alignment_) return true;
+    MapState after = mapState();
+    after.alignment.reset();
+    pushMapEdit(tr("Clear alignment"), std::move(after));
+    return true;
+}
+
+Calibration Document::displayAlignment() const {
+    if (alignment_) return *alignment_;
+    if (autoAlignment_) return *autoAlignment_;
+    Calibration c;
+    if (!hasTake_ || !hasMesh_) return c;
+    std::vector<std::size_t> points;
+    Positions rest(0, 3);
+    for (const auto& m : markers_) {
+        if (m.mapping < 0) continue;
+        points.push_back(m.point);
+        rest.conservativeResize(rest.rows() + 1, 3);
+        rest.row(rest.rows() - 1) = mesh_.V.row(map_.markers[m.mapping].vertex);
+    }
+    bool found = false;
+    if (points.size() >= 3) {
+        try {
+            c = calibrate(take_, points, rest);
+            found = true;
+        } catch (const std::exception&) {
+            // Collinear or hidden markers: fall back to the rough placement below.
+        }
+    }
+    if (!found) {
+        // Scale and centre the take's extent onto the mesh's, without rotation: enough to see
+        // the markers next to the mesh before anything is mapped.
+        Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
+        for (std::size_t f = 0; f < take_.frameCount(); ++f)
+            for (const auto& m : markers_)
+                if (const auto x = take_.samples.position(f, m.point)) {
+                    lo = lo.cwiseMin(*x);
+                    hi = hi.cwiseMax(*x);
+                }
+        if (lo.x() <= hi.x() && mesh_.vertexCount() > 0) {
+            const Eigen::Vector3d mlo = mesh_.V.colwise().minCoeff().transpose();
+            const Eigen::Vector3d mhi = mesh_.V.colwise().maxCoeff().transpose();
+            const double takeDiag = (hi - lo).norm();
+            c.takeToMesh.scale = takeDiag > 0 ? (mhi - mlo).norm() / takeDiag : 1.0;
+            c.takeToMesh.t = 0.5 * (mlo + mhi) - c.takeToMesh.scale * 0.5 * (lo + hi);
+        }
+    }
+    autoAlignment_ = c;
+    return c;
+}
+
+void Document::setSettings(const TakeSolveOptions& settings) {
+    settings_ = settings;
+    settings_.alignment.reset();
+    emit settingsChanged();
+    emit changed();
+}
+
+TakeSolveOptions Document::solveOptions() const {
+    TakeSolveOptions options = settings_;
+    options.alignment.reset();
+    if (alignment_) {
+        options.alignment = alignment_->takeToMesh;
+        options.calibrationFrame = alignment_->frame;
+    }
+    return options;
+}
+
+void Document::setViewSetting(const QString& key, const QVariant& value) {
+    if (viewSettings_.value(key) == value) return;
+    viewSettings_.insert(key, value);
+    emit viewSettingsChanged();
+    emit changed();
+}
+
+void Document::setViewSettings(const QVariantMap& settings) {
+    viewSettings_ = settings;
+    emit viewSettingsChanged();
+    emit changed();
+}
+
+void Document::setSelectedMarker(int marker) {
+    if (marker < -1 || marker >= markerCount()) marker = -1;
+    if (marker == selected_) return;
+    selected_ = marker;
+    emit selectionChanged(marker);
+}
+
+bool Document::canSolve(QString* why) const {
+    auto no = [&](const QString& reason) {
+        if (why) *why = reason;
+        return false;
+    };
+    if (!hasMesh_) return no(tr("No mesh is loaded."));
+    if (!hasTake_) return no(tr("No take is loaded."));
+    QStringList unknown;
+    int resolved = 0;
+    for (const auto& m : map_.markers) {
+        if (take_.findPoint(m.label))
+            ++resolved;
+        else
+            unknown << QString::fromStdString(m.label);
+    }
+    if (!unknown.isEmpty())
+        return no(tr("The map names markers the take does not have: %1.").arg(unknown.join(", ")));
+    if (resolved < 3) return no(tr("Map at least 3 markers to solve (%1 mapped).").arg(resolved));
+    return true;
+}
+
+bool Document::correspondenceModified() const {
+    return mapPath_.isEmpty() || map_.toJson() != savedMapJson_;
+}
+
+ExportRequest Document::exportRequest(const QString& outDir, ExportRequest::Format format,
+                                      const QString& mapLabel) const {
+    ExportRequest r;
+    r.meshPath = meshPath_.toStdString();
+    r.group = meshGroup_.toStdString();
+    r.c3dPath = takePath_.toStdString();
+    r.mapPath = (correspondenceModified() ? mapLabel : mapPath_).toStdString();
+    r.outDir = outDir.toStdString();
+    r.format = format;
+    r.options = solveOptions();
+    return r;
+}
+
+}  // namespace boneless::ui

@@ -1,0 +1,142 @@
+#include "boneless/ui/ExportRunner.h"
+
+#include <QEventLoop>
+#include <QFuture>
+#include <QMetaObject>
+#include <QTimer>
+#include <QtConcurrent/QtConcurrentRun>
+
+#include "boneless/ui/Document.h"
+
+namespace boneless::ui {
+
+struct ExportRunner::Job {
+    std::atomic<bool> cancel{false};
+    TriMesh mesh;
+    C3dTake take;
+    Correspondence map;
+    ExportRequest request;
+    ExportResult result;
+    QString error;
+    QFuture<void> future;
+};
+
+ExportRunner::ExportRunner(QWidget* dialogParent, QObject* parent)
+    : QObject(parent), dialogParent_(dialogParent) {}
+
+ExportRunner::~ExportRunner() {
+    if (job_) {
+        job_->cancel = true;
+        // The job posts back to this object, so it must end before this object does.
+        job_->future.waitForFinished();
+    }
+    delete dialog_.data();
+}
+
+bool ExportRunner::start(const Document& document, const ExportRequest& request, QString* error) {
+    QString why;
+    if (running_)
+        why = tr("An export is already running.");
+    else if (!document.canSolve(&why))
+        why = tr("Cannot export: %1").arg(why);
+    if (!why.isEmpty()) {
+        if (error) *error = why;
+        return false;
+    }
+    auto job = std::make_shared<Job>();
+    job->mesh = document.mesh();
+    job->take = document.take();
+    job->map = document.correspondence();
+    job->request = request;
+    job_ = job;
+    running_ = true;
+    error_.clear();
+    result_ = ExportResult();
+
+    if (dialogParent_) {
+        const int count = document.frameCount();
+        const int end = request.end < 0 ? count : std::min(request.end, count);
+        auto* dialog = new QProgressDialog(tr("Solving and writing frames…"), tr("Cancel"), 0,
+                                           std::max(1, end - request.first), dialogParent_);
+        dialog->setWindowTitle(tr("Export"));
+        dialog->setWindowModality(Qt::WindowModal);
+        dialog->setMinimumDuration(0);
+        dialog->setAutoClose(false);
+        dialog->setAutoReset(false);
+        dialog->setValue(0);
+        connect(dialog, &QProgressDialog::canceled, this, &ExportRunner::cancel);
+        dialog_ = dialog;
+    }
+
+    QPointer<ExportRunner> self(this);
+    job->future = QtConcurrent::run([job, self] {
+        try {
+            job->result = exportTake(job->mesh, job->take, job->map, job->request,
+                                     [job, self](int done, int total, const FrameReport& last) {
+                                         const double residual = last.residualRmsMm;
+                                         QMetaObject::invokeMethod(
+                                             self.data(), [self, done, total, residual] {
+                                                 if (self) self->onProgress(done, total, residual);
+                                             });
+                                         return !job->cancel.load();
+                                     });
+        } catch (const std::exception& e) {
+            job->error = QString::fromStdString(e.what());
+        }
+        QMetaObject::invokeMethod(self.data(), [self] {
+            if (self) self->onFinished();
+        });
+    });
+    return true;
+}
+
+void ExportRunner::cancel() {
+    if (job_) job_->cancel = true;
+    if (dialog_) dialog_->setLabelText(tr("Stopping after the current frame…"));
+}
+
+void ExportRunner::onProgress(int done, int total, double residualRmsMm) {
+    if (dialog_) {
+        dialog_->setMaximum(total);
+        dialog_->setValue(done);
+        if (!job_ || !job_->cancel)
+            dialog_->setLabelText(tr("Frame %1 of %2 (residual %3 mm)")
+                                      .arg(done)
+                                      .arg(total)
+                                      .arg(residualRmsMm, 0, 'f', 1));
+    }
+    emit progress(done, total, residualRmsMm);
+}
+
+void ExportRunner::onFinished() {
+    const auto job = job_;
+    job->future.waitForFinished();
+    result_ = job->result;
+    error_ = job->error;
+    running_ = false;
+    job_.reset();
+    if (dialog_) dialog_->deleteLater();
+    QString message;
+    if (!error_.isEmpty())
+        message = error_;
+    else if (result_.cancelled)
+        message = tr("Export stopped after %1 frames; the files written and %2 are complete.")
+                      .arg(result_.framesWritten)
+                      .arg(QString::fromStdString(result_.sidecarPath));
+    else
+        message = tr("Exported %1 frames to %2.")
+                      .arg(result_.framesWritten)
+                      .arg(QString::fromStdString(job->request.outDir));
+    emit finished(error_.isEmpty(), message);
+}
+
+bool ExportRunner::wait(int timeoutMs) {
+    if (!running_) return true;
+    QEventLoop loop;
+    connect(this, &ExportRunner::finished, &loop, &QEventLoop::quit);
+    if (timeoutMs >= 0) QTimer::singleShot(timeoutMs, &loop, &QEventLoop::quit);
+    loop.exec();
+    return !running_;
+}
+
+}  // namespace boneless::ui

@@ -1,0 +1,371 @@
+#include "boneless/ui/FrameSolver.h"
+
+#include <QMetaObject>
+#include <QSettings>
+#include <QTimer>
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <limits>
+#include <list>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <unordered_map>
+
+#include "boneless/MeshTopology.h"
+#include "boneless/ShapeEncoding.h"
+#include "boneless/ui/Document.h"
+
+namespace boneless::ui {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// What a generation solves: copies, so that the document may change while the worker runs.
+struct Problem {
+    TriMesh mesh;
+    C3dTake take;
+    Correspondence map;
+    TakeSolveOptions options;
+    std::vector<int> rowPoint;    // Document marker row -> take point
+    std::vector<int> rowMapping;  // Document marker row -> map entry, -1
+};
+
+}  // namespace
+
+std::size_t FrameResult::bytes() const {
+    return sizeof(FrameResult) +
+           sizeof(double) * (V.size() + markers.size() + residualMm.size() + shapeError.size());
+}
+
+struct FrameSolver::Shared {
+    std::mutex mutex;
+    std::condition_variable wake;
+    bool stop = false;
+    quint64 generation = 0;
+    std::shared_ptr<const Problem> problem;
+    std::optional<int> pending;
+    bool solving = false;
+    bool shapeError = false;
+
+    // Least recently used at the back.
+    std::list<int> order;
+    std::unordered_map<int, std::pair<std::shared_ptr<const FrameResult>, std::list<int>::iterator>>
+        cache;
+    std::size_t bytes = 0, limit = 0;
+
+    std::thread worker;
+
+    void clearCache() {
+        order.clear();
+        cache.clear();
+        bytes = 0;
+    }
+    void insert(std::shared_ptr<const FrameResult> r) {
+        if (auto it = cache.find(r->frame); it != cache.end()) {
+            bytes -= it->second.first->bytes();
+            order.erase(it->second.second);
+            cache.erase(it);
+        }
+        const int frame = r->frame;
+        order.push_front(frame);
+        bytes += r->bytes();
+        cache[frame] = {std::move(r), order.begin()};
+        // Always keep the newest frame, even when it alone is over the cap.
+        while (bytes > limit && order.size() > 1) {
+            auto victim = cache.find(order.back());
+            bytes -= victim->second.first->bytes();
+            cache.erase(victim);
+            order.pop_back();
+        }
+    }
+    std::shared_ptr<const FrameResult> lookup(int frame) {
+        auto it = cache.find(frame);
+        if (it == cache.end()) return nullptr;
+        order.splice(order.begin(), order, it->second.second);
+        return it->second.first;
+    }
+};
+
+namespace {
+
+std::shared_ptr<FrameResult> solveOne(TakeSolver& solver, const Problem& p, int frame,
+                                      const ShapeEncoding* encoding) {
+    auto r = std::make_shared<FrameResult>();
+    r->frame = frame;
+    const auto t0 = std::chrono::steady_clock::now();
+    r->V = solver.solve(frame, r->report);
+    r->solveMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    r->calibration = solver.calibration();
+    const Similarity& s = r->calibration.takeToMesh;
+    const double meshUnitsPerMm = s.scale / p.take.unitToMm;
+
+    const int rows = int(p.rowPoint.size());
+    r->markers = Positions::Constant(rows, 3, kNaN);
+    r->residualMm.assign(rows, kNaN);
+    const Positions targets = solver.targets(frame);
+    const Positions predicted = solver.predictedMarkers(r->V);
+    for (int row = 0; row < rows; ++row) {
+        if (const auto x = p.take.samples.position(frame, p.rowPoint[row]))
+            r->markers.row(row) = s.apply(*x).transpose();
+        const int k = p.rowMapping[row];
+        if (k >= 0 && k < targets.rows() && targets.row(k).allFinite())
+            r->residualMm[row] = (predicted.row(k) - targets.row(k)).norm() / meshUnitsPerMm;
+    }
+    if (encoding) {
+        r->shapeError.assign(r->V.rows(), 0.0);
+        for (int v = 0; v < encoding->vertexCount(); ++v)
+            if (encoding->encoded(v))
+                r->shapeError[v] = (r->V.row(v).transpose() - encoding->decode(v, r->V)).norm();
+    }
+    return r;
+}
+
+}  // namespace
+
+FrameSolver::FrameSolver(QObject* parent) : QObject(parent), shared_(std::make_shared<Shared>()) {
+    qRegisterMetaType<boneless::ui::FrameResult>();
+    shared_->limit = defaultCacheLimit();
+    // The worker owns the solver; it only ever touches `shared` and posts results back here.
+    shared_->worker = std::thread([sh = shared_.get(), self = this] {
+        std::unique_ptr<TakeSolver> solver;
+        std::unique_ptr<MeshTopology> topology;
+        std::unique_ptr<ShapeEncoding> encoding;
+        quint64 solverGeneration = 0, failedGeneration = 0;
+        for (;;) {
+            std::unique_lock lock(sh->mutex);
+            sh->wake.wait(lock, [&] { return sh->stop || (sh->pending && sh->problem); });
+            if (sh->stop) return;
+            const int frame = *sh->pending;
+            sh->pending.reset();
+            const quint64 generation = sh->generation;
+            const auto problem = sh->problem;
+            const bool wantShapeError = sh->shapeError;
+            if (generation == failedGeneration) continue;
+            if (auto hit = sh->lookup(frame)) {
+                auto copy = std::make_shared<FrameResult>(*hit);
+                copy->fromCache = true;
+                copy->solveMs = 0;
+                QMetaObject::invokeMethod(self, [self, copy] { self->deliver(copy); });
+                continue;
+            }
+            sh->solving = true;
+            lock.unlock();
+
+            std::shared_ptr<FrameResult> result;
+            QString error;
+            try {
+                if (solverGeneration != generation) {
+                    solver.reset();
+                    encoding.reset();
+                    topology.reset();
+                    solver = std::make_unique<TakeSolver>(problem->mesh, problem->take,
+                                                          problem->map, problem->options);
+                    solverGeneration = generation;
+                }
+                if (wantShapeError && !encoding) {
+                    topology = std::make_unique<MeshTopology>(problem->mesh);
+                    encoding = std::make_unique<ShapeEncoding>(problem->mesh, *topology);
+                }
+                result =
+                    solveOne(*solver, *problem, frame, wantShapeError ? encoding.get() : nullptr);
+                result->generation = generation;
+            } catch (const std::exception& e) {
+                error = QString::fromStdString(e.what());
+                solver.reset();
+                solverGeneration = 0;
+            }
+
+            lock.lock();
+            sh->solving = false;
+            if (!result) {
+                failedGeneration = generation;
+                QMetaObject::invokeMethod(
+                    self, [self, generation, error] { self->deliverFailure(generation, error); });
+                continue;
+            }
+            if (generation == sh->generation) sh->insert(result);
+            QMetaObject::invokeMethod(self, [self, result] { self->deliver(result); });
+        }
+    });
+}
+
+FrameSolver::~FrameSolver() {
+    {
+        std::lock_guard lock(shared_->mutex);
+        shared_->stop = true;
+    }
+    shared_->wake.notify_all();
+    shared_->worker.join();
+}
+
+std::size_t FrameSolver::defaultCacheLimit() {
+    const int mb = QSettings().value("solver/cacheMegabytes", 256).toInt();
+    return std::size_t(std::max(1, mb)) << 20;
+}
+
+bool FrameSolver::setProblem(const Document& document, QString* why) {
+    QString reason;
+    std::shared_ptr<Problem> p;
+    if (document.canSolve(&reason)) {
+        p = std::make_shared<Problem>();
+        p->mesh = document.mesh();
+        p->take = document.take();
+        p->map = document.correspondence();
+        p->options = document.solveOptions();
+        for (int row = 0; row < document.markerCount(); ++row) {
+            p->rowPoint.push_back(document.markerPoint(row));
+            int mapping = -1;
+            for (int k = 0; k < int(p->map.markers.size()) && document.mappedVertex(row) >= 0; ++k)
+                if (p->take.findPoint(p->map.markers[k].label) ==
+                    std::size_t(document.markerPoint(row)))
+                    mapping = k;
+            p->rowMapping.push_back(mapping);
+        }
+    }
+    {
+        std::lock_guard lock(shared_->mutex);
+        ++shared_->generation;
+        shared_->problem = p;
+        shared_->pending.reset();
+        shared_->clearCache();
+    }
+    updateBusy();
+    if (why) *why = reason;
+    return p != nullptr;
+}
+
+void FrameSolver::clearProblem() {
+    std::lock_guard lock(shared_->mutex);
+    ++shared_->generation;
+    shared_->problem.reset();
+    shared_->pending.reset();
+    shared_->clearCache();
+}
+
+bool FrameSolver::hasProblem() const {
+    std::lock_guard lock(shared_->mutex);
+    return shared_->problem != nullptr;
+}
+
+quint64 FrameSolver::generation() const {
+    std::lock_guard lock(shared_->mutex);
+    return shared_->generation;
+}
+
+void FrameSolver::watch(const Document* document) {
+    if (watched_) disconnect(watched_, nullptr, this, nullptr);
+    watched_ = document;
+    if (!document) return;
+    auto refresh = [this] {
+        if (refreshQueued_) return;
+        refreshQueued_ = true;
+        QTimer::singleShot(0, this, [this] {
+            refreshQueued_ = false;
+            if (!watched_) return;
+            QString why;
+            const bool ok = setProblem(*watched_, &why);
+            emit problemChanged(ok, why);
+        });
+    };
+    for (auto signal :
+         {&Document::meshChanged, &Document::takeChanged, &Document::correspondenceChanged,
+          &Document::alignmentChanged, &Document::settingsChanged})
+        connect(document, signal, this, refresh);
+    connect(document, &QObject::destroyed, this, [this] { watched_ = nullptr; });
+    refresh();
+}
+
+void FrameSolver::setCacheLimit(std::size_t bytes) {
+    std::lock_guard lock(shared_->mutex);
+    shared_->limit = bytes;
+    while (shared_->bytes > bytes && !shared_->order.empty()) {
+        auto victim = shared_->cache.find(shared_->order.back());
+        shared_->bytes -= victim->second.first->bytes();
+        shared_->cache.erase(victim);
+        shared_->order.pop_back();
+    }
+}
+
+std::size_t FrameSolver::cacheLimit() const {
+    std::lock_guard lock(shared_->mutex);
+    return shared_->limit;
+}
+
+std::size_t FrameSolver::cacheBytes() const {
+    std::lock_guard lock(shared_->mutex);
+    return shared_->bytes;
+}
+
+int FrameSolver::cachedFrames() const {
+    std::lock_guard lock(shared_->mutex);
+    return int(shared_->cache.size());
+}
+
+bool FrameSolver::isCached(int frame) const {
+    std::lock_guard lock(shared_->mutex);
+    return shared_->cache.count(frame) > 0;
+}
+
+void FrameSolver::setShapeErrorEnabled(bool enabled) {
+    std::lock_guard lock(shared_->mutex);
+    if (shared_->shapeError == enabled) return;
+    shared_->shapeError = enabled;
+    shared_->clearCache();
+}
+
+void FrameSolver::requestFrame(int frame) {
+    {
+        std::lock_guard lock(shared_->mutex);
+        if (!shared_->problem || frame < 0 || frame >= int(shared_->problem->take.frameCount()))
+            return;
+        if (auto hit = shared_->lookup(frame)) {
+            auto copy = std::make_shared<FrameResult>(*hit);
+            copy->fromCache = true;
+            copy->solveMs = 0;
+            QMetaObject::invokeMethod(
+                this, [this, copy] { deliver(copy); }, Qt::QueuedConnection);
+            return;
+        }
+        shared_->pending = frame;  // replaces any older request still waiting
+    }
+    shared_->wake.notify_one();
+    updateBusy();
+}
+
+void FrameSolver::cancelPending() {
+    {
+        std::lock_guard lock(shared_->mutex);
+        shared_->pending.reset();
+    }
+    updateBusy();
+}
+
+bool FrameSolver::isBusy() const {
+    std::lock_guard lock(shared_->mutex);
+    return shared_->pending.has_value() || shared_->solving;
+}
+
+void FrameSolver::updateBusy() {
+    const bool busy = isBusy();
+    if (busy == busy_) return;
+    busy_ = busy;
+    emit busyChanged(busy);
+}
+
+void FrameSolver::deliver(std::shared_ptr<const FrameResult> result) {
+    updateBusy();
+    if (result->generation != generation()) return;  // solved for a problem since replaced
+    emit frameReady(*result);
+}
+
+void FrameSolver::deliverFailure(quint64 generation, const QString& message) {
+    updateBusy();
+    if (generation != this->generation()) return;
+    emit failed(message);
+}
+
+}  // namespace boneless::ui

@@ -1,0 +1,173 @@
+#include "boneless/ui/Project.h"
+
+#include <QDir>
+#include <QFile>
+#include <QFileInfo>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QSaveFile>
+
+#include "boneless/Correspondence.h"
+#include "boneless/ui/Document.h"
+
+namespace boneless::ui::Project {
+
+namespace {
+
+const char* kFormat = "boneless-project";
+constexpr int kVersion = 1;
+
+QString relativeTo(const QDir& dir, const QString& path) {
+    return path.isEmpty() ? QString() : dir.relativeFilePath(QFileInfo(path).absoluteFilePath());
+}
+
+QString resolve(const QDir& dir, const QString& path) {
+    return path.isEmpty() ? QString() : QDir::cleanPath(dir.absoluteFilePath(path));
+}
+
+QJsonObject alignmentJson(const Calibration& c) {
+    const Similarity& s = c.takeToMesh;
+    QJsonArray rotation;
+    for (int r = 0; r < 3; ++r) rotation.append(QJsonArray{s.R(r, 0), s.R(r, 1), s.R(r, 2)});
+    return {{"calibration_frame", c.frame}, {"scale", s.scale},
+            {"rotation", rotation},         {"translation", QJsonArray{s.t.x(), s.t.y(), s.t.z()}},
+            {"residual", c.residual},       {"visible_markers", c.visibleMarkers}};
+}
+
+bool readAlignment(const QJsonObject& o, Calibration& c) {
+    const QJsonArray rotation = o["rotation"].toArray(), t = o["translation"].toArray();
+    if (rotation.size() != 3 || t.size() != 3 || !o["scale"].isDouble()) return false;
+    for (int r = 0; r < 3; ++r) {
+        const QJsonArray row = rotation[r].toArray();
+        if (row.size() != 3) return false;
+        for (int k = 0; k < 3; ++k) c.takeToMesh.R(r, k) = row[k].toDouble();
+    }
+    c.takeToMesh.scale = o["scale"].toDouble();
+    c.takeToMesh.t = Vec3(t[0].toDouble(), t[1].toDouble(), t[2].toDouble());
+    c.frame = o["calibration_frame"].toInt(-1);
+    c.residual = o["residual"].toDouble();
+    c.visibleMarkers = o["visible_markers"].toInt();
+    return true;
+}
+
+QJsonObject settingsJson(const TakeSolveOptions& o) {
+    return {
+        {"marker_weight", o.markerWeight},
+        {"continuation_steps", o.continuationSteps},
+        {"low_pass_hz", o.lowPassHz},
+        {"calibration_frame", o.calibrationFrame},
+        {"rigidity_weight", o.solver.rigidityWeight},
+        {"max_iterations", o.solver.maxIterations},
+        {"method", o.solver.method == SolverOptions::Method::Iterative ? "iterative" : "direct"}};
+}
+
+TakeSolveOptions readSettings(const QJsonObject& o) {
+    TakeSolveOptions s;  // absent keys keep their defaults, so older projects still load
+    s.markerWeight = o["marker_weight"].toDouble(s.markerWeight);
+    s.continuationSteps = o["continuation_steps"].toInt(s.continuationSteps);
+    s.lowPassHz = o["low_pass_hz"].toDouble(s.lowPassHz);
+    s.calibrationFrame = o["calibration_frame"].toInt(s.calibrationFrame);
+    s.solver.rigidityWeight = o["rigidity_weight"].toDouble(s.solver.rigidityWeight);
+    s.solver.maxIterations = o["max_iterations"].toInt(s.solver.maxIterations);
+    if (o["method"].toString() == "iterative") s.solver.method = SolverOptions::Method::Iterative;
+    return s;
+}
+
+bool readEmbeddedMap(const QJsonObject& o, Correspondence& map, QString* error) {
+    try {
+        map = Correspondence::fromJson(
+            QJsonDocument(o).toJson(QJsonDocument::Compact).toStdString(),
+            "the project's correspondence");
+    } catch (const std::exception& e) {
+        if (error) *error = QString::fromStdString(e.what());
+        return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+QByteArray toJson(const Document& document, const QString& path) {
+    const QDir dir = QFileInfo(path).absoluteDir();
+    QJsonObject root{{"format", kFormat}, {"version", kVersion}};
+    root["mesh"] = QJsonObject{{"file", relativeTo(dir, document.meshPath())},
+                               {"group", document.meshGroup()}};
+    root["take"] = QJsonObject{{"file", relativeTo(dir, document.takePath())}};
+    root["correspondence"] = QJsonObject{
+        {"file", relativeTo(dir, document.correspondencePath())},
+        {"modified", document.correspondenceModified()},
+        {"map",
+         QJsonDocument::fromJson(QByteArray::fromStdString(document.correspondence().toJson()))
+             .object()}};
+    root["alignment"] = document.alignment() ? QJsonValue(alignmentJson(*document.alignment()))
+                                             : QJsonValue(QJsonValue::Null);
+    root["settings"] = settingsJson(document.settings());
+    root["view"] = QJsonObject::fromVariantMap(document.viewSettings());
+    return QJsonDocument(root).toJson(QJsonDocument::Indented);
+}
+
+bool save(const Document& document, const QString& path, QString* error) {
+    QSaveFile file(path);
+    if (!file.open(QIODevice::WriteOnly) || file.write(toJson(document, path)) < 0 ||
+        !file.commit()) {
+        if (error)
+            *error = QObject::tr("%1: cannot save the project (%2)").arg(path, file.errorString());
+        return false;
+    }
+    return true;
+}
+
+bool load(Document& document, const QString& path, QString* error) {
+    auto fail = [&](const QString& why) {
+        if (error) *error = path + ": " + why;
+        return false;
+    };
+    QFile file(path);
+    if (!file.open(QIODevice::ReadOnly)) return fail(file.errorString());
+    QJsonParseError parseError;
+    const QJsonDocument json = QJsonDocument::fromJson(file.readAll(), &parseError);
+    if (json.isNull())
+        return fail(QObject::tr("not JSON (%1 at byte %2)")
+                        .arg(parseError.errorString())
+                        .arg(parseError.offset));
+    const QJsonObject root = json.object();
+    if (root["format"].toString() != kFormat)
+        return fail(QObject::tr("not a Boneless project (format is not \"%1\")").arg(kFormat));
+    if (root["version"].toInt() != kVersion)
+        return fail(QObject::tr("project version %1 is not supported (this Boneless reads %2)")
+                        .arg(root["version"].toInt())
+                        .arg(kVersion));
+
+    const QDir dir = QFileInfo(path).absoluteDir();
+    Document::State state;
+    QString why;
+    const QJsonObject mesh = root["mesh"].toObject();
+    if (const QString m = resolve(dir, mesh["file"].toString()); !m.isEmpty())
+        if (!Document::readMeshFile(m, mesh["group"].toString(), state, &why)) return fail(why);
+    if (const QString t = resolve(dir, root["take"].toObject()["file"].toString()); !t.isEmpty())
+        if (!Document::readTakeFile(t, state, &why)) return fail(why);
+    const QJsonObject correspondence = root["correspondence"].toObject();
+    state.mapPath = resolve(dir, correspondence["file"].toString());
+    if (correspondence["map"].isObject()) {
+        if (!readEmbeddedMap(correspondence["map"].toObject(), state.map, &why)) return fail(why);
+    } else if (!state.mapPath.isEmpty()) {
+        try {
+            state.map = Correspondence::read(state.mapPath.toStdString());
+        } catch (const std::exception& e) {
+            return fail(QString::fromStdString(e.what()));
+        }
+    }
+    if (root["alignment"].isObject()) {
+        Calibration c;
+        if (!readAlignment(root["alignment"].toObject(), c))
+            return fail(QObject::tr("the alignment is incomplete"));
+        state.alignment = c;
+    }
+    state.settings = readSettings(root["settings"].toObject());
+    state.viewSettings = root["view"].toObject().toVariantMap();
+    if (!document.restoreState(std::move(state))) return fail(document.lastError());
+    return true;
+}
+
+}  // namespace boneless::ui::Project

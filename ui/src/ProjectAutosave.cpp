@@ -1,0 +1,102 @@
+#include <QDir>
+#include <QFileInfo>
+#include <QSettings>
+#include <QStandardPaths>
+#include <QTimer>
+
+#include "boneless/ui/Document.h"
+#include "boneless/ui/Project.h"
+
+namespace boneless::ui {
+
+ProjectAutosave::ProjectAutosave(Document* document, QObject* parent)
+    : QObject(parent), document_(document), timer_(new QTimer(this)) {
+    timer_->setSingleShot(true);
+    timer_->setInterval(1000);
+    connect(timer_, &QTimer::timeout, this, &ProjectAutosave::saveNow);
+    connect(document, &Document::changed, this, [this] {
+        pending_ = true;
+        timer_->start();  // restarts: a burst of edits is one save
+    });
+}
+
+ProjectAutosave::~ProjectAutosave() {
+    saveNow();
+}
+
+void ProjectAutosave::setProjectPath(const QString& path) {
+    path_ = path;
+}
+
+void ProjectAutosave::setDelay(int ms) {
+    timer_->setInterval(std::max(0, ms));
+}
+
+bool ProjectAutosave::isPending() const {
+    return pending_;
+}
+
+void ProjectAutosave::discardPending() {
+    timer_->stop();
+    pending_ = false;
+}
+
+QString ProjectAutosave::recoveryPath() {
+    return QStandardPaths::writableLocation(QStandardPaths::AppDataLocation) + "/recovery.boneless";
+}
+
+bool ProjectAutosave::saveNow() {
+    timer_->stop();
+    if (!pending_ || !document_) return true;
+    pending_ = false;
+    // An empty untitled session has nothing worth recovering.
+    if (path_.isEmpty() && !document_->hasMesh() && !document_->hasTake()) return true;
+    const QString target = path_.isEmpty() ? recoveryPath() : path_;
+    QDir().mkpath(QFileInfo(target).absolutePath());
+    QString error;
+    if (!Project::save(*document_, target, &error)) {
+        pending_ = true;  // try again after the next change
+        emit failed(error);
+        return false;
+    }
+    emit saved(target);
+    return true;
+}
+
+namespace RecentFiles {
+
+namespace {
+constexpr int kMax = 10;
+const char* kKey = "recentFiles";
+}  // namespace
+
+QStringList list() {
+    QStringList files = QSettings().value(kKey).toStringList();
+    files.erase(std::remove_if(files.begin(), files.end(),
+                               [](const QString& f) { return !QFileInfo::exists(f); }),
+                files.end());
+    return files;
+}
+
+void add(const QString& path) {
+    const QString absolute = QFileInfo(path).absoluteFilePath();
+    QStringList files = list();
+    files.removeAll(absolute);
+    files.prepend(absolute);
+    while (files.size() > kMax) files.removeLast();
+    QSettings().setValue(kKey, files);
+}
+
+void remove(const QString& path) {
+    QStringList files = list();
+    files.removeAll(QFileInfo(path).absoluteFilePath());
+    QSettings().setValue(kKey, files);
+}
+
+void clear() {
+    QSettings().remove(kKey);
+}
+
+}  // namespace RecentFiles
+
+}  // namespace boneless::ui

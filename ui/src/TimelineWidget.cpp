@@ -1,0 +1,119 @@
+#include "boneless/ui/TimelineWidget.h"
+
+#include <QComboBox>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QSignalBlocker>
+#include <QSlider>
+#include <QSpinBox>
+#include <QStyle>
+#include <QToolButton>
+
+#include "boneless/ui/Timeline.h"
+
+namespace boneless::ui {
+
+namespace {
+
+QToolButton* makeButton(QWidget* parent, QStyle::StandardPixmap icon, const QString& tip) {
+    auto* button = new QToolButton(parent);
+    button->setIcon(parent->style()->standardIcon(icon));
+    button->setToolTip(tip);
+    button->setAutoRaise(true);
+    // The window's shortcuts (Space, arrows) must reach it, not press a focused button.
+    button->setFocusPolicy(Qt::NoFocus);
+    return button;
+}
+
+}  // namespace
+
+TimelineWidget::TimelineWidget(Timeline* timeline, QWidget* parent)
+    : QWidget(parent), timeline_(timeline) {
+    first_ = makeButton(this, QStyle::SP_MediaSkipBackward, tr("First frame (Home)"));
+    previous_ = makeButton(this, QStyle::SP_MediaSeekBackward, tr("Previous frame (←)"));
+    play_ = makeButton(this, QStyle::SP_MediaPlay, tr("Play/pause (Space)"));
+    next_ = makeButton(this, QStyle::SP_MediaSeekForward, tr("Next frame (→)"));
+    last_ = makeButton(this, QStyle::SP_MediaSkipForward, tr("Last frame (End)"));
+    loop_ = new QToolButton(this);
+    loop_->setText(tr("Loop"));
+    loop_->setCheckable(true);
+    loop_->setFocusPolicy(Qt::NoFocus);
+    loop_->setChecked(timeline->loops());
+
+    slider_ = new QSlider(Qt::Horizontal, this);
+    slider_->setObjectName("timelineSlider");
+    slider_->setFocusPolicy(Qt::NoFocus);
+    frameBox_ = new QSpinBox(this);
+    frameBox_->setObjectName("frameBox");
+    frameBox_->setToolTip(tr("Frame (0-based)"));
+    countLabel_ = new QLabel(this);
+
+    speed_ = new QComboBox(this);
+    speed_->setFocusPolicy(Qt::NoFocus);
+    speed_->addItem(tr("Realtime"), int(Timeline::Speed::Realtime));
+    speed_->addItem(tr("½ speed"), int(Timeline::Speed::Half));
+    speed_->addItem(tr("¼ speed"), int(Timeline::Speed::Quarter));
+    speed_->addItem(tr("Every frame"), int(Timeline::Speed::EveryFrame));
+    speed_->setCurrentIndex(speed_->findData(int(timeline->speed())));
+
+    auto* layout = new QHBoxLayout(this);
+    layout->setContentsMargins(4, 2, 4, 2);
+    for (QWidget* w :
+         {static_cast<QWidget*>(first_), static_cast<QWidget*>(previous_),
+          static_cast<QWidget*>(play_), static_cast<QWidget*>(next_), static_cast<QWidget*>(last_)})
+        layout->addWidget(w);
+    layout->addWidget(slider_, 1);
+    layout->addWidget(frameBox_);
+    layout->addWidget(countLabel_);
+    layout->addWidget(loop_);
+    layout->addWidget(speed_);
+
+    connect(first_, &QToolButton::clicked, timeline, &Timeline::goToFirst);
+    connect(previous_, &QToolButton::clicked, timeline, [timeline] { timeline->stepBackward(); });
+    connect(play_, &QToolButton::clicked, timeline, &Timeline::togglePlay);
+    connect(next_, &QToolButton::clicked, timeline, [timeline] { timeline->stepForward(); });
+    connect(last_, &QToolButton::clicked, timeline, &Timeline::goToLast);
+    connect(loop_, &QToolButton::toggled, timeline, &Timeline::setLoop);
+    // valueChanged also fires for clicks on the groove and keyboard moves: all of them scrub.
+    connect(slider_, &QSlider::valueChanged, timeline, &Timeline::scrubTo);
+    connect(frameBox_, &QSpinBox::valueChanged, timeline, &Timeline::scrubTo);
+    connect(speed_, &QComboBox::currentIndexChanged, timeline, [this](int index) {
+        timeline_->setSpeed(Timeline::Speed(speed_->itemData(index).toInt()));
+    });
+
+    connect(timeline, &Timeline::frameChanged, this, &TimelineWidget::syncFrame);
+    connect(timeline, &Timeline::frameCountChanged, this, &TimelineWidget::syncRange);
+    connect(timeline, &Timeline::loopChanged, loop_, &QToolButton::setChecked);
+    connect(timeline, &Timeline::playingChanged, this, [this](bool playing) {
+        play_->setIcon(
+            style()->standardIcon(playing ? QStyle::SP_MediaPause : QStyle::SP_MediaPlay));
+    });
+    connect(timeline, &Timeline::speedChanged, this, [this](Timeline::Speed speed) {
+        const QSignalBlocker block(speed_);
+        speed_->setCurrentIndex(speed_->findData(int(speed)));
+    });
+    syncRange(timeline->frameCount());
+}
+
+void TimelineWidget::syncFrame(int frame) {
+    // Blocked, or following the playhead during playback would count as scrubbing and stop it.
+    const QSignalBlocker blockSlider(slider_);
+    const QSignalBlocker blockBox(frameBox_);
+    slider_->setValue(frame);
+    frameBox_->setValue(frame);
+}
+
+void TimelineWidget::syncRange(int frames) {
+    {
+        const QSignalBlocker blockSlider(slider_);
+        const QSignalBlocker blockBox(frameBox_);
+        slider_->setRange(0, std::max(0, frames - 1));
+        frameBox_->setRange(0, std::max(0, frames - 1));
+        slider_->setPageStep(std::max(1, frames / 20));
+    }
+    countLabel_->setText(tr("/ %1").arg(std::max(0, frames - 1)));
+    setEnabled(frames > 0);
+    syncFrame(timeline_->frame());
+}
+
+}  // namespace boneless::ui
