@@ -85,13 +85,14 @@ DemoCreature makeDemoCreature(int frameCount, int rings, int segments) {
         for (int j = 0; j < segments; ++j) {
             const int a = i * segments + j, b = i * segments + (j + 1) % segments;
             const int c = a + segments, d = b + segments;
-            faces.push_back({a, c, d});
-            faces.push_back({a, d, b});
+            // Counter-clockwise seen from outside: normals, and so marker offsets, point out.
+            faces.push_back({a, d, c});
+            faces.push_back({a, b, d});
         }
     const int tail = vertexCount - 2, head = vertexCount - 1, last = (ringCount - 1) * segments;
     for (int j = 0; j < segments; ++j) {
-        faces.push_back({tail, j, (j + 1) % segments});
-        faces.push_back({head, last + (j + 1) % segments, last + j});
+        faces.push_back({tail, (j + 1) % segments, j});
+        faces.push_back({head, last + j, last + (j + 1) % segments});
     }
 
     auto pose = [&](double t, double amplitude) {

@@ -22,3 +22,17 @@ TEST(DemoCreature, IsAClosedManifoldThatReallyMoves) {
     EXPECT_LT(edgeLengthDistortion(demo.rest.F, demo.frames[30], demo.rest.V), 0.1);
     EXPECT_EQ(flippedFaceCount(demo.rest.F, demo.rest.V, demo.rest.V), 0);
 }
+
+// Outward faces make the ring normals, and with them the demo take's marker offsets, point out of
+// the body: markers sit on the skin's outside, where a viewer sees them.
+TEST(DemoCreature, FacesPointOutwards) {
+    const DemoCreature demo = makeDemoCreature(2);
+    double signedVolume = 0;
+    for (int f = 0; f < demo.rest.faceCount(); ++f) {
+        const Eigen::Vector3d a = demo.rest.V.row(demo.rest.F(f, 0));
+        const Eigen::Vector3d b = demo.rest.V.row(demo.rest.F(f, 1));
+        const Eigen::Vector3d c = demo.rest.V.row(demo.rest.F(f, 2));
+        signedVolume += a.dot(b.cross(c)) / 6.0;
+    }
+    EXPECT_GT(signedVolume, 0.0);
+}
