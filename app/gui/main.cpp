@@ -1,12 +1,135 @@
 // boneless: the desktop application.
+//   boneless                                   opens the generated demo project
+//   boneless FILE...                           opens projects, meshes, takes, maps by extension
+//   boneless --project P --frame N --screenshot OUT.png   renders frame N to a PNG and exits
 #include <QApplication>
+#include <QCommandLineParser>
+#include <QFileInfo>
+#include <QSettings>
+#include <QStatusBar>
+#include <QTimer>
+#include <cstdio>
 
+#include "boneless/ui/MainWindow.h"
+#include "boneless/ui/MeshView.h"
 #include "boneless/ui/SurfaceFormat.h"
+#include "boneless/ui/Timeline.h"
+
+namespace {
+
+void fail(const QString& message) {
+    std::fprintf(stderr, "boneless: %s\n", qPrintable(message));
+}
+
+// Waits until the requested frame is solved and on screen, then writes the view's picture.
+// The window stays on screen meanwhile: a QOpenGLWidget only renders when exposed.
+int runScreenshot(QApplication& app, boneless::ui::MainWindow& window, const QString& out,
+                  int timeoutMs) {
+    int status = -1;
+    QString firstError;
+    QObject::connect(&window, &boneless::ui::MainWindow::errorShown, [&](const QString& message) {
+        if (firstError.isEmpty()) firstError = message;
+    });
+    QTimer poll;
+    QObject::connect(&poll, &QTimer::timeout, [&] {
+        if (!firstError.isEmpty()) {
+            fail(firstError);
+            status = 1;
+        } else if (window.frameUpToDate()) {
+            const QImage image = window.meshView()->grabImage();
+            if (image.isNull() || !image.save(out)) {
+                fail(QString("cannot write the screenshot %1").arg(out));
+                status = 1;
+            } else {
+                std::printf("%s: %s\n", qPrintable(QFileInfo(out).absoluteFilePath()),
+                            qPrintable(window.frameSummary()));
+                status = 0;
+            }
+        }
+        if (status >= 0) app.exit(status);
+    });
+    QTimer::singleShot(timeoutMs, &app, [&] {
+        fail(QString("frame not ready after %1 s").arg(timeoutMs / 1000));
+        app.exit(1);
+    });
+    poll.start(50);
+    return app.exec();
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     boneless::ui::setDefaultSurfaceFormat();
     QApplication app(argc, argv);
     QApplication::setApplicationName("Boneless");
     QApplication::setOrganizationName("Boneless");
-    return 0;
+    QApplication::setApplicationVersion("0.1.0");
+
+    QCommandLineParser parser;
+    parser.setApplicationDescription("Skeleton-free mesh animation from motion-capture markers.");
+    parser.addHelpOption();
+    parser.addVersionOption();
+    const QCommandLineOption project("project", "Open the project file P.", "P");
+    const QCommandLineOption frame("frame", "Show frame N (0-based) of the take.", "N");
+    const QCommandLineOption screenshot("screenshot",
+                                        "Render the frame into the PNG file OUT and exit.", "OUT");
+    const QCommandLineOption noMsaa("no-msaa", "Render without multisampling.");
+    const QCommandLineOption size("size", "With --screenshot: the view's size WxH (800x600).",
+                                  "WxH", "800x600");
+    parser.addOptions({project, frame, screenshot, noMsaa, size});
+    parser.addPositionalArgument("files", "Projects, meshes, takes or maps to open.", "[FILE...]");
+    parser.process(app);
+
+    const bool batch = parser.isSet(screenshot);
+    int startFrame = -1;
+    if (parser.isSet(frame)) {
+        bool ok = false;
+        startFrame = parser.value(frame).toInt(&ok);
+        if (!ok || startFrame < 0) {
+            fail(QString("--frame wants a frame number >= 0, not '%1'").arg(parser.value(frame)));
+            return 2;
+        }
+    }
+    QSize viewSize(800, 600);
+    if (batch) {
+        const QStringList wh = parser.value(size).split('x');
+        if (wh.size() != 2 || wh[0].toInt() < 16 || wh[1].toInt() < 16) {
+            fail(QString("--size wants WxH, not '%1'").arg(parser.value(size)));
+            return 2;
+        }
+        viewSize = QSize(wh[0].toInt(), wh[1].toInt());
+    }
+
+    boneless::ui::MainWindow window;
+    // Multisampling is cheap on a GPU but triples the cost on software GL; batch renders
+    // skip it so that their pictures compare across machines.
+    const int samples = QSettings().value("view/multiSamples", 4).toInt();
+    window.meshView()->setMultiSampling(parser.isSet(noMsaa) || batch ? 0 : samples);
+    window.setMessageBoxesEnabled(!batch);
+    window.setStartFrame(startFrame);
+    if (batch) window.meshView()->setFixedSize(viewSize);
+
+    bool opened = true;
+    if (parser.isSet(project)) opened = window.openProject(parser.value(project));
+    for (const QString& file : parser.positionalArguments())
+        opened = window.openFile(file) && opened;
+    if (!parser.isSet(project) && parser.positionalArguments().isEmpty())
+        opened = window.openDemo();
+    if (batch && !opened) {
+        fail(window.statusBar()->currentMessage());
+        return 1;
+    }
+
+    window.show();
+    if (batch) {
+        if (startFrame >= 0 && window.timeline()->frameCount() > 0 &&
+            startFrame >= window.timeline()->frameCount()) {
+            fail(QString("--frame %1: the take has frames 0 to %2")
+                     .arg(startFrame)
+                     .arg(window.timeline()->frameCount() - 1));
+            return 1;
+        }
+        return runScreenshot(app, window, parser.value(screenshot), 300000);
+    }
+    return app.exec();
 }

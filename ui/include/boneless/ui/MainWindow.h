@@ -1,0 +1,124 @@
+#pragma once
+
+#include <QMainWindow>
+#include <QString>
+
+class QAction;
+class QLabel;
+class QLineEdit;
+class QComboBox;
+class QMenu;
+class QTableView;
+
+namespace boneless::ui {
+
+class Document;
+class ExportRunner;
+class FrameDisplay;
+class FrameSolver;
+class MarkerFilterProxy;
+class MarkerListModel;
+class MeshView;
+class ProjectAutosave;
+class Timeline;
+class TimelineWidget;
+
+// The application window: the 3D view, the marker list, the timeline, menus and status bar.
+// Every failure becomes a message in the window (a non-modal box and the status bar), never an
+// exception or a blocking dialog that would stall the solver's results.
+class MainWindow : public QMainWindow {
+    Q_OBJECT
+  public:
+    explicit MainWindow(QWidget* parent = nullptr);
+    ~MainWindow() override;
+
+    Document* document() const { return document_; }
+    Timeline* timeline() const { return timeline_; }
+    TimelineWidget* timelineWidget() const { return timelineWidget_; }
+    MeshView* meshView() const { return view_; }
+    FrameSolver* frameSolver() const { return solver_; }
+    QTableView* markerTable() const { return markerTable_; }
+    QLineEdit* markerFilter() const { return filterEdit_; }
+    MarkerFilterProxy* markerProxy() const { return proxy_; }
+
+    // Opens by extension: .boneless project; .obj/.ply/.off/.stl mesh; .c3d take; .json map.
+    bool openFile(const QString& path);
+    bool openProject(const QString& path);
+    bool openDemo();
+    bool saveProject();
+    bool saveProjectAs(const QString& path);
+    QString projectPath() const { return projectPath_; }
+    bool exportTo(const QString& folder, bool pointCache);
+
+    // The frame the timeline moves to once the next take is loaded (for --frame).
+    void setStartFrame(int frame) { startFrame_ = frame; }
+    // false: failures only go to the status bar and errorShown (batch use, screenshots).
+    void setMessageBoxesEnabled(bool enabled) { messageBoxes_ = enabled; }
+    // The frame on screen, and whether it is the timeline's frame, rendered.
+    int displayedFrame() const;
+    bool frameUpToDate() const;
+    bool isSolving() const;
+    // What the status bar shows about the frame: "Frame 10 / 59 · solved in 80 ms · residual …".
+    QString frameSummary() const;
+
+    void showError(const QString& message);
+
+  signals:
+    void errorShown(const QString& message);
+    void frameDisplayed(int frame);
+    void latencyMeasured(int frame, double milliseconds, bool fromCache);
+
+  protected:
+    void dragEnterEvent(QDragEnterEvent* event) override;
+    void dropEvent(QDropEvent* event) override;
+    void closeEvent(QCloseEvent* event) override;
+
+  private:
+    void buildMenus();
+    void buildMarkerDock();
+    void buildStatusBar();
+    void buildShortcuts();
+    void connectDocument();
+    void applyViewSettings();
+    void rebuildRecentMenu();
+    void updateTitle();
+    void syncTableSelection(int marker);
+    void onVertexPicked(int vertex);
+    void onTakeLoaded();
+
+    void chooseMesh();
+    void chooseTake();
+    void chooseCorrespondence();
+    void chooseProject();
+    void chooseSaveProjectAs();
+    void chooseSaveCorrespondence();
+    void chooseExport(bool pointCache);
+
+    Document* document_;
+    FrameSolver* solver_;
+    Timeline* timeline_;
+    TimelineWidget* timelineWidget_;
+    MeshView* view_;
+    MarkerListModel* markerModel_;
+    MarkerFilterProxy* proxy_;
+    FrameDisplay* display_;
+    ProjectAutosave* autosave_;
+    ExportRunner* exporter_;
+
+    QTableView* markerTable_ = nullptr;
+    QLineEdit* filterEdit_ = nullptr;
+    QComboBox* stateFilter_ = nullptr;
+    QLabel* frameLabel_ = nullptr;
+    QLabel* solveLabel_ = nullptr;
+    QLabel* residualLabel_ = nullptr;
+    QMenu* recentMenu_ = nullptr;
+    QAction* labelsAction_ = nullptr;
+    QAction* trailsAction_ = nullptr;
+    QAction* heatMapAction_ = nullptr;
+
+    QString projectPath_;
+    int startFrame_ = -1;
+    bool messageBoxes_ = true;
+};
+
+}  // namespace boneless::ui

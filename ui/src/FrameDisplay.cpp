@@ -1,0 +1,218 @@
+#include "FrameDisplay.h"
+
+#include <QStringList>
+#include <QTimer>
+#include <cmath>
+#include <limits>
+
+#include "boneless/TakeExport.h"
+#include "boneless/ui/Document.h"
+#include "boneless/ui/MarkerListModel.h"
+#include "boneless/ui/MeshView.h"
+#include "boneless/ui/Timeline.h"
+
+namespace boneless::ui {
+namespace {
+constexpr int kTrailFrames = 20;
+}
+
+FrameDisplay::FrameDisplay(Document* document, FrameSolver* solver, Timeline* timeline,
+                           MeshView* view, MarkerListModel* markers, QObject* parent)
+    : QObject(parent),
+      document_(document),
+      solver_(solver),
+      timeline_(timeline),
+      view_(view),
+      markers_(markers),
+      problemTimer_(new QTimer(this)) {
+    problemTimer_->setSingleShot(true);
+    problemTimer_->setInterval(0);
+    connect(problemTimer_, &QTimer::timeout, this, &FrameDisplay::rebuildProblem);
+
+    connect(document_, &Document::meshChanged, this, &FrameDisplay::onMeshChanged);
+    connect(document_, &Document::takeChanged, this, &FrameDisplay::onTakeChanged);
+    connect(document_, &Document::correspondenceChanged, this, [this] {
+        updateMarkers();
+        scheduleProblem();
+    });
+    connect(document_, &Document::alignmentChanged, this, [this] {
+        updateUpAxis(false);
+        scheduleProblem();
+    });
+    connect(document_, &Document::settingsChanged, this, &FrameDisplay::scheduleProblem);
+    connect(document_, &Document::selectionChanged, this, &FrameDisplay::updateMarkers);
+    connect(timeline_, &Timeline::frameChanged, this, &FrameDisplay::onFrameChanged);
+    connect(solver_, &FrameSolver::frameReady, this, &FrameDisplay::onFrameReady);
+    connect(solver_, &FrameSolver::failed, this, &FrameDisplay::solverFailed);
+    connect(view_, &MeshView::rendered, this, &FrameDisplay::onRendered);
+}
+
+void FrameDisplay::setTrailsVisible(bool visible) {
+    trails_ = visible;
+    updateTrails(displayedFrame_);
+}
+
+void FrameDisplay::setHeatMapVisible(bool visible) {
+    if (heatMap_ == visible) return;
+    heatMap_ = visible;
+    solver_->setShapeErrorEnabled(visible);
+    if (!visible) view_->setHeatMap({});
+    // The cache was emptied: the shown frame has no shape error yet.
+    if (solving_) onFrameChanged(timeline_->frame());
+}
+
+bool FrameDisplay::upToDate() const {
+    const int frame = timeline_->frame();
+    // While solving, only a solved frame counts: the unsolved picture shown before the problem
+    // was built has the right frame number but the rest pose.
+    const bool solved = !solving_ || (result_ && result_->frame == frame);
+    return !problemTimer_->isActive() && displayedFrame_ == frame && solved && !awaitingRender_;
+}
+
+void FrameDisplay::scheduleProblem() {
+    problemTimer_->start();
+}
+
+void FrameDisplay::onMeshChanged() {
+    result_.reset();
+    displayedFrame_ = -1;
+    updateUpAxis(true);
+    if (document_->hasMesh())
+        view_->setMesh(document_->mesh(), up_);
+    else
+        view_->clearMesh();
+    scheduleProblem();
+}
+
+void FrameDisplay::onTakeChanged() {
+    timeline_->setRate(document_->frameRate());
+    timeline_->setFrameCount(document_->frameCount());
+    updateUpAxis(false);
+    scheduleProblem();
+}
+
+void FrameDisplay::updateUpAxis(bool force) {
+    Eigen::Vector3d up = Eigen::Vector3d::UnitY();
+    // The rough fit used before three markers are mapped says nothing about which way is up.
+    if (document_->hasTake() && (document_->alignment() || document_->mappedCount() >= 3))
+        up = upAxisVector(
+            QString::fromStdString(guessUpAxis(document_->displayAlignment().takeToMesh)));
+    if (!force && up.isApprox(up_)) return;
+    up_ = up;
+    if (!force) view_->setUpAxis(up_);
+}
+
+void FrameDisplay::rebuildProblem() {
+    QString why;
+    solving_ = document_->hasMesh() && solver_->setProblem(*document_, &why);
+    notSolvingReason_ = solving_ ? QString() : why;
+    result_.reset();
+    if (!solving_) solver_->clearProblem();
+    onFrameChanged(timeline_->frame());
+}
+
+void FrameDisplay::onFrameChanged(int frame) {
+    markers_->setFrame(frame);
+    if (!document_->hasMesh()) return;
+    if (!solving_) {
+        showUnsolved(frame);
+        return;
+    }
+    requestedFrame_ = frame;
+    requestClock_.start();
+    solver_->requestFrame(frame);
+}
+
+void FrameDisplay::showUnsolved(int frame) {
+    displayedFrame_ = frame;
+    view_->setPositions(document_->mesh().V);
+    markerPositions_ = document_->markerPositions(frame);
+    updateMarkers();
+    updateTrails(frame);
+    view_->setHeatMap({});
+    emitStatus();
+    emit frameDisplayed(frame);
+}
+
+void FrameDisplay::onFrameReady(const FrameResult& result) {
+    if (!solving_ || result.generation != solver_->generation()) return;
+    // A frame solved for an older request is still shown: during playback the newest request
+    // is usually still in the solver, and showing nothing would freeze the picture.
+    result_ = result;
+    displayedFrame_ = result.frame;
+    view_->setPositions(result.V);
+    markerPositions_ = result.markers;
+    updateMarkers();
+    updateTrails(result.frame);
+    if (heatMap_ && !result.shapeError.empty())
+        view_->setHeatMap(std::vector<float>(result.shapeError.begin(), result.shapeError.end()));
+    markers_->setFrameResult(result);
+    if (result.frame == requestedFrame_) {
+        awaitingRender_ = true;
+        renderFromCache_ = result.fromCache;
+    }
+    timeline_->frameShown(result.frame);
+    emitStatus();
+    emit frameDisplayed(result.frame);
+}
+
+void FrameDisplay::onRendered() {
+    if (!awaitingRender_) return;
+    awaitingRender_ = false;
+    emit latencyMeasured(requestedFrame_, requestClock_.nsecsElapsed() / 1e6, renderFromCache_);
+}
+
+void FrameDisplay::updateMarkers() {
+    const int count = document_->markerCount();
+    if (markerPositions_.rows() != count) {
+        view_->setMarkers(Positions(0, 3), {}, {});
+        view_->setHighlightedVertex(-1);
+        return;
+    }
+    std::vector<MarkerState> states(count, MarkerState::Unmapped);
+    QStringList labels;
+    for (int k = 0; k < count; ++k) {
+        if (document_->mappedVertex(k) >= 0) states[k] = MarkerState::Mapped;
+        labels << document_->markerLabel(k);
+    }
+    const int selected = document_->selectedMarker();
+    if (selected >= 0 && selected < count) states[selected] = MarkerState::Selected;
+    view_->setMarkers(markerPositions_, states, labels);
+    view_->setHighlightedVertex(selected >= 0 ? document_->mappedVertex(selected) : -1);
+}
+
+void FrameDisplay::updateTrails(int frame) {
+    if (!trails_ || !document_->hasTake() || frame < 0) {
+        view_->setTrails({});
+        return;
+    }
+    const int first = std::max(0, frame - kTrailFrames);
+    std::vector<Positions> trails(document_->markerCount(), Positions(frame - first + 1, 3));
+    for (int f = first; f <= frame; ++f) {
+        const Positions P = document_->markerPositions(f);
+        for (int k = 0; k < P.rows() && k < static_cast<int>(trails.size()); ++k)
+            trails[k].row(f - first) = P.row(k);
+    }
+    view_->setTrails(trails);
+}
+
+void FrameDisplay::emitStatus() {
+    const QString frame =
+        document_->hasTake()
+            ? tr("Frame %1 / %2").arg(displayedFrame_).arg(document_->frameCount() - 1)
+            : tr("No take");
+    QString solve, residual;
+    if (!solving_) {
+        solve = notSolvingReason_.isEmpty() ? tr("Not solving")
+                                            : tr("Not solving: %1").arg(notSolvingReason_);
+    } else if (result_) {
+        solve = result_->fromCache ? tr("cached")
+                                   : tr("solved in %1 ms").arg(result_->solveMs, 0, 'f', 0);
+        residual = tr("residual %1 mm (max %2)")
+                       .arg(result_->report.residualRmsMm, 0, 'f', 2)
+                       .arg(result_->report.residualMaxMm, 0, 'f', 2);
+    }
+    emit statusChanged(frame, solve, residual);
+}
+
+}  // namespace boneless::ui

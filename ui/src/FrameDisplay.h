@@ -1,0 +1,88 @@
+#pragma once
+
+#include <QElapsedTimer>
+#include <QObject>
+#include <QString>
+#include <optional>
+
+#include "boneless/TriMesh.h"
+#include "boneless/ui/FrameSolver.h"
+
+class QTimer;
+
+namespace boneless::ui {
+
+class Document;
+class MarkerListModel;
+class MeshView;
+class Timeline;
+
+// Keeps the view showing the timeline's frame: asks the FrameSolver for it, draws what comes
+// back (mesh, markers, trails, heat map) and tells the window what to put in the status bar.
+// Without a solvable problem (no take, fewer than 3 markers mapped) it shows the rest mesh and
+// the take's markers placed by the document's alignment, which is what authoring needs.
+class FrameDisplay : public QObject {
+    Q_OBJECT
+  public:
+    FrameDisplay(Document* document, FrameSolver* solver, Timeline* timeline, MeshView* view,
+                 MarkerListModel* markers, QObject* parent = nullptr);
+
+    void setTrailsVisible(bool visible);
+    void setHeatMapVisible(bool visible);
+    bool trailsVisible() const { return trails_; }
+    bool heatMapVisible() const { return heatMap_; }
+
+    bool solving() const { return solving_; }
+    QString notSolvingReason() const { return notSolvingReason_; }
+    int displayedFrame() const { return displayedFrame_; }
+    // The timeline's frame has been drawn (solved, or unsolved when nothing can be solved).
+    bool upToDate() const;
+    const std::optional<FrameResult>& lastResult() const { return result_; }
+
+  public slots:
+    // Rebuilds the solver's problem from the document on the next turn of the event loop, so
+    // that a project load's many change signals cost one rebuild.
+    void scheduleProblem();
+
+  signals:
+    void frameDisplayed(int frame);
+    void statusChanged(const QString& frame, const QString& solve, const QString& residual);
+    // From the frame request to the end of the render that shows it.
+    void latencyMeasured(int frame, double milliseconds, bool fromCache);
+    void solverFailed(const QString& message);
+
+  private:
+    void onMeshChanged();
+    void onTakeChanged();
+    void onFrameChanged(int frame);
+    void onFrameReady(const FrameResult& result);
+    void onRendered();
+    void rebuildProblem();
+    void showUnsolved(int frame);
+    void updateMarkers();
+    void updateTrails(int frame);
+    void updateUpAxis(bool force);
+    void emitStatus();
+
+    Document* document_;
+    FrameSolver* solver_;
+    Timeline* timeline_;
+    MeshView* view_;
+    MarkerListModel* markers_;
+    QTimer* problemTimer_;
+
+    bool solving_ = false;
+    QString notSolvingReason_;
+    bool trails_ = false, heatMap_ = false;
+    int displayedFrame_ = -1;
+    std::optional<FrameResult> result_;
+    Positions markerPositions_;
+    Eigen::Vector3d up_ = Eigen::Vector3d::UnitY();
+
+    int requestedFrame_ = -1;
+    QElapsedTimer requestClock_;
+    bool awaitingRender_ = false;
+    bool renderFromCache_ = false;
+};
+
+}  // namespace boneless::ui

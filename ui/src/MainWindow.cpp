@@ -1,0 +1,337 @@
+#include "boneless/ui/MainWindow.h"
+
+#include <QAction>
+#include <QComboBox>
+#include <QDockWidget>
+#include <QHBoxLayout>
+#include <QHeaderView>
+#include <QItemSelectionModel>
+#include <QKeySequence>
+#include <QLabel>
+#include <QLineEdit>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QPushButton>
+#include <QShortcut>
+#include <QStatusBar>
+#include <QTableView>
+#include <QUndoStack>
+#include <QVBoxLayout>
+
+#include "FrameDisplay.h"
+#include "boneless/ui/Document.h"
+#include "boneless/ui/ExportRunner.h"
+#include "boneless/ui/FrameSolver.h"
+#include "boneless/ui/MarkerListModel.h"
+#include "boneless/ui/MeshView.h"
+#include "boneless/ui/Project.h"
+#include "boneless/ui/Timeline.h"
+#include "boneless/ui/TimelineWidget.h"
+
+namespace boneless::ui {
+
+MainWindow::MainWindow(QWidget* parent)
+    : QMainWindow(parent),
+      document_(new Document(this)),
+      solver_(new FrameSolver(this)),
+      timeline_(new Timeline(this)),
+      timelineWidget_(nullptr),
+      view_(new MeshView),
+      markerModel_(new MarkerListModel(document_, this)),
+      proxy_(new MarkerFilterProxy(this)),
+      display_(nullptr),
+      autosave_(new ProjectAutosave(document_, this)),
+      exporter_(new ExportRunner(this, this)) {
+    setObjectName("mainWindow");
+    proxy_->setSourceModel(markerModel_);
+    display_ = new FrameDisplay(document_, solver_, timeline_, view_, markerModel_, this);
+
+    // The timeline sits under the view, not in a dock, so it keeps the view's width.
+    auto* centre = new QWidget;
+    auto* layout = new QVBoxLayout(centre);
+    layout->setContentsMargins(0, 0, 0, 0);
+    layout->setSpacing(2);
+    timelineWidget_ = new TimelineWidget(timeline_);
+    layout->addWidget(view_, 1);
+    layout->addWidget(timelineWidget_);
+    setCentralWidget(centre);
+
+    buildMarkerDock();
+    buildMenus();
+    buildStatusBar();
+    buildShortcuts();
+    connectDocument();
+    setAcceptDrops(true);
+    resize(1200, 760);
+    updateTitle();
+}
+
+MainWindow::~MainWindow() {
+    // The solver's worker must stop before the document and view it reports to go away.
+    solver_->cancelPending();
+    disconnect(solver_, nullptr, this, nullptr);
+    disconnect(solver_, nullptr, display_, nullptr);
+}
+
+void MainWindow::buildMarkerDock() {
+    auto* panel = new QWidget;
+    auto* layout = new QVBoxLayout(panel);
+    layout->setContentsMargins(4, 4, 4, 4);
+
+    auto* filterRow = new QHBoxLayout;
+    filterEdit_ = new QLineEdit;
+    filterEdit_->setObjectName("markerFilter");
+    filterEdit_->setPlaceholderText(tr("Filter labels"));
+    filterEdit_->setClearButtonEnabled(true);
+    stateFilter_ = new QComboBox;
+    stateFilter_->addItem(tr("All"), int(MarkerFilterProxy::State::All));
+    stateFilter_->addItem(tr("Mapped"), int(MarkerFilterProxy::State::Mapped));
+    stateFilter_->addItem(tr("Unmapped"), int(MarkerFilterProxy::State::Unmapped));
+    stateFilter_->addItem(tr("Visible"), int(MarkerFilterProxy::State::Visible));
+    stateFilter_->addItem(tr("Missing"), int(MarkerFilterProxy::State::Missing));
+    filterRow->addWidget(filterEdit_, 1);
+    filterRow->addWidget(stateFilter_);
+    layout->addLayout(filterRow);
+    connect(filterEdit_, &QLineEdit::textChanged, proxy_, &MarkerFilterProxy::setText);
+    connect(stateFilter_, &QComboBox::currentIndexChanged, this, [this](int index) {
+        proxy_->setState(MarkerFilterProxy::State(stateFilter_->itemData(index).toInt()));
+    });
+
+    markerTable_ = new QTableView;
+    markerTable_->setObjectName("markerTable");
+    markerTable_->setModel(proxy_);
+    markerTable_->setSelectionBehavior(QAbstractItemView::SelectRows);
+    markerTable_->setSelectionMode(QAbstractItemView::SingleSelection);
+    markerTable_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+    markerTable_->verticalHeader()->hide();
+    markerTable_->horizontalHeader()->setStretchLastSection(true);
+    markerTable_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+    layout->addWidget(markerTable_, 1);
+    connect(
+        markerTable_->selectionModel(), &QItemSelectionModel::currentRowChanged, this,
+        [this](const QModelIndex& current) {
+            document_->setSelectedMarker(current.isValid() ? proxy_->markerAt(current.row()) : -1);
+        });
+
+    auto* buttons = new QHBoxLayout;
+    auto* clear = new QPushButton(tr("Clear"));
+    clear->setToolTip(tr("Unmap the selected marker"));
+    auto* suggest = new QPushButton(tr("Suggest rest"));
+    suggest->setToolTip(
+        tr("Map every unmapped marker to the nearest free vertex (needs 4 mapped)"));
+    auto* align = new QPushButton(tr("Align"));
+    align->setToolTip(tr("Fix the take's alignment onto the mesh from the mapped markers"));
+    buttons->addWidget(clear);
+    buttons->addWidget(suggest);
+    buttons->addWidget(align);
+    layout->addLayout(buttons);
+    connect(clear, &QPushButton::clicked, this, [this] {
+        if (document_->selectedMarker() >= 0) document_->clearMapping(document_->selectedMarker());
+    });
+    connect(suggest, &QPushButton::clicked, document_, &Document::suggestMappings);
+    connect(align, &QPushButton::clicked, this, [this] { document_->align(); });
+
+    auto* dock = new QDockWidget(tr("Markers"), this);
+    dock->setObjectName("markerDock");
+    dock->setWidget(panel);
+    dock->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable);
+    addDockWidget(Qt::RightDockWidgetArea, dock);
+}
+
+void MainWindow::buildMenus() {
+    QMenu* file = menuBar()->addMenu(tr("&File"));
+    file->addAction(tr("Open &Project…"), QKeySequence::Open, this, &MainWindow::chooseProject);
+    file->addAction(tr("Open &Mesh…"), this, &MainWindow::chooseMesh);
+    file->addAction(tr("Open &Take…"), this, &MainWindow::chooseTake);
+    file->addAction(tr("Open &Correspondence…"), this, &MainWindow::chooseCorrespondence);
+    file->addAction(tr("Open &Demo"), this, &MainWindow::openDemo);
+    recentMenu_ = file->addMenu(tr("&Recent Files"));
+    connect(recentMenu_, &QMenu::aboutToShow, this, &MainWindow::rebuildRecentMenu);
+    file->addSeparator();
+    file->addAction(tr("&Save Project"), QKeySequence::Save, this, &MainWindow::saveProject);
+    file->addAction(tr("Save Project &As…"), QKeySequence::SaveAs, this,
+                    &MainWindow::chooseSaveProjectAs);
+    file->addAction(tr("Save Co&rrespondence As…"), this, &MainWindow::chooseSaveCorrespondence);
+    file->addSeparator();
+    file->addAction(tr("&Export OBJ Sequence…"), this, [this] { chooseExport(false); });
+    file->addAction(tr("Export &PC2 Point Cache…"), this, [this] { chooseExport(true); });
+    file->addSeparator();
+    file->addAction(tr("&Quit"), QKeySequence::Quit, this, &QWidget::close);
+
+    QMenu* edit = menuBar()->addMenu(tr("&Edit"));
+    QAction* undo = document_->undoStack()->createUndoAction(this, tr("&Undo"));
+    undo->setObjectName("actionUndo");
+    undo->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_Z));
+    QAction* redo = document_->undoStack()->createRedoAction(this, tr("&Redo"));
+    redo->setObjectName("actionRedo");
+    redo->setShortcut(QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_Z));
+    edit->addAction(undo);
+    edit->addAction(redo);
+    edit->addSeparator();
+    edit->addAction(tr("&Suggest Rest"), document_, &Document::suggestMappings);
+    edit->addAction(tr("&Align Take to Mesh"), this, [this] { document_->align(); });
+    edit->addAction(tr("&Clear Mapping"), this, [this] {
+        if (document_->selectedMarker() >= 0) document_->clearMapping(document_->selectedMarker());
+    });
+    edit->addAction(tr("Clear &All Mappings"), document_, &Document::clearAllMappings);
+
+    QMenu* view = menuBar()->addMenu(tr("&View"));
+    view->addAction(tr("&Reset Camera"), QKeySequence(Qt::CTRL | Qt::Key_R), view_,
+                    &MeshView::resetCamera);
+    labelsAction_ = view->addAction(tr("Marker &Labels"));
+    trailsAction_ = view->addAction(tr("Marker &Trails"));
+    heatMapAction_ = view->addAction(tr("Shape Error &Heat Map"));
+    const std::pair<QAction*, const char*> toggles[] = {
+        {labelsAction_, "labels"}, {trailsAction_, "trails"}, {heatMapAction_, "heatMap"}};
+    for (const auto& [action, key] : toggles) {
+        action->setCheckable(true);
+        connect(action, &QAction::toggled, this,
+                [this, action = action, key = QString(key)](bool on) {
+                    if (action == labelsAction_) view_->setLabelsVisible(on);
+                    if (action == trailsAction_) display_->setTrailsVisible(on);
+                    if (action == heatMapAction_) display_->setHeatMapVisible(on);
+                    if (document_->viewSettings().value(key).toBool() != on)
+                        document_->setViewSetting(key, on);
+                });
+    }
+
+    QMenu* help = menuBar()->addMenu(tr("&Help"));
+    help->addAction(tr("&About Boneless"), this, [this] {
+        QMessageBox::about(
+            this, tr("About Boneless"),
+            tr("<b>Boneless</b><br>Skeleton-free mesh animation from motion-capture "
+               "markers (Kraevoy &amp; Sheffer).<br><br>Select a marker in the list, "
+               "click the mesh to map it; drag to turn the camera."));
+    });
+}
+
+void MainWindow::buildStatusBar() {
+    frameLabel_ = new QLabel;
+    solveLabel_ = new QLabel;
+    residualLabel_ = new QLabel;
+    frameLabel_->setObjectName("frameLabel");
+    solveLabel_->setObjectName("solveLabel");
+    residualLabel_->setObjectName("residualLabel");
+    statusBar()->addPermanentWidget(frameLabel_);
+    statusBar()->addPermanentWidget(solveLabel_);
+    statusBar()->addPermanentWidget(residualLabel_);
+    connect(display_, &FrameDisplay::statusChanged, this,
+            [this](const QString& frame, const QString& solve, const QString& residual) {
+                frameLabel_->setText(frame);
+                solveLabel_->setText(solve);
+                residualLabel_->setText(residual);
+            });
+}
+
+void MainWindow::buildShortcuts() {
+    auto add = [this](QKeySequence key, auto slot) {
+        auto* shortcut = new QShortcut(key, this);
+        connect(shortcut, &QShortcut::activated, timeline_, slot);
+    };
+    add(QKeySequence(Qt::Key_Space), [this] { timeline_->togglePlay(); });
+    add(QKeySequence(Qt::Key_Right), [this] { timeline_->stepForward(1); });
+    add(QKeySequence(Qt::Key_Left), [this] { timeline_->stepBackward(1); });
+    add(QKeySequence(Qt::SHIFT | Qt::Key_Right), [this] { timeline_->stepForward(10); });
+    add(QKeySequence(Qt::SHIFT | Qt::Key_Left), [this] { timeline_->stepBackward(10); });
+    add(QKeySequence(Qt::Key_Home), [this] { timeline_->goToFirst(); });
+    add(QKeySequence(Qt::Key_End), [this] { timeline_->goToLast(); });
+}
+
+void MainWindow::connectDocument() {
+    connect(document_, &Document::errorOccurred, this, &MainWindow::showError);
+    connect(display_, &FrameDisplay::solverFailed, this, &MainWindow::showError);
+    connect(autosave_, &ProjectAutosave::failed, this, &MainWindow::showError);
+    connect(display_, &FrameDisplay::frameDisplayed, this, &MainWindow::frameDisplayed);
+    connect(display_, &FrameDisplay::latencyMeasured, this, &MainWindow::latencyMeasured);
+    connect(document_, &Document::selectionChanged, this, &MainWindow::syncTableSelection);
+    connect(document_, &Document::takeChanged, this, &MainWindow::onTakeLoaded);
+    connect(document_, &Document::meshChanged, this, &MainWindow::updateTitle);
+    connect(view_, &MeshView::vertexPicked, this, &MainWindow::onVertexPicked);
+    connect(exporter_, &ExportRunner::finished, this, [this](bool ok, const QString& message) {
+        if (ok)
+            statusBar()->showMessage(message, 10000);
+        else
+            showError(message);
+    });
+}
+
+void MainWindow::onTakeLoaded() {
+    if (startFrame_ >= 0 && document_->hasTake()) {
+        timeline_->setFrame(startFrame_);
+        startFrame_ = -1;
+    }
+    updateTitle();
+}
+
+void MainWindow::applyViewSettings() {
+    const QVariantMap settings = document_->viewSettings();
+    labelsAction_->setChecked(settings.value("labels").toBool());
+    trailsAction_->setChecked(settings.value("trails").toBool());
+    heatMapAction_->setChecked(settings.value("heatMap").toBool());
+}
+
+void MainWindow::syncTableSelection(int marker) {
+    const int row = proxy_->rowOfMarker(marker);
+    QItemSelectionModel* selection = markerTable_->selectionModel();
+    const QModelIndex current = selection->currentIndex();
+    if (current.isValid() && current.row() == row) return;
+    if (row < 0) {
+        selection->clearSelection();
+        return;
+    }
+    const QModelIndex index = proxy_->index(row, 0);
+    selection->setCurrentIndex(index,
+                               QItemSelectionModel::ClearAndSelect | QItemSelectionModel::Rows);
+    markerTable_->scrollTo(index);
+}
+
+void MainWindow::onVertexPicked(int vertex) {
+    const int selected = document_->selectedMarker();
+    if (selected >= 0) {
+        if (document_->assign(selected, vertex))
+            statusBar()->showMessage(
+                tr("%1 mapped to vertex %2").arg(document_->markerLabel(selected)).arg(vertex),
+                5000);
+        return;
+    }
+    const int onVertex = document_->markerForVertex(vertex);
+    if (onVertex >= 0) {
+        document_->setSelectedMarker(onVertex);
+        return;
+    }
+    statusBar()->showMessage(
+        tr("Vertex %1 — select a marker in the list, then click the mesh to map it").arg(vertex),
+        8000);
+}
+
+int MainWindow::displayedFrame() const {
+    return display_->displayedFrame();
+}
+bool MainWindow::frameUpToDate() const {
+    return display_->upToDate();
+}
+bool MainWindow::isSolving() const {
+    return display_->solving();
+}
+
+QString MainWindow::frameSummary() const {
+    QStringList parts;
+    for (const QLabel* label : {frameLabel_, solveLabel_, residualLabel_})
+        if (!label->text().isEmpty()) parts << label->text();
+    return parts.join(" · ");
+}
+
+void MainWindow::showError(const QString& message) {
+    statusBar()->showMessage(message, 15000);
+    emit errorShown(message);
+    if (!messageBoxes_) return;
+    // Not exec(): a nested event loop would hold back frames and tests; the box just stays up.
+    auto* box =
+        new QMessageBox(QMessageBox::Warning, tr("Boneless"), message, QMessageBox::Ok, this);
+    box->setObjectName("errorMessage");
+    box->setAttribute(Qt::WA_DeleteOnClose);
+    box->setModal(false);
+    box->show();
+}
+
+}  // namespace boneless::ui

@@ -1,0 +1,346 @@
+#include "MeshScene.h"
+
+#include <vtkActor.h>
+#include <vtkActor2D.h>
+#include <vtkCamera.h>
+#include <vtkCellArray.h>
+#include <vtkCellPicker.h>
+#include <vtkDoubleArray.h>
+#include <vtkFloatArray.h>
+#include <vtkGlyph3DMapper.h>
+#include <vtkLabeledDataMapper.h>
+#include <vtkLookupTable.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
+#include <vtkRenderer.h>
+#include <vtkSphereSource.h>
+#include <vtkStaticCellLocator.h>
+#include <vtkStringArray.h>
+#include <vtkTextProperty.h>
+#include <vtkUnsignedCharArray.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace boneless::ui {
+namespace {
+
+bool finiteRow(const Positions& P, Eigen::Index i) {
+    return P.row(i).allFinite();
+}
+
+void copyPoints(const Positions& V, vtkPoints* points) {
+    points->SetDataTypeToDouble();
+    points->SetNumberOfPoints(V.rows());
+    auto* array = vtkDoubleArray::SafeDownCast(points->GetData());
+    std::copy(V.data(), V.data() + V.size(), array->GetPointer(0));
+    points->Modified();
+}
+
+}  // namespace
+
+MeshScene::MeshScene() {
+    renderer_->SetBackground(0.20, 0.22, 0.26);
+    // VTK clears to alpha 0 by default; Qt would compose the view with the window behind it.
+    renderer_->SetBackgroundAlpha(1.0);
+    renderer_->SetUseFXAA(false);
+
+    meshMapper_->SetInputData(mesh_);
+    meshMapper_->ScalarVisibilityOff();
+    meshActor_->SetMapper(meshMapper_);
+    meshActor_->GetProperty()->SetColor(0.86, 0.80, 0.70);
+    meshActor_->GetProperty()->SetSpecular(0.15);
+    meshActor_->GetProperty()->SetSpecularPower(20);
+    meshActor_->VisibilityOff();
+    renderer_->AddActor(meshActor_);
+
+    sphere_->SetThetaResolution(16);
+    sphere_->SetPhiResolution(12);
+    sphere_->SetRadius(1.0);
+    markerMapper_->SetInputData(markers_);
+    markerMapper_->SetSourceConnection(sphere_->GetOutputPort());
+    markerMapper_->SetScaleArray("radius");
+    markerMapper_->SetScaleModeToScaleByMagnitude();
+    markerMapper_->SetColorModeToDirectScalars();
+    markerMapper_->SetScalarModeToUsePointFieldData();
+    markerMapper_->SelectColorArray("colour");
+    markerMapper_->ScalarVisibilityOn();
+    markerActor_->SetMapper(markerMapper_);
+    markerActor_->PickableOff();
+    renderer_->AddActor(markerActor_);
+
+    labelMapper_->SetInputData(markers_);
+    labelMapper_->SetLabelModeToLabelFieldData();
+    labelMapper_->SetFieldDataName("label");
+    labelMapper_->GetLabelTextProperty()->SetFontSize(13);
+    labelMapper_->GetLabelTextProperty()->SetColor(1.0, 1.0, 0.85);
+    labelMapper_->GetLabelTextProperty()->ShadowOn();
+    labelActor_->SetMapper(labelMapper_);
+    labelActor_->VisibilityOff();
+    renderer_->AddActor2D(labelActor_);
+
+    trailMapper_->SetInputData(trails_);
+    trailActor_->SetMapper(trailMapper_);
+    trailActor_->GetProperty()->SetColor(0.45, 0.75, 1.0);
+    trailActor_->GetProperty()->SetLineWidth(2.0);
+    trailActor_->PickableOff();
+    trailActor_->VisibilityOff();
+    renderer_->AddActor(trailActor_);
+
+    highlightMapper_->SetInputConnection(highlightSphere_->GetOutputPort());
+    highlightActor_->SetMapper(highlightMapper_);
+    highlightActor_->GetProperty()->SetColor(0.1, 0.9, 1.0);
+    highlightActor_->PickableOff();
+    highlightActor_->VisibilityOff();
+    renderer_->AddActor(highlightActor_);
+
+    locator_->SetDataSet(mesh_);
+    picker_->AddLocator(locator_);
+    picker_->PickFromListOn();
+    picker_->AddPickList(meshActor_);
+    picker_->SetTolerance(1e-6);
+}
+
+MeshScene::~MeshScene() = default;
+
+vtkRenderer* MeshScene::renderer() const {
+    return renderer_.Get();
+}
+
+void MeshScene::setMesh(const TriMesh& mesh) {
+    V_ = mesh.V;
+    F_ = mesh.F;
+    vtkNew<vtkPoints> points;
+    copyPoints(V_, points);
+    vtkNew<vtkCellArray> triangles;
+    for (Eigen::Index f = 0; f < F_.rows(); ++f) {
+        const vtkIdType ids[3] = {F_(f, 0), F_(f, 1), F_(f, 2)};
+        triangles->InsertNextCell(3, ids);
+    }
+    mesh_->Initialize();
+    mesh_->SetPoints(points);
+    mesh_->SetPolys(triangles);
+    updateNormals();
+    setHeatMap({});
+    meshActor_->SetVisibility(V_.rows() > 0);
+    const double r = markerRadius();
+    sphere_->SetRadius(1.0);
+    highlightSphere_->SetRadius(0.45 * r);
+    highlighted_ = -1;
+    updateHighlight();
+    locatorStale_ = true;
+}
+
+void MeshScene::clearMesh() {
+    setMesh(TriMesh{});
+    setMarkers(Positions(0, 3), {}, {});
+    setTrails({});
+}
+
+void MeshScene::setPositions(const Positions& V) {
+    if (V.rows() != V_.rows() || V_.rows() == 0) return;
+    V_ = V;
+    copyPoints(V_, mesh_->GetPoints());
+    updateNormals();
+    mesh_->Modified();
+    updateHighlight();
+    // The locator is rebuilt lazily at the next pick: scrubbing should not pay for it.
+    locatorStale_ = true;
+}
+
+void MeshScene::updateNormals() {
+    // Area-weighted vertex normals by hand: a vtkPolyDataNormals filter would also split
+    // sharp edges and renumber points, which breaks picking by vertex id.
+    Positions N = Positions::Zero(V_.rows(), 3);
+    for (Eigen::Index f = 0; f < F_.rows(); ++f) {
+        const Eigen::RowVector3d a = V_.row(F_(f, 0)), b = V_.row(F_(f, 1)), c = V_.row(F_(f, 2));
+        const Eigen::RowVector3d n = (b - a).cross(c - a);
+        for (int k = 0; k < 3; ++k) N.row(F_(f, k)) += n;
+    }
+    vtkNew<vtkFloatArray> normals;
+    normals->SetNumberOfComponents(3);
+    normals->SetNumberOfTuples(N.rows());
+    for (Eigen::Index i = 0; i < N.rows(); ++i) {
+        const double len = N.row(i).norm();
+        const Eigen::RowVector3d n =
+            len > 0 ? Eigen::RowVector3d(N.row(i) / len) : Eigen::RowVector3d(0, 0, 1);
+        normals->SetTuple3(i, n(0), n(1), n(2));
+    }
+    mesh_->GetPointData()->SetNormals(normals);
+}
+
+double MeshScene::markerRadius() const {
+    const double diagonal = boundingBoxDiagonal(V_);
+    return diagonal > 0 ? 0.008 * diagonal : 0.01;
+}
+
+void MeshScene::setMarkers(const Positions& markers, const std::vector<MarkerState>& states,
+                           const QStringList& labels) {
+    vtkNew<vtkPoints> points;
+    vtkNew<vtkFloatArray> radius;
+    radius->SetName("radius");
+    vtkNew<vtkUnsignedCharArray> colour;
+    colour->SetName("colour");
+    colour->SetNumberOfComponents(3);
+    vtkNew<vtkStringArray> label;
+    label->SetName("label");
+    const double r = markerRadius();
+    for (Eigen::Index k = 0; k < markers.rows(); ++k) {
+        // A missing marker has no position this frame; drawing it anywhere would mislead.
+        if (!finiteRow(markers, k)) continue;
+        const MarkerState state =
+            k < static_cast<Eigen::Index>(states.size()) ? states[k] : MarkerState::Unmapped;
+        points->InsertNextPoint(markers(k, 0), markers(k, 1), markers(k, 2));
+        unsigned char rgb[3] = {240, 130, 40};  // unmapped: orange
+        double scale = r;
+        if (state == MarkerState::Mapped) {
+            rgb[0] = 70, rgb[1] = 200, rgb[2] = 90;
+        } else if (state == MarkerState::Selected) {
+            rgb[0] = 255, rgb[1] = 235, rgb[2] = 40;
+            scale = 1.7 * r;
+        }
+        radius->InsertNextValue(static_cast<float>(scale));
+        colour->InsertNextTypedTuple(rgb);
+        label->InsertNextValue(k < labels.size() ? labels[k].toStdString() : std::to_string(k));
+    }
+    markers_->Initialize();
+    markers_->SetPoints(points);
+    markers_->GetPointData()->AddArray(radius);
+    markers_->GetPointData()->AddArray(colour);
+    markers_->GetPointData()->AddArray(label);
+    markers_->Modified();
+    markerActor_->SetVisibility(points->GetNumberOfPoints() > 0);
+    labelActor_->SetVisibility(labelsVisible_ && points->GetNumberOfPoints() > 0);
+}
+
+void MeshScene::setLabelsVisible(bool visible) {
+    labelsVisible_ = visible;
+    labelActor_->SetVisibility(visible && markers_->GetNumberOfPoints() > 0);
+}
+
+void MeshScene::setTrails(const std::vector<Positions>& trails) {
+    vtkNew<vtkPoints> points;
+    vtkNew<vtkCellArray> lines;
+    for (const Positions& trail : trails) {
+        std::vector<vtkIdType> run;
+        auto flush = [&] {
+            if (run.size() >= 2)
+                lines->InsertNextCell(static_cast<vtkIdType>(run.size()), run.data());
+            run.clear();
+        };
+        for (Eigen::Index i = 0; i < trail.rows(); ++i) {
+            if (!finiteRow(trail, i)) {
+                flush();
+                continue;
+            }
+            run.push_back(points->InsertNextPoint(trail(i, 0), trail(i, 1), trail(i, 2)));
+        }
+        flush();
+    }
+    trails_->Initialize();
+    trails_->SetPoints(points);
+    trails_->SetLines(lines);
+    trails_->Modified();
+    trailActor_->SetVisibility(lines->GetNumberOfCells() > 0);
+}
+
+void MeshScene::setHeatMap(const std::vector<float>& values) {
+    if (values.empty() || static_cast<Eigen::Index>(values.size()) != V_.rows()) {
+        mesh_->GetPointData()->SetScalars(nullptr);
+        meshMapper_->ScalarVisibilityOff();
+        return;
+    }
+    vtkNew<vtkFloatArray> scalars;
+    scalars->SetName("shape error");
+    scalars->SetNumberOfValues(static_cast<vtkIdType>(values.size()));
+    std::copy(values.begin(), values.end(), scalars->GetPointer(0));
+    mesh_->GetPointData()->SetScalars(scalars);
+    // Scale to a high percentile, not the maximum: a few strained vertices would wash out the rest.
+    std::vector<float> sorted = values;
+    const std::size_t p = std::min(sorted.size() - 1, sorted.size() * 98 / 100);
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(p), sorted.end());
+    const double top = std::max(1e-12, static_cast<double>(sorted[p]));
+    vtkNew<vtkLookupTable> table;
+    table->SetHueRange(0.667, 0.0);
+    table->SetTableRange(0.0, top);
+    table->Build();
+    meshMapper_->SetLookupTable(table);
+    meshMapper_->SetScalarRange(0.0, top);
+    meshMapper_->SetScalarModeToUsePointData();
+    meshMapper_->ScalarVisibilityOn();
+}
+
+void MeshScene::setHighlightedVertex(int vertex) {
+    highlighted_ = (vertex >= 0 && vertex < V_.rows()) ? vertex : -1;
+    updateHighlight();
+}
+
+void MeshScene::updateHighlight() {
+    if (highlighted_ < 0 || highlighted_ >= V_.rows()) {
+        highlightActor_->VisibilityOff();
+        return;
+    }
+    highlightSphere_->SetCenter(V_(highlighted_, 0), V_(highlighted_, 1), V_(highlighted_, 2));
+    highlightSphere_->SetRadius(0.45 * markerRadius());
+    highlightActor_->VisibilityOn();
+}
+
+void MeshScene::resetCamera(const Eigen::Vector3d& up) {
+    vtkCamera* camera = renderer_->GetActiveCamera();
+    // Look at the mesh's front: along a horizontal axis, so the up axis stays vertical on screen.
+    Eigen::Vector3d front = Eigen::Vector3d::UnitZ();
+    if (std::abs(up.z()) > 0.5) front = -Eigen::Vector3d::UnitY();
+    if (std::abs(up.x()) > 0.5) front = Eigen::Vector3d::UnitZ();
+    camera->SetFocalPoint(0, 0, 0);
+    camera->SetPosition(front.x(), front.y(), front.z());
+    camera->SetViewUp(up.x(), up.y(), up.z());
+    camera->Azimuth(25);
+    camera->Elevation(15);
+    camera->OrthogonalizeViewUp();
+    if (hasMesh()) {
+        double bounds[6];
+        mesh_->GetBounds(bounds);
+        renderer_->ResetCamera(bounds);
+    } else {
+        renderer_->ResetCamera();
+    }
+}
+
+int MeshScene::pick(double x, double y) {
+    if (!hasMesh()) return -1;
+    if (locatorStale_) {
+        locator_->SetDataSet(mesh_);
+        locator_->BuildLocator();
+        locatorStale_ = false;
+    }
+    if (!picker_->Pick(x, y, 0.0, renderer_)) return -1;
+    const vtkIdType cell = picker_->GetCellId();
+    if (cell < 0 || cell >= F_.rows()) return -1;
+    double hit[3];
+    picker_->GetPickPosition(hit);
+    const Eigen::RowVector3d p(hit[0], hit[1], hit[2]);
+    // GetPointId() often names a neighbour; the triangle's nearest corner is what was clicked.
+    int best = F_(cell, 0);
+    double bestDistance = (V_.row(best) - p).squaredNorm();
+    for (int k = 1; k < 3; ++k) {
+        const double d = (V_.row(F_(cell, k)) - p).squaredNorm();
+        if (d < bestDistance) bestDistance = d, best = F_(cell, k);
+    }
+    return best;
+}
+
+bool MeshScene::project(int vertex, double& x, double& y) const {
+    if (vertex < 0 || vertex >= V_.rows()) return false;
+    renderer_->SetWorldPoint(V_(vertex, 0), V_(vertex, 1), V_(vertex, 2), 1.0);
+    renderer_->WorldToDisplay();
+    double display[3];
+    renderer_->GetDisplayPoint(display);
+    x = display[0];
+    y = display[1];
+    return true;
+}
+
+}  // namespace boneless::ui

@@ -1,0 +1,86 @@
+#pragma once
+
+#include <QStringList>
+#include <vector>
+
+#include <vtkNew.h>
+#include <vtkSmartPointer.h>
+
+#include "boneless/TriMesh.h"
+#include "boneless/ui/MeshView.h"
+
+class vtkActor;
+class vtkActor2D;
+class vtkCellPicker;
+class vtkGlyph3DMapper;
+class vtkLabeledDataMapper;
+class vtkPolyData;
+class vtkPolyDataMapper;
+class vtkRenderer;
+class vtkSphereSource;
+class vtkStaticCellLocator;
+
+namespace boneless::ui {
+
+// The VTK scene of a MeshView: mesh, marker spheres, labels, trails, the highlighted vertex and
+// vertex picking. Knows nothing of Qt's OpenGL; the widget owns the context and the renders.
+class MeshScene {
+  public:
+    MeshScene();
+    ~MeshScene();
+
+    vtkRenderer* renderer() const;
+
+    void setMesh(const TriMesh& mesh);
+    void clearMesh();
+    bool hasMesh() const { return V_.rows() > 0; }
+    void setPositions(const Positions& V);
+    const Positions& positions() const { return V_; }
+
+    void setMarkers(const Positions& markers, const std::vector<MarkerState>& states,
+                    const QStringList& labels);
+    void setLabelsVisible(bool visible);
+    bool labelsVisible() const { return labelsVisible_; }
+    void setTrails(const std::vector<Positions>& trails);
+    void setHeatMap(const std::vector<float>& values);
+    void setHighlightedVertex(int vertex);
+
+    // Fits the camera to the mesh, looking at its front with `up` pointing up on screen.
+    void resetCamera(const Eigen::Vector3d& up);
+
+    // Display coordinates are VTK's: device pixels, origin bottom-left.
+    int pick(double x, double y);
+    bool project(int vertex, double& x, double& y) const;
+
+  private:
+    void updateNormals();
+    void updateHighlight();
+    double markerRadius() const;
+
+    Positions V_;
+    Faces F_;
+    bool labelsVisible_ = false;
+    bool locatorStale_ = true;
+    int highlighted_ = -1;
+
+    vtkNew<vtkRenderer> renderer_;
+    vtkNew<vtkPolyData> mesh_;
+    vtkNew<vtkPolyDataMapper> meshMapper_;
+    vtkNew<vtkActor> meshActor_;
+    vtkNew<vtkPolyData> markers_;
+    vtkNew<vtkSphereSource> sphere_;
+    vtkNew<vtkGlyph3DMapper> markerMapper_;
+    vtkNew<vtkActor> markerActor_;
+    vtkNew<vtkLabeledDataMapper> labelMapper_;
+    vtkNew<vtkActor2D> labelActor_;
+    vtkNew<vtkPolyData> trails_;
+    vtkNew<vtkPolyDataMapper> trailMapper_;
+    vtkNew<vtkActor> trailActor_;
+    vtkNew<vtkSphereSource> highlightSphere_;
+    vtkNew<vtkPolyDataMapper> highlightMapper_;
+    vtkNew<vtkActor> highlightActor_;
+    vtkNew<vtkStaticCellLocator> locator_;
+    vtkNew<vtkCellPicker> picker_;
+};
+
+}  // namespace boneless::ui

@@ -1,0 +1,369 @@
+// Qt's GL headers only in this file: VTK's GL loader must not meet them (qt6-vtk.md).
+#include "boneless/ui/MeshView.h"
+
+#include <QElapsedTimer>
+#include <QEnterEvent>
+#include <QKeyEvent>
+#include <QMouseEvent>
+#include <QOpenGLContext>
+#include <QOpenGLFunctions>
+#include <QWheelEvent>
+
+#include <vtkCamera.h>
+#include <vtkCommand.h>
+#include <vtkGenericOpenGLRenderWindow.h>
+#include <vtkGenericRenderWindowInteractor.h>
+#include <vtkInteractorStyleTrackballCamera.h>
+#include <vtkOpenGLState.h>
+#include <vtkRenderer.h>
+
+#include <cmath>
+
+#include "MeshScene.h"
+
+namespace boneless::ui {
+
+struct MeshView::Impl {
+    MeshView* q;
+    MeshScene scene;
+    vtkNew<vtkGenericOpenGLRenderWindow> window;
+    vtkNew<vtkGenericRenderWindowInteractor> interactor;
+    vtkNew<vtkInteractorStyleTrackballCamera> style;
+    Eigen::Vector3d up = Eigen::Vector3d::UnitY();
+    bool initialized = false;
+    bool painting = false;
+    bool cameraPending = true;  // reset the camera once the widget has its real size
+    QMetaObject::Connection contextConnection;
+    QPoint pressPosition;
+    bool leftDown = false, dragged = false;
+
+    explicit Impl(MeshView* view) : q(view) {
+        window->SetMultiSamples(0);
+        window->SetFrameBlitModeToNoBlit();
+        window->SetReadyForRendering(false);
+        window->AddRenderer(scene.renderer());
+        window->AddObserver(vtkCommand::WindowMakeCurrentEvent, this, &Impl::onMakeCurrent);
+        window->AddObserver(vtkCommand::WindowIsCurrentEvent, this, &Impl::onIsCurrent);
+        window->AddObserver(vtkCommand::WindowFrameEvent, this, &Impl::onFrame);
+        interactor->SetRenderWindow(window);
+        interactor->SetInteractorStyle(style);
+        // The style asks for renders; they become update() so all GL work happens in paintGL.
+        interactor->EnableRenderOff();
+        interactor->AddObserver(vtkCommand::RenderEvent, this, &Impl::onRenderRequest);
+    }
+
+    void onMakeCurrent(vtkObject*, unsigned long, void*) {
+        // The black-frame trap: re-making the context current in the middle of VTK's render
+        // rebinds Qt's framebuffer and VTK draws into the wrong one.
+        if (QOpenGLContext::currentContext() != q->context()) q->makeCurrent();
+    }
+    void onIsCurrent(vtkObject*, unsigned long, void* callData) {
+        *static_cast<bool*>(callData) =
+            q->context() && QOpenGLContext::currentContext() == q->context();
+    }
+    void onFrame(vtkObject*, unsigned long, void*) {
+        if (!painting) q->update();
+    }
+    void onRenderRequest(vtkObject*, unsigned long, void*) { q->update(); }
+
+    QPoint deviceSize() const {
+        const double ratio = q->devicePixelRatioF();
+        return {std::max(1, int(std::lround(q->width() * ratio))),
+                std::max(1, int(std::lround(q->height() * ratio)))};
+    }
+
+    // Qt logical position → VTK display position (device pixels, bottom-left origin).
+    void toDisplay(const QPointF& p, double& x, double& y) const {
+        const double ratio = q->devicePixelRatioF();
+        x = p.x() * ratio;
+        y = deviceSize().y() - 1 - p.y() * ratio;
+    }
+
+    void syncSize() {
+        const QPoint size = deviceSize();
+        interactor->UpdateSize(size.x(), size.y());
+        window->SetSize(size.x(), size.y());
+        if (cameraPending && scene.hasMesh()) {
+            scene.resetCamera(up);
+            cameraPending = false;
+        }
+    }
+
+    void forwardMouse(QMouseEvent* event, unsigned long vtkEvent, int repeat = 0) {
+        const double ratio = q->devicePixelRatioF();
+        const Qt::KeyboardModifiers mods = event->modifiers();
+        interactor->SetEventInformationFlipY(
+            int(event->position().x() * ratio), int(event->position().y() * ratio),
+            (mods & Qt::ControlModifier) ? 1 : 0, (mods & Qt::ShiftModifier) ? 1 : 0, 0, repeat);
+        interactor->SetAltKey((mods & Qt::AltModifier) ? 1 : 0);
+        interactor->InvokeEvent(vtkEvent);
+    }
+};
+
+MeshView::MeshView(QWidget* parent) : QOpenGLWidget(parent), d_(std::make_unique<Impl>(this)) {
+    setFocusPolicy(Qt::StrongFocus);
+    setMinimumSize(200, 150);
+}
+
+MeshView::~MeshView() {
+    // QOpenGLWidget's destructor destroys the context after Impl is gone.
+    disconnect(d_->contextConnection);
+    // Release VTK's GL resources while the context still exists.
+    if (d_->initialized && context()) {
+        makeCurrent();
+        d_->window->Finalize();
+        doneCurrent();
+    }
+}
+
+void MeshView::initializeGL() {
+    // Called again with a new context after the widget changes top-level window.
+    disconnect(d_->contextConnection);
+    d_->contextConnection = connect(
+        context(), &QOpenGLContext::aboutToBeDestroyed, this,
+        [this] {
+            makeCurrent();
+            d_->window->Finalize();
+            d_->initialized = false;
+            doneCurrent();
+        },
+        Qt::DirectConnection);
+    d_->window->SetOwnContext(0);
+    d_->window->OpenGLInitContext();
+    d_->window->GetState()->Reset();
+    d_->window->SetReadyForRendering(true);
+    d_->window->SetMapped(1);
+    d_->syncSize();
+    if (!d_->interactor->GetInitialized()) d_->interactor->Initialize();
+    d_->initialized = true;
+}
+
+void MeshView::resizeGL(int, int) {
+    d_->syncSize();
+    update();
+}
+
+void MeshView::paintGL() {
+    if (!d_->initialized) return;
+    QElapsedTimer timer;
+    timer.start();
+    d_->syncSize();
+    d_->painting = true;
+    d_->scene.renderer()->ResetCameraClippingRange();
+    vtkOpenGLState* state = d_->window->GetState();
+    // Qt changed GL state since the last frame; VTK's cache must not trust its old values.
+    state->Reset();
+    state->Push();
+    d_->window->Render();
+    state->Pop();
+    const QPoint size = d_->deviceSize();
+    context()->functions()->glBindFramebuffer(GL_DRAW_FRAMEBUFFER, defaultFramebufferObject());
+    state->ResetFramebufferBindings();
+    d_->window->BlitDisplayFramebuffer(0, 0, 0, size.x(), size.y(), 0, 0, size.x(), size.y(),
+                                       GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    d_->painting = false;
+    emit rendered(timer.nsecsElapsed() / 1e6);
+}
+
+void MeshView::setMesh(const TriMesh& mesh, const Eigen::Vector3d& up) {
+    d_->up = up.norm() > 0 ? up.normalized() : Eigen::Vector3d::UnitY();
+    d_->scene.setMesh(mesh);
+    d_->scene.resetCamera(d_->up);
+    // The first real size arrives with resizeGL; fit again then.
+    d_->cameraPending = !d_->initialized;
+    update();
+}
+
+void MeshView::clearMesh() {
+    d_->scene.clearMesh();
+    update();
+}
+
+bool MeshView::hasMesh() const {
+    return d_->scene.hasMesh();
+}
+
+void MeshView::setPositions(const Positions& V) {
+    d_->scene.setPositions(V);
+    update();
+}
+
+const Positions& MeshView::positions() const {
+    return d_->scene.positions();
+}
+
+void MeshView::setUpAxis(const Eigen::Vector3d& up) {
+    if (up.norm() == 0) return;
+    d_->up = up.normalized();
+    resetCamera();
+}
+
+void MeshView::setMarkers(const Positions& markers, const std::vector<MarkerState>& states,
+                          const QStringList& labels) {
+    d_->scene.setMarkers(markers, states, labels);
+    update();
+}
+
+void MeshView::setLabelsVisible(bool visible) {
+    d_->scene.setLabelsVisible(visible);
+    update();
+}
+
+bool MeshView::labelsVisible() const {
+    return d_->scene.labelsVisible();
+}
+
+void MeshView::setTrails(const std::vector<Positions>& trails) {
+    d_->scene.setTrails(trails);
+    update();
+}
+
+void MeshView::setHeatMap(const std::vector<float>& values) {
+    d_->scene.setHeatMap(values);
+    update();
+}
+
+void MeshView::setHighlightedVertex(int vertex) {
+    d_->scene.setHighlightedVertex(vertex);
+    update();
+}
+
+void MeshView::setMultiSampling(int samples) {
+    d_->window->SetMultiSamples(std::max(0, samples));
+    update();
+}
+
+void MeshView::resetCamera() {
+    d_->scene.resetCamera(d_->up);
+    update();
+}
+
+QImage MeshView::grabImage() {
+    return grabFramebuffer();
+}
+
+int MeshView::pickVertex(const QPoint& position) {
+    if (!hasMesh()) return -1;
+    d_->syncSize();
+    // The mesh may have moved since the last render; a stale clipping range would cut the ray.
+    d_->scene.renderer()->ResetCameraClippingRange();
+    double x, y;
+    d_->toDisplay(position, x, y);
+    return d_->scene.pick(x, y);
+}
+
+QPoint MeshView::projectVertex(int vertex) {
+    d_->syncSize();
+    double x, y;
+    if (!d_->scene.project(vertex, x, y)) return {-1, -1};
+    const double ratio = devicePixelRatioF();
+    return QPoint(int(std::lround(x / ratio)),
+                  int(std::lround((d_->deviceSize().y() - 1 - y) / ratio)));
+}
+
+Eigen::Vector3d MeshView::cameraPosition() const {
+    double p[3];
+    d_->scene.renderer()->GetActiveCamera()->GetPosition(p);
+    return {p[0], p[1], p[2]};
+}
+
+void MeshView::mousePressEvent(QMouseEvent* event) {
+    switch (event->button()) {
+        case Qt::LeftButton:
+            d_->leftDown = true;
+            d_->dragged = false;
+            d_->pressPosition = event->position().toPoint();
+            d_->forwardMouse(event, vtkCommand::LeftButtonPressEvent);
+            break;
+        case Qt::MiddleButton:
+            d_->forwardMouse(event, vtkCommand::MiddleButtonPressEvent);
+            break;
+        case Qt::RightButton:
+            d_->forwardMouse(event, vtkCommand::RightButtonPressEvent);
+            break;
+        default:
+            break;
+    }
+}
+
+void MeshView::mouseReleaseEvent(QMouseEvent* event) {
+    switch (event->button()) {
+        case Qt::LeftButton: {
+            d_->forwardMouse(event, vtkCommand::LeftButtonReleaseEvent);
+            const bool click = d_->leftDown && !d_->dragged;
+            d_->leftDown = false;
+            // A press and release without a drag is a pick; a drag only turns the camera.
+            if (click) {
+                const int vertex = pickVertex(event->position().toPoint());
+                if (vertex >= 0) emit vertexPicked(vertex);
+            }
+            break;
+        }
+        case Qt::MiddleButton:
+            d_->forwardMouse(event, vtkCommand::MiddleButtonReleaseEvent);
+            break;
+        case Qt::RightButton:
+            d_->forwardMouse(event, vtkCommand::RightButtonReleaseEvent);
+            break;
+        default:
+            break;
+    }
+}
+
+void MeshView::mouseMoveEvent(QMouseEvent* event) {
+    if (d_->leftDown && (event->position().toPoint() - d_->pressPosition).manhattanLength() > 3)
+        d_->dragged = true;
+    d_->forwardMouse(event, vtkCommand::MouseMoveEvent);
+}
+
+void MeshView::mouseDoubleClickEvent(QMouseEvent* event) {
+    // Qt sends press, release, double-click, release: treat the second press as a press.
+    mousePressEvent(event);
+}
+
+void MeshView::wheelEvent(QWheelEvent* event) {
+    const double ratio = devicePixelRatioF();
+    d_->interactor->SetEventInformationFlipY(int(event->position().x() * ratio),
+                                             int(event->position().y() * ratio));
+    const int delta = event->angleDelta().y();
+    if (delta > 0) d_->interactor->InvokeEvent(vtkCommand::MouseWheelForwardEvent);
+    if (delta < 0) d_->interactor->InvokeEvent(vtkCommand::MouseWheelBackwardEvent);
+    event->accept();
+}
+
+void MeshView::keyPressEvent(QKeyEvent* event) {
+    // VTK's own key bindings (q quits, 3 toggles stereo, ...) do not belong in an editor;
+    // only the camera reset is kept. Everything else goes to the window's shortcuts.
+    if (event->key() == Qt::Key_R && event->modifiers() == Qt::NoModifier) {
+        resetCamera();
+        event->accept();
+        return;
+    }
+    QOpenGLWidget::keyPressEvent(event);
+}
+
+void MeshView::keyReleaseEvent(QKeyEvent* event) {
+    QOpenGLWidget::keyReleaseEvent(event);
+}
+
+void MeshView::enterEvent(QEnterEvent* event) {
+    d_->interactor->InvokeEvent(vtkCommand::EnterEvent);
+    QOpenGLWidget::enterEvent(event);
+}
+
+void MeshView::leaveEvent(QEvent* event) {
+    d_->interactor->InvokeEvent(vtkCommand::LeaveEvent);
+    QOpenGLWidget::leaveEvent(event);
+}
+
+Eigen::Vector3d upAxisVector(const QString& axis) {
+    const QString a = axis.trimmed().toLower();
+    if (a.size() != 2 || (a[0] != '+' && a[0] != '-')) return Eigen::Vector3d::UnitY();
+    const double sign = a[0] == '-' ? -1.0 : 1.0;
+    if (a[1] == 'x') return sign * Eigen::Vector3d::UnitX();
+    if (a[1] == 'y') return sign * Eigen::Vector3d::UnitY();
+    if (a[1] == 'z') return sign * Eigen::Vector3d::UnitZ();
+    return Eigen::Vector3d::UnitY();
+}
+
+}  // namespace boneless::ui
