@@ -2,84 +2,260 @@
 
 #include <Eigen/LU>
 #include <Eigen/SVD>
+#include <cmath>
+
+#include "Parallel.h"
 
 namespace boneless {
+
+namespace {
+
+// The rotation R maximising tr(R S), i.e. the transposed orthogonal polar factor of S. Scaled
+// Newton iterations (Higham) converge quadratically and cost a 3×3 inverse each, a fraction of a
+// 3×3 SVD; a reflection or a near-singular S, which Newton cannot sort out, goes to the SVD.
+Mat3 bestRotation(const Mat3& S) {
+    const double scale = S.norm();
+    const double det = S.determinant();
+    if (scale > 0 && det > 1e-6 * scale * scale * scale) {
+        Mat3 X = S / scale;
+        for (int it = 0; it < 30; ++it) {
+            const double d = X.determinant();
+            const double gamma = std::pow(std::abs(d), -1.0 / 3.0);
+            const Mat3 next = 0.5 * (gamma * X + X.inverse().transpose() / gamma);
+            const double change = (next - X).squaredNorm();
+            X = next;
+            if (change < 1e-20) return X.transpose();
+        }
+    }
+    Eigen::JacobiSVD<Mat3> svd(S, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    Mat3 U = svd.matrixU();
+    Mat3 R = svd.matrixV() * U.transpose();
+    if (R.determinant() < 0) {
+        U.col(2) *= -1;  // the smallest singular value's direction takes the reflection
+        R = svd.matrixV() * U.transpose();
+    }
+    return R;
+}
+
+bool positiveDefinite(const Mat3& H) {
+    return H(0, 0) > 0 && H(0, 0) * H(1, 1) - H(0, 1) * H(1, 0) > 0 && H.determinant() > 0;
+}
+
+// Newton's method for the maximiser of tr(R S) over rotations, from R: with R ← exp([δ]) R,
+// tr(R S) ≈ f + δ·g − ½ δᵀHδ where g = Σ r_i × a_i (a_i the columns of Sᵀ), B = Sᵀ Rᵀ and
+// H = tr(B) I − sym(B). H is positive definite exactly around the maximum (the only local
+// maximum), so convergence with H positive definite is the answer. Quadratic convergence, a 3×3
+// solve per step: several times cheaper than a 3×3 SVD, and unlike polar-decomposition Newton it
+// does not stall on the nearly rank-2 S of a flat one-ring. Returns false when it does not
+// converge (the caller then uses the SVD).
+bool refineRotation(const Mat3& S, Mat3& R) {
+    const Mat3 A = S.transpose();
+    const double scale = A.norm();
+    if (!(scale > 0)) return false;
+    for (int it = 0; it < 30; ++it) {
+        Vec3 g = Vec3::Zero();
+        for (int i = 0; i < 3; ++i) g += R.col(i).cross(A.col(i));
+        const Mat3 B = A * R.transpose();
+        const Mat3 H = B.trace() * Mat3::Identity() - 0.5 * (B + B.transpose());
+        const bool newton = positiveDefinite(H);
+        // Away from the maximum: a gradient step scaled like the Hessian (Müller et al. 2016).
+        const Vec3 d =
+            newton ? Vec3(H.inverse() * g) : Vec3(g / (std::abs(B.trace()) + 1e-9 * scale));
+        const double angle = d.norm();
+        if (!std::isfinite(angle)) return false;
+        if (angle > 0) R = Eigen::AngleAxisd(angle, d / angle).toRotationMatrix() * R;
+        if (newton && angle < 1e-10) return true;
+    }
+    return false;
+}
+
+}  // namespace
 
 ArapEnergy::ArapEnergy(const TriMesh& rest) : rest_(&rest) {
     const int n = rest.vertexCount();
     cotangent_.resize(rest.faceCount(), 3);
+    restEdge_.resize(3 * static_cast<size_t>(rest.faceCount()));
     std::vector<Eigen::Triplet<double>> t;
     t.reserve(12 * rest.faceCount());
+    cornerOffsets_.assign(n + 1, 0);
     for (int f = 0; f < rest.faceCount(); ++f)
         for (int c = 0; c < 3; ++c) {
+            ++cornerOffsets_[rest.F(f, c) + 1];
             const int o = rest.F(f, c), j = rest.F(f, (c + 1) % 3), k = rest.F(f, (c + 2) % 3);
             const Vec3 a = rest.V.row(j) - rest.V.row(o), b = rest.V.row(k) - rest.V.row(o);
             const double sine = a.cross(b).norm();
             // A zero-area face has no angles to keep; it contributes nothing.
             const double w = sine > 1e-300 ? 0.5 * a.dot(b) / sine : 0.0;
             cotangent_(f, c) = w;
+            restEdge_[3 * f + c] = rest.V.row(j) - rest.V.row(k);
             t.emplace_back(j, j, w);
             t.emplace_back(k, k, w);
             t.emplace_back(j, k, -w);
             t.emplace_back(k, j, -w);
         }
+    for (int v = 0; v < n; ++v) cornerOffsets_[v + 1] += cornerOffsets_[v];
+    corners_.resize(cornerOffsets_[n]);
+    std::vector<int> fill(cornerOffsets_.begin(), cornerOffsets_.end() - 1);
+    for (int f = 0; f < rest.faceCount(); ++f)
+        for (int c = 0; c < 3; ++c) corners_[fill[rest.F(f, c)]++] = 3 * f + c;
     laplacian_.resize(n, n);
     laplacian_.setFromTriplets(t.begin(), t.end());
 }
 
-void ArapEnergy::fitRotations(const Positions& V, std::vector<Mat3>& R) const {
+void ArapEnergy::fitRotations(const Positions& V, std::vector<Mat3>& R, bool warmStart,
+                              std::vector<Mat3>* curvature) const {
     const TriMesh& rest = *rest_;
     const int n = rest.vertexCount();
-    std::vector<Mat3> S(n, Mat3::Zero());
-    for (int f = 0; f < rest.faceCount(); ++f) {
-        Mat3 cov = Mat3::Zero();
-        for (int c = 0; c < 3; ++c) {
-            const int j = rest.F(f, (c + 1) % 3), k = rest.F(f, (c + 2) % 3);
-            const Vec3 e0 = rest.V.row(j) - rest.V.row(k);
-            const Vec3 e = V.row(j) - V.row(k);
-            cov += cotangent_(f, c) * e0 * e.transpose();
+    faceCovariance_.resize(rest.faceCount());
+    parallelFor(rest.faceCount(), [&](int begin, int end, int) {
+        for (int f = begin; f < end; ++f) {
+            Mat3 cov = Mat3::Zero();
+            for (int c = 0; c < 3; ++c) {
+                const int j = rest.F(f, (c + 1) % 3), k = rest.F(f, (c + 2) % 3);
+                const Vec3 e = V.row(j) - V.row(k);
+                cov.noalias() += cotangent_(f, c) * restEdge_[3 * f + c] * e.transpose();
+            }
+            faceCovariance_[f] = cov;
         }
-        for (int c = 0; c < 3; ++c) S[rest.F(f, c)] += cov;
-    }
+    });
+    warmStart = warmStart && static_cast<int>(R.size()) == n;
     R.resize(n);
-    for (int v = 0; v < n; ++v) {
-        Eigen::JacobiSVD<Mat3> svd(S[v], Eigen::ComputeFullU | Eigen::ComputeFullV);
-        Mat3 U = svd.matrixU();
-        R[v] = svd.matrixV() * U.transpose();
-        if (R[v].determinant() < 0) {
-            U.col(2) *= -1;  // the smallest singular value's direction takes the reflection
-            R[v] = svd.matrixV() * U.transpose();
+    if (curvature) curvature->resize(n);
+    parallelFor(n, [&](int begin, int end, int) {
+        for (int v = begin; v < end; ++v) {
+            Mat3 S = Mat3::Zero();
+            for (int i = cornerOffsets_[v]; i < cornerOffsets_[v + 1]; ++i)
+                S += faceCovariance_[corners_[i] / 3];
+            if (!warmStart) R[v].setIdentity();
+            if (!refineRotation(S, R[v])) R[v] = bestRotation(S);
+            if (curvature) {
+                const Mat3 B = S.transpose() * R[v].transpose();
+                const Mat3 H = B.trace() * Mat3::Identity() - 0.5 * (B + B.transpose());
+                (*curvature)[v] = positiveDefinite(H) ? Mat3(H.inverse()) : Mat3::Zero();
+            }
+        }
+    });
+}
+
+void ArapEnergy::addRotationCoupling(const std::vector<Mat3>& R, const std::vector<Mat3>& curvature,
+                                     const Eigen::VectorXd& x, double scale,
+                                     Eigen::VectorXd& y) const {
+    const TriMesh& rest = *rest_;
+    const int n = rest.vertexCount(), faces = rest.faceCount();
+    cornerScratch_.resize(3 * static_cast<size_t>(faces));
+    vertexScratch_.resize(n);
+    // G_v x, face by face (one value per corner), then summed per vertex and multiplied by C_v.
+    parallelFor(faces, [&](int begin, int end, int) {
+        for (int f = begin; f < end; ++f) {
+            Vec3 d[3];
+            for (int c = 0; c < 3; ++c)
+                d[c] = cotangent_(f, c) * (x.segment<3>(3 * rest.F(f, (c + 1) % 3)) -
+                                           x.segment<3>(3 * rest.F(f, (c + 2) % 3)));
+            for (int s = 0; s < 3; ++s) {
+                const Mat3& Ri = R[rest.F(f, s)];
+                Vec3 u = Vec3::Zero();
+                for (int c = 0; c < 3; ++c) u += (Ri * restEdge_[3 * f + c]).cross(d[c]);
+                cornerScratch_[3 * f + s] = u;
+            }
+        }
+    });
+    parallelFor(n, [&](int begin, int end, int) {
+        for (int v = begin; v < end; ++v) {
+            Vec3 u = Vec3::Zero();
+            for (int i = cornerOffsets_[v]; i < cornerOffsets_[v + 1]; ++i)
+                u += cornerScratch_[corners_[i]];
+            vertexScratch_[v] = curvature[v] * u;
+        }
+    });
+    // Gᵀ of that: edge (j, k) of f gets ±w Σ_i y_i × (R_i e⁰) over the face's corners i.
+    parallelFor(faces, [&](int begin, int end, int) {
+        for (int f = begin; f < end; ++f) {
+            Vec3 out[3] = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
+            for (int c = 0; c < 3; ++c) {
+                Vec3 t = Vec3::Zero();
+                for (int s = 0; s < 3; ++s) {
+                    const int i = rest.F(f, s);
+                    t += vertexScratch_[i].cross(R[i] * restEdge_[3 * f + c]);
+                }
+                t *= cotangent_(f, c);
+                out[(c + 1) % 3] += t;
+                out[(c + 2) % 3] -= t;
+            }
+            for (int s = 0; s < 3; ++s) cornerScratch_[3 * f + s] = out[s];
+        }
+    });
+    parallelFor(n, [&](int begin, int end, int) {
+        for (int v = begin; v < end; ++v) {
+            Vec3 sum = Vec3::Zero();
+            for (int i = cornerOffsets_[v]; i < cornerOffsets_[v + 1]; ++i)
+                sum += cornerScratch_[corners_[i]];
+            y.segment<3>(3 * v) += scale * sum;
+        }
+    });
+}
+
+bool ArapEnergy::restCouplingBlocks(int v, std::vector<std::pair<int, Mat3>>& blocks,
+                                    Mat3& C) const {
+    const TriMesh& rest = *rest_;
+    blocks.clear();
+    Mat3 S = Mat3::Zero();
+    for (int i = cornerOffsets_[v]; i < cornerOffsets_[v + 1]; ++i) {
+        const int f = corners_[i] / 3;
+        for (int c = 0; c < 3; ++c) {
+            const Vec3& e0 = restEdge_[3 * f + c];
+            const double w = cotangent_(f, c);
+            S += w * e0 * e0.transpose();
+            Mat3 cross;
+            cross << 0, -e0.z(), e0.y(), e0.z(), 0, -e0.x(), -e0.y(), e0.x(), 0;
+            blocks.emplace_back(rest.F(f, (c + 1) % 3), w * cross);
+            blocks.emplace_back(rest.F(f, (c + 2) % 3), -w * cross);
         }
     }
+    // At rest the fitted rotation is the identity and S is symmetric.
+    const Mat3 H = S.trace() * Mat3::Identity() - S;
+    if (!positiveDefinite(H)) return false;
+    C = H.inverse();
+    return true;
 }
 
 double ArapEnergy::energy(const Positions& V, const std::vector<Mat3>& R) const {
     const TriMesh& rest = *rest_;
+    std::vector<double> partial(solverThreadCount(), 0.0);
+    parallelFor(rest.faceCount(), [&](int begin, int end, int t) {
+        double e = 0;
+        for (int f = begin; f < end; ++f)
+            for (int c = 0; c < 3; ++c) {
+                const int j = rest.F(f, (c + 1) % 3), k = rest.F(f, (c + 2) % 3);
+                const Vec3& e0 = restEdge_[3 * f + c];
+                const Vec3 d = V.row(j) - V.row(k);
+                for (int i = 0; i < 3; ++i)
+                    e += cotangent_(f, c) * (d - R[rest.F(f, i)] * e0).squaredNorm();
+            }
+        partial[t] = e;
+    });
     double e = 0;
-    for (int f = 0; f < rest.faceCount(); ++f)
-        for (int c = 0; c < 3; ++c) {
-            const int j = rest.F(f, (c + 1) % 3), k = rest.F(f, (c + 2) % 3);
-            const Vec3 e0 = rest.V.row(j) - rest.V.row(k);
-            const Vec3 d = V.row(j) - V.row(k);
-            for (int i = 0; i < 3; ++i)
-                e += cotangent_(f, c) * (d - R[rest.F(f, i)] * e0).squaredNorm();
-        }
+    for (double x : partial) e += x;
     return e;
 }
 
 Eigen::MatrixXd ArapEnergy::rotatedRestEdges(const std::vector<Mat3>& R) const {
     const TriMesh& rest = *rest_;
-    Eigen::MatrixXd b = Eigen::MatrixXd::Zero(rest.vertexCount(), 3);
-    for (int f = 0; f < rest.faceCount(); ++f) {
-        const Mat3 Rsum = R[rest.F(f, 0)] + R[rest.F(f, 1)] + R[rest.F(f, 2)];
-        for (int c = 0; c < 3; ++c) {
-            const int j = rest.F(f, (c + 1) % 3), k = rest.F(f, (c + 2) % 3);
-            const Vec3 e0 = rest.V.row(j) - rest.V.row(k);
-            const Vec3 rotated = cotangent_(f, c) * (Rsum * e0);
-            b.row(j) += rotated.transpose();
-            b.row(k) -= rotated.transpose();
+    Eigen::MatrixXd b(rest.vertexCount(), 3);
+    // Gathered per vertex: corner c of face f touches the edges opposite corners c+1 (where the
+    // vertex is the edge's second end) and c+2 (its first end).
+    parallelFor(rest.vertexCount(), [&](int begin, int end, int) {
+        for (int v = begin; v < end; ++v) {
+            Vec3 s = Vec3::Zero();
+            for (int i = cornerOffsets_[v]; i < cornerOffsets_[v + 1]; ++i) {
+                const int f = corners_[i] / 3, c = corners_[i] % 3;
+                const Mat3 Rsum = R[rest.F(f, 0)] + R[rest.F(f, 1)] + R[rest.F(f, 2)];
+                const int first = (c + 2) % 3, second = (c + 1) % 3;
+                s += Rsum * (cotangent_(f, first) * restEdge_[3 * f + first] -
+                             cotangent_(f, second) * restEdge_[3 * f + second]);
+            }
+            b.row(v) = s.transpose();
         }
-    }
+    });
     return b;
 }
 

@@ -15,13 +15,30 @@ class ArapEnergy {
   public:
     explicit ArapEnergy(const TriMesh& rest);
 
-    // Each vertex's rotation that minimises E for the given V (the "local step").
-    void fitRotations(const Positions& V, std::vector<Mat3>& R) const;
+    // Each vertex's rotation that minimises E for the given V (the "local step"). warmStart: R
+    // already holds rotations close to the answer (the last pose's), so fewer Newton
+    // steps are needed; the answer is the same.
+    // curvature (optional): per vertex, the inverse of the 3×3 Hessian of tr(R S_v) over
+    // rotations at the fitted R_v (zero where it is not positive definite), which is what
+    // addRotationCoupling() needs.
+    void fitRotations(const Positions& V, std::vector<Mat3>& R, bool warmStart = false,
+                      std::vector<Mat3>* curvature = nullptr) const;
+    // The part of E's exact Hessian (rotations refitted, E = min over R) that fixed rotations
+    // miss: y += scale · Σ_v G_vᵀ C_v G_v x, with G_v x = Σ w (R_v e⁰) × (x_j − x_k) over the
+    // edges of v's faces and C_v = curvature[v]. The full Hessian is 6 L ⊗ I − 2 Σ G_vᵀ C_v G_v;
+    // without this term Gauss–Newton converges only linearly on bends, where the rotations must
+    // change. x and y: 3 per vertex.
+    void addRotationCoupling(const std::vector<Mat3>& R, const std::vector<Mat3>& curvature,
+                             const Eigen::VectorXd& x, double scale, Eigen::VectorXd& y) const;
     double energy(const Positions& V, const std::vector<Mat3>& R) const;
     // b with ∇_V E = 2 (3 L V − b) for fixed R: the rotated rest edges, summed per vertex.
     Eigen::MatrixXd rotatedRestEdges(const std::vector<Mat3>& R) const;
     // L = Σ w (e_j − e_k)(e_j − e_k)ᵀ: positive semidefinite (it is the Dirichlet energy).
     const Eigen::SparseMatrix<double>& laplacian() const { return laplacian_; }
+    // The rest pose's G_v as 3×3 blocks (vertex, block; a vertex may repeat) and its curvature
+    // C_v, so that the rest Hessian can hold the coupling term too. False when C_v is not
+    // positive definite (no coupling at v).
+    bool restCouplingBlocks(int v, std::vector<std::pair<int, Mat3>>& blocks, Mat3& C) const;
     // Half the cotangent of face f's angle at corner c: the weight of the edge opposite c.
     double cotangent(int f, int c) const { return cotangent_(f, c); }
 
@@ -29,6 +46,11 @@ class ArapEnergy {
     const TriMesh* rest_;
     Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> cotangent_;  // half cot, per corner
     Eigen::SparseMatrix<double> laplacian_;
+    std::vector<Vec3> restEdge_;  // per face corner: rest edge opposite it, v⁰_j − v⁰_k
+    // Corners (3 f + c) around each vertex, CSR, so that per-vertex sums need no shared writes.
+    std::vector<int> cornerOffsets_, corners_;
+    mutable std::vector<Mat3> faceCovariance_;  // scratch of fitRotations
+    mutable std::vector<Vec3> cornerScratch_, vertexScratch_;
 };
 
 }  // namespace boneless

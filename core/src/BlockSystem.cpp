@@ -96,17 +96,19 @@ void BlockSystem::pin(int v) {
     }
 }
 
+void BlockSystem::addToDiagonal(double tikhonov) {
+    const int n = static_cast<int>(matrix_.rows()) / 3;
+    for (int v = 0; v < n; ++v) addDiagonal(v, tikhonov * Mat3::Identity());
+}
+
 bool BlockSystem::factorize(double tikhonov) {
-    if (tikhonov != 0) {
-        const int n = static_cast<int>(matrix_.rows()) / 3;
-        for (int v = 0; v < n; ++v) addDiagonal(v, tikhonov * Mat3::Identity());
+    if (tikhonov != 0) addToDiagonal(tikhonov);
+    if (!solver_) {
+        solver_ = std::make_unique<Factor>();
+        solver_->analyzePattern(matrix_);
     }
-    if (!analysed_) {
-        solver_.analyzePattern(matrix_);
-        analysed_ = true;
-    }
-    solver_.factorize(matrix_);
-    return solver_.info() == Eigen::Success;
+    solver_->factorize(matrix_);
+    return solver_->info() == Eigen::Success;
 }
 
 double BlockSystem::meanDiagonal() const {

@@ -2,6 +2,7 @@
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/Sparse>
+#include <memory>
 #include <vector>
 
 #include "boneless/ShapeEncoding.h"
@@ -32,20 +33,23 @@ class BlockSystem {
     void pin(int v);
     // Factorises H + tikhonov·I; false when the matrix is not positive definite.
     bool factorize(double tikhonov);
-    Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const { return solver_.solve(rhs); }
+    Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const { return solver_->solve(rhs); }
+    // Adds tikhonov·I to the values (what factorize() does before factorising).
+    void addToDiagonal(double tikhonov);
     double meanDiagonal() const;
+    const Eigen::SparseMatrix<double>& matrix() const { return matrix_; }
 
   private:
     int stencilSize(int r) const { return stencilSizes_[r]; }
     int slotOfBlock(int a, int b) const;
 
     Eigen::SparseMatrix<double> matrix_;
-    Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver_;
+    using Factor = Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower>;
+    std::unique_ptr<Factor> solver_;  // made on the first factorize()
     std::vector<int> stencilSizes_;
     std::vector<long> slotOffset_;
     std::vector<int> slots_;  // value index of the first row of each block column
     std::vector<int> diagonalSlots_;
-    bool analysed_ = false;
 };
 
 }  // namespace boneless

@@ -6,19 +6,11 @@
 #include <limits>
 #include <string>
 
-#include "ArapEnergy.h"
-#include "BlockSystem.h"
+#include "IterativeSolver.h"
+#include "ReconstructionImpl.h"
 #include "boneless/Error.h"
 
 namespace boneless {
-
-namespace {
-
-bool rowIsFinite(const Positions& P, int r) {
-    return P.row(r).allFinite();
-}
-
-}  // namespace
 
 RigidMotion fitRigidMotion(const Positions& from, const Positions& to) {
     std::vector<int> rows;
@@ -37,152 +29,130 @@ RigidMotion fitRigidMotion(const Positions& from, const Positions& to) {
     return motion;
 }
 
-struct Reconstruction::Impl {
-    TriMesh rest;
-    std::unique_ptr<MeshTopology> topology;
-    std::unique_ptr<ShapeEncoding> encoding;
-    std::vector<int> markers;
-    std::vector<int> markerOf;       // vertex -> marker index, or -1
-    std::vector<int> residualOf;     // residual -> vertex
-    std::vector<int> residualIndex;  // vertex -> residual, or -1
-    std::unique_ptr<BlockSystem> system;
-    std::unique_ptr<ArapEnergy> rigidity;
-    SolverOptions options;
+Reconstruction::Impl::Impl() = default;
+Reconstruction::Impl::~Impl() = default;
 
-    // Per-iteration scratch, kept to avoid reallocations per frame.
-    std::vector<Vec3> residual;
-    std::vector<std::vector<Mat3>> jacobian;
-    std::vector<Mat3> rotations;
+Vec3 Reconstruction::Impl::markerPoint(size_t k, const Positions& V, std::vector<Mat3>* dn) const {
+    const int v = markers[k];
+    Vec3 x = V.row(v).transpose();
+    const double d = offset(k);
+    if (d != 0 && encoding->encoded(v)) x += d * encoding->ringNormal(v, V, dn);
+    return x;
+}
 
-    bool rigid() const { return options.rigidityWeight > 0; }
-    double rigidityEnergy(const Positions& V, std::vector<Mat3>& R) const {
-        rigidity->fitRotations(V, R);
-        return options.rigidityWeight * rigidity->energy(V, R);
+double Reconstruction::Impl::markerEnergy(const Positions& V, const Positions& targets) const {
+    double e = 0;
+    if (softMarkers())
+        for (size_t k = 0; k < markers.size(); ++k)
+            if (rowIsFinite(targets, static_cast<int>(k)))
+                e += options.softWeight *
+                     (markerPoint(k, V) - targets.row(k).transpose()).squaredNorm();
+    return e;
+}
+
+double Reconstruction::Impl::rigidityEnergy(const Positions& V, std::vector<Mat3>& R) const {
+    rigidity->fitRotations(V, R);
+    return options.rigidityWeight * rigidity->energy(V, R);
+}
+
+double Reconstruction::Impl::energy(const Positions& V, const Positions& targets) const {
+    double e = markerEnergy(V, targets);
+    for (int v : residualOf) e += (V.row(v).transpose() - encoding->decode(v, V)).squaredNorm();
+    e *= 0.5;
+    if (rigid()) {
+        std::vector<Mat3> R;
+        e += rigidityEnergy(V, R);
     }
+    return e;
+}
 
-    bool softMarkers() const { return options.constraints == SolverOptions::Constraints::Soft; }
+double Reconstruction::Impl::linearise(const Positions& V, const Positions& targets) {
+    const int count = static_cast<int>(residualOf.size());
+    residual.resize(count);
+    jacobian.resize(count);
+    double e = 0;
+    for (int r = 0; r < count; ++r) {
+        const int v = residualOf[r];
+        Vec3 F;
+        encoding->decodeWithJacobian(v, V, F, jacobian[r]);
+        residual[r] = V.row(v).transpose() - F;
+        e += residual[r].squaredNorm();
+    }
+    e += markerEnergy(V, targets);
+    e *= 0.5;
+    if (rigid()) e += rigidityEnergy(V, rotations);
+    return e;
+}
 
-    double offset(size_t k) const {
-        return k < options.markerOffsets.size() ? options.markerOffsets[k] : 0.0;
-    }
-    // Where marker k sits for the pose V: its vertex, plus its offset along the ring's normal.
-    Vec3 markerPoint(size_t k, const Positions& V, std::vector<Mat3>* dn = nullptr) const {
-        const int v = markers[k];
-        Vec3 x = V.row(v).transpose();
-        const double d = offset(k);
-        if (d != 0 && encoding->encoded(v)) x += d * encoding->ringNormal(v, V, dn);
-        return x;
-    }
-    double markerEnergy(const Positions& V, const Positions& targets) const {
-        double e = 0;
-        if (softMarkers())
-            for (size_t k = 0; k < markers.size(); ++k)
-                if (rowIsFinite(targets, static_cast<int>(k)))
-                    e += options.softWeight *
-                         (markerPoint(k, V) - targets.row(k).transpose()).squaredNorm();
-        return e;
-    }
-
-    double energy(const Positions& V, const Positions& targets) const {
-        double e = markerEnergy(V, targets);
-        for (int v : residualOf) e += (V.row(v).transpose() - encoding->decode(v, V)).squaredNorm();
-        e *= 0.5;
-        if (rigid()) {
-            std::vector<Mat3> R;
-            e += rigidityEnergy(V, R);
+void Reconstruction::Impl::assemble(const Positions& V, const Positions& targets,
+                                    Eigen::VectorXd& gradient) {
+    const int n = rest.vertexCount();
+    gradient.setZero(3 * n);
+    system->clear();
+    const auto& topo = *topology;
+    for (int r = 0; r < static_cast<int>(residualOf.size()); ++r) {
+        const int v = residualOf[r];
+        const int m = topo.valence(v);
+        const int* ring = topo.ring(v);
+        const auto& J = jacobian[r];
+        const Vec3& res = residual[r];
+        // Stencil slot 0 is v itself (∂r/∂v = I), slot k+1 its k-th neighbour (∂r/∂p_k = −J_k).
+        system->add(r, 0, 0, Mat3::Identity());
+        gradient.segment<3>(3 * v) += res;
+        for (int k = 0; k < m; ++k) {
+            const Mat3 Jt = J[k].transpose();
+            system->add(r, 0, k + 1, -J[k]);
+            system->add(r, k + 1, 0, -Jt);
+            gradient.segment<3>(3 * ring[k]) -= Jt * res;
+            for (int l = 0; l < m; ++l) system->add(r, k + 1, l + 1, Jt * J[l]);
         }
-        return e;
     }
-
-    // Fills residuals and Jacobians, returns the energy.
-    double linearise(const Positions& V, const Positions& targets) {
-        const int count = static_cast<int>(residualOf.size());
-        residual.resize(count);
-        jacobian.resize(count);
-        double e = 0;
-        for (int r = 0; r < count; ++r) {
-            const int v = residualOf[r];
-            Vec3 F;
-            encoding->decodeWithJacobian(v, V, F, jacobian[r]);
-            residual[r] = V.row(v).transpose() - F;
-            e += residual[r].squaredNorm();
-        }
-        e += markerEnergy(V, targets);
-        e *= 0.5;
-        if (rigid()) e += rigidityEnergy(V, rotations);
-        return e;
+    if (rigid()) {
+        // For the rotations fitted at V: Hessian 6αL ⊗ I, gradient α(6 L V − 2 b).
+        const double a = options.rigidityWeight;
+        const int firstFaceStencil = static_cast<int>(residualOf.size());
+        for (int f = 0; f < rest.faceCount(); ++f)
+            for (int c = 0; c < 3; ++c) {
+                const Mat3 W = 6.0 * a * rigidity->cotangent(f, c) * Mat3::Identity();
+                const int j = (c + 1) % 3, k = (c + 2) % 3;
+                system->add(firstFaceStencil + f, j, j, W);
+                system->add(firstFaceStencil + f, k, k, W);
+                system->add(firstFaceStencil + f, j, k, -W);
+                system->add(firstFaceStencil + f, k, j, -W);
+            }
+        const Eigen::MatrixXd b = rigidity->rotatedRestEdges(rotations);
+        const Eigen::MatrixXd LV = rigidity->laplacian() * V;
+        for (int v = 0; v < n; ++v)
+            gradient.segment<3>(3 * v) += a * (6.0 * LV.row(v) - 2.0 * b.row(v)).transpose();
     }
-
-    // Assembles AᵀA and Aᵀr for the current linearisation.
-    void assemble(const Positions& V, const Positions& targets, Eigen::VectorXd& gradient) {
-        const int n = rest.vertexCount();
-        gradient.setZero(3 * n);
-        system->clear();
-        const auto& topo = *topology;
-        for (int r = 0; r < static_cast<int>(residualOf.size()); ++r) {
-            const int v = residualOf[r];
-            const int m = topo.valence(v);
-            const int* ring = topo.ring(v);
-            const auto& J = jacobian[r];
-            const Vec3& res = residual[r];
-            // Stencil slot 0 is v itself (∂r/∂v = I), slot k+1 its k-th neighbour (∂r/∂p_k = −J_k).
-            system->add(r, 0, 0, Mat3::Identity());
-            gradient.segment<3>(3 * v) += res;
-            for (int k = 0; k < m; ++k) {
-                const Mat3 Jt = J[k].transpose();
-                system->add(r, 0, k + 1, -J[k]);
-                system->add(r, k + 1, 0, -Jt);
-                gradient.segment<3>(3 * ring[k]) -= Jt * res;
-                for (int l = 0; l < m; ++l) system->add(r, k + 1, l + 1, Jt * J[l]);
+    if (softMarkers())
+        for (size_t k = 0; k < markers.size(); ++k) {
+            if (!rowIsFinite(targets, static_cast<int>(k))) continue;
+            const int v = markers[k];
+            const double lambda = options.softWeight;
+            std::vector<Mat3> dn;
+            const Vec3 miss = markerPoint(k, V, &dn) - targets.row(k).transpose();
+            gradient.segment<3>(3 * v) += lambda * miss;
+            if (dn.empty() || residualIndex[v] < 0) {
+                system->addDiagonal(v, lambda * Mat3::Identity());
+                continue;
+            }
+            // ∂g/∂v = I, ∂g/∂p_j = δ ∂n/∂p_j: the stencil of v's own residual holds them all.
+            const double d = offset(k);
+            const int r = residualIndex[v];
+            const int* ring = topology->ring(v);
+            const int m = topology->valence(v);
+            system->add(r, 0, 0, lambda * Mat3::Identity());
+            for (int j = 0; j < m; ++j) {
+                const Mat3 Aj = d * dn[j];
+                gradient.segment<3>(3 * ring[j]) += lambda * Aj.transpose() * miss;
+                system->add(r, 0, j + 1, lambda * Aj);
+                system->add(r, j + 1, 0, lambda * Aj.transpose());
+                for (int i = 0; i < m; ++i)
+                    system->add(r, j + 1, i + 1, lambda * Aj.transpose() * (d * dn[i]));
             }
         }
-        if (rigid()) {
-            // For the rotations fitted at V: Hessian 6αL ⊗ I, gradient α(6 L V − 2 b).
-            const double a = options.rigidityWeight;
-            const int firstFaceStencil = static_cast<int>(residualOf.size());
-            for (int f = 0; f < rest.faceCount(); ++f)
-                for (int c = 0; c < 3; ++c) {
-                    const Mat3 W = 6.0 * a * rigidity->cotangent(f, c) * Mat3::Identity();
-                    const int j = (c + 1) % 3, k = (c + 2) % 3;
-                    system->add(firstFaceStencil + f, j, j, W);
-                    system->add(firstFaceStencil + f, k, k, W);
-                    system->add(firstFaceStencil + f, j, k, -W);
-                    system->add(firstFaceStencil + f, k, j, -W);
-                }
-            const Eigen::MatrixXd b = rigidity->rotatedRestEdges(rotations);
-            const Eigen::MatrixXd LV = rigidity->laplacian() * V;
-            for (int v = 0; v < n; ++v)
-                gradient.segment<3>(3 * v) += a * (6.0 * LV.row(v) - 2.0 * b.row(v)).transpose();
-        }
-        if (softMarkers())
-            for (size_t k = 0; k < markers.size(); ++k) {
-                if (!rowIsFinite(targets, static_cast<int>(k))) continue;
-                const int v = markers[k];
-                const double lambda = options.softWeight;
-                std::vector<Mat3> dn;
-                const Vec3 miss = markerPoint(k, V, &dn) - targets.row(k).transpose();
-                gradient.segment<3>(3 * v) += lambda * miss;
-                if (dn.empty() || residualIndex[v] < 0) {
-                    system->addDiagonal(v, lambda * Mat3::Identity());
-                    continue;
-                }
-                // ∂g/∂v = I, ∂g/∂p_j = δ ∂n/∂p_j: the stencil of v's own residual holds them all.
-                const double d = offset(k);
-                const int r = residualIndex[v];
-                const int* ring = topology->ring(v);
-                const int m = topology->valence(v);
-                system->add(r, 0, 0, lambda * Mat3::Identity());
-                for (int j = 0; j < m; ++j) {
-                    const Mat3 Aj = d * dn[j];
-                    gradient.segment<3>(3 * ring[j]) += lambda * Aj.transpose() * miss;
-                    system->add(r, 0, j + 1, lambda * Aj);
-                    system->add(r, j + 1, 0, lambda * Aj.transpose());
-                    for (int i = 0; i < m; ++i)
-                        system->add(r, j + 1, i + 1, lambda * Aj.transpose() * (d * dn[i]));
-                }
-            }
-    }
-};
+}
 
 Reconstruction::Reconstruction() : impl_(std::make_unique<Impl>()) {}
 Reconstruction::~Reconstruction() = default;
@@ -237,7 +207,88 @@ void Reconstruction::prepare(const TriMesh& rest, std::vector<int> markerVertice
         stencils.push_back({rest.F(f, 0), rest.F(f, 1), rest.F(f, 2)});
     impl->system = std::make_unique<BlockSystem>(n, stencils);
     impl->rigidity = std::make_unique<ArapEnergy>(impl->rest);
+    if (options.method == SolverOptions::Method::Iterative) {
+        impl->prepareRestSystem(impl->restFactorWanted());
+        impl->iterative = std::make_unique<IterativeSolver>(*impl);
+    }
     impl_ = std::move(impl);
+}
+
+Positions Reconstruction::Impl::startingPose(const Positions& targets,
+                                             const Positions* guess) const {
+    const int n = rest.vertexCount();
+    const int K = static_cast<int>(markers.size());
+    Positions restMarkers(K, 3);
+    for (int k = 0; k < K; ++k) restMarkers.row(k) = rest.V.row(markers[k]);
+    const RigidMotion motion = fitRigidMotion(restMarkers, targets);
+    Positions V;
+    if (guess) {
+        V = *guess;
+    } else {
+        V.resize(n, 3);
+        for (int v = 0; v < n; ++v) V.row(v) = motion.apply(rest.V.row(v).transpose()).transpose();
+    }
+    // Isolated vertices have no shape to keep; they follow the markers' overall rigid motion.
+    for (int v = 0; v < n; ++v)
+        if (topology->isIsolated(v))
+            V.row(v) = motion.apply(rest.V.row(v).transpose()).transpose();
+    if (!softMarkers())
+        for (int k = 0; k < K; ++k)
+            if (rowIsFinite(targets, k)) V.row(markers[k]) = targets.row(k);
+    return V;
+}
+
+void Reconstruction::Impl::prepareRestSystem(bool factor) {
+    const int K = static_cast<int>(markers.size());
+    Positions restMarkers(K, 3);
+    for (int k = 0; k < K; ++k) restMarkers.row(k) = rest.V.row(markers[k]);
+    Eigen::VectorXd gradient;
+    auto build = [&] {
+        linearise(rest.V, restMarkers);
+        assemble(rest.V, restMarkers, gradient);
+        if (rigid()) addRestRotationCoupling();
+        for (int v = 0; v < rest.vertexCount(); ++v)
+            if (topology->isIsolated(v)) system->pin(v);
+        if (!softMarkers())
+            for (int v : markers) system->pin(v);
+    };
+    build();
+    const double tikhonov = 1e-9 * system->meanDiagonal();
+    if (!factor) {
+        system->addToDiagonal(tikhonov);
+    } else if (!system->factorize(tikhonov)) {
+        build();
+        if (!system->factorize(tikhonov * 1e4))
+            throw SolverError("the rest pose's Gauss–Newton matrix is not positive definite");
+    }
+    systemHoldsRestFactor = true;
+}
+
+void Reconstruction::Impl::addRestRotationCoupling() {
+    // −2α Σ_v G_vᵀ C_v G_v (ArapEnergy::addRotationCoupling) at the rest pose, placed in the
+    // stencil of v's own residual: G_v only touches v and its ring.
+    std::vector<std::pair<int, Mat3>> blocks;
+    std::vector<Mat3> G;
+    Mat3 C;
+    const double scale = -2.0 * options.rigidityWeight;
+    for (int v = 0; v < rest.vertexCount(); ++v) {
+        const int r = residualIndex[v];
+        if (r < 0 || !rigidity->restCouplingBlocks(v, blocks, C)) continue;
+        const int m = topology->valence(v);
+        const int* ring = topology->ring(v);
+        G.assign(m + 1, Mat3::Zero());
+        bool inside = true;
+        for (const auto& [u, block] : blocks) {
+            int slot = u == v ? 0 : -1;
+            for (int k = 0; k < m && slot < 0; ++k)
+                if (ring[k] == u) slot = k + 1;
+            if (slot < 0) inside = false;
+            else G[slot] += block;
+        }
+        if (!inside) continue;  // a face around v that is not in its ring: leave it out
+        for (int a = 0; a <= m; ++a)
+            for (int b = 0; b <= m; ++b) system->add(r, a, b, scale * G[a].transpose() * C * G[b]);
+    }
 }
 
 SolveResult Reconstruction::solve(const Positions& targets, const Positions* guess) {
@@ -251,29 +302,27 @@ SolveResult Reconstruction::solve(const Positions& targets, const Positions* gue
     if (guess && guess->rows() != n)
         throw SolverError("the initial guess has " + std::to_string(guess->rows()) +
                           " vertices, the mesh " + std::to_string(n));
-    const auto start = std::chrono::steady_clock::now();
-
-    Positions restMarkers(K, 3);
-    for (int k = 0; k < K; ++k) restMarkers.row(k) = s.rest.V.row(s.markers[k]);
-    const RigidMotion motion = fitRigidMotion(restMarkers, targets);
-
-    SolveResult result;
-    if (guess) {
-        result.V = *guess;
-    } else {
-        result.V.resize(n, 3);
-        for (int v = 0; v < n; ++v)
-            result.V.row(v) = motion.apply(s.rest.V.row(v).transpose()).transpose();
+    if (s.options.method == SolverOptions::Method::Iterative) {
+        if (!s.systemHoldsRestFactor) {
+            s.prepareRestSystem(s.restFactorWanted());
+            s.iterative.reset();
+        }
+        if (!s.iterative) s.iterative = std::make_unique<IterativeSolver>(s);
+        return s.iterative->solve(targets, guess);
     }
+    return s.solveDirect(targets, guess);
+}
+
+SolveResult Reconstruction::Impl::solveDirect(const Positions& targets, const Positions* guess) {
+    Impl& s = *this;
+    const int n = s.rest.vertexCount();
+    const int K = static_cast<int>(s.markers.size());
+    const auto start = std::chrono::steady_clock::now();
+    SolveResult result;
+    result.V = startingPose(targets, guess);
     Positions& V = result.V;
-    // Isolated vertices have no shape to keep; they follow the markers' overall rigid motion.
-    for (int v = 0; v < n; ++v)
-        if (s.topology->isIsolated(v))
-            V.row(v) = motion.apply(s.rest.V.row(v).transpose()).transpose();
     const bool hard = !s.softMarkers();
-    if (hard)
-        for (int k = 0; k < K; ++k)
-            if (rowIsFinite(targets, k)) V.row(s.markers[k]) = targets.row(k);
+    s.systemHoldsRestFactor = false;
 
     Eigen::VectorXd gradient;
     double E = s.linearise(V, targets);
@@ -351,6 +400,12 @@ const SolverOptions& Reconstruction::options() const {
     return impl_->options;
 }
 void Reconstruction::setOptions(const SolverOptions& options) {
+    // The rest factorisation bakes in the constraint kind and the fold guard's weight.
+    if (options.constraints != impl_->options.constraints ||
+        options.rigidityWeight != impl_->options.rigidityWeight ||
+        options.softWeight != impl_->options.softWeight ||
+        options.preconditioner != impl_->options.preconditioner)
+        impl_->systemHoldsRestFactor = false;
     impl_->options = options;
 }
 

@@ -9,6 +9,7 @@
 namespace boneless {
 
 class BlockSystem;
+class IterativeSolver;
 
 struct SolverOptions {
     // Hard: marker vertices are placed exactly on their targets. Soft: they are pulled there with
@@ -27,10 +28,29 @@ struct SolverOptions {
     std::vector<double> markerOffsets;
     // Stop once an iteration lowers the energy by less than this fraction.
     double relativeTolerance = 1e-3;
+
+    // How each Gauss–Newton step is solved; both minimise the same energy.
+    //  Direct: a sparse Cholesky factorisation of the exact normal matrix per iteration.
+    //  Iterative: conjugate gradients on the same exact system, matrix-free, preconditioned by
+    //    the rest pose's normal matrix (factorised once, in prepare()) turned by each vertex's
+    //    fitted rotation; no factorisation per frame, so it suits large meshes and warm starts.
+    enum class Method { Direct, Iterative };
+    Method method = Method::Direct;
+    // Iterative only: stop conjugate gradients once the residual is this fraction of the
+    // gradient, or after this many iterations (per Gauss–Newton step).
+    double cgTolerance = 1e-2;
+    int maxCgIterations = 20;
+    // Iterative only: which rest-pose matrix is factorised for the preconditioner. Blocks: the
+    // exact 3×3-block normal matrix (fewest iterations, slowest to factorise and apply).
+    // Scalar: its block traces, one unknown per vertex applied to x, y and z at once (a ninth of
+    // the factor, a fraction of the time per application, more iterations).
+    enum class Preconditioner { Blocks, Scalar };
+    Preconditioner preconditioner = Preconditioner::Scalar;
 };
 
 struct SolveReport {
     int iterations = 0;
+    int linearIterations = 0;  // Iterative method: conjugate-gradient steps over all iterations
     double energyBefore = 0;  // at the initial guess (markers already on their targets if hard)
     double energyAfter = 0;
     double milliseconds = 0;
@@ -46,8 +66,9 @@ struct SolveResult {
 // "Prepare once, solve per frame" (libigl's precomputation/solve; CGAL's preprocess/deform):
 //   Reconstruction r;  r.prepare(rest, markers);
 //   for each frame: result = r.solve(targets, &previous.V);
-// It minimises G(V) = ½ Σ_i |v_i − F_i(V)|² over the free vertices by Gauss–Newton with the exact
-// Jacobian and a backtracking line search, so that the energy never goes up.
+// It minimises G(V) = ½ Σ_i |v_i − F_i(V)|² (plus the fold guard) over the free vertices by
+// Gauss–Newton with the exact Jacobian and a backtracking line search, so that the energy never
+// goes up; SolverOptions::method picks how each step's linear system is solved.
 class Reconstruction {
   public:
     Reconstruction();
@@ -74,6 +95,7 @@ class Reconstruction {
 
   private:
     struct Impl;
+    friend class IterativeSolver;
     std::unique_ptr<Impl> impl_;
 };
 

@@ -1,0 +1,342 @@
+#include "IterativeSolver.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "Parallel.h"
+#include "boneless/Error.h"
+
+namespace boneless {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double ms(Clock::time_point a) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - a).count();
+}
+const bool kProfile = std::getenv("BONELESS_PROFILE") != nullptr;
+const bool kNoMotionGuess = std::getenv("BONELESS_NO_MOTION_GUESS") != nullptr;
+const bool kFixedRotations = std::getenv("BONELESS_FIXED_ROTATIONS") != nullptr;
+}  // namespace
+
+IterativeSolver::IterativeSolver(const Reconstruction::Impl& problem) : p_(problem) {
+    const MeshTopology& topo = *p_.topology;
+    n_ = topo.vertexCount();
+    inOffsets_.assign(n_ + 1, 0);
+    for (int u = 0; u < n_; ++u)
+        if (p_.encoding->encoded(u))
+            for (int k = 0; k < topo.valence(u); ++k) ++inOffsets_[topo.ring(u)[k] + 1];
+    for (int v = 0; v < n_; ++v) inOffsets_[v + 1] += inOffsets_[v];
+    inSlot_.resize(inOffsets_[n_]);
+    inVertex_.resize(inOffsets_[n_]);
+    std::vector<int> fill(inOffsets_.begin(), inOffsets_.end() - 1);
+    for (int u = 0; u < n_; ++u)
+        if (p_.encoding->encoded(u))
+            for (int k = 0; k < topo.valence(u); ++k) {
+                const int at = fill[topo.ring(u)[k]]++;
+                inSlot_[at] = topo.offsets()[u] + k;
+                inVertex_[at] = u;
+            }
+    scratchJ_.resize(solverThreadCount());
+    pinned_.assign(n_, 0);
+    if (p_.options.preconditioner == SolverOptions::Preconditioner::Scalar) {
+        // Block (a, b) of the rest matrix becomes trace/3: the average of the x, y and z
+        // couplings, positive definite because each of the three is.
+        const Eigen::SparseMatrix<double>& H = p_.system->matrix();
+        std::vector<Eigen::Triplet<double>> t;
+        t.reserve(H.nonZeros() / 3);
+        for (int col = 0; col < H.outerSize(); ++col)
+            for (Eigen::SparseMatrix<double>::InnerIterator it(H, col); it; ++it)
+                if (it.row() % 3 == col % 3 && it.row() / 3 >= col / 3)
+                    t.emplace_back(static_cast<int>(it.row()) / 3, col / 3, it.value() / 3.0);
+        Eigen::SparseMatrix<double> S(n_, n_);
+        S.setFromTriplets(t.begin(), t.end());
+        scalarFactor_ = std::make_unique<
+            Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower>>();
+        scalarFactor_->compute(S);
+        if (scalarFactor_->info() != Eigen::Success)
+            throw SolverError("the rest pose's preconditioner is not positive definite");
+    }
+}
+
+void IterativeSolver::zeroPinned(Eigen::VectorXd& x) const {
+    for (int v = 0; v < n_; ++v)
+        if (pinned_[v]) x.segment<3>(3 * v).setZero();
+}
+
+double IterativeSolver::evaluate(const Positions& V, const Positions& targets,
+                                 Linearisation& L) {
+    const MeshTopology& topo = *p_.topology;
+    const ShapeEncoding& enc = *p_.encoding;
+    const auto t0 = Clock::now();
+    L.residual.resize(n_);
+    L.jacobian.resize(topo.neighbours().size());
+    std::vector<double> partial(solverThreadCount(), 0.0);
+    parallelFor(n_, [&](int begin, int end, int t) {
+        std::vector<Mat3>& J = scratchJ_[t];
+        double e = 0;
+        for (int v = begin; v < end; ++v) {
+            if (!enc.encoded(v)) {
+                L.residual[v].setZero();
+                continue;
+            }
+            Vec3 F;
+            enc.decodeWithJacobian(v, V, F, J);
+            std::copy(J.begin(), J.end(), L.jacobian.begin() + topo.offsets()[v]);
+            L.residual[v] = V.row(v).transpose() - F;
+            e += L.residual[v].squaredNorm();
+        }
+        partial[t] = e;
+    });
+    double e = 0;
+    for (double x : partial) e += x;
+    const int K = static_cast<int>(p_.markers.size());
+    L.markerDn.resize(K);
+    L.markerMiss.assign(K, Vec3::Zero());
+    L.markerObserved.assign(K, 0);
+    if (p_.softMarkers())
+        for (int k = 0; k < K; ++k) {
+            L.markerDn[k].clear();
+            if (!rowIsFinite(targets, k)) continue;
+            L.markerObserved[k] = 1;
+            L.markerMiss[k] = p_.markerPoint(k, V, &L.markerDn[k]) - targets.row(k).transpose();
+            e += p_.options.softWeight * L.markerMiss[k].squaredNorm();
+        }
+    e *= 0.5;
+    // The rotations are needed by the preconditioner even when the fold guard is off.
+    const auto t1 = Clock::now();
+    if (&L != &current_ && current_.rotation.size() == static_cast<size_t>(n_))
+        L.rotation = current_.rotation;
+    p_.rigidity->fitRotations(V, L.rotation, true, p_.rigid() ? &L.curvature : nullptr);
+    const auto t2 = Clock::now();
+    if (p_.rigid()) e += p_.options.rigidityWeight * p_.rigidity->energy(V, L.rotation);
+    if (kProfile)
+        std::fprintf(stderr, "  evaluate: decode %.1f ms, rotations %.1f ms, arap energy %.1f ms\n",
+                     std::chrono::duration<double, std::milli>(t1 - t0).count(),
+                     std::chrono::duration<double, std::milli>(t2 - t1).count(), ms(t2));
+    L.energy = e;
+    return e;
+}
+
+void IterativeSolver::gradient(const Positions& V, const Linearisation& L,
+                               Eigen::VectorXd& g) const {
+    g.resize(3 * n_);
+    const ShapeEncoding& enc = *p_.encoding;
+    Eigen::MatrixXd rigid;
+    if (p_.rigid()) {
+        // For the fitted rotations: α(6 L V − 2 b), the envelope theorem's gradient.
+        rigid = p_.rigidity->rotatedRestEdges(L.rotation);
+        rigid = p_.options.rigidityWeight * (6.0 * (p_.rigidity->laplacian() * V) - 2.0 * rigid);
+    }
+    parallelFor(n_, [&](int begin, int end, int) {
+        for (int v = begin; v < end; ++v) {
+            Vec3 s = enc.encoded(v) ? L.residual[v] : Vec3::Zero();
+            for (int i = inOffsets_[v]; i < inOffsets_[v + 1]; ++i)
+                s -= L.jacobian[inSlot_[i]].transpose() * L.residual[inVertex_[i]];
+            if (p_.rigid()) s += rigid.row(v).transpose();
+            g.segment<3>(3 * v) = s;
+        }
+    });
+    if (p_.softMarkers())
+        for (size_t k = 0; k < p_.markers.size(); ++k) {
+            if (!L.markerObserved[k]) continue;
+            const int v = p_.markers[k];
+            const double lambda = p_.options.softWeight, d = p_.offset(k);
+            g.segment<3>(3 * v) += lambda * L.markerMiss[k];
+            const int* ring = p_.topology->ring(v);
+            for (size_t j = 0; j < L.markerDn[k].size(); ++j)
+                g.segment<3>(3 * ring[j]) += lambda * d * L.markerDn[k][j].transpose() *
+                                             L.markerMiss[k];
+        }
+    zeroPinned(g);
+}
+
+void IterativeSolver::multiply(const Linearisation& L, const Eigen::VectorXd& x,
+                               Eigen::VectorXd& y) {
+    const MeshTopology& topo = *p_.topology;
+    const ShapeEncoding& enc = *p_.encoding;
+    ax_.resize(3 * n_);
+    y.resize(3 * n_);
+    parallelFor(n_, [&](int begin, int end, int) {
+        for (int u = begin; u < end; ++u) {
+            if (!enc.encoded(u)) {
+                ax_.segment<3>(3 * u).setZero();
+                continue;
+            }
+            Vec3 s = x.segment<3>(3 * u);
+            const int* ring = topo.ring(u);
+            const Mat3* J = L.jacobian.data() + topo.offsets()[u];
+            for (int k = 0; k < topo.valence(u); ++k) s -= J[k] * x.segment<3>(3 * ring[k]);
+            ax_.segment<3>(3 * u) = s;
+        }
+    });
+    const double guard = 6.0 * p_.options.rigidityWeight;
+    const auto& lap = p_.rigidity->laplacian();
+    parallelFor(n_, [&](int begin, int end, int) {
+        for (int v = begin; v < end; ++v) {
+            Vec3 s = ax_.segment<3>(3 * v);
+            for (int i = inOffsets_[v]; i < inOffsets_[v + 1]; ++i)
+                s -= L.jacobian[inSlot_[i]].transpose() * ax_.segment<3>(3 * inVertex_[i]);
+            if (guard > 0)
+                // The Laplacian is symmetric: column v is row v.
+                for (Eigen::SparseMatrix<double>::InnerIterator it(lap, v); it; ++it)
+                    s += guard * it.value() * x.segment<3>(3 * it.row());
+            y.segment<3>(3 * v) = s;
+        }
+    });
+    if (p_.softMarkers())
+        for (size_t k = 0; k < p_.markers.size(); ++k) {
+            if (!L.markerObserved[k]) continue;
+            const int v = p_.markers[k];
+            const double lambda = p_.options.softWeight, d = p_.offset(k);
+            const int* ring = p_.topology->ring(v);
+            Vec3 Gx = x.segment<3>(3 * v);
+            for (size_t j = 0; j < L.markerDn[k].size(); ++j)
+                Gx += d * L.markerDn[k][j] * x.segment<3>(3 * ring[j]);
+            y.segment<3>(3 * v) += lambda * Gx;
+            for (size_t j = 0; j < L.markerDn[k].size(); ++j)
+                y.segment<3>(3 * ring[j]) += lambda * d * L.markerDn[k][j].transpose() * Gx;
+        }
+    if (p_.rigid() && !kFixedRotations)
+        p_.rigidity->addRotationCoupling(L.rotation, L.curvature, x,
+                                         -2.0 * p_.options.rigidityWeight, y);
+    zeroPinned(y);
+}
+
+void IterativeSolver::precondition(const Linearisation& L, const Eigen::VectorXd& r,
+                                   Eigen::VectorXd& z) const {
+    rotated_.resize(3 * n_);
+    for (int v = 0; v < n_; ++v)
+        rotated_.segment<3>(3 * v) =
+            pinned_[v] ? Vec3::Zero() : Vec3(L.rotation[v].transpose() * r.segment<3>(3 * v));
+    if (scalarFactor_) {
+        scalarRhs_ = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(
+            rotated_.data(), n_, 3);
+        scalarRhs_ = scalarFactor_->solve(scalarRhs_);
+        z.resize(3 * n_);
+        Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(z.data(), n_, 3) =
+            scalarRhs_;
+    } else {
+        z = p_.system->solve(rotated_);
+    }
+    for (int v = 0; v < n_; ++v)
+        z.segment<3>(3 * v) = pinned_[v] ? Vec3::Zero() : Vec3(L.rotation[v] * z.segment<3>(3 * v));
+}
+
+int IterativeSolver::conjugateGradients(const Linearisation& L, const Eigen::VectorXd& g,
+                                        Eigen::VectorXd& x) {
+    // x may hold a starting guess (the last frame's motion); it is dropped when it does not
+    // beat zero.
+    cgR_ = -g;
+    if (x.size() == 3 * n_ && x.allFinite() && x.squaredNorm() > 0) {
+        zeroPinned(x);
+        multiply(L, x, cgHp_);
+        cgHp_ = cgR_ - cgHp_;
+        if (cgHp_.norm() < cgR_.norm()) cgR_ = cgHp_;
+        else x.setZero(3 * n_);
+    } else {
+        x.setZero(3 * n_);
+    }
+    const double stop = p_.options.cgTolerance * g.norm();
+    auto tp = Clock::now();
+    precondition(L, cgR_, cgZ_);
+    if (kProfile) std::fprintf(stderr, "  precondition %.1f ms\n", ms(tp));
+    cgP_ = cgZ_;
+    double rz = cgR_.dot(cgZ_);
+    int it = 0;
+    while (it < p_.options.maxCgIterations) {
+        tp = Clock::now();
+        multiply(L, cgP_, cgHp_);
+        if (kProfile && it == 0) std::fprintf(stderr, "  multiply %.1f ms\n", ms(tp));
+        const double pHp = cgP_.dot(cgHp_);
+        if (!(pHp > 0)) {
+            // Negative curvature (the fold guard's exact Hessian is indefinite far from a
+            // minimum): keep what was found, or the preconditioned gradient if nothing was.
+            if (it == 0) x = cgP_;
+            break;
+        }
+        const double a = rz / pHp;
+        x += a * cgP_;
+        cgR_ -= a * cgHp_;
+        ++it;
+        if (cgR_.norm() <= stop) break;
+        precondition(L, cgR_, cgZ_);
+        const double rzNew = cgR_.dot(cgZ_);
+        cgP_ = cgZ_ + (rzNew / rz) * cgP_;
+        rz = rzNew;
+    }
+    return it;
+}
+
+SolveResult IterativeSolver::solve(const Positions& targets, const Positions* guess) {
+    const auto start = std::chrono::steady_clock::now();
+    SolveResult result;
+    result.V = p_.startingPose(targets, guess);
+    Positions& V = result.V;
+    const Positions startPose = V;
+    for (int v = 0; v < n_; ++v) pinned_[v] = p_.topology->isIsolated(v);
+    if (!p_.softMarkers())
+        for (size_t k = 0; k < p_.markers.size(); ++k)
+            if (rowIsFinite(targets, static_cast<int>(k))) pinned_[p_.markers[k]] = 1;
+
+    double E = evaluate(V, targets, current_);
+    result.report.energyBefore = E;
+    result.report.energies.push_back(E);
+    Eigen::VectorXd g, step;
+    Positions trial(n_, 3);
+    for (int it = 0; it < p_.options.maxIterations && E > 0; ++it) {
+        auto t0 = Clock::now();
+        gradient(V, current_, g);
+        const double tg = ms(t0);
+        t0 = Clock::now();
+        if (it == 0 && !kNoMotionGuess && lastMotion_.size() == 3 * n_) step = lastMotion_;
+        else step.resize(0);
+        const int cgIts = conjugateGradients(current_, g, step);
+        const double tcg = ms(t0);
+        t0 = Clock::now();
+        result.report.linearIterations += cgIts;
+        if (!step.allFinite()) break;
+        double slope = g.dot(step);
+        if (!(slope < 0)) {
+            step = -g;  // never happens with an SPD system; steepest descent keeps it safe
+            slope = -g.squaredNorm();
+        }
+        double alpha = 1.0, Enew = E;
+        bool accepted = false;
+        for (int tries = 0; tries < 12; ++tries, alpha *= 0.5) {
+            for (int v = 0; v < n_; ++v)
+                trial.row(v) = V.row(v) + alpha * step.segment<3>(3 * v).transpose();
+            Enew = evaluate(trial, targets, trial_);
+            if (Enew <= E + 1e-4 * alpha * slope) {
+                accepted = true;
+                break;
+            }
+        }
+        if (!accepted) {
+            result.report.converged = true;  // no descent left along the Gauss–Newton direction
+            break;
+        }
+        if (kProfile)
+            std::fprintf(stderr, "GN %d: E %.6e -> %.6e alpha %g, grad %.1f ms, cg %d its %.1f ms, ls %.1f ms\n",
+                         it, E, Enew, alpha, tg, cgIts, tcg, ms(t0));
+        V.swap(trial);
+        std::swap(current_, trial_);
+        const double decrease = (E - Enew) / E;
+        E = Enew;
+        result.report.iterations = it + 1;
+        result.report.energies.push_back(E);
+        if (decrease < p_.options.relativeTolerance) {
+            result.report.converged = true;
+            break;
+        }
+    }
+    lastMotion_.resize(3 * n_);
+    for (int v = 0; v < n_; ++v) lastMotion_.segment<3>(3 * v) = (V.row(v) - startPose.row(v)).transpose();
+    result.report.energyAfter = E;
+    result.report.milliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return result;
+}
+
+}  // namespace boneless

@@ -1,0 +1,65 @@
+#pragma once
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+#include "ReconstructionImpl.h"
+
+namespace boneless {
+
+// Gauss–Newton on the same energy as the direct path (G, soft marker term, fold guard), with each
+// step's system H δ = −g solved by preconditioned conjugate gradients instead of a factorisation:
+// - H·x is applied matrix-free from the per-ring Jacobians (A x, then Aᵀ of that, plus the fold
+//   guard's 6αL), gathered per vertex so that both cores can work without write conflicts;
+// - the preconditioner is the rest pose's H, factorised once, turned by the fold guard's fitted
+//   rotations: R H_rest⁻¹ Rᵀ with R = blockdiag(R_v). The encoding is rigid-invariant, so for a
+//   pose that is a rotation of the rest pose this is H⁻¹ exactly, and close to it for a pose made
+//   of pieces that turn (a bending limb), which is what mocap frames are.
+// The energy is evaluated together with the next linearisation (one pass per trial point).
+class IterativeSolver {
+  public:
+    explicit IterativeSolver(const Reconstruction::Impl& problem);
+    SolveResult solve(const Positions& targets, const Positions* guess);
+
+  private:
+    // Everything known about one pose: residuals, ring Jacobians (CSR, aligned with the
+    // topology's neighbour lists), fitted rotations, soft-marker normal derivatives, the energy.
+    struct Linearisation {
+        std::vector<Vec3> residual;
+        std::vector<Mat3> jacobian;
+        std::vector<Mat3> rotation;
+        std::vector<Mat3> curvature;  // the fold guard's, see ArapEnergy::addRotationCoupling
+        std::vector<std::vector<Mat3>> markerDn;
+        std::vector<Vec3> markerMiss;
+        std::vector<char> markerObserved;
+        double energy = 0;
+    };
+
+    double evaluate(const Positions& V, const Positions& targets, Linearisation& L);
+    void gradient(const Positions& V, const Linearisation& L, Eigen::VectorXd& g) const;
+    void multiply(const Linearisation& L, const Eigen::VectorXd& x, Eigen::VectorXd& y);
+    void precondition(const Linearisation& L, const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
+    int conjugateGradients(const Linearisation& L, const Eigen::VectorXd& g, Eigen::VectorXd& x);
+    void zeroPinned(Eigen::VectorXd& x) const;
+
+    const Reconstruction::Impl& p_;
+    int n_ = 0;
+    // incoming_[inOffsets_[v] .. inOffsets_[v+1]): the Jacobian slots J_uk whose ring neighbour k
+    // is v, with their residual vertex u. Aᵀ is applied by gathering over them.
+    std::vector<int> inOffsets_, inSlot_, inVertex_;
+    std::vector<char> pinned_;
+    std::vector<std::vector<Mat3>> scratchJ_;  // per thread
+    std::vector<double> laplacianDiagonal_;
+    Linearisation current_, trial_;
+    Eigen::VectorXd ax_, cgR_, cgZ_, cgP_, cgHp_;
+    mutable Eigen::VectorXd rotated_;
+    Eigen::VectorXd lastMotion_;  // the last frame's free-vertex motion, the next CG's start
+    // Preconditioner::Scalar: the factor of the rest matrix's block traces.
+    std::unique_ptr<Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower>>
+        scalarFactor_;
+    mutable Eigen::MatrixXd scalarRhs_;
+};
+
+}  // namespace boneless

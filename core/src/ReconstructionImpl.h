@@ -1,0 +1,74 @@
+#pragma once
+
+// The state behind boneless::Reconstruction, shared by its direct (Reconstruction.cpp) and
+// iterative (IterativeSolver.cpp) Gauss–Newton paths.
+
+#include <memory>
+#include <vector>
+
+#include "ArapEnergy.h"
+#include "BlockSystem.h"
+#include "boneless/Reconstruction.h"
+
+namespace boneless {
+
+class IterativeSolver;
+
+inline bool rowIsFinite(const Positions& P, int r) {
+    return P.row(r).allFinite();
+}
+
+struct Reconstruction::Impl {
+    Impl();
+    ~Impl();
+
+    TriMesh rest;
+    std::unique_ptr<MeshTopology> topology;
+    std::unique_ptr<ShapeEncoding> encoding;
+    std::vector<int> markers;
+    std::vector<int> markerOf;       // vertex -> marker index, or -1
+    std::vector<int> residualOf;     // residual -> vertex
+    std::vector<int> residualIndex;  // vertex -> residual, or -1
+    std::unique_ptr<BlockSystem> system;
+    std::unique_ptr<ArapEnergy> rigidity;
+    std::unique_ptr<IterativeSolver> iterative;
+    SolverOptions options;
+    // The system holds the rest pose's factorisation (the iterative path's preconditioner) rather
+    // than the last direct iteration's.
+    bool systemHoldsRestFactor = false;
+
+    // Per-iteration scratch, kept to avoid reallocations per frame.
+    std::vector<Vec3> residual;
+    std::vector<std::vector<Mat3>> jacobian;
+    std::vector<Mat3> rotations;
+
+    bool rigid() const { return options.rigidityWeight > 0; }
+    bool softMarkers() const { return options.constraints == SolverOptions::Constraints::Soft; }
+    double offset(size_t k) const {
+        return k < options.markerOffsets.size() ? options.markerOffsets[k] : 0.0;
+    }
+    // Where marker k sits for the pose V: its vertex, plus its offset along the ring's normal.
+    Vec3 markerPoint(size_t k, const Positions& V, std::vector<Mat3>* dn = nullptr) const;
+    double markerEnergy(const Positions& V, const Positions& targets) const;
+    double rigidityEnergy(const Positions& V, std::vector<Mat3>& R) const;
+    double energy(const Positions& V, const Positions& targets) const;
+
+    // Fills residuals and Jacobians, returns the energy.
+    double linearise(const Positions& V, const Positions& targets);
+    // Assembles AᵀA and Aᵀr for the current linearisation.
+    void assemble(const Positions& V, const Positions& targets, Eigen::VectorXd& gradient);
+    // Assembles the Gauss–Newton matrix of the rest pose, every marker pinned when hard, a tiny
+    // Tikhonov term added; factorises it too when `factor`.
+    void prepareRestSystem(bool factor);
+    void addRestRotationCoupling();
+    bool restFactorWanted() const {
+        return options.preconditioner == SolverOptions::Preconditioner::Blocks;
+    }
+
+    // The starting pose of a frame: the guess (or the rest pose moved rigidly onto the markers),
+    // isolated vertices moved rigidly, hard markers on their targets.
+    Positions startingPose(const Positions& targets, const Positions* guess) const;
+    SolveResult solveDirect(const Positions& targets, const Positions* guess);
+};
+
+}  // namespace boneless
