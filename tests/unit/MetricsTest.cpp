@@ -57,7 +57,8 @@ TEST(Metrics, EdgeLengthDistortionOfAUniformScale) {
 TEST(Metrics, ATurnedMeshFoldsNothingAPinchedVertexFolds) {
     const TriMesh mesh = icosphere(2);
     // Upside down as a whole: every face's normal turned, none folded.
-    const Eigen::Matrix3d R = Eigen::AngleAxisd(3.0, Eigen::Vector3d(1, 2, 3).normalized()).matrix();
+    const Eigen::Matrix3d R =
+        Eigen::AngleAxisd(3.0, Eigen::Vector3d(1, 2, 3).normalized()).matrix();
     const Positions turned = (mesh.V * R.transpose()).eval();
     EXPECT_GT(flippedFaceCount(mesh.F, turned, mesh.V), 0);
     EXPECT_EQ(foldedFaceCount(mesh.F, turned, mesh.V), 0);

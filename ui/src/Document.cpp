@@ -177,17 +177,7 @@ void Document::reset() {
     autoAlignment_.reset();
     settings_ = TakeSolveOptions();
     viewSettings_.clear();
-    selected_ = -1;
-    undoStack_->clear();
-    rebuildMarkers();
-    emit meshChanged();
-    emit takeChanged();
-    emit correspondenceChanged();
-    emit alignmentChanged();
-    emit settingsChanged();
-    emit viewSettingsChanged();
-    emit selectionChanged(-1);
-    emit changed();
+    startAfresh();
 }
 
 bool Document::restoreState(State state) {
@@ -221,6 +211,13 @@ bool Document::restoreState(State state) {
     settings_ = state.settings;
     settings_.alignment.reset();
     viewSettings_ = state.viewSettings;
+    startAfresh();
+    return true;
+}
+
+// After the whole state was replaced: no selection, no undo history into the old state, and every
+// view told.
+void Document::startAfresh() {
     selected_ = -1;
     undoStack_->clear();
     rebuildMarkers();
@@ -232,7 +229,6 @@ bool Document::restoreState(State state) {
     emit viewSettingsChanged();
     emit selectionChanged(-1);
     emit changed();
-    return true;
 }
 
 int Document::frameCount() const {

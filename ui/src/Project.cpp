@@ -76,9 +76,9 @@ TakeSolveOptions readSettings(const QJsonObject& o) {
 
 bool readEmbeddedMap(const QJsonObject& o, Correspondence& map, QString* error) {
     try {
-        map = Correspondence::fromJson(
-            QJsonDocument(o).toJson(QJsonDocument::Compact).toStdString(),
-            "the project's correspondence");
+        map =
+            Correspondence::fromJson(QJsonDocument(o).toJson(QJsonDocument::Compact).toStdString(),
+                                     "the project's correspondence");
     } catch (const std::exception& e) {
         if (error) *error = QString::fromStdString(e.what());
         return false;

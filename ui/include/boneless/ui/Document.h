@@ -171,6 +171,7 @@ class Document : public QObject {
     void applyMapState(const MapState& state);  // used by the undo commands
     void pushMapEdit(const QString& text, MapState after);
     void rebuildMarkers();
+    void startAfresh();
     bool fail(const QString& message);
     Correspondence emptyMap() const;
 
