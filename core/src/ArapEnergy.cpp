@@ -106,7 +106,11 @@ void ArapEnergy::fitRotations(const Positions& V, std::vector<Mat3>& R, bool war
                               std::vector<Mat3>* curvature) const {
     const TriMesh& rest = *rest_;
     const int n = rest.vertexCount();
-    faceCovariance_.resize(rest.faceCount());
+    // Per calling thread, so that const callers on several threads do not share scratch.
+    // (A thread_local is not captured by the lambdas below: they must go through a reference.)
+    thread_local std::vector<Mat3> scratch;
+    std::vector<Mat3>& faceCovariance = scratch;
+    faceCovariance.resize(rest.faceCount());
     parallelFor(rest.faceCount(), [&](int begin, int end, int) {
         for (int f = begin; f < end; ++f) {
             Mat3 cov = Mat3::Zero();
@@ -115,7 +119,7 @@ void ArapEnergy::fitRotations(const Positions& V, std::vector<Mat3>& R, bool war
                 const Vec3 e = V.row(j) - V.row(k);
                 cov.noalias() += cotangent_(f, c) * restEdge_[3 * f + c] * e.transpose();
             }
-            faceCovariance_[f] = cov;
+            faceCovariance[f] = cov;
         }
     });
     warmStart = warmStart && static_cast<int>(R.size()) == n;
@@ -125,7 +129,7 @@ void ArapEnergy::fitRotations(const Positions& V, std::vector<Mat3>& R, bool war
         for (int v = begin; v < end; ++v) {
             Mat3 S = Mat3::Zero();
             for (int i = cornerOffsets_[v]; i < cornerOffsets_[v + 1]; ++i)
-                S += faceCovariance_[corners_[i] / 3];
+                S += faceCovariance[corners_[i] / 3];
             if (!warmStart) R[v].setIdentity();
             if (!refineRotation(S, R[v])) R[v] = bestRotation(S);
             if (curvature) {

@@ -49,7 +49,7 @@ class ArapEnergy {
     std::vector<Vec3> restEdge_;  // per face corner: rest edge opposite it, v⁰_j − v⁰_k
     // Corners (3 f + c) around each vertex, CSR, so that per-vertex sums need no shared writes.
     std::vector<int> cornerOffsets_, corners_;
-    mutable std::vector<Mat3> faceCovariance_;  // scratch of fitRotations
+    // Scratch of addRotationCoupling (called by one solver, never concurrently).
     mutable std::vector<Vec3> cornerScratch_, vertexScratch_;
 };
 

@@ -2,25 +2,14 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
+#include "LineSearch.h"
 #include "Parallel.h"
 #include "boneless/Error.h"
 
 namespace boneless {
 
-namespace {
-using Clock = std::chrono::steady_clock;
-double ms(Clock::time_point a) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - a).count();
-}
-const bool kProfile = std::getenv("BONELESS_PROFILE") != nullptr;
-const bool kNoMotionGuess = std::getenv("BONELESS_NO_MOTION_GUESS") != nullptr;
-const bool kFixedRotations = std::getenv("BONELESS_FIXED_ROTATIONS") != nullptr;
-}  // namespace
-
-IterativeSolver::IterativeSolver(const Reconstruction::Impl& problem) : p_(problem) {
+IterativeSolver::IterativeSolver(Reconstruction::Impl& problem) : p_(problem) {
     const MeshTopology& topo = *p_.topology;
     n_ = topo.vertexCount();
     inOffsets_.assign(n_ + 1, 0);
@@ -65,11 +54,9 @@ void IterativeSolver::zeroPinned(Eigen::VectorXd& x) const {
         if (pinned_[v]) x.segment<3>(3 * v).setZero();
 }
 
-double IterativeSolver::evaluate(const Positions& V, const Positions& targets,
-                                 Linearisation& L) {
+double IterativeSolver::evaluate(const Positions& V, const Positions& targets, Linearisation& L) {
     const MeshTopology& topo = *p_.topology;
     const ShapeEncoding& enc = *p_.encoding;
-    const auto t0 = Clock::now();
     L.residual.resize(n_);
     L.jacobian.resize(topo.neighbours().size());
     std::vector<double> partial(solverThreadCount(), 0.0);
@@ -105,16 +92,10 @@ double IterativeSolver::evaluate(const Positions& V, const Positions& targets,
         }
     e *= 0.5;
     // The rotations are needed by the preconditioner even when the fold guard is off.
-    const auto t1 = Clock::now();
     if (&L != &current_ && current_.rotation.size() == static_cast<size_t>(n_))
         L.rotation = current_.rotation;
     p_.rigidity->fitRotations(V, L.rotation, true, p_.rigid() ? &L.curvature : nullptr);
-    const auto t2 = Clock::now();
     if (p_.rigid()) e += p_.options.rigidityWeight * p_.rigidity->energy(V, L.rotation);
-    if (kProfile)
-        std::fprintf(stderr, "  evaluate: decode %.1f ms, rotations %.1f ms, arap energy %.1f ms\n",
-                     std::chrono::duration<double, std::milli>(t1 - t0).count(),
-                     std::chrono::duration<double, std::milli>(t2 - t1).count(), ms(t2));
     L.energy = e;
     return e;
 }
@@ -146,8 +127,8 @@ void IterativeSolver::gradient(const Positions& V, const Linearisation& L,
             g.segment<3>(3 * v) += lambda * L.markerMiss[k];
             const int* ring = p_.topology->ring(v);
             for (size_t j = 0; j < L.markerDn[k].size(); ++j)
-                g.segment<3>(3 * ring[j]) += lambda * d * L.markerDn[k][j].transpose() *
-                                             L.markerMiss[k];
+                g.segment<3>(3 * ring[j]) +=
+                    lambda * d * L.markerDn[k][j].transpose() * L.markerMiss[k];
         }
     zeroPinned(g);
 }
@@ -198,7 +179,7 @@ void IterativeSolver::multiply(const Linearisation& L, const Eigen::VectorXd& x,
             for (size_t j = 0; j < L.markerDn[k].size(); ++j)
                 y.segment<3>(3 * ring[j]) += lambda * d * L.markerDn[k][j].transpose() * Gx;
         }
-    if (p_.rigid() && !kFixedRotations)
+    if (p_.rigid())
         p_.rigidity->addRotationCoupling(L.rotation, L.curvature, x,
                                          -2.0 * p_.options.rigidityWeight, y);
     zeroPinned(y);
@@ -233,40 +214,72 @@ int IterativeSolver::conjugateGradients(const Linearisation& L, const Eigen::Vec
         zeroPinned(x);
         multiply(L, x, cgHp_);
         cgHp_ = cgR_ - cgHp_;
-        if (cgHp_.norm() < cgR_.norm()) cgR_ = cgHp_;
-        else x.setZero(3 * n_);
+        if (cgHp_.norm() < cgR_.norm())
+            cgR_ = cgHp_;
+        else
+            x.setZero(3 * n_);
     } else {
         x.setZero(3 * n_);
     }
     const double stop = p_.options.cgTolerance * g.norm();
-    auto tp = Clock::now();
     precondition(L, cgR_, cgZ_);
-    if (kProfile) std::fprintf(stderr, "  precondition %.1f ms\n", ms(tp));
     cgP_ = cgZ_;
     double rz = cgR_.dot(cgZ_);
     int it = 0;
+    cgConverged_ = cgR_.norm() <= stop;
     while (it < p_.options.maxCgIterations) {
-        tp = Clock::now();
         multiply(L, cgP_, cgHp_);
-        if (kProfile && it == 0) std::fprintf(stderr, "  multiply %.1f ms\n", ms(tp));
         const double pHp = cgP_.dot(cgHp_);
         if (!(pHp > 0)) {
             // Negative curvature (the fold guard's exact Hessian is indefinite far from a
-            // minimum): keep what was found, or the preconditioned gradient if nothing was.
-            if (it == 0) x = cgP_;
+            // minimum): keep what was found, or the preconditioned gradient if nothing was; the
+            // line search takes care of the rest, this is no reason to factorise.
+            if (it == 0 && x.squaredNorm() == 0) x = cgP_;
+            cgConverged_ = true;
             break;
         }
         const double a = rz / pHp;
         x += a * cgP_;
         cgR_ -= a * cgHp_;
         ++it;
-        if (cgR_.norm() <= stop) break;
+        if (cgR_.norm() <= stop) {
+            cgConverged_ = true;
+            break;
+        }
         precondition(L, cgR_, cgZ_);
         const double rzNew = cgR_.dot(cgZ_);
         cgP_ = cgZ_ + (rzNew / rz) * cgP_;
         rz = rzNew;
     }
     return it;
+}
+
+bool IterativeSolver::directStep(const Positions& V, const Positions& targets,
+                                 Eigen::VectorXd& step) {
+    // The blocks preconditioner lives in the system's factor, which this would overwrite.
+    if (!p_.options.directFallback ||
+        p_.options.preconditioner != SolverOptions::Preconditioner::Scalar)
+        return false;
+    BlockSystem& system = *p_.system;
+    Eigen::VectorXd gradient;
+    auto build = [&] {
+        p_.assemble(V, targets, gradient);
+        for (int v = 0; v < n_; ++v)
+            if (pinned_[v]) system.pin(v);
+    };
+    p_.linearise(V, targets);
+    build();
+    const double tikhonov = 1e-9 * system.meanDiagonal();
+    if (!system.factorize(tikhonov)) {
+        build();
+        if (!system.factorize(tikhonov * 1e4)) return false;
+    }
+    for (int v = 0; v < n_; ++v)
+        if (pinned_[v]) gradient.segment<3>(3 * v).setZero();
+    Eigen::VectorXd direct = -system.solve(gradient);
+    if (!direct.allFinite()) return false;
+    step.swap(direct);
+    return true;
 }
 
 SolveResult IterativeSolver::solve(const Positions& targets, const Positions* guess) {
@@ -284,17 +297,21 @@ SolveResult IterativeSolver::solve(const Positions& targets, const Positions* gu
     result.report.energyBefore = E;
     result.report.energies.push_back(E);
     Eigen::VectorXd g, step;
+    bool goDirect = false;
     Positions trial(n_, 3);
     for (int it = 0; it < p_.options.maxIterations && E > 0; ++it) {
-        auto t0 = Clock::now();
         gradient(V, current_, g);
-        const double tg = ms(t0);
-        t0 = Clock::now();
-        if (it == 0 && !kNoMotionGuess && lastMotion_.size() == 3 * n_) step = lastMotion_;
-        else step.resize(0);
-        const int cgIts = conjugateGradients(current_, g, step);
-        const double tcg = ms(t0);
-        t0 = Clock::now();
+        if (it == 0 && lastMotion_.size() == 3 * n_)
+            step = lastMotion_;
+        else
+            step.resize(0);
+        // Once conjugate gradients have failed in a frame, its remaining steps go direct.
+        int cgIts = 0;
+        if (!goDirect) cgIts = conjugateGradients(current_, g, step);
+        if ((goDirect || !cgConverged_) && directStep(V, targets, step)) {
+            ++result.report.directSteps;
+            goDirect = true;
+        }
         result.report.linearIterations += cgIts;
         if (!step.allFinite()) break;
         double slope = g.dot(step);
@@ -302,24 +319,14 @@ SolveResult IterativeSolver::solve(const Positions& targets, const Positions* gu
             step = -g;  // never happens with an SPD system; steepest descent keeps it safe
             slope = -g.squaredNorm();
         }
-        double alpha = 1.0, Enew = E;
-        bool accepted = false;
-        for (int tries = 0; tries < 12; ++tries, alpha *= 0.5) {
-            for (int v = 0; v < n_; ++v)
-                trial.row(v) = V.row(v) + alpha * step.segment<3>(3 * v).transpose();
-            Enew = evaluate(trial, targets, trial_);
-            if (Enew <= E + 1e-4 * alpha * slope) {
-                accepted = true;
-                break;
-            }
-        }
+        double Enew = E;
+        const bool accepted = armijoBacktrack(
+            V, step, E, slope, [&](const Positions& X) { return evaluate(X, targets, trial_); },
+            trial, Enew);
         if (!accepted) {
             result.report.converged = true;  // no descent left along the Gauss–Newton direction
             break;
         }
-        if (kProfile)
-            std::fprintf(stderr, "GN %d: E %.6e -> %.6e alpha %g, grad %.1f ms, cg %d its %.1f ms, ls %.1f ms\n",
-                         it, E, Enew, alpha, tg, cgIts, tcg, ms(t0));
         V.swap(trial);
         std::swap(current_, trial_);
         const double decrease = (E - Enew) / E;
@@ -332,7 +339,8 @@ SolveResult IterativeSolver::solve(const Positions& targets, const Positions* gu
         }
     }
     lastMotion_.resize(3 * n_);
-    for (int v = 0; v < n_; ++v) lastMotion_.segment<3>(3 * v) = (V.row(v) - startPose.row(v)).transpose();
+    for (int v = 0; v < n_; ++v)
+        lastMotion_.segment<3>(3 * v) = (V.row(v) - startPose.row(v)).transpose();
     result.report.energyAfter = E;
     result.report.milliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -18,9 +18,12 @@ namespace boneless {
 //   pose that is a rotation of the rest pose this is H⁻¹ exactly, and close to it for a pose made
 //   of pieces that turn (a bending limb), which is what mocap frames are.
 // The energy is evaluated together with the next linearisation (one pass per trial point).
+// When conjugate gradients miss their tolerance within the budget (a pose far from the last one,
+// where the rest-pose preconditioner is poor), that Gauss–Newton step is taken with the direct
+// factorisation instead, so a hard frame costs what the direct path costs rather than accuracy.
 class IterativeSolver {
   public:
-    explicit IterativeSolver(const Reconstruction::Impl& problem);
+    explicit IterativeSolver(Reconstruction::Impl& problem);
     SolveResult solve(const Positions& targets, const Positions* guess);
 
   private:
@@ -43,8 +46,12 @@ class IterativeSolver {
     void precondition(const Linearisation& L, const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
     int conjugateGradients(const Linearisation& L, const Eigen::VectorXd& g, Eigen::VectorXd& x);
     void zeroPinned(Eigen::VectorXd& x) const;
+    // One step of the direct path (numeric factorisation of the current H), for the frames where
+    // conjugate gradients do not converge within their budget.
+    bool directStep(const Positions& V, const Positions& targets, Eigen::VectorXd& step);
 
-    const Reconstruction::Impl& p_;
+    Reconstruction::Impl& p_;  // the direct fallback uses its system
+    bool cgConverged_ = false;
     int n_ = 0;
     // incoming_[inOffsets_[v] .. inOffsets_[v+1]): the Jacobian slots J_uk whose ring neighbour k
     // is v, with their residual vertex u. Aᵀ is applied by gathering over them.

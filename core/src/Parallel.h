@@ -28,9 +28,10 @@ void parallelFor(int n, Body&& body, int minimumPerThread = 2048) {
     std::vector<std::thread> pool;
     pool.reserve(threads - 1);
     for (int t = 1; t < threads; ++t)
-        pool.emplace_back([&, t] { body(static_cast<int>(static_cast<long>(n) * t / threads),
-                                        static_cast<int>(static_cast<long>(n) * (t + 1) / threads),
-                                        t); });
+        pool.emplace_back([&, t] {
+            body(static_cast<int>(static_cast<long>(n) * t / threads),
+                 static_cast<int>(static_cast<long>(n) * (t + 1) / threads), t);
+        });
     body(0, static_cast<int>(static_cast<long>(n) / threads), 0);
     for (auto& th : pool) th.join();
 }

@@ -1,7 +1,7 @@
 #pragma once
 
 // The state behind boneless::Reconstruction, shared by its direct (Reconstruction.cpp) and
-// iterative (IterativeSolver.cpp) Gauss–Newton paths.
+// iterative (IterativeSolver.cpp, RestSystem.cpp) Gauss–Newton paths.
 
 #include <memory>
 #include <vector>

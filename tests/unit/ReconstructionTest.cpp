@@ -206,8 +206,8 @@ TEST(Reconstruction, OffsetsNeedSoftConstraintsAndOnePerMarker) {
 // minimises the same energy; these pin down that it is a faster route to the same answer.
 namespace {
 
-SolverOptions iterativeOptions(bool tight,
-                               SolverOptions::Preconditioner p = SolverOptions::Preconditioner::Scalar) {
+SolverOptions iterativeOptions(
+    bool tight, SolverOptions::Preconditioner p = SolverOptions::Preconditioner::Scalar) {
     SolverOptions o;
     o.method = SolverOptions::Method::Iterative;
     o.preconditioner = p;
@@ -291,7 +291,8 @@ TEST(IterativeReconstruction, ReachesTheDirectSolversMinimum) {
         Reconstruction reference;
         reference.prepare(mesh, markers, direct);
         const SolveResult expected = reference.solve(rows(pose, markers), &mesh.V);
-        for (auto p : {SolverOptions::Preconditioner::Scalar, SolverOptions::Preconditioner::Blocks}) {
+        for (auto p :
+             {SolverOptions::Preconditioner::Scalar, SolverOptions::Preconditioner::Blocks}) {
             SolverOptions options = iterativeOptions(true, p);
             options.constraints = direct.constraints;
             options.markerOffsets = direct.markerOffsets;

@@ -40,6 +40,9 @@ struct SolverOptions {
     // gradient, or after this many iterations (per Gauss–Newton step).
     double cgTolerance = 1e-2;
     int maxCgIterations = 20;
+    // Iterative only: take the step with a factorisation when conjugate gradients miss their
+    // tolerance (robust on poses far from the last, costly: off for real-time use).
+    bool directFallback = true;
     // Iterative only: which rest-pose matrix is factorised for the preconditioner. Blocks: the
     // exact 3×3-block normal matrix (fewest iterations, slowest to factorise and apply).
     // Scalar: its block traces, one unknown per vertex applied to x, y and z at once (a ninth of
@@ -51,7 +54,8 @@ struct SolverOptions {
 struct SolveReport {
     int iterations = 0;
     int linearIterations = 0;  // Iterative method: conjugate-gradient steps over all iterations
-    double energyBefore = 0;  // at the initial guess (markers already on their targets if hard)
+    int directSteps = 0;       // Iterative method: steps that fell back to a factorisation
+    double energyBefore = 0;   // at the initial guess (markers already on their targets if hard)
     double energyAfter = 0;
     double milliseconds = 0;
     bool converged = false;        // the relative-decrease test was met
