@@ -8,6 +8,7 @@
 
 #include "IterativeSolver.h"
 #include "LineSearch.h"
+#include "MultiresSolver.h"
 #include "ReconstructionImpl.h"
 #include "boneless/Error.h"
 
@@ -165,8 +166,6 @@ void Reconstruction::prepare(const TriMesh& rest, std::vector<int> markerVertice
     auto impl = std::make_unique<Impl>();
     impl->rest = rest;
     impl->options = options;
-    impl->topology = std::make_unique<MeshTopology>(impl->rest);
-    impl->encoding = std::make_unique<ShapeEncoding>(impl->rest, *impl->topology);
     const int n = rest.vertexCount();
     impl->markerOf.assign(n, -1);
     for (size_t k = 0; k < markerVertices.size(); ++k) {
@@ -192,21 +191,21 @@ void Reconstruction::prepare(const TriMesh& rest, std::vector<int> markerVertice
                 throw SolverError(
                     "marker offsets need soft constraints (a hard constraint puts the "
                     "vertex itself on the marker)");
-    std::vector<std::vector<int>> stencils;
+    if (options.method == SolverOptions::Method::Multiresolution) {
+        // Every level, the input mesh included, is a Reconstruction of its own inside.
+        impl->multires = std::make_unique<MultiresSolver>(impl->rest, impl->markers, options);
+        impl_ = std::move(impl);
+        return;
+    }
+    impl->topology = std::make_unique<MeshTopology>(impl->rest);
+    impl->encoding = std::make_unique<ShapeEncoding>(impl->rest, *impl->topology);
     impl->residualIndex.assign(n, -1);
     for (int v = 0; v < n; ++v) {
         if (!impl->encoding->encoded(v)) continue;
         impl->residualIndex[v] = static_cast<int>(impl->residualOf.size());
         impl->residualOf.push_back(v);
-        std::vector<int> s{v};
-        const int* ring = impl->topology->ring(v);
-        s.insert(s.end(), ring, ring + impl->topology->valence(v));
-        stencils.push_back(std::move(s));
     }
-    // Faces are stencils too, for the fold guard's terms (no residual of their own).
-    for (int f = 0; f < rest.faceCount(); ++f)
-        stencils.push_back({rest.F(f, 0), rest.F(f, 1), rest.F(f, 2)});
-    impl->system = std::make_unique<BlockSystem>(n, stencils);
+    impl->buildBlockSystem();
     impl->rigidity = std::make_unique<ArapEnergy>(impl->rest);
     if (options.method == SolverOptions::Method::Iterative) {
         impl->prepareRestSystem(impl->restFactorWanted());
@@ -240,7 +239,7 @@ Positions Reconstruction::Impl::startingPose(const Positions& targets,
 
 SolveResult Reconstruction::solve(const Positions& targets, const Positions* guess) {
     Impl& s = *impl_;
-    if (!s.topology) throw SolverError("solve() called before prepare()");
+    if (!s.topology && !s.multires) throw SolverError("solve() called before prepare()");
     const int n = s.rest.vertexCount();
     const int K = static_cast<int>(s.markers.size());
     if (targets.rows() != K)
@@ -249,6 +248,7 @@ SolveResult Reconstruction::solve(const Positions& targets, const Positions* gue
     if (guess && guess->rows() != n)
         throw SolverError("the initial guess has " + std::to_string(guess->rows()) +
                           " vertices, the mesh " + std::to_string(n));
+    if (s.multires) return s.multires->solve(targets, guess);
     if (s.options.method == SolverOptions::Method::Iterative) {
         if (!s.systemHoldsRestFactor) {
             s.prepareRestSystem(s.restFactorWanted());
@@ -258,6 +258,21 @@ SolveResult Reconstruction::solve(const Positions& targets, const Positions* gue
         return s.iterative->solve(targets, guess);
     }
     return s.solveDirect(targets, guess);
+}
+
+void Reconstruction::Impl::buildBlockSystem() {
+    std::vector<std::vector<int>> stencils;
+    stencils.reserve(residualOf.size() + rest.faceCount());
+    for (int v : residualOf) {
+        std::vector<int> s{v};
+        const int* ring = topology->ring(v);
+        s.insert(s.end(), ring, ring + topology->valence(v));
+        stencils.push_back(std::move(s));
+    }
+    // Faces are stencils too, for the fold guard's terms (no residual of their own).
+    for (int f = 0; f < rest.faceCount(); ++f)
+        stencils.push_back({rest.F(f, 0), rest.F(f, 1), rest.F(f, 2)});
+    system = std::make_unique<BlockSystem>(rest.vertexCount(), stencils);
 }
 
 SolveResult Reconstruction::Impl::solveDirect(const Positions& targets, const Positions* guess) {
@@ -324,12 +339,14 @@ SolveResult Reconstruction::Impl::solveDirect(const Positions& targets, const Po
 }
 
 double Reconstruction::energy(const Positions& V, const Positions& targets) const {
+    if (impl_->multires) return impl_->multires->fine().energy(V, targets);
     return impl_->energy(V, targets);
 }
 const TriMesh& Reconstruction::rest() const {
     return impl_->rest;
 }
 const ShapeEncoding& Reconstruction::encoding() const {
+    if (impl_->multires) return impl_->multires->fine().encoding();
     return *impl_->encoding;
 }
 const std::vector<int>& Reconstruction::markerVertices() const {
@@ -339,6 +356,14 @@ const SolverOptions& Reconstruction::options() const {
     return impl_->options;
 }
 void Reconstruction::setOptions(const SolverOptions& options) {
+    // The levels' own options derive from these: build them afresh.
+    if (impl_->multires || options.method == SolverOptions::Method::Multiresolution) {
+        if (impl_->multires || impl_->topology)
+            prepare(TriMesh(impl_->rest), impl_->markers, options);
+        else
+            impl_->options = options;
+        return;
+    }
     // The rest factorisation bakes in the constraint kind and the fold guard's weight.
     if (options.constraints != impl_->options.constraints ||
         options.rigidityWeight != impl_->options.rigidityWeight ||

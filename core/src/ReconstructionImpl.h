@@ -13,6 +13,7 @@
 namespace boneless {
 
 class IterativeSolver;
+class MultiresSolver;
 
 inline bool rowIsFinite(const Positions& P, int r) {
     return P.row(r).allFinite();
@@ -32,6 +33,7 @@ struct Reconstruction::Impl {
     std::unique_ptr<BlockSystem> system;
     std::unique_ptr<ArapEnergy> rigidity;
     std::unique_ptr<IterativeSolver> iterative;
+    std::unique_ptr<MultiresSolver> multires;  // Method::Multiresolution: it owns everything else
     SolverOptions options;
     // The system holds the rest pose's factorisation (the iterative path's preconditioner) rather
     // than the last direct iteration's.
@@ -60,6 +62,8 @@ struct Reconstruction::Impl {
     // Assembles the Gauss–Newton matrix of the rest pose, every marker pinned when hard, a tiny
     // Tikhonov term added; factorises it too when `factor`.
     void prepareRestSystem(bool factor);
+    // The block system's structure: one stencil per residual (its vertex and ring), one per face.
+    void buildBlockSystem();
     void addRestRotationCoupling();
     bool restFactorWanted() const {
         return options.preconditioner == SolverOptions::Preconditioner::Blocks;

@@ -1,7 +1,8 @@
-// boneless-bench: the issue-4 "bend" workload. Times the fast (iterative) solver per frame,
-// measures each frame's distance to its fully converged solution, and times the single-level
-// direct solver on the same work for comparison. `--sweep` repeats the fast run on 10K–200K-face
-// versions of the mesh (each in a child process, so that peak memory is per size).
+// boneless-bench: the issue-4 "bend" workload. Times the fast solver (multiresolution by default,
+// `--method iterative` for the single-level iterative one) per frame, measures each frame's
+// distance to its fully converged solution, and times the single-level direct solver on the same
+// work for comparison. `--sweep` repeats the fast run on 10K–200K-face versions of the mesh (each
+// in a child process, so that peak memory is per size).
 
 #include <unistd.h>
 #include <CLI/CLI.hpp>
@@ -41,6 +42,8 @@ struct Args {
     int resize = 0;
     double rigidity = SolverOptions{}.rigidityWeight;
     bool directFallback = false;
+    std::string method = "multires";
+    int coarsest = SolverOptions{}.coarsestVertices;
 };
 Args gArgs;
 
@@ -76,8 +79,11 @@ double rmsDistance(const Positions& a, const Positions& b) {
 
 SolverOptions fastOptions() {
     SolverOptions o;
-    o.method = SolverOptions::Method::Iterative;
+    o.method = gArgs.method == "iterative" ? SolverOptions::Method::Iterative
+                                           : SolverOptions::Method::Multiresolution;
     o.maxIterations = gArgs.gnIterations;
+    o.fineIterations = gArgs.gnIterations;
+    o.coarsestVertices = gArgs.coarsest;
     o.rigidityWeight = gArgs.rigidity;
     o.directFallback = gArgs.directFallback;
     o.maxCgIterations = gArgs.maxCg;
@@ -93,7 +99,10 @@ SolverOptions fastOptions() {
 // fold guard's exact Hessian makes these steps converge quadratically, so this is the minimum to
 // far below the 0.1 % being measured.
 SolverOptions convergedOptions() {
-    SolverOptions o = fastOptions();
+    SolverOptions o;
+    o.rigidityWeight = gArgs.rigidity;
+    o.method = SolverOptions::Method::Iterative;
+    o.preconditioner = SolverOptions::Preconditioner::Scalar;
     o.directFallback = true;
     o.maxIterations = 8;
     o.relativeTolerance = 1e-9;
@@ -113,14 +122,12 @@ struct RunFigures {
     int directSteps = 0;
 };
 
-// Runs `frames` frames warm-started with `solver` (already prepared) and times them; then, the
-// timed run over (so that its peak memory is measured alone and nothing the checks do can help
-// it), converges every `checkEvery`-th frame with `reference` from the solver's answer.
-void runFrames(Reconstruction& solver, Reconstruction& reference, const TriMesh& mesh,
-               const bench::BendWorkload& work, int frames, int checkEvery, RunFigures& out) {
-    const double diagonal = boundingBoxDiagonal(mesh.V);
+// Runs `frames` frames, each warm-started from the last, and times them; keeps every
+// `checkEvery`-th answer for checkAgainstConverged().
+void runFrames(Reconstruction& solver, const TriMesh& mesh, const bench::BendWorkload& work,
+               int frames, int checkEvery, RunFigures& out,
+               std::vector<std::pair<int, Positions>>& answers) {
     Positions previous = mesh.V;
-    std::vector<std::pair<int, Positions>> answers;
     long gn = 0, cg = 0;
     for (int f = 0; f < frames; ++f) {
         const Positions T = work.targets(f);
@@ -136,8 +143,15 @@ void runFrames(Reconstruction& solver, Reconstruction& reference, const TriMesh&
     out.peakRssMb = peakRssMb();
     out.gnMean = frames ? double(gn) / frames : 0;
     out.cgMean = frames ? double(cg) / frames : 0;
-    const SolverOptions options = reference.options();
-    reference.setOptions(convergedOptions());
+}
+
+// Converges each kept answer with `reference` (convergedOptions()) and records the worst RMS
+// distance. Done after the timed runs, so that nothing it does can help them or count in their
+// peak memory.
+void checkAgainstConverged(Reconstruction& reference, const TriMesh& mesh,
+                           const bench::BendWorkload& work,
+                           const std::vector<std::pair<int, Positions>>& answers, RunFigures& out) {
+    const double diagonal = boundingBoxDiagonal(mesh.V);
     for (const auto& [f, V] : answers) {
         const SolveResult c = reference.solve(work.targets(f), &V);
         const double pct = 100.0 * rmsDistance(V, c.V) / diagonal;
@@ -147,7 +161,6 @@ void runFrames(Reconstruction& solver, Reconstruction& reference, const TriMesh&
             out.worstFrame = f;
         }
     }
-    reference.setOptions(options);
 }
 
 json figuresJson(const RunFigures& r) {
@@ -197,23 +210,34 @@ json benchMesh(const TriMesh& mesh, const Args& args) {
     out["load_average_before"] = loadAverage();
 
     RunFigures fast;
-    Reconstruction solver;
-    auto t0 = std::chrono::steady_clock::now();
-    solver.prepare(mesh, work.markers, fastOptions());
-    fast.preprocessMs = msSince(t0);
-    runFrames(solver, solver, mesh, work, args.frames, args.checkEvery, fast);
-    const json fastJson = figuresJson(fast);
-    out.update(fastJson);
-
+    std::vector<std::pair<int, Positions>> fastAnswers, baseAnswers;
+    {
+        Reconstruction solver;
+        auto t0 = std::chrono::steady_clock::now();
+        solver.prepare(mesh, work.markers, fastOptions());
+        fast.preprocessMs = msSince(t0);
+        runFrames(solver, mesh, work, args.frames, args.checkEvery, fast, fastAnswers);
+    }
+    RunFigures base;
     if (args.baselineFrames > 0) {
-        RunFigures base;
         Reconstruction direct;
-        t0 = std::chrono::steady_clock::now();
+        auto t0 = std::chrono::steady_clock::now();
         direct.prepare(mesh, work.markers);  // the default: single level, direct
         base.preprocessMs = msSince(t0);
         // Every baseline frame is checked: there are few of them.
-        runFrames(direct, solver, mesh, work, std::min(args.frames, args.baselineFrames),
-                  args.checkEvery > 0 ? 1 : 0, base);
+        runFrames(direct, mesh, work, std::min(args.frames, args.baselineFrames),
+                  args.checkEvery > 0 ? 1 : 0, base, baseAnswers);
+    }
+    if (!fastAnswers.empty() || !baseAnswers.empty()) {
+        Reconstruction reference;
+        reference.prepare(mesh, work.markers, convergedOptions());
+        checkAgainstConverged(reference, mesh, work, fastAnswers, fast);
+        checkAgainstConverged(reference, mesh, work, baseAnswers, base);
+    }
+    const json fastJson = figuresJson(fast);
+    out.update(fastJson);
+    out["method"] = args.method;
+    if (args.baselineFrames > 0) {
         json b = figuresJson(base);
         b["note"] = "first " + std::to_string(base.frameMs.size()) +
                     " frames only; peak RSS includes the fast run";
@@ -233,7 +257,11 @@ void printReport(const std::string& name, const json& r, const Args& args) {
     std::printf("  %d hardware threads; load average before %s, after %s\n",
                 r["threads"].get<int>(), r["load_average_before"].get<std::string>().c_str(),
                 r["load_average_after"].get<std::string>().c_str());
-    printFigures("fast solver (Gauss-Newton, PCG with the rotated rest factorisation):", r);
+    printFigures(r["method"] == "multires"
+                     ? "fast solver (multiresolution: coarsest level direct, finer levels "
+                       "block-Jacobi CG):"
+                     : "fast solver (single level, PCG with the rotated rest factorisation):",
+                 r);
     if (r.contains("single_level")) {
         const json& b = r["single_level"];
         std::printf("single-level solver (Gauss-Newton, CHOLMOD per iteration), %s:\n",
@@ -260,7 +288,9 @@ int sweep(const Args& args, const TriMesh& input, const char* self) {
         cmd << '"' << self << "\" --json --mesh \"" << path << "\" --frames " << args.frames
             << " --gn-iterations " << args.gnIterations << " --max-cg " << args.maxCg
             << " --cg-tolerance " << args.cgTolerance << " --preconditioner " << args.preconditioner
-            << " --baseline-frames " << args.baselineFrames << " --check-every " << args.checkEvery;
+            << " --baseline-frames " << args.baselineFrames << " --check-every " << args.checkEvery
+            << " --method " << args.method << " --coarsest " << args.coarsest << " --rigidity "
+            << args.rigidity << (args.directFallback ? " --direct-fallback" : "");
         FILE* pipe = popen(cmd.str().c_str(), "r");
         std::string text;
         char buffer[4096];
@@ -324,6 +354,8 @@ int main(int argc, char** argv) {
                  "fast solver: factorise when conjugate gradients miss their tolerance");
     app.add_option("--resize", args.resize, "bring the mesh to about this many faces first");
     app.add_option("--preconditioner", args.preconditioner, "fast solver: scalar or blocks");
+    app.add_option("--method", args.method, "fast solver: multires or iterative (single level)");
+    app.add_option("--coarsest", args.coarsest, "fast solver, multires: coarsest level's vertices");
     CLI11_PARSE(app, argc, argv);
     gArgs = args;
 

@@ -9,20 +9,6 @@
 using namespace boneless;
 using namespace boneless::testing;
 
-namespace {
-
-std::vector<int> everyNth(int n, int step) {
-    std::vector<int> ids;
-    for (int v = 0; v < n; v += step) ids.push_back(v);
-    return ids;
-}
-
-double maxDistance(const Positions& a, const Positions& b) {
-    return (a - b).rowwise().norm().maxCoeff();
-}
-
-}  // namespace
-
 TEST(Reconstruction, RestPoseTargetsGiveBackTheRestMesh) {
     for (const TriMesh& mesh : {icosphere(2), tube(8, 12, 4.0)}) {
         Reconstruction solver;
@@ -32,14 +18,6 @@ TEST(Reconstruction, RestPoseTargetsGiveBackTheRestMesh) {
         EXPECT_LE(maxDistance(r.V, mesh.V), 1e-9 * boundingBoxDiagonal(mesh.V));
     }
 }
-
-namespace {
-Positions moved(const Positions& V, const Mat3& R, const Vec3& t) {
-    Positions out(V.rows(), 3);
-    for (int v = 0; v < V.rows(); ++v) out.row(v) = (R * V.row(v).transpose() + t).transpose();
-    return out;
-}
-}  // namespace
 
 TEST(Reconstruction, RigidMotionOfTheMarkersMovesTheMeshRigidly) {
     const TriMesh mesh = tube(10, 12, 4.0);

@@ -90,6 +90,23 @@ inline Eigen::Matrix3d randomRotation(std::mt19937& rng) {
     return q.normalized().toRotationMatrix();
 }
 
+// V turned by R, then moved by t.
+inline Positions moved(const Positions& V, const Eigen::Matrix3d& R, const Eigen::Vector3d& t) {
+    Positions out(V.rows(), 3);
+    for (int v = 0; v < V.rows(); ++v) out.row(v) = (R * V.row(v).transpose() + t).transpose();
+    return out;
+}
+
+inline std::vector<int> everyNth(int n, int step) {
+    std::vector<int> ids;
+    for (int v = 0; v < n; v += step) ids.push_back(v);
+    return ids;
+}
+
+inline double maxDistance(const Positions& a, const Positions& b) {
+    return (a - b).rowwise().norm().maxCoeff();
+}
+
 inline Positions rows(const Positions& V, const std::vector<int>& ids) {
     Positions out(ids.size(), 3);
     for (size_t k = 0; k < ids.size(); ++k) out.row(k) = V.row(ids[k]);

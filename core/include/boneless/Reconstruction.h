@@ -34,8 +34,16 @@ struct SolverOptions {
     //  Iterative: conjugate gradients on the same exact system, matrix-free, preconditioned by
     //    the rest pose's normal matrix (factorised once, in prepare()) turned by each vertex's
     //    fitted rotation; no factorisation per frame, so it suits large meshes and warm starts.
-    enum class Method { Direct, Iterative };
+    //  Multiresolution: a hierarchy of coarser meshes (algorithm.md §1.6); the coarsest is
+    //    solved to convergence, each finer level starts from the prolonged change and takes
+    //    fineIterations Gauss–Newton steps by block-Jacobi conjugate gradients. Made for
+    //    sequences: each frame is warm-started from the last at every level.
+    enum class Method { Direct, Iterative, Multiresolution };
     Method method = Method::Direct;
+    // Multiresolution only: the coarsest level's size (at least ten vertices per marker), and
+    // the Gauss–Newton steps on each finer level per frame.
+    int coarsestVertices = 2000;
+    int fineIterations = 1;
     // Iterative only: stop conjugate gradients once the residual is this fraction of the
     // gradient, or after this many iterations (per Gauss–Newton step).
     double cgTolerance = 1e-2;

@@ -1,0 +1,53 @@
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "boneless/MeshHierarchy.h"
+#include "boneless/Reconstruction.h"
+
+namespace boneless {
+
+// SolverOptions::Method::Multiresolution (algorithm.md §1.6): the same energy, reached through a
+// hierarchy of coarser meshes made by independent-set half-edge collapses.
+//  - The coarsest level (a few thousand vertices) is solved to convergence by direct
+//    Gauss–Newton: it carries the large, smooth part of each frame's motion, which is what
+//    conjugate gradients on the full mesh are slowest at.
+//  - Each finer level starts from its own last answer plus the prolonged change of the level
+//    below (P(X_{l+1}) − P(X_{l+1}^last)), where P places every removed vertex explicitly at
+//    F_r of its coarser ring. The detail a level added last frame is kept instead of being
+//    recomputed from the coarse shape, so only the frame's change has to be corrected.
+//  - The input level then takes fineIterations Gauss–Newton steps (conjugate gradients with
+//    the rotated rest factorisation). The levels between are prolonged through only: steps
+//    there with a cheap local preconditioner were measured to leave the error where it was (it
+//    is smooth: the coarse and fine energies' minima differ slightly), at a high price.
+// The solver keeps every level's last answer. A guess that is not the last answer (a jump in the
+// timeline) restarts the levels from the guess.
+class MultiresSolver {
+  public:
+    MultiresSolver(const TriMesh& rest, const std::vector<int>& markers,
+                   const SolverOptions& options);
+    SolveResult solve(const Positions& targets, const Positions* guess);
+
+    // The input level (the coarsest when the mesh is already small).
+    const Reconstruction& fine() const { return hierarchy_.levelCount() == 1 ? coarsest_ : fine_; }
+    int levelCount() const { return hierarchy_.levelCount(); }
+    const MeshHierarchy& hierarchy() const { return hierarchy_; }
+
+  private:
+    // Level l's positions from level l+1's: survivors copied, removed vertices decoded.
+    void prolong(int l, const Positions& coarse, Positions& fine) const;
+    // Level l's rows of a pose of the input mesh.
+    Positions restrictTo(int l, const Positions& input) const;
+    void restartFrom(const Positions& guess);
+    const ShapeEncoding& encoding(int l) const;
+
+    MeshHierarchy hierarchy_;
+    Reconstruction coarsest_, fine_;  // the two levels that are solved
+    // Levels 1 .. L−2, which are only prolonged through.
+    std::vector<std::unique_ptr<MeshTopology>> topologies_;
+    std::vector<std::unique_ptr<ShapeEncoding>> encodings_;
+    std::vector<Positions> last_;  // per level, the last frame's answer
+};
+
+}  // namespace boneless

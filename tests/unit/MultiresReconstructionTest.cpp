@@ -1,0 +1,127 @@
+// The multiresolution method (algorithm.md §1.6) minimises the same energy as the single-level
+// solvers through a hierarchy of coarser meshes; these pin down its invariants and that it
+// tracks the converged answer along a sequence.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "TestMeshes.h"
+#include "boneless/Reconstruction.h"
+
+using namespace boneless;
+using namespace boneless::testing;
+
+namespace {
+
+// Small enough a coarsest level that a test mesh of a few thousand vertices gets several levels.
+SolverOptions multiresOptions(int fineIterations = 1) {
+    SolverOptions o;
+    o.method = SolverOptions::Method::Multiresolution;
+    o.coarsestVertices = 200;
+    o.fineIterations = fineIterations;
+    return o;
+}
+
+SolverOptions convergedOptions() {
+    SolverOptions o;
+    o.method = SolverOptions::Method::Iterative;
+    o.maxIterations = 100;
+    o.relativeTolerance = 1e-14;
+    o.cgTolerance = 1e-10;
+    o.maxCgIterations = 500;
+    return o;
+}
+
+double rms(const Positions& a, const Positions& b) {
+    return std::sqrt((a - b).rowwise().squaredNorm().mean());
+}
+
+}  // namespace
+
+TEST(MultiresReconstruction, RestPoseTargetsGiveBackTheRestMesh) {
+    const TriMesh mesh = icosphere(4);
+    const auto markers = everyNth(mesh.vertexCount(), 97);
+    for (int fine : {0, 1}) {
+        Reconstruction solver;
+        solver.prepare(mesh, markers, multiresOptions(fine));
+        const double tolerance = 1e-9 * boundingBoxDiagonal(mesh.V);
+        EXPECT_LE(maxDistance(solver.solve(rows(mesh.V, markers)).V, mesh.V), tolerance);
+        EXPECT_LE(maxDistance(solver.solve(rows(mesh.V, markers), &mesh.V).V, mesh.V), tolerance);
+    }
+}
+
+// Prolongation decodes each removed vertex from its ring's shape code, which is invariant under
+// rigid motions: a rigidly moved coarse answer must prolong to the rigidly moved mesh, cold,
+// from an unrelated guess, and warm-started from the last answer.
+TEST(MultiresReconstruction, RigidMotionOfTheMarkersMovesTheMeshRigidly) {
+    const TriMesh mesh = icosphere(4);
+    const auto markers = everyNth(mesh.vertexCount(), 97);
+    const double tolerance = 1e-6 * boundingBoxDiagonal(mesh.V);
+    std::mt19937 rng(11);
+    Reconstruction solver;
+    solver.prepare(mesh, markers, multiresOptions());
+    for (int trial = 0; trial < 3; ++trial) {
+        const Mat3 R = randomRotation(rng);
+        const Vec3 t(trial, 1.0, -0.5);
+        const Positions expected = moved(mesh.V, R, t);
+        const SolveResult cold = solver.solve(rows(expected, markers));
+        EXPECT_LE(maxDistance(cold.V, expected), tolerance) << "trial " << trial;
+        const Mat3 away = Eigen::AngleAxisd(20.0 * M_PI / 180, Vec3(1, 2, 3).normalized()).matrix();
+        const Positions previous = moved(mesh.V, away * R, t);
+        const SolveResult jump = solver.solve(rows(expected, markers), &previous);
+        EXPECT_LE(maxDistance(jump.V, expected), tolerance) << "trial " << trial;
+        const SolveResult warm = solver.solve(rows(expected, markers), &jump.V);
+        EXPECT_LE(maxDistance(warm.V, expected), tolerance) << "trial " << trial;
+    }
+}
+
+// A bending sequence, each frame warm-started from the last: every frame stays close to that
+// frame's converged minimum (the single-level solver run to a standstill), and closer with a
+// fine Gauss–Newton step than with prolongation alone.
+TEST(MultiresReconstruction, TracksTheConvergedSolutionAlongASequence) {
+    const TriMesh mesh = icosphere(4);
+    const auto markers = everyNth(mesh.vertexCount(), 53);
+    const double diagonal = boundingBoxDiagonal(mesh.V);
+    Reconstruction reference;
+    reference.prepare(mesh, markers, convergedOptions());
+    double worst[2] = {0, 0};
+    for (int fine : {0, 1}) {
+        Reconstruction solver;
+        solver.prepare(mesh, markers, multiresOptions(fine));
+        Positions previous = mesh.V;
+        for (int f = 1; f <= 12; ++f) {
+            const Positions targets = rows(bent(mesh.V, 0.05 * f), markers);
+            SolveResult r = solver.solve(targets, &previous);
+            ASSERT_TRUE(r.V.allFinite());
+            EXPECT_NEAR(r.report.energyAfter, solver.energy(r.V, targets),
+                        1e-9 * std::max(1.0, r.report.energyAfter));
+            const SolveResult c = reference.solve(targets, &r.V);
+            // The answer is near the minimum, so converging it lowers the energy only a little.
+            EXPECT_LE(c.report.energyAfter, r.report.energyAfter * (1 + 1e-9) + 1e-12);
+            worst[fine] = std::max(worst[fine], rms(r.V, c.V) / diagonal);
+            previous.swap(r.V);
+        }
+    }
+    // Measured: prolongation alone 0.54 %, one fine step 0.013 % (of the bounding-box diagonal).
+    EXPECT_LT(worst[0], 1e-2);
+    EXPECT_LT(worst[1], 5e-4);
+    EXPECT_LT(worst[1], 0.1 * worst[0]);
+}
+
+// A mesh smaller than the coarsest level is solved on one level: the single-level answer.
+TEST(MultiresReconstruction, ASmallMeshIsSolvedOnOneLevel) {
+    const TriMesh mesh = icosphere(2);
+    const auto markers = everyNth(mesh.vertexCount(), 9);
+    const Positions targets = rows(bent(mesh.V, 0.3), markers);
+    Reconstruction reference;
+    reference.prepare(mesh, markers, convergedOptions());
+    const SolveResult expected = reference.solve(targets, &mesh.V);
+    SolverOptions options = multiresOptions();
+    options.maxIterations = 50;
+    options.relativeTolerance = 1e-12;
+    Reconstruction solver;
+    solver.prepare(mesh, markers, options);
+    const SolveResult r = solver.solve(targets, &mesh.V);
+    EXPECT_LE(maxDistance(r.V, expected.V), 1e-6 * boundingBoxDiagonal(mesh.V));
+}
