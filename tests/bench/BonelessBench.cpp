@@ -258,8 +258,8 @@ void printReport(const std::string& name, const json& r, const Args& args) {
                 r["threads"].get<int>(), r["load_average_before"].get<std::string>().c_str(),
                 r["load_average_after"].get<std::string>().c_str());
     printFigures(r["method"] == "multires"
-                     ? "fast solver (multiresolution: coarsest level direct, finer levels "
-                       "block-Jacobi CG):"
+                     ? "fast solver (multiresolution: coarsest level converged, prolonged, "
+                       "then Gauss-Newton steps on the input by PCG):"
                      : "fast solver (single level, PCG with the rotated rest factorisation):",
                  r);
     if (r.contains("single_level")) {
