@@ -28,6 +28,7 @@ struct SolveArgs {
     double lowPass = 0;
     int calibrationFrame = -1;
     int continuation = TakeSolveOptions{}.continuationSteps;
+    double orientation = TakeSolveOptions{}.solver.orientationWeight;
     bool quiet = false;
 };
 
@@ -67,6 +68,7 @@ void run(const SolveArgs& args) {
     request.options.lowPassHz = args.lowPass;
     request.options.calibrationFrame = args.calibrationFrame;
     request.options.continuationSteps = args.continuation;
+    request.options.solver.orientationWeight = args.orientation;
 
     auto announce = [&](const Calibration& c) {
         if (args.quiet) return;
@@ -122,6 +124,9 @@ void registerSolveCommand(CLI::App& app) {
                     "Frame to align the take at (default: chosen automatically)");
     cmd->add_option("--continuation", args->continuation,
                     "Steps from the rest pose to the first frame");
+    cmd->add_option("--orientation-guard", args->orientation,
+                    "Weight of the penalty on faces turning over (0 = off)")
+        ->check(CLI::NonNegativeNumber);
     cmd->add_flag("--quiet", args->quiet, "No progress on stderr");
     cmd->callback([args] { run(*args); });
 }

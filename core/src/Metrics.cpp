@@ -30,7 +30,7 @@ int flippedFaceCount(const Faces& F, const Positions& V, const Positions& T) {
     return flipped;
 }
 
-std::vector<int> foldedFaces(const Faces& F, const Positions& V, const Positions& rest) {
+std::vector<Vec3> carriedRestNormals(const Faces& F, const Positions& V, const Positions& rest) {
     std::vector<std::vector<int>> ring(rest.rows());
     for (int f = 0; f < F.rows(); ++f)
         for (int c = 0; c < 3; ++c) ring[F(f, c)].push_back(F(f, (c + 1) % 3));
@@ -45,13 +45,18 @@ std::vector<int> foldedFaces(const Faces& F, const Positions& V, const Positions
         }
         rotation[v] = fitRigidMotion(from, to).R;
     }
+    std::vector<Vec3> carried(F.rows());
+    for (int f = 0; f < F.rows(); ++f)
+        carried[f] =
+            (rotation[F(f, 0)] + rotation[F(f, 1)] + rotation[F(f, 2)]) * faceNormal(F, rest, f);
+    return carried;
+}
+
+std::vector<int> foldedFaces(const Faces& F, const Positions& V, const Positions& rest) {
+    const std::vector<Vec3> carried = carriedRestNormals(F, V, rest);
     std::vector<int> folded;
-    for (int f = 0; f < F.rows(); ++f) {
-        const Eigen::Vector3d restNormal = faceNormal(F, rest, f);
-        const Eigen::Vector3d carried =
-            (rotation[F(f, 0)] + rotation[F(f, 1)] + rotation[F(f, 2)]) * restNormal;
-        if (faceNormal(F, V, f).dot(carried) < 0) folded.push_back(f);
-    }
+    for (int f = 0; f < F.rows(); ++f)
+        if (faceNormal(F, V, f).dot(carried[f]) < 0) folded.push_back(f);
     return folded;
 }
 

@@ -31,6 +31,17 @@ RigidMotion fitRigidMotion(const Positions& from, const Positions& to) {
     return motion;
 }
 
+namespace {
+void checkOrientationGuard(const SolverOptions& o) {
+    // Measured: with conjugate-gradient steps the guard's terms stall the line search and leave
+    // more folds than no guard at all, so it is refused rather than half-working.
+    if (o.orientationWeight > 0 && o.method != SolverOptions::Method::Direct)
+        throw SolverError(
+            "the orientation guard needs the direct method (set its weight to 0 for the "
+            "iterative and multiresolution methods)");
+}
+}  // namespace
+
 Reconstruction::Impl::Impl() = default;
 Reconstruction::Impl::~Impl() = default;
 
@@ -65,7 +76,15 @@ double Reconstruction::Impl::energy(const Positions& V, const Positions& targets
         std::vector<Mat3> R;
         e += rigidityEnergy(V, R);
     }
+    if (orientation) e += orientation->energy(V);
     return e;
+}
+
+void Reconstruction::Impl::updateOrientationGuard() {
+    orientation.reset();
+    if (options.orientationWeight <= 0) return;
+    orientation = std::make_unique<OrientationGuard>(rest, options.orientationWeight,
+                                                     options.orientationThreshold);
 }
 
 double Reconstruction::Impl::linearise(const Positions& V, const Positions& targets) {
@@ -83,6 +102,10 @@ double Reconstruction::Impl::linearise(const Positions& V, const Positions& targ
     e += markerEnergy(V, targets);
     e *= 0.5;
     if (rigid()) e += rigidityEnergy(V, rotations);
+    if (orientation) {
+        orientation->linearise(V, orientationTerms);
+        for (const auto& t : orientationTerms) e += 0.5 * t.residual * t.residual;
+    }
     return e;
 }
 
@@ -127,6 +150,17 @@ void Reconstruction::Impl::assemble(const Positions& V, const Positions& targets
         for (int v = 0; v < n; ++v)
             gradient.segment<3>(3 * v) += a * (6.0 * LV.row(v) - 2.0 * b.row(v)).transpose();
     }
+    if (orientation) {
+        const int firstFaceStencil = static_cast<int>(residualOf.size());
+        for (const auto& t : orientationTerms) {
+            for (int a = 0; a < 3; ++a) {
+                gradient.segment<3>(3 * rest.F(t.face, a)) += t.residual * t.derivative[a];
+                for (int b = 0; b < 3; ++b)
+                    system->add(firstFaceStencil + t.face, a, b,
+                                t.derivative[a] * t.derivative[b].transpose());
+            }
+        }
+    }
     if (softMarkers())
         for (size_t k = 0; k < markers.size(); ++k) {
             if (!rowIsFinite(targets, static_cast<int>(k))) continue;
@@ -163,6 +197,7 @@ Reconstruction& Reconstruction::operator=(Reconstruction&&) noexcept = default;
 
 void Reconstruction::prepare(const TriMesh& rest, std::vector<int> markerVertices,
                              SolverOptions options) {
+    checkOrientationGuard(options);
     auto impl = std::make_unique<Impl>();
     impl->rest = rest;
     impl->options = options;
@@ -207,6 +242,7 @@ void Reconstruction::prepare(const TriMesh& rest, std::vector<int> markerVertice
     }
     impl->buildBlockSystem();
     impl->rigidity = std::make_unique<ArapEnergy>(impl->rest);
+    impl->updateOrientationGuard();
     if (options.method == SolverOptions::Method::Iterative) {
         impl->prepareRestSystem(impl->restFactorWanted());
         impl->iterative = std::make_unique<IterativeSolver>(*impl);
@@ -327,7 +363,9 @@ SolveResult Reconstruction::Impl::solveDirect(const Positions& targets, const Po
         result.report.iterations = it + 1;
         E = s.linearise(V, targets);
         result.report.energies.push_back(E);
-        if (decrease < s.options.relativeTolerance) {
+        // One face turning over barely changes the total: the relative decrease alone would
+        // stop with the fold in place.
+        if (decrease < s.options.relativeTolerance && !s.anyTurnedOver()) {
             result.report.converged = true;
             break;
         }
@@ -356,6 +394,7 @@ const SolverOptions& Reconstruction::options() const {
     return impl_->options;
 }
 void Reconstruction::setOptions(const SolverOptions& options) {
+    checkOrientationGuard(options);
     // The levels' own options derive from these: build them afresh.
     if (impl_->multires || options.method == SolverOptions::Method::Multiresolution) {
         if (impl_->multires || impl_->topology)
@@ -370,7 +409,10 @@ void Reconstruction::setOptions(const SolverOptions& options) {
         options.softWeight != impl_->options.softWeight ||
         options.preconditioner != impl_->options.preconditioner)
         impl_->systemHoldsRestFactor = false;
+    const bool guardChanged = options.orientationWeight != impl_->options.orientationWeight ||
+                              options.orientationThreshold != impl_->options.orientationThreshold;
     impl_->options = options;
+    if (guardChanged && impl_->topology) impl_->updateOrientationGuard();
 }
 
 }  // namespace boneless

@@ -8,6 +8,7 @@
 
 #include "ArapEnergy.h"
 #include "BlockSystem.h"
+#include "OrientationGuard.h"
 #include "boneless/Reconstruction.h"
 
 namespace boneless {
@@ -32,6 +33,7 @@ struct Reconstruction::Impl {
     std::vector<int> residualIndex;  // vertex -> residual, or -1
     std::unique_ptr<BlockSystem> system;
     std::unique_ptr<ArapEnergy> rigidity;
+    std::unique_ptr<OrientationGuard> orientation;  // when options.orientationWeight > 0
     std::unique_ptr<IterativeSolver> iterative;
     std::unique_ptr<MultiresSolver> multires;  // Method::Multiresolution: it owns everything else
     SolverOptions options;
@@ -43,6 +45,7 @@ struct Reconstruction::Impl {
     std::vector<Vec3> residual;
     std::vector<std::vector<Mat3>> jacobian;
     std::vector<Mat3> rotations;
+    std::vector<OrientationGuard::Term> orientationTerms;
 
     bool rigid() const { return options.rigidityWeight > 0; }
     bool softMarkers() const { return options.constraints == SolverOptions::Constraints::Soft; }
@@ -53,6 +56,14 @@ struct Reconstruction::Impl {
     Vec3 markerPoint(size_t k, const Positions& V, std::vector<Mat3>* dn = nullptr) const;
     double markerEnergy(const Positions& V, const Positions& targets) const;
     double rigidityEnergy(const Positions& V, std::vector<Mat3>& R) const;
+    // (Re)builds or drops the orientation guard for the current options.
+    void updateOrientationGuard();
+    // At the last linearisation, whether the orientation guard has a face turned over.
+    bool anyTurnedOver() const {
+        for (const auto& t : orientationTerms)
+            if (orientation->turnedOver(t)) return true;
+        return false;
+    }
     double energy(const Positions& V, const Positions& targets) const;
 
     // Fills residuals and Jacobians, returns the energy.

@@ -102,6 +102,8 @@ json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibr
               {"low_pass_hz", o.lowPassHz},
               {"continuation_steps", o.continuationSteps},
               {"rigidity_weight", o.solver.rigidityWeight},
+              {"orientation_weight", o.solver.orientationWeight},
+              {"orientation_threshold", o.solver.orientationThreshold},
               {"max_iterations", o.solver.maxIterations}}},
             {"summary", summaryJson(perFrame)},
             {"per_frame", std::move(perFrame)}};

@@ -58,6 +58,7 @@ QJsonObject settingsJson(const TakeSolveOptions& o) {
         {"low_pass_hz", o.lowPassHz},
         {"calibration_frame", o.calibrationFrame},
         {"rigidity_weight", o.solver.rigidityWeight},
+        {"orientation_weight", o.solver.orientationWeight},
         {"max_iterations", o.solver.maxIterations},
         {"method", o.solver.method == SolverOptions::Method::Iterative ? "iterative" : "direct"}};
 }
@@ -69,6 +70,7 @@ TakeSolveOptions readSettings(const QJsonObject& o) {
     s.lowPassHz = o["low_pass_hz"].toDouble(s.lowPassHz);
     s.calibrationFrame = o["calibration_frame"].toInt(s.calibrationFrame);
     s.solver.rigidityWeight = o["rigidity_weight"].toDouble(s.solver.rigidityWeight);
+    s.solver.orientationWeight = o["orientation_weight"].toDouble(s.solver.orientationWeight);
     s.solver.maxIterations = o["max_iterations"].toInt(s.solver.maxIterations);
     if (o["method"].toString() == "iterative") s.solver.method = SolverOptions::Method::Iterative;
     return s;

@@ -16,6 +16,10 @@ int flippedFaceCount(const Faces& F, const Positions& V, const Positions& T);
 // points against its rest normal carried by those local rotations. A limb that turns as a whole,
 // however far, folds nothing.
 std::vector<int> foldedFaces(const Faces& F, const Positions& V, const Positions& rest);
+// Per face, its rest normal (length twice the rest area) carried into V by the one-ring rigid fits
+// of its three vertices, summed: the direction foldedFaces() expects the posed face to face.
+std::vector<Eigen::Vector3d> carriedRestNormals(const Faces& F, const Positions& V,
+                                                const Positions& rest);
 inline int foldedFaceCount(const Faces& F, const Positions& V, const Positions& rest) {
     return static_cast<int>(foldedFaces(F, V, rest).size());
 }

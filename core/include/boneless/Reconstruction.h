@@ -22,6 +22,12 @@ struct SolverOptions {
     // so without it thin parts fold; see README "Solver". 0.01 was the best of 0.001–0.1 on the
     // horse gallop at K = 20, 40, 80 (fewest flips and lowest error together).
     double rigidityWeight = 0.01;
+    // The orientation guard (direct method only; 0 = off): a one-sided penalty on faces that
+    // shrink below orientationThreshold of their rest area or turn over against their
+    // neighbourhood, with a dimensionless weight (OrientationGuard.h). Folds the fold guard lets
+    // through (slivers, thin parts pulled by a marker) cost this much more.
+    double orientationWeight = 0;
+    double orientationThreshold = 0.2;
     int maxIterations = 10;
     // Soft constraints only: how far each marker sits off the skin (mesh units, along the outward
     // normal of its vertex's ring, algorithm.md §4.3); empty = every marker on the skin.
@@ -66,7 +72,7 @@ struct SolveReport {
     double energyBefore = 0;   // at the initial guess (markers already on their targets if hard)
     double energyAfter = 0;
     double milliseconds = 0;
-    bool converged = false;        // the relative-decrease test was met
+    bool converged = false;  // the relative-decrease test was met
     std::vector<double> energies;  // after each accepted iteration, energies[0] = energyBefore
 };
 

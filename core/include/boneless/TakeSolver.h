@@ -15,7 +15,14 @@ struct TakeSolveOptions {
     double lowPassHz = 0.0;       // 0 = no filtering of the trajectories
     int calibrationFrame = -1;    // -1 = chosen automatically (see calibrate())
     std::optional<Similarity> alignment;  // overrides the automatic alignment
-    SolverOptions solver;                 // constraints and offsets are set by the TakeSolver
+    // Constraints and offsets are set by the TakeSolver. The orientation guard is on: a real
+    // take on a mesh that was not made for its actor strains the mesh, and slivers (the corners
+    // of a mouth) and thin parts a marker pulls (fingers, toes) fold under the fold guard alone.
+    SolverOptions solver = [] {
+        SolverOptions s;
+        s.orientationWeight = 100.0;
+        return s;
+    }();
 };
 
 // How well a solved frame meets its markers.
