@@ -207,6 +207,8 @@ void Reconstruction::prepare(const TriMesh& rest, std::vector<int> markerVertice
         impl->residualOf.push_back(v);
     }
     impl->rigidity = std::make_unique<ArapEnergy>(impl->rest);
+    // The direct path needs the structure on its first frame anyway: it belongs to preparing.
+    if (options.method == SolverOptions::Method::Direct) impl->buildBlockSystem();
     if (options.method == SolverOptions::Method::Iterative) {
         // No steps, no preconditioner: solve() makes it if the options change.
         if (options.maxIterations > 0) impl->prepareRestSystem(impl->restFactorWanted());
