@@ -29,24 +29,26 @@ IterativeSolver::IterativeSolver(Reconstruction::Impl& problem) : p_(problem) {
             }
     scratchJ_.resize(solverThreadCount());
     pinned_.assign(n_, 0);
-    if (p_.options.preconditioner == SolverOptions::Preconditioner::Scalar) {
-        // Block (a, b) of the rest matrix becomes trace/3: the average of the x, y and z
-        // couplings, positive definite because each of the three is.
-        const Eigen::SparseMatrix<double>& H = p_.system->matrix();
-        std::vector<Eigen::Triplet<double>> t;
-        t.reserve(H.nonZeros() / 3);
-        for (int col = 0; col < H.outerSize(); ++col)
-            for (Eigen::SparseMatrix<double>::InnerIterator it(H, col); it; ++it)
-                if (it.row() % 3 == col % 3 && it.row() / 3 >= col / 3)
-                    t.emplace_back(static_cast<int>(it.row()) / 3, col / 3, it.value() / 3.0);
-        Eigen::SparseMatrix<double> S(n_, n_);
-        S.setFromTriplets(t.begin(), t.end());
-        scalarFactor_ = std::make_unique<
-            Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower>>();
-        scalarFactor_->compute(S);
-        if (scalarFactor_->info() != Eigen::Success)
-            throw SolverError("the rest pose's preconditioner is not positive definite");
-    }
+}
+
+void IterativeSolver::preparePreconditioner() {
+    if (scalarFactor_ || p_.options.preconditioner != SolverOptions::Preconditioner::Scalar) return;
+    // Block (a, b) of the rest matrix becomes trace/3: the average of the x, y and z
+    // couplings, positive definite because each of the three is.
+    const Eigen::SparseMatrix<double>& H = p_.system->matrix();
+    std::vector<Eigen::Triplet<double>> t;
+    t.reserve(H.nonZeros() / 3);
+    for (int col = 0; col < H.outerSize(); ++col)
+        for (Eigen::SparseMatrix<double>::InnerIterator it(H, col); it; ++it)
+            if (it.row() % 3 == col % 3 && it.row() / 3 >= col / 3)
+                t.emplace_back(static_cast<int>(it.row()) / 3, col / 3, it.value() / 3.0);
+    Eigen::SparseMatrix<double> S(n_, n_);
+    S.setFromTriplets(t.begin(), t.end());
+    scalarFactor_ =
+        std::make_unique<Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower>>();
+    scalarFactor_->compute(S);
+    if (scalarFactor_->info() != Eigen::Success)
+        throw SolverError("the rest pose's preconditioner is not positive definite");
 }
 
 void IterativeSolver::zeroPinned(Eigen::VectorXd& x) const {
@@ -54,7 +56,8 @@ void IterativeSolver::zeroPinned(Eigen::VectorXd& x) const {
         if (pinned_[v]) x.segment<3>(3 * v).setZero();
 }
 
-double IterativeSolver::evaluate(const Positions& V, const Positions& targets, Linearisation& L) {
+double IterativeSolver::evaluate(const Positions& V, const Positions& targets, Linearisation& L,
+                                 bool withCurvature) {
     const MeshTopology& topo = *p_.topology;
     const ShapeEncoding& enc = *p_.encoding;
     L.residual.resize(n_);
@@ -94,7 +97,8 @@ double IterativeSolver::evaluate(const Positions& V, const Positions& targets, L
     // The rotations are needed by the preconditioner even when the fold guard is off.
     if (&L != &current_ && current_.rotation.size() == static_cast<size_t>(n_))
         L.rotation = current_.rotation;
-    p_.rigidity->fitRotations(V, L.rotation, true, p_.rigid() ? &L.curvature : nullptr);
+    p_.rigidity->fitRotations(V, L.rotation, true,
+                              p_.rigid() && withCurvature ? &L.curvature : nullptr);
     if (p_.rigid()) e += p_.options.rigidityWeight * p_.rigidity->energy(V, L.rotation);
     L.energy = e;
     return e;
@@ -282,16 +286,54 @@ bool IterativeSolver::directStep(const Positions& V, const Positions& targets,
     return true;
 }
 
-SolveResult IterativeSolver::solve(const Positions& targets, const Positions* guess) {
-    const auto start = std::chrono::steady_clock::now();
-    SolveResult result;
-    result.V = p_.startingPose(targets, guess);
-    Positions& V = result.V;
-    const Positions startPose = V;
+void IterativeSolver::blockJacobi(const Eigen::VectorXd& g, Eigen::VectorXd& d) const {
+    const ShapeEncoding& enc = *p_.encoding;
+    const auto& lap = p_.rigidity->laplacian();
+    const double guard = 6.0 * p_.options.rigidityWeight;
+    d.resize(3 * n_);
+    parallelFor(n_, [&](int begin, int end, int) {
+        for (int v = begin; v < end; ++v) {
+            if (pinned_[v]) {
+                d.segment<3>(3 * v).setZero();
+                continue;
+            }
+            Mat3 D = enc.encoded(v) ? Mat3(Mat3::Identity()) : Mat3(Mat3::Zero());
+            for (int i = inOffsets_[v]; i < inOffsets_[v + 1]; ++i) {
+                const Mat3& J = current_.jacobian[inSlot_[i]];
+                D.noalias() += J.transpose() * J;
+            }
+            D.diagonal().array() += guard * lap.coeff(v, v) + 1e-12;
+            d.segment<3>(3 * v) = -D.ldlt().solve(g.segment<3>(3 * v));
+        }
+    });
+}
+
+void IterativeSolver::pinFor(const Positions& targets) {
     for (int v = 0; v < n_; ++v) pinned_[v] = p_.topology->isIsolated(v);
     if (!p_.softMarkers())
         for (size_t k = 0; k < p_.markers.size(); ++k)
             if (rowIsFinite(targets, static_cast<int>(k))) pinned_[p_.markers[k]] = 1;
+}
+
+double IterativeSolver::gradientAt(const Positions& V, const Positions& targets, Eigen::VectorXd& g,
+                                   bool lastSolved) {
+    if (!lastSolved) {
+        pinFor(targets);
+        // Gradient only: the Hessian's rotation curvature is not needed.
+        evaluate(V, targets, current_, false);
+    }
+    gradient(V, current_, g);
+    return current_.energy;
+}
+
+SolveResult IterativeSolver::solve(const Positions& targets, const Positions* guess) {
+    const auto start = std::chrono::steady_clock::now();
+    if (p_.options.maxIterations > 0) preparePreconditioner();
+    SolveResult result;
+    result.V = p_.startingPose(targets, guess);
+    Positions& V = result.V;
+    const Positions startPose = V;
+    pinFor(targets);
 
     double E = evaluate(V, targets, current_);
     result.report.energyBefore = E;

@@ -25,6 +25,26 @@ class IterativeSolver {
   public:
     explicit IterativeSolver(Reconstruction::Impl& problem);
     SolveResult solve(const Positions& targets, const Positions* guess);
+    // The energy at V and its gradient (3 per vertex, zero on the vertices the targets pin).
+    // lastSolved: V is what the last solve() returned for these targets, whose linearisation is
+    // kept, so that only the gradient is left to compute.
+    double gradientAt(const Positions& V, const Positions& targets, Eigen::VectorXd& g,
+                      bool lastSolved);
+
+    // The Gauss–Newton system of the pose last linearised (by solve(), gradientAt() or
+    // keepTried()), H x = −g, by preconditioned conjugate gradients; x: start and answer.
+    int solveAtCurrent(const Eigen::VectorXd& g, Eigen::VectorXd& x) {
+        preparePreconditioner();
+        return conjugateGradients(current_, g, x);
+    }
+    // The energy of a trial pose (for a line search), and making the last trial the current pose.
+    double tryPose(const Positions& V, const Positions& targets) {
+        return evaluate(V, targets, trial_, false);
+    }
+    void keepTried() { std::swap(current_, trial_); }
+    // d = −D⁻¹ g with D the 3×3 diagonal blocks of the current pose's Gauss–Newton matrix (the
+    // fold guard's with its rotations held): a smoother of the high-frequency error.
+    void blockJacobi(const Eigen::VectorXd& g, Eigen::VectorXd& d) const;
 
   private:
     // Everything known about one pose: residuals, ring Jacobians (CSR, aligned with the
@@ -40,7 +60,12 @@ class IterativeSolver {
         double energy = 0;
     };
 
-    double evaluate(const Positions& V, const Positions& targets, Linearisation& L);
+    double evaluate(const Positions& V, const Positions& targets, Linearisation& L,
+                    bool withCurvature = true);
+    void pinFor(const Positions& targets);
+    // The scalar preconditioner's factor, made from the rest matrix the system holds on the first
+    // solve that takes a step.
+    void preparePreconditioner();
     void gradient(const Positions& V, const Linearisation& L, Eigen::VectorXd& g) const;
     void multiply(const Linearisation& L, const Eigen::VectorXd& x, Eigen::VectorXd& y);
     void precondition(const Linearisation& L, const Eigen::VectorXd& r, Eigen::VectorXd& z) const;

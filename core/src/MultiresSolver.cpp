@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 
+#include "IterativeSolver.h"
+#include "LineSearch.h"
 #include "Parallel.h"
 #include "boneless/Error.h"
 
@@ -81,6 +83,118 @@ void MultiresSolver::prolong(int l, const Positions& coarse, Positions& fine) co
         4096);
 }
 
+void MultiresSolver::restrictGradient(int l, const Positions& fine, const Positions& g,
+                                      Positions& out) const {
+    const HierarchyLevel& level = hierarchy_.level(l);
+    const ShapeEncoding& enc = encoding(l);
+    const MeshTopology& topo = enc.topology();
+    // Removed vertex r was placed at F_r(ring), so its gradient reaches its ring through J_rkᵀ.
+    // The products are made in parallel, one slot per ring entry, and summed on one thread: rings
+    // share survivors.
+    std::vector<Vec3> share(topo.neighbours().size());
+    parallelFor(
+        static_cast<int>(level.removed.size()),
+        [&](int begin, int end, int) {
+            std::vector<Mat3> J;
+            Vec3 F;
+            for (int i = begin; i < end; ++i) {
+                const int r = level.removed[i];
+                enc.decodeWithJacobian(r, fine, F, J);
+                const Vec3 gr = g.row(r).transpose();
+                for (size_t k = 0; k < J.size(); ++k)
+                    share[topo.offsets()[r] + k] = J[k].transpose() * gr;
+            }
+        },
+        2048);
+    Positions sum = g;
+    for (int r : level.removed)
+        for (int k = 0; k < topo.valence(r); ++k)
+            sum.row(topo.ring(r)[k]) += share[topo.offsets()[r] + k].transpose();
+    out.resize(hierarchy_.level(l + 1).mesh.vertexCount(), 3);
+    for (int i = 0; i < sum.rows(); ++i)
+        if (level.coarser[i] >= 0) out.row(level.coarser[i]) = sum.row(i);
+}
+
+void MultiresSolver::prolongLinear(int l, const Positions& fine, const Positions& d,
+                                   Positions& out) const {
+    const HierarchyLevel& level = hierarchy_.level(l);
+    const ShapeEncoding& enc = encoding(l);
+    const MeshTopology& topo = enc.topology();
+    const int n = level.mesh.vertexCount();
+    out.resize(n, 3);
+    for (int i = 0; i < n; ++i)
+        if (level.coarser[i] >= 0) out.row(i) = d.row(level.coarser[i]);
+    parallelFor(
+        static_cast<int>(level.removed.size()),
+        [&](int begin, int end, int) {
+            std::vector<Mat3> J;
+            Vec3 F;
+            for (int i = begin; i < end; ++i) {
+                const int r = level.removed[i];
+                enc.decodeWithJacobian(r, fine, F, J);
+                Vec3 s = Vec3::Zero();
+                for (size_t k = 0; k < J.size(); ++k)
+                    s += J[k] * out.row(topo.ring(r)[k]).transpose();
+                out.row(r) = s.transpose();
+            }
+        },
+        2048);
+}
+
+void MultiresSolver::correctionSteps(const Positions& targets,
+                                     const std::vector<Positions>& prolonged, Positions& V,
+                                     SolveReport& report) {
+    const int L = levelCount();
+    IterativeSolver& fine = *fine_.impl_->iterative;
+    IterativeSolver& coarse = *coarsest_.impl_->iterative;
+    const Reconstruction::Impl& c = *coarsest_.impl_;
+    Eigen::VectorXd g, gc, dc, step;
+    double E = fine.gradientAt(V, targets, g, false);
+    Positions G, next, trial;
+    // Line search along `step` from V; on success V, E and g belong to the new pose.
+    auto take = [&] {
+        const double slope = g.dot(step);
+        if (!(slope < 0)) return false;
+        double Enew = E;
+        if (!armijoBacktrack(
+                V, step, E, slope, [&](const Positions& X) { return fine.tryPose(X, targets); },
+                trial, Enew))
+            return false;
+        fine.keepTried();
+        V.swap(trial);
+        E = fine.gradientAt(V, targets, g, true);
+        ++report.iterations;
+        return true;
+    };
+    for (int it = 0; it < fine_.options().correctionSteps; ++it) {
+        // Smoothing first: the finest scale's error would otherwise dominate the gradient and,
+        // restricted, make the coarse direction noise.
+        fine.blockJacobi(g, step);
+        take();
+        G = Eigen::Map<const Positions>(g.data(), V.rows(), 3);
+        for (int l = 0; l + 1 < L; ++l) {
+            restrictGradient(l, prolonged[l], G, next);
+            G.swap(next);
+        }
+        if (!c.softMarkers())
+            for (int v : c.markers) G.row(v).setZero();
+        // The coarse system of the pose the coarsest level has just converged to.
+        gc = Eigen::Map<const Eigen::VectorXd>(G.data(), G.size());
+        dc.setZero(gc.size());
+        report.linearIterations += coarse.solveAtCurrent(gc, dc);
+        G = Eigen::Map<const Positions>(dc.data(), G.rows(), 3);
+        for (int l = L - 2; l >= 0; --l) {
+            prolongLinear(l, prolonged[l], G, next);
+            G.swap(next);
+        }
+        step = Eigen::Map<const Eigen::VectorXd>(G.data(), G.size());
+        // Pinned vertices (zero gradient rows) stay where they are.
+        for (int v = 0; v < V.rows(); ++v)
+            if (g.segment<3>(3 * v).squaredNorm() == 0) step.segment<3>(3 * v).setZero();
+        take();
+    }
+}
+
 Positions MultiresSolver::restrictTo(int l, const Positions& input) const {
     const HierarchyLevel& level = hierarchy_.level(l);
     Positions out(level.mesh.vertexCount(), 3);
@@ -100,31 +214,38 @@ SolveResult MultiresSolver::solve(const Positions& targets, const Positions* gue
     const bool warm = guess && !last_.empty() && last_[0].rows() == guess->rows() &&
                       (last_[0] - *guess).cwiseAbs().maxCoeff() == 0;
     if (guess && !warm) restartFrom(*guess);
-
-    SolveResult coarse = coarsest_.solve(targets, guess ? &last_[L - 1] : nullptr);
     if (L == 1) {
+        SolveResult coarse = coarsest_.solve(targets, guess ? &last_[0] : nullptr);
         last_ = {coarse.V};
         return coarse;
     }
-    std::vector<Positions> answer(L);
+    std::vector<Positions> prolongedLast(L - 1);
+    if (guess)
+        for (int l = 0; l + 1 < L; ++l) prolong(l, last_[l + 1], prolongedLast[l]);
+    SolveResult coarse = coarsest_.solve(targets, guess ? &last_[L - 1] : nullptr);
+    std::vector<Positions> answer(L), prolonged(L - 1);
     answer[L - 1] = std::move(coarse.V);
-    Positions prolongedLast;
     for (int l = L - 2; l >= 0; --l) {
         prolong(l, answer[l + 1], answer[l]);
-        if (guess) {
-            // Last answer + the prolonged change of the level below.
-            prolong(l, last_[l + 1], prolongedLast);
-            answer[l] += last_[l] - prolongedLast;
-        }
+        if (fine_.options().correctionSteps > 0) prolonged[l] = answer[l];
+        // Last answer + the prolonged change of the level below.
+        if (guess) answer[l] += last_[l] - prolongedLast[l];
     }
     SolveReport report;
+    const bool corrected = fine_.options().correctionSteps > 0;
+    if (corrected) correctionSteps(targets, prolonged, answer[0], report);
     if (fine_.options().maxIterations > 0) {
         SolveResult r = fine_.solve(targets, &answer[0]);
         answer[0] = std::move(r.V);
+        r.report.iterations += report.iterations;
+        r.report.linearIterations += report.linearIterations;
         report = std::move(r.report);
     } else {
-        report.energyBefore = report.energyAfter = fine_.energy(answer[0], targets);
-        report.energies = {report.energyBefore};
+        // The energy of the answer; after correction steps it is known already.
+        Eigen::VectorXd g;
+        const double energy = fine_.impl_->iterative->gradientAt(answer[0], targets, g, corrected);
+        report.energyBefore = report.energyAfter = energy;
+        report.energies = {energy};
     }
     report.iterations += coarse.report.iterations;
     report.linearIterations += coarse.report.linearIterations;

@@ -17,10 +17,17 @@ namespace boneless {
 //    below (P(X_{l+1}) − P(X_{l+1}^last)), where P places every removed vertex explicitly at
 //    F_r of its coarser ring. The detail a level added last frame is kept instead of being
 //    recomputed from the coarse shape, so only the frame's change has to be corrected.
-//  - The input level then takes fineIterations Gauss–Newton steps (conjugate gradients with
-//    the rotated rest factorisation). The levels between are prolonged through only: steps
-//    there with a cheap local preconditioner were measured to leave the error where it was (it
-//    is smooth: the coarse and fine energies' minima differ slightly), at a high price.
+//  - The input level then takes correctionSteps cheap steps (a block-Jacobi step, then a
+//    two-level step: its gradient restricted through the prolongation's Jacobian, the coarsest
+//    level's Gauss–Newton system solved for it, the answer prolonged back, a line search on the
+//    input's energy) and fineIterations Gauss–Newton steps (conjugate gradients with the rotated
+//    rest factorisation; its rest system is only made when there are such steps). The levels
+//    between are prolonged through only: steps there with a cheap local preconditioner were
+//    measured to leave the error where it was (it is smooth: the coarse and fine energies' minima
+//    differ slightly), at a high price. A coarse-grid correction of the full approximation
+//    scheme (the coarsest energy minus <τ, X>, τ from the input's restricted gradient) was
+//    measured to make it worse: without smoothing first, the restricted gradient is dominated by
+//    the finest scale's error, and the coarsest level's soft modes amplify it.
 // The solver keeps every level's last answer. A guess that is not the last answer (a jump in the
 // timeline) restarts the levels from the guess.
 class MultiresSolver {
@@ -37,6 +44,16 @@ class MultiresSolver {
   private:
     // Level l's positions from level l+1's: survivors copied, removed vertices decoded.
     void prolong(int l, const Positions& coarse, Positions& fine) const;
+    // The transpose of prolong()'s Jacobian at `fine` (a prolongation of level l+1's positions):
+    // a gradient over level l's vertices becomes one over level l+1's.
+    void restrictGradient(int l, const Positions& fine, const Positions& g, Positions& out) const;
+    // prolong()'s Jacobian at `fine` applied to level l+1's displacement d.
+    void prolongLinear(int l, const Positions& fine, const Positions& d, Positions& out) const;
+    // SolverOptions::correctionSteps on the input level's pose V; prolonged[l] is level l's
+    // prolongation of this frame's level l+1 (where the prolongation's Jacobians are taken).
+    void correctionSteps(const Positions& targets, const std::vector<Positions>& prolonged,
+                         Positions& V, SolveReport& report);
+
     // Level l's rows of a pose of the input mesh.
     Positions restrictTo(int l, const Positions& input) const;
     void restartFrom(const Positions& guess);

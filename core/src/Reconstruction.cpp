@@ -113,6 +113,7 @@ void Reconstruction::Impl::assemble(const Positions& V, const Positions& targets
                                     Eigen::VectorXd& gradient) {
     const int n = rest.vertexCount();
     gradient.setZero(3 * n);
+    if (!system) buildBlockSystem();
     system->clear();
     const auto& topo = *topology;
     for (int r = 0; r < static_cast<int>(residualOf.size()); ++r) {
@@ -240,11 +241,13 @@ void Reconstruction::prepare(const TriMesh& rest, std::vector<int> markerVertice
         impl->residualIndex[v] = static_cast<int>(impl->residualOf.size());
         impl->residualOf.push_back(v);
     }
-    impl->buildBlockSystem();
     impl->rigidity = std::make_unique<ArapEnergy>(impl->rest);
     impl->updateOrientationGuard();
+    // The direct path needs the structure on its first frame anyway: it belongs to preparing.
+    if (options.method == SolverOptions::Method::Direct) impl->buildBlockSystem();
     if (options.method == SolverOptions::Method::Iterative) {
-        impl->prepareRestSystem(impl->restFactorWanted());
+        // No steps, no preconditioner: solve() makes it if the options change.
+        if (options.maxIterations > 0) impl->prepareRestSystem(impl->restFactorWanted());
         impl->iterative = std::make_unique<IterativeSolver>(*impl);
     }
     impl_ = std::move(impl);
@@ -286,7 +289,7 @@ SolveResult Reconstruction::solve(const Positions& targets, const Positions* gue
                           " vertices, the mesh " + std::to_string(n));
     if (s.multires) return s.multires->solve(targets, guess);
     if (s.options.method == SolverOptions::Method::Iterative) {
-        if (!s.systemHoldsRestFactor) {
+        if (!s.systemHoldsRestFactor && s.options.maxIterations > 0) {
             s.prepareRestSystem(s.restFactorWanted());
             s.iterative.reset();
         }

@@ -74,6 +74,7 @@ struct Reconstruction::Impl {
     // Tikhonov term added; factorises it too when `factor`.
     void prepareRestSystem(bool factor);
     // The block system's structure: one stencil per residual (its vertex and ring), one per face.
+    // Made on first use: a level of the multiresolution solver that is never stepped on needs none.
     void buildBlockSystem();
     void addRestRotationCoupling();
     bool restFactorWanted() const {

@@ -44,6 +44,7 @@ struct Args {
     bool directFallback = false;
     std::string method = "multires";
     int coarsest = SolverOptions{}.coarsestVertices;
+    int corrections = 0;
 };
 Args gArgs;
 
@@ -84,6 +85,7 @@ SolverOptions fastOptions() {
     o.maxIterations = gArgs.gnIterations;
     o.fineIterations = gArgs.gnIterations;
     o.coarsestVertices = gArgs.coarsest;
+    o.correctionSteps = gArgs.corrections;
     o.rigidityWeight = gArgs.rigidity;
     o.directFallback = gArgs.directFallback;
     o.maxCgIterations = gArgs.maxCg;
@@ -290,7 +292,8 @@ int sweep(const Args& args, const TriMesh& input, const char* self) {
             << " --cg-tolerance " << args.cgTolerance << " --preconditioner " << args.preconditioner
             << " --baseline-frames " << args.baselineFrames << " --check-every " << args.checkEvery
             << " --method " << args.method << " --coarsest " << args.coarsest << " --rigidity "
-            << args.rigidity << (args.directFallback ? " --direct-fallback" : "");
+            << args.rigidity << (args.directFallback ? " --direct-fallback" : "")
+            << " --corrections " << args.corrections;
         FILE* pipe = popen(cmd.str().c_str(), "r");
         std::string text;
         char buffer[4096];
@@ -356,6 +359,9 @@ int main(int argc, char** argv) {
     app.add_option("--preconditioner", args.preconditioner, "fast solver: scalar or blocks");
     app.add_option("--method", args.method, "fast solver: multires or iterative (single level)");
     app.add_option("--coarsest", args.coarsest, "fast solver, multires: coarsest level's vertices");
+    app.add_option("--corrections", args.corrections,
+                   "fast solver, multires: smoothing + coarse-correction steps on the input per "
+                   "frame (before the --gn-iterations ones)");
     CLI11_PARSE(app, argc, argv);
     gArgs = args;
 

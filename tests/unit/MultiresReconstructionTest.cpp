@@ -15,11 +15,12 @@ using namespace boneless::testing;
 namespace {
 
 // Small enough a coarsest level that a test mesh of a few thousand vertices gets several levels.
-SolverOptions multiresOptions(int fineIterations = 1) {
+SolverOptions multiresOptions(int fineIterations = 1, int correctionSteps = 0) {
     SolverOptions o;
     o.method = SolverOptions::Method::Multiresolution;
     o.coarsestVertices = 200;
     o.fineIterations = fineIterations;
+    o.correctionSteps = correctionSteps;
     return o;
 }
 
@@ -42,9 +43,9 @@ double rms(const Positions& a, const Positions& b) {
 TEST(MultiresReconstruction, RestPoseTargetsGiveBackTheRestMesh) {
     const TriMesh mesh = icosphere(4);
     const auto markers = everyNth(mesh.vertexCount(), 97);
-    for (int fine : {0, 1}) {
+    for (const auto& [fine, corrections] : {std::pair{0, 0}, {1, 0}, {0, 1}}) {
         Reconstruction solver;
-        solver.prepare(mesh, markers, multiresOptions(fine));
+        solver.prepare(mesh, markers, multiresOptions(fine, corrections));
         const double tolerance = 1e-9 * boundingBoxDiagonal(mesh.V);
         EXPECT_LE(maxDistance(solver.solve(rows(mesh.V, markers)).V, mesh.V), tolerance);
         EXPECT_LE(maxDistance(solver.solve(rows(mesh.V, markers), &mesh.V).V, mesh.V), tolerance);
@@ -59,20 +60,23 @@ TEST(MultiresReconstruction, RigidMotionOfTheMarkersMovesTheMeshRigidly) {
     const auto markers = everyNth(mesh.vertexCount(), 97);
     const double tolerance = 1e-6 * boundingBoxDiagonal(mesh.V);
     std::mt19937 rng(11);
-    Reconstruction solver;
-    solver.prepare(mesh, markers, multiresOptions());
-    for (int trial = 0; trial < 3; ++trial) {
-        const Mat3 R = randomRotation(rng);
-        const Vec3 t(trial, 1.0, -0.5);
-        const Positions expected = moved(mesh.V, R, t);
-        const SolveResult cold = solver.solve(rows(expected, markers));
-        EXPECT_LE(maxDistance(cold.V, expected), tolerance) << "trial " << trial;
-        const Mat3 away = Eigen::AngleAxisd(20.0 * M_PI / 180, Vec3(1, 2, 3).normalized()).matrix();
-        const Positions previous = moved(mesh.V, away * R, t);
-        const SolveResult jump = solver.solve(rows(expected, markers), &previous);
-        EXPECT_LE(maxDistance(jump.V, expected), tolerance) << "trial " << trial;
-        const SolveResult warm = solver.solve(rows(expected, markers), &jump.V);
-        EXPECT_LE(maxDistance(warm.V, expected), tolerance) << "trial " << trial;
+    for (int corrections : {0, 1}) {
+        Reconstruction solver;
+        solver.prepare(mesh, markers, multiresOptions(1, corrections));
+        for (int trial = 0; trial < 3; ++trial) {
+            const Mat3 R = randomRotation(rng);
+            const Vec3 t(trial, 1.0, -0.5);
+            const Positions expected = moved(mesh.V, R, t);
+            const SolveResult cold = solver.solve(rows(expected, markers));
+            EXPECT_LE(maxDistance(cold.V, expected), tolerance) << "trial " << trial;
+            const Mat3 away =
+                Eigen::AngleAxisd(20.0 * M_PI / 180, Vec3(1, 2, 3).normalized()).matrix();
+            const Positions previous = moved(mesh.V, away * R, t);
+            const SolveResult jump = solver.solve(rows(expected, markers), &previous);
+            EXPECT_LE(maxDistance(jump.V, expected), tolerance) << "trial " << trial;
+            const SolveResult warm = solver.solve(rows(expected, markers), &jump.V);
+            EXPECT_LE(maxDistance(warm.V, expected), tolerance) << "trial " << trial;
+        }
     }
 }
 
@@ -85,10 +89,13 @@ TEST(MultiresReconstruction, TracksTheConvergedSolutionAlongASequence) {
     const double diagonal = boundingBoxDiagonal(mesh.V);
     Reconstruction reference;
     reference.prepare(mesh, markers, convergedOptions());
-    double worst[2] = {0, 0};
-    for (int fine : {0, 1}) {
+    // Prolongation alone, one fine Gauss–Newton step, one correction step.
+    const std::pair<int, int> variants[] = {{0, 0}, {1, 0}, {0, 1}};
+    double worst[3] = {0, 0, 0};
+    for (int variant = 0; variant < 3; ++variant) {
+        const auto [fine, corrections] = variants[variant];
         Reconstruction solver;
-        solver.prepare(mesh, markers, multiresOptions(fine));
+        solver.prepare(mesh, markers, multiresOptions(fine, corrections));
         Positions previous = mesh.V;
         for (int f = 1; f <= 12; ++f) {
             const Positions targets = rows(bent(mesh.V, 0.05 * f), markers);
@@ -99,7 +106,7 @@ TEST(MultiresReconstruction, TracksTheConvergedSolutionAlongASequence) {
             const SolveResult c = reference.solve(targets, &r.V);
             // The answer is near the minimum, so converging it lowers the energy only a little.
             EXPECT_LE(c.report.energyAfter, r.report.energyAfter * (1 + 1e-9) + 1e-12);
-            worst[fine] = std::max(worst[fine], rms(r.V, c.V) / diagonal);
+            worst[variant] = std::max(worst[variant], rms(r.V, c.V) / diagonal);
             previous.swap(r.V);
         }
     }
@@ -107,6 +114,8 @@ TEST(MultiresReconstruction, TracksTheConvergedSolutionAlongASequence) {
     EXPECT_LT(worst[0], 1e-2);
     EXPECT_LT(worst[1], 5e-4);
     EXPECT_LT(worst[1], 0.1 * worst[0]);
+    // The correction steps remove part of what prolongation leaves.
+    EXPECT_LT(worst[2], 0.8 * worst[0]);
 }
 
 // A mesh smaller than the coarsest level is solved on one level: the single-level answer.

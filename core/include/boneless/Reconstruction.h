@@ -41,15 +41,21 @@ struct SolverOptions {
     //    the rest pose's normal matrix (factorised once, in prepare()) turned by each vertex's
     //    fitted rotation; no factorisation per frame, so it suits large meshes and warm starts.
     //  Multiresolution: a hierarchy of coarser meshes (algorithm.md §1.6); the coarsest is
-    //    solved to convergence, each finer level starts from the prolonged change and takes
-    //    fineIterations Gauss–Newton steps by block-Jacobi conjugate gradients. Made for
-    //    sequences: each frame is warm-started from the last at every level.
+    //    solved to convergence, each finer level starts from the prolonged change, and the input
+    //    takes correctionSteps cheap steps, then fineIterations Gauss–Newton steps by conjugate
+    //    gradients. Made for sequences: each frame is warm-started from the last at every level.
     enum class Method { Direct, Iterative, Multiresolution };
     Method method = Method::Direct;
     // Multiresolution only: the coarsest level's size (at least ten vertices per marker), and
     // the Gauss–Newton steps on each finer level per frame.
     int coarsestVertices = 2000;
     int fineIterations = 1;
+    // Multiresolution only: cheap steps on the input level per frame, before the fineIterations
+    // ones. Each is a block-Jacobi step (it removes the error of the finest scale, which no
+    // coarser level sees), then a step along the coarsest level's Gauss–Newton answer to the
+    // input's gradient restricted to it and prolonged back (the smooth error, where the coarse
+    // and fine energies' minima differ), each with a line search on the input's energy.
+    int correctionSteps = 0;
     // Iterative only: stop conjugate gradients once the residual is this fraction of the
     // gradient, or after this many iterations (per Gauss–Newton step).
     double cgTolerance = 1e-2;
@@ -114,6 +120,7 @@ class Reconstruction {
   private:
     struct Impl;
     friend class IterativeSolver;
+    friend class MultiresSolver;
     std::unique_ptr<Impl> impl_;
 };
 
