@@ -83,15 +83,12 @@ void MultiresSolver::prolong(int l, const Positions& coarse, Positions& fine) co
         4096);
 }
 
-void MultiresSolver::restrictGradient(int l, const Positions& fine, const Positions& g,
-                                      Positions& out) const {
+std::vector<Mat3> MultiresSolver::prolongationJacobian(int l, const Positions& fine) const {
     const HierarchyLevel& level = hierarchy_.level(l);
     const ShapeEncoding& enc = encoding(l);
     const MeshTopology& topo = enc.topology();
-    // Removed vertex r was placed at F_r(ring), so its gradient reaches its ring through J_rkᵀ.
-    // The products are made in parallel, one slot per ring entry, and summed on one thread: rings
-    // share survivors.
-    std::vector<Vec3> share(topo.neighbours().size());
+    // One block per ring entry (CSR, the topology's offsets); only removed vertices' are filled.
+    std::vector<Mat3> jacobian(topo.neighbours().size());
     parallelFor(
         static_cast<int>(level.removed.size()),
         [&](int begin, int end, int) {
@@ -100,45 +97,43 @@ void MultiresSolver::restrictGradient(int l, const Positions& fine, const Positi
             for (int i = begin; i < end; ++i) {
                 const int r = level.removed[i];
                 enc.decodeWithJacobian(r, fine, F, J);
-                const Vec3 gr = g.row(r).transpose();
-                for (size_t k = 0; k < J.size(); ++k)
-                    share[topo.offsets()[r] + k] = J[k].transpose() * gr;
+                std::copy(J.begin(), J.end(), jacobian.begin() + topo.offsets()[r]);
             }
         },
         2048);
+    return jacobian;
+}
+
+void MultiresSolver::restrictGradient(int l, const std::vector<Mat3>& jacobian, const Positions& g,
+                                      Positions& out) const {
+    const HierarchyLevel& level = hierarchy_.level(l);
+    const MeshTopology& topo = encoding(l).topology();
+    // Removed vertex r was placed at F_r(ring), so its gradient reaches its ring through J_rkᵀ.
     Positions sum = g;
     for (int r : level.removed)
         for (int k = 0; k < topo.valence(r); ++k)
-            sum.row(topo.ring(r)[k]) += share[topo.offsets()[r] + k].transpose();
+            sum.row(topo.ring(r)[k]) +=
+                (jacobian[topo.offsets()[r] + k].transpose() * g.row(r).transpose()).transpose();
     out.resize(hierarchy_.level(l + 1).mesh.vertexCount(), 3);
     for (int i = 0; i < sum.rows(); ++i)
         if (level.coarser[i] >= 0) out.row(level.coarser[i]) = sum.row(i);
 }
 
-void MultiresSolver::prolongLinear(int l, const Positions& fine, const Positions& d,
+void MultiresSolver::prolongLinear(int l, const std::vector<Mat3>& jacobian, const Positions& d,
                                    Positions& out) const {
     const HierarchyLevel& level = hierarchy_.level(l);
-    const ShapeEncoding& enc = encoding(l);
-    const MeshTopology& topo = enc.topology();
+    const MeshTopology& topo = encoding(l).topology();
     const int n = level.mesh.vertexCount();
     out.resize(n, 3);
     for (int i = 0; i < n; ++i)
         if (level.coarser[i] >= 0) out.row(i) = d.row(level.coarser[i]);
-    parallelFor(
-        static_cast<int>(level.removed.size()),
-        [&](int begin, int end, int) {
-            std::vector<Mat3> J;
-            Vec3 F;
-            for (int i = begin; i < end; ++i) {
-                const int r = level.removed[i];
-                enc.decodeWithJacobian(r, fine, F, J);
-                Vec3 s = Vec3::Zero();
-                for (size_t k = 0; k < J.size(); ++k)
-                    s += J[k] * out.row(topo.ring(r)[k]).transpose();
-                out.row(r) = s.transpose();
-            }
-        },
-        2048);
+    // Removed vertices are independent: their rings hold survivors only.
+    for (int r : level.removed) {
+        Vec3 s = Vec3::Zero();
+        for (int k = 0; k < topo.valence(r); ++k)
+            s += jacobian[topo.offsets()[r] + k] * out.row(topo.ring(r)[k]).transpose();
+        out.row(r) = s.transpose();
+    }
 }
 
 void MultiresSolver::correctionSteps(const Positions& targets,
@@ -151,6 +146,9 @@ void MultiresSolver::correctionSteps(const Positions& targets,
     Eigen::VectorXd g, gc, dc, step;
     double E = fine.gradientAt(V, targets, g, false);
     Positions G, next, trial;
+    // The prolongation does not move during the steps: its Jacobians are taken once.
+    std::vector<std::vector<Mat3>> jacobians(L - 1);
+    for (int l = 0; l + 1 < L; ++l) jacobians[l] = prolongationJacobian(l, prolonged[l]);
     // Line search along `step` from V; on success V, E and g belong to the new pose.
     auto take = [&] {
         const double slope = g.dot(step);
@@ -173,7 +171,7 @@ void MultiresSolver::correctionSteps(const Positions& targets,
         take();
         G = Eigen::Map<const Positions>(g.data(), V.rows(), 3);
         for (int l = 0; l + 1 < L; ++l) {
-            restrictGradient(l, prolonged[l], G, next);
+            restrictGradient(l, jacobians[l], G, next);
             G.swap(next);
         }
         if (!c.softMarkers())
@@ -184,7 +182,7 @@ void MultiresSolver::correctionSteps(const Positions& targets,
         report.linearIterations += coarse.solveAtCurrent(gc, dc);
         G = Eigen::Map<const Positions>(dc.data(), G.rows(), 3);
         for (int l = L - 2; l >= 0; --l) {
-            prolongLinear(l, prolonged[l], G, next);
+            prolongLinear(l, jacobians[l], G, next);
             G.swap(next);
         }
         step = Eigen::Map<const Eigen::VectorXd>(G.data(), G.size());

@@ -44,11 +44,15 @@ class MultiresSolver {
   private:
     // Level l's positions from level l+1's: survivors copied, removed vertices decoded.
     void prolong(int l, const Positions& coarse, Positions& fine) const;
-    // The transpose of prolong()'s Jacobian at `fine` (a prolongation of level l+1's positions):
-    // a gradient over level l's vertices becomes one over level l+1's.
-    void restrictGradient(int l, const Positions& fine, const Positions& g, Positions& out) const;
-    // prolong()'s Jacobian at `fine` applied to level l+1's displacement d.
-    void prolongLinear(int l, const Positions& fine, const Positions& d, Positions& out) const;
+    // prolong()'s Jacobian at `fine` (a prolongation of level l+1's positions): each removed
+    // vertex's J_rk, at the topology's ring offsets.
+    std::vector<Mat3> prolongationJacobian(int l, const Positions& fine) const;
+    // Its transpose: a gradient over level l's vertices becomes one over level l+1's.
+    void restrictGradient(int l, const std::vector<Mat3>& jacobian, const Positions& g,
+                          Positions& out) const;
+    // It, applied to level l+1's displacement d.
+    void prolongLinear(int l, const std::vector<Mat3>& jacobian, const Positions& d,
+                       Positions& out) const;
     // SolverOptions::correctionSteps on the input level's pose V; prolonged[l] is level l's
     // prolongation of this frame's level l+1 (where the prolongation's Jacobians are taken).
     void correctionSteps(const Positions& targets, const std::vector<Positions>& prolonged,

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <random>
 
+#include "SolverChecks.h"
 #include "TestMeshes.h"
 #include "boneless/Reconstruction.h"
 
@@ -43,40 +44,11 @@ double rms(const Positions& a, const Positions& b) {
 TEST(MultiresReconstruction, RestPoseTargetsGiveBackTheRestMesh) {
     const TriMesh mesh = icosphere(4);
     const auto markers = everyNth(mesh.vertexCount(), 97);
-    for (const auto& [fine, corrections] : {std::pair{0, 0}, {1, 0}, {0, 1}}) {
-        Reconstruction solver;
-        solver.prepare(mesh, markers, multiresOptions(fine, corrections));
-        const double tolerance = 1e-9 * boundingBoxDiagonal(mesh.V);
-        EXPECT_LE(maxDistance(solver.solve(rows(mesh.V, markers)).V, mesh.V), tolerance);
-        EXPECT_LE(maxDistance(solver.solve(rows(mesh.V, markers), &mesh.V).V, mesh.V), tolerance);
-    }
-}
-
-// Prolongation decodes each removed vertex from its ring's shape code, which is invariant under
-// rigid motions: a rigidly moved coarse answer must prolong to the rigidly moved mesh, cold,
-// from an unrelated guess, and warm-started from the last answer.
-TEST(MultiresReconstruction, RigidMotionOfTheMarkersMovesTheMeshRigidly) {
-    const TriMesh mesh = icosphere(4);
-    const auto markers = everyNth(mesh.vertexCount(), 97);
-    const double tolerance = 1e-6 * boundingBoxDiagonal(mesh.V);
     std::mt19937 rng(11);
     for (int corrections : {0, 1}) {
         Reconstruction solver;
         solver.prepare(mesh, markers, multiresOptions(1, corrections));
-        for (int trial = 0; trial < 3; ++trial) {
-            const Mat3 R = randomRotation(rng);
-            const Vec3 t(trial, 1.0, -0.5);
-            const Positions expected = moved(mesh.V, R, t);
-            const SolveResult cold = solver.solve(rows(expected, markers));
-            EXPECT_LE(maxDistance(cold.V, expected), tolerance) << "trial " << trial;
-            const Mat3 away =
-                Eigen::AngleAxisd(20.0 * M_PI / 180, Vec3(1, 2, 3).normalized()).matrix();
-            const Positions previous = moved(mesh.V, away * R, t);
-            const SolveResult jump = solver.solve(rows(expected, markers), &previous);
-            EXPECT_LE(maxDistance(jump.V, expected), tolerance) << "trial " << trial;
-            const SolveResult warm = solver.solve(rows(expected, markers), &jump.V);
-            EXPECT_LE(maxDistance(warm.V, expected), tolerance) << "trial " << trial;
-        }
+        expectRigidMotionsRecovered(solver, mesh, markers, rng, 20.0);
     }
 }
 

@@ -2,6 +2,7 @@
 
 #include <random>
 
+#include "SolverChecks.h"
 #include "TestMeshes.h"
 #include "boneless/Error.h"
 #include "boneless/Reconstruction.h"
@@ -213,21 +214,10 @@ TEST(IterativeReconstruction, RestPoseTargetsGiveBackTheRestMesh) {
 TEST(IterativeReconstruction, RigidMotionOfTheMarkersMovesTheMeshRigidly) {
     const TriMesh mesh = tube(10, 12, 4.0);
     const auto markers = everyNth(mesh.vertexCount(), 11);
-    const double tolerance = 1e-6 * boundingBoxDiagonal(mesh.V);
     std::mt19937 rng(5);
     Reconstruction solver;
     solver.prepare(mesh, markers, iterativeOptions(true));
-    for (int trial = 0; trial < 3; ++trial) {
-        const Mat3 R = randomRotation(rng);
-        const Vec3 t(trial, 1.0, -0.5);
-        const Positions expected = moved(mesh.V, R, t);
-        const SolveResult cold = solver.solve(rows(expected, markers));
-        EXPECT_LE(maxDistance(cold.V, expected), tolerance) << "trial " << trial;
-        const Mat3 away = Eigen::AngleAxisd(25.0 * M_PI / 180, Vec3(1, 2, 3).normalized()).matrix();
-        const Positions previous = moved(mesh.V, away * R, t);
-        const SolveResult warm = solver.solve(rows(expected, markers), &previous);
-        EXPECT_LE(maxDistance(warm.V, expected), tolerance) << "trial " << trial;
-    }
+    expectRigidMotionsRecovered(solver, mesh, markers, rng, 25.0);
 }
 
 TEST(IterativeReconstruction, EnergyNeverIncreasesAndDropsFromTheStart) {

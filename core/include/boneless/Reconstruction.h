@@ -78,7 +78,7 @@ struct SolveReport {
     double energyBefore = 0;   // at the initial guess (markers already on their targets if hard)
     double energyAfter = 0;
     double milliseconds = 0;
-    bool converged = false;  // the relative-decrease test was met
+    bool converged = false;        // the relative-decrease test was met
     std::vector<double> energies;  // after each accepted iteration, energies[0] = energyBefore
 };
 
