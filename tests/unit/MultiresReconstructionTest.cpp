@@ -44,6 +44,21 @@ double rms(const Positions& a, const Positions& b) {
 TEST(MultiresReconstruction, RestPoseTargetsGiveBackTheRestMesh) {
     const TriMesh mesh = icosphere(4);
     const auto markers = everyNth(mesh.vertexCount(), 97);
+    for (const auto& [fine, corrections] : {std::pair{0, 0}, {1, 0}, {0, 1}}) {
+        Reconstruction solver;
+        solver.prepare(mesh, markers, multiresOptions(fine, corrections));
+        const double tolerance = 1e-9 * boundingBoxDiagonal(mesh.V);
+        EXPECT_LE(maxDistance(solver.solve(rows(mesh.V, markers)).V, mesh.V), tolerance);
+        EXPECT_LE(maxDistance(solver.solve(rows(mesh.V, markers), &mesh.V).V, mesh.V), tolerance);
+    }
+}
+
+// Prolongation decodes each removed vertex from its ring's shape code, which is invariant under
+// rigid motions: a rigidly moved coarse answer must prolong to the rigidly moved mesh, cold,
+// from an unrelated guess, and warm-started from the last answer.
+TEST(MultiresReconstruction, RigidMotionOfTheMarkersMovesTheMeshRigidly) {
+    const TriMesh mesh = icosphere(4);
+    const auto markers = everyNth(mesh.vertexCount(), 97);
     std::mt19937 rng(11);
     for (int corrections : {0, 1}) {
         Reconstruction solver;
