@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 
 #include "IterativeSolver.h"
 #include "LineSearch.h"
@@ -80,7 +81,7 @@ void MultiresSolver::prolong(int l, const Positions& coarse, Positions& fine) co
                 fine.row(r) = enc.decode(r, fine).transpose();
             }
         },
-        4096);
+        256);
 }
 
 std::vector<Mat3> MultiresSolver::prolongationJacobian(int l, const Positions& fine) const {
@@ -100,7 +101,7 @@ std::vector<Mat3> MultiresSolver::prolongationJacobian(int l, const Positions& f
                 std::copy(J.begin(), J.end(), jacobian.begin() + topo.offsets()[r]);
             }
         },
-        2048);
+        256);
     return jacobian;
 }
 
@@ -136,9 +137,9 @@ void MultiresSolver::prolongLinear(int l, const std::vector<Mat3>& jacobian, con
     }
 }
 
-void MultiresSolver::correctionSteps(const Positions& targets,
-                                     const std::vector<Positions>& prolonged, Positions& V,
-                                     SolveReport& report) {
+double MultiresSolver::correctionSteps(const Positions& targets,
+                                       const std::vector<Positions>& prolonged, Positions& V,
+                                       SolveReport& report) {
     const int L = levelCount();
     IterativeSolver& fine = *fine_.impl_->iterative;
     IterativeSolver& coarse = *coarsest_.impl_->iterative;
@@ -191,6 +192,7 @@ void MultiresSolver::correctionSteps(const Positions& targets,
             if (g.segment<3>(3 * v).squaredNorm() == 0) step.segment<3>(3 * v).setZero();
         take();
     }
+    return E;
 }
 
 Positions MultiresSolver::restrictTo(int l, const Positions& input) const {
@@ -201,8 +203,11 @@ Positions MultiresSolver::restrictTo(int l, const Positions& input) const {
 }
 
 void MultiresSolver::restartFrom(const Positions& guess) {
-    last_.resize(levelCount());
-    for (int l = 0; l < levelCount(); ++l) last_[l] = restrictTo(l, guess);
+    const int L = levelCount();
+    last_.resize(L);
+    for (int l = 0; l < L; ++l) last_[l] = restrictTo(l, guess);
+    lastProlonged_.resize(L - 1);
+    for (int l = 0; l + 1 < L; ++l) prolong(l, last_[l + 1], lastProlonged_[l]);
 }
 
 SolveResult MultiresSolver::solve(const Positions& targets, const Positions* guess) {
@@ -217,21 +222,19 @@ SolveResult MultiresSolver::solve(const Positions& targets, const Positions* gue
         last_ = {coarse.V};
         return coarse;
     }
-    std::vector<Positions> prolongedLast(L - 1);
-    if (guess)
-        for (int l = 0; l + 1 < L; ++l) prolong(l, last_[l + 1], prolongedLast[l]);
     SolveResult coarse = coarsest_.solve(targets, guess ? &last_[L - 1] : nullptr);
     std::vector<Positions> answer(L), prolonged(L - 1);
     answer[L - 1] = std::move(coarse.V);
     for (int l = L - 2; l >= 0; --l) {
-        prolong(l, answer[l + 1], answer[l]);
-        if (fine_.options().correctionSteps > 0) prolonged[l] = answer[l];
+        prolong(l, answer[l + 1], prolonged[l]);
+        answer[l] = prolonged[l];
         // Last answer + the prolonged change of the level below.
-        if (guess) answer[l] += last_[l] - prolongedLast[l];
+        if (guess) answer[l] += last_[l] - lastProlonged_[l];
     }
     SolveReport report;
     const bool corrected = fine_.options().correctionSteps > 0;
-    if (corrected) correctionSteps(targets, prolonged, answer[0], report);
+    double energy = std::numeric_limits<double>::quiet_NaN();
+    if (corrected) energy = correctionSteps(targets, prolonged, answer[0], report);
     if (fine_.options().maxIterations > 0) {
         SolveResult r = fine_.solve(targets, &answer[0]);
         answer[0] = std::move(r.V);
@@ -239,16 +242,16 @@ SolveResult MultiresSolver::solve(const Positions& targets, const Positions* gue
         r.report.linearIterations += report.linearIterations;
         report = std::move(r.report);
     } else {
-        // The energy of the answer; after correction steps it is known already.
-        Eigen::VectorXd g;
-        const double energy = fine_.impl_->iterative->gradientAt(answer[0], targets, g, corrected);
+        // Prolongation alone does not evaluate the input's energy: that would cost as much as
+        // the rest of the frame (see SolveReport).
         report.energyBefore = report.energyAfter = energy;
-        report.energies = {energy};
+        if (corrected) report.energies = {energy};
     }
     report.iterations += coarse.report.iterations;
     report.linearIterations += coarse.report.linearIterations;
     report.directSteps += coarse.report.directSteps;
     last_ = answer;
+    lastProlonged_ = std::move(prolonged);
     SolveResult result;
     result.V = std::move(answer[0]);
     result.report = std::move(report);

@@ -55,8 +55,9 @@ class MultiresSolver {
                        Positions& out) const;
     // SolverOptions::correctionSteps on the input level's pose V; prolonged[l] is level l's
     // prolongation of this frame's level l+1 (where the prolongation's Jacobians are taken).
-    void correctionSteps(const Positions& targets, const std::vector<Positions>& prolonged,
-                         Positions& V, SolveReport& report);
+    // Returns the input's energy at the final V.
+    double correctionSteps(const Positions& targets, const std::vector<Positions>& prolonged,
+                           Positions& V, SolveReport& report);
 
     // Level l's rows of a pose of the input mesh.
     Positions restrictTo(int l, const Positions& input) const;
@@ -69,6 +70,9 @@ class MultiresSolver {
     std::vector<std::unique_ptr<MeshTopology>> topologies_;
     std::vector<std::unique_ptr<ShapeEncoding>> encodings_;
     std::vector<Positions> last_;  // per level, the last frame's answer
+    // Per level but the coarsest, the prolongation of the level below's last answer (the
+    // answer without its detail): the next frame adds the change from it.
+    std::vector<Positions> lastProlonged_;
 };
 
 }  // namespace boneless

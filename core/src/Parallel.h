@@ -1,8 +1,8 @@
 #pragma once
 
 #include <algorithm>
+#include <functional>
 #include <thread>
-#include <vector>
 
 namespace boneless {
 
@@ -14,26 +14,27 @@ inline int solverThreadCount() {
     return count;
 }
 
-// Runs body(begin, end, thread) over [0, n) split into one contiguous chunk per thread. Plain
-// threads rather than OpenMP so that the core needs no compiler flag; the loops it serves take
-// milliseconds, so starting threads per call (tens of microseconds) is noise. Small loops stay on
-// the calling thread.
+// Runs task(0 .. count−1) at once: task 0 on the calling thread, the others on the process's
+// worker threads, which start once and then wait for work. Starting threads per call cost tens
+// of microseconds, as much as a whole loop over a coarse level's few thousand vertices; waking
+// a waiting worker costs a few. A call made from inside a task, or while another thread's call
+// is running, runs its tasks one after the other on the calling thread.
+void runOnWorkers(int count, const std::function<void(int)>& task);
+
+// Runs body(begin, end, thread) over [0, n) split into one contiguous chunk per thread (at most
+// solverThreadCount()). Plain threads rather than OpenMP so that the core needs no compiler flag.
+// Loops shorter than two chunks of minimumPerThread stay on the calling thread.
 template <class Body>
-void parallelFor(int n, Body&& body, int minimumPerThread = 2048) {
+void parallelFor(int n, Body&& body, int minimumPerThread = 512) {
     const int threads = std::min(solverThreadCount(), std::max(1, n / minimumPerThread));
     if (threads <= 1) {
         body(0, n, 0);
         return;
     }
-    std::vector<std::thread> pool;
-    pool.reserve(threads - 1);
-    for (int t = 1; t < threads; ++t)
-        pool.emplace_back([&, t] {
-            body(static_cast<int>(static_cast<long>(n) * t / threads),
-                 static_cast<int>(static_cast<long>(n) * (t + 1) / threads), t);
-        });
-    body(0, static_cast<int>(static_cast<long>(n) / threads), 0);
-    for (auto& th : pool) th.join();
+    runOnWorkers(threads, [&](int t) {
+        body(static_cast<int>(static_cast<long>(n) * t / threads),
+             static_cast<int>(static_cast<long>(n) * (t + 1) / threads), t);
+    });
 }
 
 }  // namespace boneless

@@ -75,7 +75,11 @@ struct SolveReport {
     int iterations = 0;
     int linearIterations = 0;  // Iterative method: conjugate-gradient steps over all iterations
     int directSteps = 0;       // Iterative method: steps that fell back to a factorisation
-    double energyBefore = 0;   // at the initial guess (markers already on their targets if hard)
+    // At the initial guess (markers already on their targets if hard) and at the answer. NaN, and
+    // energies empty, when the solve takes no step on the input mesh (Multiresolution with
+    // fineIterations = correctionSteps = 0): evaluating the input's energy would cost as much as
+    // the rest of such a frame; Reconstruction::energy() gives it.
+    double energyBefore = 0;
     double energyAfter = 0;
     double milliseconds = 0;
     bool converged = false;        // the relative-decrease test was met
