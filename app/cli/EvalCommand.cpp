@@ -26,6 +26,10 @@ struct EvalArgs {
     int maxIterations = SolverOptions{}.maxIterations;
     double tolerance = SolverOptions{}.relativeTolerance;
     double rigidity = SolverOptions{}.rigidityWeight;
+    std::string solver = "direct";
+    int fineSteps = SolverOptions{}.fineIterations;
+    int corrections = SolverOptions{}.correctionSteps;
+    int coarsest = SolverOptions{}.coarsestVertices;
     bool json = false;
     bool quiet = false;
 };
@@ -91,6 +95,12 @@ void run(const EvalArgs& args) {
     options.solver.maxIterations = args.maxIterations;
     options.solver.relativeTolerance = args.tolerance;
     options.solver.rigidityWeight = args.rigidity;
+    options.solver.method = args.solver == "multires"    ? SolverOptions::Method::Multiresolution
+                            : args.solver == "iterative" ? SolverOptions::Method::Iterative
+                                                         : SolverOptions::Method::Direct;
+    options.solver.fineIterations = args.fineSteps;
+    options.solver.correctionSteps = args.corrections;
+    options.solver.coarsestVertices = args.coarsest;
 
     std::vector<EvaluationOptions::Method> methods;
     if (args.method == "boneless" || args.method == "both")
@@ -99,12 +109,13 @@ void run(const EvalArgs& args) {
         methods.push_back(EvaluationOptions::Method::Arap);
 
     if (!args.json)
-        std::printf("%s: %zu frames, %d vertices, %d faces, %zu markers%s\n", args.sequence.c_str(),
-                    sequence.frames.size(), sequence.rest.vertexCount(), sequence.rest.faceCount(),
-                    options.markers.size(),
+        std::printf("%s: %zu frames, %d vertices, %d faces, %zu markers%s, %s solver\n",
+                    args.sequence.c_str(), sequence.frames.size(), sequence.rest.vertexCount(),
+                    sequence.rest.faceCount(), options.markers.size(),
                     args.drop > 0
                         ? (", " + std::to_string(args.drop) + " % dropped per frame").c_str()
-                        : "");
+                        : "",
+                    args.solver.c_str());
     std::vector<Evaluation> results;
     for (auto method : methods) {
         options.method = method;
@@ -126,6 +137,7 @@ void run(const EvalArgs& args) {
         out["faces"] = sequence.rest.faceCount();
         out["markers"] = options.markers.size();
         out["drop_pct"] = args.drop;
+        out["solver"] = args.solver;
         nlohmann::json perFrame = nlohmann::json::array();
         for (const auto& f : results[0].frames)
             perFrame.push_back({{"frame", f.frame},
@@ -170,6 +182,20 @@ void registerEvalCommand(CLI::App& app) {
     cmd->add_option("--max-iterations", args->maxIterations, "Gauss–Newton iterations per frame");
     cmd->add_option("--tolerance", args->tolerance, "Relative energy decrease that stops a frame");
     cmd->add_option("--rigidity", args->rigidity, "Weight of the fold guard (0 = paper's energy)");
+    cmd->add_option("--solver", args->solver,
+                    "How each frame's energy is minimised: direct (a factorisation per step), "
+                    "iterative (conjugate gradients) or multires (hierarchy, for speed)")
+        ->check(CLI::IsMember({"direct", "iterative", "multires"}));
+    cmd->add_option("--fine-steps", args->fineSteps,
+                    "multires: Gauss–Newton steps on the input mesh per frame (0 = prolongation "
+                    "only)")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--coarsest", args->coarsest,
+                    "multires: vertices of the coarsest level (at least ten per marker)")
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--corrections", args->corrections,
+                    "multires: cheap correction steps on the input mesh per frame")
+        ->check(CLI::NonNegativeNumber);
     cmd->add_flag("--json", args->json, "Print one JSON object");
     cmd->add_flag("--quiet", args->quiet, "No per-frame lines");
     cmd->callback([args, k, file] {
