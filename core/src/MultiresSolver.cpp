@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <limits>
 
 #include "IterativeSolver.h"
@@ -46,6 +47,13 @@ MultiresSolver::MultiresSolver(const TriMesh& rest, const std::vector<int>& mark
     coarse.maxCgIterations = std::max(options.maxCgIterations, 50);  // cheap at this size
     coarse.maxIterations = std::max(options.maxIterations, 10);
     coarse.relativeTolerance = std::min(options.relativeTolerance, 1e-4);
+    // The fold guard's weight grows with the coarsest level's edge length relative to the input's
+    // (the square root of the vertex ratio): it brings the coarsest level's minimum, which is
+    // what prolongation passes on, closer to the input's. Measured on the bend workload (koala
+    // at 20K, 50K, 100K faces, prolongation alone, worst RMS against the converged answer):
+    // 0.31 → 0.21 %, 0.50 → 0.33 %, 0.57 → 0.34 % (×3 and ×8 at 100K: 0.42 %, 0.38 %).
+    coarse.rigidityWeight *=
+        std::sqrt(double(rest.vertexCount()) / hierarchy_.coarsest().mesh.vertexCount());
     coarsest_.prepare(hierarchy_.coarsest().mesh, levelMarkers(L - 1), coarse);
     if (L == 1) return;
     SolverOptions fine = options;

@@ -239,6 +239,8 @@ json benchMesh(const TriMesh& mesh, const Args& args) {
     const json fastJson = figuresJson(fast);
     out.update(fastJson);
     out["method"] = args.method;
+    out["gn_iterations"] = args.gnIterations;
+    out["corrections"] = args.corrections;
     if (args.baselineFrames > 0) {
         json b = figuresJson(base);
         b["note"] = "first " + std::to_string(base.frameMs.size()) +
@@ -259,11 +261,18 @@ void printReport(const std::string& name, const json& r, const Args& args) {
     std::printf("  %d hardware threads; load average before %s, after %s\n",
                 r["threads"].get<int>(), r["load_average_before"].get<std::string>().c_str(),
                 r["load_average_after"].get<std::string>().c_str());
-    printFigures(r["method"] == "multires"
-                     ? "fast solver (multiresolution: coarsest level converged, prolonged, "
-                       "then Gauss-Newton steps on the input by PCG):"
-                     : "fast solver (single level, PCG with the rotated rest factorisation):",
-                 r);
+    char label[256];
+    if (r["method"] == "multires")
+        std::snprintf(label, sizeof label,
+                      "fast solver (multiresolution: coarsest level converged, prolonged, then %d "
+                      "correction and %d Gauss-Newton steps on the input):",
+                      r["corrections"].get<int>(), r["gn_iterations"].get<int>());
+    else
+        std::snprintf(label, sizeof label,
+                      "fast solver (single level, %d Gauss-Newton steps by PCG with the rotated "
+                      "rest factorisation):",
+                      r["gn_iterations"].get<int>());
+    printFigures(label, r);
     if (r.contains("single_level")) {
         const json& b = r["single_level"];
         std::printf("single-level solver (Gauss-Newton, CHOLMOD per iteration), %s:\n",

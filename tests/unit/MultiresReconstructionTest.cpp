@@ -101,8 +101,9 @@ TEST(MultiresReconstruction, TracksTheConvergedSolutionAlongASequence) {
             previous.swap(r.V);
         }
     }
-    // Measured: prolongation alone 0.54 %, one fine step 0.013 % (of the bounding-box diagonal).
-    EXPECT_LT(worst[0], 1e-2);
+    // Measured (of the bounding-box diagonal): prolongation alone 0.36 % (0.54 % without the
+    // coarsest level's fold guard scaled up), one fine step 0.016 %, one correction step 0.21 %.
+    EXPECT_LT(worst[0], 4.5e-3);
     EXPECT_LT(worst[1], 5e-4);
     EXPECT_LT(worst[1], 0.1 * worst[0]);
     // The correction steps remove part of what prolongation leaves.
