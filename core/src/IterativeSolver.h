@@ -12,7 +12,9 @@ namespace boneless {
 // Gauss–Newton on the same energy as the direct path (G, soft marker term, fold guard), with each
 // step's system H δ = −g solved by preconditioned conjugate gradients instead of a factorisation:
 // - H·x is applied matrix-free from the per-ring Jacobians (A x, then Aᵀ of that, plus the fold
-//   guard's 6αL), gathered per vertex so that both cores can work without write conflicts;
+//   guard's 6αL, and once a step has been taken whole, near the minimum, the derivative of its
+//   fitted rotations, which makes the last steps converge quadratically), gathered per vertex so
+//   that both cores can work without write conflicts;
 // - the preconditioner is the rest pose's H, factorised once, turned by the fold guard's fitted
 //   rotations: R H_rest⁻¹ Rᵀ with R = blockdiag(R_v). The encoding is rigid-invariant, so for a
 //   pose that is a rotation of the rest pose this is H⁻¹ exactly, and close to it for a pose made
@@ -37,6 +39,9 @@ class IterativeSolver {
         preparePreconditioner();
         return conjugateGradients(current_, g, x);
     }
+    // Whether solve()'s guess is near the minimum (a prolongation of a converged coarser level),
+    // so that the fold guard's exact Hessian is used from the first step (see solve()).
+    void setStartsNearMinimum(bool near) { startsNearMinimum_ = near; }
     // The energy of a trial pose (for a line search), and making the last trial the current pose.
     double tryPose(const Positions& V, const Positions& targets) {
         return evaluate(V, targets, trial_, false);
@@ -77,6 +82,9 @@ class IterativeSolver {
 
     Reconstruction::Impl& p_;  // the direct fallback uses its system
     bool cgConverged_ = false;
+    // multiply() includes the fold guard's rotation coupling (see solve()).
+    bool exactGuardHessian_ = true;
+    bool startsNearMinimum_ = false;
     int n_ = 0;
     // incoming_[inOffsets_[v] .. inOffsets_[v+1]): the Jacobian slots J_uk whose ring neighbour k
     // is v, with their residual vertex u. Aᵀ is applied by gathering over them.

@@ -11,9 +11,11 @@ namespace boneless {
 // at least 1e-4·α·slope, at most 12 times, so that an iteration never raises the energy. On success
 // `trial` holds the accepted pose and `accepted` its energy; `energyOf(trial)` is evaluated once
 // per try (the iterative path linearises there too, so the winner's linearisation comes for free).
+// acceptedAlpha, when given, receives the accepted fraction of the step.
 template <class EnergyOf>
 bool armijoBacktrack(const Positions& V, const Eigen::VectorXd& step, double E, double slope,
-                     EnergyOf&& energyOf, Positions& trial, double& accepted) {
+                     EnergyOf&& energyOf, Positions& trial, double& accepted,
+                     double* acceptedAlpha = nullptr) {
     const int n = static_cast<int>(V.rows());
     trial.resize(n, 3);
     double alpha = 1.0;
@@ -23,6 +25,7 @@ bool armijoBacktrack(const Positions& V, const Eigen::VectorXd& step, double E, 
         const double e = energyOf(trial);
         if (e <= E + 1e-4 * alpha * slope) {
             accepted = e;
+            if (acceptedAlpha) *acceptedAlpha = alpha;
             return true;
         }
     }
