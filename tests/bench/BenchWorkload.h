@@ -22,7 +22,7 @@ struct BendWorkload {
 
 // Quadric-error decimation (OpenMesh) down to about `faces` faces.
 TriMesh decimate(const TriMesh& mesh, int faces);
-// Midpoint subdivision: each triangle into four, new vertices at edge midpoints.
+// Loop subdivision: each triangle into four, every vertex moved towards the smooth limit.
 TriMesh subdivide(const TriMesh& mesh);
 // The input brought to about `faces` faces: decimated when larger, subdivided (then decimated)
 // when smaller.
