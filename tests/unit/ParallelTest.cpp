@@ -1,0 +1,82 @@
+// parallelFor hands chunks to a pool of worker threads that outlive the call (Parallel.cpp): these
+// pin down that every index is visited once, that errors reach the caller and that calls from
+// inside a task or from two threads at once still finish their work.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+#include "Parallel.h"
+
+using namespace boneless;
+
+namespace {
+
+// Visits [0, n) with parallelFor; each index's count ends up in the result.
+std::vector<int> visitCounts(int n, int grain) {
+    std::vector<std::atomic<int>> seen(n);
+    parallelFor(
+        n,
+        [&](int begin, int end, int t) {
+            EXPECT_GE(t, 0);
+            EXPECT_LT(t, solverThreadCount());
+            for (int i = begin; i < end; ++i) seen[i].fetch_add(1);
+        },
+        grain);
+    std::vector<int> counts(n);
+    for (int i = 0; i < n; ++i) counts[i] = seen[i].load();
+    return counts;
+}
+
+}  // namespace
+
+TEST(Parallel, EveryIndexIsVisitedExactlyOnce) {
+    for (int n : {0, 1, 7, 511, 512, 1023, 1024, 4097, 100000})
+        for (int grain : {1, 64, 512})
+            EXPECT_EQ(visitCounts(n, grain), std::vector<int>(n, 1)) << n << " by " << grain;
+}
+
+TEST(Parallel, AnErrorInAnyChunkReachesTheCallerAndThePoolGoesOn) {
+    if (solverThreadCount() < 2) GTEST_SKIP() << "one hardware thread: no workers";
+    for (int failing : {0, solverThreadCount() - 1}) {
+        EXPECT_THROW(parallelFor(
+                         4096,
+                         [&](int, int, int t) {
+                             if (t == failing) throw std::runtime_error("chunk failed");
+                         },
+                         1),
+                     std::runtime_error);
+        EXPECT_EQ(visitCounts(4096, 1), std::vector<int>(4096, 1));
+    }
+}
+
+TEST(Parallel, ACallFromInsideATaskRunsItsWorkToo) {
+    std::atomic<int> total{0};
+    parallelFor(
+        64,
+        [&](int begin, int end, int) {
+            for (int i = begin; i < end; ++i)
+                parallelFor(
+                    100, [&](int b, int e, int) { total.fetch_add(e - b); }, 1);
+        },
+        1);
+    EXPECT_EQ(total.load(), 64 * 100);
+}
+
+TEST(Parallel, TwoThreadsCallingAtOnceBothFinish) {
+    std::vector<std::vector<int>> results(2);
+    std::vector<std::thread> callers;
+    for (int c = 0; c < 2; ++c)
+        callers.emplace_back([&, c] {
+            for (int round = 0; round < 200 && results[c].empty(); ++round) {
+                const auto counts = visitCounts(10000, 1);
+                if (counts != std::vector<int>(10000, 1)) results[c] = counts;
+            }
+            if (results[c].empty()) results[c] = {1};
+        });
+    for (auto& t : callers) t.join();
+    EXPECT_EQ(results[0], std::vector<int>{1});
+    EXPECT_EQ(results[1], std::vector<int>{1});
+}
