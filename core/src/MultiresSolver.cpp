@@ -51,7 +51,7 @@ MultiresSolver::MultiresSolver(const TriMesh& rest, const std::vector<int>& mark
     // (the square root of the vertex ratio): it brings the coarsest level's minimum, which is
     // what prolongation passes on, closer to the input's. Measured on the bend workload (koala
     // at 20K, 50K, 100K faces, prolongation alone, worst RMS against the converged answer):
-    // 0.31 → 0.21 %, 0.50 → 0.33 %, 0.57 → 0.34 % (×3 and ×8 at 100K: 0.42 %, 0.38 %).
+    // 0.31 → 0.21 %, 0.50 → 0.33 %, 0.57 → 0.34–0.41 % (×5 and ×5.5; ×3 and ×8: 0.42 %, 0.38 %).
     coarse.rigidityWeight *=
         std::sqrt(double(rest.vertexCount()) / hierarchy_.coarsest().mesh.vertexCount());
     coarsest_.prepare(hierarchy_.coarsest().mesh, levelMarkers(L - 1), coarse);
