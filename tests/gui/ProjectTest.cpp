@@ -91,6 +91,30 @@ class ProjectTest : public QObject {
         QVERIFY(!d.correspondenceModified());
     }
 
+    // Projects written before the orientation guard may ask for the iterative method, which
+    // refuses the guard (a SolverError on every frame): they must load with the guard off.
+    void anIterativeProjectWithoutAGuardSettingLoadsWithTheGuardOff() {
+        const QString folder = work_ + "/iterative";
+        copyFolder(demo_, folder);
+        const QString path = folder + "/demo.boneless";
+        QJsonObject root = readJson(path);
+        QJsonObject settings = root["settings"].toObject();
+        settings.remove("orientation_weight");
+        settings["method"] = "iterative";
+        root["settings"] = settings;
+        QFile f(path);
+        QVERIFY(f.open(QIODevice::WriteOnly | QIODevice::Truncate));
+        f.write(QJsonDocument(root).toJson());
+        f.close();
+        Document d;
+        QString error;
+        QVERIFY2(Project::load(d, path, &error), qPrintable(error));
+        QCOMPARE(d.settings().solver.method, SolverOptions::Method::Iterative);
+        QCOMPARE(d.settings().solver.orientationWeight, 0.0);
+        // The direct method keeps the guard's default.
+        QVERIFY(TakeSolveOptions{}.solver.orientationWeight > 0);
+    }
+
     void aBrokenProjectLeavesTheDocumentAlone() {
         Document d;
         QVERIFY(test::loadDemo(d, demo_));

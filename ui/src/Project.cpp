@@ -70,9 +70,14 @@ TakeSolveOptions readSettings(const QJsonObject& o) {
     s.lowPassHz = o["low_pass_hz"].toDouble(s.lowPassHz);
     s.calibrationFrame = o["calibration_frame"].toInt(s.calibrationFrame);
     s.solver.rigidityWeight = o["rigidity_weight"].toDouble(s.solver.rigidityWeight);
-    s.solver.orientationWeight = o["orientation_weight"].toDouble(s.solver.orientationWeight);
     s.solver.maxIterations = o["max_iterations"].toInt(s.solver.maxIterations);
-    if (o["method"].toString() == "iterative") s.solver.method = SolverOptions::Method::Iterative;
+    if (o["method"].toString() == "iterative") {
+        s.solver.method = SolverOptions::Method::Iterative;
+        // The orientation guard needs the direct method: a project that asks for the iterative
+        // one and says nothing of the guard (written before there was one) solves without it.
+        s.solver.orientationWeight = 0;
+    }
+    s.solver.orientationWeight = o["orientation_weight"].toDouble(s.solver.orientationWeight);
     return s;
 }
 
