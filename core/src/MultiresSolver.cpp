@@ -259,10 +259,10 @@ SolveResult MultiresSolver::solve(const Positions& targets, const Positions* gue
     report.iterations += coarse.report.iterations;
     report.linearIterations += coarse.report.linearIterations;
     report.directSteps += coarse.report.directSteps;
-    last_ = answer;
-    lastProlonged_ = std::move(prolonged);
     SolveResult result;
-    result.V = std::move(answer[0]);
+    result.V = answer[0];  // the only level the caller gets: the others move into last_
+    last_ = std::move(answer);
+    lastProlonged_ = std::move(prolonged);
     result.report = std::move(report);
     result.report.milliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

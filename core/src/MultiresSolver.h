@@ -10,12 +10,12 @@ namespace boneless {
 
 // SolverOptions::Method::Multiresolution (algorithm.md §1.6): the same energy, reached through a
 // hierarchy of coarser meshes made by independent-set half-edge collapses.
-//  - The coarsest level (a few thousand vertices) is solved to convergence by direct
-//    Gauss–Newton: it carries the large, smooth part of each frame's motion, which is what
-//    conjugate gradients on the full mesh are slowest at.
-//    Its fold guard is weighted by √(input vertices / coarsest vertices), the ratio of their
-//    edge lengths: measured to bring its minimum closer to the input's (a quarter to a third
-//    less error after prolongation on 20K–100K faces).
+//  - The coarsest level (a few thousand vertices) is solved to convergence by Gauss–Newton
+//    (conjugate gradients, a factorisation when they stall): it carries the large, smooth part of
+//    each frame's motion, which is what conjugate gradients on the full mesh are slowest at. Its
+//    fold guard is weighted by √(input vertices / coarsest vertices), the ratio of their edge
+//    lengths: measured to bring its minimum closer to the input's (a quarter to a third less error
+//    after prolongation on 20K–100K faces).
 //  - Each finer level starts from its own last answer plus the prolonged change of the level
 //    below (P(X_{l+1}) − P(X_{l+1}^last)), where P places every removed vertex explicitly at
 //    F_r of its coarser ring. The detail a level added last frame is kept instead of being

@@ -57,8 +57,8 @@ TEST(EvalCommand, MoreMarkersMeanSmallerErrors) {
 // the truth stays within 5 % of the direct solver's; without a step on the input mesh it is not.
 TEST(EvalCommand, TheMultiresolutionSolverKeepsTheDirectSolversAccuracy) {
     auto run = [](const std::string& solver) {
-        const CliResult r = runCli("eval --sequence " + demoFolder() +
-                                   " --markers 30 --json --solver " + solver);
+        const CliResult r =
+            runCli("eval --sequence " + demoFolder() + " --markers 30 --json --solver " + solver);
         EXPECT_EQ(r.exitCode, 0) << r.out;
         return nlohmann::json::parse(r.out);
     };
