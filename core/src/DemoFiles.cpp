@@ -11,13 +11,16 @@
 
 namespace boneless {
 
-DemoFiles writeDemoFiles(const std::string& folder, int frames, double offsetMm, bool withTruth) {
+DemoFiles writeDemoFiles(const std::string& folder, int frames, double offsetMm, bool withTruth,
+                         int detail) {
     namespace fs = std::filesystem;
     const fs::path out(folder), truth = out / "truth";
     std::error_code ec;
     fs::create_directories(withTruth ? truth : out, ec);
     if (ec) throw Error(folder + ": cannot create the folder (" + ec.message() + ")");
-    const DemoCreature demo = makeDemoCreature(frames);
+    if (detail < 1)
+        throw Error("demo detail must be at least 1 (got " + std::to_string(detail) + ")");
+    const DemoCreature demo = makeDemoCreature(frames, 48 * detail, 24 * detail);
     const DemoTake take = makeDemoTake(demo, 30, offsetMm);
 
     DemoFiles files;

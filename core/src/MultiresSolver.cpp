@@ -45,7 +45,7 @@ MultiresSolver::MultiresSolver(const TriMesh& rest, const std::vector<int>& mark
     coarse.preconditioner = SolverOptions::Preconditioner::Scalar;
     coarse.directFallback = true;
     coarse.maxCgIterations = std::max(options.maxCgIterations, 50);  // cheap at this size
-    coarse.maxIterations = std::max(options.maxIterations, 10);
+    coarse.maxIterations = options.coarsestIterations;
     coarse.relativeTolerance = std::min(options.relativeTolerance, 1e-4);
     // The fold guard's weight grows with the coarsest level's edge length relative to the input's
     // (the square root of the vertex ratio): it brings the coarsest level's minimum, which is

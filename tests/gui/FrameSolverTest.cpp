@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "ModelTestFixtures.h"
+#include "boneless/Metrics.h"
 #include "boneless/ui/FrameSolver.h"
 
 using namespace boneless;
@@ -21,13 +22,14 @@ FrameResult resultOf(const QSignalSpy& spy, int i) {
 
 class FrameSolverTest : public QObject {
     Q_OBJECT
-    QString demo_;
+    QString demo_, dense_;
 
   private slots:
     void initTestCase() {
         test::isolateSettings("FrameSolverTest");
         demo_ = test::scratchFolder("FrameSolverTest", "demo");
         test::demoProject(demo_);
+        dense_ = test::scratchFolder("FrameSolverTest", "dense");
     }
 
     void solvesAFrameThenServesItFromTheCache() {
@@ -156,6 +158,105 @@ class FrameSolverTest : public QObject {
         QVERIFY(!problem.last().at(0).toBool());
         QVERIFY(!problem.last().at(1).toString().isEmpty());
         solver.requestFrame(3);  // nothing to solve: ignored, no crash
+        QVERIFY(!solver.isBusy());
+    }
+
+    void previewsComeFirstThenTheAnswer() {
+        Document small;
+        QVERIFY(test::loadDemo(small, demo_));
+        FrameSolver onSmall;
+        onSmall.setPreviewEnabled(true);  // at the default size threshold
+        QVERIFY(onSmall.setProblem(small));
+        QVERIFY(!onSmall.previewEnabled());  // the demo's frames solve too fast to need any
+
+        Document d;
+        QVERIFY(test::loadDenseDemo(d, dense_));
+        // Frame 30 after frame 29, each solver warm from its 29 (the first frame starts from the
+        // rest pose, as slowly for the preview as for the answer).
+        auto solveUpTo30 = [&](FrameSolver& solver, QSignalSpy& ready) {
+            solver.requestFrame(29);
+            QTRY_VERIFY_WITH_TIMEOUT(!solver.isBusy(), 60000);
+            QTest::qWait(50);  // results posted as the worker went idle
+            ready.clear();
+            solver.requestFrame(30);
+            while (ready.isEmpty() || resultOf(ready, ready.count() - 1).preview)
+                QVERIFY(ready.wait(30000));
+        };
+        // The answer without previews, for comparison.
+        FrameSolver plain;
+        QVERIFY(!plain.previewEnabled());  // off unless asked for
+        QVERIFY(plain.setProblem(d));
+        QSignalSpy plainReady(&plain, &FrameSolver::frameReady);
+        solveUpTo30(plain, plainReady);
+        QCOMPARE(plainReady.count(), 1);
+        const FrameResult expected = resultOf(plainReady, 0);
+
+        FrameSolver solver;
+        solver.setPreviewEnabled(true);
+        QVERIFY(solver.setProblem(d));
+        QVERIFY(solver.previewEnabled());
+        QSignalSpy ready(&solver, &FrameSolver::frameReady);
+        solveUpTo30(solver, ready);
+        QCOMPARE(ready.count(), 2);
+        const FrameResult preview = resultOf(ready, 0), answer = resultOf(ready, 1);
+        QVERIFY(preview.preview);
+        QCOMPARE(preview.frame, 30);
+        QVERIFY(!preview.fromCache);
+        QVERIFY(preview.V.allFinite());
+        QCOMPARE(int(preview.residualMm.size()), d.markerCount());
+        // The answer is what the solver gives without previews; the preview is another solver's
+        // answer to the same frame: near it, not equal to it.
+        QCOMPARE(answer.frame, 30);
+        const double diagonal = boundingBoxDiagonal(d.mesh().V);
+        const double same = rmsVertexError(answer.V, expected.V) / diagonal;
+        const double apart = rmsVertexError(preview.V, answer.V) / diagonal;
+        qInfo(
+            "dense demo (%d vertices) frame 30 after 29: preview %.0f ms, answer %.0f ms, preview "
+            "%.4f %% of the "
+            "diagonal from the answer, answer %.6f %% from the one without previews",
+            d.mesh().vertexCount(), preview.solveMs, answer.solveMs, 100 * apart, 100 * same);
+        QVERIFY(same < 1e-6);
+        QVERIFY(apart > 0);
+        QVERIFY2(apart < 0.02, qPrintable(QString::number(apart)));
+        qInfo("marker residual RMS: preview %.2f mm, answer %.2f mm", preview.report.residualRmsMm,
+              answer.report.residualRmsMm);
+        // The answer meets its markers to a hundredth of a mm; the preview within a few mm.
+        QVERIFY(preview.report.residualRmsMm < 10.0);
+        // Only answers are kept.
+        QCOMPARE(solver.cachedFrames(), 2);
+        solver.requestFrame(30);
+        QVERIFY(ready.wait(5000));
+        QVERIFY(resultOf(ready, 2).fromCache && !resultOf(ready, 2).preview);
+    }
+
+    void scrubbingWithPreviewsSolvesOnlyWhereItStops() {
+        Document d;
+        QVERIFY(test::loadDenseDemo(d, dense_));
+        FrameSolver solver;
+        solver.setPreviewEnabled(true);
+        QVERIFY(solver.setProblem(d));
+        QSignalSpy ready(&solver, &FrameSolver::frameReady);
+        // Past the first frame (from the rest pose, as slow for the preview as for the answer).
+        solver.requestFrame(0);
+        QTRY_VERIFY_WITH_TIMEOUT(!solver.isBusy(), 60000);
+        QTest::qWait(50);
+        ready.clear();
+        for (int f = 1; f < 40; ++f) solver.requestFrame(f);
+        auto answered = [&](int frame) {
+            for (int i = 0; i < ready.count(); ++i)
+                if (!resultOf(ready, i).preview && resultOf(ready, i).frame == frame) return true;
+            return false;
+        };
+        while (!answered(39)) QVERIFY(ready.wait(30000));
+        QTest::qWait(2 * FrameSolver::settleMs);  // nothing else is still coming
+        int previews = 0, answers = 0;
+        for (int i = 0; i < ready.count(); ++i) (resultOf(ready, i).preview ? previews : answers)++;
+        // The requests came within microseconds: the frame solved is the one the scrub stopped
+        // at (a second one only if this thread was held up for settleMs on the way).
+        QVERIFY2(answers <= 2, qPrintable(QString::number(answers)));
+        QVERIFY(previews >= 1);
+        QVERIFY(solver.isCached(39));
+        QVERIFY(solver.cachedFrames() <= 3);  // frame 0 too
         QVERIFY(!solver.isBusy());
     }
 

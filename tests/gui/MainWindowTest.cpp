@@ -1,10 +1,12 @@
 // The window as a user drives it: open the demo, scrub, play, keyboard, and bad files that must
 // give a message while the window keeps working.
+#include <QAction>
 #include <QDir>
 #include <QFile>
 #include <QLabel>
 #include <QMessageBox>
 #include <QMimeData>
+#include <QSettings>
 #include <QSlider>
 #include <QUrl>
 #include <QtTest>
@@ -205,12 +207,50 @@ class MainWindowTest : public QObject {
         QVERIFY(test::waitForFrame(*window_));
     }
 
+    void previewsShowFirstAndTheAnswerReplacesThem() {
+        // The demo is below the size where previews pay; the threshold is a setting.
+        QSettings().setValue("solver/previewMinVertices", 0);
+        MainWindow window;
+        QSettings().remove("solver/previewMinVertices");
+        window.setMessageBoxesEnabled(false);
+        QVERIFY(window.openProject(project_));
+        QVERIFY(test::showAndWait(window));
+        QVERIFY(window.frameSolver()->previewEnabled());
+        // The first frame's preview starts from the rest pose, as slowly as its answer.
+        QTRY_VERIFY_WITH_TIMEOUT(!window.frameSolver()->isBusy(), 30000);
+        std::vector<std::pair<int, bool>> renders;  // frame, preview
+        connect(&window, &MainWindow::latencyMeasured, this,
+                [&](int frame, double, bool, bool preview) {
+                    renders.push_back({frame, preview});
+                });
+        window.timeline()->scrubTo(45);
+        QVERIFY(test::waitForFrame(window));  // waits for the answer, not the preview
+        QCOMPARE(renders.size(), std::size_t(2));
+        QCOMPARE(renders[0], std::make_pair(45, true));
+        QCOMPARE(renders[1], std::make_pair(45, false));
+        const QString solve = window.findChild<QLabel*>("solveLabel")->text();
+        QVERIFY2(solve.startsWith("solved in"), qPrintable(solve));
+
+        // View → Fast Previews off: the next uncached frame comes as its answer only.
+        QAction* toggle = window.findChild<QAction*>("previewAction");
+        QVERIFY(toggle && toggle->isChecked());
+        toggle->trigger();
+        QVERIFY(!window.frameSolver()->previewEnabled());
+        QVERIFY(!QSettings().value("solver/preview").toBool());
+        renders.clear();
+        window.timeline()->scrubTo(20);
+        QVERIFY(test::waitForFrame(window));
+        QCOMPARE(renders.size(), std::size_t(1));
+        QCOMPARE(renders[0], std::make_pair(20, false));
+        QSettings().remove("solver/preview");
+    }
+
     void scrubLatency() {
         // Not asserted (machines differ): printed for the record.
         std::map<int, std::pair<double, bool>> latency;
         connect(window_.get(), &MainWindow::latencyMeasured, this,
-                [&](int frame, double ms, bool cached) {
-                    latency[frame] = {ms, cached};
+                [&](int frame, double ms, bool cached, bool preview) {
+                    if (!preview) latency[frame] = {ms, cached};
                 });
         window_->timeline()->scrubTo(50);
         QVERIFY(test::waitForFrame(*window_));

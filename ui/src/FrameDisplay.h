@@ -47,8 +47,9 @@ class FrameDisplay : public QObject {
   signals:
     void frameDisplayed(int frame);
     void statusChanged(const QString& frame, const QString& solve, const QString& residual);
-    // From the frame request to the end of the render that shows it.
-    void latencyMeasured(int frame, double milliseconds, bool fromCache);
+    // From the frame request to the end of the render that shows it (its preview, then its
+    // answer, when previews are on).
+    void latencyMeasured(int frame, double milliseconds, bool fromCache, bool preview);
     void solverFailed(const QString& message);
 
   private:
@@ -83,6 +84,7 @@ class FrameDisplay : public QObject {
     QElapsedTimer requestClock_;
     bool awaitingRender_ = false;
     bool renderFromCache_ = false;
+    bool renderPreview_ = false;
 };
 
 }  // namespace boneless::ui

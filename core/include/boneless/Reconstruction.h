@@ -50,6 +50,10 @@ struct SolverOptions {
     // the Gauss–Newton steps on each finer level per frame.
     int coarsestVertices = 2000;
     int fineIterations = 1;
+    // Multiresolution only: the coarsest level's Gauss–Newton steps per frame at most (it stops
+    // sooner once converged, relative decrease below 1e-4: 3 steps a frame on the bench's bend;
+    // soft markers with offsets take more). A preview can afford fewer.
+    int coarsestIterations = 10;
     // Multiresolution only: cheap steps on the input level per frame, before the fineIterations
     // ones. Each is a block-Jacobi step (it removes the error of the finest scale, which no
     // coarser level sees), then a step along the coarsest level's Gauss–Newton answer to the

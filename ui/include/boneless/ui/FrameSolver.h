@@ -31,6 +31,9 @@ struct FrameResult {
     Calibration calibration;  // the alignment used
     double solveMs = 0;       // wall time of the solve (0 for a cache hit)
     bool fromCache = false;
+    // A fast preview of the frame (see FrameSolver::setPreviewEnabled), never cached: the
+    // frame's own solve follows and replaces it.
+    bool preview = false;
 
     std::size_t bytes() const;
 };
@@ -43,6 +46,12 @@ struct FrameResult {
 //
 // A frame is solved warm-started from the frame the worker solved last, as in a sequential solve;
 // so a frame's shape can differ slightly with the order frames were visited in.
+//
+// With previews on, a second worker answers each uncached request first with a preview: the
+// multiresolution solver's coarsest level, prolonged to the mesh, without the orientation guard
+// (tens of milliseconds where the solve takes seconds on a large mesh). The solve of a frame then
+// starts only once it has been the newest request for settleMs, so that scrubbing shows previews
+// at once and does not queue solves of frames the user has already left.
 class FrameSolver : public QObject {
     Q_OBJECT
   public:
@@ -67,12 +76,18 @@ class FrameSolver : public QObject {
     int cachedFrames() const;
     bool isCached(int frame) const;
     void setShapeErrorEnabled(bool enabled);  // clears the cache when it changes
+    // Off by default; the window turns it on from the QSettings value "solver/preview". Meshes
+    // with fewer than minVertices get none: their frames solve in a few hundred milliseconds,
+    // which a preview would only delay by settleMs.
+    void setPreviewEnabled(bool enabled, int minVertices = 5000);
+    bool previewEnabled() const;
+    static constexpr int settleMs = 150;
 
     // Asks for a frame; a cached frame is delivered without solving (still asynchronously).
     void requestFrame(int frame);
     // Drops queued requests (the frame being solved still finishes and is cached).
     void cancelPending();
-    bool isBusy() const;  // a request queued or being solved
+    bool isBusy() const;  // a request (or its preview) queued or being solved
 
     static std::size_t defaultCacheLimit();  // from QSettings
 
@@ -88,6 +103,7 @@ class FrameSolver : public QObject {
   private:
     struct Shared;
     std::shared_ptr<Shared> shared_;
+    static void runPreviews(Shared* shared, FrameSolver* self);
     void deliver(std::shared_ptr<const FrameResult> result);
     void deliverFailure(quint64 generation, const QString& message);
     void updateBusy();
