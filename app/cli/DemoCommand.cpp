@@ -12,6 +12,7 @@ void registerDemoCommand(CLI::App& app) {
     struct Args {
         std::string out;
         int frames = 60;
+        int detail = 1;
         double offsetMm = 10.0;
     };
     auto args = std::make_shared<Args>();
@@ -23,8 +24,12 @@ void registerDemoCommand(CLI::App& app) {
     cmd->add_option("--out", args->out, "Output folder (created if missing)")->required();
     cmd->add_option("--frames", args->frames, "Number of frames")->check(CLI::Range(1, 100000));
     cmd->add_option("--offset-mm", args->offsetMm, "How far the markers sit off the skin");
+    cmd->add_option("--detail", args->detail,
+                    "Resolution factor: d gives d² times the faces (1 = 2,784 faces)")
+        ->check(CLI::Range(1, 20));
     cmd->callback([args] {
-        const DemoFiles demo = writeDemoFiles(args->out, args->frames, args->offsetMm);
+        const DemoFiles demo =
+            writeDemoFiles(args->out, args->frames, args->offsetMm, true, args->detail);
         std::printf(
             "%s: creature.obj (%d vertices, %d faces), creature.c3d (%d markers, %d "
             "frames at %g Hz), creature.map.json, truth/ (%d frames)\n",

@@ -146,3 +146,19 @@ TEST(SolveCommand, AFrameRangeWithTrailingCharactersIsRefused) {
     EXPECT_NE(r.out.find("0:2:1"), std::string::npos) << r.out;
     EXPECT_FALSE(fs::exists(demo / "x" / "creature_0000.obj"));
 }
+
+TEST(DemoCommand, DetailRefinesTheSameCreature) {
+    const fs::path dir = freshTestDir("demo-detail");
+    const CliResult r = runCli("demo --out " + dir.string() + " --frames 2 --detail 2");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    const TriMesh fine = readMesh((dir / "creature.obj").string()).mesh;
+    EXPECT_EQ(fine.faceCount(), 2 * 48 * (96 + 2 * 12 - 2));  // segments, rings, cap rings doubled
+    EXPECT_NE(r.out.find("11328 faces"), std::string::npos) << r.out;
+    // The same creature: the bounding box does not depend on the resolution.
+    const TriMesh coarse = readMesh((makeDemo(2) / "creature.obj").string()).mesh;
+    EXPECT_NEAR(boundingBoxDiagonal(fine.V), boundingBoxDiagonal(coarse.V),
+                0.01 * boundingBoxDiagonal(coarse.V));
+    const CliResult bad = runCli("demo --out " + dir.string() + " --detail 0");
+    EXPECT_NE(bad.exitCode, 0);
+    EXPECT_NE(bad.out.find("--detail"), std::string::npos) << bad.out;
+}

@@ -16,7 +16,8 @@ struct DemoCreature {
     double framesPerSecond = 30;
 };
 
-// rings × segments controls the resolution: faces = 2 · segments · (rings + 2 · capRings − 1).
+// rings × segments controls the resolution: faces = 2 · segments · (rings + 2 · capRings − 2),
+// capRings = segments / 4 (2,784 faces by default).
 DemoCreature makeDemoCreature(int frameCount = 60, int rings = 48, int segments = 24);
 
 }  // namespace boneless
