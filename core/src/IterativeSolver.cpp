@@ -374,7 +374,6 @@ SolveResult IterativeSolver::solve(const Positions& targets, const Positions* gu
         const bool accepted = armijoBacktrack(
             V, step, E, slope, [&](const Positions& X) { return evaluate(X, targets, trial_); },
             trial, Enew, &alpha);
-
         exactGuardHessian_ = accepted && alpha == 1.0;
         if (!accepted) {
             result.report.converged = true;  // no descent left along the Gauss–Newton direction
