@@ -64,6 +64,23 @@ struct FrameSolver::Shared {
 
     std::thread worker, previewWorker;
 
+    // A request taken from a queue slot, with the problem it was made for.
+    struct Request {
+        int frame;
+        quint64 generation;
+        std::shared_ptr<const Problem> problem;
+        bool shapeError;
+    };
+    // Waits on `wakeUp` for a request in `slot`; empty when stopping.
+    std::optional<Request> take(std::unique_lock<std::mutex>& lock, std::condition_variable& wakeUp,
+                                std::optional<int>& slot) {
+        wakeUp.wait(lock, [&] { return stop || (slot && problem); });
+        if (stop) return std::nullopt;
+        Request r{*slot, generation, problem, shapeError};
+        slot.reset();
+        return r;
+    }
+
     void updatePreview() {
         preview = previewWanted && problem && problem->mesh.vertexCount() >= previewMinVertices;
         if (!preview) previewPending.reset();
@@ -190,13 +207,12 @@ void FrameSolver::runPreviews(Shared* sh, FrameSolver* self) {
     WorkerState state;
     for (;;) {
         std::unique_lock lock(sh->mutex);
-        sh->previewWake.wait(lock, [&] { return sh->stop || (sh->previewPending && sh->problem); });
-        if (sh->stop) return;
-        const int frame = *sh->previewPending;
-        sh->previewPending.reset();
-        const quint64 generation = sh->generation;
-        const auto problem = sh->problem;
-        const bool wantShapeError = sh->shapeError;
+        const auto request = sh->take(lock, sh->previewWake, sh->previewPending);
+        if (!request) return;
+        const int frame = request->frame;
+        const quint64 generation = request->generation;
+        const auto& problem = request->problem;
+        const bool wantShapeError = request->shapeError;
         if (generation == state.failedGeneration || sh->cache.count(frame)) continue;
         sh->previewSolving = true;
         lock.unlock();
@@ -225,13 +241,12 @@ FrameSolver::FrameSolver(QObject* parent) : QObject(parent), shared_(std::make_s
         WorkerState state;
         for (;;) {
             std::unique_lock lock(sh->mutex);
-            sh->wake.wait(lock, [&] { return sh->stop || (sh->pending && sh->problem); });
-            if (sh->stop) return;
-            const int frame = *sh->pending;
-            sh->pending.reset();
-            const quint64 generation = sh->generation;
-            const auto problem = sh->problem;
-            const bool wantShapeError = sh->shapeError;
+            const auto request = sh->take(lock, sh->wake, sh->pending);
+            if (!request) return;
+            const int frame = request->frame;
+            const quint64 generation = request->generation;
+            const auto& problem = request->problem;
+            const bool wantShapeError = request->shapeError;
             if (generation == state.failedGeneration) continue;
             if (auto hit = sh->lookup(frame)) {
                 auto copy = std::make_shared<FrameResult>(*hit);
