@@ -49,7 +49,6 @@ struct FrameSolver::Shared {
     std::optional<int> pending;
     bool solving = false;  // or settling (see FrameSolver::settleMs)
     bool shapeError = false;
-    bool preview = false;  // wanted, and worth it for the problem's mesh
     bool previewWanted = false;
     bool previewSolving = false;
     int previewMinVertices = 0;
@@ -81,9 +80,9 @@ struct FrameSolver::Shared {
         return r;
     }
 
-    void updatePreview() {
-        preview = previewWanted && problem && problem->mesh.vertexCount() >= previewMinVertices;
-        if (!preview) previewPending.reset();
+    // Previews wanted, and worth it for the problem's mesh.
+    bool previewOn() const {
+        return previewWanted && problem && problem->mesh.vertexCount() >= previewMinVertices;
     }
     void clearCache() {
         order.clear();
@@ -256,7 +255,7 @@ FrameSolver::FrameSolver(QObject* parent) : QObject(parent), shared_(std::make_s
                 continue;
             }
             sh->solving = true;
-            if (sh->preview) {
+            if (sh->previewOn()) {
                 // Settle: a newer request within settleMs replaces this one before any work.
                 const bool replaced =
                     sh->wake.wait_for(lock, std::chrono::milliseconds(settleMs),
@@ -332,7 +331,6 @@ bool FrameSolver::setProblem(const Document& document, QString* why) {
         shared_->problem = p;
         shared_->pending.reset();
         shared_->previewPending.reset();
-        shared_->updatePreview();
         shared_->clearCache();
     }
     updateBusy();
@@ -434,7 +432,7 @@ void FrameSolver::requestFrame(int frame) {
             return;
         }
         shared_->pending = frame;  // replaces any older request still waiting
-        if (shared_->preview) shared_->previewPending = frame;
+        if (shared_->previewOn()) shared_->previewPending = frame;
     }
     shared_->wake.notify_one();
     shared_->previewWake.notify_one();
@@ -445,12 +443,12 @@ void FrameSolver::setPreviewEnabled(bool enabled, int minVertices) {
     std::lock_guard lock(shared_->mutex);
     shared_->previewWanted = enabled;
     shared_->previewMinVertices = minVertices;
-    shared_->updatePreview();
+    if (!shared_->previewOn()) shared_->previewPending.reset();
 }
 
 bool FrameSolver::previewEnabled() const {
     std::lock_guard lock(shared_->mutex);
-    return shared_->preview;
+    return shared_->previewOn();
 }
 
 void FrameSolver::cancelPending() {
