@@ -6,7 +6,6 @@
 #include <OpenMesh/Tools/Subdivider/Uniform/LoopT.hh>
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <numeric>
 
 #include "boneless/Sampling.h"
