@@ -11,6 +11,7 @@
 #include "MultiresSolver.h"
 #include "ReconstructionImpl.h"
 #include "boneless/Error.h"
+#include "boneless/Metrics.h"
 
 namespace boneless {
 
@@ -326,6 +327,7 @@ SolveResult Reconstruction::Impl::solveDirect(const Positions& targets, const Po
     s.systemHoldsRestFactor = false;
 
     Eigen::VectorXd gradient;
+    const double still = 1e-10 * boundingBoxDiagonal(s.rest.V);
     double E = s.linearise(V, targets);
     result.report.energyBefore = E;
     result.report.energies.push_back(E);
@@ -351,6 +353,12 @@ SolveResult Reconstruction::Impl::solveDirect(const Positions& targets, const Po
         }
         const Eigen::VectorXd step = -s.system->solve(gradient);
         if (!step.allFinite()) break;
+        // A step no vertex would visibly take: the energy is at round-off (a rest or rigid
+        // pose), where every step still halves it and the relative test never stops.
+        if (step.cwiseAbs().maxCoeff() < still) {
+            result.report.converged = true;
+            break;
+        }
 
         double Enew = E;
         Positions trial;
