@@ -47,6 +47,10 @@ MultiresSolver::MultiresSolver(const TriMesh& rest, const std::vector<int>& mark
     coarse.maxCgIterations = std::max(options.maxCgIterations, 50);  // cheap at this size
     coarse.maxIterations = options.coarsestIterations;
     coarse.relativeTolerance = std::min(options.relativeTolerance, 1e-4);
+    // The orientation guard needs the direct method, which the coarsest level's size affords
+    // (a take's frame there fell back to a factorisation in most steps anyway). The finer levels
+    // have no guard: what they add to the coarsest shape is small.
+    if (options.orientationWeight > 0) coarse.method = SolverOptions::Method::Direct;
     // The fold guard's weight grows with the coarsest level's edge length relative to the input's
     // (the square root of the vertex ratio): it brings the coarsest level's minimum, which is
     // what prolongation passes on, closer to the input's. Measured on the bend workload (koala
@@ -60,6 +64,7 @@ MultiresSolver::MultiresSolver(const TriMesh& rest, const std::vector<int>& mark
     fine.method = SolverOptions::Method::Iterative;
     fine.preconditioner = SolverOptions::Preconditioner::Scalar;
     fine.maxIterations = options.fineIterations;
+    fine.orientationWeight = 0;
     fine_.prepare(rest, markers, fine);
     fine_.impl_->iterative->setStartsNearMinimum(true);
     // The levels between are only prolonged through: their encodings are all they need.

@@ -35,11 +35,17 @@ RigidMotion fitRigidMotion(const Positions& from, const Positions& to) {
 namespace {
 void checkOrientationGuard(const SolverOptions& o) {
     // Measured: with conjugate-gradient steps the guard's terms stall the line search and leave
-    // more folds than no guard at all, so it is refused rather than half-working.
-    if (o.orientationWeight > 0 && o.method != SolverOptions::Method::Direct)
+    // more folds than no guard at all, so it is refused rather than half-working. The
+    // multiresolution method solves its coarsest level by the direct method when guarded.
+    if (o.orientationWeight > 0 && o.method == SolverOptions::Method::Iterative)
         throw SolverError(
-            "the orientation guard needs the direct method (set its weight to 0 for the "
-            "iterative and multiresolution methods)");
+            "the orientation guard needs the direct or multiresolution method (set its weight to "
+            "0 for the iterative method)");
+    if (o.orientationWeight > 0 && o.method == SolverOptions::Method::Multiresolution &&
+        o.correctionSteps > 0)
+        throw SolverError(
+            "the orientation guard does not go with correction steps (they need the coarsest "
+            "level solved by conjugate gradients)");
 }
 }  // namespace
 

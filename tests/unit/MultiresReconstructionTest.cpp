@@ -12,6 +12,7 @@
 #include "boneless/C3dReader.h"
 #include "boneless/Correspondence.h"
 #include "boneless/DemoFiles.h"
+#include "boneless/Error.h"
 #include "boneless/MeshReader.h"
 #include "boneless/Reconstruction.h"
 #include "boneless/TakeSolver.h"
@@ -71,6 +72,26 @@ TEST(MultiresReconstruction, RigidMotionOfTheMarkersMovesTheMeshRigidly) {
         solver.prepare(mesh, markers, multiresOptions(1, corrections));
         expectRigidMotionsRecovered(solver, mesh, markers, rng, 20.0);
     }
+}
+
+// With the orientation guard on, the coarsest level is solved by the direct method with the
+// guard (the finer levels go without): the same invariants hold on that path, and correction
+// steps, which need the coarsest level's conjugate gradients, are refused.
+TEST(MultiresReconstruction, TheGuardedCoarsestLevelKeepsTheInvariants) {
+    const TriMesh mesh = icosphere(4);
+    const auto markers = everyNth(mesh.vertexCount(), 97);
+    SolverOptions o = multiresOptions(1, 0);
+    o.orientationWeight = 100;
+    o.coarsestIterations = 20;  // a 20° jump, to 1e-6 of the diagonal, by Gauss–Newton steps
+    Reconstruction solver;
+    solver.prepare(mesh, markers, o);
+    EXPECT_LE(maxDistance(solver.solve(rows(mesh.V, markers)).V, mesh.V),
+              1e-9 * boundingBoxDiagonal(mesh.V));
+    std::mt19937 rng(13);
+    expectRigidMotionsRecovered(solver, mesh, markers, rng, 20.0);
+    o.correctionSteps = 1;
+    Reconstruction refused;
+    EXPECT_THROW(refused.prepare(mesh, markers, o), SolverError);
 }
 
 // A bending sequence, each frame warm-started from the last: every frame stays close to that
