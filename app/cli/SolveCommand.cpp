@@ -29,6 +29,7 @@ struct SolveArgs {
     int calibrationFrame = -1;
     int continuation = TakeSolveOptions{}.continuationSteps;
     double orientation = TakeSolveOptions{}.solver.orientationWeight;
+    bool noCoarseLead = false;
     bool quiet = false;
 };
 
@@ -68,6 +69,7 @@ void run(const SolveArgs& args) {
     request.options.lowPassHz = args.lowPass;
     request.options.calibrationFrame = args.calibrationFrame;
     request.options.continuationSteps = args.continuation;
+    request.options.coarsestLeads = !args.noCoarseLead;
     request.options.solver.orientationWeight = args.orientation;
 
     auto announce = [&](const Calibration& c) {
@@ -124,6 +126,8 @@ void registerSolveCommand(CLI::App& app) {
                     "Frame to align the take at (default: chosen automatically)");
     cmd->add_option("--continuation", args->continuation,
                     "Steps from the rest pose to the first frame");
+    cmd->add_flag("--no-coarse-lead", args->noCoarseLead,
+                  "Solve each frame on the full mesh alone, not led by its coarsest level");
     cmd->add_option("--orientation-guard", args->orientation,
                     "Weight of the penalty on faces turning over (0 = off)")
         ->check(CLI::NonNegativeNumber);

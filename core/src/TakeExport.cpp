@@ -101,6 +101,7 @@ json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibr
              {{"marker_weight", o.markerWeight},
               {"low_pass_hz", o.lowPassHz},
               {"continuation_steps", o.continuationSteps},
+              {"coarsest_leads", o.coarsestLeads},
               {"rigidity_weight", o.solver.rigidityWeight},
               {"orientation_weight", o.solver.orientationWeight},
               {"orientation_threshold", o.solver.orientationThreshold},

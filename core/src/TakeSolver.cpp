@@ -1,5 +1,6 @@
 #include "boneless/TakeSolver.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -88,6 +89,79 @@ Positions TakeSolver::targets(int frame) const {
     return T;
 }
 
+bool TakeSolver::coarsestLeadsFor(const Positions& T) {
+    std::vector<int> visible;
+    for (int k = 0; k < T.rows(); ++k)
+        if (T.row(k).allFinite()) visible.push_back(k);
+    SolverOptions o = solver_.options();
+    const int coarsest = std::max(o.coarsestVertices, 10 * static_cast<int>(visible.size()));
+    if (!options_.coarsestLeads || o.method == SolverOptions::Method::Multiresolution ||
+        rest_.vertexCount() < 2 * coarsest || visible.size() < 3)
+        return false;
+    if (coarsest_ && visible == coarsestMarkers_) return true;
+    // The coarsest level alone (with the orientation guard, if on), prolonged.
+    o.method = SolverOptions::Method::Multiresolution;
+    o.fineIterations = 0;
+    o.correctionSteps = 0;
+    o.markerOffsets.clear();
+    std::vector<int> vertices;
+    for (int k : visible) {
+        vertices.push_back(solver_.markerVertices()[k]);
+        if (k < static_cast<int>(solver_.options().markerOffsets.size()))
+            o.markerOffsets.push_back(solver_.options().markerOffsets[k]);
+    }
+    coarsest_ = std::make_unique<Reconstruction>();
+    coarsest_->prepare(rest_, vertices, o);
+    coarsestMarkers_ = std::move(visible);
+    coarsestLast_.reset();
+    return true;
+}
+
+Positions TakeSolver::solveCoarsest(const Positions& T, const Positions& guess) {
+    Positions targets(coarsestMarkers_.size(), 3);
+    for (size_t i = 0; i < coarsestMarkers_.size(); ++i)
+        targets.row(i) = T.row(coarsestMarkers_[i]);
+    return coarsest_->solve(targets, &guess).V;
+}
+
+SolveResult TakeSolver::solveFirst(const Positions& T) {
+    // Continuation (algorithm.md §4.2): from the rest pose moved rigidly onto the markers, the
+    // targets travel to the frame's in a few steps, so a first frame far from the rest pose is
+    // reached through poses near each other.
+    Positions restMarkers(T.rows(), 3);
+    for (int k = 0; k < T.rows(); ++k)
+        restMarkers.row(k) = rest_.V.row(solver_.markerVertices()[k]);
+    const RigidMotion motion = fitRigidMotion(restMarkers, T);
+    Positions V(rest_.V.rows(), 3);
+    for (int v = 0; v < V.rows(); ++v)
+        V.row(v) = motion.apply(rest_.V.row(v).transpose()).transpose();
+    const Positions from = predictedMarkers(V);
+    const int steps = std::max(1, options_.continuationSteps);
+    if (coarsestLeadsFor(T)) {
+        // The steps are cheap there; the full mesh then solves the frame once.
+        Positions X = V;
+        for (int s = 1; s <= steps; ++s) {
+            const double a = static_cast<double>(s) / steps;
+            X = solveCoarsest((1 - a) * from + a * T, X);  // NaN rows stay missing
+        }
+        if (X.allFinite()) {
+            coarsestLast_ = X;
+            return solver_.solve(T, &X);
+        }
+        coarsestLast_.reset();
+    }
+    SolveResult r;
+    int iterations = 0;
+    for (int s = 1; s <= steps; ++s) {
+        const double a = static_cast<double>(s) / steps;
+        r = solver_.solve((1 - a) * from + a * T, &V);
+        iterations += r.report.iterations;
+        V = r.V;
+    }
+    r.report.iterations = iterations;
+    return r;
+}
+
 Positions TakeSolver::solve(int frame, FrameReport& report) {
     if (frame < 0 || frame >= frameCount())
         throw Error(take_.file + ": frame " + std::to_string(frame) + " is outside the take");
@@ -97,31 +171,26 @@ Positions TakeSolver::solve(int frame, FrameReport& report) {
     report.frame = frame;
     SolveResult result;
     if (!previous_) {
-        // Continuation (algorithm.md §4.2): from the rest pose moved rigidly onto the markers,
-        // the targets travel to the frame's in a few steps, so a first frame far from the rest
-        // pose is reached through poses near each other.
-        Positions restMarkers(T.rows(), 3);
-        for (int k = 0; k < T.rows(); ++k)
-            restMarkers.row(k) = rest_.V.row(solver_.markerVertices()[k]);
-        const RigidMotion motion = fitRigidMotion(restMarkers, T);
-        Positions V(rest_.V.rows(), 3);
-        for (int v = 0; v < V.rows(); ++v)
-            V.row(v) = motion.apply(rest_.V.row(v).transpose()).transpose();
-        const Positions from = predictedMarkers(V);
-        const int steps = std::max(1, options_.continuationSteps);
-        int iterations = 0;
-        for (int s = 1; s <= steps; ++s) {
-            const double a = static_cast<double>(s) / steps;
-            result = solver_.solve((1 - a) * from + a * T, &V);  // NaN rows stay missing
-            iterations += result.report.iterations;
-            V = result.V;
-        }
-        result.report.iterations = iterations;
+        result = solveFirst(T);
     } else {
-        result = solver_.solve(T, &*previous_);
+        Positions V = *previous_;
+        if (coarsestLeadsFor(T)) {
+            // The coarsest level's change, not its answer: its minimum differs from the full
+            // mesh's by a smooth offset the last answer has already removed.
+            Positions last = coarsestLast_ ? *coarsestLast_ : solveCoarsest(previousTargets_, V);
+            const Positions X = solveCoarsest(T, last);
+            if (X.allFinite() && last.allFinite()) {
+                V += X - last;
+                coarsestLast_ = X;
+            } else {
+                coarsestLast_.reset();
+            }
+        }
+        result = solver_.solve(T, &V);
     }
     if (!result.V.allFinite()) {
         result.V = previous_ ? *previous_ : rest_.V;  // keep the last good shape, never NaN
+        coarsestLast_.reset();                        // it belongs to the frame that failed
     }
     const Positions predicted = predictedMarkers(result.V);
     double sum = 0;
@@ -135,6 +204,7 @@ Positions TakeSolver::solve(int frame, FrameReport& report) {
     report.residualRmsMm = report.visibleMarkers ? std::sqrt(sum / report.visibleMarkers) : 0.0;
     report.iterations = result.report.iterations;
     previous_ = result.V;
+    previousTargets_ = T;
     report.milliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return result.V;

@@ -53,6 +53,7 @@ class ProjectTest : public QObject {
         TakeSolveOptions settings = d.settings();
         settings.markerWeight = 42;
         settings.lowPassHz = 6;
+        settings.coarsestLeads = !TakeSolveOptions{}.coarsestLeads;
         d.setSettings(settings);
         d.setViewSetting("labels", true);
         d.setViewSetting("trailFrames", 8);
@@ -73,6 +74,7 @@ class ProjectTest : public QObject {
         QCOMPARE(e.alignment()->takeToMesh.t, d.alignment()->takeToMesh.t);
         QCOMPARE(e.settings().markerWeight, 42.0);
         QCOMPARE(e.settings().lowPassHz, 6.0);
+        QCOMPARE(e.settings().coarsestLeads, !TakeSolveOptions{}.coarsestLeads);
         QCOMPARE(e.viewSettings().value("trailFrames").toInt(), 8);
         QCOMPARE(e.undoStack()->count(), 0);
         QCOMPARE(e.meshPath(), QFileInfo(demo_ + "/creature.obj").absoluteFilePath());

@@ -72,6 +72,7 @@ TEST(SolveCommand, TheDemoTakeComesBackCloseToItsTruth) {
     EXPECT_EQ(j["units"]["mesh_guess"], "dm");
     EXPECT_EQ(j["up_axis"]["mesh_guess"], "+z");
     EXPECT_EQ(j["per_frame"][25]["visible_markers"], 29);  // marker 4 is occluded there
+    EXPECT_TRUE(j["solver"]["coarsest_leads"].get<bool>());
     for (const auto& f : j["per_frame"]) EXPECT_LT(f["residual_rms_mm"].get<double>(), 1.0);
 }
 
@@ -88,9 +89,12 @@ TEST(SolveCommand, MarkersOnTheSkinMatchTheGroundTruthEvaluation) {
 TEST(SolveCommand, ObjAndPointCacheHoldTheSamePositions) {
     const fs::path demo = makeDemo(8);
     ASSERT_EQ(runCli(solveArgs(demo, demo / "obj") + " --quiet --frames 2:6").exitCode, 0);
-    const CliResult r =
-        runCli(solveArgs(demo, demo / "pc2") + " --quiet --frames 2:6 --format pc2");
+    // The demo is smaller than a coarsest level: whether it leads changes nothing, and the
+    // sidecar says which was asked for.
+    const CliResult r = runCli(solveArgs(demo, demo / "pc2") +
+                               " --quiet --frames 2:6 --format pc2 --no-coarse-lead");
     ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_FALSE(sidecar(demo / "pc2")["solver"]["coarsest_leads"].get<bool>());
     double start = -1;
     const auto frames = readPointCache((demo / "pc2" / "creature.pc2").string(), &start);
     ASSERT_EQ(frames.size(), 4u);

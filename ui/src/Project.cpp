@@ -55,6 +55,7 @@ QJsonObject settingsJson(const TakeSolveOptions& o) {
     return {
         {"marker_weight", o.markerWeight},
         {"continuation_steps", o.continuationSteps},
+        {"coarsest_leads", o.coarsestLeads},
         {"low_pass_hz", o.lowPassHz},
         {"calibration_frame", o.calibrationFrame},
         {"rigidity_weight", o.solver.rigidityWeight},
@@ -67,6 +68,7 @@ TakeSolveOptions readSettings(const QJsonObject& o) {
     TakeSolveOptions s;  // absent keys keep their defaults, so older projects still load
     s.markerWeight = o["marker_weight"].toDouble(s.markerWeight);
     s.continuationSteps = o["continuation_steps"].toInt(s.continuationSteps);
+    s.coarsestLeads = o["coarsest_leads"].toBool(s.coarsestLeads);
     s.lowPassHz = o["low_pass_hz"].toDouble(s.lowPassHz);
     s.calibrationFrame = o["calibration_frame"].toInt(s.calibrationFrame);
     s.solver.rigidityWeight = o["rigidity_weight"].toDouble(s.solver.rigidityWeight);

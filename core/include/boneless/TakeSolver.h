@@ -1,6 +1,8 @@
 #pragma once
 
+#include <memory>
 #include <optional>
+#include <vector>
 
 #include "boneless/Alignment.h"
 #include "boneless/C3dTake.h"
@@ -12,8 +14,16 @@ namespace boneless {
 struct TakeSolveOptions {
     double markerWeight = 100.0;  // soft-constraint weight (dimensionless)
     int continuationSteps = 4;    // the first frame is approached from the aligned rest pose
-    double lowPassHz = 0.0;       // 0 = no filtering of the trajectories
-    int calibrationFrame = -1;    // -1 = chosen automatically (see calibrate())
+    // On a mesh at least twice the multiresolution solver's coarsest level (SolverOptions::
+    // coarsestVertices, at least ten vertices per marker), the coarsest level leads: it follows
+    // the take too, and each frame's solve on the full mesh starts from the last answer moved by
+    // the coarsest level's change since the last frame, prolonged. The continuation to the first
+    // frame runs on the coarsest level alone. Without it, a frame far from the last (a jump in
+    // the timeline, a fast move) starts with its markers far off, and the first Gauss–Newton
+    // step distorts what the next ones have to repair (README "Solver").
+    bool coarsestLeads = true;
+    double lowPassHz = 0.0;               // 0 = no filtering of the trajectories
+    int calibrationFrame = -1;            // -1 = chosen automatically (see calibrate())
     std::optional<Similarity> alignment;  // overrides the automatic alignment
     // Constraints and offsets are set by the TakeSolver. The orientation guard is on: a real
     // take on a mesh that was not made for its actor strains the mesh, and slivers (the corners
@@ -30,7 +40,7 @@ struct FrameReport {
     int frame = 0;
     int visibleMarkers = 0;
     double residualRmsMm = 0, residualMaxMm = 0;  // marker to its predicted position, mm
-    int iterations = 0;
+    int iterations = 0;                           // Gauss–Newton steps on the full mesh
     double milliseconds = 0;
 };
 
@@ -51,16 +61,34 @@ class TakeSolver {
     // Solves `frame`, starting from the last frame solved (or by continuation from the rest pose
     // for the first). Never returns NaN: a frame that fails keeps the previous shape.
     Positions solve(int frame, FrameReport& report);
+    // The energy solve(frame) minimises, at V (#V by 3): shape, fold guards and marker pull.
+    double energy(int frame, const Positions& V) const { return solver_.energy(V, targets(frame)); }
     // Where each marker sits on the posed mesh V: its vertex plus its offset along the normal.
     Positions predictedMarkers(const Positions& V) const;
 
   private:
+    // The first frame's starting pose: the rest pose aligned, then the continuation on the
+    // coarsest level when it leads (see continuationSteps and coarsestLeads).
+    SolveResult solveFirst(const Positions& targets);
+    // Whether the coarsest level leads for these targets; (re)builds its solver for their
+    // visible markers.
+    bool coarsestLeadsFor(const Positions& targets);
+    // The coarsest level's answer to `targets` from `guess`, a pose of the full mesh.
+    Positions solveCoarsest(const Positions& targets, const Positions& guess);
+
     TriMesh rest_;
     C3dTake take_;
     std::vector<std::size_t> points_;
     TakeSolveOptions options_;
     Calibration calibration_;
     Reconstruction solver_;
+    // The coarsest level's solver (a marker missing from a frame must not shape the hierarchy,
+    // so it is built for the visible markers, coarsestMarkers_), its last answer (a pose of the
+    // full mesh) and the targets of the last frame solved.
+    std::unique_ptr<Reconstruction> coarsest_;
+    std::vector<int> coarsestMarkers_;
+    std::optional<Positions> coarsestLast_;
+    Positions previousTargets_;
     std::optional<Positions> previous_;
     double meshUnitsPerMm_ = 1.0;
 };
