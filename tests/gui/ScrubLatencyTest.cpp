@@ -125,7 +125,7 @@ class ScrubLatencyTest : public QObject {
         QVERIFY(test::showAndWait(window, 900000));
         qInfo("koala: first frame (continuation from the rest pose) shown after %.1f s",
               first.elapsed() / 1000.0);
-        const Latency latency = measure(window, 6, 900000);
+        const Latency latency = measure(window, 3, 900000);  // the take's farthest pose from 0
         QVERIFY(latency.uncachedMs > 0 && latency.cachedMs > 0);
         QVERIFY(latency.previewMs > 0 && latency.previewMs < latency.uncachedMs);
         qInfo(
