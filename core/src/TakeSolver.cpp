@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <limits>
 
 #include "boneless/Error.h"
@@ -95,9 +96,12 @@ bool TakeSolver::coarsestLeadsFor(const Positions& T) {
         if (T.row(k).allFinite()) visible.push_back(k);
     SolverOptions o = solver_.options();
     const int coarsest = std::max(o.coarsestVertices, 10 * static_cast<int>(visible.size()));
-    if (!options_.coarsestLeads || o.method == SolverOptions::Method::Multiresolution ||
-        rest_.vertexCount() < 2 * coarsest || visible.size() < 3)
+    if (!options_.coarsestLeads || coarsestFailed_ ||
+        o.method == SolverOptions::Method::Multiresolution || rest_.vertexCount() < 2 * coarsest ||
+        visible.size() < 3) {
+        coarsestLast_.reset();  // the next frame that leads must not measure from an older one
         return false;
+    }
     if (coarsest_ && visible == coarsestMarkers_) return true;
     // The coarsest level alone (with the orientation guard, if on), prolonged.
     o.method = SolverOptions::Method::Multiresolution;
@@ -107,14 +111,27 @@ bool TakeSolver::coarsestLeadsFor(const Positions& T) {
     std::vector<int> vertices;
     for (int k : visible) {
         vertices.push_back(solver_.markerVertices()[k]);
-        if (k < static_cast<int>(solver_.options().markerOffsets.size()))
-            o.markerOffsets.push_back(solver_.options().markerOffsets[k]);
+        o.markerOffsets.push_back(solver_.options().markerOffsets[k]);  // one per marker
     }
-    coarsest_ = std::make_unique<Reconstruction>();
-    coarsest_->prepare(rest_, vertices, o);
-    coarsestMarkers_ = std::move(visible);
+    coarsest_.reset();
     coarsestLast_.reset();
+    auto coarse = std::make_unique<Reconstruction>();
+    try {
+        coarse->prepare(rest_, vertices, o);
+    } catch (const std::exception&) {
+        // The lead is a better start, never a requirement: without it the take still solves.
+        coarsestFailed_ = true;
+        return false;
+    }
+    coarsest_ = std::move(coarse);
+    coarsestMarkers_ = std::move(visible);
     return true;
+}
+
+int TakeSolver::seenBy(const Positions& T) const {
+    int seen = 0;
+    for (int k : coarsestMarkers_) seen += T.row(k).allFinite();
+    return seen;
 }
 
 Positions TakeSolver::solveCoarsest(const Positions& T, const Positions& guess) {
@@ -140,7 +157,7 @@ SolveResult TakeSolver::solveFirst(const Positions& T) {
     if (coarsestLeadsFor(T)) {
         // The steps are cheap there; the full mesh then solves the frame once.
         Positions X = V;
-        for (int s = 1; s <= steps; ++s) {
+        for (int s = 1; s <= steps && X.allFinite(); ++s) {
             const double a = static_cast<double>(s) / steps;
             X = solveCoarsest((1 - a) * from + a * T, X);  // NaN rows stay missing
         }
@@ -174,12 +191,15 @@ Positions TakeSolver::solve(int frame, FrameReport& report) {
         result = solveFirst(T);
     } else {
         Positions V = *previous_;
-        if (coarsestLeadsFor(T)) {
+        if (coarsestLeadsFor(T) && (coarsestLast_ || seenBy(previousTargets_) >= 3)) {
             // The coarsest level's change, not its answer: its minimum differs from the full
-            // mesh's by a smooth offset the last answer has already removed.
+            // mesh's by a smooth offset the last answer has already removed. Without its answer
+            // to the last frame (it was just built, or the last frame could not be led), it
+            // solves that frame again, from the last answer; not when too few of its markers
+            // were seen there (that answer would be its shape left free, not the last frame's).
             Positions last = coarsestLast_ ? *coarsestLast_ : solveCoarsest(previousTargets_, V);
-            const Positions X = solveCoarsest(T, last);
-            if (X.allFinite() && last.allFinite()) {
+            const Positions X = last.allFinite() ? solveCoarsest(T, last) : last;
+            if (X.allFinite()) {
                 V += X - last;
                 coarsestLast_ = X;
             } else {
@@ -188,7 +208,8 @@ Positions TakeSolver::solve(int frame, FrameReport& report) {
         }
         result = solver_.solve(T, &V);
     }
-    if (!result.V.allFinite()) {
+    const bool failed = !result.V.allFinite();
+    if (failed) {
         result.V = previous_ ? *previous_ : rest_.V;  // keep the last good shape, never NaN
         coarsestLast_.reset();                        // it belongs to the frame that failed
     }
@@ -203,8 +224,12 @@ Positions TakeSolver::solve(int frame, FrameReport& report) {
     }
     report.residualRmsMm = report.visibleMarkers ? std::sqrt(sum / report.visibleMarkers) : 0.0;
     report.iterations = result.report.iterations;
-    previous_ = result.V;
-    previousTargets_ = T;
+    // A failed frame leaves the last good one (and its targets) to start from; a failed first
+    // frame, none, so that the next is approached from the rest pose again.
+    if (!failed) {
+        previous_ = result.V;
+        previousTargets_ = T;
+    }
     report.milliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return result.V;

@@ -87,7 +87,8 @@ struct SolveReport {
     double energyBefore = 0;
     double energyAfter = 0;
     double milliseconds = 0;
-    bool converged = false;        // the relative-decrease test was met
+    // The relative-decrease test was met, or (direct method) the step became too small to see.
+    bool converged = false;
     std::vector<double> energies;  // after each accepted iteration, energies[0] = energyBefore
 };
 

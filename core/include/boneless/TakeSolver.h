@@ -73,6 +73,8 @@ class TakeSolver {
     // Whether the coarsest level leads for these targets; (re)builds its solver for their
     // visible markers.
     bool coarsestLeadsFor(const Positions& targets);
+    // How many of the coarsest level's markers `targets` (K by 3) has.
+    int seenBy(const Positions& targets) const;
     // The coarsest level's answer to `targets` from `guess`, a pose of the full mesh.
     Positions solveCoarsest(const Positions& targets, const Positions& guess);
 
@@ -88,6 +90,7 @@ class TakeSolver {
     std::unique_ptr<Reconstruction> coarsest_;
     std::vector<int> coarsestMarkers_;
     std::optional<Positions> coarsestLast_;
+    bool coarsestFailed_ = false;  // its hierarchy could not be made: the take goes without
     Positions previousTargets_;
     std::optional<Positions> previous_;
     double meshUnitsPerMm_ = 1.0;
