@@ -141,6 +141,23 @@ Positions TakeSolver::solveCoarsest(const Positions& T, const Positions& guess) 
     return coarsest_->solve(targets, &guess).V;
 }
 
+void TakeSolver::leadFromLast(const Positions& T, Positions& V) {
+    // Without its answer to the last frame (it was just built, or the last frame could not be
+    // led), the coarsest level solves that frame again, from the last answer; not when too few
+    // of its markers were seen there (that answer would be its shape left free).
+    if (!coarsestLeadsFor(T) || (!coarsestLast_ && seenBy(previousTargets_) < 3)) return;
+    const Positions last = coarsestLast_ ? *coarsestLast_ : solveCoarsest(previousTargets_, V);
+    const Positions X = last.allFinite() ? solveCoarsest(T, last) : last;
+    if (!X.allFinite()) {
+        coarsestLast_.reset();
+        return;
+    }
+    // The coarsest level's change, not its answer: its minimum differs from the full mesh's by
+    // a smooth offset the last answer has already removed.
+    V += X - last;
+    coarsestLast_ = X;
+}
+
 SolveResult TakeSolver::solveFirst(const Positions& T) {
     // Continuation (algorithm.md §4.2): from the rest pose moved rigidly onto the markers, the
     // targets travel to the frame's in a few steps, so a first frame far from the rest pose is
@@ -191,21 +208,7 @@ Positions TakeSolver::solve(int frame, FrameReport& report) {
         result = solveFirst(T);
     } else {
         Positions V = *previous_;
-        if (coarsestLeadsFor(T) && (coarsestLast_ || seenBy(previousTargets_) >= 3)) {
-            // The coarsest level's change, not its answer: its minimum differs from the full
-            // mesh's by a smooth offset the last answer has already removed. Without its answer
-            // to the last frame (it was just built, or the last frame could not be led), it
-            // solves that frame again, from the last answer; not when too few of its markers
-            // were seen there (that answer would be its shape left free, not the last frame's).
-            Positions last = coarsestLast_ ? *coarsestLast_ : solveCoarsest(previousTargets_, V);
-            const Positions X = last.allFinite() ? solveCoarsest(T, last) : last;
-            if (X.allFinite()) {
-                V += X - last;
-                coarsestLast_ = X;
-            } else {
-                coarsestLast_.reset();
-            }
-        }
+        leadFromLast(T, V);
         result = solver_.solve(T, &V);
     }
     const bool failed = !result.V.allFinite();

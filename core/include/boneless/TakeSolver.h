@@ -73,6 +73,9 @@ class TakeSolver {
     // Whether the coarsest level leads for these targets; (re)builds its solver for their
     // visible markers.
     bool coarsestLeadsFor(const Positions& targets);
+    // V, the last answer, moved by the coarsest level's change from the last frame to `targets`
+    // when it leads; V untouched when it does not.
+    void leadFromLast(const Positions& targets, Positions& V);
     // How many of the coarsest level's markers `targets` (K by 3) has.
     int seenBy(const Positions& targets) const;
     // The coarsest level's answer to `targets` from `guess`, a pose of the full mesh.
