@@ -198,28 +198,21 @@ void ArapEnergy::addRotationCoupling(const std::vector<Mat3>& R, const std::vect
     });
 }
 
-bool ArapEnergy::restCouplingBlocks(int v, std::vector<std::pair<int, Mat3>>& blocks,
-                                    Mat3& C) const {
+void ArapEnergy::couplingBlocks(int v, const Mat3& Rv,
+                                std::vector<std::pair<int, Mat3>>& blocks) const {
     const TriMesh& rest = *rest_;
     blocks.clear();
-    Mat3 S = Mat3::Zero();
     for (int i = cornerOffsets_[v]; i < cornerOffsets_[v + 1]; ++i) {
         const int f = corners_[i] / 3;
         for (int c = 0; c < 3; ++c) {
-            const Vec3& e0 = restEdge_[3 * f + c];
+            const Vec3 e = Rv * restEdge_[3 * f + c];
             const double w = cotangent_(f, c);
-            S += w * e0 * e0.transpose();
-            Mat3 cross;
-            cross << 0, -e0.z(), e0.y(), e0.z(), 0, -e0.x(), -e0.y(), e0.x(), 0;
+            Mat3 cross;  // [R_v e⁰]×, so that the block times x_j is (R_v e⁰) × x_j
+            cross << 0, -e.z(), e.y(), e.z(), 0, -e.x(), -e.y(), e.x(), 0;
             blocks.emplace_back(rest.F(f, (c + 1) % 3), w * cross);
             blocks.emplace_back(rest.F(f, (c + 2) % 3), -w * cross);
         }
     }
-    // At rest the fitted rotation is the identity and S is symmetric.
-    const Mat3 H = S.trace() * Mat3::Identity() - S;
-    if (!positiveDefinite(H)) return false;
-    C = H.inverse();
-    return true;
 }
 
 double ArapEnergy::energy(const Positions& V, const std::vector<Mat3>& R) const {

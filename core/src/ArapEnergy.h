@@ -35,10 +35,9 @@ class ArapEnergy {
     Eigen::MatrixXd rotatedRestEdges(const std::vector<Mat3>& R) const;
     // L = Σ w (e_j − e_k)(e_j − e_k)ᵀ: positive semidefinite (it is the Dirichlet energy).
     const Eigen::SparseMatrix<double>& laplacian() const { return laplacian_; }
-    // The rest pose's G_v as 3×3 blocks (vertex, block; a vertex may repeat) and its curvature
-    // C_v, so that the rest Hessian can hold the coupling term too. False when C_v is not
-    // positive definite (no coupling at v).
-    bool restCouplingBlocks(int v, std::vector<std::pair<int, Mat3>>& blocks, Mat3& C) const;
+    // G_v as 3×3 blocks (vertex, block; a vertex may repeat) for v's fitted rotation R_v, so that
+    // an assembled Hessian can hold the coupling term too (with C_v from fitRotations()).
+    void couplingBlocks(int v, const Mat3& Rv, std::vector<std::pair<int, Mat3>>& blocks) const;
     // Half the cotangent of face f's angle at corner c: the weight of the edge opposite c.
     double cotangent(int f, int c) const { return cotangent_(f, c); }
 

@@ -105,6 +105,10 @@ bool BlockSystem::factorize(double tikhonov) {
     if (tikhonov != 0) addToDiagonal(tikhonov);
     if (!solver_) {
         solver_ = std::make_unique<Factor>();
+        // Silent: a matrix that is not positive definite is a result the callers handle (the
+        // direct solver's exact Hessian may be indefinite), and CHOLMOD reports it as an error.
+        // Every failure shows in info().
+        solver_->cholmod().print = 0;
         solver_->analyzePattern(matrix_);
     }
     solver_->factorize(matrix_);

@@ -45,6 +45,7 @@ struct Reconstruction::Impl {
     std::vector<Vec3> residual;
     std::vector<std::vector<Mat3>> jacobian;
     std::vector<Mat3> rotations;
+    std::vector<Mat3> rotationCurvature;  // C_v of each fitted rotation (ArapEnergy::fitRotations)
     std::vector<OrientationGuard::Term> orientationTerms;
 
     bool rigid() const { return options.rigidityWeight > 0; }
@@ -55,7 +56,8 @@ struct Reconstruction::Impl {
     // Where marker k sits for the pose V: its vertex, plus its offset along the ring's normal.
     Vec3 markerPoint(size_t k, const Positions& V, std::vector<Mat3>* dn = nullptr) const;
     double markerEnergy(const Positions& V, const Positions& targets) const;
-    double rigidityEnergy(const Positions& V, std::vector<Mat3>& R) const;
+    double rigidityEnergy(const Positions& V, std::vector<Mat3>& R,
+                          std::vector<Mat3>* curvature = nullptr) const;
     // (Re)builds or drops the orientation guard for the current options.
     void updateOrientationGuard();
     // At the last linearisation, whether the orientation guard has a face turned over.
@@ -76,7 +78,10 @@ struct Reconstruction::Impl {
     // The block system's structure: one stencil per residual (its vertex and ring), one per face.
     // Made on first use: a level of the multiresolution solver that is never stepped on needs none.
     void buildBlockSystem();
-    void addRestRotationCoupling();
+    // Adds the fold guard's rotation coupling, −2α Σ_v G_vᵀ C_v G_v, to the assembled matrix: the
+    // part of its exact Hessian that fixed rotations miss (ArapEnergy::addRotationCoupling), at
+    // the last linearisation. Indefinite far from a minimum.
+    void addRotationCoupling();
     bool restFactorWanted() const {
         return options.preconditioner == SolverOptions::Preconditioner::Blocks;
     }
