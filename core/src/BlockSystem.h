@@ -9,7 +9,8 @@
 
 namespace boneless {
 
-// The Gauss–Newton normal matrix AᵀA over all vertices, with 3×3 blocks. Its pattern (the 2-ring)
+// The Gauss–Newton normal matrix AᵀA over all vertices, with 3×3 blocks (plus, near a minimum,
+// the fold guard's rotation coupling, which can make it indefinite). Its pattern (the 2-ring)
 // is fixed by the stencils given once, so the symbolic analysis is done once; each iteration only
 // fills values through precomputed slots and refactorises numerically.
 class BlockSystem {

@@ -207,7 +207,9 @@ void Reconstruction::Impl::addRotationCoupling() {
     for (int v = 0; v < rest.vertexCount(); ++v) {
         const int r = residualIndex[v];
         const Mat3& C = rotationCurvature[v];
-        if (r < 0 || C.isZero(0)) continue;  // no residual, or no curvature to couple through
+        // A vertex without a residual has no stencil to hold G_v, and a zero C_v (the rotation's
+        // fit not at a maximum) couples nothing: the fixed-rotation matrix stands for both.
+        if (r < 0 || C.isZero(0)) continue;
         rigidity->couplingBlocks(v, rotations[v], blocks);
         const int m = topology->valence(v);
         const int* ring = topology->ring(v);
@@ -401,6 +403,7 @@ SolveResult Reconstruction::Impl::solveDirect(const Positions& targets, const Po
         if (!factored && exact) {
             exact = false;  // indefinite with the coupling: this step goes without it
             buildSystem();
+            tikhonov = 1e-9 * s.system->meanDiagonal();
             factored = s.system->factorize(tikhonov);
         }
         if (!factored) {

@@ -68,7 +68,8 @@ struct Reconstruction::Impl {
     }
     double energy(const Positions& V, const Positions& targets) const;
 
-    // Fills residuals and Jacobians, returns the energy.
+    // Fills residuals and Jacobians, fits the fold guard's rotations (with their curvature, for
+    // addRotationCoupling()) and the orientation guard's terms; returns the energy.
     double linearise(const Positions& V, const Positions& targets);
     // Assembles AᵀA and Aᵀr for the current linearisation.
     void assemble(const Positions& V, const Positions& targets, Eigen::VectorXd& gradient);

@@ -37,7 +37,8 @@ struct SolverOptions {
     double relativeTolerance = 1e-3;
 
     // How each Gauss–Newton step is solved; both minimise the same energy.
-    //  Direct: a sparse Cholesky factorisation of the exact normal matrix per iteration.
+    //  Direct: a sparse Cholesky factorisation of the exact normal matrix per iteration (with
+    //    the orientation guard on, the fold guard's exact Hessian near a minimum: README "Solver").
     //  Iterative: conjugate gradients on the same exact system, matrix-free, preconditioned by
     //    the rest pose's normal matrix (factorised once, in prepare()) turned by each vertex's
     //    fitted rotation; no factorisation per frame, so it suits large meshes and warm starts.
