@@ -215,6 +215,16 @@ void ArapEnergy::couplingBlocks(int v, const Mat3& Rv,
     }
 }
 
+void ArapEnergy::vertexEdges(int v, std::vector<std::tuple<int, int, double>>& edges) const {
+    const TriMesh& rest = *rest_;
+    edges.clear();
+    for (int i = cornerOffsets_[v]; i < cornerOffsets_[v + 1]; ++i) {
+        const int f = corners_[i] / 3;
+        for (int c = 0; c < 3; ++c)
+            edges.emplace_back(rest.F(f, (c + 1) % 3), rest.F(f, (c + 2) % 3), cotangent_(f, c));
+    }
+}
+
 double ArapEnergy::energy(const Positions& V, const std::vector<Mat3>& R) const {
     const TriMesh& rest = *rest_;
     std::vector<double> partial(solverThreadCount(), 0.0);

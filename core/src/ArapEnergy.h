@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Sparse>
+#include <tuple>
 #include <vector>
 
 #include "boneless/ShapeEncoding.h"
@@ -38,6 +39,9 @@ class ArapEnergy {
     // G_v as 3×3 blocks (vertex, block; a vertex may repeat) for v's fitted rotation R_v, so that
     // an assembled Hessian can hold the coupling term too (with C_v from fitRotations()).
     void couplingBlocks(int v, const Mat3& Rv, std::vector<std::pair<int, Mat3>>& blocks) const;
+    // The edges (j, k, w) of v's faces: the terms of v's own rotation, whose Hessian for fixed
+    // rotations is 2 Σ w (e_j − e_k)(e_j − e_k)ᵀ ⊗ I (v's share of 6 L ⊗ I).
+    void vertexEdges(int v, std::vector<std::tuple<int, int, double>>& edges) const;
     // Half the cotangent of face f's angle at corner c: the weight of the edge opposite c.
     double cotangent(int f, int c) const { return cotangent_(f, c); }
 

@@ -1,5 +1,6 @@
 #include "boneless/Reconstruction.h"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <chrono>
 #include <cmath>
@@ -199,9 +200,10 @@ void Reconstruction::Impl::assemble(const Positions& V, const Positions& targets
         }
 }
 
-void Reconstruction::Impl::addRotationCoupling() {
+void Reconstruction::Impl::addRotationCoupling(bool clamped) {
     // Placed in the stencil of v's own residual: G_v only touches v and its ring.
     std::vector<std::pair<int, Mat3>> blocks;
+    std::vector<std::tuple<int, int, double>> edges;
     std::vector<Mat3> G, CG;
     const double scale = -2.0 * options.rigidityWeight;
     for (int v = 0; v < rest.vertexCount(); ++v) {
@@ -213,12 +215,16 @@ void Reconstruction::Impl::addRotationCoupling() {
         rigidity->couplingBlocks(v, rotations[v], blocks);
         const int m = topology->valence(v);
         const int* ring = topology->ring(v);
+        auto slotOf = [&](int u) {
+            if (u == v) return 0;
+            for (int k = 0; k < m; ++k)
+                if (ring[k] == u) return k + 1;
+            return -1;
+        };
         G.assign(m + 1, Mat3::Zero());
         bool inside = true;
         for (const auto& [u, block] : blocks) {
-            int slot = u == v ? 0 : -1;
-            for (int k = 0; k < m && slot < 0; ++k)
-                if (ring[k] == u) slot = k + 1;
+            const int slot = slotOf(u);
             if (slot < 0)
                 inside = false;
             else
@@ -227,8 +233,37 @@ void Reconstruction::Impl::addRotationCoupling() {
         if (!inside) continue;  // a face around v that is not in its ring: leave it out
         CG.resize(m + 1);
         for (int b = 0; b <= m; ++b) CG[b] = scale * C * G[b];
+        const int size = 3 * (m + 1);
+        Eigen::MatrixXd H(size, size);
         for (int a = 0; a <= m; ++a)
-            for (int b = 0; b <= m; ++b) system->add(r, a, b, G[a].transpose() * CG[b]);
+            for (int b = 0; b <= m; ++b) H.block<3, 3>(3 * a, 3 * b) = G[a].transpose() * CG[b];
+        if (clamped) {
+            // v's fixed-rotation share, added here and taken out again after the clamp, since
+            // assemble() has already added it (as 6αL ⊗ I, summed over all vertices).
+            Eigen::MatrixXd fixed = Eigen::MatrixXd::Zero(size, size);
+            rigidity->vertexEdges(v, edges);
+            for (const auto& [j, k, w] : edges) {
+                const int a = slotOf(j), b = slotOf(k);
+                const double x = 2.0 * options.rigidityWeight * w;
+                for (int d = 0; d < 3; ++d) {
+                    fixed(3 * a + d, 3 * a + d) += x;
+                    fixed(3 * b + d, 3 * b + d) += x;
+                    fixed(3 * a + d, 3 * b + d) -= x;
+                    fixed(3 * b + d, 3 * a + d) -= x;
+                }
+            }
+            const Eigen::MatrixXd local = fixed + H;
+            const Eigen::LDLT<Eigen::MatrixXd> ldlt(local);
+            const double tolerance = 1e-12 * local.diagonal().cwiseAbs().maxCoeff();
+            if (ldlt.info() != Eigen::Success || ldlt.vectorD().minCoeff() < -tolerance) {
+                const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(local);
+                const Eigen::VectorXd clamped = eigen.eigenvalues().cwiseMax(0.0);
+                H = eigen.eigenvectors() * clamped.asDiagonal() * eigen.eigenvectors().transpose() -
+                    fixed;
+            }
+        }
+        for (int a = 0; a <= m; ++a)
+            for (int b = 0; b <= m; ++b) system->add(r, a, b, H.block<3, 3>(3 * a, 3 * b));
     }
 }
 

@@ -82,7 +82,12 @@ struct Reconstruction::Impl {
     // Adds the fold guard's rotation coupling, −2α Σ_v G_vᵀ C_v G_v, to the assembled matrix: the
     // part of its exact Hessian that fixed rotations miss (ArapEnergy::addRotationCoupling), at
     // the last linearisation. Indefinite far from a minimum.
-    void addRotationCoupling();
+    // clamped: each vertex's share of the fold guard's Hessian (its fixed-rotation part plus its
+    // coupling) is clamped to its positive semidefinite part first, so that the matrix can be
+    // factorised where the guard is not convex (the inside of a bend, where rings are
+    // compressed). Exact where every share is semidefinite; where one is not, it changes the
+    // matrix even if the sum was positive definite (see IterativeSolver::directStep).
+    void addRotationCoupling(bool clamped = false);
     bool restFactorWanted() const {
         return options.preconditioner == SolverOptions::Preconditioner::Blocks;
     }
