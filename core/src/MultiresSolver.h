@@ -32,8 +32,9 @@ namespace boneless {
 //    scheme (the coarsest energy minus <τ, X>, τ from the input's restricted gradient) was
 //    measured to make it worse: without smoothing first, the restricted gradient is dominated by
 //    the finest scale's error, and the coarsest level's soft modes amplify it.
-// Where prolongation alone stands (koala, 100K faces, bend frame 40, 0.42 % RMS from the converged
-// answer): the coarsest level's own vertices are 0.40 % off; the converged answer's coarsest
+// Where prolongation alone stands (koala, 100K faces, bend frame 40, 0.42 % RMS from the answer
+// of the bench's earlier reference, which had not converged; 0.51 % from the minimum): the
+// coarsest level's own vertices are 0.40 % off; the converged answer's coarsest
 // vertices, prolonged, would give 0.088 %. So the gap is the coarsest minimum, not the
 // prolongation. Minimising the input's energy over the prolongation's range does not close it
 // (8 Gauss–Newton steps with the exact restricted Hessian: 0.41 → 0.44 %), because the removed

@@ -95,19 +95,23 @@ SolverOptions fastOptions() {
     return o;
 }
 
-// What "fully converged" means here: Gauss–Newton on the same energy until the energy stops
-// going down (relative decrease below 1e-9, at most 8 steps), each linear system solved to 1e-4
-// (conjugate gradients, or a factorisation when they do not get there in 100 steps). The
-// fold guard's exact Hessian makes these steps converge quadratically, so this is the minimum to
-// far below the 0.1 % being measured.
+// What "fully converged" means here: Newton on the same energy until the energy stops going
+// down (relative decrease below 1e-10, at most 60 steps), each linear system solved to 1e-4
+// (conjugate gradients, or a factorisation when they do not get there in 100 steps). Once a step
+// is taken whole, both use the fold guard's exact Hessian (each vertex's share clamped to its
+// positive part, see Reconstruction::Impl::addRotationCoupling), so the last steps converge fast
+// even where Gauss–Newton crawls: on the bend's frames 30–90 Gauss–Newton's factorised steps
+// gained 1e-4 per step after 40 of them, 0.5 % of the diagonal short of the minimum. A reference
+// that has not converged is counted and printed: measured against it, an answer looks closer
+// than it is, because the reference starts from that answer.
 SolverOptions convergedOptions() {
     SolverOptions o;
     o.rigidityWeight = gArgs.rigidity;
     o.method = SolverOptions::Method::Iterative;
     o.preconditioner = SolverOptions::Preconditioner::Scalar;
     o.directFallback = true;
-    o.maxIterations = 8;
-    o.relativeTolerance = 1e-9;
+    o.maxIterations = 60;
+    o.relativeTolerance = 1e-10;
     o.cgTolerance = 1e-4;
     o.maxCgIterations = 100;
     return o;
@@ -119,6 +123,10 @@ struct RunFigures {
     double worstRmsPct = 0;
     int worstFrame = -1;
     int checkedFrames = 0;
+    int unconvergedReferences = 0;
+    // The largest relative energy decrease of an unconverged reference's last step: how far
+    // from its own stopping test it was.
+    double unconvergedLastDecrease = 0;
     double peakRssMb = 0;
     double gnMean = 0, cgMean = 0;
     int directSteps = 0;
@@ -158,6 +166,12 @@ void checkAgainstConverged(Reconstruction& reference, const TriMesh& mesh,
         const SolveResult c = reference.solve(work.targets(f), &V);
         const double pct = 100.0 * rmsDistance(V, c.V) / diagonal;
         ++out.checkedFrames;
+        const auto& e = c.report.energies;
+        if (!c.report.converged && e.size() >= 2) {
+            ++out.unconvergedReferences;
+            out.unconvergedLastDecrease =
+                std::max(out.unconvergedLastDecrease, (e[e.size() - 2] - e.back()) / e.back());
+        }
         if (pct > out.worstRmsPct || out.worstFrame < 0) {
             out.worstRmsPct = pct;
             out.worstFrame = f;
@@ -177,6 +191,8 @@ json figuresJson(const RunFigures& r) {
     j["worst_rms_pct_vs_converged"] = r.worstRmsPct;
     j["worst_frame"] = r.worstFrame;
     j["frames_checked"] = r.checkedFrames;
+    j["references_not_converged"] = r.unconvergedReferences;
+    j["references_not_converged_last_decrease"] = r.unconvergedLastDecrease;
     j["peak_rss_mb"] = r.peakRssMb;
     j["gauss_newton_iterations_per_frame"] = r.gnMean;
     j["cg_iterations_per_frame"] = r.cgMean;
@@ -198,6 +214,12 @@ void printFigures(const char* title, const json& j) {
     std::printf("  worst RMS vs converged %.4f %% of bbox diagonal (frame %d; %d frames checked)\n",
                 j["worst_rms_pct_vs_converged"].get<double>(), j["worst_frame"].get<int>(),
                 j["frames_checked"].get<int>());
+    if (j["references_not_converged"].get<int>() > 0)
+        std::printf(
+            "  WARNING: %d references had not converged after %d steps (last step's relative "
+            "decrease up to %.1e): the RMS above may be too small\n",
+            j["references_not_converged"].get<int>(), convergedOptions().maxIterations,
+            j["references_not_converged_last_decrease"].get<double>());
     std::printf("  peak RSS               %.0f MB\n", j["peak_rss_mb"].get<double>());
 }
 
