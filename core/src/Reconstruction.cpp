@@ -243,6 +243,7 @@ void Reconstruction::Impl::addRotationCoupling(bool clamped) {
             Eigen::MatrixXd fixed = Eigen::MatrixXd::Zero(size, size);
             rigidity->vertexEdges(v, edges);
             for (const auto& [j, k, w] : edges) {
+                // The same faces as couplingBlocks(), all inside the ring (checked above).
                 const int a = slotOf(j), b = slotOf(k);
                 const double x = 2.0 * options.rigidityWeight * w;
                 for (int d = 0; d < 3; ++d) {
@@ -257,8 +258,9 @@ void Reconstruction::Impl::addRotationCoupling(bool clamped) {
             const double tolerance = 1e-12 * local.diagonal().cwiseAbs().maxCoeff();
             if (ldlt.info() != Eigen::Success || ldlt.vectorD().minCoeff() < -tolerance) {
                 const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(local);
-                const Eigen::VectorXd clamped = eigen.eigenvalues().cwiseMax(0.0);
-                H = eigen.eigenvectors() * clamped.asDiagonal() * eigen.eigenvectors().transpose() -
+                const Eigen::VectorXd positive = eigen.eigenvalues().cwiseMax(0.0);
+                H = eigen.eigenvectors() * positive.asDiagonal() *
+                        eigen.eigenvectors().transpose() -
                     fixed;
             }
         }
