@@ -99,7 +99,7 @@ class IterativeSolver {
     mutable Eigen::VectorXd rotated_;
     Eigen::VectorXd lastMotion_;  // the last frame's free-vertex motion, the next CG's start
     // Preconditioner::Scalar: the factor of the rest matrix's block traces.
-    std::unique_ptr<Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower>>
+    std::unique_ptr<Eigen::CholmodDecomposition<Eigen::SparseMatrix<double>, Eigen::Lower>>
         scalarFactor_;
     mutable Eigen::MatrixXd scalarRhs_;
 };
