@@ -274,14 +274,17 @@ bool IterativeSolver::directStep(const Positions& V, const Positions& targets,
         return false;
     BlockSystem& system = *p_.system;
     Eigen::VectorXd gradient;
-    // The matrix conjugate gradients were solving: the fold guard's exact Hessian once a step has
-    // been taken whole. Where that is indefinite (the inside of a bend, rings compressed), each
-    // vertex's share clamped to its positive part; the Gauss–Newton matrix last. Clamping where
-    // the sum is positive definite anyway slows convergence (a tube bent 1.2 rad: 23 steps to
-    // 1e-10 instead of 13), so it is not the first choice; where the sum is indefinite it is
-    // what converges (koala, bend frame 50: 0.0708 after 20 steps, Gauss–Newton 0.0719).
+    // With SolverOptions::exactFallback, the matrix conjugate gradients were solving: the fold
+    // guard's exact Hessian once a step has been taken whole. Where that is indefinite (the inside
+    // of a bend, rings compressed), each vertex's share clamped to its positive part; the
+    // Gauss–Newton matrix last. Clamping where the sum is positive definite anyway slows
+    // convergence (a tube bent 1.2 rad: 23 steps to 1e-10 instead of 13), so it is not the first
+    // choice; where the sum is indefinite it is what converges (koala, bend frame 50: 0.0708 after
+    // 20 steps, Gauss–Newton 0.0719).
     enum class Matrix { Exact, Clamped, GaussNewton };
-    Matrix matrix = exactGuardHessian_ && p_.rigid() ? Matrix::Exact : Matrix::GaussNewton;
+    Matrix matrix = p_.options.exactFallback && exactGuardHessian_ && p_.rigid()
+                        ? Matrix::Exact
+                        : Matrix::GaussNewton;
     auto build = [&] {
         p_.assemble(V, targets, gradient);
         if (matrix != Matrix::GaussNewton) p_.addRotationCoupling(matrix == Matrix::Clamped);

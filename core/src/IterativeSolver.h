@@ -21,9 +21,10 @@ namespace boneless {
 //   of pieces that turn (a bending limb), which is what mocap frames are.
 // The energy is evaluated together with the next linearisation (one pass per trial point).
 // When conjugate gradients miss their tolerance within the budget (a pose far from the last one,
-// where the rest-pose preconditioner is poor), that step is taken with a factorisation of the
-// matrix they were solving instead (see directStep()), so a hard frame costs what the direct path
-// costs rather than accuracy.
+// where the rest-pose preconditioner is poor), that step is taken with a factorisation instead
+// (of the Gauss–Newton matrix, or with SolverOptions::exactFallback of the matrix they were
+// solving; see directStep()), so a hard frame costs what the direct path costs rather than
+// accuracy.
 class IterativeSolver {
   public:
     explicit IterativeSolver(Reconstruction::Impl& problem);
@@ -77,9 +78,9 @@ class IterativeSolver {
     void precondition(const Linearisation& L, const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
     int conjugateGradients(const Linearisation& L, const Eigen::VectorXd& g, Eigen::VectorXd& x);
     void zeroPinned(Eigen::VectorXd& x) const;
-    // One step by a numeric factorisation of the current H (the fold guard's exact Hessian when
-    // conjugate gradients use it, clamped per vertex where it is indefinite), for the frames where
-    // conjugate gradients do not converge within their budget.
+    // One step by a numeric factorisation of the current H (with exactFallback, the fold guard's
+    // exact Hessian when conjugate gradients use it, clamped per vertex where it is indefinite),
+    // for the frames where conjugate gradients do not converge within their budget.
     bool directStep(const Positions& V, const Positions& targets, Eigen::VectorXd& step);
 
     Reconstruction::Impl& p_;  // the direct fallback uses its system
