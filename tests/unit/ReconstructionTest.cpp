@@ -11,6 +11,17 @@
 using namespace boneless;
 using namespace boneless::testing;
 
+namespace {
+
+// Steps taken until the energy is within `relative` of its last value.
+int stepsUntilWithin(const std::vector<double>& energies, double relative) {
+    int steps = 0;
+    while (energies[steps] - energies.back() > relative * energies.back()) ++steps;
+    return steps;
+}
+
+}  // namespace
+
 TEST(Reconstruction, RestPoseTargetsGiveBackTheRestMesh) {
     for (const TriMesh& mesh : {icosphere(2), tube(8, 12, 4.0)}) {
         Reconstruction solver;
@@ -103,9 +114,7 @@ TEST(Reconstruction, TheFoldGuardsExactHessianConvergesOnABend) {
     const SolveResult r = solver.solve(rows(pose, markers), &mesh.V);
     ASSERT_TRUE(r.report.converged) << "still going after " << r.report.iterations << " steps";
     const auto& e = r.report.energies;
-    int steps = 0;  // until the energy is within 1e-10 of its last value, relatively
-    while (e[steps] - e.back() > 1e-10 * e.back()) ++steps;
-    EXPECT_LE(steps, 20);
+    EXPECT_LE(stepsUntilWithin(e, 1e-10), 20);
     EXPECT_TRUE(std::is_sorted(e.rbegin(), e.rend()));
     // The control: without the orientation guard the direct method keeps the fixed-rotation
     // matrix (README "Solver" says why), and the same bend is not done after 40 steps.
@@ -139,10 +148,7 @@ TEST(Reconstruction, TheIterativeMethodsFactorisedStepsConvergeWhereTheGuardIsNo
     pose.col(2) *= 0.6;
     const SolveResult r = solver.solve(rows(pose, markers), &mesh.V);
     ASSERT_TRUE(r.report.converged) << "still going after " << r.report.iterations << " steps";
-    const auto& e = r.report.energies;
-    int steps = 0;  // until the energy is within 1e-10 of its last value, relatively
-    while (e[steps] - e.back() > 1e-10 * e.back()) ++steps;
-    EXPECT_LE(steps, 12);
+    EXPECT_LE(stepsUntilWithin(r.report.energies, 1e-10), 12);
 }
 
 TEST(Reconstruction, ReconstructsASmoothBendCloselyFromFewMarkers) {
