@@ -281,30 +281,18 @@ bool IterativeSolver::directStep(const Positions& V, const Positions& targets,
     // convergence (a tube bent 1.2 rad: 23 steps to 1e-10 instead of 13), so it is not the first
     // choice; where the sum is indefinite it is what converges (koala, bend frame 50: 0.0708 after
     // 20 steps, Gauss–Newton 0.0719).
-    enum class Matrix { Exact, Clamped, GaussNewton };
-    Matrix matrix = p_.options.exactFallback && exactGuardHessian_ && p_.rigid()
-                        ? Matrix::Exact
-                        : Matrix::GaussNewton;
-    auto build = [&] {
+    using Kind = Reconstruction::Impl::GuardHessian;
+    auto build = [&](Kind kind) {
         p_.assemble(V, targets, gradient);
-        if (matrix != Matrix::GaussNewton) p_.addRotationCoupling(matrix == Matrix::Clamped);
+        if (kind != Kind::GaussNewton) p_.addRotationCoupling(kind == Kind::Clamped);
         for (int v = 0; v < n_; ++v)
             if (pinned_[v]) system.pin(v);
     };
     p_.linearise(V, targets);
-    build();
-    double tikhonov = 1e-9 * system.meanDiagonal();
-    bool factored = system.factorize(tikhonov);
-    while (!factored && matrix != Matrix::GaussNewton) {
-        matrix = matrix == Matrix::Exact ? Matrix::Clamped : Matrix::GaussNewton;
-        build();
-        tikhonov = 1e-9 * system.meanDiagonal();
-        factored = system.factorize(tikhonov);
-    }
-    if (!factored) {
-        build();
-        if (!system.factorize(tikhonov * 1e4)) return false;
-    }
+    const bool exact = p_.options.exactFallback && exactGuardHessian_ && p_.rigid();
+    if (!(exact ? p_.factorizeFirstOf({Kind::Exact, Kind::Clamped, Kind::GaussNewton}, build)
+                : p_.factorizeFirstOf({Kind::GaussNewton}, build)))
+        return false;
     for (int v = 0; v < n_; ++v)
         if (pinned_[v]) gradient.segment<3>(3 * v).setZero();
     Eigen::VectorXd direct = -system.solve(gradient);

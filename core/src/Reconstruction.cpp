@@ -269,6 +269,22 @@ void Reconstruction::Impl::addRotationCoupling(bool clamped) {
     }
 }
 
+std::optional<Reconstruction::Impl::GuardHessian> Reconstruction::Impl::factorizeFirstOf(
+    std::initializer_list<GuardHessian> kinds, const std::function<void(GuardHessian)>& build) {
+    // A tiny Tikhonov term keeps directions the markers do not pin down (a component without
+    // markers, a ring-less vertex) from making the matrix singular.
+    double tikhonov = 0;
+    for (GuardHessian kind : kinds) {
+        build(kind);
+        tikhonov = 1e-9 * system->meanDiagonal();
+        if (system->factorize(tikhonov)) return kind;
+    }
+    const GuardHessian last = *(kinds.end() - 1);
+    build(last);  // factorize() added the first term to the values already
+    if (system->factorize(tikhonov * 1e4)) return last;
+    return std::nullopt;
+}
+
 Reconstruction::Reconstruction() : impl_(std::make_unique<Impl>()) {}
 Reconstruction::~Reconstruction() = default;
 Reconstruction::Reconstruction(Reconstruction&&) noexcept = default;
@@ -420,9 +436,10 @@ SolveResult Reconstruction::Impl::solveDirect(const Positions& targets, const Po
     // frames, 221 steps instead of 243 and a worst energy of 0.020 instead of 0.035.
     bool exact = false;
     for (int it = 0; it < s.options.maxIterations && E > 0; ++it) {
-        auto buildSystem = [&] {
+        using Kind = GuardHessian;
+        auto buildSystem = [&](Kind kind) {
             s.assemble(V, targets, gradient);
-            if (exact) s.addRotationCoupling();
+            if (kind == Kind::Exact) s.addRotationCoupling();
             for (int v = 0; v < n; ++v)
                 if (s.topology->isIsolated(v)) s.system->pin(v);
             if (hard)
@@ -432,21 +449,12 @@ SolveResult Reconstruction::Impl::solveDirect(const Positions& targets, const Po
                         gradient.segment<3>(3 * s.markers[k]).setZero();
                     }
         };
-        buildSystem();
-        // A tiny Tikhonov term keeps directions the markers do not pin down (a component without
-        // markers, a ring-less vertex) from making the matrix singular.
-        double tikhonov = 1e-9 * s.system->meanDiagonal();
-        bool factored = s.system->factorize(tikhonov);
-        if (!factored && exact) {
-            exact = false;  // indefinite with the coupling: this step goes without it
-            buildSystem();
-            tikhonov = 1e-9 * s.system->meanDiagonal();
-            factored = s.system->factorize(tikhonov);
-        }
-        if (!factored) {
-            buildSystem();  // factorize() added the first term to the values already
-            if (!s.system->factorize(tikhonov * 1e4)) break;
-        }
+        // Indefinite with the coupling: this step goes without it.
+        const auto factored =
+            exact ? s.factorizeFirstOf({Kind::Exact, Kind::GaussNewton}, buildSystem)
+                  : s.factorizeFirstOf({Kind::GaussNewton}, buildSystem);
+        if (!factored) break;
+        exact = *factored == Kind::Exact;
         const Eigen::VectorXd step = -s.system->solve(gradient);
         if (!step.allFinite()) break;
         // A step no vertex would visibly take: the energy is at round-off (a rest or rigid

@@ -3,7 +3,10 @@
 // The state behind boneless::Reconstruction, shared by its direct (Reconstruction.cpp) and
 // iterative (IterativeSolver.cpp, RestSystem.cpp) Gauss–Newton paths.
 
+#include <functional>
+#include <initializer_list>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "ArapEnergy.h"
@@ -88,6 +91,14 @@ struct Reconstruction::Impl {
     // compressed). Exact where every share is semidefinite; where one is not, it changes the
     // matrix even if the sum was positive definite (see IterativeSolver::directStep).
     void addRotationCoupling(bool clamped = false);
+    // Which fold-guard Hessian an assembled matrix holds: its rotations held (Gauss–Newton), their
+    // derivative added (exact), or that with each vertex's share clamped (addRotationCoupling()).
+    enum class GuardHessian { GaussNewton, Exact, Clamped };
+    // Builds the system with build(kind) and factorises it, for each kind in turn until one is
+    // positive definite; the last is retried with a stronger Tikhonov term. Returns the kind
+    // factorised, nothing when none could be.
+    std::optional<GuardHessian> factorizeFirstOf(std::initializer_list<GuardHessian> kinds,
+                                                 const std::function<void(GuardHessian)>& build);
     bool restFactorWanted() const {
         return options.preconditioner == SolverOptions::Preconditioner::Blocks;
     }
