@@ -214,7 +214,10 @@ void FrameSolver::runPreviews(Shared* sh, FrameSolver* self) {
         const quint64 generation = request->generation;
         const auto& problem = request->problem;
         const bool wantShapeError = request->shapeError;
-        if (generation == state.failedGeneration || sh->cache.count(frame)) continue;
+        if (generation == state.failedGeneration || sh->cache.count(frame)) {
+            sh->wake.notify_all();  // an answer may be waiting for this preview
+            continue;
+        }
         sh->previewSolving = true;
         lock.unlock();
         std::shared_ptr<FrameResult> result;
@@ -227,6 +230,8 @@ void FrameSolver::runPreviews(Shared* sh, FrameSolver* self) {
         }
         lock.lock();
         sh->previewSolving = false;
+        sh->wake.notify_all();
+        // Posted before the answer can start, so it arrives first.
         if (result)
             QMetaObject::invokeMethod(self, [self, result] { self->deliver(result); });
         else
@@ -259,10 +264,16 @@ FrameSolver::FrameSolver(QObject* parent) : QObject(parent), shared_(std::make_s
             sh->solving = true;
             if (sh->previewOn()) {
                 // Settle: a newer request within settleMs replaces this one before any work.
-                const bool replaced =
-                    sh->wake.wait_for(lock, std::chrono::milliseconds(settleMs),
-                                      [&] { return sh->stop || sh->pending.has_value(); });
-                if (replaced || sh->generation != generation) {
+                auto superseded = [&] {
+                    return sh->stop || sh->pending.has_value() || sh->generation != generation;
+                };
+                sh->wake.wait_for(lock, std::chrono::milliseconds(settleMs), superseded);
+                // Then let the preview finish: with two cores busy, the answer could otherwise
+                // overtake it and the preview would never be shown.
+                sh->wake.wait(lock, [&] {
+                    return superseded() || (!sh->previewSolving && !sh->previewPending);
+                });
+                if (superseded()) {
                     sh->solving = false;
                     continue;
                 }
@@ -335,6 +346,7 @@ bool FrameSolver::setProblem(const Document& document, QString* why) {
         shared_->previewPending.reset();
         shared_->clearCache();
     }
+    shared_->wake.notify_all();  // a worker settling on the old problem gives up
     updateBusy();
     if (why) *why = reason;
     return p != nullptr;
@@ -347,6 +359,7 @@ void FrameSolver::clearProblem() {
     shared_->pending.reset();
     shared_->previewPending.reset();
     shared_->clearCache();
+    shared_->wake.notify_all();
 }
 
 bool FrameSolver::hasProblem() const {
@@ -446,6 +459,7 @@ void FrameSolver::setPreviewEnabled(bool enabled, int minVertices) {
     shared_->previewWanted = enabled;
     shared_->previewMinVertices = minVertices;
     if (!shared_->previewOn()) shared_->previewPending.reset();
+    shared_->wake.notify_all();
 }
 
 bool FrameSolver::previewEnabled() const {
@@ -459,6 +473,7 @@ void FrameSolver::cancelPending() {
         shared_->pending.reset();
         shared_->previewPending.reset();
     }
+    shared_->wake.notify_all();
     updateBusy();
 }
 

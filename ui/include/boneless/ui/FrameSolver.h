@@ -51,7 +51,8 @@ struct FrameResult {
 // multiresolution solver's coarsest level, prolonged to the mesh, without the orientation guard
 // (tens of milliseconds where the solve takes seconds on a large mesh). The solve of a frame then
 // starts only once it has been the newest request for settleMs, so that scrubbing shows previews
-// at once and does not queue solves of frames the user has already left.
+// at once and does not queue solves of frames the user has already left, and only once the
+// preview being solved is done, so that a frame's preview always comes before its answer.
 class FrameSolver : public QObject {
     Q_OBJECT
   public:
