@@ -38,7 +38,7 @@ struct FrameResult {
     std::size_t bytes() const;
 };
 
-// Solves frames on one worker thread, never on the caller's: requestFrame() returns at once and
+// Solves frames on a worker thread, never on the caller's: requestFrame() returns at once and
 // frameReady() follows on the thread FrameSolver lives in. Requests that are still queued when a
 // newer one arrives are dropped (the frame being solved finishes and is cached, since a frame
 // cannot be interrupted halfway). Solved frames are cached, least recently used out first, up to
@@ -52,7 +52,9 @@ struct FrameResult {
 // (tens of milliseconds where the solve takes seconds on a large mesh). The solve of a frame then
 // starts only once it has been the newest request for settleMs, so that scrubbing shows previews
 // at once and does not queue solves of frames the user has already left, and only once the
-// preview being solved is done, so that a frame's preview always comes before its answer.
+// preview being solved is done, so that the preview is posted before the answer that follows
+// it. (Measured on the koala, 100K faces: the first frame, whose preview is slow, is shown as
+// soon as when the two were solved side by side; on two cores they only slowed each other.)
 class FrameSolver : public QObject {
     Q_OBJECT
   public:
