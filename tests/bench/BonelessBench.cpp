@@ -203,6 +203,16 @@ json figuresJson(const RunFigures& r) {
     return j;
 }
 
+// Measured against a reference that stopped short, an answer looks closer than it is.
+void printReferenceWarning(const json& j) {
+    if (j["references_not_converged"].get<int>() == 0) return;
+    std::printf(
+        "  WARNING: %d of the references had not met their stopping test (at most %d steps; "
+        "last step's relative decrease up to %.1e): the RMS above may be too small\n",
+        j["references_not_converged"].get<int>(), convergedOptions().maxIterations,
+        j["references_not_converged_last_decrease"].get<double>());
+}
+
 void printFigures(const char* title, const json& j) {
     std::printf("%s\n", title);
     std::printf("  preprocessing          %.1f ms\n", j["preprocess_ms"].get<double>());
@@ -217,12 +227,7 @@ void printFigures(const char* title, const json& j) {
     std::printf("  worst RMS vs converged %.4f %% of bbox diagonal (frame %d; %d frames checked)\n",
                 j["worst_rms_pct_vs_converged"].get<double>(), j["worst_frame"].get<int>(),
                 j["frames_checked"].get<int>());
-    if (j["references_not_converged"].get<int>() > 0)
-        std::printf(
-            "  WARNING: %d of the references had not met their stopping test (at most %d steps; "
-            "last step's relative decrease up to %.1e): the RMS above may be too small\n",
-            j["references_not_converged"].get<int>(), convergedOptions().maxIterations,
-            j["references_not_converged_last_decrease"].get<double>());
+    printReferenceWarning(j);
     std::printf("  peak RSS               %.0f MB\n", j["peak_rss_mb"].get<double>());
 }
 
@@ -346,14 +351,7 @@ int sweep(const Args& args, const TriMesh& input, const char* self) {
                 r["faces"].get<int>(), r["preprocess_ms"].get<double>(),
                 r["ms_per_frame_median"].get<double>(), r["ms_per_frame_max"].get<double>(),
                 r["worst_rms_pct_vs_converged"].get<double>(), r["peak_rss_mb"].get<double>());
-            // As printFigures() warns: measured against a reference that stopped short, an
-            // answer looks closer than it is.
-            if (r["references_not_converged"].get<int>() > 0)
-                std::printf(
-                    "  WARNING: %d of the references had not met their stopping test (last "
-                    "step's relative decrease up to %.1e): the RMS above may be too small\n",
-                    r["references_not_converged"].get<int>(),
-                    r["references_not_converged_last_decrease"].get<double>());
+            printReferenceWarning(r);
             std::fflush(stdout);
         }
     }
