@@ -10,6 +10,7 @@
 #include <QSlider>
 #include <QUrl>
 #include <QtTest>
+#include <algorithm>
 #include <map>
 
 #include "ViewTestSupport.h"
@@ -218,16 +219,23 @@ class MainWindowTest : public QObject {
         QVERIFY(window.frameSolver()->previewEnabled());
         // The first frame's preview starts from the rest pose, as slowly as its answer.
         QTRY_VERIFY_WITH_TIMEOUT(!window.frameSolver()->isBusy(), 30000);
-        std::vector<std::pair<int, bool>> renders;  // frame, preview
+        // What the solver delivers is ordered (the preview first); what is rendered is not quite:
+        // a GUI thread starved for a whole solve handles both before one paint, and only the
+        // answer is drawn. That is right, so renders are asserted as a tail of the deliveries.
+        std::vector<std::pair<int, bool>> deliveries, renders;  // frame, preview
+        connect(window.frameSolver(), &FrameSolver::frameReady, this, [&](const FrameResult& r) {
+            deliveries.push_back({r.frame, r.preview});
+        });
         connect(&window, &MainWindow::latencyMeasured, this,
                 [&](int frame, double, bool, bool preview) {
                     renders.push_back({frame, preview});
                 });
         window.timeline()->scrubTo(45);
         QVERIFY(test::waitForFrame(window));  // waits for the answer, not the preview
-        QCOMPARE(renders.size(), std::size_t(2));
-        QCOMPARE(renders[0], std::make_pair(45, true));
-        QCOMPARE(renders[1], std::make_pair(45, false));
+        const std::vector<std::pair<int, bool>> previewThenAnswer{{45, true}, {45, false}};
+        QCOMPARE(deliveries, previewThenAnswer);
+        QVERIFY(!renders.empty() && renders.size() <= 2);
+        QVERIFY(std::equal(renders.rbegin(), renders.rend(), previewThenAnswer.rbegin()));
         const QString solve = window.findChild<QLabel*>("solveLabel")->text();
         QVERIFY2(solve.startsWith("solved in"), qPrintable(solve));
 
@@ -237,11 +245,13 @@ class MainWindowTest : public QObject {
         toggle->trigger();
         QVERIFY(!window.frameSolver()->previewEnabled());
         QVERIFY(!QSettings().value("solver/preview").toBool());
+        deliveries.clear();
         renders.clear();
         window.timeline()->scrubTo(20);
         QVERIFY(test::waitForFrame(window));
-        QCOMPARE(renders.size(), std::size_t(1));
-        QCOMPARE(renders[0], std::make_pair(20, false));
+        const std::vector<std::pair<int, bool>> answerOnly{{20, false}};
+        QCOMPARE(deliveries, answerOnly);
+        QCOMPARE(renders, answerOnly);
         QSettings().remove("solver/preview");
     }
 
