@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "Parallel.h"
+
 namespace boneless {
 
 BlockSystem::BlockSystem(int vertexCount, const std::vector<std::vector<int>>& stencils) {
@@ -112,7 +114,60 @@ bool BlockSystem::factorize(double tikhonov) {
         solver_->analyzePattern(matrix_);
     }
     solver_->factorize(matrix_);
-    return solver_->info() == Eigen::Success;
+    factorValid_ = solver_->info() == Eigen::Success;
+    return factorValid_;
+}
+
+bool BlockSystem::solveByLastFactor(const Eigen::VectorXd& rhs, Eigen::VectorXd& x,
+                                    int maxIterations, double tolerance, int* iterations) const {
+    if (!factorValid_ || maxIterations <= 0) return false;
+    const int n = static_cast<int>(matrix_.rows());
+    const double* values = matrix_.valuePtr();
+    const int* outer = matrix_.outerIndexPtr();
+    const int* inner = matrix_.innerIndexPtr();
+    // Both triangles are stored, so row j of H is column j: each entry of H·p is a gather.
+    auto multiply = [&](const Eigen::VectorXd& p, Eigen::VectorXd& out) {
+        parallelFor(n, [&](int begin, int end, int) {
+            for (int j = begin; j < end; ++j) {
+                double sum = 0;
+                for (int at = outer[j]; at < outer[j + 1]; ++at) sum += values[at] * p[inner[at]];
+                out[j] = sum;
+            }
+        });
+    };
+    const double stop = tolerance * rhs.norm();
+    x.setZero(n);
+    if (iterations) *iterations = 0;
+    if (stop == 0) return true;
+    Eigen::VectorXd r = rhs, z = solver_->solve(r), p = z, Hp(n);
+    double rz = r.dot(z);
+    for (int it = 0; it < maxIterations; ++it) {
+        multiply(p, Hp);
+        const double curvature = p.dot(Hp);
+        if (!(curvature > 0)) return false;
+        const double alpha = rz / curvature;
+        x += alpha * p;
+        r -= alpha * Hp;
+        if (iterations) *iterations = it + 1;
+        if (r.norm() <= stop) return true;
+        z = solver_->solve(r);
+        const double rzNext = r.dot(z);
+        p = z + (rzNext / rz) * p;
+        rz = rzNext;
+    }
+    return false;
+}
+
+int BlockSystem::iterationsPerFactorization() const {
+    if (!solver_) return 0;
+    const cholmod_common& c = const_cast<Factor&>(*solver_).cholmod();
+    // A solve reads L twice (2 flops per entry each way); the product reads H once.
+    const double perIteration = 4.0 * c.lnz + 2.0 * matrix_.nonZeros();
+    // The factorisation's dense supernodal kernels do more flops per second than the
+    // memory-bound solve and product: measured, its time was 1.4–3.9 times less than the flops'
+    // ratio says (1,458 to 49,999 vertices).
+    constexpr double kDenseAdvantage = 2.5;
+    return static_cast<int>(c.fl / perIteration / kDenseAdvantage);
 }
 
 double BlockSystem::meanDiagonal() const {

@@ -35,6 +35,22 @@ class BlockSystem {
     // Factorises H + tikhonov·I; false when the matrix is not positive definite.
     bool factorize(double tikhonov);
     Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const { return solver_->solve(rhs); }
+    // Whether the last factorize() succeeded: its factor then stays usable after the values
+    // change, as a preconditioner of the matrix they hold now.
+    bool hasFactor() const { return factorValid_; }
+    // Solves H x = rhs for the values held now (add the Tikhonov term first) by conjugate
+    // gradients preconditioned with the last factor, which was made from an earlier H: the
+    // next Gauss–Newton step's matrix, or the next frame's, is close to the last one, and a
+    // factorisation costs as much as dozens of solves with it. False (x unspecified) when
+    // |H x − rhs| has not reached tolerance·|rhs| within maxIterations, or H has shown a
+    // direction of non-positive curvature.
+    bool solveByLastFactor(const Eigen::VectorXd& rhs, Eigen::VectorXd& x, int maxIterations,
+                           double tolerance, int* iterations = nullptr) const;
+    // How many of those iterations cost about one numeric factorisation, from the symbolic
+    // analysis' counts (so the same for every run on this matrix): the factorisation's flops
+    // over an iteration's (a solve with the factor and a product with H), divided by the
+    // measured advantage of the factorisation's dense kernels. 0 before the first factorize().
+    int iterationsPerFactorization() const;
     // Adds tikhonov·I to the values (what factorize() does before factorising).
     void addToDiagonal(double tikhonov);
     double meanDiagonal() const;
@@ -47,6 +63,7 @@ class BlockSystem {
     Eigen::SparseMatrix<double> matrix_;
     using Factor = Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower>;
     std::unique_ptr<Factor> solver_;  // made on the first factorize()
+    bool factorValid_ = false;
     std::vector<int> stencilSizes_;
     std::vector<long> slotOffset_;
     std::vector<int> slots_;  // value index of the first row of each block column

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "IterativeSolver.h"
@@ -34,6 +35,13 @@ RigidMotion fitRigidMotion(const Positions& from, const Positions& to) {
 }
 
 namespace {
+
+// A step solved with an earlier factor is as good as a factorised one once conjugate gradients
+// reach this relative residual; below this many iterations per factorisation's cost (small
+// meshes, where factorising is cheap) the reuse is not tried.
+constexpr double kReusedFactorTolerance = 1e-6;
+constexpr int kMinimumReuseIterations = 4;
+
 void checkOrientationGuard(const SolverOptions& o) {
     // Measured: with conjugate-gradient steps the guard's terms stall the line search and leave
     // more folds than no guard at all, so it is refused rather than half-working. The
@@ -417,6 +425,9 @@ SolveResult Reconstruction::Impl::solveDirect(const Positions& targets, const Po
     result.V = startingPose(targets, guess);
     Positions& V = result.V;
     const bool hard = !s.softMarkers();
+    // The last factor is this solver's own from an earlier step or frame (not the iterative
+    // method's rest factor): reused as a preconditioner while that is cheaper.
+    bool ownFactor = !s.systemHoldsRestFactor;
     s.systemHoldsRestFactor = false;
 
     Eigen::VectorXd gradient;
@@ -449,13 +460,36 @@ SolveResult Reconstruction::Impl::solveDirect(const Positions& targets, const Po
                         gradient.segment<3>(3 * s.markers[k]).setZero();
                     }
         };
-        // Indefinite with the coupling: this step goes without it.
-        const auto factored =
-            exact ? s.factorizeFirstOf({Kind::Exact, Kind::GaussNewton}, buildSystem)
-                  : s.factorizeFirstOf({Kind::GaussNewton}, buildSystem);
-        if (!factored) break;
-        exact = *factored == Kind::Exact;
-        const Eigen::VectorXd step = -s.system->solve(gradient);
+        Eigen::VectorXd step;
+        std::optional<Kind> solvedWith;
+        // The last factor, while it is this solver's and of the same kind of matrix (the exact
+        // Hessian's coupling changes it too much), preconditions conjugate gradients on this
+        // step's matrix; three quarters of a factorisation's cost at most, so that a failed try
+        // (a take's soft markers move the matrix most) costs less than the factorisation after it.
+        const int reuseIterations = s.system->iterationsPerFactorization() * 3 / 4;
+        const Kind kind = exact ? Kind::Exact : Kind::GaussNewton;
+        if (ownFactor && s.system->hasFactor() && kind == s.factorKind &&
+            reuseIterations >= kMinimumReuseIterations) {
+            buildSystem(kind);
+            s.system->addToDiagonal(1e-9 * s.system->meanDiagonal());
+            int its = 0;
+            const bool solved = s.system->solveByLastFactor(gradient, step, reuseIterations,
+                                                            kReusedFactorTolerance, &its);
+            result.report.linearIterations += its;
+            if (solved) solvedWith = kind;
+        }
+        if (!solvedWith) {
+            // Indefinite with the coupling: this step goes without it.
+            solvedWith = exact ? s.factorizeFirstOf({Kind::Exact, Kind::GaussNewton}, buildSystem)
+                               : s.factorizeFirstOf({Kind::GaussNewton}, buildSystem);
+            if (!solvedWith) break;
+            ownFactor = true;
+            s.factorKind = *solvedWith;
+            ++result.report.directSteps;
+            step = s.system->solve(gradient);
+        }
+        step = -step;
+        exact = *solvedWith == Kind::Exact;
         if (!step.allFinite()) break;
         // A step no vertex would visibly take: the energy is at round-off (a rest or rigid
         // pose), where every step still halves it and the relative test never stops.

@@ -87,8 +87,11 @@ struct SolverOptions {
 
 struct SolveReport {
     int iterations = 0;
-    int linearIterations = 0;  // Iterative method: conjugate-gradient steps over all iterations
-    int directSteps = 0;       // Iterative method: steps that fell back to a factorisation
+    // Conjugate-gradient steps over all iterations (direct method: those of the steps solved
+    // with an earlier step's factor).
+    int linearIterations = 0;
+    // Steps solved by factorising their matrix (iterative method: that fell back to one).
+    int directSteps = 0;
     // At the initial guess (markers already on their targets if hard) and at the answer. NaN, and
     // energies empty, when the solve takes no step on the input mesh (Multiresolution with
     // fineIterations = correctionSteps = 0): evaluating the input's energy would cost as much as
