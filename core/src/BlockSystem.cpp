@@ -1,10 +1,16 @@
 #include "BlockSystem.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "Parallel.h"
 
 namespace boneless {
+
+namespace {
+// Iterations after which solveByLastFactor() judges from its rate whether it will converge.
+constexpr int kRateIterations = 5;
+}  // namespace
 
 BlockSystem::BlockSystem(int vertexCount, const std::vector<std::vector<int>>& stencils) {
     // Block pattern: every pair of vertices sharing a stencil, plus the diagonal.
@@ -135,7 +141,7 @@ bool BlockSystem::solveByLastFactor(const Eigen::VectorXd& rhs, Eigen::VectorXd&
             }
         });
     };
-    const double stop = tolerance * rhs.norm();
+    const double rhsNorm = rhs.norm(), stop = tolerance * rhsNorm;
     x.setZero(n);
     if (iterations) *iterations = 0;
     if (stop == 0) return true;
@@ -149,7 +155,16 @@ bool BlockSystem::solveByLastFactor(const Eigen::VectorXd& rhs, Eigen::VectorXd&
         x += alpha * p;
         r -= alpha * Hp;
         if (iterations) *iterations = it + 1;
-        if (r.norm() <= stop) return true;
+        const double residual = r.norm();
+        if (residual <= stop) return true;
+        // A try that will not make it is given up early: after a few iterations, the mean
+        // rate so far says how many the tolerance needs (a take's first step of a frame, with
+        // the last frame's factor, needed over twice the allowance).
+        if (it + 1 >= kRateIterations) {
+            const double rate = std::pow(residual / rhsNorm, 1.0 / (it + 1));
+            if (rate >= 1 || std::log(tolerance) / std::log(rate) > 1.5 * maxIterations)
+                return false;
+        }
         z = solver_->solve(r);
         const double rzNext = r.dot(z);
         p = z + (rzNext / rz) * p;

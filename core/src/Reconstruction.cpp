@@ -465,10 +465,14 @@ SolveResult Reconstruction::Impl::solveDirect(const Positions& targets, const Po
         // The last factor, while it is this solver's and of the same kind of matrix (the exact
         // Hessian's coupling changes it too much), preconditions conjugate gradients on this
         // step's matrix; three quarters of a factorisation's cost at most, so that a failed try
-        // (a take's soft markers move the matrix most) costs less than the factorisation after it.
+        // costs less than the factorisation after it. Not while the orientation guard has terms
+        // (then or now): they are stiff, and come and go between steps. On the demo ×2's take
+        // (30 frames) the full mesh's tries with them failed 181 times out of 196, and the take
+        // took 112 s instead of 98 s; without them, 95 s.
         const int reuseIterations = s.system->iterationsPerFactorization() * 3 / 4;
         const Kind kind = exact ? Kind::Exact : Kind::GaussNewton;
         if (ownFactor && s.system->hasFactor() && kind == s.factorKind &&
+            s.factorWithoutOrientationTerms && s.orientationTerms.empty() &&
             reuseIterations >= kMinimumReuseIterations) {
             buildSystem(kind);
             s.system->addToDiagonal(1e-9 * s.system->meanDiagonal());
@@ -485,6 +489,7 @@ SolveResult Reconstruction::Impl::solveDirect(const Positions& targets, const Po
             if (!solvedWith) break;
             ownFactor = true;
             s.factorKind = *solvedWith;
+            s.factorWithoutOrientationTerms = s.orientationTerms.empty();
             ++result.report.directSteps;
             step = s.system->solve(gradient);
         }

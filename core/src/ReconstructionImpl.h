@@ -96,6 +96,7 @@ struct Reconstruction::Impl {
     enum class GuardHessian { GaussNewton, Exact, Clamped };
     // What the direct method's last factorisation was of: it is reused only for the same kind.
     GuardHessian factorKind = GuardHessian::GaussNewton;
+    bool factorWithoutOrientationTerms = true;
     // Builds the system with build(kind) and factorises it, for each kind in turn until one is
     // positive definite; the last is retried with a stronger Tikhonov term. Returns the kind
     // factorised, nothing when none could be.
