@@ -221,7 +221,7 @@ void printFigures(const char* title, const json& j) {
                 j["ms_per_frame_max"].get<double>(), j["frames_timed"].get<int>());
     std::printf(
         "  iterations per frame   Gauss-Newton %.2f, conjugate gradients %.1f (%d steps "
-        "fell back to a factorisation)\n",
+        "factorised)\n",
         j["gauss_newton_iterations_per_frame"].get<double>(),
         j["cg_iterations_per_frame"].get<double>(), j["direct_fallback_steps"].get<int>());
     std::printf("  worst RMS vs converged %.4f %% of bbox diagonal (frame %d; %d frames checked)\n",
@@ -305,8 +305,10 @@ void printReport(const std::string& name, const json& r, const Args& args) {
     printFigures(label, r);
     if (r.contains("single_level")) {
         const json& b = r["single_level"];
-        std::printf("single-level solver (Gauss-Newton, CHOLMOD per iteration), %s:\n",
-                    b["note"].get<std::string>().c_str());
+        std::printf(
+            "single-level solver (Gauss-Newton, direct: a CHOLMOD factorisation, or the last one "
+            "preconditioning conjugate gradients), %s:\n",
+            b["note"].get<std::string>().c_str());
         printFigures("", b);
         std::printf(
             "  ratio single-level / fast: ms per frame (median) %.1fx, preprocessing "
