@@ -462,18 +462,18 @@ SolveResult Reconstruction::Impl::solveDirect(const Positions& targets, const Po
         };
         Eigen::VectorXd step;
         std::optional<Kind> solvedWith;
-        // The last factor, while it is this solver's and of the same kind of matrix (the exact
-        // Hessian's coupling changes it too much), preconditions conjugate gradients on this
-        // step's matrix; three quarters of a factorisation's cost at most, so that a failed try
-        // costs less than the factorisation after it. Not while the orientation guard has terms
-        // (then or now): they are stiff, and come and go between steps. On the demo ×2's take
-        // (30 frames) the full mesh's tries with them failed 181 times out of 196, and the take
-        // took 112 s instead of 98 s; without them, 95 s.
+        // The last factor, while it is this solver's, preconditions conjugate gradients on this
+        // step's matrix (of either kind: a koala take's frame alternates them, and went from
+        // 8.6 to 7.0 s when a factor of the other kind could serve); three quarters of a
+        // factorisation's cost at most, so that a failed try costs less than the factorisation
+        // after it. Not while the orientation guard has terms (then or now): they are stiff, and
+        // come and go between steps. On the demo ×2's take (30 frames) the full mesh's tries
+        // with them failed 181 times out of 196, and the take took 112 s instead of 98 s;
+        // without them, 95 s.
         const int reuseIterations = s.system->iterationsPerFactorization() * 3 / 4;
         const Kind kind = exact ? Kind::Exact : Kind::GaussNewton;
-        if (ownFactor && s.system->hasFactor() && kind == s.factorKind &&
-            s.factorWithoutOrientationTerms && s.orientationTerms.empty() &&
-            reuseIterations >= kMinimumReuseIterations) {
+        if (ownFactor && s.system->hasFactor() && s.factorWithoutOrientationTerms &&
+            s.orientationTerms.empty() && reuseIterations >= kMinimumReuseIterations) {
             buildSystem(kind);
             s.system->addToDiagonal(1e-9 * s.system->meanDiagonal());
             int its = 0;
@@ -488,7 +488,6 @@ SolveResult Reconstruction::Impl::solveDirect(const Positions& targets, const Po
                                : s.factorizeFirstOf({Kind::GaussNewton}, buildSystem);
             if (!solvedWith) break;
             ownFactor = true;
-            s.factorKind = *solvedWith;
             s.factorWithoutOrientationTerms = s.orientationTerms.empty();
             ++result.report.directSteps;
             step = s.system->solve(gradient);

@@ -94,8 +94,7 @@ struct Reconstruction::Impl {
     // Which fold-guard Hessian an assembled matrix holds: its rotations held (Gauss–Newton), their
     // derivative added (exact), or that with each vertex's share clamped (addRotationCoupling()).
     enum class GuardHessian { GaussNewton, Exact, Clamped };
-    // What the direct method's last factorisation was of: it is reused only for the same kind.
-    GuardHessian factorKind = GuardHessian::GaussNewton;
+    // The direct method's last factorisation was made with no orientation-guard term.
     bool factorWithoutOrientationTerms = true;
     // Builds the system with build(kind) and factorises it, for each kind in turn until one is
     // positive definite; the last is retried with a stronger Tikhonov term. Returns the kind
