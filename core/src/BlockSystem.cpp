@@ -144,7 +144,7 @@ bool BlockSystem::solveByLastFactor(const Eigen::VectorXd& rhs, Eigen::VectorXd&
     const double rhsNorm = rhs.norm(), stop = tolerance * rhsNorm;
     x.setZero(n);
     if (iterations) *iterations = 0;
-    if (stop == 0) return true;
+    if (rhsNorm == 0) return true;
     Eigen::VectorXd r = rhs, z = solver_->solve(r), p = z, Hp(n);
     double rz = r.dot(z);
     for (int it = 0; it < maxIterations; ++it) {

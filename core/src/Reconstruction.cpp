@@ -425,8 +425,10 @@ SolveResult Reconstruction::Impl::solveDirect(const Positions& targets, const Po
     result.V = startingPose(targets, guess);
     Positions& V = result.V;
     const bool hard = !s.softMarkers();
-    // The last factor is this solver's own from an earlier step or frame (not the iterative
-    // method's rest factor): reused as a preconditioner while that is cheaper.
+    // The last factor, reused as a preconditioner, is this solver's own from an earlier step or
+    // frame: a rest factor the system is known to hold (the iterative method's) waits for this
+    // solve's first factorisation. One left behind by a change of options may serve, which is
+    // harmless: every factor made is positive definite.
     bool ownFactor = !s.systemHoldsRestFactor;
     s.systemHoldsRestFactor = false;
 
@@ -448,17 +450,20 @@ SolveResult Reconstruction::Impl::solveDirect(const Positions& targets, const Po
     bool exact = false;
     for (int it = 0; it < s.options.maxIterations && E > 0; ++it) {
         using Kind = GuardHessian;
+        auto forEachPinned = [&](auto&& f) {
+            for (int v = 0; v < n; ++v)
+                if (s.topology->isIsolated(v)) f(v);
+            if (hard)
+                for (int k = 0; k < K; ++k)
+                    if (rowIsFinite(targets, k)) f(s.markers[k]);
+        };
         auto buildSystem = [&](Kind kind) {
             s.assemble(V, targets, gradient);
             if (kind == Kind::Exact) s.addRotationCoupling();
-            for (int v = 0; v < n; ++v)
-                if (s.topology->isIsolated(v)) s.system->pin(v);
-            if (hard)
-                for (int k = 0; k < K; ++k)
-                    if (rowIsFinite(targets, k)) {
-                        s.system->pin(s.markers[k]);
-                        gradient.segment<3>(3 * s.markers[k]).setZero();
-                    }
+            forEachPinned([&](int v) {
+                s.system->pin(v);
+                gradient.segment<3>(3 * v).setZero();
+            });
         };
         Eigen::VectorXd step;
         std::optional<Kind> solvedWith;
@@ -480,7 +485,12 @@ SolveResult Reconstruction::Impl::solveDirect(const Positions& targets, const Po
             const bool solved = s.system->solveByLastFactor(gradient, step, reuseIterations,
                                                             kReusedFactorTolerance, &its);
             result.report.linearIterations += its;
-            if (solved) solvedWith = kind;
+            if (solved) {
+                solvedWith = kind;
+                // An earlier factor may lack this frame's pins (a marker back from a gap):
+                // conjugate gradients leave their rows near zero, a factorisation exactly zero.
+                forEachPinned([&](int v) { step.segment<3>(3 * v).setZero(); });
+            }
         }
         if (!solvedWith) {
             // Indefinite with the coupling: this step goes without it.

@@ -93,3 +93,24 @@ TEST(BlockSystem, AnIndefiniteMatrixIsRefusedAndAFailedFactorisationLeavesNoFact
     EXPECT_FALSE(system.hasFactor());
     EXPECT_FALSE(system.solveByLastFactor(randomVector(3 * Chain::kVertices, 6), x, 50, 1e-8));
 }
+
+TEST(BlockSystem, AFarMatrixIsGivenUpEarlyAndAZeroRightHandSideNeedsNoIteration) {
+    const Chain chain(7), other(8);
+    BlockSystem system(Chain::kVertices, chain.stencils);
+    chain.fill(system, 1.0, 0.5);
+    ASSERT_TRUE(system.factorize(0));
+    // Nothing like the factor's matrix: far more than the allowance would be needed, and the
+    // rate after the first iterations says so.
+    other.fill(system, 1.0, 1e-3);
+    chain.add(system, 1e-3);
+    Eigen::VectorXd x;
+    int iterations = -1;
+    EXPECT_FALSE(
+        system.solveByLastFactor(randomVector(3 * Chain::kVertices, 9), x, 40, 1e-12, &iterations));
+    EXPECT_GE(iterations, 5);
+    EXPECT_LT(iterations, 40);
+    EXPECT_TRUE(system.solveByLastFactor(Eigen::VectorXd::Zero(3 * Chain::kVertices), x, 40, 1e-12,
+                                         &iterations));
+    EXPECT_EQ(iterations, 0);
+    EXPECT_EQ(x.norm(), 0.0);
+}

@@ -87,8 +87,8 @@ struct SolverOptions {
 
 struct SolveReport {
     int iterations = 0;
-    // Conjugate-gradient steps over all iterations (direct method: those of the steps solved
-    // with an earlier step's factor).
+    // Conjugate-gradient steps over all iterations (direct method: those run with an earlier
+    // step's factor, including tries that ended in a factorisation).
     int linearIterations = 0;
     // Steps solved by factorising their matrix (iterative method: that fell back to one).
     int directSteps = 0;
