@@ -279,17 +279,15 @@ void Reconstruction::Impl::addRotationCoupling(bool clamped) {
 
 std::optional<Reconstruction::Impl::GuardHessian> Reconstruction::Impl::factorizeFirstOf(
     std::initializer_list<GuardHessian> kinds, const std::function<void(GuardHessian)>& build) {
-    // A tiny Tikhonov term keeps directions the markers do not pin down (a component without
-    // markers, a ring-less vertex) from making the matrix singular.
-    double tikhonov = 0;
+    double term = 0;
     for (GuardHessian kind : kinds) {
         build(kind);
-        tikhonov = 1e-9 * system->meanDiagonal();
-        if (system->factorize(tikhonov)) return kind;
+        term = tikhonov();
+        if (system->factorize(term)) return kind;
     }
     const GuardHessian last = *(kinds.end() - 1);
     build(last);  // factorize() added the first term to the values already
-    if (system->factorize(tikhonov * 1e4)) return last;
+    if (system->factorize(term * 1e4)) return last;
     return std::nullopt;
 }
 
@@ -480,7 +478,7 @@ SolveResult Reconstruction::Impl::solveDirect(const Positions& targets, const Po
         if (ownFactor && s.system->hasFactor() && s.factorWithoutOrientationTerms &&
             s.orientationTerms.empty() && reuseIterations >= kMinimumReuseIterations) {
             buildSystem(kind);
-            s.system->addToDiagonal(1e-9 * s.system->meanDiagonal());
+            s.system->addToDiagonal(s.tikhonov());
             int its = 0;
             const bool solved = s.system->solveByLastFactor(gradient, step, reuseIterations,
                                                             kReusedFactorTolerance, &its);

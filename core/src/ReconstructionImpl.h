@@ -94,6 +94,10 @@ struct Reconstruction::Impl {
     // Which fold-guard Hessian an assembled matrix holds: its rotations held (Gauss–Newton), their
     // derivative added (exact), or that with each vertex's share clamped (addRotationCoupling()).
     enum class GuardHessian { GaussNewton, Exact, Clamped };
+    // The Tikhonov term every factorisation of the system adds, and every solve with an earlier
+    // factor must add too: it keeps directions the markers do not pin down (a component
+    // without markers, a ring-less vertex) from making the matrix singular.
+    double tikhonov() const { return 1e-9 * system->meanDiagonal(); }
     // The direct method's last factorisation was made with no orientation-guard term.
     bool factorWithoutOrientationTerms = true;
     // Builds the system with build(kind) and factorises it, for each kind in turn until one is

@@ -20,12 +20,12 @@ void Reconstruction::Impl::prepareRestSystem(bool factor) {
             for (int v : markers) system->pin(v);
     };
     build();
-    const double tikhonov = 1e-9 * system->meanDiagonal();
+    const double term = tikhonov();
     if (!factor) {
-        system->addToDiagonal(tikhonov);
-    } else if (!system->factorize(tikhonov)) {
+        system->addToDiagonal(term);
+    } else if (!system->factorize(term)) {
         build();
-        if (!system->factorize(tikhonov * 1e4))
+        if (!system->factorize(term * 1e4))
             throw SolverError("the rest pose's Gauss–Newton matrix is not positive definite");
     }
     systemHoldsRestFactor = true;
