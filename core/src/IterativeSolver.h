@@ -20,6 +20,9 @@ namespace boneless {
 //   pose that is a rotation of the rest pose this is H⁻¹ exactly, and close to it for a pose made
 //   of pieces that turn (a bending limb), which is what mocap frames are.
 // The energy is evaluated together with the next linearisation (one pass per trial point).
+// With Preconditioner::LastFactor there is no rest matrix: the preconditioner is the last
+// factorisation of a step's own matrix (made by directStep() on the first step, and again when
+// conjugate gradients with it miss their tolerance within a share of a factorisation's cost).
 // When conjugate gradients miss their tolerance within the budget (a pose far from the last one,
 // where the rest-pose preconditioner is poor), that step is taken with a factorisation instead
 // (of the Gauss–Newton matrix, or with SolverOptions::exactFallback of the matrix they were
@@ -85,6 +88,11 @@ class IterativeSolver {
 
     Reconstruction::Impl& p_;  // the direct fallback uses its system
     bool cgConverged_ = false;
+    bool lastFactor() const {
+        return p_.options.preconditioner == SolverOptions::Preconditioner::LastFactor;
+    }
+    // The system holds a factor that directStep() made (Preconditioner::LastFactor's).
+    bool ownFactor_ = false;
     // multiply() includes the fold guard's rotation coupling (see solve()).
     bool exactGuardHessian_ = true;
     bool startsNearMinimum_ = false;

@@ -62,7 +62,10 @@ MultiresSolver::MultiresSolver(const TriMesh& rest, const std::vector<int>& mark
     if (L == 1) return;
     SolverOptions fine = options;
     fine.method = SolverOptions::Method::Iterative;
-    fine.preconditioner = SolverOptions::Preconditioner::Scalar;
+    // The input's steps may use the last factor of their own matrix instead (see
+    // SolverOptions::Preconditioner): more accurate per step, a factorisation now and then.
+    if (fine.preconditioner != SolverOptions::Preconditioner::LastFactor)
+        fine.preconditioner = SolverOptions::Preconditioner::Scalar;
     fine.maxIterations = options.fineIterations;
     fine.orientationWeight = 0;
     fine_.prepare(rest, markers, fine);

@@ -347,7 +347,8 @@ void Reconstruction::prepare(const TriMesh& rest, std::vector<int> markerVertice
     if (options.method == SolverOptions::Method::Direct) impl->buildBlockSystem();
     if (options.method == SolverOptions::Method::Iterative) {
         // No steps, no preconditioner: solve() makes it if the options change.
-        if (options.maxIterations > 0) impl->prepareRestSystem(impl->restFactorWanted());
+        if (options.maxIterations > 0 && impl->restSystemWanted())
+            impl->prepareRestSystem(impl->restFactorWanted());
         impl->iterative = std::make_unique<IterativeSolver>(*impl);
     }
     impl_ = std::move(impl);
@@ -389,7 +390,7 @@ SolveResult Reconstruction::solve(const Positions& targets, const Positions* gue
                           " vertices, the mesh " + std::to_string(n));
     if (s.multires) return s.multires->solve(targets, guess);
     if (s.options.method == SolverOptions::Method::Iterative) {
-        if (!s.systemHoldsRestFactor && s.options.maxIterations > 0) {
+        if (s.restSystemWanted() && !s.systemHoldsRestFactor && s.options.maxIterations > 0) {
             s.prepareRestSystem(s.restFactorWanted());
             s.iterative.reset();
         }

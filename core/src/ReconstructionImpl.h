@@ -108,6 +108,10 @@ struct Reconstruction::Impl {
     bool restFactorWanted() const {
         return options.preconditioner == SolverOptions::Preconditioner::Blocks;
     }
+    // The iterative method's preconditioner is made from the rest pose's matrix.
+    bool restSystemWanted() const {
+        return options.preconditioner != SolverOptions::Preconditioner::LastFactor;
+    }
 
     // The starting pose of a frame: the guess (or the rest pose moved rigidly onto the markers),
     // isolated vertices moved rigidly, hard markers on their targets.

@@ -383,8 +383,8 @@ TEST(IterativeReconstruction, ReachesTheDirectSolversMinimum) {
         Reconstruction reference;
         reference.prepare(mesh, markers, direct);
         const SolveResult expected = reference.solve(rows(pose, markers), &mesh.V);
-        for (auto p :
-             {SolverOptions::Preconditioner::Scalar, SolverOptions::Preconditioner::Blocks}) {
+        for (auto p : {SolverOptions::Preconditioner::Scalar, SolverOptions::Preconditioner::Blocks,
+                       SolverOptions::Preconditioner::LastFactor}) {
             SolverOptions options = iterativeOptions(true, p);
             options.constraints = direct.constraints;
             options.markerOffsets = direct.markerOffsets;
@@ -397,6 +397,40 @@ TEST(IterativeReconstruction, ReachesTheDirectSolversMinimum) {
                         1e-8 * expected.report.energyBefore);
         }
     }
+}
+
+// Preconditioner::LastFactor: the first step factorises; the steps after it, in the same frame
+// and the next ones, are conjugate gradients preconditioned by that factor, and reach the same
+// answers as a solver that factorises every step.
+TEST(IterativeReconstruction, TheLastFactorPreconditionsTheNextFrames) {
+    const TriMesh mesh = tube(10, 12, 4.0);
+    const auto markers = everyNth(mesh.vertexCount(), 7);
+    const double diagonal = boundingBoxDiagonal(mesh.V);
+    SolverOptions options = iterativeOptions(true, SolverOptions::Preconditioner::LastFactor);
+    options.cgTolerance = 1e-8;
+    Reconstruction solver, reference;
+    solver.prepare(mesh, markers, options);
+    SolverOptions direct;
+    direct.maxIterations = 400;
+    direct.relativeTolerance = 1e-15;
+    reference.prepare(mesh, markers, direct);
+    Positions last = mesh.V;
+    int steps = 0, factorised = 0, conjugateGradients = 0;
+    for (int f = 1; f <= 6; ++f) {
+        const Positions pose = bent(mesh.V, 0.08 * f);
+        const SolveResult r = solver.solve(rows(pose, markers), &last);
+        const SolveResult expected = reference.solve(rows(pose, markers), &last);
+        EXPECT_LE(maxDistance(r.V, expected.V), 1e-6 * diagonal) << "frame " << f;
+        for (size_t k = 0; k < markers.size(); ++k)
+            EXPECT_EQ(r.V.row(markers[k]), pose.row(markers[k]));
+        if (f == 1) EXPECT_GE(r.report.directSteps, 1);
+        steps += r.report.iterations;
+        factorised += r.report.directSteps;
+        conjugateGradients += r.report.linearIterations;
+        last = r.V;
+    }
+    EXPECT_GT(conjugateGradients, 0);
+    EXPECT_LT(factorised, steps / 2) << steps << " steps";
 }
 
 TEST(IterativeReconstruction, MissingMarkersAndSwitchingMethodsWork) {

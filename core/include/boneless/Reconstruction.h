@@ -81,7 +81,13 @@ struct SolverOptions {
     // exact 3×3-block normal matrix (fewest iterations, slowest to factorise and apply).
     // Scalar: its block traces, one unknown per vertex applied to x, y and z at once (a ninth of
     // the factor, a fraction of the time per application, more iterations).
-    enum class Preconditioner { Blocks, Scalar };
+    // LastFactor: no rest matrix; the last factorisation of a step's own matrix (the fold guard's
+    // exact Hessian, clamped where indefinite), made when conjugate gradients with the one before
+    // miss their tolerance within a share of a factorisation's cost. Where a pose bends, the rest
+    // matrix turned by the rotations misses how the bend softens the energy (koala, bend frame
+    // 41: 20 iterations with the rest matrix's traces leave 0.038 % of the diagonal, 5 with a
+    // factor made four frames earlier 0.002 %), and a frame's matrix changes slowly after it.
+    enum class Preconditioner { Blocks, Scalar, LastFactor };
     Preconditioner preconditioner = Preconditioner::Scalar;
 };
 
