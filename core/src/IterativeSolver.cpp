@@ -202,9 +202,13 @@ void IterativeSolver::precondition(const Linearisation& L, const Eigen::VectorXd
                                    Eigen::VectorXd& z) const {
     if (lastFactor()) {
         // The factor is of a pose's own matrix, in its own frame: turning it by the rotations
-        // fitted since was measured to make it worse (bend frame 45, a factor from frame 41:
-        // 0.0135 % after 5 iterations turned, 0.0019 % as it is).
-        z = p_.system->solve(r);
+        // fitted since was measured to make it worse (koala bend, frame 45's step with the
+        // factor made for frame 41's: 0.0135 % after 5 iterations turned, 0.0019 % as it is).
+        // solve() only gets here with a factor; solveAtCurrent() could without one.
+        if (p_.system && p_.system->hasFactor())
+            z = p_.system->solve(r);
+        else
+            z = r;
         zeroPinned(z);
         return;
     }
@@ -311,11 +315,11 @@ bool IterativeSolver::directStep(const Positions& V, const Positions& targets,
     if (!(exact ? p_.factorizeFirstOf({Kind::Exact, Kind::Clamped, Kind::GaussNewton}, build)
                 : p_.factorizeFirstOf({Kind::GaussNewton}, build)))
         return false;
-    ownFactor_ = true;
     for (int v = 0; v < n_; ++v)
         if (pinned_[v]) gradient.segment<3>(3 * v).setZero();
     Eigen::VectorXd direct = -system.solve(gradient);
     if (!direct.allFinite()) return false;
+    ownFactor_ = true;
     step.swap(direct);
     return true;
 }
@@ -393,9 +397,10 @@ SolveResult IterativeSolver::solve(const Positions& targets, const Positions* gu
         // Once conjugate gradients have failed in a frame, its remaining steps go direct; with
         // the last factor as preconditioner, the factorisation made is what serves them.
         int cgIts = 0;
-        if (lastFactor() && !(ownFactor_ && p_.system->hasFactor()))
+        if (lastFactor() && !(ownFactor_ && p_.system->hasFactor())) {
             cgConverged_ = false;
-        else if (!goDirect)
+            step = -g;  // if the factorisation below fails
+        } else if (!goDirect)
             cgIts = conjugateGradients(current_, g, step);
         if ((goDirect || !cgConverged_) && directStep(V, targets, step)) {
             ++result.report.directSteps;
@@ -432,6 +437,10 @@ SolveResult IterativeSolver::solve(const Positions& targets, const Positions* gu
             // the markers after one step; 1.5 mm after direct steps.
             if (it == 0 && !goDirect && p_.options.directFallback && !lastFactor()) {
                 goDirect = true;
+                continue;
+            }
+            if (it == 0 && lastFactor() && result.report.directSteps == 0) {
+                ownFactor_ = false;  // a factorisation of this pose's own matrix, then
                 continue;
             }
             result.report.converged = true;

@@ -47,6 +47,9 @@ class IterativeSolver {
     // Whether solve()'s guess is near the minimum (a prolongation of a converged coarser level),
     // so that the fold guard's exact Hessian is used from the first step (see solve()).
     void setStartsNearMinimum(bool near) { startsNearMinimum_ = near; }
+    // Preconditioner::LastFactor: the system's factor is no longer this solver's (the direct
+    // method or a change of options replaced or outdated it); the next step factorises.
+    void forgetFactor() { ownFactor_ = false; }
     // The energy of a trial pose (for a line search), and making the last trial the current pose.
     double tryPose(const Positions& V, const Positions& targets) {
         return evaluate(V, targets, trial_, false);

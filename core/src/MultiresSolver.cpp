@@ -38,8 +38,9 @@ MultiresSolver::MultiresSolver(const TriMesh& rest, const std::vector<int>& mark
     };
     // Both solved levels use conjugate gradients preconditioned by their rest matrix (rotated
     // per vertex): it is the smooth part of the error that matters, and a rest factorisation is
-    // what removes it. The coarsest converges (§1.6: relative decrease below 1e-4, at most ~10
-    // steps), with a factorisation when CG stall; the input takes fineIterations steps.
+    // what removes it. The input's may use Preconditioner::LastFactor instead (below). The coarsest
+    // converges (§1.6: relative decrease below 1e-4, at most ~10 steps), with a factorisation when
+    // CG stall; the input takes fineIterations steps.
     SolverOptions coarse = options;
     coarse.method = SolverOptions::Method::Iterative;
     coarse.preconditioner = SolverOptions::Preconditioner::Scalar;

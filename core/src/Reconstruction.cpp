@@ -430,6 +430,10 @@ SolveResult Reconstruction::Impl::solveDirect(const Positions& targets, const Po
     // harmless: every factor made is positive definite.
     bool ownFactor = !s.systemHoldsRestFactor;
     s.systemHoldsRestFactor = false;
+    // The iterative method's Preconditioner::LastFactor builds no system, and its factor is
+    // about to be replaced.
+    if (!s.system) s.buildBlockSystem();
+    if (s.iterative) s.iterative->forgetFactor();
 
     Eigen::VectorXd gradient;
     const double still = 1e-10 * boundingBoxDiagonal(s.rest.V);
@@ -576,8 +580,10 @@ void Reconstruction::setOptions(const SolverOptions& options) {
     if (options.constraints != impl_->options.constraints ||
         options.rigidityWeight != impl_->options.rigidityWeight ||
         options.softWeight != impl_->options.softWeight ||
-        options.preconditioner != impl_->options.preconditioner)
+        options.preconditioner != impl_->options.preconditioner) {
         impl_->systemHoldsRestFactor = false;
+        if (impl_->iterative) impl_->iterative->forgetFactor();
+    }
     const bool guardChanged = options.orientationWeight != impl_->options.orientationWeight ||
                               options.orientationThreshold != impl_->options.orientationThreshold;
     impl_->options = options;

@@ -433,11 +433,13 @@ TEST(IterativeReconstruction, TheLastFactorPreconditionsTheNextFrames) {
     EXPECT_LT(factorised, steps / 2) << steps << " steps";
 }
 
-TEST(IterativeReconstruction, MissingMarkersAndSwitchingMethodsWork) {
+namespace {
+
+void missingMarkersAndSwitchingMethods(SolverOptions::Preconditioner p) {
     const TriMesh mesh = icosphere(3);
     const auto markers = everyNth(mesh.vertexCount(), 17);
     Reconstruction solver;
-    solver.prepare(mesh, markers, iterativeOptions(false));
+    solver.prepare(mesh, markers, iterativeOptions(false, p));
     Positions pose = mesh.V;
     pose.col(0) *= 1.2;
     Positions targets = rows(pose, markers);
@@ -445,13 +447,24 @@ TEST(IterativeReconstruction, MissingMarkersAndSwitchingMethodsWork) {
     const SolveResult r = solver.solve(targets, &mesh.V);
     EXPECT_TRUE(r.V.allFinite());
     EXPECT_GT((r.V.row(markers[1]) - mesh.V.row(markers[1])).norm(), 0.0);
-    // A direct solve in between overwrites the system; the iterative path must rebuild its own.
+    // A direct solve in between overwrites the system (LastFactor: it had none yet); the
+    // iterative path must rebuild its own.
     SolverOptions direct = solver.options();
     direct.method = SolverOptions::Method::Direct;
     solver.setOptions(direct);
     const SolveResult d = solver.solve(targets, &mesh.V);
-    solver.setOptions(iterativeOptions(false));
+    solver.setOptions(iterativeOptions(false, p));
     const SolveResult again = solver.solve(targets, &mesh.V);
     EXPECT_LE(maxDistance(again.V, r.V), 1e-12 * boundingBoxDiagonal(mesh.V));
     EXPECT_TRUE(d.V.allFinite());
+}
+
+}  // namespace
+
+TEST(IterativeReconstruction, MissingMarkersAndSwitchingMethodsWork) {
+    for (auto p :
+         {SolverOptions::Preconditioner::Scalar, SolverOptions::Preconditioner::LastFactor}) {
+        SCOPED_TRACE(static_cast<int>(p));
+        missingMarkersAndSwitchingMethods(p);
+    }
 }

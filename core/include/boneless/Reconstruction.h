@@ -41,7 +41,8 @@ struct SolverOptions {
     //    the orientation guard on, the fold guard's exact Hessian near a minimum: README "Solver").
     //  Iterative: conjugate gradients on the same exact system, matrix-free, preconditioned by
     //    the rest pose's normal matrix (factorised once, in prepare()) turned by each vertex's
-    //    fitted rotation; no factorisation per frame, so it suits large meshes and warm starts.
+    //    fitted rotation; no factorisation per frame, so it suits large meshes and warm starts
+    //    (or by the last factorisation of a step's own matrix: Preconditioner::LastFactor).
     //  Multiresolution: a hierarchy of coarser meshes (algorithm.md §1.6); the coarsest is
     //    solved to convergence, each finer level starts from the prolonged change, and the input
     //    takes correctionSteps cheap steps, then fineIterations Gauss–Newton steps by conjugate
@@ -81,12 +82,16 @@ struct SolverOptions {
     // exact 3×3-block normal matrix (fewest iterations, slowest to factorise and apply).
     // Scalar: its block traces, one unknown per vertex applied to x, y and z at once (a ninth of
     // the factor, a fraction of the time per application, more iterations).
-    // LastFactor: no rest matrix; the last factorisation of a step's own matrix (the fold guard's
-    // exact Hessian, clamped where indefinite), made when conjugate gradients with the one before
-    // miss their tolerance within a share of a factorisation's cost. Where a pose bends, the rest
-    // matrix turned by the rotations misses how the bend softens the energy (koala, bend frame
-    // 41: 20 iterations with the rest matrix's traces leave 0.038 % of the diagonal, 5 with a
-    // factor made four frames earlier 0.002 %), and a frame's matrix changes slowly after it.
+    // LastFactor: no rest matrix; the last factorisation of a step's own matrix (the one its
+    // conjugate gradients solve: the fold guard's exact Hessian once a step has been taken
+    // whole, clamped where indefinite; the Gauss–Newton matrix before), made on the first step
+    // and whenever conjugate gradients with the one before miss their tolerance within three
+    // quarters of a factorisation's cost (at least 4 iterations, at most maxCgIterations). It
+    // implies directFallback and exactFallback. Where a pose bends, the rest matrix turned by
+    // the rotations misses how the bend softens the energy, and a pose's own matrix changes
+    // slowly from frame to frame. Koala bend: frame 41's step, 20 iterations with the rest
+    // matrix's traces leave 0.038 % of the diagonal; frame 45's, 5 with the factor made for
+    // frame 41's step leave 0.002 %. Memory: a factor of a 100K-face mesh's matrix (0.9 GB).
     enum class Preconditioner { Blocks, Scalar, LastFactor };
     Preconditioner preconditioner = Preconditioner::Scalar;
 };
