@@ -461,6 +461,25 @@ void missingMarkersAndSwitchingMethods(SolverOptions::Preconditioner p) {
 
 }  // namespace
 
+// Preconditioner::LastFactor builds no system in prepare(): a direct solve before any
+// iterative one must build its own.
+TEST(IterativeReconstruction, ADirectSolveRightAfterPreparingForTheLastFactorWorks) {
+    const TriMesh mesh = tube(8, 10, 3.0);
+    const auto markers = everyNth(mesh.vertexCount(), 7);
+    Reconstruction solver;
+    solver.prepare(mesh, markers,
+                   iterativeOptions(false, SolverOptions::Preconditioner::LastFactor));
+    SolverOptions direct = solver.options();
+    direct.method = SolverOptions::Method::Direct;
+    solver.setOptions(direct);
+    const Positions pose = bent(mesh.V, 0.3);
+    const SolveResult r = solver.solve(rows(pose, markers), &mesh.V);
+    ASSERT_TRUE(r.V.allFinite());
+    EXPECT_LT(r.report.energyAfter, r.report.energyBefore);
+    for (size_t k = 0; k < markers.size(); ++k)
+        EXPECT_EQ(r.V.row(markers[k]), pose.row(markers[k]));
+}
+
 TEST(IterativeReconstruction, MissingMarkersAndSwitchingMethodsWork) {
     for (auto p :
          {SolverOptions::Preconditioner::Scalar, SolverOptions::Preconditioner::LastFactor}) {
