@@ -51,6 +51,13 @@ class BlockSystem {
     // over an iteration's (a solve with the factor and a product with H), divided by the
     // measured advantage of the factorisation's dense kernels. 0 before the first factorize().
     int iterationsPerFactorization() const;
+    // The iterations a solve with the last factor may take before a factorisation is made
+    // instead: three quarters of one's cost, so that a failed try costs less than the
+    // factorisation after it.
+    int reuseAllowance() const { return iterationsPerFactorization() * 3 / 4; }
+    // Below this allowance (small meshes, where factorising is cheap) the direct method does not
+    // try the reuse, and the iterative method's Preconditioner::LastFactor allows this many.
+    static constexpr int kMinimumReuseIterations = 4;
     // Adds tikhonov·I to the values (what factorize() does before factorising).
     void addToDiagonal(double tikhonov);
     double meanDiagonal() const;

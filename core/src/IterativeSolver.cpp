@@ -253,10 +253,9 @@ int IterativeSolver::conjugateGradients(const Linearisation& L, const Eigen::Vec
     int it = 0;
     cgConverged_ = cgR_.norm() <= stop;
     int cap = p_.options.maxCgIterations;
-    // Failed tries cost at most three quarters of the factorisation that follows them (as for
-    // the direct method's reuse of its factor, Reconstruction.cpp).
     if (lastFactor())
-        cap = std::min(cap, std::max(4, p_.system->iterationsPerFactorization() * 3 / 4));
+        cap = std::min(cap,
+                       std::max(BlockSystem::kMinimumReuseIterations, p_.system->reuseAllowance()));
     while (it < cap) {
         multiply(L, cgP_, cgHp_);
         const double pHp = cgP_.dot(cgHp_);
@@ -394,16 +393,17 @@ SolveResult IterativeSolver::solve(const Positions& targets, const Positions* gu
             step = lastMotion_;
         else
             step.resize(0);
-        // Once conjugate gradients have failed in a frame, its remaining steps go direct; with
-        // the last factor as preconditioner, the factorisation made is what serves them.
+        // Without a factor of its own, a Preconditioner::LastFactor step makes one.
+        if (lastFactor() && !(ownFactor_ && p_.system->hasFactor())) goDirect = true;
         int cgIts = 0;
-        if (lastFactor() && !(ownFactor_ && p_.system->hasFactor())) {
-            cgConverged_ = false;
-            step = -g;  // if the factorisation below fails
-        } else if (!goDirect)
+        if (goDirect)
+            step = -g;  // kept if the factorisation fails
+        else
             cgIts = conjugateGradients(current_, g, step);
         if ((goDirect || !cgConverged_) && directStep(V, targets, step)) {
             ++result.report.directSteps;
+            // Once conjugate gradients have failed in a frame, its remaining steps go direct;
+            // with the last factor as preconditioner, the factor just made serves them.
             goDirect = !lastFactor();
         }
         result.report.linearIterations += cgIts;
@@ -435,12 +435,12 @@ SolveResult IterativeSolver::solve(const Positions& targets, const Positions* gu
             // whose first step gains that little is stepped directly before being called done.
             // Seen on the coarsest level of the demo at twice its resolution: stopped 22 mm from
             // the markers after one step; 1.5 mm after direct steps.
-            if (it == 0 && !goDirect && p_.options.directFallback && !lastFactor()) {
+            // (Preconditioner::LastFactor: a factorisation of this pose's own matrix. Kept in
+            // this frame's goDirect, so that a frame with no step left does not leave the next
+            // one a factorisation: the multiresolution method's input takes one step a frame.)
+            if (it == 0 && !goDirect && result.report.directSteps == 0 &&
+                (p_.options.directFallback || lastFactor())) {
                 goDirect = true;
-                continue;
-            }
-            if (it == 0 && lastFactor() && result.report.directSteps == 0) {
-                ownFactor_ = false;  // a factorisation of this pose's own matrix, then
                 continue;
             }
             result.report.converged = true;

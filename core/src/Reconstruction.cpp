@@ -37,10 +37,8 @@ RigidMotion fitRigidMotion(const Positions& from, const Positions& to) {
 namespace {
 
 // A step solved with an earlier factor is as good as a factorised one once conjugate gradients
-// reach this relative residual; below this many iterations per factorisation's cost (small
-// meshes, where factorising is cheap) the reuse is not tried.
+// reach this relative residual.
 constexpr double kReusedFactorTolerance = 1e-6;
-constexpr int kMinimumReuseIterations = 4;
 
 void checkOrientationGuard(const SolverOptions& o) {
     // Measured: with conjugate-gradient steps the guard's terms stall the line search and leave
@@ -478,10 +476,10 @@ SolveResult Reconstruction::Impl::solveDirect(const Positions& targets, const Po
         // come and go between steps. On the demo ×2's take (30 frames) the full mesh's tries
         // with them failed 181 times out of 196, and the take took 112 s instead of 98 s;
         // without them, 95 s.
-        const int reuseIterations = s.system->iterationsPerFactorization() * 3 / 4;
+        const int reuseIterations = s.system->reuseAllowance();
         const Kind kind = exact ? Kind::Exact : Kind::GaussNewton;
         if (ownFactor && s.system->hasFactor() && s.factorWithoutOrientationTerms &&
-            s.orientationTerms.empty() && reuseIterations >= kMinimumReuseIterations) {
+            s.orientationTerms.empty() && reuseIterations >= BlockSystem::kMinimumReuseIterations) {
             buildSystem(kind);
             s.system->addToDiagonal(s.tikhonov());
             int its = 0;
