@@ -144,6 +144,26 @@ void ArapEnergy::fitRotations(const Positions& V, std::vector<Mat3>& R, bool war
 void ArapEnergy::addRotationCoupling(const std::vector<Mat3>& R, const std::vector<Mat3>& curvature,
                                      const Eigen::VectorXd& x, double scale,
                                      Eigen::VectorXd& y) const {
+    std::vector<Vec3> edges;
+    rotatedCouplingEdges(R, edges);
+    addRotationCoupling(edges, curvature, x, scale, y);
+}
+
+void ArapEnergy::rotatedCouplingEdges(const std::vector<Mat3>& R, std::vector<Vec3>& edges) const {
+    const TriMesh& rest = *rest_;
+    edges.resize(9 * static_cast<size_t>(rest.faceCount()));
+    parallelFor(rest.faceCount(), [&](int begin, int end, int) {
+        for (int f = begin; f < end; ++f)
+            for (int s = 0; s < 3; ++s) {
+                const Mat3& Ri = R[rest.F(f, s)];
+                for (int c = 0; c < 3; ++c) edges[9 * f + 3 * s + c] = Ri * restEdge_[3 * f + c];
+            }
+    });
+}
+
+void ArapEnergy::addRotationCoupling(const std::vector<Vec3>& rotatedEdges,
+                                     const std::vector<Mat3>& curvature, const Eigen::VectorXd& x,
+                                     double scale, Eigen::VectorXd& y) const {
     const TriMesh& rest = *rest_;
     const int n = rest.vertexCount(), faces = rest.faceCount();
     cornerScratch_.resize(3 * static_cast<size_t>(faces));
@@ -155,10 +175,10 @@ void ArapEnergy::addRotationCoupling(const std::vector<Mat3>& R, const std::vect
             for (int c = 0; c < 3; ++c)
                 d[c] = cotangent_(f, c) * (x.segment<3>(3 * rest.F(f, (c + 1) % 3)) -
                                            x.segment<3>(3 * rest.F(f, (c + 2) % 3)));
+            const Vec3* e = rotatedEdges.data() + 9 * static_cast<size_t>(f);
             for (int s = 0; s < 3; ++s) {
-                const Mat3& Ri = R[rest.F(f, s)];
                 Vec3 u = Vec3::Zero();
-                for (int c = 0; c < 3; ++c) u += (Ri * restEdge_[3 * f + c]).cross(d[c]);
+                for (int c = 0; c < 3; ++c) u += e[3 * s + c].cross(d[c]);
                 cornerScratch_[3 * f + s] = u;
             }
         }
@@ -174,13 +194,16 @@ void ArapEnergy::addRotationCoupling(const std::vector<Mat3>& R, const std::vect
     // Gᵀ of that: edge (j, k) of f gets ±w Σ_i y_i × (R_i e⁰) over the face's corners i.
     parallelFor(faces, [&](int begin, int end, int) {
         for (int f = begin; f < end; ++f) {
+            const Vec3* e = rotatedEdges.data() + 9 * static_cast<size_t>(f);
+            const Vec3& y0 = vertexScratch_[rest.F(f, 0)];
+            const Vec3& y1 = vertexScratch_[rest.F(f, 1)];
+            const Vec3& y2 = vertexScratch_[rest.F(f, 2)];
             Vec3 out[3] = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
             for (int c = 0; c < 3; ++c) {
                 Vec3 t = Vec3::Zero();
-                for (int s = 0; s < 3; ++s) {
-                    const int i = rest.F(f, s);
-                    t += vertexScratch_[i].cross(R[i] * restEdge_[3 * f + c]);
-                }
+                t += y0.cross(e[c]);
+                t += y1.cross(e[3 + c]);
+                t += y2.cross(e[6 + c]);
                 t *= cotangent_(f, c);
                 out[(c + 1) % 3] += t;
                 out[(c + 2) % 3] -= t;

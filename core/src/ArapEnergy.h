@@ -31,6 +31,15 @@ class ArapEnergy {
     // change. x and y: 3 per vertex.
     void addRotationCoupling(const std::vector<Mat3>& R, const std::vector<Mat3>& curvature,
                              const Eigen::VectorXd& x, double scale, Eigen::VectorXd& y) const;
+    // The same with the rotations applied beforehand: R_i e⁰_c for each face's three corners i
+    // and three edges c (index 9 f + 3 s + c, i = F(f, s)). Conjugate gradients multiply with the
+    // same rotations dozens of times, and applying them was half the product's time (koala,
+    // 100K faces: 16.0 ms a product of the input's exact Hessian, 8.9 ms with them applied once).
+    // The arithmetic is the one without them, to the bit.
+    void rotatedCouplingEdges(const std::vector<Mat3>& R, std::vector<Vec3>& edges) const;
+    void addRotationCoupling(const std::vector<Vec3>& rotatedEdges,
+                             const std::vector<Mat3>& curvature, const Eigen::VectorXd& x,
+                             double scale, Eigen::VectorXd& y) const;
     double energy(const Positions& V, const std::vector<Mat3>& R) const;
     // b with ∇_V E = 2 (3 L V − b) for fixed R: the rotated rest edges, summed per vertex.
     Eigen::MatrixXd rotatedRestEdges(const std::vector<Mat3>& R) const;

@@ -106,6 +106,7 @@ double IterativeSolver::evaluate(const Positions& V, const Positions& targets, L
     // The rotations are needed by the preconditioner even when the fold guard is off.
     if (&L != &current_ && current_.rotation.size() == static_cast<size_t>(n_))
         L.rotation = current_.rotation;
+    L.couplingEdgesValid = false;
     p_.rigidity->fitRotations(V, L.rotation, true,
                               p_.rigid() && withCurvature ? &L.curvature : nullptr);
     if (p_.rigid()) e += p_.options.rigidityWeight * p_.rigidity->energy(V, L.rotation);
@@ -192,9 +193,14 @@ void IterativeSolver::multiply(const Linearisation& L, const Eigen::VectorXd& x,
             for (size_t j = 0; j < L.markerDn[k].size(); ++j)
                 y.segment<3>(3 * ring[j]) += lambda * d * L.markerDn[k][j].transpose() * Gx;
         }
-    if (p_.rigid() && exactGuardHessian_)
-        p_.rigidity->addRotationCoupling(L.rotation, L.curvature, x,
+    if (p_.rigid() && exactGuardHessian_) {
+        if (!L.couplingEdgesValid) {
+            p_.rigidity->rotatedCouplingEdges(L.rotation, L.couplingEdges);
+            L.couplingEdgesValid = true;
+        }
+        p_.rigidity->addRotationCoupling(L.couplingEdges, L.curvature, x,
                                          -2.0 * p_.options.rigidityWeight, y);
+    }
     zeroPinned(y);
 }
 

@@ -71,6 +71,10 @@ class IterativeSolver {
         std::vector<Vec3> markerMiss;
         std::vector<char> markerObserved;
         double energy = 0;
+        // ArapEnergy::rotatedCouplingEdges of `rotation`, made by the first product that needs
+        // them.
+        mutable std::vector<Vec3> couplingEdges;
+        mutable bool couplingEdgesValid = false;
     };
 
     double evaluate(const Positions& V, const Positions& targets, Linearisation& L,
