@@ -329,6 +329,38 @@ bool IterativeSolver::directStep(const Positions& V, const Positions& targets,
     return true;
 }
 
+void IterativeSolver::recycledStart(const Eigen::VectorXd& g, Eigen::VectorXd& step) {
+    std::vector<Eigen::VectorXd> B;
+    for (const Eigen::VectorXd& w : recycled_) {
+        Eigen::VectorXd b = w;
+        zeroPinned(b);
+        const double before = b.norm();
+        for (const Eigen::VectorXd& q : B) b -= q.dot(b) * q;
+        const double after = b.norm();
+        if (after > 1e-6 * before && after > 0) B.push_back(b / after);
+    }
+    const int m = static_cast<int>(B.size());
+    step.setZero(3 * n_);
+    if (m == 0) return;
+    std::vector<Eigen::VectorXd> HB(m);
+    for (int j = 0; j < m; ++j) multiply(current_, B[j], HB[j]);
+    Eigen::MatrixXd A(m, m);
+    Eigen::VectorXd rhs(m);
+    for (int i = 0; i < m; ++i) {
+        rhs[i] = -B[i].dot(g);
+        for (int j = 0; j < m; ++j) A(i, j) = 0.5 * (B[i].dot(HB[j]) + B[j].dot(HB[i]));
+    }
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(A);
+    const double top = eig.eigenvalues().cwiseAbs().maxCoeff();
+    Eigen::VectorXd y = Eigen::VectorXd::Zero(m);
+    for (int k = 0; k < m; ++k) {
+        const double lambda = eig.eigenvalues()[k];
+        if (lambda > 1e-10 * top)
+            y += eig.eigenvectors().col(k) * (eig.eigenvectors().col(k).dot(rhs) / lambda);
+    }
+    for (int j = 0; j < m; ++j) step += y[j] * B[j];
+}
+
 void IterativeSolver::blockJacobi(const Eigen::VectorXd& g, Eigen::VectorXd& d) const {
     const ShapeEncoding& enc = *p_.encoding;
     const auto& lap = p_.rigidity->laplacian();
@@ -393,26 +425,37 @@ SolveResult IterativeSolver::solve(const Positions& targets, const Positions* gu
     // near the minimum: 361 faces, 3.0 iterations. A start known to be near the minimum (a
     // prolongation) takes the exact one at once.
     exactGuardHessian_ = startsNearMinimum_;
-    for (int it = 0; it < p_.options.maxIterations && E > 0; ++it) {
+    if (!startsNearMinimum_ && !recycled_.empty() &&
+        !(guess && guess->rows() == lastAnswer_.rows() &&
+          (*guess - lastAnswer_).cwiseAbs().maxCoeff() == 0))
+        forgetMotions();
+    ++frames_;
+    const bool projectOnly =
+        p_.options.refreshEvery > 1 && !recycled_.empty() && frames_ % p_.options.refreshEvery != 0;
+    for (int it = 0; it < (projectOnly ? 1 : p_.options.maxIterations) && E > 0; ++it) {
         gradient(V, current_, g);
-        if (it == 0 && lastMotion_.size() == 3 * n_)
+        if (it == 0 && !recycled_.empty())
+            recycledStart(g, step);
+        else if (it == 0 && lastMotion_.size() == 3 * n_)
             step = lastMotion_;
         else
             step.resize(0);
-        // Without a factor of its own, a Preconditioner::LastFactor step makes one.
-        if (lastFactor() && !(ownFactor_ && p_.system->hasFactor())) goDirect = true;
-        int cgIts = 0;
-        if (goDirect)
-            step = -g;  // kept if the factorisation fails
-        else
-            cgIts = conjugateGradients(current_, g, step);
-        if ((goDirect || !cgConverged_) && directStep(V, targets, step)) {
-            ++result.report.directSteps;
-            // Once conjugate gradients have failed in a frame, its remaining steps go direct;
-            // with the last factor as preconditioner, the factor just made serves them.
-            goDirect = !lastFactor();
+        if (!projectOnly) {
+            // Without a factor of its own, a Preconditioner::LastFactor step makes one.
+            if (lastFactor() && !(ownFactor_ && p_.system->hasFactor())) goDirect = true;
+            int cgIts = 0;
+            if (goDirect)
+                step = -g;  // kept if the factorisation fails
+            else
+                cgIts = conjugateGradients(current_, g, step);
+            if ((goDirect || !cgConverged_) && directStep(V, targets, step)) {
+                ++result.report.directSteps;
+                // Once conjugate gradients have failed in a frame, its remaining steps go direct;
+                // with the last factor as preconditioner, the factor just made serves them.
+                goDirect = !lastFactor();
+            }
+            result.report.linearIterations += cgIts;
         }
-        result.report.linearIterations += cgIts;
         if (!step.allFinite()) break;
         double slope = g.dot(step);
         if (!(slope < 0)) {
@@ -444,7 +487,7 @@ SolveResult IterativeSolver::solve(const Positions& targets, const Positions* gu
             // (Preconditioner::LastFactor: a factorisation of this pose's own matrix. Kept in
             // this frame's goDirect, so that a frame with no step left does not leave the next
             // one a factorisation: the multiresolution method's input takes one step a frame.)
-            if (it == 0 && !goDirect && result.report.directSteps == 0 &&
+            if (it == 0 && !goDirect && !projectOnly && result.report.directSteps == 0 &&
                 (p_.options.directFallback || lastFactor())) {
                 goDirect = true;
                 continue;
@@ -456,6 +499,12 @@ SolveResult IterativeSolver::solve(const Positions& targets, const Positions* gu
     lastMotion_.resize(3 * n_);
     for (int v = 0; v < n_; ++v)
         lastMotion_.segment<3>(3 * v) = (V.row(v) - startPose.row(v)).transpose();
+    if (p_.options.recycledMotions > 0 && !projectOnly && lastMotion_.squaredNorm() > 0) {
+        if (static_cast<int>(recycled_.size()) >= p_.options.recycledMotions)
+            recycled_.erase(recycled_.begin());
+        recycled_.push_back(lastMotion_);
+    }
+    if (p_.options.recycledMotions > 0) lastAnswer_ = V;
     result.report.energyAfter = E;
     result.report.milliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

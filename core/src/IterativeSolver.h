@@ -2,6 +2,7 @@
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/Core>
+#include <Eigen/Eigenvalues>
 #include <memory>
 #include <vector>
 
@@ -47,6 +48,13 @@ class IterativeSolver {
     // Whether solve()'s guess is near the minimum (a prolongation of a converged coarser level),
     // so that the fold guard's exact Hessian is used from the first step (see solve()).
     void setStartsNearMinimum(bool near) { startsNearMinimum_ = near; }
+    // SolverOptions::recycledMotions: the motions kept belong to the sequence solved so far. A
+    // solve whose guess is not the last answer (a jump in the timeline) forgets them itself,
+    // except on a multiresolution input level (setStartsNearMinimum), whose solver calls this.
+    void forgetMotions() {
+        recycled_.clear();
+        frames_ = 0;
+    }
     // Preconditioner::LastFactor: the system's factor is no longer this solver's (the direct
     // method or a change of options replaced or outdated it); the next step factorises.
     void forgetFactor() { ownFactor_ = false; }
@@ -114,6 +122,12 @@ class IterativeSolver {
     Eigen::VectorXd ax_, cgR_, cgZ_, cgP_, cgHp_;
     mutable Eigen::VectorXd rotated_;
     Eigen::VectorXd lastMotion_;  // the last frame's free-vertex motion, the next CG's start
+    std::vector<Eigen::VectorXd> recycled_;  // the last full frames' motions, newest last
+    long frames_ = 0;                        // solves since the motions were last forgotten
+    Positions lastAnswer_;                   // with recycled motions, to tell a jump
+    // The minimiser of the current pose's quadratic model (the Hessian multiply() applies) over
+    // the span of recycled_; directions of non-positive curvature are left out.
+    void recycledStart(const Eigen::VectorXd& g, Eigen::VectorXd& step);
     // Preconditioner::Scalar: the factor of the rest matrix's block traces.
     std::unique_ptr<Eigen::CholmodDecomposition<Eigen::SparseMatrix<double>, Eigen::Lower>>
         scalarFactor_;

@@ -48,6 +48,8 @@ MultiresSolver::MultiresSolver(const TriMesh& rest, const std::vector<int>& mark
     coarse.maxCgIterations = std::max(options.maxCgIterations, 50);  // cheap at this size
     coarse.maxIterations = options.coarsestIterations;
     coarse.relativeTolerance = std::min(options.relativeTolerance, 1e-4);
+    coarse.recycledMotions = 0;
+    coarse.refreshEvery = 1;
     // The orientation guard needs the direct method, which the coarsest level's size affords
     // (a take's frame there fell back to a factorisation in most steps anyway). The finer levels
     // have no guard: what they add to the coarsest shape is small.
@@ -222,6 +224,7 @@ Positions MultiresSolver::restrictTo(int l, const Positions& input) const {
 
 void MultiresSolver::restartFrom(const Positions& guess) {
     const int L = levelCount();
+    if (L > 1) fine_.impl_->iterative->forgetMotions();
     last_.resize(L);
     for (int l = 0; l < L; ++l) last_[l] = restrictTo(l, guess);
     lastProlonged_.resize(L - 1);

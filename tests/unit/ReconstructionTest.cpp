@@ -433,6 +433,47 @@ TEST(IterativeReconstruction, TheLastFactorPreconditionsTheNextFrames) {
     EXPECT_LT(factorised, steps / 2) << steps << " steps";
 }
 
+// SolverOptions::refreshEvery: between frames solved in full, a frame takes one step to the
+// quadratic model's minimiser over the last full frames' motions, with no conjugate gradients.
+// A steady bend's motions are alike, so that step does most of a frame's work.
+TEST(IterativeReconstruction, FramesBetweenRefreshesProjectOnPastMotions) {
+    const TriMesh mesh = tube(10, 12, 4.0);
+    const auto markers = everyNth(mesh.vertexCount(), 7);
+    SolverOptions options = iterativeOptions(true);
+    options.recycledMotions = 2;
+    options.refreshEvery = 2;
+    Reconstruction solver, reference;
+    solver.prepare(mesh, markers, options);
+    reference.prepare(mesh, markers, iterativeOptions(true));
+    Positions last = mesh.V;
+    int projected = 0;
+    for (int f = 1; f <= 6; ++f) {
+        const Positions targets = rows(bent(mesh.V, 0.08 * f), markers);
+        const SolveResult r = solver.solve(targets, &last);
+        const SolveResult expected = reference.solve(targets, &last);
+        const double fromStart = maxDistance(last, expected.V);
+        const double error = maxDistance(r.V, expected.V);
+        // Frame 1 has no motion to recycle; frames 3 and 5 fall between refreshes.
+        if (f >= 3 && f % 2 == 1) {
+            ++projected;
+            EXPECT_EQ(r.report.linearIterations, 0) << "frame " << f;
+            EXPECT_EQ(r.report.directSteps, 0) << "frame " << f;
+            EXPECT_EQ(r.report.iterations, 1) << "frame " << f;
+            EXPECT_LT(error, 0.1 * fromStart) << "frame " << f;
+            EXPECT_LT(r.report.energyAfter, r.report.energyBefore) << "frame " << f;
+        } else {
+            EXPECT_LE(error, 1e-6 * fromStart) << "frame " << f;
+        }
+        last = r.V;
+    }
+    EXPECT_EQ(projected, 2);
+    // A jump back to the rest pose, where frame 7 would have been projected: the motions kept
+    // belong to the bend, so it is solved in full instead.
+    const Positions targets = rows(bent(mesh.V, 0.04), markers);
+    const SolveResult jump = solver.solve(targets, &mesh.V);
+    EXPECT_GT(jump.report.linearIterations, 0);
+}
+
 namespace {
 
 void missingMarkersAndSwitchingMethods(SolverOptions::Preconditioner p) {
