@@ -141,14 +141,6 @@ void ArapEnergy::fitRotations(const Positions& V, std::vector<Mat3>& R, bool war
     });
 }
 
-void ArapEnergy::addRotationCoupling(const std::vector<Mat3>& R, const std::vector<Mat3>& curvature,
-                                     const Eigen::VectorXd& x, double scale,
-                                     Eigen::VectorXd& y) const {
-    std::vector<Vec3> edges;
-    rotatedCouplingEdges(R, edges);
-    addRotationCoupling(edges, curvature, x, scale, y);
-}
-
 void ArapEnergy::rotatedCouplingEdges(const std::vector<Mat3>& R, std::vector<Vec3>& edges) const {
     const TriMesh& rest = *rest_;
     edges.resize(9 * static_cast<size_t>(rest.faceCount()));

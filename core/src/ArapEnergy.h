@@ -28,14 +28,11 @@ class ArapEnergy {
     // miss: y += scale · Σ_v G_vᵀ C_v G_v x, with G_v x = Σ w (R_v e⁰) × (x_j − x_k) over the
     // edges of v's faces and C_v = curvature[v]. The full Hessian is 6 L ⊗ I − 2 Σ G_vᵀ C_v G_v;
     // without this term Gauss–Newton converges only linearly on bends, where the rotations must
-    // change. x and y: 3 per vertex.
-    void addRotationCoupling(const std::vector<Mat3>& R, const std::vector<Mat3>& curvature,
-                             const Eigen::VectorXd& x, double scale, Eigen::VectorXd& y) const;
-    // The same with the rotations applied beforehand: R_i e⁰_c for each face's three corners i
-    // and three edges c (index 9 f + 3 s + c, i = F(f, s)). Conjugate gradients multiply with the
-    // same rotations dozens of times, and applying them was half the product's time (koala,
-    // 100K faces: 16.0 ms a product of the input's exact Hessian, 8.9 ms with them applied once).
-    // The arithmetic is the one without them, to the bit.
+    // change. x and y: 3 per vertex. The rotations come applied to the rest edges, by
+    // rotatedCouplingEdges(): R_i e⁰_c for each face's three corners i and three edges c (index
+    // 9 f + 3 s + c, i = F(f, s)). Conjugate gradients multiply with the same rotations dozens of
+    // times, and applying them in every product was half its time (koala, 100K faces: 16.0 ms a
+    // product of the input's exact Hessian, 8.9 ms with them applied once per pose).
     void rotatedCouplingEdges(const std::vector<Mat3>& R, std::vector<Vec3>& edges) const;
     void addRotationCoupling(const std::vector<Vec3>& rotatedEdges,
                              const std::vector<Mat3>& curvature, const Eigen::VectorXd& x,

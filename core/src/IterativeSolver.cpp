@@ -1,5 +1,6 @@
 #include "IterativeSolver.h"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -425,7 +426,7 @@ SolveResult IterativeSolver::solve(const Positions& targets, const Positions* gu
     // near the minimum: 361 faces, 3.0 iterations. A start known to be near the minimum (a
     // prolongation) takes the exact one at once.
     exactGuardHessian_ = startsNearMinimum_;
-    if (!startsNearMinimum_ && !recycled_.empty() &&
+    if (!callerTellsJumps_ && !recycled_.empty() &&
         !(guess && guess->rows() == lastAnswer_.rows() &&
           (*guess - lastAnswer_).cwiseAbs().maxCoeff() == 0))
         forgetMotions();
@@ -504,7 +505,7 @@ SolveResult IterativeSolver::solve(const Positions& targets, const Positions* gu
             recycled_.erase(recycled_.begin());
         recycled_.push_back(lastMotion_);
     }
-    if (p_.options.recycledMotions > 0) lastAnswer_ = V;
+    if (p_.options.recycledMotions > 0 && !callerTellsJumps_) lastAnswer_ = V;
     result.report.energyAfter = E;
     result.report.milliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

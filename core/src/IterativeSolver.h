@@ -2,7 +2,6 @@
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 #include <memory>
 #include <vector>
 
@@ -49,8 +48,10 @@ class IterativeSolver {
     // so that the fold guard's exact Hessian is used from the first step (see solve()).
     void setStartsNearMinimum(bool near) { startsNearMinimum_ = near; }
     // SolverOptions::recycledMotions: the motions kept belong to the sequence solved so far. A
-    // solve whose guess is not the last answer (a jump in the timeline) forgets them itself,
-    // except on a multiresolution input level (setStartsNearMinimum), whose solver calls this.
+    // solve whose guess is not the last answer (a jump in the timeline) forgets them, unless the
+    // caller tells the jumps itself (a multiresolution input level, whose guess is a
+    // prolongation, never the last answer) and calls forgetMotions().
+    void setCallerTellsJumps(bool tells) { callerTellsJumps_ = tells; }
     void forgetMotions() {
         recycled_.clear();
         frames_ = 0;
@@ -125,6 +126,7 @@ class IterativeSolver {
     std::vector<Eigen::VectorXd> recycled_;  // the last full frames' motions, newest last
     long frames_ = 0;                        // solves since the motions were last forgotten
     Positions lastAnswer_;                   // with recycled motions, to tell a jump
+    bool callerTellsJumps_ = false;
     // The minimiser of the current pose's quadratic model (the Hessian multiply() applies) over
     // the span of recycled_; directions of non-positive curvature are left out.
     void recycledStart(const Eigen::VectorXd& g, Eigen::VectorXd& step);

@@ -73,6 +73,7 @@ MultiresSolver::MultiresSolver(const TriMesh& rest, const std::vector<int>& mark
     fine.orientationWeight = 0;
     fine_.prepare(rest, markers, fine);
     fine_.impl_->iterative->setStartsNearMinimum(true);
+    fine_.impl_->iterative->setCallerTellsJumps(true);  // restartFrom()
     // The levels between are only prolonged through: their encodings are all they need.
     for (int l = 1; l < L - 1; ++l) {
         const TriMesh& mesh = hierarchy_.level(l).mesh;
