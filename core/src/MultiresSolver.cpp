@@ -223,6 +223,37 @@ Positions MultiresSolver::restrictTo(int l, const Positions& input) const {
     return out;
 }
 
+void MultiresSolver::forgetKeyframes() {
+    keyframe_.reset();
+    intervalCorrection_.resize(0, 3);
+    intervalCoarsestChange_.resize(0, 3);
+    sinceKeyframe_ = 0;
+}
+
+void MultiresSolver::keepKeyframe(const std::vector<Positions>& answer, const Positions& prolonged,
+                                  bool warm) {
+    if (warm && keyframe_) {
+        const Keyframe& last = *keyframe_;
+        intervalCorrection_ = (answer.front() - last.fine) - (prolonged - last.prolonged);
+        intervalCoarsestChange_ = answer.back() - last.coarsest;
+    } else {
+        forgetKeyframes();
+    }
+    keyframe_ = Keyframe{answer.front(), prolonged, answer.back()};
+    applied_.setZero(answer.front().rows(), 3);
+    sinceKeyframe_ = 0;
+}
+
+void MultiresSolver::extrapolateCorrection(std::vector<Positions>& answer) {
+    const Positions moved = answer.back() - keyframe_->coarsest;
+    const double norm2 = intervalCoarsestChange_.squaredNorm();
+    const double along = norm2 > 0 ? moved.cwiseProduct(intervalCoarsestChange_).sum() / norm2 : 0;
+    Positions correction = along * intervalCorrection_;
+    answer.front() += correction - applied_;
+    applied_.swap(correction);
+    ++sinceKeyframe_;
+}
+
 void MultiresSolver::restartFrom(const Positions& guess) {
     const int L = levelCount();
     if (L > 1) fine_.impl_->iterative->forgetMotions();
@@ -254,10 +285,16 @@ SolveResult MultiresSolver::solve(const Positions& targets, const Positions* gue
         if (guess) answer[l] += last_[l] - lastProlonged_[l];
     }
     SolveReport report;
-    const bool corrected = fine_.options().correctionSteps > 0;
+    const SolverOptions& fineOptions = fine_.options();
+    const bool keyframes = fineOptions.keyframeEvery > 1 &&
+                           fineOptions.maxIterations + fineOptions.correctionSteps > 0;
+    const bool between = keyframes && warm && intervalCorrection_.rows() > 0 &&
+                         sinceKeyframe_ + 1 < fineOptions.keyframeEvery;
+    const bool corrected = !between && fineOptions.correctionSteps > 0;
     double energy = std::numeric_limits<double>::quiet_NaN();
+    if (between) extrapolateCorrection(answer);
     if (corrected) energy = correctionSteps(targets, prolonged, answer[0], report);
-    if (fine_.options().maxIterations > 0) {
+    if (!between && fineOptions.maxIterations > 0) {
         SolveResult r = fine_.solve(targets, &answer[0]);
         answer[0] = std::move(r.V);
         r.report.iterations += report.iterations;
@@ -269,6 +306,7 @@ SolveResult MultiresSolver::solve(const Positions& targets, const Positions* gue
         report.energyBefore = report.energyAfter = energy;
         if (corrected) report.energies = {energy};
     }
+    if (keyframes && !between) keepKeyframe(answer, prolonged[0], warm);
     report.iterations += coarse.report.iterations;
     report.linearIterations += coarse.report.linearIterations;
     report.directSteps += coarse.report.directSteps;

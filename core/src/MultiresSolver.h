@@ -1,6 +1,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "boneless/MeshHierarchy.h"
@@ -85,6 +86,22 @@ class MultiresSolver {
     // Per level but the coarsest, the prolongation of the level below's last answer (the
     // answer without its detail): the next frame adds the change from it.
     std::vector<Positions> lastProlonged_;
+
+    // SolverOptions::keyframeEvery. A frame between keyframes takes the input's correction
+    // over the last interval (the answer's change minus the prolongation's, which the warm
+    // start already carries) times the coarsest level's progress along that interval.
+    struct Keyframe {
+        Positions fine, prolonged, coarsest;  // answer[0], prolonged[0], answer[L − 1]
+    };
+    void forgetKeyframes();
+    // After a keyframe's input steps; `warm`: it continued the sequence of the last keyframe.
+    void keepKeyframe(const std::vector<Positions>& answer, const Positions& prolonged, bool warm);
+    void extrapolateCorrection(std::vector<Positions>& answer);
+    std::optional<Keyframe> keyframe_;  // the last one
+    Positions intervalCorrection_;      // over the interval that ended at it
+    Positions intervalCoarsestChange_;
+    Positions applied_;  // the multiple of intervalCorrection_ added since the keyframe
+    int sinceKeyframe_ = 0;
 };
 
 }  // namespace boneless

@@ -48,6 +48,8 @@ struct Args {
     int corrections = 0;
     int recycled = 0;
     int refreshEvery = 1;
+    int keyframeEvery = 1;
+    bool perFrame = false;
 };
 Args gArgs;
 
@@ -91,6 +93,7 @@ SolverOptions fastOptions() {
     o.correctionSteps = gArgs.corrections;
     o.recycledMotions = gArgs.recycled;
     o.refreshEvery = gArgs.refreshEvery;
+    o.keyframeEvery = gArgs.keyframeEvery;
     o.rigidityWeight = gArgs.rigidity;
     o.directFallback = gArgs.directFallback;
     o.maxCgIterations = gArgs.maxCg;
@@ -178,6 +181,9 @@ void checkAgainstConverged(Reconstruction& reference, const TriMesh& mesh,
         const SolveResult c = reference.solve(work.targets(f), &V);
         const double pct = 100.0 * rmsDistance(V, c.V) / diagonal;
         ++out.checkedFrames;
+        if (gArgs.perFrame)
+            std::fprintf(stderr, "  frame %3d: %.4f %% from converged (reference: %zu steps)\n", f,
+                         pct, c.report.energies.size() - 1);
         const auto& e = c.report.energies;
         if (!c.report.converged) {
             ++out.unconvergedReferences;
@@ -354,7 +360,8 @@ int sweep(const Args& args, const TriMesh& input, const char* self) {
             << " --method " << args.method << " --coarsest " << args.coarsest << " --rigidity "
             << args.rigidity << (args.directFallback ? " --direct-fallback" : "")
             << " --corrections " << args.corrections << " --recycled " << args.recycled
-            << " --refresh-every " << args.refreshEvery;
+            << " --refresh-every " << args.refreshEvery << " --keyframe-every "
+            << args.keyframeEvery << (args.perFrame ? " --per-frame" : "");
         FILE* pipe = popen(cmd.str().c_str(), "r");
         std::string text;
         char buffer[4096];
@@ -409,6 +416,8 @@ int main(int argc, char** argv) {
     app.add_option("--check-every", args.checkEvery,
                    "compare every N-th frame with its fully converged solution (0 = none)");
     app.add_flag("--json", args.json, "print one JSON object");
+    app.add_flag("--per-frame", args.perFrame,
+                 "print each checked frame's distance to its converged solution (stderr)");
     app.add_flag("--sweep", args.sweep, "run on 10K, 50K, 100K and 200K faces made from the mesh");
     app.add_option("--gn-iterations", args.gnIterations,
                    "fast solver: Gauss-Newton steps per frame");
@@ -417,6 +426,9 @@ int main(int argc, char** argv) {
     app.add_option(
         "--refresh-every", args.refreshEvery,
         "fast solver (experimental): solve every N-th frame in full, project the others");
+    app.add_option("--keyframe-every", args.keyframeEvery,
+                   "fast solver, multires (experimental): input-level steps on every N-th frame "
+                   "only, the correction extrapolated on the others");
     app.add_option("--max-cg", args.maxCg,
                    "fast solver: conjugate-gradient steps per Gauss-Newton step");
     app.add_option("--cg-tolerance", args.cgTolerance, "fast solver: relative CG residual");

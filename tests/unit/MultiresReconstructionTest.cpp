@@ -46,6 +46,16 @@ double rms(const Positions& a, const Positions& b) {
     return std::sqrt((a - b).rowwise().squaredNorm().mean());
 }
 
+// A sphere bent a little more each frame, and a solver that converges each frame's answer.
+struct BendingSphere {
+    TriMesh mesh = icosphere(4);
+    std::vector<int> markers = everyNth(mesh.vertexCount(), 53);
+    double diagonal = boundingBoxDiagonal(mesh.V);
+    Reconstruction reference;
+    BendingSphere() { reference.prepare(mesh, markers, convergedOptions()); }
+    Positions targets(double bend) const { return rows(bent(mesh.V, bend), markers); }
+};
+
 }  // namespace
 
 TEST(MultiresReconstruction, RestPoseTargetsGiveBackTheRestMesh) {
@@ -98,11 +108,8 @@ TEST(MultiresReconstruction, TheGuardedCoarsestLevelKeepsTheInvariants) {
 // frame's converged minimum (the single-level solver run to a standstill), and closer with a
 // fine Gauss–Newton step than with prolongation alone.
 TEST(MultiresReconstruction, TracksTheConvergedSolutionAlongASequence) {
-    const TriMesh mesh = icosphere(4);
-    const auto markers = everyNth(mesh.vertexCount(), 53);
-    const double diagonal = boundingBoxDiagonal(mesh.V);
-    Reconstruction reference;
-    reference.prepare(mesh, markers, convergedOptions());
+    BendingSphere sphere;
+    auto& [mesh, markers, diagonal, reference] = sphere;
     // Prolongation alone, one fine Gauss–Newton step, one correction step.
     const std::pair<int, int> variants[] = {{0, 0}, {1, 0}, {0, 1}};
     double worst[3] = {0, 0, 0};
@@ -112,7 +119,7 @@ TEST(MultiresReconstruction, TracksTheConvergedSolutionAlongASequence) {
         solver.prepare(mesh, markers, multiresOptions(fine, corrections));
         Positions previous = mesh.V;
         for (int f = 1; f <= 12; ++f) {
-            const Positions targets = rows(bent(mesh.V, 0.05 * f), markers);
+            const Positions targets = sphere.targets(0.05 * f);
             SolveResult r = solver.solve(targets, &previous);
             ASSERT_TRUE(r.V.allFinite());
             const double energy = solver.energy(r.V, targets);
@@ -135,6 +142,52 @@ TEST(MultiresReconstruction, TracksTheConvergedSolutionAlongASequence) {
     EXPECT_LT(worst[1], 0.1 * worst[0]);
     // The correction steps remove part of what prolongation leaves.
     EXPECT_LT(worst[2], 0.8 * worst[0]);
+}
+
+// SolverOptions::keyframeEvery: a frame between keyframes takes no step on the input (its
+// energies are NaN, as with prolongation alone), and adds the input's correction over the last
+// keyframe interval, scaled by the coarsest level's progress along it. That keeps it near its
+// minimum where the prolongation alone from the same keyframe drifts. A jump starts over.
+TEST(MultiresReconstruction, FramesBetweenKeyframesExtrapolateTheInputsCorrection) {
+    BendingSphere sphere;
+    auto& [mesh, markers, diagonal, reference] = sphere;
+    SolverOptions options = multiresOptions(3);
+    options.keyframeEvery = 3;
+    Reconstruction solver;
+    solver.prepare(mesh, markers, options);
+    Positions previous = mesh.V;
+    double worstKeyframe = 0, worstBetween = 0;
+    int between = 0;
+    for (int f = 1; f <= 12; ++f) {
+        const Positions targets = sphere.targets(0.05 * f);
+        SolveResult r = solver.solve(targets, &previous);
+        ASSERT_TRUE(r.V.allFinite());
+        const double error = rms(r.V, reference.solve(targets, &r.V).V) / diagonal;
+        // Frames 1 and 2 are keyframes (the second one closes the first interval); then every
+        // third frame is.
+        const bool isBetween = f > 2 && (f - 2) % 3 != 0;
+        EXPECT_EQ(std::isnan(r.report.energyAfter), isBetween) << "frame " << f;
+        if (isBetween) {
+            ++between;
+            worstBetween = std::max(worstBetween, error);
+        } else {
+            worstKeyframe = std::max(worstKeyframe, error);
+        }
+        previous.swap(r.V);
+    }
+    EXPECT_EQ(between, 7);
+    // Measured (of the diagonal): keyframes 0.0001 %, frames between them 0.027 %; with the
+    // extrapolated correction left out, 0.079 %.
+    EXPECT_LT(worstKeyframe, 5e-6);
+    EXPECT_LT(worstBetween, 4e-4);
+    // A jump back: no interval belongs to it, so it and the frame after it are keyframes.
+    for (double bend : {0.1, 0.15}) {
+        const Positions targets = sphere.targets(bend);
+        const SolveResult r = solver.solve(targets, bend == 0.1 ? &mesh.V : &previous);
+        EXPECT_FALSE(std::isnan(r.report.energyAfter)) << "bend " << bend;
+        EXPECT_LT(rms(r.V, reference.solve(targets, &r.V).V) / diagonal, 5e-5);
+        previous = r.V;
+    }
 }
 
 // A mesh smaller than the coarsest level is solved on one level: the single-level answer.
