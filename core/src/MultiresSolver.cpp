@@ -223,13 +223,6 @@ Positions MultiresSolver::restrictTo(int l, const Positions& input) const {
     return out;
 }
 
-void MultiresSolver::forgetKeyframes() {
-    keyframe_.reset();
-    intervalCorrection_.resize(0, 3);
-    intervalCoarsestChange_.resize(0, 3);
-    sinceKeyframe_ = 0;
-}
-
 void MultiresSolver::keepKeyframe(const std::vector<Positions>& answer, const Positions& prolonged,
                                   bool warm) {
     if (warm && keyframe_) {
@@ -237,10 +230,10 @@ void MultiresSolver::keepKeyframe(const std::vector<Positions>& answer, const Po
         intervalCorrection_ = (answer.front() - last.fine) - (prolonged - last.prolonged);
         intervalCoarsestChange_ = answer.back() - last.coarsest;
     } else {
-        forgetKeyframes();
+        intervalCorrection_.resize(0, 3);  // no interval continues into this frame
     }
     keyframe_ = Keyframe{answer.front(), prolonged, answer.back()};
-    applied_.setZero(answer.front().rows(), 3);
+    appliedAlong_ = 0;
     sinceKeyframe_ = 0;
 }
 
@@ -248,9 +241,9 @@ void MultiresSolver::extrapolateCorrection(std::vector<Positions>& answer) {
     const Positions moved = answer.back() - keyframe_->coarsest;
     const double norm2 = intervalCoarsestChange_.squaredNorm();
     const double along = norm2 > 0 ? moved.cwiseProduct(intervalCoarsestChange_).sum() / norm2 : 0;
-    Positions correction = along * intervalCorrection_;
-    answer.front() += correction - applied_;
-    applied_.swap(correction);
+    // The last answer already holds appliedAlong_ times the same correction.
+    answer.front() += (along - appliedAlong_) * intervalCorrection_;
+    appliedAlong_ = along;
     ++sinceKeyframe_;
 }
 

@@ -93,14 +93,13 @@ class MultiresSolver {
     struct Keyframe {
         Positions fine, prolonged, coarsest;  // answer[0], prolonged[0], answer[L − 1]
     };
-    void forgetKeyframes();
     // After a keyframe's input steps; `warm`: it continued the sequence of the last keyframe.
     void keepKeyframe(const std::vector<Positions>& answer, const Positions& prolonged, bool warm);
     void extrapolateCorrection(std::vector<Positions>& answer);
     std::optional<Keyframe> keyframe_;  // the last one
     Positions intervalCorrection_;      // over the interval that ended at it
     Positions intervalCoarsestChange_;
-    Positions applied_;  // the multiple of intervalCorrection_ added since the keyframe
+    double appliedAlong_ = 0;  // the multiple of intervalCorrection_ added since the keyframe
     int sinceKeyframe_ = 0;
 };
 
