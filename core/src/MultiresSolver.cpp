@@ -25,7 +25,8 @@ HierarchyOptions hierarchyOptions(const SolverOptions& o, size_t markers) {
 
 MultiresSolver::MultiresSolver(const TriMesh& rest, const std::vector<int>& markers,
                                const SolverOptions& options)
-    : hierarchy_(rest, markers, hierarchyOptions(options, markers.size())) {
+    : hierarchy_(rest, markers, hierarchyOptions(options, markers.size())),
+      diagonal_(boundingBoxDiagonal(rest.V)) {
     const int L = hierarchy_.levelCount();
     auto levelMarkers = [&](int l) {
         const HierarchyLevel& level = hierarchy_.level(l);
@@ -237,10 +238,17 @@ void MultiresSolver::keepKeyframe(const std::vector<Positions>& answer, const Po
     sinceKeyframe_ = 0;
 }
 
-void MultiresSolver::extrapolateCorrection(std::vector<Positions>& answer) {
-    const Positions moved = answer.back() - keyframe_->coarsest;
+MultiresSolver::Progress MultiresSolver::coarsestProgress(const Positions& coarsest) const {
+    const Positions moved = coarsest - keyframe_->coarsest;
     const double norm2 = intervalCoarsestChange_.squaredNorm();
-    const double along = norm2 > 0 ? moved.cwiseProduct(intervalCoarsestChange_).sum() / norm2 : 0;
+    Progress p;
+    p.along = norm2 > 0 ? moved.cwiseProduct(intervalCoarsestChange_).sum() / norm2 : 0;
+    const double movedNorm = moved.norm();
+    p.off = movedNorm > 0 ? (moved - p.along * intervalCoarsestChange_).norm() / movedNorm : 0;
+    return p;
+}
+
+void MultiresSolver::extrapolateCorrection(std::vector<Positions>& answer, double along) {
     // The last answer already holds appliedAlong_ times the same correction.
     answer.front() += (along - appliedAlong_) * intervalCorrection_;
     appliedAlong_ = along;
@@ -281,11 +289,19 @@ SolveResult MultiresSolver::solve(const Positions& targets, const Positions* gue
     const SolverOptions& fineOptions = fine_.options();
     const bool keyframes = fineOptions.keyframeEvery > 1 &&
                            fineOptions.maxIterations + fineOptions.correctionSteps > 0;
-    const bool between = keyframes && warm && intervalCorrection_.rows() > 0 &&
-                         sinceKeyframe_ + 1 < fineOptions.keyframeEvery;
+    bool between = keyframes && warm && intervalCorrection_.rows() > 0 &&
+                   sinceKeyframe_ + 1 < fineOptions.keyframeEvery &&
+                   keyframeMove_ <= fineOptions.keyframeTolerance * diagonal_;
+    Progress progress;
+    if (between) {
+        progress = coarsestProgress(answer.back());
+        between = progress.off <= fineOptions.keyframeTurn;
+    }
     const bool corrected = !between && fineOptions.correctionSteps > 0;
     double energy = std::numeric_limits<double>::quiet_NaN();
-    if (between) extrapolateCorrection(answer);
+    if (between) extrapolateCorrection(answer, progress.along);
+    Positions keyframeStart;
+    if (keyframes && !between) keyframeStart = answer[0];
     if (corrected) energy = correctionSteps(targets, prolonged, answer[0], report);
     if (!between && fineOptions.maxIterations > 0) {
         SolveResult r = fine_.solve(targets, &answer[0]);
@@ -299,7 +315,10 @@ SolveResult MultiresSolver::solve(const Positions& targets, const Positions* gue
         report.energyBefore = report.energyAfter = energy;
         if (corrected) report.energies = {energy};
     }
-    if (keyframes && !between) keepKeyframe(answer, prolonged[0], warm);
+    if (keyframes && !between) {
+        keyframeMove_ = std::sqrt((answer[0] - keyframeStart).rowwise().squaredNorm().mean());
+        keepKeyframe(answer, prolonged[0], warm);
+    }
     report.iterations += coarse.report.iterations;
     report.linearIterations += coarse.report.linearIterations;
     report.directSteps += coarse.report.directSteps;

@@ -95,12 +95,20 @@ class MultiresSolver {
     };
     // After a keyframe's input steps; `warm`: it continued the sequence of the last keyframe.
     void keepKeyframe(const std::vector<Positions>& answer, const Positions& prolonged, bool warm);
-    void extrapolateCorrection(std::vector<Positions>& answer);
+    // How the coarsest level has moved since the keyframe: `along` the interval's coarsest change
+    // (least squares), and the share of the move that lies `off` it.
+    struct Progress {
+        double along = 0, off = 0;
+    };
+    Progress coarsestProgress(const Positions& coarsest) const;
+    void extrapolateCorrection(std::vector<Positions>& answer, double along);
     std::optional<Keyframe> keyframe_;  // the last one
     Positions intervalCorrection_;      // over the interval that ended at it
     Positions intervalCoarsestChange_;
     double appliedAlong_ = 0;  // the multiple of intervalCorrection_ added since the keyframe
     int sinceKeyframe_ = 0;
+    double keyframeMove_ = 0;  // RMS of what the last keyframe's input steps moved
+    double diagonal_ = 0;      // the rest mesh's bounding-box diagonal
 };
 
 }  // namespace boneless

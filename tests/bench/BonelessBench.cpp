@@ -49,6 +49,9 @@ struct Args {
     int recycled = 0;
     int refreshEvery = 1;
     int keyframeEvery = 1;
+    double keyframeTolerance = SolverOptions{}.keyframeTolerance;
+    double keyframeTurn = SolverOptions{}.keyframeTurn;
+    double relativeTolerance = SolverOptions{}.relativeTolerance;
     bool perFrame = false;
 };
 Args gArgs;
@@ -94,6 +97,9 @@ SolverOptions fastOptions() {
     o.recycledMotions = gArgs.recycled;
     o.refreshEvery = gArgs.refreshEvery;
     o.keyframeEvery = gArgs.keyframeEvery;
+    o.keyframeTolerance = gArgs.keyframeTolerance;
+    o.keyframeTurn = gArgs.keyframeTurn;
+    o.relativeTolerance = gArgs.relativeTolerance;
     o.rigidityWeight = gArgs.rigidity;
     o.directFallback = gArgs.directFallback;
     o.maxCgIterations = gArgs.maxCg;
@@ -361,7 +367,9 @@ int sweep(const Args& args, const TriMesh& input, const char* self) {
             << args.rigidity << (args.directFallback ? " --direct-fallback" : "")
             << " --corrections " << args.corrections << " --recycled " << args.recycled
             << " --refresh-every " << args.refreshEvery << " --keyframe-every "
-            << args.keyframeEvery << (args.perFrame ? " --per-frame" : "");
+            << args.keyframeEvery << " --keyframe-tolerance " << args.keyframeTolerance
+            << " --keyframe-turn " << args.keyframeTurn << " --relative-tolerance "
+            << args.relativeTolerance << (args.perFrame ? " --per-frame" : "");
         FILE* pipe = popen(cmd.str().c_str(), "r");
         std::string text;
         char buffer[4096];
@@ -429,6 +437,14 @@ int main(int argc, char** argv) {
     app.add_option("--keyframe-every", args.keyframeEvery,
                    "fast solver, multires (experimental): input-level steps on every N-th frame "
                    "only, the correction extrapolated on the others");
+    app.add_option("--keyframe-tolerance", args.keyframeTolerance,
+                   "fast solver, multires: a keyframe that moved further (RMS, fraction of the "
+                   "diagonal) makes the next frame a keyframe");
+    app.add_option("--keyframe-turn", args.keyframeTurn,
+                   "fast solver, multires: a frame whose coarsest move lies more than this share "
+                   "off the last interval's is a keyframe");
+    app.add_option("--relative-tolerance", args.relativeTolerance,
+                   "fast solver: stop a frame's steps below this relative energy decrease");
     app.add_option("--max-cg", args.maxCg,
                    "fast solver: conjugate-gradient steps per Gauss-Newton step");
     app.add_option("--cg-tolerance", args.cgTolerance, "fast solver: relative CG residual");

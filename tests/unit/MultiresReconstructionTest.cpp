@@ -153,6 +153,9 @@ TEST(MultiresReconstruction, FramesBetweenKeyframesExtrapolateTheInputsCorrectio
     auto& [mesh, markers, diagonal, reference] = sphere;
     SolverOptions options = multiresOptions(3);
     options.keyframeEvery = 3;
+    // The bend is fast for this mesh: its keyframes move 2e-4 to 6e-4 of the diagonal, more
+    // than the default tolerance, which would make every frame a keyframe (see the next test).
+    options.keyframeTolerance = 1e9;
     Reconstruction solver;
     solver.prepare(mesh, markers, options);
     Positions previous = mesh.V;
@@ -188,6 +191,63 @@ TEST(MultiresReconstruction, FramesBetweenKeyframesExtrapolateTheInputsCorrectio
         EXPECT_LT(rms(r.V, reference.solve(targets, &r.V).V) / diagonal, 5e-5);
         previous = r.V;
     }
+}
+
+// When the last interval stops predicting: a slow bend turns, after frame 6, into a fast second
+// bend about another axis. SolverOptions::keyframeTurn sees it a priori, on the coarsest level:
+// frame 7's coarsest move lies off the last interval's, so frame 7 is a keyframe.
+// SolverOptions::keyframeTolerance sees it a posteriori: without the turn test, the keyframe
+// after the turn (frame 8) moves far from its extrapolated start, so frame 9 is a keyframe too.
+// Before the turn neither fires, and the schedule holds.
+TEST(MultiresReconstruction, KeyframesComeEarlyWhenTheMotionTurns) {
+    BendingSphere sphere;
+    auto& [mesh, markers, diagonal, reference] = sphere;
+    auto pose = [&](int f) {
+        const Positions first = bent(mesh.V, 0.02 * std::min(f, 6));
+        if (f <= 6) return first;
+        // bent() bends along z; swapping x and z around it bends along x.
+        Positions swapped = first;
+        swapped.col(0).swap(swapped.col(2));
+        Positions second = bent(swapped, 0.05 * (f - 6));
+        second.col(0).swap(second.col(2));
+        return second;
+    };
+    // Returns the mean error over the frames after the turn; `keyframes`: which frames were.
+    auto run = [&](double tolerance, double turn, std::vector<int>& keyframes) {
+        SolverOptions options = multiresOptions(3);
+        options.keyframeEvery = 3;
+        options.keyframeTolerance = tolerance;
+        options.keyframeTurn = turn;
+        Reconstruction solver;
+        solver.prepare(mesh, markers, options);
+        Positions previous = mesh.V;
+        double sum = 0;
+        for (int f = 1; f <= 12; ++f) {
+            const Positions targets = rows(pose(f), markers);
+            SolveResult r = solver.solve(targets, &previous);
+            if (!std::isnan(r.report.energyAfter)) keyframes.push_back(f);
+            if (f > 6) sum += rms(r.V, reference.solve(targets, &r.V).V) / diagonal;
+            previous.swap(r.V);
+        }
+        return sum / 6;
+    };
+    const SolverOptions defaults;
+    std::vector<int> scheduled, byTurn, byTolerance, byBoth;
+    const double onSchedule = run(1e9, 1e9, scheduled);
+    run(1e9, defaults.keyframeTurn, byTurn);
+    run(defaults.keyframeTolerance, 1e9, byTolerance);
+    const double adaptive = run(defaults.keyframeTolerance, defaults.keyframeTurn, byBoth);
+    auto firstFive = [](const std::vector<int>& k) {
+        return std::vector<int>(k.begin(), k.begin() + std::min<size_t>(5, k.size()));
+    };
+    EXPECT_EQ(scheduled, (std::vector<int>{1, 2, 5, 8, 11}));
+    // Measured: frames 1, 2, 5, 7, 8, 11; keyframe moves (of the diagonal) 7.4e-5 to 8.1e-5
+    // before the turn, 3.9e-4 at frame 8 without the turn test.
+    EXPECT_EQ(firstFive(byTurn), (std::vector<int>{1, 2, 5, 7, 8}));
+    EXPECT_EQ(firstFive(byTolerance), (std::vector<int>{1, 2, 5, 8, 9}));
+    // Measured (mean of the diagonal after the turn): 1.22e-4 on schedule, 0.40e-4 with both
+    // tests (keyframes 1, 2, 5, 7, 8, 11, 12).
+    EXPECT_LT(adaptive, 0.5 * onSchedule);
 }
 
 // SolverOptions::recycledMotions on the input level: a jump restarts the levels, and the input's
