@@ -42,6 +42,15 @@ SolverOptions convergedOptions() {
     return o;
 }
 
+// Keyframes every third frame, made early by the given tolerance and turn (1e9: never).
+SolverOptions keyframeOptions(double tolerance, double turn = SolverOptions{}.keyframeTurn) {
+    SolverOptions o = multiresOptions(3);
+    o.keyframeEvery = 3;
+    o.keyframeTolerance = tolerance;
+    o.keyframeTurn = turn;
+    return o;
+}
+
 double rms(const Positions& a, const Positions& b) {
     return std::sqrt((a - b).rowwise().squaredNorm().mean());
 }
@@ -151,13 +160,10 @@ TEST(MultiresReconstruction, TracksTheConvergedSolutionAlongASequence) {
 TEST(MultiresReconstruction, FramesBetweenKeyframesExtrapolateTheInputsCorrection) {
     BendingSphere sphere;
     auto& [mesh, markers, diagonal, reference] = sphere;
-    SolverOptions options = multiresOptions(3);
-    options.keyframeEvery = 3;
     // The bend is fast for this mesh: its keyframes move 2e-4 to 6e-4 of the diagonal, more
     // than the default tolerance, which would make every frame a keyframe (see the next test).
-    options.keyframeTolerance = 1e9;
     Reconstruction solver;
-    solver.prepare(mesh, markers, options);
+    solver.prepare(mesh, markers, keyframeOptions(1e9));
     Positions previous = mesh.V;
     double worstKeyframe = 0, worstBetween = 0;
     int between = 0;
@@ -214,12 +220,8 @@ TEST(MultiresReconstruction, KeyframesComeEarlyWhenTheMotionTurns) {
     };
     // Returns the mean error over the frames after the turn; `keyframes`: which frames were.
     auto run = [&](double tolerance, double turn, std::vector<int>& keyframes) {
-        SolverOptions options = multiresOptions(3);
-        options.keyframeEvery = 3;
-        options.keyframeTolerance = tolerance;
-        options.keyframeTurn = turn;
         Reconstruction solver;
-        solver.prepare(mesh, markers, options);
+        solver.prepare(mesh, markers, keyframeOptions(tolerance, turn));
         Positions previous = mesh.V;
         double sum = 0;
         for (int f = 1; f <= 12; ++f) {
