@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "Parallel.h"
+#include "StencilPattern.h"
 
 namespace boneless {
 
@@ -13,62 +14,50 @@ constexpr int kRateIterations = 5;
 }  // namespace
 
 BlockSystem::BlockSystem(int vertexCount, const std::vector<std::vector<int>>& stencils) {
-    // Block pattern: every pair of vertices sharing a stencil, plus the diagonal.
-    std::vector<std::vector<int>> columns(vertexCount);
-    for (int v = 0; v < vertexCount; ++v) columns[v].push_back(v);
-    for (const auto& s : stencils)
-        for (int a : s)
-            for (int b : s) columns[b].push_back(a);
-    for (auto& c : columns) {
-        std::sort(c.begin(), c.end());
-        c.erase(std::unique(c.begin(), c.end()), c.end());
-    }
+    // Each pair of the pattern becomes a 3×3 block: column 3b+c holds, for every row vertex a of
+    // the pattern's column b, the rows 3a, 3a+1, 3a+2.
+    const StencilPattern pattern(vertexCount, stencils);
+    const std::vector<int>& columnStart = pattern.outer();
     const int n = 3 * vertexCount;
     std::vector<int> outer(n + 1, 0);
-    long nnz = 0;
-    for (int b = 0; b < vertexCount; ++b)
-        for (int c = 0; c < 3; ++c) {
-            outer[3 * b + c] = static_cast<int>(nnz);
-            nnz += 3 * static_cast<long>(columns[b].size());
-        }
-    outer[n] = static_cast<int>(nnz);
+    for (int b = 0; b < vertexCount; ++b) {
+        const int count = columnStart[b + 1] - columnStart[b];
+        for (int c = 0; c < 3; ++c) outer[3 * b + c] = 9 * columnStart[b] + 3 * c * count;
+    }
+    outer[n] = 9 * columnStart[vertexCount];
     matrix_.resize(n, n);
-    matrix_.resizeNonZeros(nnz);
+    matrix_.resizeNonZeros(outer[n]);
     std::copy(outer.begin(), outer.end(), matrix_.outerIndexPtr());
     int* inner = matrix_.innerIndexPtr();
     for (int b = 0; b < vertexCount; ++b)
         for (int c = 0; c < 3; ++c) {
             int at = outer[3 * b + c];
-            for (int a : columns[b])
-                for (int row = 0; row < 3; ++row) inner[at++] = 3 * a + row;
+            for (int e = columnStart[b]; e < columnStart[b + 1]; ++e)
+                for (int row = 0; row < 3; ++row) inner[at++] = 3 * pattern.inner()[e] + row;
         }
-    matrix_.makeCompressed();
 
-    auto slotOf = [&](int a, int b) {
-        const auto& col = columns[b];
-        const int pos = static_cast<int>(std::lower_bound(col.begin(), col.end(), a) - col.begin());
-        return pos;
-    };
-    stencilSizes_.resize(stencils.size());
-    slotOffset_.resize(stencils.size() + 1, 0);
-    for (size_t r = 0; r < stencils.size(); ++r) {
-        const long m = static_cast<long>(stencils[r].size());
+    const int stencilCount = pattern.stencilCount();
+    stencilSizes_.resize(stencilCount);
+    slotOffset_.assign(stencilCount + 1, 0);
+    for (int r = 0; r < stencilCount; ++r) {
+        const long m = pattern.stencilSize(r);
         stencilSizes_[r] = static_cast<int>(m);
         slotOffset_[r + 1] = slotOffset_[r] + 3 * m * m;
     }
     slots_.resize(slotOffset_.back());
-    for (size_t r = 0; r < stencils.size(); ++r) {
+    for (int r = 0; r < stencilCount; ++r) {
         const auto& s = stencils[r];
-        const int m = static_cast<int>(s.size());
+        const int m = stencilSizes_[r];
         for (int i = 0; i < m; ++i)
             for (int j = 0; j < m; ++j) {
-                const int pos = slotOf(s[i], s[j]);
+                const int pos = pattern.entry(r, i, j) - columnStart[s[j]];
                 for (int c = 0; c < 3; ++c)
                     slots_[slotOffset_[r] + 3 * (i * m + j) + c] = outer[3 * s[j] + c] + 3 * pos;
             }
     }
     diagonalSlots_.resize(vertexCount);
-    for (int v = 0; v < vertexCount; ++v) diagonalSlots_[v] = slotOf(v, v);
+    for (int v = 0; v < vertexCount; ++v)
+        diagonalSlots_[v] = pattern.diagonal(v) - columnStart[v];
 }
 
 void BlockSystem::clear() {

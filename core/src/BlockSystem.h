@@ -28,6 +28,10 @@ class BlockSystem {
         for (int c = 0; c < 3; ++c)
             for (int row = 0; row < 3; ++row) values[slot[c] + row] += M(row, c);
     }
+    // H_ab += Pᵀ Q (a Gauss–Newton product of two Jacobian blocks).
+    void addGram(int residual, int a, int b, const Mat3& P, const Mat3& Q) {
+        add(residual, a, b, P.transpose() * Q);
+    }
     // H_vv += M (diagonal block, independent of any residual).
     void addDiagonal(int v, const Mat3& M);
     // Turns vertex v into a fixed one: its rows and columns become those of the identity.
@@ -65,7 +69,6 @@ class BlockSystem {
 
   private:
     int stencilSize(int r) const { return stencilSizes_[r]; }
-    int slotOfBlock(int a, int b) const;
 
     Eigen::SparseMatrix<double> matrix_;
     using Factor = Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower>;

@@ -33,34 +33,6 @@ IterativeSolver::IterativeSolver(Reconstruction::Impl& problem) : p_(problem) {
     pinned_.assign(n_, 0);
 }
 
-void IterativeSolver::preparePreconditioner() {
-    if (scalarFactor_ || p_.options.preconditioner != SolverOptions::Preconditioner::Scalar) return;
-    // Block (a, b) of the rest matrix becomes trace/3: the average of the x, y and z
-    // couplings, positive definite because each of the three is.
-    const Eigen::SparseMatrix<double>& H = p_.system->matrix();
-    std::vector<Eigen::Triplet<double>> t;
-    t.reserve(H.nonZeros() / 3);
-    for (int col = 0; col < H.outerSize(); ++col)
-        for (Eigen::SparseMatrix<double>::InnerIterator it(H, col); it; ++it)
-            if (it.row() % 3 == col % 3 && it.row() / 3 >= col / 3)
-                t.emplace_back(static_cast<int>(it.row()) / 3, col / 3, it.value() / 3.0);
-    Eigen::SparseMatrix<double> S(n_, n_);
-    S.setFromTriplets(t.begin(), t.end());
-    scalarFactor_ =
-        std::make_unique<Eigen::CholmodDecomposition<Eigen::SparseMatrix<double>, Eigen::Lower>>();
-    // Each conjugate-gradient step solves with this factor. On a multiresolution solver's coarsest
-    // level (2,000 vertices) that solve was half the time of conjugate gradients, and the
-    // supernodal factor's dense-block calls cost more than the arithmetic: simplicial, the bench's
-    // frame went from 18.4 to 15.5 ms. On the input (50,000 vertices) supernodal stays ahead (one
-    // fine step: 613 against 650 ms); at 10,000 they are even.
-    constexpr int simplicialBelow = 10000;
-    scalarFactor_->setMode(n_ < simplicialBelow ? Eigen::CholmodSimplicialLLt
-                                                : Eigen::CholmodSupernodalLLt);
-    scalarFactor_->compute(S);
-    if (scalarFactor_->info() != Eigen::Success)
-        throw SolverError("the rest pose's preconditioner is not positive definite");
-}
-
 void IterativeSolver::zeroPinned(Eigen::VectorXd& x) const {
     for (int v = 0; v < n_; ++v)
         if (pinned_[v]) x.segment<3>(3 * v).setZero();
@@ -223,10 +195,10 @@ void IterativeSolver::precondition(const Linearisation& L, const Eigen::VectorXd
     for (int v = 0; v < n_; ++v)
         rotated_.segment<3>(3 * v) =
             pinned_[v] ? Vec3::Zero() : Vec3(L.rotation[v].transpose() * r.segment<3>(3 * v));
-    if (scalarFactor_) {
+    if (p_.restScalar) {
         scalarRhs_ = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(
             rotated_.data(), n_, 3);
-        scalarRhs_ = scalarFactor_->solve(scalarRhs_);
+        scalarRhs_ = p_.restScalar->solve(scalarRhs_);
         z.resize(3 * n_);
         Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(z.data(), n_, 3) =
             scalarRhs_;
@@ -404,7 +376,6 @@ double IterativeSolver::gradientAt(const Positions& V, const Positions& targets,
 
 SolveResult IterativeSolver::solve(const Positions& targets, const Positions* guess) {
     const auto start = std::chrono::steady_clock::now();
-    if (p_.options.maxIterations > 0) preparePreconditioner();
     SolveResult result;
     result.V = p_.startingPose(targets, guess);
     Positions& V = result.V;

@@ -41,7 +41,6 @@ class IterativeSolver {
     // The Gauss–Newton system of the pose last linearised (by solve(), gradientAt() or
     // keepTried()), H x = −g, by preconditioned conjugate gradients; x: start and answer.
     int solveAtCurrent(const Eigen::VectorXd& g, Eigen::VectorXd& x) {
-        preparePreconditioner();
         return conjugateGradients(current_, g, x);
     }
     // Whether solve()'s guess is near the minimum (a prolongation of a converged coarser level),
@@ -89,9 +88,6 @@ class IterativeSolver {
     double evaluate(const Positions& V, const Positions& targets, Linearisation& L,
                     bool withCurvature = true);
     void pinFor(const Positions& targets);
-    // The scalar preconditioner's factor, made from the rest matrix the system holds on the first
-    // solve that takes a step.
-    void preparePreconditioner();
     void gradient(const Positions& V, const Linearisation& L, Eigen::VectorXd& g) const;
     void multiply(const Linearisation& L, const Eigen::VectorXd& x, Eigen::VectorXd& y);
     void precondition(const Linearisation& L, const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
@@ -130,10 +126,7 @@ class IterativeSolver {
     // The minimiser of the current pose's quadratic model (the Hessian multiply() applies) over
     // the span of recycled_; directions of non-positive curvature are left out.
     void recycledStart(const Eigen::VectorXd& g, Eigen::VectorXd& step);
-    // Preconditioner::Scalar: the factor of the rest matrix's block traces.
-    std::unique_ptr<Eigen::CholmodDecomposition<Eigen::SparseMatrix<double>, Eigen::Lower>>
-        scalarFactor_;
-    mutable Eigen::MatrixXd scalarRhs_;
+    mutable Eigen::MatrixXd scalarRhs_;  // Preconditioner::Scalar's, #V by 3
 };
 
 }  // namespace boneless

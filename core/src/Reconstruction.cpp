@@ -126,10 +126,16 @@ double Reconstruction::Impl::linearise(const Positions& V, const Positions& targ
 
 void Reconstruction::Impl::assemble(const Positions& V, const Positions& targets,
                                     Eigen::VectorXd& gradient) {
-    const int n = rest.vertexCount();
-    gradient.setZero(3 * n);
     if (!system) buildBlockSystem();
     system->clear();
+    assembleInto(*system, V, targets, gradient);
+}
+
+template <class System>
+void Reconstruction::Impl::assembleInto(System& system, const Positions& V,
+                                        const Positions& targets, Eigen::VectorXd& gradient) {
+    const int n = rest.vertexCount();
+    gradient.setZero(3 * n);
     const auto& topo = *topology;
     for (int r = 0; r < static_cast<int>(residualOf.size()); ++r) {
         const int v = residualOf[r];
@@ -138,14 +144,14 @@ void Reconstruction::Impl::assemble(const Positions& V, const Positions& targets
         const auto& J = jacobian[r];
         const Vec3& res = residual[r];
         // Stencil slot 0 is v itself (∂r/∂v = I), slot k+1 its k-th neighbour (∂r/∂p_k = −J_k).
-        system->add(r, 0, 0, Mat3::Identity());
+        system.add(r, 0, 0, Mat3::Identity());
         gradient.segment<3>(3 * v) += res;
         for (int k = 0; k < m; ++k) {
             const Mat3 Jt = J[k].transpose();
-            system->add(r, 0, k + 1, -J[k]);
-            system->add(r, k + 1, 0, -Jt);
+            system.add(r, 0, k + 1, -J[k]);
+            system.add(r, k + 1, 0, -Jt);
             gradient.segment<3>(3 * ring[k]) -= Jt * res;
-            for (int l = 0; l < m; ++l) system->add(r, k + 1, l + 1, Jt * J[l]);
+            for (int l = 0; l < m; ++l) system.addGram(r, k + 1, l + 1, J[k], J[l]);
         }
     }
     if (rigid()) {
@@ -156,10 +162,10 @@ void Reconstruction::Impl::assemble(const Positions& V, const Positions& targets
             for (int c = 0; c < 3; ++c) {
                 const Mat3 W = 6.0 * a * rigidity->cotangent(f, c) * Mat3::Identity();
                 const int j = (c + 1) % 3, k = (c + 2) % 3;
-                system->add(firstFaceStencil + f, j, j, W);
-                system->add(firstFaceStencil + f, k, k, W);
-                system->add(firstFaceStencil + f, j, k, -W);
-                system->add(firstFaceStencil + f, k, j, -W);
+                system.add(firstFaceStencil + f, j, j, W);
+                system.add(firstFaceStencil + f, k, k, W);
+                system.add(firstFaceStencil + f, j, k, -W);
+                system.add(firstFaceStencil + f, k, j, -W);
             }
         const Eigen::MatrixXd b = rigidity->rotatedRestEdges(rotations);
         const Eigen::MatrixXd LV = rigidity->laplacian() * V;
@@ -172,7 +178,7 @@ void Reconstruction::Impl::assemble(const Positions& V, const Positions& targets
             for (int a = 0; a < 3; ++a) {
                 gradient.segment<3>(3 * rest.F(t.face, a)) += t.residual * t.derivative[a];
                 for (int b = 0; b < 3; ++b)
-                    system->add(firstFaceStencil + t.face, a, b,
+                    system.add(firstFaceStencil + t.face, a, b,
                                 t.derivative[a] * t.derivative[b].transpose());
             }
         }
@@ -186,7 +192,7 @@ void Reconstruction::Impl::assemble(const Positions& V, const Positions& targets
             const Vec3 miss = markerPoint(k, V, &dn) - targets.row(k).transpose();
             gradient.segment<3>(3 * v) += lambda * miss;
             if (dn.empty() || residualIndex[v] < 0) {
-                system->addDiagonal(v, lambda * Mat3::Identity());
+                system.addDiagonal(v, lambda * Mat3::Identity());
                 continue;
             }
             // ∂g/∂v = I, ∂g/∂p_j = δ ∂n/∂p_j: the stencil of v's own residual holds them all.
@@ -194,19 +200,24 @@ void Reconstruction::Impl::assemble(const Positions& V, const Positions& targets
             const int r = residualIndex[v];
             const int* ring = topology->ring(v);
             const int m = topology->valence(v);
-            system->add(r, 0, 0, lambda * Mat3::Identity());
+            system.add(r, 0, 0, lambda * Mat3::Identity());
             for (int j = 0; j < m; ++j) {
                 const Mat3 Aj = d * dn[j];
                 gradient.segment<3>(3 * ring[j]) += lambda * Aj.transpose() * miss;
-                system->add(r, 0, j + 1, lambda * Aj);
-                system->add(r, j + 1, 0, lambda * Aj.transpose());
+                system.add(r, 0, j + 1, lambda * Aj);
+                system.add(r, j + 1, 0, lambda * Aj.transpose());
                 for (int i = 0; i < m; ++i)
-                    system->add(r, j + 1, i + 1, lambda * Aj.transpose() * (d * dn[i]));
+                    system.add(r, j + 1, i + 1, lambda * Aj.transpose() * (d * dn[i]));
             }
         }
 }
 
 void Reconstruction::Impl::addRotationCoupling(bool clamped) {
+    addRotationCouplingTo(*system, clamped);
+}
+
+template <class System>
+void Reconstruction::Impl::addRotationCouplingTo(System& system, bool clamped) {
     // Placed in the stencil of v's own residual: G_v only touches v and its ring.
     std::vector<std::pair<int, Mat3>> blocks;
     std::vector<std::tuple<int, int, double>> edges;
@@ -239,41 +250,49 @@ void Reconstruction::Impl::addRotationCoupling(bool clamped) {
         if (!inside) continue;  // a face around v that is not in its ring: leave it out
         CG.resize(m + 1);
         for (int b = 0; b <= m; ++b) CG[b] = scale * C * G[b];
+        if (!clamped) {
+            for (int a = 0; a <= m; ++a)
+                for (int b = 0; b <= m; ++b) system.addGram(r, a, b, G[a], CG[b]);
+            continue;
+        }
         const int size = 3 * (m + 1);
         Eigen::MatrixXd H(size, size);
         for (int a = 0; a <= m; ++a)
             for (int b = 0; b <= m; ++b) H.block<3, 3>(3 * a, 3 * b) = G[a].transpose() * CG[b];
-        if (clamped) {
-            // v's fixed-rotation share, added here and taken out again after the clamp, since
-            // assemble() has already added it (as 6αL ⊗ I, summed over all vertices).
-            Eigen::MatrixXd fixed = Eigen::MatrixXd::Zero(size, size);
-            rigidity->vertexEdges(v, edges);
-            for (const auto& [j, k, w] : edges) {
-                // The same faces as couplingBlocks(), all inside the ring (checked above).
-                const int a = slotOf(j), b = slotOf(k);
-                const double x = 2.0 * options.rigidityWeight * w;
-                for (int d = 0; d < 3; ++d) {
-                    fixed(3 * a + d, 3 * a + d) += x;
-                    fixed(3 * b + d, 3 * b + d) += x;
-                    fixed(3 * a + d, 3 * b + d) -= x;
-                    fixed(3 * b + d, 3 * a + d) -= x;
-                }
-            }
-            const Eigen::MatrixXd local = fixed + H;
-            const Eigen::LDLT<Eigen::MatrixXd> ldlt(local);
-            const double tolerance = 1e-12 * local.diagonal().cwiseAbs().maxCoeff();
-            if (ldlt.info() != Eigen::Success || ldlt.vectorD().minCoeff() < -tolerance) {
-                const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(local);
-                const Eigen::VectorXd positive = eigen.eigenvalues().cwiseMax(0.0);
-                H = eigen.eigenvectors() * positive.asDiagonal() *
-                        eigen.eigenvectors().transpose() -
-                    fixed;
+        // v's fixed-rotation share, added here and taken out again after the clamp, since
+        // assemble() has already added it (as 6αL ⊗ I, summed over all vertices).
+        Eigen::MatrixXd fixed = Eigen::MatrixXd::Zero(size, size);
+        rigidity->vertexEdges(v, edges);
+        for (const auto& [j, k, w] : edges) {
+            // The same faces as couplingBlocks(), all inside the ring (checked above).
+            const int a = slotOf(j), b = slotOf(k);
+            const double x = 2.0 * options.rigidityWeight * w;
+            for (int d = 0; d < 3; ++d) {
+                fixed(3 * a + d, 3 * a + d) += x;
+                fixed(3 * b + d, 3 * b + d) += x;
+                fixed(3 * a + d, 3 * b + d) -= x;
+                fixed(3 * b + d, 3 * a + d) -= x;
             }
         }
+        const Eigen::MatrixXd local = fixed + H;
+        const Eigen::LDLT<Eigen::MatrixXd> ldlt(local);
+        const double tolerance = 1e-12 * local.diagonal().cwiseAbs().maxCoeff();
+        if (ldlt.info() != Eigen::Success || ldlt.vectorD().minCoeff() < -tolerance) {
+            const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(local);
+            const Eigen::VectorXd positive = eigen.eigenvalues().cwiseMax(0.0);
+            H = eigen.eigenvectors() * positive.asDiagonal() *
+                    eigen.eigenvectors().transpose() -
+                fixed;
+        }
         for (int a = 0; a <= m; ++a)
-            for (int b = 0; b <= m; ++b) system->add(r, a, b, H.block<3, 3>(3 * a, 3 * b));
+            for (int b = 0; b <= m; ++b) system.add(r, a, b, H.block<3, 3>(3 * a, 3 * b));
     }
 }
+
+// The rest pose's scalar preconditioner is assembled by the same code (RestSystem.cpp).
+template void Reconstruction::Impl::assembleInto(ScalarSystem&, const Positions&, const Positions&,
+                                                 Eigen::VectorXd&);
+template void Reconstruction::Impl::addRotationCouplingTo(ScalarSystem&, bool);
 
 std::optional<Reconstruction::Impl::GuardHessian> Reconstruction::Impl::factorizeFirstOf(
     std::initializer_list<GuardHessian> kinds, const std::function<void(GuardHessian)>& build) {
@@ -346,7 +365,7 @@ void Reconstruction::prepare(const TriMesh& rest, std::vector<int> markerVertice
     if (options.method == SolverOptions::Method::Iterative) {
         // No steps, no preconditioner: solve() makes it if the options change.
         if (options.maxIterations > 0 && impl->restSystemWanted())
-            impl->prepareRestSystem(impl->restFactorWanted());
+            impl->prepareRestSystem();
         impl->iterative = std::make_unique<IterativeSolver>(*impl);
     }
     impl_ = std::move(impl);
@@ -389,7 +408,7 @@ SolveResult Reconstruction::solve(const Positions& targets, const Positions* gue
     if (s.multires) return s.multires->solve(targets, guess);
     if (s.options.method == SolverOptions::Method::Iterative) {
         if (s.restSystemWanted() && !s.systemHoldsRestFactor && s.options.maxIterations > 0) {
-            s.prepareRestSystem(s.restFactorWanted());
+            s.prepareRestSystem();
             s.iterative.reset();
         }
         if (!s.iterative) s.iterative = std::make_unique<IterativeSolver>(s);
@@ -398,7 +417,7 @@ SolveResult Reconstruction::solve(const Positions& targets, const Positions* gue
     return s.solveDirect(targets, guess);
 }
 
-void Reconstruction::Impl::buildBlockSystem() {
+std::vector<std::vector<int>> Reconstruction::Impl::stencils() const {
     std::vector<std::vector<int>> stencils;
     stencils.reserve(residualOf.size() + rest.faceCount());
     for (int v : residualOf) {
@@ -410,7 +429,11 @@ void Reconstruction::Impl::buildBlockSystem() {
     // Faces are stencils too, for the fold guard's terms (no residual of their own).
     for (int f = 0; f < rest.faceCount(); ++f)
         stencils.push_back({rest.F(f, 0), rest.F(f, 1), rest.F(f, 2)});
-    system = std::make_unique<BlockSystem>(rest.vertexCount(), stencils);
+    return stencils;
+}
+
+void Reconstruction::Impl::buildBlockSystem() {
+    system = std::make_unique<BlockSystem>(rest.vertexCount(), stencils());
 }
 
 SolveResult Reconstruction::Impl::solveDirect(const Positions& targets, const Positions* guess) {

@@ -12,6 +12,7 @@
 #include "ArapEnergy.h"
 #include "BlockSystem.h"
 #include "OrientationGuard.h"
+#include "ScalarSystem.h"
 #include "boneless/Reconstruction.h"
 
 namespace boneless {
@@ -35,6 +36,8 @@ struct Reconstruction::Impl {
     std::vector<int> residualOf;     // residual -> vertex
     std::vector<int> residualIndex;  // vertex -> residual, or -1
     std::unique_ptr<BlockSystem> system;
+    // Preconditioner::Scalar: the rest pose's matrix, trace per block, factorised in prepare().
+    std::unique_ptr<ScalarSystem> restScalar;
     std::unique_ptr<ArapEnergy> rigidity;
     std::unique_ptr<OrientationGuard> orientation;  // when options.orientationWeight > 0
     std::unique_ptr<IterativeSolver> iterative;
@@ -74,12 +77,18 @@ struct Reconstruction::Impl {
     // Fills residuals and Jacobians, fits the fold guard's rotations (with their curvature, for
     // addRotationCoupling()) and the orientation guard's terms; returns the energy.
     double linearise(const Positions& V, const Positions& targets);
-    // Assembles AᵀA and Aᵀr for the current linearisation.
+    // Assembles AᵀA and Aᵀr for the current linearisation (into the block system, made if need
+    // be; assembleInto: into a system that starts at zero).
     void assemble(const Positions& V, const Positions& targets, Eigen::VectorXd& gradient);
-    // Assembles the Gauss–Newton matrix of the rest pose, every marker pinned when hard, a tiny
-    // Tikhonov term added; factorises it too when `factor`.
-    void prepareRestSystem(bool factor);
-    // The block system's structure: one stencil per residual (its vertex and ring), one per face.
+    template <class System>
+    void assembleInto(System& system, const Positions& V, const Positions& targets,
+                      Eigen::VectorXd& gradient);
+    // The iterative method's preconditioner: the Gauss–Newton matrix of the rest pose, every
+    // marker pinned when hard, a tiny Tikhonov term added, factorised; in the block system
+    // (Preconditioner::Blocks) or as restScalar (Preconditioner::Scalar).
+    void prepareRestSystem();
+    // One stencil per residual (its vertex and ring), one per face: the systems' structure.
+    std::vector<std::vector<int>> stencils() const;
     // Made on first use: a level of the multiresolution solver that is never stepped on needs none.
     void buildBlockSystem();
     // Adds the fold guard's rotation coupling, −2α Σ_v G_vᵀ C_v G_v, to the assembled matrix: the
@@ -91,6 +100,8 @@ struct Reconstruction::Impl {
     // compressed). Exact where every share is semidefinite; where one is not, it changes the
     // matrix even if the sum was positive definite (see IterativeSolver::directStep).
     void addRotationCoupling(bool clamped = false);
+    template <class System>
+    void addRotationCouplingTo(System& system, bool clamped);
     // Which fold-guard Hessian an assembled matrix holds: its rotations held (Gauss–Newton), their
     // derivative added (exact), or that with each vertex's share clamped (addRotationCoupling()).
     enum class GuardHessian { GaussNewton, Exact, Clamped };
@@ -105,9 +116,6 @@ struct Reconstruction::Impl {
     // factorised, nothing when none could be.
     std::optional<GuardHessian> factorizeFirstOf(std::initializer_list<GuardHessian> kinds,
                                                  const std::function<void(GuardHessian)>& build);
-    bool restFactorWanted() const {
-        return options.preconditioner == SolverOptions::Preconditioner::Blocks;
-    }
     // The iterative method's preconditioner is made from the rest pose's matrix.
     bool restSystemWanted() const {
         return options.preconditioner != SolverOptions::Preconditioner::LastFactor;

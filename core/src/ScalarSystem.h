@@ -1,0 +1,51 @@
+#pragma once
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/Sparse>
+#include <memory>
+#include <vector>
+
+#include "StencilPattern.h"
+#include "boneless/ShapeEncoding.h"
+
+namespace boneless {
+
+// A Gauss–Newton matrix with each 3×3 block (a, b) replaced by its trace / 3: the average of its
+// x, y and z couplings, positive definite when the block matrix is. Of the rest pose, factorised,
+// it is the iterative method's preconditioner (see IterativeSolver). It takes the same add() calls
+// as BlockSystem, so the one assembly fills either; a ninth of the entries makes it cheaper to
+// build than the block matrix it stands for.
+class ScalarSystem {
+  public:
+    // stencils[r] = the vertices residual r depends on, each at most once.
+    ScalarSystem(int vertexCount, const std::vector<std::vector<int>>& stencils);
+
+    // H_ab += trace(M) / 3 for the a-th and b-th vertex of residual r's stencil.
+    void add(int residual, int a, int b, const Mat3& M) {
+        matrix_.valuePtr()[pattern_.entry(residual, a, b)] += M.trace() / 3.0;
+    }
+    // H_ab += trace(Pᵀ Q) / 3, without the product's other entries.
+    void addGram(int residual, int a, int b, const Mat3& P, const Mat3& Q) {
+        matrix_.valuePtr()[pattern_.entry(residual, a, b)] += P.cwiseProduct(Q).sum() / 3.0;
+    }
+    void addDiagonal(int v, const Mat3& M) {
+        matrix_.valuePtr()[pattern_.diagonal(v)] += M.trace() / 3.0;
+    }
+    // Vertex v's row and column become the identity's.
+    void pin(int v);
+    double meanDiagonal() const;
+    // Factorises H + tikhonov·I; false when it is not positive definite.
+    bool factorize(double tikhonov);
+    // Solves with the factor, for each column of rhs (#V by 3).
+    Eigen::MatrixXd solve(const Eigen::MatrixXd& rhs) const { return factor_->solve(rhs); }
+    // Both triangles.
+    const Eigen::SparseMatrix<double>& matrix() const { return matrix_; }
+
+  private:
+    StencilPattern pattern_;
+    Eigen::SparseMatrix<double> matrix_;
+    std::unique_ptr<Eigen::CholmodDecomposition<Eigen::SparseMatrix<double>, Eigen::Lower>>
+        factor_;
+};
+
+}  // namespace boneless

@@ -1,0 +1,34 @@
+#pragma once
+
+#include <vector>
+
+namespace boneless {
+
+// The sparsity of a sum over stencils of all their vertex pairs (the Gauss–Newton matrix's: a
+// residual couples every pair of vertices it depends on), one entry per vertex pair, both
+// triangles, and where each stencil's pairs land in it. BlockSystem (3×3 blocks) and ScalarSystem
+// (one number per pair) are both laid out from it.
+class StencilPattern {
+  public:
+    // stencils[r] = the vertices residual r depends on, each at most once.
+    StencilPattern(int vertexCount, const std::vector<std::vector<int>>& stencils);
+
+    int vertexCount() const { return static_cast<int>(outer_.size()) - 1; }
+    // Column b holds rows inner()[outer()[b] .. outer()[b+1]), ascending.
+    const std::vector<int>& outer() const { return outer_; }
+    const std::vector<int>& inner() const { return inner_; }
+    int stencilCount() const { return static_cast<int>(size_.size()); }
+    int stencilSize(int r) const { return size_[r]; }
+    // The index into inner() of the pair (stencil r's a-th vertex, its b-th vertex).
+    int entry(int r, int a, int b) const { return entries_[offset_[r] + a * size_[r] + b]; }
+    int diagonal(int v) const { return diagonal_[v]; }
+
+  private:
+    std::vector<int> outer_, inner_;
+    std::vector<int> size_;      // per stencil
+    std::vector<long> offset_;   // per stencil, into entries_ (size² each)
+    std::vector<int> entries_;
+    std::vector<int> diagonal_;  // per vertex
+};
+
+}  // namespace boneless
