@@ -50,9 +50,9 @@ class MultiresSolver {
     SolveResult solve(const Positions& targets, const Positions* guess);
 
     // The input level (the coarsest when the mesh is already small).
-    const Reconstruction& fine() const { return hierarchy_.levelCount() == 1 ? coarsest_ : fine_; }
-    int levelCount() const { return hierarchy_.levelCount(); }
-    const MeshHierarchy& hierarchy() const { return hierarchy_; }
+    const Reconstruction& fine() const { return hierarchy_->levelCount() == 1 ? coarsest_ : fine_; }
+    int levelCount() const { return hierarchy_->levelCount(); }
+    const MeshHierarchy& hierarchy() const { return *hierarchy_; }
 
   private:
     // Level l's positions from level l+1's: survivors copied, removed vertices decoded.
@@ -77,7 +77,14 @@ class MultiresSolver {
     void restartFrom(const Positions& guess);
     const ShapeEncoding& encoding(int l) const;
 
-    MeshHierarchy hierarchy_;
+    // The hierarchy, then the coarsest level (and the encodings of the levels between); and the
+    // input level, on the other core.
+    void prepareCoarsest(const TriMesh& rest, const std::vector<int>& markers,
+                         const SolverOptions& options);
+    void prepareInput(const TriMesh& rest, const std::vector<int>& markers,
+                      const SolverOptions& options);
+
+    std::optional<MeshHierarchy> hierarchy_;
     Reconstruction coarsest_, fine_;  // the two levels that are solved
     // Levels 1 .. L−2, which are only prolonged through.
     std::vector<std::unique_ptr<MeshTopology>> topologies_;
