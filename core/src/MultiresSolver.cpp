@@ -315,17 +315,19 @@ SolveResult MultiresSolver::solve(const Positions& targets, const Positions* gue
     const SolverOptions& fineOptions = fine_.options();
     const bool keyframes = fineOptions.keyframeEvery > 1 &&
                            fineOptions.maxIterations + fineOptions.correctionSteps > 0;
-    bool between = keyframes && warm && intervalCorrection_.rows() > 0 &&
-                   sinceKeyframe_ + 1 < fineOptions.keyframeEvery &&
-                   keyframeMove_ <= fineOptions.keyframeTolerance * diagonal_;
+    // A keyframe starts from the same prediction as a frame between keyframes would, so that
+    // what its steps move measures that prediction's error. Started from the warm start alone,
+    // that move held the whole frame's correction: at 200K faces it stayed above the tolerance,
+    // and every frame became a keyframe (the sweep's median was a keyframe's, 4.2 s).
+    const bool predicted = keyframes && warm && intervalCorrection_.rows() > 0;
     Progress progress;
-    if (between) {
-        progress = coarsestProgress(answer.back());
-        between = progress.off <= fineOptions.keyframeTurn;
-    }
+    if (predicted) progress = coarsestProgress(answer.back());
+    const bool straight = predicted && progress.off <= fineOptions.keyframeTurn;
+    const bool between = straight && sinceKeyframe_ + 1 < fineOptions.keyframeEvery &&
+                         keyframeMove_ <= fineOptions.keyframeTolerance * diagonal_;
     const bool corrected = !between && fineOptions.correctionSteps > 0;
     double energy = std::numeric_limits<double>::quiet_NaN();
-    if (between) extrapolateCorrection(answer, progress.along);
+    if (straight) extrapolateCorrection(answer, progress.along);
     Positions keyframeStart;
     if (keyframes && !between) keyframeStart = answer[0];
     if (corrected) energy = correctionSteps(targets, prolonged, answer[0], report);
