@@ -521,6 +521,29 @@ TEST(IterativeReconstruction, ADirectSolveRightAfterPreparingForTheLastFactorWor
         EXPECT_EQ(r.V.row(markers[k]), pose.row(markers[k]));
 }
 
+// The scalar preconditioner lives apart from the block system: switched away from, it must not
+// stay in the way of the rest factorisation that Preconditioner::Blocks puts in the system.
+TEST(IterativeReconstruction, SwitchingToTheBlocksPreconditionerUsesIt) {
+    const TriMesh mesh = tube(8, 10, 3.0);
+    const auto markers = everyNth(mesh.vertexCount(), 7);
+    const Positions targets = rows(bent(mesh.V, 0.3), markers);
+    auto solveWith = [&](SolverOptions::Preconditioner first, SolverOptions::Preconditioner then) {
+        Reconstruction solver;
+        solver.prepare(mesh, markers, iterativeOptions(false, first));
+        solver.setOptions(iterativeOptions(false, then));
+        return solver.solve(targets, &mesh.V);
+    };
+    using P = SolverOptions::Preconditioner;
+    const SolveResult blocks = solveWith(P::Blocks, P::Blocks);
+    const SolveResult scalar = solveWith(P::Scalar, P::Scalar);
+    const SolveResult switched = solveWith(P::Scalar, P::Blocks);
+    // The two preconditioners take different numbers of iterations, so the count tells which one
+    // the switched solver used.
+    ASSERT_NE(blocks.report.linearIterations, scalar.report.linearIterations);
+    EXPECT_EQ(switched.report.linearIterations, blocks.report.linearIterations);
+    EXPECT_LE(maxDistance(switched.V, blocks.V), 1e-12 * boundingBoxDiagonal(mesh.V));
+}
+
 TEST(IterativeReconstruction, MissingMarkersAndSwitchingMethodsWork) {
     for (auto p :
          {SolverOptions::Preconditioner::Scalar, SolverOptions::Preconditioner::LastFactor}) {
