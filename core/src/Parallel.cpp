@@ -106,7 +106,9 @@ class WorkerPool {
 }  // namespace
 
 void runOnWorkers(int count, const std::function<void(int)>& task) {
-    if (count > 1 && !insideTask) {
+    // More tasks than the pool has threads (one core: none) run one after the other: a task left
+    // to a worker that does not exist would never start, and the call would wait for it forever.
+    if (count > 1 && count <= solverThreadCount() && !insideTask) {
         static WorkerPool pool;
         if (pool.tryRun(count, task)) return;
     }

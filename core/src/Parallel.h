@@ -18,7 +18,8 @@ inline int solverThreadCount() {
 // worker threads, which start once and then wait for work. Starting threads per call cost tens
 // of microseconds, as much as a whole loop over a coarse level's few thousand vertices; waking
 // a waiting worker costs a few. A call made from inside a task, or while another thread's call
-// is running, runs its tasks one after the other on the calling thread.
+// is running, or with more tasks than solverThreadCount(), runs its tasks one after the other on
+// the calling thread.
 void runOnWorkers(int count, const std::function<void(int)>& task);
 
 // Runs body(begin, end, thread) over [0, n) split into one contiguous chunk per thread (at most

@@ -289,7 +289,10 @@ void Reconstruction::Impl::addRotationCouplingTo(System& system, bool clamped) {
     }
 }
 
-// The rest pose's scalar preconditioner is assembled by the same code (RestSystem.cpp).
+// The rest pose's systems are assembled by the same code (RestSystem.cpp).
+template void Reconstruction::Impl::assembleInto(BlockSystem&, const Positions&, const Positions&,
+                                                 Eigen::VectorXd&);
+template void Reconstruction::Impl::addRotationCouplingTo(BlockSystem&, bool);
 template void Reconstruction::Impl::assembleInto(ScalarSystem&, const Positions&, const Positions&,
                                                  Eigen::VectorXd&);
 template void Reconstruction::Impl::addRotationCouplingTo(ScalarSystem&, bool);

@@ -3,6 +3,7 @@
 #include <random>
 
 #include "BlockSystem.h"
+#include "ScalarSystem.h"
 
 using namespace boneless;
 
@@ -113,4 +114,54 @@ TEST(BlockSystem, AFarMatrixIsGivenUpEarlyAndAZeroRightHandSideNeedsNoIteration)
                                          &iterations));
     EXPECT_EQ(iterations, 0);
     EXPECT_EQ(x.norm(), 0.0);
+}
+
+// The scalar preconditioner's matrix is each block's trace / 3, taken from the same add() calls
+// (and addGram()'s PᵀQ without the product); a pinned vertex's row and column are the identity's.
+TEST(ScalarSystem, HoldsTheTraceOverThreeOfEachBlock) {
+    // Stencils of different sizes that overlap irregularly, as a mesh's rings do.
+    const int n = 40;
+    std::vector<std::vector<int>> stencils;
+    for (int v = 0; v + 5 < n; ++v) stencils.push_back({v, v + 1, v + 3, v + 5});
+    for (int v = 0; v + 2 < n; v += 3) stencils.push_back({v + 2, v});
+    BlockSystem blocks(n, stencils);
+    ScalarSystem scalar(n, stencils);
+    blocks.clear();
+    std::mt19937 rng(7);
+    std::normal_distribution<double> g;
+    auto random = [&] {
+        Mat3 M;
+        for (int i = 0; i < 9; ++i) M(i / 3, i % 3) = g(rng);
+        return M;
+    };
+    for (size_t r = 0; r < stencils.size(); ++r) {
+        const int m = static_cast<int>(stencils[r].size());
+        for (int a = 0; a < m; ++a)
+            for (int b = 0; b < m; ++b) {
+                const Mat3 M = random(), P = random(), Q = random();
+                const int rr = static_cast<int>(r);
+                blocks.add(rr, a, b, M);
+                scalar.add(rr, a, b, M);
+                blocks.addGram(rr, a, b, P, Q);
+                scalar.addGram(rr, a, b, P, Q);
+            }
+    }
+    const Mat3 D = random();
+    blocks.addDiagonal(4, D);
+    scalar.addDiagonal(4, D);
+    blocks.pin(9);
+    scalar.pin(9);
+    const Eigen::MatrixXd H(blocks.matrix());
+    const Eigen::MatrixXd S(scalar.matrix());
+    ASSERT_EQ(S.rows(), n);
+    for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b)
+            EXPECT_NEAR(S(a, b), (H.block<3, 3>(3 * a, 3 * b).trace() / 3.0), 1e-12)
+                << "(" << a << ", " << b << ")";
+    EXPECT_EQ(S(9, 9), 1.0);
+    EXPECT_EQ(S.row(9).cwiseAbs().sum(), 1.0);
+    EXPECT_NEAR(scalar.meanDiagonal(), blocks.meanDiagonal(), 1e-12);
+    // The same pattern: a pair no stencil holds stays zero in both.
+    EXPECT_EQ(S(0, 39), 0.0);
+    EXPECT_EQ(scalar.matrix().nonZeros() * 9, blocks.matrix().nonZeros());
 }

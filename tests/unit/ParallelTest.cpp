@@ -80,3 +80,14 @@ TEST(Parallel, TwoThreadsCallingAtOnceBothFinish) {
     EXPECT_EQ(results[0], std::vector<int>{1});
     EXPECT_EQ(results[1], std::vector<int>{1});
 }
+
+// The multiresolution solver prepares two levels as two tasks; on a machine with fewer threads
+// than tasks (one core: no worker at all) they run one after the other instead of one of them
+// waiting for a worker that does not exist.
+TEST(Parallel, MoreTasksThanThreadsAllRun) {
+    const int count = solverThreadCount() + 1;
+    std::vector<std::atomic<int>> ran(count);
+    // Were a task left to a missing worker, this call would never return (ctest's timeout).
+    runOnWorkers(count, [&](int t) { ran[t].fetch_add(1); });
+    for (int t = 0; t < count; ++t) EXPECT_EQ(ran[t].load(), 1) << "task " << t;
+}
