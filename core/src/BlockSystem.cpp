@@ -56,8 +56,7 @@ BlockSystem::BlockSystem(int vertexCount, const std::vector<std::vector<int>>& s
             }
     }
     diagonalSlots_.resize(vertexCount);
-    for (int v = 0; v < vertexCount; ++v)
-        diagonalSlots_[v] = pattern.diagonal(v) - columnStart[v];
+    for (int v = 0; v < vertexCount; ++v) diagonalSlots_[v] = pattern.diagonal(v) - columnStart[v];
 }
 
 void BlockSystem::clear() {

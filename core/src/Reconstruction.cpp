@@ -179,7 +179,7 @@ void Reconstruction::Impl::assembleInto(System& system, const Positions& V,
                 gradient.segment<3>(3 * rest.F(t.face, a)) += t.residual * t.derivative[a];
                 for (int b = 0; b < 3; ++b)
                     system.add(firstFaceStencil + t.face, a, b,
-                                t.derivative[a] * t.derivative[b].transpose());
+                               t.derivative[a] * t.derivative[b].transpose());
             }
         }
     }
@@ -280,8 +280,7 @@ void Reconstruction::Impl::addRotationCouplingTo(System& system, bool clamped) {
         if (ldlt.info() != Eigen::Success || ldlt.vectorD().minCoeff() < -tolerance) {
             const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(local);
             const Eigen::VectorXd positive = eigen.eigenvalues().cwiseMax(0.0);
-            H = eigen.eigenvectors() * positive.asDiagonal() *
-                    eigen.eigenvectors().transpose() -
+            H = eigen.eigenvectors() * positive.asDiagonal() * eigen.eigenvectors().transpose() -
                 fixed;
         }
         for (int a = 0; a <= m; ++a)
@@ -367,8 +366,7 @@ void Reconstruction::prepare(const TriMesh& rest, std::vector<int> markerVertice
     if (options.method == SolverOptions::Method::Direct) impl->buildBlockSystem();
     if (options.method == SolverOptions::Method::Iterative) {
         // No steps, no preconditioner: solve() makes it if the options change.
-        if (options.maxIterations > 0 && impl->restSystemWanted())
-            impl->prepareRestSystem();
+        if (options.maxIterations > 0 && impl->restSystemWanted()) impl->prepareRestSystem();
         impl->iterative = std::make_unique<IterativeSolver>(*impl);
     }
     impl_ = std::move(impl);

@@ -44,8 +44,7 @@ class ScalarSystem {
   private:
     StencilPattern pattern_;
     Eigen::SparseMatrix<double> matrix_;
-    std::unique_ptr<Eigen::CholmodDecomposition<Eigen::SparseMatrix<double>, Eigen::Lower>>
-        factor_;
+    std::unique_ptr<Eigen::CholmodDecomposition<Eigen::SparseMatrix<double>, Eigen::Lower>> factor_;
 };
 
 }  // namespace boneless

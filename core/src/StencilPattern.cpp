@@ -51,7 +51,8 @@ StencilPattern::StencilPattern(int vertexCount, const std::vector<std::vector<in
         for (int at = memberOffset[b]; at < memberOffset[b + 1]; ++at) {
             const int r = memberStencil[at], j = memberSlot[at];
             const auto& s = stencils[r];
-            for (int i = 0; i < size_[r]; ++i) entries_[offset_[r] + i * size_[r] + j] = position[s[i]];
+            for (int i = 0; i < size_[r]; ++i)
+                entries_[offset_[r] + i * size_[r] + j] = position[s[i]];
         }
     }
     outer_[vertexCount] = static_cast<int>(inner_.size());

@@ -25,8 +25,8 @@ class StencilPattern {
 
   private:
     std::vector<int> outer_, inner_;
-    std::vector<int> size_;      // per stencil
-    std::vector<long> offset_;   // per stencil, into entries_ (size² each)
+    std::vector<int> size_;     // per stencil
+    std::vector<long> offset_;  // per stencil, into entries_ (size² each)
     std::vector<int> entries_;
     std::vector<int> diagonal_;  // per vertex
 };
