@@ -195,7 +195,7 @@ void IterativeSolver::precondition(const Linearisation& L, const Eigen::VectorXd
     for (int v = 0; v < n_; ++v)
         rotated_.segment<3>(3 * v) =
             pinned_[v] ? Vec3::Zero() : Vec3(L.rotation[v].transpose() * r.segment<3>(3 * v));
-    if (p_.restScalar) {
+    if (p_.options.preconditioner == SolverOptions::Preconditioner::Scalar) {
         scalarRhs_ = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(
             rotated_.data(), n_, 3);
         scalarRhs_ = p_.restScalar->solve(scalarRhs_);

@@ -29,7 +29,7 @@ void Reconstruction::Impl::prepareRestSystem() {
         if (!restScalar->factorize(term) && !restScalar->factorize(term * 1e4))
             throw SolverError(indefinite);
     } else {
-        restScalar.reset();  // left by a change of options, it would take the factor's place
+        restScalar.reset();  // left by a change of options: no longer used
         if (!system) buildBlockSystem();
         system->clear();
         build(*system);

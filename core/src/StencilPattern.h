@@ -13,7 +13,6 @@ class StencilPattern {
     // stencils[r] = the vertices residual r depends on, each at most once.
     StencilPattern(int vertexCount, const std::vector<std::vector<int>>& stencils);
 
-    int vertexCount() const { return static_cast<int>(outer_.size()) - 1; }
     // Column b holds rows inner()[outer()[b] .. outer()[b+1]), ascending.
     const std::vector<int>& outer() const { return outer_; }
     const std::vector<int>& inner() const { return inner_; }
