@@ -195,7 +195,7 @@ void IterativeSolver::precondition(const Linearisation& L, const Eigen::VectorXd
     for (int v = 0; v < n_; ++v)
         rotated_.segment<3>(3 * v) =
             pinned_[v] ? Vec3::Zero() : Vec3(L.rotation[v].transpose() * r.segment<3>(3 * v));
-    if (p_.options.preconditioner == SolverOptions::Preconditioner::Scalar) {
+    if (p_.scalarPreconditioner()) {
         scalarRhs_ = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(
             rotated_.data(), n_, 3);
         scalarRhs_ = p_.restScalar->solve(scalarRhs_);
@@ -265,9 +265,7 @@ int IterativeSolver::conjugateGradients(const Linearisation& L, const Eigen::Vec
 bool IterativeSolver::directStep(const Positions& V, const Positions& targets,
                                  Eigen::VectorXd& step) {
     // The blocks preconditioner lives in the system's factor, which this would overwrite.
-    if (!lastFactor() && (!p_.options.directFallback ||
-                          p_.options.preconditioner != SolverOptions::Preconditioner::Scalar))
-        return false;
+    if (!lastFactor() && (!p_.options.directFallback || !p_.scalarPreconditioner())) return false;
     if (!p_.system) p_.buildBlockSystem();  // Preconditioner::LastFactor has no rest system
     BlockSystem& system = *p_.system;
     Eigen::VectorXd gradient;

@@ -120,6 +120,11 @@ struct Reconstruction::Impl {
     bool restSystemWanted() const {
         return options.preconditioner != SolverOptions::Preconditioner::LastFactor;
     }
+    // The preconditioner is restScalar (Preconditioner::Scalar or LumpedScalar).
+    bool scalarPreconditioner() const {
+        return options.preconditioner == SolverOptions::Preconditioner::Scalar ||
+               options.preconditioner == SolverOptions::Preconditioner::LumpedScalar;
+    }
 
     // The starting pose of a frame: the guess (or the rest pose moved rigidly onto the markers),
     // isolated vertices moved rigidly, hard markers on their targets.

@@ -4,8 +4,9 @@
 
 namespace boneless {
 
-ScalarSystem::ScalarSystem(int vertexCount, const std::vector<std::vector<int>>& stencils)
-    : pattern_(vertexCount, stencils) {
+ScalarSystem::ScalarSystem(int vertexCount, const std::vector<std::vector<int>>& stencils,
+                           const StencilPattern::Lumping* lumping)
+    : pattern_(vertexCount, stencils, lumping) {
     const std::vector<int>& outer = pattern_.outer();
     const std::vector<int>& inner = pattern_.inner();
     matrix_.resize(vertexCount, vertexCount);

@@ -15,10 +15,20 @@ namespace boneless {
 // it is the iterative method's preconditioner (see IterativeSolver). It takes the same add() calls
 // as BlockSystem, so the one assembly fills either; a ninth of the entries makes it cheaper to
 // build than the block matrix it stands for.
+//
+// Lumped (see StencilPattern::Lumping), it keeps the pairs that share an edge and moves the others
+// onto the diagonal. Their factor is a quarter of the size (koala, 100K faces: 1.43M entries
+// against 5.66M, factorised in 93 against 332 ms), and conjugate gradients on the full matrix take
+// 13 steps to 1e-2 with it instead of 1; a bend frame's preconditioned solves came out cheaper
+// overall. Why lumping and not dropping: the dropped couplings are almost all positive (Σ_m
+// w_ma w_mb between two neighbours a, b of a vertex m: 654,164 of 657,712 on koala), so what
+// lumping adds is close to a graph Laplacian, positive semidefinite, and zero on the translations
+// the energy cannot see. Dropped without it, the matrix was not positive definite.
 class ScalarSystem {
   public:
     // stencils[r] = the vertices residual r depends on, each at most once.
-    ScalarSystem(int vertexCount, const std::vector<std::vector<int>>& stencils);
+    ScalarSystem(int vertexCount, const std::vector<std::vector<int>>& stencils,
+                 const StencilPattern::Lumping* lumping = nullptr);
 
     // H_ab += trace(M) / 3 for the a-th and b-th vertex of residual r's stencil.
     void add(int residual, int a, int b, const Mat3& M) {

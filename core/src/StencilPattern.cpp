@@ -4,7 +4,8 @@
 
 namespace boneless {
 
-StencilPattern::StencilPattern(int vertexCount, const std::vector<std::vector<int>>& stencils) {
+StencilPattern::StencilPattern(int vertexCount, const std::vector<std::vector<int>>& stencils,
+                               const Lumping* lumping) {
     const int stencilCount = static_cast<int>(stencils.size());
     size_.resize(stencilCount);
     offset_.assign(stencilCount + 1, 0);
@@ -27,35 +28,67 @@ StencilPattern::StencilPattern(int vertexCount, const std::vector<std::vector<in
                 memberSlot[at] = j;
             }
     }
-    // Built column by column with a stamp per vertex instead of sorting a list of all pairs:
-    // the 3n×3n rest system of a 100K-face mesh spent a third of its assembly time on that.
-    outer_.assign(vertexCount + 1, 0);
-    inner_.reserve(static_cast<size_t>(memberOffset.back()) * 4);
+    // Lumped, the columns are known from the rings alone, and all of them are laid out first: a
+    // pair with a fixed row lands on that row's diagonal, which may lie in a later column.
+    if (lumping) layOutRings(lumping->topology);
+    // Otherwise built column by column with a stamp per vertex instead of sorting a list of all
+    // pairs: the 3n×3n rest system of a 100K-face mesh spent a third of its assembly time on that.
+    if (!lumping) {
+        outer_.assign(vertexCount + 1, 0);
+        inner_.reserve(static_cast<size_t>(memberOffset.back()) * 4);
+        diagonal_.resize(vertexCount);
+    }
     entries_.resize(offset_.back());
-    diagonal_.resize(vertexCount);
     std::vector<int> stamp(vertexCount, -1), position(vertexCount, 0);
     for (int b = 0; b < vertexCount; ++b) {
-        const int first = static_cast<int>(inner_.size());
-        outer_[b] = first;
-        stamp[b] = b;
-        inner_.push_back(b);
-        for (int at = memberOffset[b]; at < memberOffset[b + 1]; ++at)
-            for (int a : stencils[memberStencil[at]])
-                if (stamp[a] != b) {
-                    stamp[a] = b;
-                    inner_.push_back(a);
-                }
-        std::sort(inner_.begin() + first, inner_.end());
-        for (int i = first; i < static_cast<int>(inner_.size()); ++i) position[inner_[i]] = i;
+        if (!lumping) {
+            const int first = static_cast<int>(inner_.size());
+            outer_[b] = first;
+            stamp[b] = b;
+            inner_.push_back(b);
+            for (int at = memberOffset[b]; at < memberOffset[b + 1]; ++at)
+                for (int a : stencils[memberStencil[at]])
+                    if (stamp[a] != b) {
+                        stamp[a] = b;
+                        inner_.push_back(a);
+                    }
+            std::sort(inner_.begin() + first, inner_.end());
+        }
+        const int end = lumping ? outer_[b + 1] : static_cast<int>(inner_.size());
+        for (int i = outer_[b]; i < end; ++i) {
+            position[inner_[i]] = i;
+            stamp[inner_[i]] = b;
+        }
         diagonal_[b] = position[b];
         for (int at = memberOffset[b]; at < memberOffset[b + 1]; ++at) {
             const int r = memberStencil[at], j = memberSlot[at];
             const auto& s = stencils[r];
-            for (int i = 0; i < size_[r]; ++i)
-                entries_[offset_[r] + i * size_[r] + j] = position[s[i]];
+            for (int i = 0; i < size_[r]; ++i) {
+                const int a = s[i];
+                entries_[offset_[r] + i * size_[r] + j] =
+                    stamp[a] == b ? position[a] : diagonal_[lumping && lumping->fixed[a] ? a : b];
+            }
         }
     }
-    outer_[vertexCount] = static_cast<int>(inner_.size());
+    if (!lumping) outer_[vertexCount] = static_cast<int>(inner_.size());
+}
+
+void StencilPattern::layOutRings(const MeshTopology& topology) {
+    const int n = topology.vertexCount();
+    outer_.assign(n + 1, 0);
+    inner_.clear();
+    inner_.reserve(topology.neighbours().size() + n);
+    diagonal_.resize(n);
+    for (int b = 0; b < n; ++b) {
+        const int first = static_cast<int>(inner_.size());
+        outer_[b] = first;
+        inner_.push_back(b);
+        inner_.insert(inner_.end(), topology.ring(b), topology.ring(b) + topology.valence(b));
+        std::sort(inner_.begin() + first, inner_.end());
+        diagonal_[b] = static_cast<int>(std::lower_bound(inner_.begin() + first, inner_.end(), b) -
+                                        inner_.begin());
+    }
+    outer_[n] = static_cast<int>(inner_.size());
 }
 
 }  // namespace boneless

@@ -2,6 +2,8 @@
 
 #include <vector>
 
+#include "boneless/MeshTopology.h"
+
 namespace boneless {
 
 // The sparsity of a sum over stencils of all their vertex pairs (the Gauss–Newton matrix's: a
@@ -10,8 +12,18 @@ namespace boneless {
 // (one number per pair) are both laid out from it.
 class StencilPattern {
   public:
+    // Which pairs a lumped pattern keeps: each vertex with itself and with its edge neighbours,
+    // a third of a Gauss–Newton matrix's pairs. A pair it drops lands on the diagonal of its
+    // column's vertex, which keeps every row sum, or of its row's vertex when that one is fixed
+    // (its row and column become the identity's later), so that it goes with them.
+    struct Lumping {
+        const MeshTopology& topology;
+        const std::vector<char>& fixed;  // per vertex
+    };
+
     // stencils[r] = the vertices residual r depends on, each at most once.
-    StencilPattern(int vertexCount, const std::vector<std::vector<int>>& stencils);
+    StencilPattern(int vertexCount, const std::vector<std::vector<int>>& stencils,
+                   const Lumping* lumping = nullptr);
 
     // Column b holds rows inner()[outer()[b] .. outer()[b+1]), ascending.
     const std::vector<int>& outer() const { return outer_; }
@@ -23,6 +35,9 @@ class StencilPattern {
     int diagonal(int v) const { return diagonal_[v]; }
 
   private:
+    // A lumped pattern's columns: each vertex and its ring.
+    void layOutRings(const MeshTopology& topology);
+
     std::vector<int> outer_, inner_;
     std::vector<int> size_;     // per stencil
     std::vector<long> offset_;  // per stencil, into entries_ (size² each)

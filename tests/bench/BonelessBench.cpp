@@ -104,10 +104,11 @@ SolverOptions fastOptions() {
     o.directFallback = gArgs.directFallback;
     o.maxCgIterations = gArgs.maxCg;
     o.cgTolerance = gArgs.cgTolerance;
-    o.preconditioner = gArgs.preconditioner == "blocks" ? SolverOptions::Preconditioner::Blocks
-                       : gArgs.preconditioner == "last-factor"
-                           ? SolverOptions::Preconditioner::LastFactor
-                           : SolverOptions::Preconditioner::Scalar;
+    o.preconditioner =
+        gArgs.preconditioner == "blocks"          ? SolverOptions::Preconditioner::Blocks
+        : gArgs.preconditioner == "last-factor"   ? SolverOptions::Preconditioner::LastFactor
+        : gArgs.preconditioner == "lumped-scalar" ? SolverOptions::Preconditioner::LumpedScalar
+                                                  : SolverOptions::Preconditioner::Scalar;
     return o;
 }
 
@@ -452,8 +453,10 @@ int main(int argc, char** argv) {
     app.add_flag("--direct-fallback", args.directFallback,
                  "fast solver: factorise when conjugate gradients miss their tolerance");
     app.add_option("--resize", args.resize, "bring the mesh to about this many faces first");
-    app.add_option("--preconditioner", args.preconditioner,
-                   "fast solver: scalar, blocks or last-factor");
+    app.add_option(
+        "--preconditioner", args.preconditioner,
+        "fast solver: scalar, lumped-scalar, blocks or last-factor (multires: the input level "
+        "takes last-factor, or else the scalar one, lumped from 10,000 vertices)");
     app.add_option("--method", args.method, "fast solver: multires or iterative (single level)");
     app.add_option("--coarsest", args.coarsest, "fast solver, multires: coarsest level's vertices");
     app.add_option("--corrections", args.corrections,

@@ -1,9 +1,12 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "BlockSystem.h"
 #include "ScalarSystem.h"
+#include "TestMeshes.h"
+#include "boneless/MeshTopology.h"
 
 using namespace boneless;
 
@@ -164,4 +167,83 @@ TEST(ScalarSystem, HoldsTheTraceOverThreeOfEachBlock) {
     // The same pattern: a pair no stencil holds stays zero in both.
     EXPECT_EQ(S(0, 39), 0.0);
     EXPECT_EQ(scalar.matrix().nonZeros() * 9, blocks.matrix().nonZeros());
+}
+
+// Lumped, the scalar matrix keeps the pairs that share an edge; every other pair's value moves to
+// its column's diagonal, so each row sums to what it did, and a fixed vertex takes the values of
+// its own pairs with it when it is pinned.
+TEST(ScalarSystem, LumpedKeepsTheEdgesAndEveryRowSum) {
+    const TriMesh mesh = boneless::testing::icosphere(1);
+    const MeshTopology topology(mesh);
+    const int n = mesh.vertexCount();
+    std::vector<std::vector<int>> stencils;
+    for (int v = 0; v < n; ++v) {
+        std::vector<int> s{v};
+        s.insert(s.end(), topology.ring(v), topology.ring(v) + topology.valence(v));
+        stencils.push_back(s);
+    }
+    for (int f = 0; f < mesh.faceCount(); ++f)
+        stencils.push_back({mesh.F(f, 0), mesh.F(f, 1), mesh.F(f, 2)});
+    const int fixedVertex = 5;
+    std::vector<char> fixed(n, 0);
+    fixed[fixedVertex] = 1;
+    const StencilPattern::Lumping lumping{topology, fixed};
+    BlockSystem blocks(n, stencils);
+    ScalarSystem lumped(n, stencils, &lumping);
+    blocks.clear();
+    std::mt19937 rng(11);
+    std::normal_distribution<double> g;
+    auto random = [&] {
+        Mat3 M;
+        for (int i = 0; i < 9; ++i) M(i / 3, i % 3) = g(rng);
+        return M;
+    };
+    for (size_t r = 0; r < stencils.size(); ++r) {
+        const int m = static_cast<int>(stencils[r].size());
+        const int rr = static_cast<int>(r);
+        for (int a = 0; a < m; ++a)
+            for (int b = a; b < m; ++b) {  // symmetric, as a Gauss–Newton matrix is
+                const Mat3 M = random(), P = random(), Q = random();
+                auto fill = [&](auto& s) {
+                    s.add(rr, a, b, M);
+                    s.addGram(rr, a, b, P, Q);
+                    if (a == b) return;
+                    s.add(rr, b, a, Mat3(M.transpose()));
+                    s.addGram(rr, b, a, Q, P);
+                };
+                fill(blocks);
+                fill(lumped);
+            }
+    }
+    blocks.pin(fixedVertex);
+    lumped.pin(fixedVertex);
+    const Eigen::MatrixXd H(blocks.matrix());
+    Eigen::MatrixXd full(n, n);
+    for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b) full(a, b) = H.block<3, 3>(3 * a, 3 * b).trace() / 3.0;
+    const Eigen::MatrixXd S(lumped.matrix());
+    auto adjacent = [&](int a, int b) {
+        const int* ring = topology.ring(a);
+        return std::find(ring, ring + topology.valence(a), b) != ring + topology.valence(a);
+    };
+    int dropped = 0;
+    for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b) {
+            if (a == b) continue;
+            if (adjacent(a, b))
+                EXPECT_NEAR(S(a, b), full(a, b), 1e-12) << "(" << a << ", " << b << ")";
+            else
+                EXPECT_EQ(S(a, b), 0.0) << "(" << a << ", " << b << ")";
+            if (!adjacent(a, b) && full(a, b) != 0) ++dropped;
+        }
+    EXPECT_GT(dropped, n);  // the 2-ring pairs: there is something to lump
+    for (int v = 0; v < n; ++v) {
+        if (v == fixedVertex) continue;
+        EXPECT_NEAR(S.row(v).sum(), full.row(v).sum(), 1e-10) << v;
+        EXPECT_NE(S(v, v), full(v, v)) << v;
+    }
+    EXPECT_EQ(S(fixedVertex, fixedVertex), 1.0);
+    EXPECT_EQ(S.row(fixedVertex).cwiseAbs().sum(), 1.0);
+    EXPECT_EQ(S.col(fixedVertex).cwiseAbs().sum(), 1.0);
+    EXPECT_EQ(lumped.matrix().nonZeros(), n + static_cast<long>(topology.neighbours().size()));
 }

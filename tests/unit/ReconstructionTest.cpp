@@ -365,7 +365,7 @@ TEST(IterativeReconstruction, EnergyNeverIncreasesAndDropsFromTheStart) {
         EXPECT_EQ(r.V.row(markers[k]), pose.row(markers[k]));
 }
 
-// Both preconditioners, hard and soft (with offsets) markers: the iterative minimum is the direct
+// Every preconditioner, hard and soft (with offsets) markers: the iterative minimum is the direct
 // solver's, the direct solver run to a standstill.
 TEST(IterativeReconstruction, ReachesTheDirectSolversMinimum) {
     const TriMesh mesh = tube(10, 12, 4.0);
@@ -384,7 +384,8 @@ TEST(IterativeReconstruction, ReachesTheDirectSolversMinimum) {
         reference.prepare(mesh, markers, direct);
         const SolveResult expected = reference.solve(rows(pose, markers), &mesh.V);
         for (auto p : {SolverOptions::Preconditioner::Scalar, SolverOptions::Preconditioner::Blocks,
-                       SolverOptions::Preconditioner::LastFactor}) {
+                       SolverOptions::Preconditioner::LastFactor,
+                       SolverOptions::Preconditioner::LumpedScalar}) {
             SolverOptions options = iterativeOptions(true, p);
             options.constraints = direct.constraints;
             options.markerOffsets = direct.markerOffsets;
