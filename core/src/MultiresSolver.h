@@ -4,6 +4,7 @@
 #include <optional>
 #include <vector>
 
+#include "VertexOrder.h"
 #include "boneless/MeshHierarchy.h"
 #include "boneless/Reconstruction.h"
 
@@ -48,13 +49,17 @@ class MultiresSolver {
     MultiresSolver(const TriMesh& rest, const std::vector<int>& markers,
                    const SolverOptions& options);
     SolveResult solve(const Positions& targets, const Positions* guess);
+    // The input's energy and encoding, in the caller's vertex order.
+    double energy(const Positions& V, const Positions& targets) const;
+    const ShapeEncoding& encoding() const;
 
-    // The input level (the coarsest when the mesh is already small).
+    // The input level (the coarsest when the mesh is already small), in order_.
     const Reconstruction& fine() const { return hierarchy_->levelCount() == 1 ? coarsest_ : fine_; }
     int levelCount() const { return hierarchy_->levelCount(); }
     const MeshHierarchy& hierarchy() const { return *hierarchy_; }
 
   private:
+    SolveResult solveInOrder(const Positions& targets, const Positions* guess);
     // Level l's positions from level l+1's: survivors copied, removed vertices decoded.
     void prolong(int l, const Positions& coarse, Positions& fine) const;
     // prolong()'s Jacobian at `fine` (a prolongation of level l+1's positions): each removed
@@ -84,6 +89,11 @@ class MultiresSolver {
     void prepareInput(const TriMesh& rest, const std::vector<int>& markers,
                       const SolverOptions& options);
 
+    // The levels work in this order of the vertices: the caller's unless the mesh is large.
+    VertexOrder order_;
+    // The input's encoding in the caller's order, when order_ is not the identity.
+    std::unique_ptr<MeshTopology> userTopology_;
+    std::unique_ptr<ShapeEncoding> userEncoding_;
     std::optional<MeshHierarchy> hierarchy_;
     Reconstruction coarsest_, fine_;  // the two levels that are solved
     // Levels 1 .. L−2, which are only prolonged through.

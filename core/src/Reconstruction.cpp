@@ -572,14 +572,14 @@ SolveResult Reconstruction::Impl::solveDirect(const Positions& targets, const Po
 }
 
 double Reconstruction::energy(const Positions& V, const Positions& targets) const {
-    if (impl_->multires) return impl_->multires->fine().energy(V, targets);
+    if (impl_->multires) return impl_->multires->energy(V, targets);
     return impl_->energy(V, targets);
 }
 const TriMesh& Reconstruction::rest() const {
     return impl_->rest;
 }
 const ShapeEncoding& Reconstruction::encoding() const {
-    if (impl_->multires) return impl_->multires->fine().encoding();
+    if (impl_->multires) return impl_->multires->encoding();
     return *impl_->encoding;
 }
 const std::vector<int>& Reconstruction::markerVertices() const {

@@ -3,7 +3,9 @@
 // tracks the converged answer along a sequence.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <random>
 
 #include "SolverChecks.h"
@@ -338,4 +340,54 @@ TEST(MultiresReconstruction, ATakeWithOffsetsAndGapsStaysOnItsMarkers) {
     }
     // Measured: 4.0 mm at worst (the direct solver: 0.4 mm).
     EXPECT_LT(worst, 6.0);
+}
+
+// A large mesh is solved in a spatial order of its vertices (VertexOrder), which depends on the
+// geometry alone: the same mesh with its vertices and faces shuffled gives the same answers, in
+// its own order, frame after frame, and the same energy and encoding through the public API.
+TEST(MultiresReconstruction, TheAnswerDoesNotDependOnTheMeshsVertexOrder) {
+    const TriMesh mesh = icosphere(5);
+    ASSERT_GE(mesh.vertexCount(), 10000);  // where the solver reorders
+    const int n = mesh.vertexCount();
+    std::mt19937 rng(17);
+    std::vector<int> shuffledOf(n);  // the shuffled index of each vertex
+    std::iota(shuffledOf.begin(), shuffledOf.end(), 0);
+    std::shuffle(shuffledOf.begin(), shuffledOf.end(), rng);
+    std::vector<int> faceOrder(mesh.faceCount());
+    std::iota(faceOrder.begin(), faceOrder.end(), 0);
+    std::shuffle(faceOrder.begin(), faceOrder.end(), rng);
+    TriMesh shuffled;
+    shuffled.V.resize(n, 3);
+    for (int v = 0; v < n; ++v) shuffled.V.row(shuffledOf[v]) = mesh.V.row(v);
+    shuffled.F.resize(mesh.faceCount(), 3);
+    for (int f = 0; f < mesh.faceCount(); ++f)
+        for (int c = 0; c < 3; ++c) shuffled.F(f, c) = shuffledOf[mesh.F(faceOrder[f], c)];
+    const auto markers = everyNth(n, 97);
+    std::vector<int> shuffledMarkers;
+    for (int v : markers) shuffledMarkers.push_back(shuffledOf[v]);
+
+    Reconstruction a, b;
+    a.prepare(mesh, markers, multiresOptions(2));
+    b.prepare(shuffled, shuffledMarkers, multiresOptions(2));
+    Positions lastA = mesh.V, lastB = shuffled.V;
+    const double diagonal = boundingBoxDiagonal(mesh.V);
+    for (int f = 1; f <= 3; ++f) {
+        const Positions targets = rows(bent(mesh.V, 0.1 * f), markers);
+        lastA = a.solve(targets, &lastA).V;
+        lastB = b.solve(targets, &lastB).V;
+        double worst = 0;
+        for (int v = 0; v < n; ++v)
+            worst = std::max(worst, (lastA.row(v) - lastB.row(shuffledOf[v])).norm());
+        EXPECT_LE(worst, 1e-12 * diagonal) << "frame " << f;
+        EXPECT_GT(maxDistance(lastA, mesh.V), 1e-3 * diagonal);  // it did move
+        EXPECT_NEAR(a.energy(lastA, targets), b.energy(lastB, targets),
+                    1e-12 * (1 + a.energy(lastA, targets)));
+    }
+    for (int v = 0; v < n; v += 101) {
+        ASSERT_EQ(a.encoding().encoded(v), b.encoding().encoded(shuffledOf[v]));
+        EXPECT_LE(
+            (a.encoding().ringNormal(v, lastA) - b.encoding().ringNormal(shuffledOf[v], lastB))
+                .norm(),
+            1e-9);
+    }
 }
