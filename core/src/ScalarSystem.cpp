@@ -6,7 +6,7 @@ namespace boneless {
 
 ScalarSystem::ScalarSystem(int vertexCount, const std::vector<std::vector<int>>& stencils,
                            const StencilPattern::Lumping* lumping)
-    : pattern_(vertexCount, stencils, lumping) {
+    : pattern_(vertexCount, stencils, lumping), lumped_(lumping != nullptr) {
     const std::vector<int>& outer = pattern_.outer();
     const std::vector<int>& inner = pattern_.inner();
     matrix_.resize(vertexCount, vertexCount);
@@ -47,10 +47,12 @@ bool ScalarSystem::factorize(double tikhonov) {
     // level (2,000 vertices) that solve was half the time of conjugate gradients, and the
     // supernodal factor's dense-block calls cost more than the arithmetic: simplicial, the bench's
     // frame went from 18.4 to 15.5 ms. On the input (50,000 vertices) supernodal stays ahead (one
-    // fine step: 613 against 650 ms); at 10,000 they are even.
+    // fine step: 613 against 650 ms); at 10,000 they are even. Lumped, the factor is sparse enough
+    // for simplicial to win there too (koala's input, lnz 1.4M: analysed and factorised in 93
+    // against 140 ms, a solve for three columns 4.9 against 8.5 ms).
     constexpr int simplicialBelow = 10000;
-    factor_->setMode(n < simplicialBelow ? Eigen::CholmodSimplicialLLt
-                                         : Eigen::CholmodSupernodalLLt);
+    factor_->setMode(lumped_ || n < simplicialBelow ? Eigen::CholmodSimplicialLLt
+                                                    : Eigen::CholmodSupernodalLLt);
     factor_->compute(matrix_);
     if (factor_->info() == Eigen::Success) return true;
     factor_.reset();

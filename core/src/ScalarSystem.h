@@ -53,6 +53,7 @@ class ScalarSystem {
 
   private:
     StencilPattern pattern_;
+    bool lumped_;
     Eigen::SparseMatrix<double> matrix_;
     std::unique_ptr<Eigen::CholmodDecomposition<Eigen::SparseMatrix<double>, Eigen::Lower>> factor_;
 };

@@ -12,6 +12,13 @@ using namespace boneless;
 
 namespace {
 
+Mat3 randomMatrix(std::mt19937& rng) {
+    std::normal_distribution<double> g;
+    Mat3 M;
+    for (int i = 0; i < 9; ++i) M(i / 3, i % 3) = g(rng);
+    return M;
+}
+
 // A chain of overlapping 3-vertex stencils, each adding MᵀM (M random, so positive
 // semidefinite) scaled by `scale`, plus a diagonal that makes the sum definite.
 struct Chain {
@@ -131,12 +138,7 @@ TEST(ScalarSystem, HoldsTheTraceOverThreeOfEachBlock) {
     ScalarSystem scalar(n, stencils);
     blocks.clear();
     std::mt19937 rng(7);
-    std::normal_distribution<double> g;
-    auto random = [&] {
-        Mat3 M;
-        for (int i = 0; i < 9; ++i) M(i / 3, i % 3) = g(rng);
-        return M;
-    };
+    auto random = [&] { return randomMatrix(rng); };
     for (size_t r = 0; r < stencils.size(); ++r) {
         const int m = static_cast<int>(stencils[r].size());
         for (int a = 0; a < m; ++a)
@@ -192,12 +194,7 @@ TEST(ScalarSystem, LumpedKeepsTheEdgesAndEveryRowSum) {
     ScalarSystem lumped(n, stencils, &lumping);
     blocks.clear();
     std::mt19937 rng(11);
-    std::normal_distribution<double> g;
-    auto random = [&] {
-        Mat3 M;
-        for (int i = 0; i < 9; ++i) M(i / 3, i % 3) = g(rng);
-        return M;
-    };
+    auto random = [&] { return randomMatrix(rng); };
     for (size_t r = 0; r < stencils.size(); ++r) {
         const int m = static_cast<int>(stencils[r].size());
         const int rr = static_cast<int>(r);
