@@ -25,27 +25,16 @@ void Reconstruction::Impl::prepareRestSystem() {
     if (scalarPreconditioner()) {
         // Only the trace of each block is kept: assembled as such, the 3n×3n matrix is never
         // made (it was 630 of the 720 ms a 100K-face input took to prepare). Lumped onto the
-        // edges' pairs (LumpedScalar), its factor is a quarter of the full one's. Lumping
-        // keeps it positive definite when what it moves is positive, as the mean-value couplings
-        // are; soft markers' offset terms need not be (a take with marker offsets came out
-        // indefinite), and then the full matrix is the preconditioner.
-        const auto restStencils = stencils();
-        auto assemble = [&](const StencilPattern::Lumping* lumping) {
-            restScalar = std::make_unique<ScalarSystem>(rest.vertexCount(), restStencils, lumping);
-            build(*restScalar);
-            return 1e-9 * restScalar->meanDiagonal();
-        };
+        // edges' pairs (LumpedScalar), its factor is a quarter of the full one's, and it is at
+        // least the full matrix (see ScalarSystem): positive definite when that is.
         const StencilPattern::Lumping lumping{*topology, fixed};
-        bool factorised = false;
-        if (options.preconditioner == SolverOptions::Preconditioner::LumpedScalar) {
-            const double term = assemble(&lumping);  // before restScalar is read: it replaces it
-            factorised = restScalar->factorize(term);
-        }
-        if (!factorised) {
-            const double term = assemble(nullptr);
-            if (!restScalar->factorize(term) && !restScalar->factorize(term * 1e4))
-                throw SolverError(indefinite);
-        }
+        const bool lumped = options.preconditioner == SolverOptions::Preconditioner::LumpedScalar;
+        restScalar = std::make_unique<ScalarSystem>(rest.vertexCount(), stencils(),
+                                                    lumped ? &lumping : nullptr);
+        build(*restScalar);
+        const double term = 1e-9 * restScalar->meanDiagonal();
+        if (!restScalar->factorize(term) && !restScalar->factorize(term * 1e4))
+            throw SolverError(indefinite);
     } else {
         restScalar.reset();  // left by a change of options: no longer used
         if (!system) buildBlockSystem();

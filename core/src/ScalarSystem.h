@@ -2,6 +2,7 @@
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/Sparse>
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -17,13 +18,15 @@ namespace boneless {
 // build than the block matrix it stands for.
 //
 // Lumped (see StencilPattern::Lumping), it keeps the pairs that share an edge and moves the others
-// onto the diagonal. Their factor is a quarter of the size (koala, 100K faces: 1.43M entries
-// against 5.66M, factorised in 93 against 332 ms), and conjugate gradients on the full matrix take
-// 13 steps to 1e-2 with it instead of 1; a bend frame's preconditioned solves came out cheaper
-// overall. Why lumping and not dropping: the dropped couplings are almost all positive (Σ_m
-// w_ma w_mb between two neighbours a, b of a vertex m: 654,164 of 657,712 on koala), so what
-// lumping adds is close to a graph Laplacian, positive semidefinite, and zero on the translations
-// the energy cannot see. Dropped without it, the matrix was not positive definite.
+// onto the diagonal as absolute values, so that it is at least the full matrix (see accumulate()):
+// positive definite when that is. Its factor is a quarter of the size (koala, 100K faces: 1.43M
+// entries against 5.66M, factorised in 93 against 332 ms), and conjugate gradients on the full
+// matrix take 13 steps to 1e-2 with it instead of 1; a bend frame's preconditioned solves came out
+// cheaper overall. The dropped couplings are almost all positive (Σ_m w_ma w_mb between two
+// neighbours a, b of a vertex m: 654,164 of 657,712 on koala), so what lumping adds is close to a
+// graph Laplacian: zero on the translations the energy cannot see. Dropped without it, the matrix
+// was not positive definite; lumped with signs (row sums kept exactly), it was not either on the
+// bench's 50K- and 200K-face meshes.
 class ScalarSystem {
   public:
     // stencils[r] = the vertices residual r depends on, each at most once.
@@ -32,11 +35,11 @@ class ScalarSystem {
 
     // H_ab += trace(M) / 3 for the a-th and b-th vertex of residual r's stencil.
     void add(int residual, int a, int b, const Mat3& M) {
-        matrix_.valuePtr()[pattern_.entry(residual, a, b)] += M.trace() / 3.0;
+        accumulate(pattern_.entry(residual, a, b), M.trace() / 3.0);
     }
     // H_ab += trace(Pᵀ Q) / 3, without the product's other entries.
     void addGram(int residual, int a, int b, const Mat3& P, const Mat3& Q) {
-        matrix_.valuePtr()[pattern_.entry(residual, a, b)] += P.cwiseProduct(Q).sum() / 3.0;
+        accumulate(pattern_.entry(residual, a, b), P.cwiseProduct(Q).sum() / 3.0);
     }
     void addDiagonal(int v, const Mat3& M) {
         matrix_.valuePtr()[pattern_.diagonal(v)] += M.trace() / 3.0;
@@ -52,6 +55,15 @@ class ScalarSystem {
     const Eigen::SparseMatrix<double>& matrix() const { return matrix_; }
 
   private:
+    // A dropped pair's value x lands on the diagonal as |x|: with its mirror (b, a) that adds
+    // [|x|, −x; −x, |x|], positive semidefinite whatever x's sign.
+    void accumulate(int entry, double x) {
+        if (entry >= 0)
+            matrix_.valuePtr()[entry] += x;
+        else
+            matrix_.valuePtr()[-1 - entry] += std::abs(x);
+    }
+
     StencilPattern pattern_;
     bool lumped_;
     Eigen::SparseMatrix<double> matrix_;

@@ -65,8 +65,13 @@ StencilPattern::StencilPattern(int vertexCount, const std::vector<std::vector<in
             const auto& s = stencils[r];
             for (int i = 0; i < size_[r]; ++i) {
                 const int a = s[i];
-                entries_[offset_[r] + i * size_[r] + j] =
-                    stamp[a] == b ? position[a] : diagonal_[lumping && lumping->fixed[a] ? a : b];
+                int& entry = entries_[offset_[r] + i * size_[r] + j];
+                if (stamp[a] == b)
+                    entry = position[a];
+                else if (lumping->fixed[a])
+                    entry = diagonal_[a];
+                else
+                    entry = -1 - diagonal_[b];
             }
         }
     }

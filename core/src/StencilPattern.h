@@ -14,8 +14,8 @@ class StencilPattern {
   public:
     // Which pairs a lumped pattern keeps: each vertex with itself and with its edge neighbours,
     // a third of a Gauss–Newton matrix's pairs. A pair it drops lands on the diagonal of its
-    // column's vertex, which keeps every row sum, or of its row's vertex when that one is fixed
-    // (its row and column become the identity's later), so that it goes with them.
+    // column's vertex (see entry()), or of its row's vertex when that one is fixed (its row and
+    // column become the identity's later), so that it goes with them.
     struct Lumping {
         const MeshTopology& topology;
         const std::vector<char>& fixed;  // per vertex
@@ -30,7 +30,8 @@ class StencilPattern {
     const std::vector<int>& inner() const { return inner_; }
     int stencilCount() const { return static_cast<int>(size_.size()); }
     int stencilSize(int r) const { return size_[r]; }
-    // The index into inner() of the pair (stencil r's a-th vertex, its b-th vertex).
+    // The index into inner() of the pair (stencil r's a-th vertex, its b-th vertex); for a pair
+    // a lumped pattern dropped onto a diagonal, −1 − that diagonal's index.
     int entry(int r, int a, int b) const { return entries_[offset_[r] + a * size_[r] + b]; }
     int diagonal(int v) const { return diagonal_[v]; }
 
