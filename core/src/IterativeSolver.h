@@ -126,7 +126,7 @@ class IterativeSolver {
     // The minimiser of the current pose's quadratic model (the Hessian multiply() applies) over
     // the span of recycled_; directions of non-positive curvature are left out.
     void recycledStart(const Eigen::VectorXd& g, Eigen::VectorXd& step);
-    mutable Eigen::MatrixXd scalarRhs_;  // Preconditioner::Scalar's, #V by 3
+    mutable Eigen::MatrixXd scalarRhs_;  // Preconditioner::Scalar's and LumpedScalar's, #V by 3
 };
 
 }  // namespace boneless

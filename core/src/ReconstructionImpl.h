@@ -36,7 +36,8 @@ struct Reconstruction::Impl {
     std::vector<int> residualOf;     // residual -> vertex
     std::vector<int> residualIndex;  // vertex -> residual, or -1
     std::unique_ptr<BlockSystem> system;
-    // Preconditioner::Scalar: the rest pose's matrix, trace per block, factorised in prepare().
+    // Preconditioner::Scalar and LumpedScalar: the rest pose's matrix, trace per block (lumped),
+    // factorised in prepare().
     std::unique_ptr<ScalarSystem> restScalar;
     std::unique_ptr<ArapEnergy> rigidity;
     std::unique_ptr<OrientationGuard> orientation;  // when options.orientationWeight > 0
@@ -85,7 +86,7 @@ struct Reconstruction::Impl {
                       Eigen::VectorXd& gradient);
     // The iterative method's preconditioner: the Gauss–Newton matrix of the rest pose, every
     // marker pinned when hard, a tiny Tikhonov term added, factorised; in the block system
-    // (Preconditioner::Blocks) or as restScalar (Preconditioner::Scalar).
+    // (Preconditioner::Blocks) or as restScalar (Preconditioner::Scalar, LumpedScalar).
     void prepareRestSystem();
     // One stencil per residual (its vertex and ring), one per face: the systems' structure.
     std::vector<std::vector<int>> stencils() const;

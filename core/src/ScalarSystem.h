@@ -18,15 +18,16 @@ namespace boneless {
 // build than the block matrix it stands for.
 //
 // Lumped (see StencilPattern::Lumping), it keeps the pairs that share an edge and moves the others
-// onto the diagonal as absolute values, so that it is at least the full matrix (see accumulate()):
-// positive definite when that is. Its factor is a quarter of the size (koala, 100K faces: 1.43M
-// entries against 5.66M, factorised in 93 against 332 ms), and conjugate gradients on the full
-// matrix take 13 steps to 1e-2 with it instead of 1; a bend frame's preconditioned solves came out
-// cheaper overall. The dropped couplings are almost all positive (Σ_m w_ma w_mb between two
-// neighbours a, b of a vertex m: 654,164 of 657,712 on koala), so what lumping adds is close to a
-// graph Laplacian: zero on the translations the energy cannot see. Dropped without it, the matrix
-// was not positive definite; lumped with signs (row sums kept exactly), it was not either on the
-// bench's 50K- and 200K-face meshes.
+// onto the diagonal, each contribution as its absolute value, so that it is at least the full
+// matrix (see accumulate()): positive definite when that is. Its factor is a quarter of the size
+// (koala, 100K faces: 1.43M entries against 5.66M, factorised in 93 against 332 ms), and conjugate
+// gradients on the full matrix take 13 steps to 1e-2 with it instead of 1; a bend frame's
+// preconditioned solves came out cheaper overall. The dropped pairs are almost all positive (Σ_m
+// w_ma w_mb between two neighbours a, b of a vertex m: 654,164 of 657,712 pairs' sums on koala), so
+// what lumping adds is close to a graph Laplacian, nearly zero on the translations the energy
+// cannot see; where a pair's contributions differ in sign (the fold guard's rotation coupling), it
+// adds more. Dropped without it, the matrix was not positive definite; lumped with signs (row sums
+// kept exactly), it was not either on the bench's 50K- and 200K-face meshes.
 class ScalarSystem {
   public:
     // stencils[r] = the vertices residual r depends on, each at most once.
@@ -55,8 +56,8 @@ class ScalarSystem {
     const Eigen::SparseMatrix<double>& matrix() const { return matrix_; }
 
   private:
-    // A dropped pair's value x lands on the diagonal as |x|: with its mirror (b, a) that adds
-    // [|x|, −x; −x, |x|], positive semidefinite whatever x's sign.
+    // A dropped pair's contribution x lands on the diagonal as |x|: with its mirror (b, a) that
+    // adds [|x|, −x; −x, |x|], positive semidefinite whatever x's sign.
     void accumulate(int entry, double x) {
         if (entry >= 0)
             matrix_.valuePtr()[entry] += x;

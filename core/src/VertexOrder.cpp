@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 
 namespace boneless {
@@ -14,9 +15,12 @@ std::uint64_t mortonCode(const Eigen::Vector3d& p, const Eigen::Vector3d& low,
                          const Eigen::Vector3d& scale) {
     std::uint64_t code = 0;
     std::array<std::uint32_t, 3> cell;
-    for (int d = 0; d < 3; ++d)
-        cell[d] =
-            static_cast<std::uint32_t>(std::clamp((p[d] - low[d]) * scale[d], 0.0, 2097151.0));
+    for (int d = 0; d < 3; ++d) {
+        const double x = (p[d] - low[d]) * scale[d];
+        // A non-finite position (the API does not refuse one) goes to the first cell: converting
+        // it would be undefined.
+        cell[d] = std::isfinite(x) ? static_cast<std::uint32_t>(std::clamp(x, 0.0, 2097151.0)) : 0;
+    }
     for (int bit = 20; bit >= 0; --bit)
         for (int d = 0; d < 3; ++d) code = (code << 1) | ((cell[d] >> bit) & 1u);
     return code;
@@ -31,7 +35,8 @@ VertexOrder VertexOrder::spatial(const TriMesh& mesh) {
     const Eigen::Vector3d low = mesh.V.colwise().minCoeff().transpose();
     const Eigen::Vector3d extent = mesh.V.colwise().maxCoeff().transpose() - low;
     Eigen::Vector3d scale;
-    for (int d = 0; d < 3; ++d) scale[d] = extent[d] > 0 ? 2097151.0 / extent[d] : 0.0;
+    for (int d = 0; d < 3; ++d)
+        scale[d] = std::isfinite(extent[d]) && extent[d] > 0 ? 2097151.0 / extent[d] : 0.0;
     std::vector<std::pair<std::uint64_t, int>> keys(n);
     for (int v = 0; v < n; ++v) keys[v] = {mortonCode(mesh.V.row(v).transpose(), low, scale), v};
     // Vertices that share a cell (duplicates) keep the caller's order among themselves.

@@ -173,9 +173,8 @@ TEST(ScalarSystem, HoldsTheTraceOverThreeOfEachBlock) {
 }
 
 // Lumped, the scalar matrix keeps the pairs that share an edge; every other pair's value moves to
-// its column's diagonal as its absolute value, so that the lumped matrix is at least the full one
-// (a positive couplings' row sums unchanged), and a fixed vertex takes its own pairs' values with
-// it when it is pinned.
+// its column's diagonal, each contribution as its absolute value, so that the lumped matrix is at
+// least the full one; a fixed vertex takes its own pairs' values with it when it is pinned.
 TEST(ScalarSystem, LumpedKeepsTheEdgesAndIsAtLeastTheFullMatrix) {
     const TriMesh mesh = boneless::testing::icosphere(1);
     const MeshTopology topology(mesh);

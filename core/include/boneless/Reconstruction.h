@@ -93,9 +93,10 @@ struct SolverOptions {
     // matrix's traces leave 0.038 % of the diagonal; frame 45's, 5 with the factor made for
     // frame 41's step leave 0.002 %. Memory: a factor of a 100K-face mesh's matrix (0.9 GB).
     // LumpedScalar: Scalar's matrix with the vertex pairs that share no edge moved onto the
-    // diagonal as absolute values (at least Scalar's matrix, so positive definite when that is):
-    // a factor a quarter the size (koala, 100K faces: factorised in 93 against 332 ms) for more
-    // iterations. The multiresolution method's input level takes it from 10,000 vertices.
+    // diagonal, each contribution as its absolute value (at least Scalar's matrix, so positive
+    // definite when that is): a factor a quarter the size (koala, 100K faces: factorised in 93
+    // against 332 ms) for more iterations. The multiresolution method's input level takes it
+    // from 10,000 vertices and Scalar below, whichever of the two is asked for.
     enum class Preconditioner { Blocks, Scalar, LastFactor, LumpedScalar };
     Preconditioner preconditioner = Preconditioner::Scalar;
     // Iterative and the multiresolution method's input level, for sequences (experimental): the
