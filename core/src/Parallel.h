@@ -17,9 +17,12 @@ inline int solverThreadCount() {
 // Runs task(0 .. count−1) at once: task 0 on the calling thread, the others on the process's
 // worker threads, which start once and then wait for work. Starting threads per call cost tens
 // of microseconds, as much as a whole loop over a coarse level's few thousand vertices; waking
-// a waiting worker costs a few. A call made from inside a task, or while another thread's call
-// is running, or with more tasks than solverThreadCount(), runs its tasks one after the other on
-// the calling thread.
+// a waiting worker costs a few. A call made from inside a task offers its tasks to the pool's
+// threads that have finished theirs and runs what none of them takes: the multiresolution solver
+// prepares two levels of unequal cost as two tasks, and the longer one's loops get the core the
+// shorter one leaves. A call while another thread's call is running, or from inside a task while
+// another such call's tasks are on offer, or with more tasks than solverThreadCount(), runs its
+// tasks one after the other on the calling thread.
 void runOnWorkers(int count, const std::function<void(int)>& task);
 
 // Runs body(begin, end, thread) over [0, n) split into one contiguous chunk per thread (at most

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -63,6 +64,40 @@ TEST(Parallel, ACallFromInsideATaskRunsItsWorkToo) {
         },
         1);
     EXPECT_EQ(total.load(), 64 * 100);
+}
+
+// The multiresolution solver prepares its levels as two tasks of unequal length; the longer one's
+// own loops then use the thread the shorter one has left.
+TEST(Parallel, ACallFromInsideATaskUsesAThreadThatHasFinishedItsTask) {
+    if (solverThreadCount() < 2) GTEST_SKIP() << "one hardware thread: no workers";
+    std::vector<std::thread::id> ranOn(2);
+    runOnWorkers(2, [&](int task) {
+        if (task == 0) return;  // done at once: its thread waits for task 1
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        runOnWorkers(2, [&](int t) {
+            ranOn[t] = std::this_thread::get_id();
+            std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        });
+    });
+    EXPECT_NE(ranOn[0], ranOn[1]);
+}
+
+TEST(Parallel, AnErrorInANestedCallReachesItsCaller) {
+    if (solverThreadCount() < 2) GTEST_SKIP() << "one hardware thread: no workers";
+    bool caught = false;
+    runOnWorkers(2, [&](int task) {
+        if (task == 0) return;
+        try {
+            runOnWorkers(2, [&](int t) {
+                std::this_thread::sleep_for(std::chrono::milliseconds(20));
+                if (t == 1) throw std::runtime_error("nested");
+            });
+        } catch (const std::runtime_error&) {
+            caught = true;
+        }
+    });
+    EXPECT_TRUE(caught);
+    EXPECT_EQ(visitCounts(10000, 1), std::vector<int>(10000, 1));  // the pool goes on
 }
 
 TEST(Parallel, TwoThreadsCallingAtOnceBothFinish) {
