@@ -52,6 +52,8 @@ class ArapEnergy {
     double cotangent(int f, int c) const { return cotangent_(f, c); }
 
   private:
+    void buildLaplacian();
+
     const TriMesh* rest_;
     Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> cotangent_;  // half cot, per corner
     Eigen::SparseMatrix<double> laplacian_;

@@ -96,3 +96,49 @@ TEST(ArapEnergy, AssembledCouplingBlocksMatchTheMatrixFreeProduct) {
 }
 
 }  // namespace boneless::testing
+
+namespace boneless::testing {
+
+// The Laplacian is laid out from the corners (no triplet list): each entry must be the sum of the
+// same terms in the same order as the triplets' (a bit's difference moves every frame's answer),
+// with no column for a vertex in no face and an entry for a zero-area face's pairs.
+TEST(ArapEnergy, TheLaplacianIsTheCotangentTripletsSummedInFaceOrder) {
+    TriMesh mesh = tube(7, 9, 3.0);
+    std::mt19937 rng(3);
+    std::normal_distribution<double> noise(0.0, 0.03);
+    for (int i = 0; i < mesh.V.size(); ++i) mesh.V.data()[i] += noise(rng);
+    const int isolated = mesh.vertexCount();
+    mesh.V.conservativeResize(isolated + 1, 3);
+    mesh.V.row(isolated) = Vec3(9, 9, 9).transpose();
+    // A flat face on three existing vertices: its cotangents are zero, its pairs still entries.
+    mesh.F.conservativeResize(mesh.faceCount() + 1, 3);
+    mesh.F.row(mesh.faceCount() - 1) << 0, 0, 1;
+    const ArapEnergy arap(mesh);
+
+    std::vector<Eigen::Triplet<double>> t;
+    for (int f = 0; f < mesh.faceCount(); ++f)
+        for (int c = 0; c < 3; ++c) {
+            const int j = mesh.F(f, (c + 1) % 3), k = mesh.F(f, (c + 2) % 3);
+            const double w = arap.cotangent(f, c);
+            t.emplace_back(j, j, w);
+            t.emplace_back(k, k, w);
+            t.emplace_back(j, k, -w);
+            t.emplace_back(k, j, -w);
+        }
+    Eigen::SparseMatrix<double> expected(mesh.vertexCount(), mesh.vertexCount());
+    expected.setFromTriplets(t.begin(), t.end());
+
+    const Eigen::SparseMatrix<double>& L = arap.laplacian();
+    ASSERT_EQ(L.nonZeros(), expected.nonZeros());
+    EXPECT_EQ(L.col(isolated).nonZeros(), 0);
+    for (int col = 0; col < L.outerSize(); ++col) {
+        Eigen::SparseMatrix<double>::InnerIterator a(L, col), b(expected, col);
+        for (; a && b; ++a, ++b) {
+            EXPECT_EQ(a.row(), b.row()) << "column " << col;
+            EXPECT_EQ(a.value(), b.value()) << "(" << a.row() << ", " << col << ")";
+        }
+        EXPECT_FALSE(a || b) << "column " << col;
+    }
+}
+
+}  // namespace boneless::testing
