@@ -57,14 +57,25 @@ TriMesh VertexOrder::apply(const TriMesh& mesh) const {
     const int m = mesh.faceCount();
     // Faces sorted by their vertices' sorted triple, so that a face's neighbours in memory share
     // its vertices, and the result does not depend on the caller's face order.
-    std::vector<std::pair<std::array<int, 3>, int>> keys(m);
+    // Bucketed by the smallest vertex first (a handful of faces each), then sorted within.
+    using Key = std::pair<std::array<int, 3>, int>;
+    const int n = mesh.vertexCount();
+    std::vector<int> start(n + 1, 0);
+    std::vector<Key> unsorted(m);
     for (int f = 0; f < m; ++f) {
         std::array<int, 3> key;
         for (int c = 0; c < 3; ++c) key[c] = internalOf_[mesh.F(f, c)];
         std::sort(key.begin(), key.end());
-        keys[f] = {key, f};
+        unsorted[f] = {key, f};
+        ++start[key[0] + 1];
     }
-    std::sort(keys.begin(), keys.end());
+    for (int v = 0; v < n; ++v) start[v + 1] += start[v];
+    std::vector<Key> keys(m);
+    {
+        std::vector<int> fill(start.begin(), start.end() - 1);
+        for (const Key& k : unsorted) keys[fill[k.first[0]]++] = k;
+    }
+    for (int v = 0; v < n; ++v) std::sort(keys.begin() + start[v], keys.begin() + start[v + 1]);
     out.F.resize(m, 3);
     for (int i = 0; i < m; ++i)
         for (int c = 0; c < 3; ++c) out.F(i, c) = internalOf_[mesh.F(keys[i].second, c)];
