@@ -13,7 +13,7 @@ namespace {
 constexpr int kRateIterations = 5;
 }  // namespace
 
-BlockSystem::BlockSystem(int vertexCount, const std::vector<std::vector<int>>& stencils) {
+BlockSystem::BlockSystem(int vertexCount, const Stencils& stencils) {
     // Each pair of the pattern becomes a 3×3 block: column 3b+c holds, for every row vertex a of
     // the pattern's column b, the rows 3a, 3a+1, 3a+2.
     const StencilPattern pattern(vertexCount, stencils);
@@ -46,7 +46,7 @@ BlockSystem::BlockSystem(int vertexCount, const std::vector<std::vector<int>>& s
     }
     slots_.resize(slotOffset_.back());
     for (int r = 0; r < stencilCount; ++r) {
-        const auto& s = stencils[r];
+        const int* s = stencils[r];
         const int m = stencilSizes_[r];
         for (int i = 0; i < m; ++i)
             for (int j = 0; j < m; ++j) {

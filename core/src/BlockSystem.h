@@ -5,6 +5,7 @@
 #include <memory>
 #include <vector>
 
+#include "StencilPattern.h"
 #include "boneless/ShapeEncoding.h"
 
 namespace boneless {
@@ -15,9 +16,8 @@ namespace boneless {
 // fills values through precomputed slots and refactorises numerically.
 class BlockSystem {
   public:
-    // stencils[r] = the vertices residual r depends on; every residual's stencil lists each
-    // vertex at most once.
-    BlockSystem(int vertexCount, const std::vector<std::vector<int>>& stencils);
+    // stencils[r] = the vertices residual r depends on, each at most once.
+    BlockSystem(int vertexCount, const Stencils& stencils);
 
     void clear();
     // H_ab += M for the a-th and b-th vertex of residual r's stencil.

@@ -11,6 +11,7 @@
 #include "IterativeSolver.h"
 #include "LineSearch.h"
 #include "MultiresSolver.h"
+#include "Parallel.h"
 #include "ReconstructionImpl.h"
 #include "boneless/Error.h"
 #include "boneless/Metrics.h"
@@ -105,12 +106,14 @@ void Reconstruction::Impl::updateOrientationGuard() {
 double Reconstruction::Impl::linearise(const Positions& V, const Positions& targets) {
     const int count = static_cast<int>(residualOf.size());
     residual.resize(count);
-    jacobian.resize(count);
+    jacobian.resize(topology->neighbours().size());
+    std::vector<Mat3> J;
     double e = 0;
     for (int r = 0; r < count; ++r) {
         const int v = residualOf[r];
         Vec3 F;
-        encoding->decodeWithJacobian(v, V, F, jacobian[r]);
+        encoding->decodeWithJacobian(v, V, F, J);
+        std::copy(J.begin(), J.end(), jacobian.begin() + topology->offsets()[v]);
         residual[r] = V.row(v).transpose() - F;
         e += residual[r].squaredNorm();
     }
@@ -128,29 +131,29 @@ void Reconstruction::Impl::assemble(const Positions& V, const Positions& targets
                                     Eigen::VectorXd& gradient) {
     if (!system) buildBlockSystem();
     system->clear();
-    assembleInto(*system, V, targets, gradient);
+    assembleInto(*system, V, targets, &gradient);
 }
 
 template <class System>
 void Reconstruction::Impl::assembleInto(System& system, const Positions& V,
-                                        const Positions& targets, Eigen::VectorXd& gradient) {
+                                        const Positions& targets, Eigen::VectorXd* gradient) {
     const int n = rest.vertexCount();
-    gradient.setZero(3 * n);
+    if (gradient) gradient->setZero(3 * n);
     const auto& topo = *topology;
     for (int r = 0; r < static_cast<int>(residualOf.size()); ++r) {
         const int v = residualOf[r];
         const int m = topo.valence(v);
         const int* ring = topo.ring(v);
-        const auto& J = jacobian[r];
+        const Mat3* J = jacobian.data() + topo.offsets()[v];
         const Vec3& res = residual[r];
         // Stencil slot 0 is v itself (∂r/∂v = I), slot k+1 its k-th neighbour (∂r/∂p_k = −J_k).
         system.add(r, 0, 0, Mat3::Identity());
-        gradient.segment<3>(3 * v) += res;
+        if (gradient) gradient->segment<3>(3 * v) += res;
         for (int k = 0; k < m; ++k) {
             const Mat3 Jt = J[k].transpose();
             system.add(r, 0, k + 1, -J[k]);
             system.add(r, k + 1, 0, -Jt);
-            gradient.segment<3>(3 * ring[k]) -= Jt * res;
+            if (gradient) gradient->segment<3>(3 * ring[k]) -= Jt * res;
             for (int l = 0; l < m; ++l) system.addGram(r, k + 1, l + 1, J[k], J[l]);
         }
     }
@@ -167,16 +170,19 @@ void Reconstruction::Impl::assembleInto(System& system, const Positions& V,
                 system.add(firstFaceStencil + f, j, k, -W);
                 system.add(firstFaceStencil + f, k, j, -W);
             }
-        const Eigen::MatrixXd b = rigidity->rotatedRestEdges(rotations);
-        const Eigen::MatrixXd LV = rigidity->laplacian() * V;
-        for (int v = 0; v < n; ++v)
-            gradient.segment<3>(3 * v) += a * (6.0 * LV.row(v) - 2.0 * b.row(v)).transpose();
+        if (gradient) {
+            const Eigen::MatrixXd b = rigidity->rotatedRestEdges(rotations);
+            const Eigen::MatrixXd LV = rigidity->laplacian() * V;
+            for (int v = 0; v < n; ++v)
+                gradient->segment<3>(3 * v) += a * (6.0 * LV.row(v) - 2.0 * b.row(v)).transpose();
+        }
     }
     if (orientation) {
         const int firstFaceStencil = static_cast<int>(residualOf.size());
         for (const auto& t : orientationTerms) {
             for (int a = 0; a < 3; ++a) {
-                gradient.segment<3>(3 * rest.F(t.face, a)) += t.residual * t.derivative[a];
+                if (gradient)
+                    gradient->segment<3>(3 * rest.F(t.face, a)) += t.residual * t.derivative[a];
                 for (int b = 0; b < 3; ++b)
                     system.add(firstFaceStencil + t.face, a, b,
                                t.derivative[a] * t.derivative[b].transpose());
@@ -190,7 +196,7 @@ void Reconstruction::Impl::assembleInto(System& system, const Positions& V,
             const double lambda = options.softWeight;
             std::vector<Mat3> dn;
             const Vec3 miss = markerPoint(k, V, &dn) - targets.row(k).transpose();
-            gradient.segment<3>(3 * v) += lambda * miss;
+            if (gradient) gradient->segment<3>(3 * v) += lambda * miss;
             if (dn.empty() || residualIndex[v] < 0) {
                 system.addDiagonal(v, lambda * Mat3::Identity());
                 continue;
@@ -203,7 +209,7 @@ void Reconstruction::Impl::assembleInto(System& system, const Positions& V,
             system.add(r, 0, 0, lambda * Mat3::Identity());
             for (int j = 0; j < m; ++j) {
                 const Mat3 Aj = d * dn[j];
-                gradient.segment<3>(3 * ring[j]) += lambda * Aj.transpose() * miss;
+                if (gradient) gradient->segment<3>(3 * ring[j]) += lambda * Aj.transpose() * miss;
                 system.add(r, 0, j + 1, lambda * Aj);
                 system.add(r, j + 1, 0, lambda * Aj.transpose());
                 for (int i = 0; i < m; ++i)
@@ -290,11 +296,12 @@ void Reconstruction::Impl::addRotationCouplingTo(System& system, bool clamped) {
 
 // The rest pose's systems are assembled by the same code (RestSystem.cpp).
 template void Reconstruction::Impl::assembleInto(BlockSystem&, const Positions&, const Positions&,
-                                                 Eigen::VectorXd&);
+                                                 Eigen::VectorXd*);
 template void Reconstruction::Impl::addRotationCouplingTo(BlockSystem&, bool);
 template void Reconstruction::Impl::assembleInto(ScalarSystem&, const Positions&, const Positions&,
-                                                 Eigen::VectorXd&);
+                                                 Eigen::VectorXd*);
 template void Reconstruction::Impl::addRotationCouplingTo(ScalarSystem&, bool);
+template void Reconstruction::Impl::addRotationCouplingTo(ScalarSystem::Part&, bool);
 
 std::optional<Reconstruction::Impl::GuardHessian> Reconstruction::Impl::factorizeFirstOf(
     std::initializer_list<GuardHessian> kinds, const std::function<void(GuardHessian)>& build) {
@@ -418,18 +425,21 @@ SolveResult Reconstruction::solve(const Positions& targets, const Positions* gue
     return s.solveDirect(targets, guess);
 }
 
-std::vector<std::vector<int>> Reconstruction::Impl::stencils() const {
-    std::vector<std::vector<int>> stencils;
-    stencils.reserve(residualOf.size() + rest.faceCount());
+Stencils Reconstruction::Impl::stencils() const {
+    Stencils stencils;
+    stencils.offsets.reserve(residualOf.size() + rest.faceCount() + 1);
+    stencils.vertices.reserve(topology->neighbours().size() + residualOf.size() +
+                              3 * static_cast<size_t>(rest.faceCount()));
     for (int v : residualOf) {
-        std::vector<int> s{v};
-        const int* ring = topology->ring(v);
-        s.insert(s.end(), ring, ring + topology->valence(v));
-        stencils.push_back(std::move(s));
+        stencils.push(v);
+        for (int k = 0; k < topology->valence(v); ++k) stencils.push(topology->ring(v)[k]);
+        stencils.close();
     }
     // Faces are stencils too, for the fold guard's terms (no residual of their own).
-    for (int f = 0; f < rest.faceCount(); ++f)
-        stencils.push_back({rest.F(f, 0), rest.F(f, 1), rest.F(f, 2)});
+    for (int f = 0; f < rest.faceCount(); ++f) {
+        for (int c = 0; c < 3; ++c) stencils.push(rest.F(f, c));
+        stencils.close();
+    }
     return stencils;
 }
 

@@ -50,7 +50,7 @@ struct Reconstruction::Impl {
 
     // Per-iteration scratch, kept to avoid reallocations per frame.
     std::vector<Vec3> residual;
-    std::vector<std::vector<Mat3>> jacobian;
+    std::vector<Mat3> jacobian;  // per residual, at its vertex's ring offsets in the topology
     std::vector<Mat3> rotations;
     std::vector<Mat3> rotationCurvature;  // C_v of each fitted rotation (ArapEnergy::fitRotations)
     std::vector<OrientationGuard::Term> orientationTerms;
@@ -79,17 +79,17 @@ struct Reconstruction::Impl {
     // addRotationCoupling()) and the orientation guard's terms; returns the energy.
     double linearise(const Positions& V, const Positions& targets);
     // Assembles AᵀA and Aᵀr for the current linearisation (into the block system, made if need
-    // be; assembleInto: into a system that starts at zero).
+    // be; assembleInto: into a system that starts at zero, Aᵀr only when asked for).
     void assemble(const Positions& V, const Positions& targets, Eigen::VectorXd& gradient);
     template <class System>
     void assembleInto(System& system, const Positions& V, const Positions& targets,
-                      Eigen::VectorXd& gradient);
+                      Eigen::VectorXd* gradient);
     // The iterative method's preconditioner: the Gauss–Newton matrix of the rest pose, every
     // marker pinned when hard, a tiny Tikhonov term added, factorised; in the block system
     // (Preconditioner::Blocks) or as restScalar (Preconditioner::Scalar, LumpedScalar).
     void prepareRestSystem();
     // One stencil per residual (its vertex and ring), one per face: the systems' structure.
-    std::vector<std::vector<int>> stencils() const;
+    Stencils stencils() const;
     // Made on first use: a level of the multiresolution solver that is never stepped on needs none.
     void buildBlockSystem();
     // Adds the fold guard's rotation coupling, −2α Σ_v G_vᵀ C_v G_v, to the assembled matrix: the

@@ -2,18 +2,34 @@
 
 #include <algorithm>
 
+#include "Parallel.h"
+
 namespace boneless {
 
-ScalarSystem::ScalarSystem(int vertexCount, const std::vector<std::vector<int>>& stencils,
+namespace {
+
+// The pattern's matrix, all values zero.
+Eigen::SparseMatrix<double> zeroMatrix(Eigen::Index vertexCount, const StencilPattern& pattern) {
+    Eigen::SparseMatrix<double> m(vertexCount, vertexCount);
+    m.resizeNonZeros(static_cast<Eigen::Index>(pattern.inner().size()));
+    std::copy(pattern.outer().begin(), pattern.outer().end(), m.outerIndexPtr());
+    std::copy(pattern.inner().begin(), pattern.inner().end(), m.innerIndexPtr());
+    std::fill_n(m.valuePtr(), pattern.inner().size(), 0.0);
+    return m;
+}
+
+}  // namespace
+
+ScalarSystem::ScalarSystem(int vertexCount, const Stencils& stencils,
                            const StencilPattern::Lumping* lumping)
-    : pattern_(vertexCount, stencils, lumping), lumped_(lumping != nullptr) {
-    const std::vector<int>& outer = pattern_.outer();
-    const std::vector<int>& inner = pattern_.inner();
-    matrix_.resize(vertexCount, vertexCount);
-    matrix_.resizeNonZeros(static_cast<Eigen::Index>(inner.size()));
-    std::copy(outer.begin(), outer.end(), matrix_.outerIndexPtr());
-    std::copy(inner.begin(), inner.end(), matrix_.innerIndexPtr());
-    std::fill_n(matrix_.valuePtr(), inner.size(), 0.0);
+    : pattern_(vertexCount, stencils, lumping),
+      lumped_(lumping != nullptr),
+      matrix_(zeroMatrix(vertexCount, pattern_)),
+      blocks_(pattern_.blockStarts().size() - 1) {}
+
+void ScalarSystem::add(const Part& part) {
+    double* values = matrix_.valuePtr();
+    for (size_t e = 0; e < part.values_.size(); ++e) values[e] += part.values_[e];
 }
 
 void ScalarSystem::pin(int v) {
@@ -37,12 +53,28 @@ double ScalarSystem::meanDiagonal() const {
     return n ? sum / n : 0.0;
 }
 
-bool ScalarSystem::factorize(double tikhonov) {
-    const int n = static_cast<int>(matrix_.rows());
-    for (int v = 0; v < n; ++v) matrix_.valuePtr()[pattern_.diagonal(v)] += tikhonov;
-    factor_ =
-        std::make_unique<Eigen::CholmodDecomposition<Eigen::SparseMatrix<double>, Eigen::Lower>>();
-    factor_->cholmod().print = 0;  // a matrix that is not positive definite is reported by info()
+Eigen::SparseMatrix<double> ScalarSystem::block(int k, bool values) const {
+    const std::vector<int>& starts = pattern_.blockStarts();
+    if (starts.size() == 2) return values ? matrix_ : zeroMatrix(matrix_.rows(), pattern_);
+    // No entry crosses a block: its columns hold its rows only.
+    const int first = starts[k], size = starts[k + 1] - first;
+    const int* outer = matrix_.outerIndexPtr();
+    const int* inner = matrix_.innerIndexPtr();
+    const int begin = outer[first], count = outer[first + size] - begin;
+    Eigen::SparseMatrix<double> m(size, size);
+    m.resizeNonZeros(count);
+    for (int c = 0; c <= size; ++c) m.outerIndexPtr()[c] = outer[first + c] - begin;
+    for (int e = 0; e < count; ++e) m.innerIndexPtr()[e] = inner[begin + e] - first;
+    if (values)
+        std::copy_n(matrix_.valuePtr() + begin, count, m.valuePtr());
+    else
+        std::fill_n(m.valuePtr(), count, 0.0);
+    return m;
+}
+
+std::unique_ptr<ScalarSystem::Factor> ScalarSystem::analysed(int k) const {
+    auto factor = std::make_unique<Factor>();
+    factor->cholmod().print = 0;  // a matrix that is not positive definite is reported by info()
     // Each conjugate-gradient step solves with this factor. On a multiresolution solver's coarsest
     // level (2,000 vertices) that solve was half the time of conjugate gradients, and the
     // supernodal factor's dense-block calls cost more than the arithmetic: simplicial, the bench's
@@ -51,12 +83,59 @@ bool ScalarSystem::factorize(double tikhonov) {
     // for simplicial to win there too (koala's input, lnz 1.4M: analysed and factorised in 93
     // against 140 ms, a solve for three columns 4.9 against 8.5 ms).
     constexpr int simplicialBelow = 10000;
-    factor_->setMode(lumped_ || n < simplicialBelow ? Eigen::CholmodSimplicialLLt
-                                                    : Eigen::CholmodSupernodalLLt);
-    factor_->compute(matrix_);
-    if (factor_->info() == Eigen::Success) return true;
-    factor_.reset();
+    factor->setMode(lumped_ || matrix_.rows() < simplicialBelow ? Eigen::CholmodSimplicialLLt
+                                                                : Eigen::CholmodSupernodalLLt);
+    // On a copy of the pattern: the values may be filled meanwhile, and the analysis must not
+    // read them.
+    factor->analyzePattern(block(k, false));
+    return factor;
+}
+
+void ScalarSystem::analyse() {
+    parallelFor(
+        static_cast<int>(blocks_.size()),
+        [&](int begin, int end, int) {
+            for (int k = begin; k < end; ++k) blocks_[k].symbolic = analysed(k);
+        },
+        1);
+}
+
+bool ScalarSystem::factorize(double tikhonov) {
+    const int n = static_cast<int>(matrix_.rows());
+    for (int v = 0; v < n; ++v) matrix_.valuePtr()[pattern_.diagonal(v)] += tikhonov;
+    std::vector<char> ok(blocks_.size(), 0);
+    parallelFor(
+        static_cast<int>(blocks_.size()),
+        [&](int begin, int end, int) {
+            for (int k = begin; k < end; ++k) {
+                Block& b = blocks_[k];
+                // A retry (a stronger Tikhonov term) analyses again: the failed factor is gone.
+                b.factor = b.symbolic ? std::move(b.symbolic) : analysed(k);
+                b.factor->factorize(block(k, true));
+                ok[k] = b.factor->info() == Eigen::Success;
+            }
+        },
+        1);
+    if (std::all_of(ok.begin(), ok.end(), [](char x) { return x; })) return true;
+    for (Block& b : blocks_) b.factor.reset();
     return false;
+}
+
+Eigen::MatrixXd ScalarSystem::solve(const Eigen::MatrixXd& rhs) const {
+    if (blocks_.size() == 1) return blocks_[0].factor->solve(rhs);
+    const std::vector<int>& starts = pattern_.blockStarts();
+    Eigen::MatrixXd x(rhs.rows(), rhs.cols());
+    parallelFor(
+        static_cast<int>(blocks_.size()),
+        [&](int begin, int end, int) {
+            for (int k = begin; k < end; ++k) {
+                const int first = starts[k], size = starts[k + 1] - first;
+                const Eigen::MatrixXd part = rhs.middleRows(first, size);
+                x.middleRows(first, size) = blocks_[k].factor->solve(part);
+            }
+        },
+        1);
+    return x;
 }
 
 }  // namespace boneless

@@ -31,44 +31,83 @@ namespace boneless {
 class ScalarSystem {
   public:
     // stencils[r] = the vertices residual r depends on, each at most once.
-    ScalarSystem(int vertexCount, const std::vector<std::vector<int>>& stencils,
+    ScalarSystem(int vertexCount, const Stencils& stencils,
                  const StencilPattern::Lumping* lumping = nullptr);
+
+    // Terms added apart from the system's own values, on its pattern, for one thread of an
+    // assembly split between threads; add(const Part&) adds them.
+    class Part {
+      public:
+        explicit Part(const ScalarSystem& system)
+            : pattern_(system.pattern_), values_(system.matrix_.nonZeros(), 0.0) {}
+        void add(int residual, int a, int b, const Mat3& M) {
+            accumulate(values_.data(), pattern_.entry(residual, a, b), M.trace() / 3.0);
+        }
+        void addGram(int residual, int a, int b, const Mat3& P, const Mat3& Q) {
+            accumulate(values_.data(), pattern_.entry(residual, a, b),
+                       P.cwiseProduct(Q).sum() / 3.0);
+        }
+
+      private:
+        friend class ScalarSystem;
+        const StencilPattern& pattern_;
+        std::vector<double> values_;
+    };
 
     // H_ab += trace(M) / 3 for the a-th and b-th vertex of residual r's stencil.
     void add(int residual, int a, int b, const Mat3& M) {
-        accumulate(pattern_.entry(residual, a, b), M.trace() / 3.0);
+        accumulate(matrix_.valuePtr(), pattern_.entry(residual, a, b), M.trace() / 3.0);
     }
     // H_ab += trace(Pᵀ Q) / 3, without the product's other entries.
     void addGram(int residual, int a, int b, const Mat3& P, const Mat3& Q) {
-        accumulate(pattern_.entry(residual, a, b), P.cwiseProduct(Q).sum() / 3.0);
+        accumulate(matrix_.valuePtr(), pattern_.entry(residual, a, b),
+                   P.cwiseProduct(Q).sum() / 3.0);
     }
     void addDiagonal(int v, const Mat3& M) {
         matrix_.valuePtr()[pattern_.diagonal(v)] += M.trace() / 3.0;
     }
+    void add(const Part& part);
     // Vertex v's row and column become the identity's.
     void pin(int v);
     double meanDiagonal() const;
+    // The factorisation's symbolic part (its ordering and the factor's structure), which needs
+    // only the pattern: it may run on another thread while add() calls fill the values
+    // (koala's input in two blocks, each apart: 13–23 ms of analysis, 24–34 ms of numeric
+    // factorisation). factorize() does it itself when it has not been done.
+    void analyse();
     // Factorises H + tikhonov·I; false when it is not positive definite.
     bool factorize(double tikhonov);
     // Solves with the factor, for each column of rhs (#V by 3).
-    Eigen::MatrixXd solve(const Eigen::MatrixXd& rhs) const { return factor_->solve(rhs); }
+    Eigen::MatrixXd solve(const Eigen::MatrixXd& rhs) const;
     // Both triangles.
     const Eigen::SparseMatrix<double>& matrix() const { return matrix_; }
 
   private:
     // A dropped pair's contribution x lands on the diagonal as |x|: with its mirror (b, a) that
     // adds [|x|, −x; −x, |x|], positive semidefinite whatever x's sign.
-    void accumulate(int entry, double x) {
+    static void accumulate(double* values, int entry, double x) {
         if (entry >= 0)
-            matrix_.valuePtr()[entry] += x;
+            values[entry] += x;
         else
-            matrix_.valuePtr()[-1 - entry] += std::abs(x);
+            values[-1 - entry] += std::abs(x);
     }
+
+    using Factor = Eigen::CholmodDecomposition<Eigen::SparseMatrix<double>, Eigen::Lower>;
+    // Diagonal block k of the matrix (the whole matrix when there is one), or of its pattern with
+    // zero values.
+    Eigen::SparseMatrix<double> block(int k, bool values) const;
+    std::unique_ptr<Factor> analysed(int k) const;
 
     StencilPattern pattern_;
     bool lumped_;
     Eigen::SparseMatrix<double> matrix_;
-    std::unique_ptr<Eigen::CholmodDecomposition<Eigen::SparseMatrix<double>, Eigen::Lower>> factor_;
+    // Per diagonal block (StencilPattern::blockStarts()), factorised and solved apart, on the
+    // cores at once.
+    struct Block {
+        std::unique_ptr<Factor> factor;
+        std::unique_ptr<Factor> symbolic;  // analyse()'s, until factorize() takes it
+    };
+    std::vector<Block> blocks_;
 };
 
 }  // namespace boneless

@@ -260,3 +260,66 @@ TEST(ScalarSystem, LumpedKeepsTheEdgesAndIsAtLeastTheFullMatrix) {
     EXPECT_EQ(S.col(fixedVertex).cwiseAbs().sum(), 1.0);
     EXPECT_EQ(lumped.matrix().nonZeros(), n + static_cast<long>(topology.neighbours().size()));
 }
+
+// Cut into diagonal blocks (ranges of vertices), the lumped matrix also lumps the pairs between
+// blocks, so that it stays at least the unblocked one; each block is factorised and solved apart
+// (on the cores at once), and together they solve the whole matrix. Terms added through a Part
+// (another thread's share of an assembly) count as if added directly.
+TEST(ScalarSystem, LumpedBlocksAreSolvedApartAndStayAtLeastTheUnblockedMatrix) {
+    const TriMesh mesh = boneless::testing::icosphere(2);
+    const MeshTopology topology(mesh);
+    const int n = mesh.vertexCount(), half = n / 2;
+    std::vector<std::vector<int>> stencils;
+    for (int v = 0; v < n; ++v) {
+        std::vector<int> s{v};
+        s.insert(s.end(), topology.ring(v), topology.ring(v) + topology.valence(v));
+        stencils.push_back(s);
+    }
+    const std::vector<char> fixed(n, 0);
+    const StencilPattern::Lumping whole{topology, fixed};
+    const StencilPattern::Lumping cut{topology, fixed, {0, half, n}};
+    ScalarSystem unblocked(n, stencils, &whole), blocked(n, stencils, &cut),
+        inParts(n, stencils, &cut);
+    ScalarSystem::Part part(inParts);
+    std::mt19937 rng(5);
+    // A Gauss–Newton matrix: per stencil, JᵀJ of random Jacobian blocks, plus the identity.
+    for (size_t r = 0; r < stencils.size(); ++r) {
+        const int m = static_cast<int>(stencils[r].size()), rr = static_cast<int>(r);
+        std::vector<Mat3> J(m);
+        for (auto& block : J) block = randomMatrix(rng);
+        for (int a = 0; a < m; ++a)
+            for (int b = 0; b < m; ++b) {
+                unblocked.addGram(rr, a, b, J[a], J[b]);
+                blocked.addGram(rr, a, b, J[a], J[b]);
+                if (r % 2)
+                    part.addGram(rr, a, b, J[a], J[b]);
+                else
+                    inParts.addGram(rr, a, b, J[a], J[b]);
+            }
+    }
+    inParts.add(part);
+    for (int v = 0; v < n; ++v)
+        for (ScalarSystem* s : {&unblocked, &blocked, &inParts})
+            s->addDiagonal(v, Mat3::Identity());
+
+    const Eigen::MatrixXd U(unblocked.matrix()), B(blocked.matrix()), P(inParts.matrix());
+    int crossing = 0;
+    for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b) {
+            EXPECT_NEAR(P(a, b), B(a, b), 1e-12 * B.cwiseAbs().maxCoeff());
+            if ((a < half) == (b < half)) continue;
+            EXPECT_EQ(B(a, b), 0.0) << "(" << a << ", " << b << ")";
+            if (U(a, b) != 0) ++crossing;
+        }
+    EXPECT_GT(crossing, 0);  // the cut goes through edges: there is something to lump
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> added(B - U);
+    EXPECT_GE(added.eigenvalues().minCoeff(), -1e-10 * B.cwiseAbs().maxCoeff());
+
+    const Eigen::MatrixXd rhs = Eigen::MatrixXd::Random(n, 3);
+    const Eigen::MatrixXd expected = B.llt().solve(rhs);
+    inParts.analyse();  // the analysis ahead, as the rest system makes it
+    ASSERT_TRUE(blocked.factorize(0.0));
+    ASSERT_TRUE(inParts.factorize(0.0));
+    EXPECT_LT((blocked.solve(rhs) - expected).norm(), 1e-10 * expected.norm());
+    EXPECT_LT((inParts.solve(rhs) - expected).norm(), 1e-10 * expected.norm());
+}
