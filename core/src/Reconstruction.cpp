@@ -11,7 +11,6 @@
 #include "IterativeSolver.h"
 #include "LineSearch.h"
 #include "MultiresSolver.h"
-#include "Parallel.h"
 #include "ReconstructionImpl.h"
 #include "boneless/Error.h"
 #include "boneless/Metrics.h"

@@ -55,7 +55,6 @@ double ScalarSystem::meanDiagonal() const {
 
 Eigen::SparseMatrix<double> ScalarSystem::block(int k, bool values) const {
     const std::vector<int>& starts = pattern_.blockStarts();
-    if (starts.size() == 2) return values ? matrix_ : zeroMatrix(matrix_.rows(), pattern_);
     // No entry crosses a block: its columns hold its rows only.
     const int first = starts[k], size = starts[k + 1] - first;
     const int* outer = matrix_.outerIndexPtr();
@@ -111,7 +110,11 @@ bool ScalarSystem::factorize(double tikhonov) {
                 Block& b = blocks_[k];
                 // A retry (a stronger Tikhonov term) analyses again: the failed factor is gone.
                 b.factor = b.symbolic ? std::move(b.symbolic) : analysed(k);
-                b.factor->factorize(block(k, true));
+                // One block is the matrix itself: no copy of it.
+                if (blocks_.size() == 1)
+                    b.factor->factorize(matrix_);
+                else
+                    b.factor->factorize(block(k, true));
                 ok[k] = b.factor->info() == Eigen::Success;
             }
         },

@@ -93,8 +93,7 @@ class ScalarSystem {
     }
 
     using Factor = Eigen::CholmodDecomposition<Eigen::SparseMatrix<double>, Eigen::Lower>;
-    // Diagonal block k of the matrix (the whole matrix when there is one), or of its pattern with
-    // zero values.
+    // Diagonal block k of the matrix, or of its pattern with zero values.
     Eigen::SparseMatrix<double> block(int k, bool values) const;
     std::unique_ptr<Factor> analysed(int k) const;
 
