@@ -26,6 +26,7 @@ struct EvalArgs {
     int maxIterations = SolverOptions{}.maxIterations;
     double tolerance = SolverOptions{}.relativeTolerance;
     double rigidity = SolverOptions{}.rigidityWeight;
+    double orientation = -1;  // unset: EvaluationOptions' default, 0 for the iterative solver
     std::string solver = "direct";
     int fineSteps = SolverOptions{}.fineIterations;
     int corrections = SolverOptions{}.correctionSteps;
@@ -95,12 +96,22 @@ void run(const EvalArgs& args) {
     options.solver.maxIterations = args.maxIterations;
     options.solver.relativeTolerance = args.tolerance;
     options.solver.rigidityWeight = args.rigidity;
+    options.solver.orientationWeight = args.orientation >= 0 ? args.orientation
+                                       : args.solver == "iterative"
+                                           ? 0.0
+                                           : EvaluationOptions{}.solver.orientationWeight;
     options.solver.method = args.solver == "multires"    ? SolverOptions::Method::Multiresolution
                             : args.solver == "iterative" ? SolverOptions::Method::Iterative
                                                          : SolverOptions::Method::Direct;
     options.solver.fineIterations = args.fineSteps;
     options.solver.correctionSteps = args.corrections;
     options.solver.coarsestVertices = args.coarsest;
+
+    // Before any output: the core would refuse it only at the first frame.
+    if (options.solver.orientationWeight > 0 && args.solver == "iterative")
+        throw Error(
+            "--orientation-guard needs the direct or multires solver (the iterative solver "
+            "refuses it: pass --orientation-guard 0, its default)");
 
     std::vector<EvaluationOptions::Method> methods;
     if (args.method == "boneless" || args.method == "both")
@@ -109,13 +120,14 @@ void run(const EvalArgs& args) {
         methods.push_back(EvaluationOptions::Method::Arap);
 
     if (!args.json)
-        std::printf("%s: %zu frames, %d vertices, %d faces, %zu markers%s, %s solver\n",
-                    args.sequence.c_str(), sequence.frames.size(), sequence.rest.vertexCount(),
-                    sequence.rest.faceCount(), options.markers.size(),
-                    args.drop > 0
-                        ? (", " + std::to_string(args.drop) + " % dropped per frame").c_str()
-                        : "",
-                    args.solver.c_str());
+        std::printf(
+            "%s: %zu frames, %d vertices, %d faces, %zu markers%s, %s solver, "
+            "orientation guard %g\n",
+            args.sequence.c_str(), sequence.frames.size(), sequence.rest.vertexCount(),
+            sequence.rest.faceCount(), options.markers.size(),
+            args.drop > 0 ? (", " + std::to_string(args.drop) + " % dropped per frame").c_str()
+                          : "",
+            args.solver.c_str(), options.solver.orientationWeight);
     std::vector<Evaluation> results;
     for (auto method : methods) {
         options.method = method;
@@ -138,6 +150,7 @@ void run(const EvalArgs& args) {
         out["markers"] = options.markers.size();
         out["drop_pct"] = args.drop;
         out["solver"] = args.solver;
+        out["orientation_guard"] = options.solver.orientationWeight;
         nlohmann::json perFrame = nlohmann::json::array();
         for (const auto& f : results[0].frames)
             perFrame.push_back({{"frame", f.frame},
@@ -182,6 +195,10 @@ void registerEvalCommand(CLI::App& app) {
     cmd->add_option("--max-iterations", args->maxIterations, "Gauss–Newton iterations per frame");
     cmd->add_option("--tolerance", args->tolerance, "Relative energy decrease that stops a frame");
     cmd->add_option("--rigidity", args->rigidity, "Weight of the fold guard (0 = paper's energy)");
+    cmd->add_option("--orientation-guard", args->orientation,
+                    "Weight of the penalty on faces turning over, as in solve (default 100, 0 = "
+                    "off; the iterative solver needs 0, its default)")
+        ->check(CLI::NonNegativeNumber);
     cmd->add_option("--solver", args->solver,
                     "How each frame's energy is minimised: direct (a factorisation per step), "
                     "iterative (conjugate gradients) or multires (hierarchy, for speed)")

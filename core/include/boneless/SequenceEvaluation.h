@@ -20,7 +20,13 @@ struct EvaluationOptions {
     int endFrame = -1;       // one past the last frame; -1 = the end of the sequence
     double dropPercent = 0;  // each frame, this share of the markers goes missing (seeded)
     unsigned seed = 1;
-    SolverOptions solver;
+    // As a take is solved (TakeSolveOptions): with the orientation guard, so that what eval
+    // measures is what a user gets. The iterative method refuses the guard: set its weight to 0.
+    SolverOptions solver = [] {
+        SolverOptions s;
+        s.orientationWeight = 100.0;
+        return s;
+    }();
     int arapIterations = 10;
 };
 
