@@ -96,10 +96,6 @@ void run(const EvalArgs& args) {
     options.solver.maxIterations = args.maxIterations;
     options.solver.relativeTolerance = args.tolerance;
     options.solver.rigidityWeight = args.rigidity;
-    options.solver.orientationWeight = args.orientation >= 0 ? args.orientation
-                                       : args.solver == "iterative"
-                                           ? 0.0
-                                           : EvaluationOptions{}.solver.orientationWeight;
     options.solver.method = args.solver == "multires"    ? SolverOptions::Method::Multiresolution
                             : args.solver == "iterative" ? SolverOptions::Method::Iterative
                                                          : SolverOptions::Method::Direct;
@@ -107,11 +103,17 @@ void run(const EvalArgs& args) {
     options.solver.correctionSteps = args.corrections;
     options.solver.coarsestVertices = args.coarsest;
 
-    // Before any output: the core would refuse it only at the first frame.
-    if (options.solver.orientationWeight > 0 && args.solver == "iterative")
+    // The guard as EvaluationOptions has it, but for the iterative solver, which refuses it;
+    // asking for it there is an error before any output (the core would refuse it at frame 0).
+    const bool iterative = options.solver.method == SolverOptions::Method::Iterative;
+    if (iterative && args.orientation > 0)
         throw Error(
             "--orientation-guard needs the direct or multires solver (the iterative solver "
             "refuses it: pass --orientation-guard 0, its default)");
+    if (args.orientation >= 0)
+        options.solver.orientationWeight = args.orientation;
+    else if (iterative)
+        options.solver.orientationWeight = 0;
 
     std::vector<EvaluationOptions::Method> methods;
     if (args.method == "boneless" || args.method == "both")

@@ -41,11 +41,10 @@ class ScalarSystem {
         explicit Part(const ScalarSystem& system)
             : pattern_(system.pattern_), values_(system.matrix_.nonZeros(), 0.0) {}
         void add(int residual, int a, int b, const Mat3& M) {
-            accumulate(values_.data(), pattern_.entry(residual, a, b), M.trace() / 3.0);
+            accumulate(values_.data(), pattern_.entry(residual, a, b), traceTerm(M));
         }
         void addGram(int residual, int a, int b, const Mat3& P, const Mat3& Q) {
-            accumulate(values_.data(), pattern_.entry(residual, a, b),
-                       P.cwiseProduct(Q).sum() / 3.0);
+            accumulate(values_.data(), pattern_.entry(residual, a, b), gramTerm(P, Q));
         }
 
       private:
@@ -56,15 +55,14 @@ class ScalarSystem {
 
     // H_ab += trace(M) / 3 for the a-th and b-th vertex of residual r's stencil.
     void add(int residual, int a, int b, const Mat3& M) {
-        accumulate(matrix_.valuePtr(), pattern_.entry(residual, a, b), M.trace() / 3.0);
+        accumulate(matrix_.valuePtr(), pattern_.entry(residual, a, b), traceTerm(M));
     }
     // H_ab += trace(Pᵀ Q) / 3, without the product's other entries.
     void addGram(int residual, int a, int b, const Mat3& P, const Mat3& Q) {
-        accumulate(matrix_.valuePtr(), pattern_.entry(residual, a, b),
-                   P.cwiseProduct(Q).sum() / 3.0);
+        accumulate(matrix_.valuePtr(), pattern_.entry(residual, a, b), gramTerm(P, Q));
     }
     void addDiagonal(int v, const Mat3& M) {
-        matrix_.valuePtr()[pattern_.diagonal(v)] += M.trace() / 3.0;
+        matrix_.valuePtr()[pattern_.diagonal(v)] += traceTerm(M);
     }
     void add(const Part& part);
     // Vertex v's row and column become the identity's.
@@ -83,6 +81,9 @@ class ScalarSystem {
     const Eigen::SparseMatrix<double>& matrix() const { return matrix_; }
 
   private:
+    // What a 3×3 block contributes to its one scalar entry.
+    static double traceTerm(const Mat3& M) { return M.trace() / 3.0; }
+    static double gramTerm(const Mat3& P, const Mat3& Q) { return P.cwiseProduct(Q).sum() / 3.0; }
     // A dropped pair's contribution x lands on the diagonal as |x|: with its mirror (b, a) that
     // adds [|x|, −x; −x, |x|], positive semidefinite whatever x's sign.
     static void accumulate(double* values, int entry, double x) {
