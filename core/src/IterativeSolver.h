@@ -14,7 +14,8 @@ namespace boneless {
 // - H·x is applied matrix-free from the per-ring Jacobians (A x, then Aᵀ of that, plus the fold
 //   guard's 6αL, and once a step has been taken whole, near the minimum, the derivative of its
 //   fitted rotations, which makes the last steps converge quadratically), gathered per vertex so
-//   that both cores can work without write conflicts;
+//   that both cores can work without write conflicts; plus the orientation guard's active faces
+//   (a multiresolution input level's: a solve of this class's own refuses the guard);
 // - the preconditioner is the rest pose's H, factorised once, turned by the fold guard's fitted
 //   rotations: R H_rest⁻¹ Rᵀ with R = blockdiag(R_v). The encoding is rigid-invariant, so for a
 //   pose that is a rotation of the rest pose this is H⁻¹ exactly, and close to it for a pose made
@@ -78,6 +79,7 @@ class IterativeSolver {
         std::vector<std::vector<Mat3>> markerDn;
         std::vector<Vec3> markerMiss;
         std::vector<char> markerObserved;
+        std::vector<OrientationGuard::Term> orientation;  // the orientation guard's active faces
         double energy = 0;
         // ArapEnergy::rotatedCouplingEdges of `rotation`, made by the first product that needs
         // them.
@@ -88,6 +90,8 @@ class IterativeSolver {
     double evaluate(const Positions& V, const Positions& targets, Linearisation& L,
                     bool withCurvature = true);
     void pinFor(const Positions& targets);
+    // The orientation guard has a face of L turned over.
+    bool turnedOver(const Linearisation& L) const;
     void gradient(const Positions& V, const Linearisation& L, Eigen::VectorXd& g) const;
     void multiply(const Linearisation& L, const Eigen::VectorXd& x, Eigen::VectorXd& y);
     void precondition(const Linearisation& L, const Eigen::VectorXd& r, Eigen::VectorXd& z) const;

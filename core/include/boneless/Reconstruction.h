@@ -22,8 +22,8 @@ struct SolverOptions {
     // so without it thin parts fold; see README "Solver". 0.01 was the best of 0.001–0.1 on the
     // horse gallop at K = 20, 40, 80 (fewest flips and lowest error together).
     double rigidityWeight = 0.01;
-    // The orientation guard (0 = off; the direct method, and the multiresolution method's
-    // coarsest level, which it then solves by the direct method): a one-sided penalty on faces that
+    // The orientation guard (0 = off; the direct and multiresolution methods, whose coarsest level
+    // it then solves by the direct method): a one-sided penalty on faces that
     // shrink below orientationThreshold of their rest area or turn over against their
     // neighbourhood, with a dimensionless weight (OrientationGuard.h). Folds the fold guard lets
     // through (slivers, thin parts pulled by a marker) cost this much more.
