@@ -70,6 +70,7 @@ nlohmann::json summaryJson(const EvaluationSummary& s) {
             {"max_pct_worst_frame", s.maxPctWorstFrame},
             {"flipped_faces_max", s.flippedFacesMax},
             {"flipped_faces_mean", s.flippedFacesMean},
+            {"folded_faces_max", s.foldedFacesMax},
             {"ms_per_frame_median", s.msPerFrameMedian},
             {"iterations_mean", s.iterationsMean}};
 }
@@ -77,9 +78,9 @@ nlohmann::json summaryJson(const EvaluationSummary& s) {
 void printSummary(const char* name, const EvaluationSummary& s) {
     std::printf(
         "%-9s frames %d  RMS %% mean %.3f  RMS %% worst frame %.3f  max %% worst frame %.3f  "
-        "flipped max %d (mean %.1f)  ms/frame median %.1f  iterations mean %.1f\n",
+        "flipped max %d (mean %.1f)  folded max %d  ms/frame median %.1f  iterations mean %.1f\n",
         name, s.frames, s.rmsPctMean, s.rmsPctWorstFrame, s.maxPctWorstFrame, s.flippedFacesMax,
-        s.flippedFacesMean, s.msPerFrameMedian, s.iterationsMean);
+        s.flippedFacesMean, s.foldedFacesMax, s.msPerFrameMedian, s.iterationsMean);
 }
 
 void run(const EvalArgs& args) {
@@ -135,12 +136,12 @@ void run(const EvalArgs& args) {
         options.method = method;
         const bool perFrame = !args.json && !args.quiet;
         if (perFrame)
-            std::printf("%-9s %6s %9s %9s %8s %6s %9s\n", methodName(method), "frame", "RMS %",
-                        "max %", "flipped", "iters", "ms");
+            std::printf("%-9s %6s %9s %9s %8s %7s %6s %9s\n", methodName(method), "frame", "RMS %",
+                        "max %", "flipped", "folded", "iters", "ms");
         results.push_back(evaluateSequence(sequence, options, [&](const FrameEvaluation& f) {
             if (perFrame)
-                std::printf("%-9s %6d %9.4f %9.4f %8d %6d %9.1f\n", "", f.frame, f.rmsPct, f.maxPct,
-                            f.flippedFaces, f.iterations, f.milliseconds);
+                std::printf("%-9s %6d %9.4f %9.4f %8d %7d %6d %9.1f\n", "", f.frame, f.rmsPct,
+                            f.maxPct, f.flippedFaces, f.foldedFaces, f.iterations, f.milliseconds);
         }));
     }
     if (args.json) {
@@ -159,6 +160,7 @@ void run(const EvalArgs& args) {
                                 {"rms_pct", f.rmsPct},
                                 {"max_pct", f.maxPct},
                                 {"flipped_faces", f.flippedFaces},
+                                {"folded_faces", f.foldedFaces},
                                 {"iterations", f.iterations},
                                 {"ms", f.milliseconds}});
         out["per_frame"] = perFrame;

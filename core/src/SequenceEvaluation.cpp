@@ -30,6 +30,7 @@ EvaluationSummary summarise(const std::vector<FrameEvaluation>& frames) {
         s.maxPctWorstFrame = std::max(s.maxPctWorstFrame, f.maxPct);
         s.flippedFacesMax = std::max(s.flippedFacesMax, f.flippedFaces);
         s.flippedFacesMean += f.flippedFaces;
+        s.foldedFacesMax = std::max(s.foldedFacesMax, f.foldedFaces);
         iterations += f.iterations;
         ms.push_back(f.milliseconds);
     }
@@ -94,6 +95,7 @@ Evaluation evaluateSequence(const MeshSequence& sequence, const EvaluationOption
         f.rmsPct = 100.0 * rmsVertexError(result.V, truth) / diagonal;
         f.maxPct = 100.0 * maxVertexError(result.V, truth) / diagonal;
         f.flippedFaces = flippedFaceCount(sequence.rest.F, result.V, truth);
+        f.foldedFaces = foldedFaceCount(sequence.rest.F, result.V, sequence.rest.V);
         f.iterations = result.report.iterations;
         f.milliseconds = result.report.milliseconds;
         f.markersUsed = K - dropCount;

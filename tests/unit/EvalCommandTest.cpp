@@ -1,10 +1,15 @@
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
+#include <vector>
 
 #include "CliRunner.h"
+#include "TestMeshes.h"
 
 using namespace boneless::testing;
 namespace fs = std::filesystem;
@@ -32,6 +37,7 @@ TEST(EvalCommand, JsonReportsEverySummaryFigureAndBothMethods) {
     for (const char* key : {"frames", "rms_pct_mean", "rms_pct_worst_frame", "max_pct_worst_frame",
                             "flipped_faces_max", "ms_per_frame_median"})
         EXPECT_TRUE(j.contains(key)) << key;
+    EXPECT_TRUE(j.contains("folded_faces_max"));
     EXPECT_EQ(j["frames"], 15);  // the rest pose is not counted
     EXPECT_EQ(j["method"], "boneless");
     ASSERT_TRUE(j.contains("arap"));
@@ -100,6 +106,72 @@ TEST(EvalCommand, TheOrientationGuardIsOnAsWhenATakeIsSolved) {
     EXPECT_NE(r.exitCode, 0);
     EXPECT_NE(r.out.find("--orientation-guard"), std::string::npos) << r.out;
     EXPECT_EQ(r.out.find("frame"), std::string::npos) << "no table before the error: " << r.out;
+}
+
+// "flipped" compares each face with the truth's, "folded" with the answer's own neighbourhood: a
+// sphere whose truth has vertex 0 dragged across its ring, no marker on that ring, comes back
+// unfolded, some of the ring's faces facing away from the truth's (the truth folded, the answer
+// did not); with markers on that ring, the other way round.
+TEST(EvalCommand, FoldedFacesAreTheAnswersOwnAndFlippedOnesAgainstTheTruth) {
+    const boneless::TriMesh mesh = icosphere(3);
+    std::set<int> ring;
+    std::vector<int> fan;
+    for (int f = 0; f < mesh.faceCount(); ++f)
+        for (int c = 0; c < 3; ++c)
+            if (mesh.F(f, c) == 0) {
+                fan.push_back(f);
+                for (int d = 0; d < 3; ++d) ring.insert(mesh.F(f, d));
+            }
+    ring.erase(0);
+    // Vertex 0 dragged across its ring, two and a half times as far as a ring vertex: the faces
+    // it passes over turn over.
+    boneless::Positions truth = mesh.V;
+    truth.row(0) += 2.5 * (mesh.V.row(*ring.begin()) - mesh.V.row(0));
+    auto normal = [&](const boneless::Positions& V, int f) {
+        const Eigen::Vector3d a = V.row(mesh.F(f, 0)), b = V.row(mesh.F(f, 1)),
+                              c = V.row(mesh.F(f, 2));
+        return Eigen::Vector3d((b - a).cross(c - a));
+    };
+    const auto turned = std::count_if(
+        fan.begin(), fan.end(), [&](int f) { return normal(mesh.V, f).dot(normal(truth, f)) < 0; });
+    ASSERT_GE(turned, 2);
+
+    const fs::path dir = freshTestDir("eval-folded-truth");
+    auto write = [&](const fs::path& path, const boneless::Positions& V) {
+        std::ofstream obj(path);
+        for (int v = 0; v < V.rows(); ++v)
+            obj << "v " << V(v, 0) << " " << V(v, 1) << " " << V(v, 2) << "\n";
+        for (int f = 0; f < mesh.faceCount(); ++f)
+            obj << "f " << mesh.F(f, 0) + 1 << " " << mesh.F(f, 1) + 1 << " " << mesh.F(f, 2) + 1
+                << "\n";
+    };
+    write(dir / "000.obj", mesh.V);
+    write(dir / "001.obj", truth);
+    // Markers on every 10th vertex off that ring: the answer is the rest pose.
+    const fs::path markers = dir / "markers.txt";
+    std::ofstream ids(markers);
+    for (int v = 10; v < mesh.vertexCount(); v += 10)
+        if (!ring.count(v)) ids << v << "\n";
+    ids.close();
+    const CliResult r = runCli("eval --sequence " + dir.string() + " --markers-file " +
+                               markers.string() + " --json");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["folded_faces_max"], 0);
+    EXPECT_EQ(j["per_frame"][1]["folded_faces"], 0);
+    EXPECT_EQ(j["flipped_faces_max"].get<long>(), turned);
+
+    // With markers on vertex 0 and its ring the answer is the truth there, and folds.
+    std::ofstream more(markers, std::ios::app);
+    more << "0\n";
+    for (int v : ring) more << v << "\n";
+    more.close();
+    const CliResult follows = runCli("eval --sequence " + dir.string() + " --markers-file " +
+                                     markers.string() + " --json");
+    ASSERT_EQ(follows.exitCode, 0) << follows.out;
+    const auto k = nlohmann::json::parse(follows.out);
+    EXPECT_GE(k["folded_faces_max"].get<long>(), turned);
+    EXPECT_EQ(k["flipped_faces_max"], 0);
 }
 
 TEST(EvalCommand, MarkersFileAndDropAreHonoured) {

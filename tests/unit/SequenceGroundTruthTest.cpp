@@ -56,6 +56,7 @@ void expectWithin(const std::string& folder, const Bound& boneless, const Bound&
     EXPECT_LE(s.rmsPctMean, boneless.rmsMean);
     EXPECT_LE(s.rmsPctWorstFrame, boneless.rmsWorst);
     EXPECT_LE(s.flippedFacesMax, boneless.flippedMax);
+    EXPECT_EQ(s.foldedFacesMax, 0);  // turned away from the truth, perhaps, but never folded
     // The issue's reference: libigl's ARAP with the same markers. Boneless must not be worse.
     EXPECT_LE(s.rmsPctMean, arapReference.rmsMean);
     EXPECT_LE(s.rmsPctWorstFrame, arapReference.rmsWorst);
@@ -78,8 +79,9 @@ TEST(SequenceGroundTruth, SambaAtFortyMarkers) {
 }
 
 // Issue 4: the multiresolution method is a faster way to the same answer, so its figures stay
-// within 5 % of the direct method's (kHorseMeasured). Measured:
-// 1.006 %, 1.433 %, 187 faces, at a third of the time per frame.
+// within 5 % of the direct method's (kHorseMeasured), and like it, it folds no face. Measured:
+// 1.022 %, 1.458 %, 198 faces, none folded (5 with the input level's one step a frame and no
+// more for a face turned over), at a fifth of the time per frame.
 TEST(SequenceGroundTruth, TheMultiresolutionMethodKeepsTheHorsesAccuracy) {
     const std::string folder = unpacked("horse-gallop/horse-gallop.tar.xz", "horse-gallop");
     if (folder.empty()) GTEST_SKIP() << "no shared data (" << BONELESS_SHARED_DATA << ")";
@@ -89,4 +91,5 @@ TEST(SequenceGroundTruth, TheMultiresolutionMethodKeepsTheHorsesAccuracy) {
     EXPECT_LE(s.rmsPctMean, 1.05 * kHorseMeasured.rmsMean);
     EXPECT_LE(s.rmsPctWorstFrame, 1.05 * kHorseMeasured.rmsWorst);
     EXPECT_LE(s.flippedFacesMax, 1.05 * kHorseMeasured.flippedMax);
+    EXPECT_EQ(s.foldedFacesMax, 0);
 }

@@ -34,7 +34,11 @@ struct FrameEvaluation {
     int frame = 0;
     double rmsPct = 0;  // RMS vertex error, % of the rest pose's bounding-box diagonal
     double maxPct = 0;
+    // Faces facing away from the truth's (more than 90° off), and faces folded over against
+    // their own neighbourhood (Metrics' foldedFaces, no truth needed). A part no marker holds
+    // can turn away from the truth without folding: the first counts it, the second does not.
     int flippedFaces = 0;
+    int foldedFaces = 0;
     int iterations = 0;
     double milliseconds = 0;
     int markersUsed = 0;
@@ -45,6 +49,7 @@ struct EvaluationSummary {
     double rmsPctMean = 0, rmsPctWorstFrame = 0, maxPctWorstFrame = 0;
     int flippedFacesMax = 0;
     double flippedFacesMean = 0;
+    int foldedFacesMax = 0;
     double msPerFrameMedian = 0, iterationsMean = 0;
 };
 
