@@ -14,8 +14,8 @@ namespace boneless {
 // hierarchy of coarser meshes made by independent-set half-edge collapses.
 //  - The coarsest level (a few thousand vertices) is solved to convergence by Gauss–Newton
 //    (conjugate gradients, a factorisation when they stall; with the orientation guard on, the
-//    direct method with the guard): it carries the large, smooth part of
-//    each frame's motion, which is what conjugate gradients on the full mesh are slowest at. Its
+//    direct method with the guard): it carries the large, smooth part of each frame's motion,
+//    which is what conjugate gradients on the full mesh are slowest at. Its
 //    fold guard is weighted by √(input vertices / coarsest vertices), the ratio of their edge
 //    lengths: measured to bring its minimum closer to the input's (a quarter to a third less error
 //    after prolongation on 20K–100K faces).

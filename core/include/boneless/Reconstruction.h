@@ -23,10 +23,10 @@ struct SolverOptions {
     // horse gallop at K = 20, 40, 80 (fewest flips and lowest error together).
     double rigidityWeight = 0.01;
     // The orientation guard (0 = off; the direct and multiresolution methods, whose coarsest level
-    // it then solves by the direct method): a one-sided penalty on faces that
-    // shrink below orientationThreshold of their rest area or turn over against their
-    // neighbourhood, with a dimensionless weight (OrientationGuard.h). Folds the fold guard lets
-    // through (slivers, thin parts pulled by a marker) cost this much more.
+    // it then solves by the direct method): a one-sided penalty on faces that shrink below
+    // orientationThreshold of their rest area or turn over against their neighbourhood, with a
+    // dimensionless weight (OrientationGuard.h). Folds the fold guard lets through (slivers, thin
+    // parts pulled by a marker) cost this much more.
     double orientationWeight = 0;
     double orientationThreshold = 0.2;
     int maxIterations = 10;
