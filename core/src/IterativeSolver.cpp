@@ -84,10 +84,7 @@ double IterativeSolver::evaluate(const Positions& V, const Positions& targets, L
                               p_.rigid() && withCurvature ? &L.curvature : nullptr);
     if (p_.rigid()) e += p_.options.rigidityWeight * p_.rigidity->energy(V, L.rotation);
     L.orientation.clear();
-    if (p_.orientation) {
-        p_.orientation->linearise(V, L.orientation);
-        for (const auto& t : L.orientation) e += 0.5 * t.residual * t.residual;
-    }
+    if (p_.orientation) e += p_.orientation->linearise(V, L.orientation);
     L.energy = e;
     return e;
 }
@@ -122,9 +119,7 @@ void IterativeSolver::gradient(const Positions& V, const Linearisation& L,
                 g.segment<3>(3 * ring[j]) +=
                     lambda * d * L.markerDn[k][j].transpose() * L.markerMiss[k];
         }
-    for (const auto& t : L.orientation)
-        for (int a = 0; a < 3; ++a)
-            g.segment<3>(3 * p_.rest.F(t.face, a)) += t.residual * t.derivative[a];
+    if (p_.orientation) p_.orientation->addGradient(L.orientation, g);
     zeroPinned(g);
 }
 
@@ -182,12 +177,7 @@ void IterativeSolver::multiply(const Linearisation& L, const Eigen::VectorXd& x,
         p_.rigidity->addRotationCoupling(L.couplingEdges, L.curvature, x,
                                          -2.0 * p_.options.rigidityWeight, y);
     }
-    for (const auto& t : L.orientation) {
-        double dx = 0;
-        for (int a = 0; a < 3; ++a)
-            dx += t.derivative[a].dot(x.segment<3>(3 * p_.rest.F(t.face, a)));
-        for (int a = 0; a < 3; ++a) y.segment<3>(3 * p_.rest.F(t.face, a)) += dx * t.derivative[a];
-    }
+    if (p_.orientation) p_.orientation->addProduct(L.orientation, x, y);
     zeroPinned(y);
 }
 
@@ -368,12 +358,6 @@ void IterativeSolver::blockJacobi(const Eigen::VectorXd& g, Eigen::VectorXd& d) 
     });
 }
 
-bool IterativeSolver::turnedOver(const Linearisation& L) const {
-    for (const auto& t : L.orientation)
-        if (p_.orientation->turnedOver(t)) return true;
-    return false;
-}
-
 void IterativeSolver::pinFor(const Positions& targets) {
     for (int v = 0; v < n_; ++v) pinned_[v] = p_.topology->isIsolated(v);
     if (!p_.softMarkers())
@@ -428,8 +412,11 @@ SolveResult IterativeSolver::solve(const Positions& targets, const Positions* gu
     // frame and none with up to 4 more steps, 2 % more time a frame.
     const int steps = projectOnly ? 1 : p_.options.maxIterations;
     constexpr int turnedOverSteps = 4;
-    for (int it = 0;
-         (it < steps || (it < steps + turnedOverSteps && turnedOver(current_))) && E > 0; ++it) {
+    auto turnedOver = [&] {
+        return p_.orientation && p_.orientation->anyTurnedOver(current_.orientation);
+    };
+    for (int it = 0; (it < steps || (it < steps + turnedOverSteps && turnedOver())) && E > 0;
+         ++it) {
         gradient(V, current_, g);
         if (it == 0 && !recycled_.empty())
             recycledStart(g, step);

@@ -90,8 +90,6 @@ class IterativeSolver {
     double evaluate(const Positions& V, const Positions& targets, Linearisation& L,
                     bool withCurvature = true);
     void pinFor(const Positions& targets);
-    // The orientation guard has a face of L turned over.
-    bool turnedOver(const Linearisation& L) const;
     void gradient(const Positions& V, const Linearisation& L, Eigen::VectorXd& g) const;
     void multiply(const Linearisation& L, const Eigen::VectorXd& x, Eigen::VectorXd& y);
     void precondition(const Linearisation& L, const Eigen::VectorXd& r, Eigen::VectorXd& z) const;

@@ -47,9 +47,10 @@ double OrientationGuard::energy(const Positions& V) const {
     return 0.5 * scale_ * scale_ * e;
 }
 
-void OrientationGuard::linearise(const Positions& V, std::vector<Term>& active) const {
+double OrientationGuard::linearise(const Positions& V, std::vector<Term>& active) const {
     const std::vector<Vec3> u = reference(V);
     active.clear();
+    double e = 0;
     for (int f = 0; f < rest_->faceCount(); ++f) {
         if (u[f].isZero()) continue;
         const double g = gap(V, f, u[f]);
@@ -61,8 +62,32 @@ void OrientationGuard::linearise(const Positions& V, std::vector<Term>& active) 
             const Vec3 prev = V.row(rest_->F(f, (c + 2) % 3));
             t.derivative[c] = -scale_ * (next - prev).cross(u[f]) / restArea2_[f];
         }
+        e += 0.5 * t.residual * t.residual;
         active.push_back(t);
     }
+    return e;
+}
+
+void OrientationGuard::addGradient(const std::vector<Term>& active, Eigen::VectorXd& g) const {
+    for (const auto& t : active)
+        for (int c = 0; c < 3; ++c)
+            g.segment<3>(3 * rest_->F(t.face, c)) += t.residual * t.derivative[c];
+}
+
+void OrientationGuard::addProduct(const std::vector<Term>& active, const Eigen::VectorXd& x,
+                                  Eigen::VectorXd& y) const {
+    for (const auto& t : active) {
+        double dx = 0;
+        for (int c = 0; c < 3; ++c)
+            dx += t.derivative[c].dot(x.segment<3>(3 * rest_->F(t.face, c)));
+        for (int c = 0; c < 3; ++c) y.segment<3>(3 * rest_->F(t.face, c)) += dx * t.derivative[c];
+    }
+}
+
+bool OrientationGuard::anyTurnedOver(const std::vector<Term>& active) const {
+    for (const auto& t : active)
+        if (t.residual > scale_ * threshold_) return true;
+    return false;
 }
 
 }  // namespace boneless

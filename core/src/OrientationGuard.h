@@ -29,15 +29,20 @@ class OrientationGuard {
     double energy(const Positions& V) const;
 
     // The active faces' residuals r_f = √(wĀ)(τ − s_f), E = ½ Σ r_f², and their derivatives
-    // with respect to the face's three vertices, u_f held fixed.
+    // with respect to the face's three vertices, u_f held fixed. Returns E.
     struct Term {
         int face;
         double residual;
         Vec3 derivative[3];
     };
-    void linearise(const Positions& V, std::vector<Term>& active) const;
+    double linearise(const Positions& V, std::vector<Term>& active) const;
+    // Adds E's gradient, Σ r_f ∂r_f, to g (3 per vertex), and the Gauss–Newton product
+    // Σ ∂r_f (∂r_f · x) to y, for the terms linearise() gave.
+    void addGradient(const std::vector<Term>& active, Eigen::VectorXd& g) const;
+    void addProduct(const std::vector<Term>& active, const Eigen::VectorXd& x,
+                    Eigen::VectorXd& y) const;
     // Whether an active face has turned over (s_f < 0), not just shrunk.
-    bool turnedOver(const Term& t) const { return t.residual > scale_ * threshold_; }
+    bool anyTurnedOver(const std::vector<Term>& active) const;
 
   private:
     // u_f for the pose V, zero where a face has no orientation to keep (no rest area, or a

@@ -119,10 +119,7 @@ double Reconstruction::Impl::linearise(const Positions& V, const Positions& targ
     e += markerEnergy(V, targets);
     e *= 0.5;
     if (rigid()) e += rigidityEnergy(V, rotations, &rotationCurvature);
-    if (orientation) {
-        orientation->linearise(V, orientationTerms);
-        for (const auto& t : orientationTerms) e += 0.5 * t.residual * t.residual;
-    }
+    if (orientation) e += orientation->linearise(V, orientationTerms);
     return e;
 }
 
@@ -178,15 +175,12 @@ void Reconstruction::Impl::assembleInto(System& system, const Positions& V,
     }
     if (orientation) {
         const int firstFaceStencil = static_cast<int>(residualOf.size());
-        for (const auto& t : orientationTerms) {
-            for (int a = 0; a < 3; ++a) {
-                if (gradient)
-                    gradient->segment<3>(3 * rest.F(t.face, a)) += t.residual * t.derivative[a];
+        for (const auto& t : orientationTerms)
+            for (int a = 0; a < 3; ++a)
                 for (int b = 0; b < 3; ++b)
                     system.add(firstFaceStencil + t.face, a, b,
                                t.derivative[a] * t.derivative[b].transpose());
-            }
-        }
+        if (gradient) orientation->addGradient(orientationTerms, *gradient);
     }
     if (softMarkers())
         for (size_t k = 0; k < markers.size(); ++k) {

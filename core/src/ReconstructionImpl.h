@@ -69,9 +69,7 @@ struct Reconstruction::Impl {
     void updateOrientationGuard();
     // At the last linearisation, whether the orientation guard has a face turned over.
     bool anyTurnedOver() const {
-        for (const auto& t : orientationTerms)
-            if (orientation->turnedOver(t)) return true;
-        return false;
+        return orientation && orientation->anyTurnedOver(orientationTerms);
     }
     double energy(const Positions& V, const Positions& targets) const;
 
