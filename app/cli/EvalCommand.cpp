@@ -71,6 +71,8 @@ nlohmann::json summaryJson(const EvaluationSummary& s) {
             {"flipped_faces_max", s.flippedFacesMax},
             {"flipped_faces_mean", s.flippedFacesMean},
             {"folded_faces_max", s.foldedFacesMax},
+            {"ms_per_frame_mean", s.msPerFrameMean},
+            {"ms_per_frame_worst", s.msPerFrameWorst},
             {"ms_per_frame_median", s.msPerFrameMedian},
             {"iterations_mean", s.iterationsMean}};
 }
@@ -78,9 +80,10 @@ nlohmann::json summaryJson(const EvaluationSummary& s) {
 void printSummary(const char* name, const EvaluationSummary& s) {
     std::printf(
         "%-9s frames %d  RMS %% mean %.3f  RMS %% worst frame %.3f  max %% worst frame %.3f  "
-        "flipped max %d (mean %.1f)  folded max %d  ms/frame median %.1f  iterations mean %.1f\n",
+        "flipped max %d (mean %.1f)  folded max %d  ms/frame mean %.1f worst %.1f median %.1f\n",
         name, s.frames, s.rmsPctMean, s.rmsPctWorstFrame, s.maxPctWorstFrame, s.flippedFacesMax,
-        s.flippedFacesMean, s.foldedFacesMax, s.msPerFrameMedian, s.iterationsMean);
+        s.flippedFacesMean, s.foldedFacesMax, s.msPerFrameMean, s.msPerFrameWorst,
+        s.msPerFrameMedian);
 }
 
 void run(const EvalArgs& args) {
@@ -97,9 +100,10 @@ void run(const EvalArgs& args) {
     options.solver.maxIterations = args.maxIterations;
     options.solver.relativeTolerance = args.tolerance;
     options.solver.rigidityWeight = args.rigidity;
-    options.solver.method = args.solver == "multires"    ? SolverOptions::Method::Multiresolution
-                            : args.solver == "iterative" ? SolverOptions::Method::Iterative
-                                                         : SolverOptions::Method::Direct;
+    options.solver.method = args.solver == "local-global" ? SolverOptions::Method::LocalGlobal
+                            : args.solver == "multires"   ? SolverOptions::Method::Multiresolution
+                            : args.solver == "iterative"  ? SolverOptions::Method::Iterative
+                                                          : SolverOptions::Method::Direct;
     options.solver.fineIterations = args.fineSteps;
     options.solver.correctionSteps = args.corrections;
     options.solver.coarsestVertices = args.coarsest;
@@ -171,6 +175,11 @@ void run(const EvalArgs& args) {
         std::printf("summary over the frames after the rest pose:\n");
         for (size_t i = 0; i < results.size(); ++i)
             printSummary(methodName(methods[i]), results[i].summary);
+        // Measured in the same run, so that a busy machine slows both alike.
+        if (results.size() == 2 && results[1].summary.msPerFrameMean > 0)
+            std::printf("boneless / arap time per frame: mean %.2f  worst %.2f\n",
+                        results[0].summary.msPerFrameMean / results[1].summary.msPerFrameMean,
+                        results[0].summary.msPerFrameWorst / results[1].summary.msPerFrameWorst);
     }
 }
 
@@ -206,7 +215,7 @@ void registerEvalCommand(CLI::App& app) {
     cmd->add_option("--solver", args->solver,
                     "How each frame's energy is minimised: direct (a factorisation per step), "
                     "iterative (conjugate gradients) or multires (hierarchy, for speed)")
-        ->check(CLI::IsMember({"direct", "iterative", "multires"}));
+        ->check(CLI::IsMember({"direct", "iterative", "multires", "local-global"}));
     cmd->add_option("--fine-steps", args->fineSteps,
                     "multires: Gauss–Newton steps on the input mesh per frame (0 = prolongation "
                     "only)")

@@ -1,76 +1,12 @@
 #include "ArapEnergy.h"
 
-#include <Eigen/LU>
-#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 
 #include "Parallel.h"
+#include "Rotation.h"
 
 namespace boneless {
-
-namespace {
-
-// The rotation R maximising tr(R S), i.e. the transposed orthogonal polar factor of S. Scaled
-// Newton iterations (Higham) converge quadratically and cost a 3×3 inverse each, a fraction of a
-// 3×3 SVD; a reflection or a near-singular S, which Newton cannot sort out, goes to the SVD.
-Mat3 bestRotation(const Mat3& S) {
-    const double scale = S.norm();
-    const double det = S.determinant();
-    if (scale > 0 && det > 1e-6 * scale * scale * scale) {
-        Mat3 X = S / scale;
-        for (int it = 0; it < 30; ++it) {
-            const double d = X.determinant();
-            const double gamma = std::pow(std::abs(d), -1.0 / 3.0);
-            const Mat3 next = 0.5 * (gamma * X + X.inverse().transpose() / gamma);
-            const double change = (next - X).squaredNorm();
-            X = next;
-            if (change < 1e-20) return X.transpose();
-        }
-    }
-    Eigen::JacobiSVD<Mat3> svd(S, Eigen::ComputeFullU | Eigen::ComputeFullV);
-    Mat3 U = svd.matrixU();
-    Mat3 R = svd.matrixV() * U.transpose();
-    if (R.determinant() < 0) {
-        U.col(2) *= -1;  // the smallest singular value's direction takes the reflection
-        R = svd.matrixV() * U.transpose();
-    }
-    return R;
-}
-
-bool positiveDefinite(const Mat3& H) {
-    return H(0, 0) > 0 && H(0, 0) * H(1, 1) - H(0, 1) * H(1, 0) > 0 && H.determinant() > 0;
-}
-
-// Newton's method for the maximiser of tr(R S) over rotations, from R: with R ← exp([δ]) R,
-// tr(R S) ≈ f + δ·g − ½ δᵀHδ where g = Σ r_i × a_i (a_i the columns of Sᵀ), B = Sᵀ Rᵀ and
-// H = tr(B) I − sym(B). H is positive definite exactly around the maximum (the only local
-// maximum), so convergence with H positive definite is the answer. Quadratic convergence, a 3×3
-// solve per step: several times cheaper than a 3×3 SVD, and unlike polar-decomposition Newton it
-// does not stall on the nearly rank-2 S of a flat one-ring. Returns false when it does not
-// converge (the caller then uses the SVD).
-bool refineRotation(const Mat3& S, Mat3& R) {
-    const Mat3 A = S.transpose();
-    const double scale = A.norm();
-    if (!(scale > 0)) return false;
-    for (int it = 0; it < 30; ++it) {
-        Vec3 g = Vec3::Zero();
-        for (int i = 0; i < 3; ++i) g += R.col(i).cross(A.col(i));
-        const Mat3 B = A * R.transpose();
-        const Mat3 H = B.trace() * Mat3::Identity() - 0.5 * (B + B.transpose());
-        const bool newton = positiveDefinite(H);
-        // Away from the maximum: a gradient step scaled like the Hessian (Müller et al. 2016).
-        const Vec3 d =
-            newton ? Vec3(H.inverse() * g) : Vec3(g / (std::abs(B.trace()) + 1e-9 * scale));
-        const double angle = d.norm();
-        if (!std::isfinite(angle)) return false;
-        if (angle > 0) R = Eigen::AngleAxisd(angle, d / angle).toRotationMatrix() * R;
-        if (newton && angle < 1e-10) return true;
-    }
-    return false;
-}
-
-}  // namespace
 
 ArapEnergy::ArapEnergy(const TriMesh& rest) : rest_(&rest) {
     const int n = rest.vertexCount();
@@ -86,6 +22,13 @@ ArapEnergy::ArapEnergy(const TriMesh& rest) : rest_(&rest) {
             // A zero-area face has no angles to keep; it contributes nothing.
             cotangent_(f, c) = sine > 1e-300 ? 0.5 * a.dot(b) / sine : 0.0;
             restEdge_[3 * f + c] = rest.V.row(j) - rest.V.row(k);
+        }
+    cornerRest_.resize(restEdge_.size());
+    for (int f = 0; f < rest.faceCount(); ++f)
+        for (int c = 0; c < 3; ++c) {
+            const int first = (c + 2) % 3, second = (c + 1) % 3;
+            cornerRest_[3 * f + c] = cotangent_(f, first) * restEdge_[3 * f + first] -
+                                     cotangent_(f, second) * restEdge_[3 * f + second];
         }
     for (int v = 0; v < n; ++v) cornerOffsets_[v + 1] += cornerOffsets_[v];
     corners_.resize(cornerOffsets_[n]);
@@ -155,7 +98,7 @@ void ArapEnergy::buildLaplacian() {
 }
 
 void ArapEnergy::fitRotations(const Positions& V, std::vector<Mat3>& R, bool warmStart,
-                              std::vector<Mat3>* curvature) const {
+                              std::vector<Mat3>* curvature, double tolerance) const {
     const TriMesh& rest = *rest_;
     const int n = rest.vertexCount();
     // Per calling thread, so that const callers on several threads do not share scratch.
@@ -183,7 +126,7 @@ void ArapEnergy::fitRotations(const Positions& V, std::vector<Mat3>& R, bool war
             for (int i = cornerOffsets_[v]; i < cornerOffsets_[v + 1]; ++i)
                 S += faceCovariance[corners_[i] / 3];
             if (!warmStart) R[v].setIdentity();
-            if (!refineRotation(S, R[v])) R[v] = bestRotation(S);
+            if (!refineRotation(S, R[v], tolerance)) R[v] = bestRotation(S);
             if (curvature) {
                 const Mat3 B = S.transpose() * R[v].transpose();
                 const Mat3 H = B.trace() * Mat3::Identity() - 0.5 * (B + B.transpose());
@@ -312,23 +255,24 @@ double ArapEnergy::energy(const Positions& V, const std::vector<Mat3>& R) const 
     return e;
 }
 
-Eigen::MatrixXd ArapEnergy::rotatedRestEdges(const std::vector<Mat3>& R) const {
+void ArapEnergy::sumFaceRotations(const std::vector<Mat3>& R,
+                                  std::vector<Mat3>& faceRotations) const {
     const TriMesh& rest = *rest_;
-    Eigen::MatrixXd b(rest.vertexCount(), 3);
+    faceRotations.resize(rest.faceCount());
+    parallelFor(rest.faceCount(), [&](int begin, int end, int) {
+        for (int f = begin; f < end; ++f)
+            faceRotations[f] = R[rest.F(f, 0)] + R[rest.F(f, 1)] + R[rest.F(f, 2)];
+    });
+}
+
+Eigen::MatrixXd ArapEnergy::rotatedRestEdges(const std::vector<Mat3>& R) const {
+    std::vector<Mat3> faceRotations;
+    sumFaceRotations(R, faceRotations);
+    Eigen::MatrixXd b(rest_->vertexCount(), 3);
     // Gathered per vertex: corner c of face f touches the edges opposite corners c+1 (where the
     // vertex is the edge's second end) and c+2 (its first end).
-    parallelFor(rest.vertexCount(), [&](int begin, int end, int) {
-        for (int v = begin; v < end; ++v) {
-            Vec3 s = Vec3::Zero();
-            for (int i = cornerOffsets_[v]; i < cornerOffsets_[v + 1]; ++i) {
-                const int f = corners_[i] / 3, c = corners_[i] % 3;
-                const Mat3 Rsum = R[rest.F(f, 0)] + R[rest.F(f, 1)] + R[rest.F(f, 2)];
-                const int first = (c + 2) % 3, second = (c + 1) % 3;
-                s += Rsum * (cotangent_(f, first) * restEdge_[3 * f + first] -
-                             cotangent_(f, second) * restEdge_[3 * f + second]);
-            }
-            b.row(v) = s.transpose();
-        }
+    parallelFor(rest_->vertexCount(), [&](int begin, int end, int) {
+        for (int v = begin; v < end; ++v) b.row(v) = rotatedRestEdges(v, faceRotations).transpose();
     });
     return b;
 }

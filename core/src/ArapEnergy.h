@@ -22,8 +22,9 @@ class ArapEnergy {
     // curvature (optional): per vertex, the inverse of the 3×3 Hessian of tr(R S_v) over
     // rotations at the fitted R_v (zero where it is not positive definite), which is what
     // addRotationCoupling() needs.
+    // tolerance: the last Newton step's angle (radians) at which a rotation counts as fitted.
     void fitRotations(const Positions& V, std::vector<Mat3>& R, bool warmStart = false,
-                      std::vector<Mat3>* curvature = nullptr) const;
+                      std::vector<Mat3>* curvature = nullptr, double tolerance = 1e-10) const;
     // The part of E's exact Hessian (rotations refitted, E = min over R) that fixed rotations
     // miss: y += scale · Σ_v G_vᵀ C_v G_v x, with G_v x = Σ w (R_v e⁰) × (x_j − x_k) over the
     // edges of v's faces and C_v = curvature[v]. The full Hessian is 6 L ⊗ I − 2 Σ G_vᵀ C_v G_v;
@@ -40,6 +41,15 @@ class ArapEnergy {
     double energy(const Positions& V, const std::vector<Mat3>& R) const;
     // b with ∇_V E = 2 (3 L V − b) for fixed R: the rotated rest edges, summed per vertex.
     Eigen::MatrixXd rotatedRestEdges(const std::vector<Mat3>& R) const;
+    // The same for vertex v, with faceRotations[f] = R_a + R_b + R_c over face f's corners
+    // (sumFaceRotations()), so that a caller can gather it into its own per-vertex loop.
+    Vec3 rotatedRestEdges(int v, const std::vector<Mat3>& faceRotations) const {
+        Vec3 s = Vec3::Zero();
+        for (int i = cornerOffsets_[v]; i < cornerOffsets_[v + 1]; ++i)
+            s.noalias() += faceRotations[corners_[i] / 3] * cornerRest_[corners_[i]];
+        return s;
+    }
+    void sumFaceRotations(const std::vector<Mat3>& R, std::vector<Mat3>& faceRotations) const;
     // L = Σ w (e_j − e_k)(e_j − e_k)ᵀ: positive semidefinite (it is the Dirichlet energy).
     const Eigen::SparseMatrix<double>& laplacian() const { return laplacian_; }
     // G_v as 3×3 blocks (vertex, block; a vertex may repeat) for v's fitted rotation R_v, so that
@@ -58,6 +68,9 @@ class ArapEnergy {
     Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> cotangent_;  // half cot, per corner
     Eigen::SparseMatrix<double> laplacian_;
     std::vector<Vec3> restEdge_;  // per face corner: rest edge opposite it, v⁰_j − v⁰_k
+    // Per face corner c: w_{c+2} e⁰_{c+2} − w_{c+1} e⁰_{c+1}, the rest edges its vertex's share of
+    // rotatedRestEdges() turns.
+    std::vector<Vec3> cornerRest_;
     // Corners (3 f + c) around each vertex, CSR, so that per-vertex sums need no shared writes.
     std::vector<int> cornerOffsets_, corners_;
     // Scratch of addRotationCoupling (called by one solver, never concurrently).

@@ -364,6 +364,10 @@ void Reconstruction::prepare(const TriMesh& rest, std::vector<int> markerVertice
     impl->updateOrientationGuard();
     // The direct path needs the structure on its first frame anyway: it belongs to preparing.
     if (options.method == SolverOptions::Method::Direct) impl->buildBlockSystem();
+    if (options.method == SolverOptions::Method::LocalGlobal)
+        impl->localGlobal = std::make_unique<LocalGlobalMethod>(
+            impl->rest, *impl->topology, *impl->encoding, impl->markers,
+            options.constraints == SolverOptions::Constraints::Hard, options.softWeight);
     if (options.method == SolverOptions::Method::Iterative) {
         // No steps, no preconditioner: solve() makes it if the options change.
         if (options.maxIterations > 0 && impl->restSystemWanted()) impl->prepareRestSystem();
@@ -414,6 +418,14 @@ SolveResult Reconstruction::solve(const Positions& targets, const Positions* gue
         }
         if (!s.iterative) s.iterative = std::make_unique<IterativeSolver>(s);
         return s.iterative->solve(targets, guess);
+    }
+    // Each frame from its own markers: the guess is not used, so that history cannot matter.
+    if (s.localGlobal) {
+        Positions restMarkers(K, 3);
+        for (int k = 0; k < K; ++k) restMarkers.row(k) = s.rest.V.row(s.markers[k]);
+        return s.localGlobal->solve(targets, s.options.markerOffsets,
+                                    s.startingPose(targets, nullptr),
+                                    fitRigidMotion(restMarkers, targets).R);
     }
     return s.solveDirect(targets, guess);
 }

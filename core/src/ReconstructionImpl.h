@@ -11,6 +11,7 @@
 
 #include "ArapEnergy.h"
 #include "BlockSystem.h"
+#include "LocalGlobalMethod.h"
 #include "OrientationGuard.h"
 #include "ScalarSystem.h"
 #include "boneless/Reconstruction.h"
@@ -42,6 +43,7 @@ struct Reconstruction::Impl {
     std::unique_ptr<ArapEnergy> rigidity;
     std::unique_ptr<OrientationGuard> orientation;  // when options.orientationWeight > 0
     std::unique_ptr<IterativeSolver> iterative;
+    std::unique_ptr<LocalGlobalMethod> localGlobal;
     std::unique_ptr<MultiresSolver> multires;  // Method::Multiresolution: it owns everything else
     SolverOptions options;
     // The system holds the rest pose's factorisation (the iterative path's preconditioner) rather

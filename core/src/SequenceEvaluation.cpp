@@ -38,6 +38,8 @@ EvaluationSummary summarise(const std::vector<FrameEvaluation>& frames) {
         s.rmsPctMean /= s.frames;
         s.flippedFacesMean /= s.frames;
         s.iterationsMean = iterations / s.frames;
+        s.msPerFrameMean = std::accumulate(ms.begin(), ms.end(), 0.0) / s.frames;
+        s.msPerFrameWorst = *std::max_element(ms.begin(), ms.end());
         std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
         s.msPerFrameMedian = ms[ms.size() / 2];
         if (ms.size() % 2 == 0) {

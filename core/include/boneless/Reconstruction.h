@@ -47,7 +47,7 @@ struct SolverOptions {
     //    solved to convergence, each finer level starts from the prolonged change, and the input
     //    takes correctionSteps cheap steps, then fineIterations Gauss–Newton steps by conjugate
     //    gradients. Made for sequences: each frame is warm-started from the last at every level.
-    enum class Method { Direct, Iterative, Multiresolution };
+    enum class Method { Direct, Iterative, Multiresolution, LocalGlobal };
     Method method = Method::Direct;
     // Multiresolution only: the coarsest level's size (at least ten vertices per marker), and
     // the Gauss–Newton steps on each finer level per frame.

@@ -50,7 +50,7 @@ struct EvaluationSummary {
     int flippedFacesMax = 0;
     double flippedFacesMean = 0;
     int foldedFacesMax = 0;
-    double msPerFrameMedian = 0, iterationsMean = 0;
+    double msPerFrameMean = 0, msPerFrameWorst = 0, msPerFrameMedian = 0, iterationsMean = 0;
 };
 
 struct Evaluation {

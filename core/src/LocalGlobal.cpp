@@ -1,0 +1,321 @@
+#include "LocalGlobal.h"
+
+#include <Eigen/LU>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "Parallel.h"
+#include "Rotation.h"
+#include "boneless/Error.h"
+
+namespace boneless {
+
+namespace {
+
+double trace(const Eigen::SparseMatrix<double>& A) {
+    double t = 0;
+    for (int k = 0; k < A.outerSize(); ++k)
+        for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it)
+            if (it.row() == k) t += it.value();
+    return t;
+}
+
+// The local steps are a few hundred nanoseconds a vertex: worth a second thread from a few
+// hundred vertices on (a coarse level's thousand).
+constexpr int kMinimumPerThread = 128;
+// A rotation is fitted once a Newton step turns it by less than this: Newton converges
+// quadratically, so it is then within about 1e-7 rad.
+constexpr double kRotationStep = 1e-2;
+
+}  // namespace
+
+LocalGlobalSolver::LocalGlobalSolver(const TriMesh& rest, const MeshTopology& topology,
+                                     const ShapeEncoding& encoding, std::vector<int> markers,
+                                     Settings settings)
+    : rest_(rest),
+      topology_(topology),
+      encoding_(encoding),
+      markers_(std::move(markers)),
+      settings_(settings),
+      arap_(rest),
+      rings_(rest, topology) {
+    const int n = rest.vertexCount();
+    const int K = static_cast<int>(markers_.size());
+    markerOf_.assign(n, -1);
+    for (int k = 0; k < K; ++k) markerOf_[markers_[k]] = k;
+
+    // L = I − W over the encoded vertices; the others have no row (no shape of their own).
+    std::vector<Eigen::Triplet<double>> entries;
+    entries.reserve(topology.neighbours().size() + n);
+    for (int v = 0; v < n; ++v) {
+        if (!encoding.encoded(v)) continue;
+        entries.emplace_back(v, v, 1.0);
+        const int* ring = topology.ring(v);
+        const double* w = encoding.weights(v);
+        for (int k = 0; k < topology.valence(v); ++k) entries.emplace_back(v, ring[k], -w[k]);
+    }
+    L_.resize(n, n);
+    L_.setFromTriplets(entries.begin(), entries.end());
+    Lt_ = L_.transpose();
+
+    delta0_.resize(n);
+    parallelFor(n, [&](int begin, int end, int) {
+        for (int v = begin; v < end; ++v) {
+            delta0_[v].setZero();
+            if (!encoding.encoded(v)) continue;
+            const int* ring = topology.ring(v);
+            const double* w = encoding.weights(v);
+            delta0_[v] = rest.V.row(v).transpose();
+            for (int k = 0; k < topology.valence(v); ++k)
+                delta0_[v] -= w[k] * rest.V.row(ring[k]).transpose();
+        }
+    });
+    restNormal_.resize(K);
+    for (int k = 0; k < K; ++k)
+        restNormal_[k] =
+            encoding.encoded(markers_[k]) ? encoding.ringNormal(markers_[k], rest.V) : Vec3::Zero();
+
+    const Eigen::SparseMatrix<double> Lc = L_;
+    const Eigen::SparseMatrix<double> LtL = Eigen::SparseMatrix<double>(Lc.transpose()) * Lc;
+    const Eigen::SparseMatrix<double>& cot = arap_.laplacian();
+    const double cotTrace = trace(cot);
+    arapWeight_ = cotTrace > 0 ? settings_.rigidity * trace(LtL) / cotTrace : 0.0;
+    A_ = LtL + arapWeight_ * cot;
+    // A tiny pull towards the start pose keeps what no marker pins down (a component without
+    // markers, an isolated vertex) from making the matrix singular.
+    tikhonov_ = 1e-9 * std::max(trace(A_) / std::max(n, 1), 1e-300);
+    for (int v = 0; v < n; ++v) A_.coeffRef(v, v) += tikhonov_;
+    if (!settings_.hard)
+        for (int v : markers_) A_.coeffRef(v, v) += settings_.softWeight;
+    A_.makeCompressed();
+
+    unknownOf_.assign(n, -1);
+    vertexOf_.clear();
+    for (int v = 0; v < n; ++v)
+        if (!settings_.hard || markerOf_[v] < 0) {
+            unknownOf_[v] = static_cast<int>(vertexOf_.size());
+            vertexOf_.push_back(v);
+        }
+    bool factorised = false;
+    if (settings_.hard) {
+        std::vector<Eigen::Triplet<double>> kept;
+        kept.reserve(A_.nonZeros());
+        for (int c = 0; c < A_.outerSize(); ++c)
+            for (Eigen::SparseMatrix<double>::InnerIterator it(A_, c); it; ++it)
+                if (unknownOf_[it.row()] >= 0 && unknownOf_[c] >= 0 && it.row() >= c)
+                    kept.emplace_back(unknownOf_[it.row()], unknownOf_[c], it.value());
+        const int size = static_cast<int>(vertexOf_.size());
+        Eigen::SparseMatrix<double> B(size, size);
+        B.setFromTriplets(kept.begin(), kept.end());
+        factorised = factor_.factorize(B);
+    } else {
+        factorised = factor_.factorize(A_);
+    }
+    if (!factorised) throw SolverError("the local/global system could not be factorised");
+    correction_.assign(K, Eigen::VectorXd());
+    if (settings_.repairFolds) repair_ = std::make_unique<FoldRepair>(rest, rings_);
+}
+
+LocalGlobalSolver::~LocalGlobalSolver() = default;
+
+void LocalGlobalSolver::fitRotations(const Positions& V, std::vector<Mat3>& rotation,
+                                     std::vector<Mat3>& arapRotation, bool warm) const {
+    rings_.fit(V, rotation, warm, kRotationStep);
+    arap_.fitRotations(V, arapRotation, warm, nullptr, kRotationStep);
+}
+
+Vec3 LocalGlobalSolver::markerTarget(int k, const Positions& targets,
+                                     const std::vector<double>& offsets,
+                                     const std::vector<Mat3>& rotation) const {
+    Vec3 t = targets.row(k).transpose();
+    // The offset goes along the rest normal turned by the ring's fitted rotation: the current
+    // ring normal turns over on thin parts, the rotation does not.
+    if (k < static_cast<int>(offsets.size()) && offsets[k] != 0)
+        t -= offsets[k] * (rotation[markers_[k]] * restNormal_[k]);
+    return t;
+}
+
+void LocalGlobalSolver::rightHandSide(const Positions& targets, const std::vector<double>& offsets,
+                                      const std::vector<int>& visible, const Eigen::MatrixXd& base,
+                                      Eigen::MatrixXd& rhs) {
+    const int n = rest_.vertexCount();
+    rotatedDelta_.resize(n);
+    parallelFor(
+        n,
+        [&](int begin, int end, int) {
+            for (int v = begin; v < end; ++v) rotatedDelta_[v] = rotation_[v] * delta0_[v];
+        },
+        kMinimumPerThread);
+    arap_.sumFaceRotations(arapRotation_, faceRotation_);
+    const double arapScale = arapWeight_ / 3.0;
+    rhs.resize(n, 3);
+    parallelFor(
+        n,
+        [&](int begin, int end, int) {
+            for (int v = begin; v < end; ++v) {
+                Vec3 s = base.row(v).transpose();
+                for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(Lt_, v); it;
+                     ++it)
+                    s.noalias() += it.value() * rotatedDelta_[it.col()];
+                s.noalias() += arapScale * arap_.rotatedRestEdges(v, faceRotation_);
+                rhs.row(v) = s.transpose();
+            }
+        },
+        kMinimumPerThread);
+    if (!settings_.hard)
+        for (int k : visible)
+            rhs.row(markers_[k]) +=
+                settings_.softWeight * markerTarget(k, targets, offsets, rotation_).transpose();
+}
+
+void LocalGlobalSolver::cacheCorrections(const std::vector<int>& missing) {
+    std::vector<int> wanted;
+    for (int k : missing)
+        if (correction_[k].size() == 0) wanted.push_back(k);
+    if (wanted.empty()) return;
+    const int rows = static_cast<int>(vertexOf_.size());
+    Eigen::MatrixXd columns = Eigen::MatrixXd::Zero(rows, static_cast<int>(wanted.size()));
+    for (size_t i = 0; i < wanted.size(); ++i) {
+        const int c = markers_[wanted[i]];
+        if (settings_.hard) {
+            for (Eigen::SparseMatrix<double>::InnerIterator it(A_, c); it; ++it)
+                if (unknownOf_[it.row()] >= 0) columns(unknownOf_[it.row()], i) = it.value();
+        } else {
+            columns(unknownOf_[c], i) = 1.0;
+        }
+    }
+    const Eigen::MatrixXd Z = factor_.solve(columns);
+    for (size_t i = 0; i < wanted.size(); ++i) correction_[wanted[i]] = Z.col(i);
+}
+
+Eigen::MatrixXd LocalGlobalSolver::solveSystem(const Eigen::MatrixXd& raw,
+                                               const Eigen::MatrixXd& fixed,
+                                               const std::vector<int>& missing) {
+    const Eigen::MatrixXd rhs = settings_.hard ? Eigen::MatrixXd(raw - fixed) : raw;
+    const int rows = static_cast<int>(vertexOf_.size());
+    Eigen::MatrixXd r(rows, 3);
+    for (int i = 0; i < rows; ++i) r.row(i) = rhs.row(vertexOf_[i]);
+    Eigen::MatrixXd x = factor_.solve(r);
+    Eigen::MatrixXd out = rhs;  // hard: the visible markers' rows are the caller's to set
+    const int m = static_cast<int>(missing.size());
+    if (m > 0) {
+        Eigen::MatrixXd S(m, m), g(m, 3);
+        if (settings_.hard) {
+            // The missing markers' vertices join the unknowns: a bordered system, solved through
+            // its Schur complement S = A_MM − A_Mf B⁻¹ A_fM.
+            for (int j = 0; j < m; ++j) {
+                const int cj = markers_[missing[j]];
+                g.row(j) = rhs.row(cj);
+                for (int k = 0; k < m; ++k) S(j, k) = A_.coeff(cj, markers_[missing[k]]);
+                for (Eigen::SparseMatrix<double>::InnerIterator it(A_, cj); it; ++it) {
+                    const int u = unknownOf_[it.row()];
+                    if (u < 0) continue;
+                    g.row(j) -= it.value() * x.row(u);
+                    for (int k = 0; k < m; ++k) S(j, k) -= it.value() * correction_[missing[k]](u);
+                }
+            }
+            const Eigen::MatrixXd xM = S.partialPivLu().solve(g);
+            for (int k = 0; k < m; ++k) {
+                x -= correction_[missing[k]] * xM.row(k);
+                out.row(markers_[missing[k]]) = xM.row(k);
+            }
+        } else {
+            // Woodbury: each missing marker's λ taken off the diagonal again.
+            for (int j = 0; j < m; ++j) {
+                const int uj = unknownOf_[markers_[missing[j]]];
+                g.row(j) = x.row(uj);
+                for (int k = 0; k < m; ++k)
+                    S(j, k) =
+                        (j == k ? 1.0 / settings_.softWeight : 0.0) - correction_[missing[k]](uj);
+            }
+            const Eigen::MatrixXd y = S.partialPivLu().solve(g);
+            for (int k = 0; k < m; ++k) x += correction_[missing[k]] * y.row(k);
+        }
+    }
+    for (int i = 0; i < rows; ++i) out.row(vertexOf_[i]) = x.row(i);
+    return out;
+}
+
+SolveResult LocalGlobalSolver::solve(const Positions& targets, const std::vector<double>& offsets,
+                                     const Positions& start, FirstRotations first) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const int n = rest_.vertexCount();
+    const int K = static_cast<int>(markers_.size());
+    std::vector<int> missing, visible;
+    for (int k = 0; k < K; ++k) (targets.row(k).allFinite() ? visible : missing).push_back(k);
+    cacheCorrections(missing);
+
+    SolveResult result;
+    result.V = start;
+    Positions& V = result.V;
+    std::vector<char> pinned(n, 0);
+    // The ε pull towards the start; (hard) the visible markers' columns, which are known.
+    const Eigen::MatrixXd base = tikhonov_ * start;
+    Eigen::MatrixXd fixed;
+    if (settings_.hard) {
+        fixed = Eigen::MatrixXd::Zero(n, 3);
+        for (int k : visible) {
+            const int c = markers_[k];
+            V.row(c) = targets.row(k);
+            pinned[c] = 1;
+            for (Eigen::SparseMatrix<double>::InnerIterator it(A_, c); it; ++it)
+                fixed.row(it.row()) += it.value() * targets.row(k);
+        }
+    }
+    const double still = 1e-7 * boundingBoxDiagonal(rest_.V);
+    Eigen::MatrixXd rhs;
+    for (int it = 0; it < settings_.iterations; ++it) {
+        if (it == 0 && first.rotations) {
+            rotation_ = *first.rotations;
+            arapRotation_ = *first.arapRotations;
+            if (first.refit) fitRotations(V, rotation_, arapRotation_, true);
+        } else {
+            fitRotations(V, rotation_, arapRotation_, it > 0);
+        }
+        rightHandSide(targets, offsets, visible, base, rhs);
+        const Eigen::MatrixXd x = solveSystem(rhs, fixed, missing);
+        double moved = 0;
+        for (int v = 0; v < n; ++v) {
+            if (pinned[v]) continue;
+            moved = std::max(moved, (x.row(v) - V.row(v)).cwiseAbs().maxCoeff());
+            V.row(v) = x.row(v);
+        }
+        result.report.iterations = it + 1;
+        if (moved < still) {
+            result.report.converged = true;
+            break;
+        }
+    }
+    if (repair_) {
+        // Folds are judged in the ring rotations of the answer itself, as Metrics judges them.
+        std::vector<Mat3> ring = rotation_;
+        rings_.fit(V, ring, true, kRotationStep);
+        repair_->repair(V, A_, rhs, pinned, ring);
+    }
+    result.report.energyBefore = result.report.energyAfter =
+        std::numeric_limits<double>::quiet_NaN();
+    result.report.milliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return result;
+}
+
+double LocalGlobalSolver::energy(const Positions& V, const Positions& targets,
+                                 const std::vector<double>& offsets) const {
+    std::vector<Mat3> R, RA;
+    fitRotations(V, R, RA, false);
+    const Eigen::MatrixXd LV = L_ * V;
+    double e = 0;
+    for (int v = 0; v < rest_.vertexCount(); ++v)
+        if (encoding_.encoded(v)) e += (LV.row(v).transpose() - R[v] * delta0_[v]).squaredNorm();
+    e += arapWeight_ / 3.0 * arap_.energy(V, RA);
+    if (!settings_.hard)
+        for (int k = 0; k < static_cast<int>(markers_.size()); ++k)
+            if (targets.row(k).allFinite())
+                e += settings_.softWeight *
+                     (V.row(markers_[k]).transpose() - markerTarget(k, targets, offsets, R))
+                         .squaredNorm();
+    return e;
+}
+
+}  // namespace boneless

@@ -1,0 +1,47 @@
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "LocalGlobal.h"
+
+namespace boneless {
+
+// SolverOptions::Method::LocalGlobal: each frame from its own markers alone, so that its answer
+// does not depend on which frames came before it. A coarse level (the mesh simplified to about a
+// thousand vertices, markers kept) is solved from the rest pose moved rigidly onto the markers,
+// where a local/global iteration carries a rotation across the mesh in a few hops; its rotations,
+// given to every input vertex by the coarse vertex it was collapsed into, start the input level's
+// few iterations. On a mesh too small for a coarse level the coarse solve runs on the mesh itself.
+class LocalGlobalMethod {
+  public:
+    // rest, topology and encoding must outlive it.
+    LocalGlobalMethod(const TriMesh& rest, const MeshTopology& topology,
+                      const ShapeEncoding& encoding, const std::vector<int>& markers, bool hard,
+                      double softWeight);
+    ~LocalGlobalMethod();
+
+    // start: the rest pose moved rigidly onto the markers (#V by 3), by the rotation `rigid`.
+    SolveResult solve(const Positions& targets, const std::vector<double>& offsets,
+                      const Positions& start, const Mat3& rigid);
+    double energy(const Positions& V, const Positions& targets,
+                  const std::vector<double>& offsets) const {
+        return fine_->energy(V, targets, offsets);
+    }
+    int coarseVertexCount() const { return coarse_->mesh.vertexCount(); }
+
+  private:
+    struct Coarse {
+        TriMesh mesh;
+        std::unique_ptr<MeshTopology> topology;
+        std::unique_ptr<ShapeEncoding> encoding;
+        std::unique_ptr<LocalGlobalSolver> solver;
+        std::vector<int> original;  // coarse vertex -> input vertex
+    };
+    std::unique_ptr<LocalGlobalSolver> fine_;
+    std::unique_ptr<Coarse> coarse_;
+    std::vector<int> coarseOf_;  // input vertex -> the coarse vertex whose rotation it starts with
+    std::vector<Mat3> rotation_, arapRotation_;  // prolonged, scratch
+};
+
+}  // namespace boneless
