@@ -23,14 +23,7 @@ struct EvalArgs {
     std::string method = "boneless";
     double drop = 0;
     unsigned seed = 1;
-    int maxIterations = SolverOptions{}.maxIterations;
-    double tolerance = SolverOptions{}.relativeTolerance;
-    double rigidity = SolverOptions{}.rigidityWeight;
-    double orientation = -1;  // unset: EvaluationOptions' default, 0 for the iterative solver
-    std::string solver = "direct";
-    int fineSteps = SolverOptions{}.fineIterations;
-    int corrections = SolverOptions{}.correctionSteps;
-    int coarsest = SolverOptions{}.coarsestVertices;
+    std::string solver = methodName(SolverOptions{}.method);
     bool json = false;
     bool quiet = false;
 };
@@ -97,28 +90,7 @@ void run(const EvalArgs& args) {
     options.endFrame = range.end;
     options.dropPercent = args.drop;
     options.seed = args.seed;
-    options.solver.maxIterations = args.maxIterations;
-    options.solver.relativeTolerance = args.tolerance;
-    options.solver.rigidityWeight = args.rigidity;
-    options.solver.method = args.solver == "local-global" ? SolverOptions::Method::LocalGlobal
-                            : args.solver == "multires"   ? SolverOptions::Method::Multiresolution
-                            : args.solver == "iterative"  ? SolverOptions::Method::Iterative
-                                                          : SolverOptions::Method::Direct;
-    options.solver.fineIterations = args.fineSteps;
-    options.solver.correctionSteps = args.corrections;
-    options.solver.coarsestVertices = args.coarsest;
-
-    // The guard as EvaluationOptions has it, but for the iterative solver, which refuses it;
-    // asking for it there is an error before any output (the core would refuse it at frame 0).
-    const bool iterative = options.solver.method == SolverOptions::Method::Iterative;
-    if (iterative && args.orientation > 0)
-        throw Error(
-            "--orientation-guard needs the direct or multires solver (the iterative solver "
-            "refuses it: pass --orientation-guard 0, its default)");
-    if (args.orientation >= 0)
-        options.solver.orientationWeight = args.orientation;
-    else if (iterative)
-        options.solver.orientationWeight = 0;
+    parseMethod(args.solver, options.solver.method);  // CLI11 has checked the name
 
     std::vector<EvaluationOptions::Method> methods;
     if (args.method == "boneless" || args.method == "both")
@@ -127,14 +99,13 @@ void run(const EvalArgs& args) {
         methods.push_back(EvaluationOptions::Method::Arap);
 
     if (!args.json)
-        std::printf(
-            "%s: %zu frames, %d vertices, %d faces, %zu markers%s, %s solver, "
-            "orientation guard %g\n",
-            args.sequence.c_str(), sequence.frames.size(), sequence.rest.vertexCount(),
-            sequence.rest.faceCount(), options.markers.size(),
-            args.drop > 0 ? (", " + std::to_string(args.drop) + " % dropped per frame").c_str()
-                          : "",
-            args.solver.c_str(), options.solver.orientationWeight);
+        std::printf("%s: %zu frames, %d vertices, %d faces, %zu markers%s, %s solver\n",
+                    args.sequence.c_str(), sequence.frames.size(), sequence.rest.vertexCount(),
+                    sequence.rest.faceCount(), options.markers.size(),
+                    args.drop > 0
+                        ? (", " + std::to_string(args.drop) + " % dropped per frame").c_str()
+                        : "",
+                    args.solver.c_str());
     std::vector<Evaluation> results;
     for (auto method : methods) {
         options.method = method;
@@ -157,7 +128,6 @@ void run(const EvalArgs& args) {
         out["markers"] = options.markers.size();
         out["drop_pct"] = args.drop;
         out["solver"] = args.solver;
-        out["orientation_guard"] = options.solver.orientationWeight;
         nlohmann::json perFrame = nlohmann::json::array();
         for (const auto& f : results[0].frames)
             perFrame.push_back({{"frame", f.frame},
@@ -205,27 +175,11 @@ void registerEvalCommand(CLI::App& app) {
     cmd->add_option("--drop", args->drop, "Percentage of markers missing in each frame (seeded)")
         ->check(CLI::Range(0.0, 100.0));
     cmd->add_option("--seed", args->seed, "Seed for --drop");
-    cmd->add_option("--max-iterations", args->maxIterations, "Gauss–Newton iterations per frame");
-    cmd->add_option("--tolerance", args->tolerance, "Relative energy decrease that stops a frame");
-    cmd->add_option("--rigidity", args->rigidity, "Weight of the fold guard (0 = paper's energy)");
-    cmd->add_option("--orientation-guard", args->orientation,
-                    "Weight of the penalty on faces turning over, as in solve (default 100, 0 = "
-                    "off; the iterative solver needs 0, its default)")
-        ->check(CLI::NonNegativeNumber);
     cmd->add_option("--solver", args->solver,
-                    "How each frame's energy is minimised: direct (a factorisation per step), "
-                    "iterative (conjugate gradients) or multires (hierarchy, for speed)")
-        ->check(CLI::IsMember({"direct", "iterative", "multires", "local-global"}));
-    cmd->add_option("--fine-steps", args->fineSteps,
-                    "multires: Gauss–Newton steps on the input mesh per frame (0 = prolongation "
-                    "only)")
-        ->check(CLI::NonNegativeNumber);
-    cmd->add_option("--coarsest", args->coarsest,
-                    "multires: vertices of the coarsest level (at least ten per marker)")
-        ->check(CLI::PositiveNumber);
-    cmd->add_option("--corrections", args->corrections,
-                    "multires: cheap correction steps on the input mesh per frame")
-        ->check(CLI::NonNegativeNumber);
+                    "local-global (each frame from its own markers, fast) or exact (Gauss-Newton "
+                    "refining it: the energy's minimum, slower)")
+        ->check(CLI::IsMember({methodName(SolverOptions::Method::LocalGlobal),
+                               methodName(SolverOptions::Method::Exact)}));
     cmd->add_flag("--json", args->json, "Print one JSON object");
     cmd->add_flag("--quiet", args->quiet, "No per-frame lines");
     cmd->callback([args, k, file] {

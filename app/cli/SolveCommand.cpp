@@ -27,9 +27,7 @@ struct SolveArgs {
     double weight = TakeSolveOptions{}.markerWeight;
     double lowPass = 0;
     int calibrationFrame = -1;
-    int continuation = TakeSolveOptions{}.continuationSteps;
-    double orientation = TakeSolveOptions{}.solver.orientationWeight;
-    bool noCoarseLead = false;
+    std::string solver = methodName(SolverOptions{}.method);
     bool quiet = false;
 };
 
@@ -41,7 +39,7 @@ void progress(int done, int total, double elapsedSeconds, const FrameReport& las
     const int filled = total ? width * done / total : width;
     const double perFrame = done ? elapsedSeconds / done : 0;
     const int eta = static_cast<int>(perFrame * (total - done) + 0.5);
-    std::fprintf(stderr, "%s[%.*s%.*s] %d/%d frames  %.2f s/frame  ETA %d:%02d  residual %.1f mm%s",
+    std::fprintf(stderr, "%s[%.*s%.*s] %d/%d frames  %.3f s/frame  ETA %d:%02d  residual %.1f mm%s",
                  terminal ? "\r" : "", filled, "##############################", width - filled,
                  "..............................", done, total, perFrame, eta / 60, eta % 60,
                  last.residualRmsMm, terminal ? " " : "\n");
@@ -68,9 +66,7 @@ void run(const SolveArgs& args) {
     request.options.markerWeight = args.weight;
     request.options.lowPassHz = args.lowPass;
     request.options.calibrationFrame = args.calibrationFrame;
-    request.options.continuationSteps = args.continuation;
-    request.options.coarsestLeads = !args.noCoarseLead;
-    request.options.solver.orientationWeight = args.orientation;
+    parseMethod(args.solver, request.options.solver.method);  // CLI11 has checked the name
 
     auto announce = [&](const Calibration& c) {
         if (args.quiet) return;
@@ -124,13 +120,11 @@ void registerSolveCommand(CLI::App& app) {
     cmd->add_option("--lowpass", args->lowPass, "Low-pass cutoff in Hz (0 = off)");
     cmd->add_option("--calibration-frame", args->calibrationFrame,
                     "Frame to align the take at (default: chosen automatically)");
-    cmd->add_option("--continuation", args->continuation,
-                    "Steps from the rest pose to the first frame");
-    cmd->add_flag("--no-coarse-lead", args->noCoarseLead,
-                  "Solve each frame on the full mesh alone, not led by its coarsest level");
-    cmd->add_option("--orientation-guard", args->orientation,
-                    "Weight of the penalty on faces turning over (0 = off)")
-        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--solver", args->solver,
+                    "local-global (each frame from its own markers, fast) or exact (Gauss-Newton "
+                    "refining it: the energy's minimum, slower)")
+        ->check(CLI::IsMember({methodName(SolverOptions::Method::LocalGlobal),
+                               methodName(SolverOptions::Method::Exact)}));
     cmd->add_flag("--quiet", args->quiet, "No progress on stderr");
     cmd->callback([args] { run(*args); });
 }

@@ -8,10 +8,13 @@ namespace boneless {
 namespace {
 
 constexpr double kWeight = 100;     // w, as the exact method's orientation guard
-constexpr double kThreshold = 0.2;  // τ
-constexpr int kSteps = 10;          // Gauss–Newton steps with the rotations held, at most
-constexpr int kRounds = 4;          // refits of the rotations per patch
-constexpr double kRotationStep = 1e-6;
+constexpr double kThreshold = 0.2;  // τ, and its step for a face that folds again
+constexpr double kMaxThreshold = 0.8;
+constexpr int kSteps = 10;              // Gauss–Newton steps with the rotations held, at most
+constexpr int kRounds = 4;              // refits of the rotations per patch
+constexpr double kEscalation = 10;      // the weight's growth from round to round
+constexpr double kSettled = 1e-3;       // a step that gains less than this share ends the steps
+constexpr double kRotationStep = 1e-6;  // as the count's (LocalGlobal.cpp)
 
 Vec3 faceNormal(const Faces& F, const Positions& V, int f) {
     const Vec3 a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
@@ -83,12 +86,40 @@ int FoldRepair::repair(Positions& V, const Eigen::SparseMatrix<double>& A,
                        const Eigen::MatrixXd& rhs, const std::vector<char>& pinned,
                        std::vector<Mat3>& rotations) const {
     std::vector<int> bad = folded(V, rotations);
-    // A patch that cannot unfold (a pinned marker on the fold's far side) is tried wider.
-    for (int rings = 2; rings <= 4 && !bad.empty(); ++rings) {
-        solvePatch(V, A, rhs, pinned, rotations, bad, rings);
+    // A patch that cannot unfold (a pinned marker on the fold's far side, a fingertip whose
+    // rings turn with it) is tried wider.
+    for (int rings = 2; rings <= 8 && !bad.empty(); rings += 2) {
+        for (const std::vector<int>& cluster : clusters(bad))
+            solvePatch(V, A, rhs, pinned, rotations, cluster, rings);
         bad = folded(V, rotations);
     }
     return static_cast<int>(bad.size());
+}
+
+std::vector<std::vector<int>> FoldRepair::clusters(const std::vector<int>& faces) const {
+    // Folded faces that share a vertex are one cluster; each is solved in its own patch, so
+    // that a fold that unfolds at once does not wait for a stubborn one elsewhere.
+    std::vector<int> group(faces.size(), -1);
+    std::vector<std::vector<int>> out;
+    for (size_t i = 0; i < faces.size(); ++i) {
+        if (group[i] >= 0) continue;
+        group[i] = static_cast<int>(out.size());
+        out.push_back({faces[i]});
+        for (size_t q = 0; q < out.back().size(); ++q) {
+            const int f = out.back()[q];
+            for (size_t j = i + 1; j < faces.size(); ++j) {
+                if (group[j] >= 0) continue;
+                bool shares = false;
+                for (int a = 0; a < 3; ++a)
+                    for (int b = 0; b < 3; ++b)
+                        shares = shares || rest_.F(f, a) == rest_.F(faces[j], b);
+                if (!shares) continue;
+                group[j] = group[i];
+                out.back().push_back(faces[j]);
+            }
+        }
+    }
+    return out;
 }
 
 void FoldRepair::solvePatch(Positions& V, const Eigen::SparseMatrix<double>& A,
@@ -125,6 +156,7 @@ void FoldRepair::solvePatch(Positions& V, const Eigen::SparseMatrix<double>& A,
                     }
             }
     }
+    patch.threshold.assign(patch.faces.size(), kThreshold);
     for (int p = 0; p < static_cast<int>(patch.vertices.size()); ++p)
         for (Eigen::SparseMatrix<double>::InnerIterator it(A, patch.vertices[p]); it; ++it)
             if (patch.local[it.row()] >= 0)
@@ -134,34 +166,46 @@ void FoldRepair::solvePatch(Positions& V, const Eigen::SparseMatrix<double>& A,
     for (int round = 0; round < kRounds; ++round) {
         for (int v : ringVertices) rings_.fit(v, V, rotations[v], true, kRotationStep);
         bool anyFolded = false;
-        for (int f : patch.faces) {
-            const Vec3 u = carriedNormal(f, rotations);
-            anyFolded = anyFolded || (!u.isZero() && projectedArea(V, f, u) < 0);
+        for (size_t i = 0; i < patch.faces.size(); ++i) {
+            const Vec3 u = carriedNormal(patch.faces[i], rotations);
+            if (u.isZero() || projectedArea(V, patch.faces[i], u) >= 0) continue;
+            anyFolded = true;
+            // Folded again once its rings' rotations followed it: pushed further next time.
+            if (round > 0)
+                patch.threshold[i] = std::min(kMaxThreshold, patch.threshold[i] + kThreshold);
         }
         if (!anyFolded) return;
-        solveHeld(V, A, rhs, patch, rotations);
+        // A fold the markers hold against the penalty is held harder each round.
+        solveHeld(V, A, rhs, patch, rotations, scale_ * std::pow(kEscalation, round));
     }
+    // The rotations stay fitted to V, which the last round moved.
+    for (int v : ringVertices) rings_.fit(v, V, rotations[v], true, kRotationStep);
 }
 
 double FoldRepair::penalty(const Positions& V, const Patch& patch,
-                           const std::vector<Mat3>& rotations) const {
+                           const std::vector<Mat3>& rotations, double scale) const {
     double e = 0;
-    for (int f : patch.faces) {
+    for (size_t i = 0; i < patch.faces.size(); ++i) {
+        const int f = patch.faces[i];
         const Vec3 u = carriedNormal(f, rotations);
         if (u.isZero()) continue;
-        const double gap = kThreshold - projectedArea(V, f, u);
-        if (gap > 0) e += scale_ * gap * gap;
+        const double gap = patch.threshold[i] - projectedArea(V, f, u);
+        if (gap > 0) e += scale * gap * gap;
     }
     return e;
 }
 
 void FoldRepair::solveHeld(Positions& V, const Eigen::SparseMatrix<double>& A,
                            const Eigen::MatrixXd& rhs, const Patch& patch,
-                           const std::vector<Mat3>& rotations) const {
+                           const std::vector<Mat3>& rotations, double scale) const {
     const Faces& F = rest_.F;
     const int m = static_cast<int>(patch.vertices.size());
-    const double k = std::sqrt(scale_);
-    double before = penalty(V, patch, rotations);
+    const double k = std::sqrt(scale);
+    double before = penalty(V, patch, rotations, scale);
+    // Every face's blocks are in the matrix from the start, zero while the face is inactive, so
+    // that its pattern, and the symbolic analysis, are the same at every step.
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+    bool analysed = false;
     for (int step = 0; step < kSteps && before > 0; ++step) {
         // ½ ∇ of VᵀAV − 2 Vᵀrhs on the patch; g adds the penalty's.
         Eigen::VectorXd gQ(3 * m);
@@ -176,18 +220,19 @@ void FoldRepair::solveHeld(Positions& V, const Eigen::SparseMatrix<double>& A,
         H.reserve(3 * patch.A.size());
         for (const auto& t : patch.A)
             for (int d = 0; d < 3; ++d) H.emplace_back(3 * t.row() + d, 3 * t.col() + d, t.value());
-        for (int f : patch.faces) {
+        for (size_t i = 0; i < patch.faces.size(); ++i) {
+            const int f = patch.faces[i];
+            const double tau = patch.threshold[i];
             const Vec3 u = carriedNormal(f, rotations);
-            if (u.isZero()) continue;
-            const double s = projectedArea(V, f, u);
-            if (s >= kThreshold) continue;
-            // n = (b − a) × (c − a), so ∂(n·u)/∂a = (b − c) × u, and cyclically.
-            const double r = k * (kThreshold - s);
+            const double s = u.isZero() ? tau : projectedArea(V, f, u);
+            // n = (b − a) × (c − a), so ∂(n·u)/∂a = (b − c) × u, and cyclically. An inactive
+            // face's blocks are there too, as zeros.
+            const double r = s < tau ? k * (tau - s) : 0.0;
             Vec3 d[3];
-            for (int c = 0; c < 3; ++c)
-                d[c] = -k *
-                       (Vec3(V.row(F(f, (c + 1) % 3))) - Vec3(V.row(F(f, (c + 2) % 3)))).cross(u) /
-                       restNormal_[f].norm();
+            for (int c = 0; c < 3; ++c) {
+                const Vec3 edge = V.row(F(f, (c + 1) % 3)) - V.row(F(f, (c + 2) % 3));
+                d[c] = r > 0 ? Vec3(-k * edge.cross(u) / restNormal_[f].norm()) : Vec3::Zero();
+            }
             for (int a = 0; a < 3; ++a) {
                 const int pa = patch.local[F(f, a)];
                 if (pa < 0) continue;
@@ -204,7 +249,9 @@ void FoldRepair::solveHeld(Positions& V, const Eigen::SparseMatrix<double>& A,
         }
         Eigen::SparseMatrix<double> matrix(3 * m, 3 * m);
         matrix.setFromTriplets(H.begin(), H.end());
-        const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(matrix);
+        if (!analysed) ldlt.analyzePattern(matrix);
+        analysed = true;
+        ldlt.factorize(matrix);
         if (ldlt.info() != Eigen::Success) return;
         const Eigen::VectorXd delta = ldlt.solve(-g);
         if (!delta.allFinite()) return;
@@ -214,19 +261,24 @@ void FoldRepair::solveHeld(Positions& V, const Eigen::SparseMatrix<double>& A,
             Ad.segment<3>(3 * t.row()) += t.value() * delta.segment<3>(3 * t.col());
         const double linear = 2 * delta.dot(gQ), quadratic = delta.dot(Ad);
         Positions trial = V;
-        bool accepted = false;
+        bool accepted = false, settled = false;
         for (double alpha = 1; alpha > 1e-4 && !accepted; alpha *= 0.5) {
             for (int p = 0; p < m; ++p)
                 trial.row(patch.vertices[p]) =
                     V.row(patch.vertices[p]) + alpha * delta.segment<3>(3 * p).transpose();
-            const double after = penalty(trial, patch, rotations);
-            if (alpha * linear + alpha * alpha * quadratic + after - before < 0) {
+            const double after = penalty(trial, patch, rotations, scale);
+            const double change = alpha * linear + alpha * alpha * quadratic + after - before;
+            if (change < 0) {
                 accepted = true;
+                // Settled: the penalty and the quadratic balance (a stubborn fold waits for
+                // its rotations to be refitted).
+                settled = -change < kSettled * (before + std::abs(alpha * linear));
                 before = after;
             }
         }
         if (!accepted) return;
         for (int p : patch.vertices) V.row(p) = trial.row(p);
+        if (settled) return;
     }
 }
 

@@ -48,13 +48,17 @@ class FoldRepair {
         std::vector<int> vertices;              // free, moved
         std::vector<int> local;                 // vertex -> index in vertices, or −1
         std::vector<int> faces;                 // whose carried normal the vertices can change
+        std::vector<double> threshold;          // τ per face, raised for one that folds again
         std::vector<Eigen::Triplet<double>> A;  // A over the vertices (scalar)
     };
-    double penalty(const Positions& V, const Patch& patch,
-                   const std::vector<Mat3>& rotations) const;
+    // The penalty with w Ā = scale.
+    double penalty(const Positions& V, const Patch& patch, const std::vector<Mat3>& rotations,
+                   double scale) const;
     // Gauss–Newton steps on the patch, the rotations (so each u_f) held.
     void solveHeld(Positions& V, const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& rhs,
-                   const Patch& patch, const std::vector<Mat3>& rotations) const;
+                   const Patch& patch, const std::vector<Mat3>& rotations, double scale) const;
+    // The faces in groups that share vertices.
+    std::vector<std::vector<int>> clusters(const std::vector<int>& faces) const;
     // The vertices within `rings` rings of `seeds` (seeds included).
     std::vector<int> grow(std::vector<int> seeds, int rings) const;
 

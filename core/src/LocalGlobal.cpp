@@ -27,6 +27,9 @@ constexpr int kMinimumPerThread = 128;
 // A rotation is fitted once a Newton step turns it by less than this: Newton converges
 // quadratically, so it is then within about 1e-7 rad.
 constexpr double kRotationStep = 1e-2;
+// Folds are counted in rotations fitted to about 1e-12 rad, so that a face on the edge of
+// folding is judged as a fresh fit judges it.
+constexpr double kCountStep = 1e-6;
 
 }  // namespace
 
@@ -290,8 +293,8 @@ SolveResult LocalGlobalSolver::solve(const Positions& targets, const std::vector
     if (repair_) {
         // Folds are judged in the ring rotations of the answer itself, as Metrics judges them.
         std::vector<Mat3> ring = rotation_;
-        rings_.fit(V, ring, true, kRotationStep);
-        repair_->repair(V, A_, rhs, pinned, ring);
+        rings_.fit(V, ring, true, kCountStep);
+        result.report.foldedFaces = repair_->repair(V, A_, rhs, pinned, ring);
     }
     result.report.energyBefore = result.report.energyAfter =
         std::numeric_limits<double>::quiet_NaN();

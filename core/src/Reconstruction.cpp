@@ -8,14 +8,25 @@
 #include <optional>
 #include <string>
 
-#include "IterativeSolver.h"
 #include "LineSearch.h"
-#include "MultiresSolver.h"
 #include "ReconstructionImpl.h"
 #include "boneless/Error.h"
 #include "boneless/Metrics.h"
 
 namespace boneless {
+
+const char* methodName(SolverOptions::Method method) {
+    return method == SolverOptions::Method::Exact ? "exact" : "local-global";
+}
+
+bool parseMethod(const std::string& name, SolverOptions::Method& method) {
+    for (auto m : {SolverOptions::Method::LocalGlobal, SolverOptions::Method::Exact})
+        if (name == methodName(m)) {
+            method = m;
+            return true;
+        }
+    return false;
+}
 
 RigidMotion fitRigidMotion(const Positions& from, const Positions& to) {
     std::vector<int> rows;
@@ -40,20 +51,6 @@ namespace {
 // reach this relative residual.
 constexpr double kReusedFactorTolerance = 1e-6;
 
-void checkOrientationGuard(const SolverOptions& o) {
-    // Measured: with conjugate-gradient steps the guard's terms stall the line search and leave
-    // more folds than no guard at all, so it is refused rather than half-working. The
-    // multiresolution method solves its coarsest level by the direct method when guarded.
-    if (o.orientationWeight > 0 && o.method == SolverOptions::Method::Iterative)
-        throw SolverError(
-            "the orientation guard needs the direct or multiresolution method (set its weight to "
-            "0 for the iterative method)");
-    if (o.orientationWeight > 0 && o.method == SolverOptions::Method::Multiresolution &&
-        o.correctionSteps > 0)
-        throw SolverError(
-            "the orientation guard does not go with correction steps (they need the coarsest "
-            "level solved by conjugate gradients)");
-}
 }  // namespace
 
 Reconstruction::Impl::Impl() = default;
@@ -98,8 +95,7 @@ double Reconstruction::Impl::energy(const Positions& V, const Positions& targets
 void Reconstruction::Impl::updateOrientationGuard() {
     orientation.reset();
     if (options.orientationWeight <= 0) return;
-    orientation = std::make_unique<OrientationGuard>(rest, options.orientationWeight,
-                                                     options.orientationThreshold);
+    orientation = std::make_unique<OrientationGuard>(rest, options.orientationWeight, 0.2);
 }
 
 double Reconstruction::Impl::linearise(const Positions& V, const Positions& targets) {
@@ -124,17 +120,12 @@ double Reconstruction::Impl::linearise(const Positions& V, const Positions& targ
 }
 
 void Reconstruction::Impl::assemble(const Positions& V, const Positions& targets,
-                                    Eigen::VectorXd& gradient) {
-    if (!system) buildBlockSystem();
-    system->clear();
-    assembleInto(*system, V, targets, &gradient);
-}
-
-template <class System>
-void Reconstruction::Impl::assembleInto(System& system, const Positions& V,
-                                        const Positions& targets, Eigen::VectorXd* gradient) {
+                                    Eigen::VectorXd& g) {
+    BlockSystem& system = *this->system;
+    system.clear();
+    Eigen::VectorXd* gradient = &g;
     const int n = rest.vertexCount();
-    if (gradient) gradient->setZero(3 * n);
+    gradient->setZero(3 * n);
     const auto& topo = *topology;
     for (int r = 0; r < static_cast<int>(residualOf.size()); ++r) {
         const int v = residualOf[r];
@@ -211,15 +202,10 @@ void Reconstruction::Impl::assembleInto(System& system, const Positions& V,
         }
 }
 
-void Reconstruction::Impl::addRotationCoupling(bool clamped) {
-    addRotationCouplingTo(*system, clamped);
-}
-
-template <class System>
-void Reconstruction::Impl::addRotationCouplingTo(System& system, bool clamped) {
+void Reconstruction::Impl::addRotationCoupling() {
+    BlockSystem& system = *this->system;
     // Placed in the stencil of v's own residual: G_v only touches v and its ring.
     std::vector<std::pair<int, Mat3>> blocks;
-    std::vector<std::tuple<int, int, double>> edges;
     std::vector<Mat3> G, CG;
     const double scale = -2.0 * options.rigidityWeight;
     for (int v = 0; v < rest.vertexCount(); ++v) {
@@ -249,52 +235,10 @@ void Reconstruction::Impl::addRotationCouplingTo(System& system, bool clamped) {
         if (!inside) continue;  // a face around v that is not in its ring: leave it out
         CG.resize(m + 1);
         for (int b = 0; b <= m; ++b) CG[b] = scale * C * G[b];
-        if (!clamped) {
-            for (int a = 0; a <= m; ++a)
-                for (int b = 0; b <= m; ++b) system.addGram(r, a, b, G[a], CG[b]);
-            continue;
-        }
-        const int size = 3 * (m + 1);
-        Eigen::MatrixXd H(size, size);
         for (int a = 0; a <= m; ++a)
-            for (int b = 0; b <= m; ++b) H.block<3, 3>(3 * a, 3 * b) = G[a].transpose() * CG[b];
-        // v's fixed-rotation share, added here and taken out again after the clamp, since
-        // assemble() has already added it (as 6αL ⊗ I, summed over all vertices).
-        Eigen::MatrixXd fixed = Eigen::MatrixXd::Zero(size, size);
-        rigidity->vertexEdges(v, edges);
-        for (const auto& [j, k, w] : edges) {
-            // The same faces as couplingBlocks(), all inside the ring (checked above).
-            const int a = slotOf(j), b = slotOf(k);
-            const double x = 2.0 * options.rigidityWeight * w;
-            for (int d = 0; d < 3; ++d) {
-                fixed(3 * a + d, 3 * a + d) += x;
-                fixed(3 * b + d, 3 * b + d) += x;
-                fixed(3 * a + d, 3 * b + d) -= x;
-                fixed(3 * b + d, 3 * a + d) -= x;
-            }
-        }
-        const Eigen::MatrixXd local = fixed + H;
-        const Eigen::LDLT<Eigen::MatrixXd> ldlt(local);
-        const double tolerance = 1e-12 * local.diagonal().cwiseAbs().maxCoeff();
-        if (ldlt.info() != Eigen::Success || ldlt.vectorD().minCoeff() < -tolerance) {
-            const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(local);
-            const Eigen::VectorXd positive = eigen.eigenvalues().cwiseMax(0.0);
-            H = eigen.eigenvectors() * positive.asDiagonal() * eigen.eigenvectors().transpose() -
-                fixed;
-        }
-        for (int a = 0; a <= m; ++a)
-            for (int b = 0; b <= m; ++b) system.add(r, a, b, H.block<3, 3>(3 * a, 3 * b));
+            for (int b = 0; b <= m; ++b) system.addGram(r, a, b, G[a], CG[b]);
     }
 }
-
-// The rest pose's systems are assembled by the same code (RestSystem.cpp).
-template void Reconstruction::Impl::assembleInto(BlockSystem&, const Positions&, const Positions&,
-                                                 Eigen::VectorXd*);
-template void Reconstruction::Impl::addRotationCouplingTo(BlockSystem&, bool);
-template void Reconstruction::Impl::assembleInto(ScalarSystem&, const Positions&, const Positions&,
-                                                 Eigen::VectorXd*);
-template void Reconstruction::Impl::addRotationCouplingTo(ScalarSystem&, bool);
-template void Reconstruction::Impl::addRotationCouplingTo(ScalarSystem::Part&, bool);
 
 std::optional<Reconstruction::Impl::GuardHessian> Reconstruction::Impl::factorizeFirstOf(
     std::initializer_list<GuardHessian> kinds, const std::function<void(GuardHessian)>& build) {
@@ -317,7 +261,6 @@ Reconstruction& Reconstruction::operator=(Reconstruction&&) noexcept = default;
 
 void Reconstruction::prepare(const TriMesh& rest, std::vector<int> markerVertices,
                              SolverOptions options) {
-    checkOrientationGuard(options);
     auto impl = std::make_unique<Impl>();
     impl->rest = rest;
     impl->options = options;
@@ -346,32 +289,22 @@ void Reconstruction::prepare(const TriMesh& rest, std::vector<int> markerVertice
                 throw SolverError(
                     "marker offsets need soft constraints (a hard constraint puts the "
                     "vertex itself on the marker)");
-    if (options.method == SolverOptions::Method::Multiresolution) {
-        // Every level, the input mesh included, is a Reconstruction of its own inside.
-        impl->multires = std::make_unique<MultiresSolver>(impl->rest, impl->markers, options);
-        impl_ = std::move(impl);
-        return;
-    }
     impl->topology = std::make_unique<MeshTopology>(impl->rest);
     impl->encoding = std::make_unique<ShapeEncoding>(impl->rest, *impl->topology);
-    impl->residualIndex.assign(n, -1);
-    for (int v = 0; v < n; ++v) {
-        if (!impl->encoding->encoded(v)) continue;
-        impl->residualIndex[v] = static_cast<int>(impl->residualOf.size());
-        impl->residualOf.push_back(v);
-    }
-    impl->rigidity = std::make_unique<ArapEnergy>(impl->rest);
-    impl->updateOrientationGuard();
-    // The direct path needs the structure on its first frame anyway: it belongs to preparing.
-    if (options.method == SolverOptions::Method::Direct) impl->buildBlockSystem();
-    if (options.method == SolverOptions::Method::LocalGlobal)
+    if (options.method == SolverOptions::Method::LocalGlobal) {
         impl->localGlobal = std::make_unique<LocalGlobalMethod>(
             impl->rest, *impl->topology, *impl->encoding, impl->markers,
             options.constraints == SolverOptions::Constraints::Hard, options.softWeight);
-    if (options.method == SolverOptions::Method::Iterative) {
-        // No steps, no preconditioner: solve() makes it if the options change.
-        if (options.maxIterations > 0 && impl->restSystemWanted()) impl->prepareRestSystem();
-        impl->iterative = std::make_unique<IterativeSolver>(*impl);
+    } else {
+        impl->residualIndex.assign(n, -1);
+        for (int v = 0; v < n; ++v) {
+            if (!impl->encoding->encoded(v)) continue;
+            impl->residualIndex[v] = static_cast<int>(impl->residualOf.size());
+            impl->residualOf.push_back(v);
+        }
+        impl->rigidity = std::make_unique<ArapEnergy>(impl->rest);
+        impl->updateOrientationGuard();
+        impl->system = std::make_unique<BlockSystem>(n, impl->stencils());
     }
     impl_ = std::move(impl);
 }
@@ -401,7 +334,7 @@ Positions Reconstruction::Impl::startingPose(const Positions& targets,
 
 SolveResult Reconstruction::solve(const Positions& targets, const Positions* guess) {
     Impl& s = *impl_;
-    if (!s.topology && !s.multires) throw SolverError("solve() called before prepare()");
+    if (!s.topology) throw SolverError("solve() called before prepare()");
     const int n = s.rest.vertexCount();
     const int K = static_cast<int>(s.markers.size());
     if (targets.rows() != K)
@@ -410,24 +343,15 @@ SolveResult Reconstruction::solve(const Positions& targets, const Positions* gue
     if (guess && guess->rows() != n)
         throw SolverError("the initial guess has " + std::to_string(guess->rows()) +
                           " vertices, the mesh " + std::to_string(n));
-    if (s.multires) return s.multires->solve(targets, guess);
-    if (s.options.method == SolverOptions::Method::Iterative) {
-        if (s.restSystemWanted() && !s.systemHoldsRestFactor && s.options.maxIterations > 0) {
-            s.prepareRestSystem();
-            s.iterative.reset();
-        }
-        if (!s.iterative) s.iterative = std::make_unique<IterativeSolver>(s);
-        return s.iterative->solve(targets, guess);
-    }
-    // Each frame from its own markers: the guess is not used, so that history cannot matter.
     if (s.localGlobal) {
+        // Each frame from its own markers: no guess, so that no history can matter.
         Positions restMarkers(K, 3);
         for (int k = 0; k < K; ++k) restMarkers.row(k) = s.rest.V.row(s.markers[k]);
         return s.localGlobal->solve(targets, s.options.markerOffsets,
                                     s.startingPose(targets, nullptr),
                                     fitRigidMotion(restMarkers, targets).R);
     }
-    return s.solveDirect(targets, guess);
+    return s.solveExact(targets, guess);
 }
 
 Stencils Reconstruction::Impl::stencils() const {
@@ -448,11 +372,7 @@ Stencils Reconstruction::Impl::stencils() const {
     return stencils;
 }
 
-void Reconstruction::Impl::buildBlockSystem() {
-    system = std::make_unique<BlockSystem>(rest.vertexCount(), stencils());
-}
-
-SolveResult Reconstruction::Impl::solveDirect(const Positions& targets, const Positions* guess) {
+SolveResult Reconstruction::Impl::solveExact(const Positions& targets, const Positions* guess) {
     Impl& s = *this;
     const int n = s.rest.vertexCount();
     const int K = static_cast<int>(s.markers.size());
@@ -462,15 +382,8 @@ SolveResult Reconstruction::Impl::solveDirect(const Positions& targets, const Po
     Positions& V = result.V;
     const bool hard = !s.softMarkers();
     // The last factor, reused as a preconditioner, is this solver's own from an earlier step or
-    // frame: a rest factor the system is known to hold (the iterative method's) waits for this
-    // solve's first factorisation. One left behind by a change of options may serve, which is
-    // harmless: every factor made is positive definite.
-    bool ownFactor = !s.systemHoldsRestFactor;
-    s.systemHoldsRestFactor = false;
-    // The iterative method's Preconditioner::LastFactor builds no system, and its factor is
-    // about to be replaced.
-    if (!s.system) s.buildBlockSystem();
-    if (s.iterative) s.iterative->forgetFactor();
+    // frame. One left behind by a change of options may serve, which is harmless: every factor
+    // made is positive definite.
 
     Eigen::VectorXd gradient;
     const double still = 1e-10 * boundingBoxDiagonal(s.rest.V);
@@ -481,7 +394,7 @@ SolveResult Reconstruction::Impl::solveDirect(const Positions& targets, const Po
     // added) once a step is accepted whole, gains less than 30 % and leaves no face at the
     // guard's threshold: near a minimum. The Gauss–Newton matrix otherwise, which converges only
     // linearly where a bend turns the rings. Far from a minimum the exact matrix can lead into
-    // another basin (the iterative solver's comment has the horse gallop's figures). Without the
+    // another basin. Without the
     // orientation guard it is not used: converging further there flips more faces (samba at 40
     // markers, the Gauss–Newton matrix run to 1e-6: 654 faces flipped in the worst frame
     // against 436 at the default 1e-3), and nothing else holds them. Measured with it, each frame
@@ -517,7 +430,7 @@ SolveResult Reconstruction::Impl::solveDirect(const Positions& targets, const Po
         // without them, 95 s.
         const int reuseIterations = s.system->reuseAllowance();
         const Kind kind = exact ? Kind::Exact : Kind::GaussNewton;
-        if (ownFactor && s.system->hasFactor() && s.factorWithoutOrientationTerms &&
+        if (s.system->hasFactor() && s.factorWithoutOrientationTerms &&
             s.orientationTerms.empty() && reuseIterations >= BlockSystem::kMinimumReuseIterations) {
             buildSystem(kind);
             s.system->addToDiagonal(s.tikhonov());
@@ -537,7 +450,6 @@ SolveResult Reconstruction::Impl::solveDirect(const Positions& targets, const Po
             solvedWith = exact ? s.factorizeFirstOf({Kind::Exact, Kind::GaussNewton}, buildSystem)
                                : s.factorizeFirstOf({Kind::GaussNewton}, buildSystem);
             if (!solvedWith) break;
-            ownFactor = true;
             s.factorWithoutOrientationTerms = s.orientationTerms.empty();
             ++result.report.directSteps;
             step = s.system->solve(gradient);
@@ -587,14 +499,14 @@ SolveResult Reconstruction::Impl::solveDirect(const Positions& targets, const Po
 }
 
 double Reconstruction::energy(const Positions& V, const Positions& targets) const {
-    if (impl_->multires) return impl_->multires->energy(V, targets);
+    if (impl_->localGlobal)
+        return impl_->localGlobal->energy(V, targets, impl_->options.markerOffsets);
     return impl_->energy(V, targets);
 }
 const TriMesh& Reconstruction::rest() const {
     return impl_->rest;
 }
 const ShapeEncoding& Reconstruction::encoding() const {
-    if (impl_->multires) return impl_->multires->encoding();
     return *impl_->encoding;
 }
 const std::vector<int>& Reconstruction::markerVertices() const {
@@ -604,27 +516,17 @@ const SolverOptions& Reconstruction::options() const {
     return impl_->options;
 }
 void Reconstruction::setOptions(const SolverOptions& options) {
-    checkOrientationGuard(options);
-    // The levels' own options derive from these: build them afresh.
-    if (impl_->multires || options.method == SolverOptions::Method::Multiresolution) {
-        if (impl_->multires || impl_->topology)
-            prepare(TriMesh(impl_->rest), impl_->markers, options);
-        else
-            impl_->options = options;
+    const SolverOptions& old = impl_->options;
+    // The method, and what the local/global factorisation holds, need preparing again.
+    if (options.method != old.method || options.constraints != old.constraints ||
+        (options.method == SolverOptions::Method::LocalGlobal &&
+         options.softWeight != old.softWeight)) {
+        prepare(TriMesh(impl_->rest), impl_->markers, options);
         return;
     }
-    // The rest factorisation bakes in the constraint kind and the fold guard's weight.
-    if (options.constraints != impl_->options.constraints ||
-        options.rigidityWeight != impl_->options.rigidityWeight ||
-        options.softWeight != impl_->options.softWeight ||
-        options.preconditioner != impl_->options.preconditioner) {
-        impl_->systemHoldsRestFactor = false;
-        if (impl_->iterative) impl_->iterative->forgetFactor();
-    }
-    const bool guardChanged = options.orientationWeight != impl_->options.orientationWeight ||
-                              options.orientationThreshold != impl_->options.orientationThreshold;
+    const bool guardChanged = options.orientationWeight != old.orientationWeight;
     impl_->options = options;
-    if (guardChanged && impl_->topology) impl_->updateOrientationGuard();
+    if (guardChanged && impl_->system) impl_->updateOrientationGuard();
 }
 
 }  // namespace boneless

@@ -1,7 +1,7 @@
 #pragma once
 
-// The state behind boneless::Reconstruction, shared by its direct (Reconstruction.cpp) and
-// iterative (IterativeSolver.cpp, RestSystem.cpp) Gauss–Newton paths.
+// The state behind boneless::Reconstruction: its local/global method (LocalGlobalMethod) and its
+// exact Gauss–Newton method (Reconstruction.cpp).
 
 #include <functional>
 #include <initializer_list>
@@ -13,13 +13,9 @@
 #include "BlockSystem.h"
 #include "LocalGlobalMethod.h"
 #include "OrientationGuard.h"
-#include "ScalarSystem.h"
 #include "boneless/Reconstruction.h"
 
 namespace boneless {
-
-class IterativeSolver;
-class MultiresSolver;
 
 inline bool rowIsFinite(const Positions& P, int r) {
     return P.row(r).allFinite();
@@ -36,19 +32,12 @@ struct Reconstruction::Impl {
     std::vector<int> markerOf;       // vertex -> marker index, or -1
     std::vector<int> residualOf;     // residual -> vertex
     std::vector<int> residualIndex;  // vertex -> residual, or -1
+    SolverOptions options;
+    std::unique_ptr<LocalGlobalMethod> localGlobal;  // Method::LocalGlobal
+    // Method::Exact:
     std::unique_ptr<BlockSystem> system;
-    // Preconditioner::Scalar and LumpedScalar: the rest pose's matrix, trace per block (lumped),
-    // factorised in prepare().
-    std::unique_ptr<ScalarSystem> restScalar;
     std::unique_ptr<ArapEnergy> rigidity;
     std::unique_ptr<OrientationGuard> orientation;  // when options.orientationWeight > 0
-    std::unique_ptr<IterativeSolver> iterative;
-    std::unique_ptr<LocalGlobalMethod> localGlobal;
-    std::unique_ptr<MultiresSolver> multires;  // Method::Multiresolution: it owns everything else
-    SolverOptions options;
-    // The system holds the rest pose's factorisation (the iterative path's preconditioner) rather
-    // than the last direct iteration's.
-    bool systemHoldsRestFactor = false;
 
     // Per-iteration scratch, kept to avoid reallocations per frame.
     std::vector<Vec3> residual;
@@ -78,34 +67,17 @@ struct Reconstruction::Impl {
     // Fills residuals and Jacobians, fits the fold guard's rotations (with their curvature, for
     // addRotationCoupling()) and the orientation guard's terms; returns the energy.
     double linearise(const Positions& V, const Positions& targets);
-    // Assembles AᵀA and Aᵀr for the current linearisation (into the block system, made if need
-    // be; assembleInto: into a system that starts at zero, Aᵀr only when asked for).
+    // Assembles AᵀA and Aᵀr for the current linearisation into the block system.
     void assemble(const Positions& V, const Positions& targets, Eigen::VectorXd& gradient);
-    template <class System>
-    void assembleInto(System& system, const Positions& V, const Positions& targets,
-                      Eigen::VectorXd* gradient);
-    // The iterative method's preconditioner: the Gauss–Newton matrix of the rest pose, every
-    // marker pinned when hard, a tiny Tikhonov term added, factorised; in the block system
-    // (Preconditioner::Blocks) or as restScalar (Preconditioner::Scalar, LumpedScalar).
-    void prepareRestSystem();
-    // One stencil per residual (its vertex and ring), one per face: the systems' structure.
+    // One stencil per residual (its vertex and ring), one per face: the system's structure.
     Stencils stencils() const;
-    // Made on first use: a level of the multiresolution solver that is never stepped on needs none.
-    void buildBlockSystem();
     // Adds the fold guard's rotation coupling, −2α Σ_v G_vᵀ C_v G_v, to the assembled matrix: the
     // part of its exact Hessian that fixed rotations miss (ArapEnergy::addRotationCoupling), at
     // the last linearisation. Indefinite far from a minimum.
-    // clamped: each vertex's share of the fold guard's Hessian (its fixed-rotation part plus its
-    // coupling) is clamped to its positive semidefinite part first, so that the matrix can be
-    // factorised where the guard is not convex (the inside of a bend, where rings are
-    // compressed). Exact where every share is semidefinite; where one is not, it changes the
-    // matrix even if the sum was positive definite (see IterativeSolver::directStep).
-    void addRotationCoupling(bool clamped = false);
-    template <class System>
-    void addRotationCouplingTo(System& system, bool clamped);
-    // Which fold-guard Hessian an assembled matrix holds: its rotations held (Gauss–Newton), their
-    // derivative added (exact), or that with each vertex's share clamped (addRotationCoupling()).
-    enum class GuardHessian { GaussNewton, Exact, Clamped };
+    void addRotationCoupling();
+    // Which fold-guard Hessian an assembled matrix holds: its rotations held (Gauss–Newton), or
+    // their derivative added (exact).
+    enum class GuardHessian { GaussNewton, Exact };
     // The Tikhonov term every factorisation of the system adds, and every solve with an earlier
     // factor must add too: it keeps directions the markers do not pin down (a component
     // without markers, a ring-less vertex) from making the matrix singular.
@@ -117,20 +89,10 @@ struct Reconstruction::Impl {
     // factorised, nothing when none could be.
     std::optional<GuardHessian> factorizeFirstOf(std::initializer_list<GuardHessian> kinds,
                                                  const std::function<void(GuardHessian)>& build);
-    // The iterative method's preconditioner is made from the rest pose's matrix.
-    bool restSystemWanted() const {
-        return options.preconditioner != SolverOptions::Preconditioner::LastFactor;
-    }
-    // The preconditioner is restScalar (Preconditioner::Scalar or LumpedScalar).
-    bool scalarPreconditioner() const {
-        return options.preconditioner == SolverOptions::Preconditioner::Scalar ||
-               options.preconditioner == SolverOptions::Preconditioner::LumpedScalar;
-    }
-
     // The starting pose of a frame: the guess (or the rest pose moved rigidly onto the markers),
     // isolated vertices moved rigidly, hard markers on their targets.
     Positions startingPose(const Positions& targets, const Positions* guess) const;
-    SolveResult solveDirect(const Positions& targets, const Positions* guess);
+    SolveResult solveExact(const Positions& targets, const Positions* guess);
 };
 
 }  // namespace boneless

@@ -64,13 +64,21 @@ Evaluation evaluateSequence(const MeshSequence& sequence, const EvaluationOption
     const int K = static_cast<int>(markers.size());
     const double diagonal = boundingBoxDiagonal(sequence.rest.V);
 
-    Reconstruction boneless;
+    Reconstruction boneless, start;
     ArapDeformer arap;
     const bool useArap = options.method == EvaluationOptions::Method::Arap;
-    if (useArap)
+    const bool exact = options.solver.method == SolverOptions::Method::Exact;
+    if (useArap) {
         arap.prepare(sequence.rest, markers, {options.arapIterations});
-    else
+    } else {
         boneless.prepare(sequence.rest, markers, options.solver);
+        // As a take is solved: the exact method refines each frame's local/global answer.
+        if (exact) {
+            SolverOptions o = options.solver;
+            o.method = SolverOptions::Method::LocalGlobal;
+            start.prepare(sequence.rest, markers, o);
+        }
+    }
 
     std::mt19937 rng(options.seed);
     const int dropCount = static_cast<int>(std::lround(K * options.dropPercent / 100.0));
@@ -89,8 +97,18 @@ Evaluation evaluateSequence(const MeshSequence& sequence, const EvaluationOption
             for (int i = 0; i < dropCount; ++i)
                 targets.row(order[i]).setConstant(std::numeric_limits<double>::quiet_NaN());
         }
-        const Positions* guess = previous ? &*previous : nullptr;
-        SolveResult result = useArap ? arap.solve(targets, guess) : boneless.solve(targets, guess);
+        SolveResult result;
+        if (useArap) {
+            // ARAP as it is used: each frame from the previous one's answer.
+            result = arap.solve(targets, previous ? &*previous : nullptr);
+        } else if (exact) {
+            const SolveResult first = start.solve(targets);
+            result = boneless.solve(targets, &first.V);
+            result.report.iterations += first.report.iterations;
+            result.report.milliseconds += first.report.milliseconds;
+        } else {
+            result = boneless.solve(targets);
+        }
 
         FrameEvaluation f;
         f.frame = frame;

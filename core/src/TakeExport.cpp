@@ -3,11 +3,19 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <nlohmann/json.hpp>
+#include <numeric>
 #include <optional>
+#include <thread>
 
+#include "Parallel.h"
 #include "boneless/Error.h"
 #include "boneless/Metrics.h"
 #include "boneless/ObjWriter.h"
@@ -62,7 +70,21 @@ json summaryJson(const json& perFrame) {
             {"residual_rms_mm_worst_frame", residualWorst},
             {"edge_distortion_worst_frame", distortionWorst},
             {"folded_faces_worst_frame", foldedWorst},
+            {"ms_per_frame_mean", n ? std::accumulate(ms.begin(), ms.end(), 0.0) / n : 0.0},
+            {"ms_per_frame_worst", n ? ms.back() : 0.0},
             {"ms_per_frame_median", n ? ms[n / 2] : 0.0}};
+}
+
+json solverJson(const TakeSolveOptions& o) {
+    json j = {{"method", methodName(o.solver.method)},
+              {"marker_weight", o.markerWeight},
+              {"low_pass_hz", o.lowPassHz}};
+    if (o.solver.method == SolverOptions::Method::Exact) {
+        j["rigidity_weight"] = o.solver.rigidityWeight;
+        j["orientation_weight"] = o.solver.orientationWeight;
+        j["max_iterations"] = o.solver.maxIterations;
+    }
+    return j;
 }
 
 json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibration& c,
@@ -97,17 +119,90 @@ json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibr
                 {s.R(2, 0), s.R(2, 1), s.R(2, 2)}}},
               {"translation", {s.t.x(), s.t.y(), s.t.z()}},
               {"overridden", o.alignment.has_value()}}},
-            {"solver",
-             {{"marker_weight", o.markerWeight},
-              {"low_pass_hz", o.lowPassHz},
-              {"continuation_steps", o.continuationSteps},
-              {"coarsest_leads", o.coarsestLeads},
-              {"rigidity_weight", o.solver.rigidityWeight},
-              {"orientation_weight", o.solver.orientationWeight},
-              {"orientation_threshold", o.solver.orientationThreshold},
-              {"max_iterations", o.solver.maxIterations}}},
+            {"solver", solverJson(o)},
             {"summary", summaryJson(perFrame)},
             {"per_frame", std::move(perFrame)}};
+}
+
+// Frames do not depend on each other, so each core solves frames of its own (each with a
+// TakeSolver of its own), and `write` gets them in order, on the calling thread, until it
+// returns false. A worker runs at most a few frames ahead of the writing.
+using FrameSink = std::function<bool(int frame, const Positions& V, const FrameReport& report,
+                                     double distortion)>;
+void solveInOrder(TakeSolver& first, const TriMesh& mesh, const C3dTake& take,
+                  const Correspondence& map, const TakeSolveOptions& options, int begin, int end,
+                  const FrameSink& write) {
+    struct Solved {
+        Positions V;
+        FrameReport report;
+        double distortion = 0;
+    };
+    const int workers = std::max(1, std::min(solverThreadCount(), end - begin));
+    const int window = 4 * workers;
+    std::mutex mutex;
+    std::condition_variable changed;
+    std::map<int, Solved> solved;
+    int next = begin, written = begin;
+    bool stop = false;
+    std::exception_ptr error;
+    auto work = [&](int worker) {
+        try {
+            std::unique_ptr<TakeSolver> own;
+            if (worker > 0) own = std::make_unique<TakeSolver>(mesh, take, map, options);
+            TakeSolver& solver = worker > 0 ? *own : first;
+            for (;;) {
+                int f;
+                {
+                    std::unique_lock<std::mutex> lock(mutex);
+                    changed.wait(lock,
+                                 [&] { return stop || next >= end || next < written + window; });
+                    if (stop || next >= end) return;
+                    f = next++;
+                }
+                Solved s;
+                s.V = solver.solve(f, s.report);
+                s.distortion = edgeLengthDistortion(mesh.F, s.V, mesh.V);
+                if (s.report.foldedFaces < 0)
+                    s.report.foldedFaces = foldedFaceCount(mesh.F, s.V, mesh.V);
+                std::lock_guard<std::mutex> lock(mutex);
+                solved.emplace(f, std::move(s));
+                changed.notify_all();
+            }
+        } catch (...) {
+            std::lock_guard<std::mutex> lock(mutex);
+            if (!error) error = std::current_exception();
+            stop = true;
+            changed.notify_all();
+        }
+    };
+    std::vector<std::thread> threads;
+    for (int w = 1; w < workers; ++w) threads.emplace_back(work, w);
+    // The calling thread solves too, while it has no frame to write.
+    std::thread own(work, 0);
+    bool more = true;
+    for (int f = begin; f < end && more; ++f) {
+        Solved s;
+        {
+            std::unique_lock<std::mutex> lock(mutex);
+            changed.wait(lock, [&] { return error || solved.count(f); });
+            if (error) break;
+            s = std::move(solved.at(f));
+            solved.erase(f);
+        }
+        more = write(f, s.V, s.report, s.distortion);
+        std::lock_guard<std::mutex> lock(mutex);
+        written = f + 1;
+        stop = stop || !more;
+        changed.notify_all();
+    }
+    {
+        std::lock_guard<std::mutex> lock(mutex);
+        stop = true;
+        changed.notify_all();
+    }
+    own.join();
+    for (auto& t : threads) t.join();
+    if (error) std::rethrow_exception(error);
 }
 
 }  // namespace
@@ -137,33 +232,34 @@ ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspo
     ExportResult result;
     result.first = request.first;
     json perFrame = json::array();
-    for (int f = request.first; f < end; ++f) {
-        FrameReport report;
-        const Positions V = solver.solve(f, report);
-        if (cache) {
-            cache->append(V);
-        } else {
-            char name[16];
-            std::snprintf(name, sizeof name, "_%04d.obj", f);
-            writeObj((out / (stem + name)).string(), V, mesh.F,
-                     "Boneless: " + request.c3dPath + " frame " + std::to_string(f));
-        }
-        // Quality a user checks before importing: stretch against the rest pose, and folds.
-        perFrame.push_back({{"frame", f},
-                            {"visible_markers", report.visibleMarkers},
-                            {"residual_rms_mm", report.residualRmsMm},
-                            {"residual_max_mm", report.residualMaxMm},
-                            {"edge_distortion", edgeLengthDistortion(mesh.F, V, mesh.V)},
-                            {"folded_faces", foldedFaceCount(mesh.F, V, mesh.V)},
-                            {"iterations", report.iterations},
-                            {"ms", report.milliseconds}});
-        ++result.framesWritten;
-        if (progress && !progress(result.framesWritten, end - request.first, report) &&
-            f + 1 < end) {
-            result.cancelled = true;
-            break;
-        }
-    }
+    solveInOrder(solver, mesh, take, map, request.options, request.first, end,
+                 [&](int f, const Positions& V, const FrameReport& report, double distortion) {
+                     if (cache) {
+                         cache->append(V);
+                     } else {
+                         char name[16];
+                         std::snprintf(name, sizeof name, "_%04d.obj", f);
+                         writeObj((out / (stem + name)).string(), V, mesh.F,
+                                  "Boneless: " + request.c3dPath + " frame " + std::to_string(f));
+                     }
+                     // Quality a user checks before importing: stretch against the rest pose,
+                     // and folds.
+                     perFrame.push_back({{"frame", f},
+                                         {"visible_markers", report.visibleMarkers},
+                                         {"residual_rms_mm", report.residualRmsMm},
+                                         {"residual_max_mm", report.residualMaxMm},
+                                         {"edge_distortion", distortion},
+                                         {"folded_faces", report.foldedFaces},
+                                         {"iterations", report.iterations},
+                                         {"ms", report.milliseconds}});
+                     ++result.framesWritten;
+                     if (progress && !progress(result.framesWritten, end - request.first, report) &&
+                         f + 1 < end) {
+                         result.cancelled = true;
+                         return false;
+                     }
+                     return true;
+                 });
     if (cache) cache->finish();
     result.sidecarPath = (out / (stem + ".json")).string();
     writeFileAtomically(

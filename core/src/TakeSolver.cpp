@@ -19,6 +19,7 @@ TakeSolver::TakeSolver(const TriMesh& rest, const C3dTake& take, const Correspon
     if (options_.lowPassHz > 0) lowPassFilter(take_.samples, take_.rate, options_.lowPassHz);
 
     SolverOptions solverOptions = options_.solver;
+    solverOptions.method = SolverOptions::Method::LocalGlobal;
     solverOptions.constraints = SolverOptions::Constraints::Soft;
     solverOptions.softWeight = options_.markerWeight;
     solverOptions.markerOffsets.clear();
@@ -66,7 +67,14 @@ TakeSolver::TakeSolver(const TriMesh& rest, const C3dTake& take, const Correspon
     meshUnitsPerMm_ = calibration_.takeToMesh.scale / take_.unitToMm;
     for (const auto& m : map.markers)
         solverOptions.markerOffsets.push_back(m.offsetMm * meshUnitsPerMm_);
+    const bool exact = solverOptions.method == SolverOptions::Method::Exact;
+    solverOptions.method = SolverOptions::Method::LocalGlobal;
     solver_.setOptions(solverOptions);
+    if (exact) {
+        solverOptions.method = SolverOptions::Method::Exact;
+        exact_ = std::make_unique<Reconstruction>();
+        exact_->prepare(rest_, vertices, solverOptions);
+    }
 }
 
 Positions TakeSolver::predictedMarkers(const Positions& V) const {
@@ -90,112 +98,6 @@ Positions TakeSolver::targets(int frame) const {
     return T;
 }
 
-bool TakeSolver::coarsestLeadsFor(const Positions& T) {
-    std::vector<int> visible;
-    for (int k = 0; k < T.rows(); ++k)
-        if (T.row(k).allFinite()) visible.push_back(k);
-    SolverOptions o = solver_.options();
-    const int coarsest = std::max(o.coarsestVertices, 10 * static_cast<int>(visible.size()));
-    if (!options_.coarsestLeads || coarsestFailed_ ||
-        o.method == SolverOptions::Method::Multiresolution || rest_.vertexCount() < 2 * coarsest ||
-        visible.size() < 3) {
-        coarsestLast_.reset();  // the next frame that leads must not measure from an older one
-        return false;
-    }
-    if (coarsest_ && visible == coarsestMarkers_) return true;
-    // The coarsest level alone (with the orientation guard, if on), prolonged.
-    o.method = SolverOptions::Method::Multiresolution;
-    o.fineIterations = 0;
-    o.correctionSteps = 0;
-    o.markerOffsets.clear();
-    std::vector<int> vertices;
-    for (int k : visible) {
-        vertices.push_back(solver_.markerVertices()[k]);
-        o.markerOffsets.push_back(solver_.options().markerOffsets[k]);  // one per marker
-    }
-    coarsest_.reset();
-    coarsestLast_.reset();
-    auto coarse = std::make_unique<Reconstruction>();
-    try {
-        coarse->prepare(rest_, vertices, o);
-    } catch (const std::exception&) {
-        // The lead is a better start, never a requirement: without it the take still solves.
-        coarsestFailed_ = true;
-        return false;
-    }
-    coarsest_ = std::move(coarse);
-    coarsestMarkers_ = std::move(visible);
-    return true;
-}
-
-int TakeSolver::seenBy(const Positions& T) const {
-    int seen = 0;
-    for (int k : coarsestMarkers_) seen += T.row(k).allFinite();
-    return seen;
-}
-
-Positions TakeSolver::solveCoarsest(const Positions& T, const Positions& guess) {
-    Positions targets(coarsestMarkers_.size(), 3);
-    for (size_t i = 0; i < coarsestMarkers_.size(); ++i)
-        targets.row(i) = T.row(coarsestMarkers_[i]);
-    return coarsest_->solve(targets, &guess).V;
-}
-
-void TakeSolver::leadFromLast(const Positions& T, Positions& V) {
-    // Without its answer to the last frame (it was just built, or the last frame could not be
-    // led), the coarsest level solves that frame again, from the last answer; not when too few
-    // of its markers were seen there (that answer would be its shape left free).
-    if (!coarsestLeadsFor(T) || (!coarsestLast_ && seenBy(previousTargets_) < 3)) return;
-    const Positions last = coarsestLast_ ? *coarsestLast_ : solveCoarsest(previousTargets_, V);
-    const Positions X = last.allFinite() ? solveCoarsest(T, last) : last;
-    if (!X.allFinite()) {
-        coarsestLast_.reset();
-        return;
-    }
-    // The coarsest level's change, not its answer: its minimum differs from the full mesh's by
-    // a smooth offset the last answer has already removed.
-    V += X - last;
-    coarsestLast_ = X;
-}
-
-SolveResult TakeSolver::solveFirst(const Positions& T) {
-    // Continuation (algorithm.md §4.2): from the rest pose moved rigidly onto the markers, the
-    // targets travel to the frame's in a few steps, so a first frame far from the rest pose is
-    // reached through poses near each other.
-    Positions restMarkers(T.rows(), 3);
-    for (int k = 0; k < T.rows(); ++k)
-        restMarkers.row(k) = rest_.V.row(solver_.markerVertices()[k]);
-    const RigidMotion motion = fitRigidMotion(restMarkers, T);
-    Positions V(rest_.V.rows(), 3);
-    for (int v = 0; v < V.rows(); ++v)
-        V.row(v) = motion.apply(rest_.V.row(v).transpose()).transpose();
-    const Positions from = predictedMarkers(V);
-    const int steps = std::max(1, options_.continuationSteps);
-    if (coarsestLeadsFor(T)) {
-        // The steps are cheap there; the full mesh then solves the frame once.
-        Positions X = V;
-        for (int s = 1; s <= steps && X.allFinite(); ++s) {
-            const double a = static_cast<double>(s) / steps;
-            X = solveCoarsest((1 - a) * from + a * T, X);  // NaN rows stay missing
-        }
-        if (X.allFinite()) {
-            coarsestLast_ = X;
-            return solver_.solve(T, &X);
-        }
-        coarsestLast_.reset();
-    }
-    SolveResult r;
-    int iterations = 0;
-    for (int s = 1; s <= steps; ++s) {
-        const double a = static_cast<double>(s) / steps;
-        r = solver_.solve((1 - a) * from + a * T, &V);
-        iterations += r.report.iterations;
-        V = r.V;
-    }
-    r.report.iterations = iterations;
-    return r;
-}
-
 Positions TakeSolver::solve(int frame, FrameReport& report) {
     if (frame < 0 || frame >= frameCount())
         throw Error(take_.file + ": frame " + std::to_string(frame) + " is outside the take");
@@ -203,18 +105,21 @@ Positions TakeSolver::solve(int frame, FrameReport& report) {
     const Positions T = targets(frame);
     report = {};
     report.frame = frame;
-    SolveResult result;
-    if (!previous_) {
-        result = solveFirst(T);
-    } else {
-        Positions V = *previous_;
-        leadFromLast(T, V);
-        result = solver_.solve(T, &V);
+    SolveResult result = solver_.solve(T);
+    if (exact_ && result.V.allFinite()) {
+        // Refined from the local/global answer, so that the exact answer has no history either.
+        SolveResult refined = exact_->solve(T, &result.V);
+        refined.report.iterations += result.report.iterations;
+        result = std::move(refined);
     }
-    const bool failed = !result.V.allFinite();
-    if (failed) {
-        result.V = previous_ ? *previous_ : rest_.V;  // keep the last good shape, never NaN
-        coarsestLast_.reset();                        // it belongs to the frame that failed
+    if (!result.V.allFinite()) {
+        // Never NaN: the rest pose moved rigidly onto what markers the frame has.
+        Positions restMarkers(T.rows(), 3);
+        for (int k = 0; k < T.rows(); ++k)
+            restMarkers.row(k) = rest_.V.row(solver_.markerVertices()[k]);
+        const RigidMotion motion = fitRigidMotion(restMarkers, T);
+        for (int v = 0; v < rest_.vertexCount(); ++v)
+            result.V.row(v) = motion.apply(rest_.V.row(v).transpose()).transpose();
     }
     const Positions predicted = predictedMarkers(result.V);
     double sum = 0;
@@ -227,12 +132,7 @@ Positions TakeSolver::solve(int frame, FrameReport& report) {
     }
     report.residualRmsMm = report.visibleMarkers ? std::sqrt(sum / report.visibleMarkers) : 0.0;
     report.iterations = result.report.iterations;
-    // A failed frame leaves the last good one (and its targets) to start from; a failed first
-    // frame, none, so that the next is approached from the rest pose again.
-    if (!failed) {
-        previous_ = result.V;
-        previousTargets_ = T;
-    }
+    report.foldedFaces = result.report.foldedFaces;
     report.milliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return result.V;

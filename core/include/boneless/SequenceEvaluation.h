@@ -10,8 +10,9 @@
 namespace boneless {
 
 // Drives marker vertices of a ground-truth sequence with their true positions, reconstructs every
-// frame (each warm-started from the previous one) and measures the result against the truth. This
-// is how a user finds out how many markers a mesh needs, and how Boneless is compared with ARAP.
+// frame (Boneless as a take is solved, each frame from its own markers; ARAP as it is used, each
+// frame from the previous one's answer) and measures the result against the truth. This is how
+// a user finds out how many markers a mesh needs, and how Boneless is compared with ARAP.
 struct EvaluationOptions {
     enum class Method { Boneless, Arap };
     Method method = Method::Boneless;
@@ -20,8 +21,8 @@ struct EvaluationOptions {
     int endFrame = -1;       // one past the last frame; -1 = the end of the sequence
     double dropPercent = 0;  // each frame, this share of the markers goes missing (seeded)
     unsigned seed = 1;
-    // As a take is solved (TakeSolveOptions): with the orientation guard, so that what eval
-    // measures is what a user gets. The iterative method refuses the guard: set its weight to 0.
+    // As a take is solved (TakeSolveOptions): the exact method with the orientation guard, so
+    // that what eval measures is what a user gets.
     SolverOptions solver = [] {
         SolverOptions s;
         s.orientationWeight = 100.0;
