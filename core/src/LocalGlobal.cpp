@@ -48,15 +48,24 @@ LocalGlobalSolver::LocalGlobalSolver(const TriMesh& rest, const MeshTopology& to
     markerOf_.assign(n, -1);
     for (int k = 0; k < K; ++k) markerOf_[markers_[k]] = k;
 
-    // L = I − W over the encoded vertices; the others have no row (no shape of their own).
+    // L = I − W over the encoded vertices; the others have no row (no shape of their own). A
+    // boundary vertex's ring is closed by a chord it lies close to, where mean-value weights
+    // are ill-conditioned (algorithm.md §1.5): it takes uniform weights instead (horse gallop,
+    // 40 markers: 0.945 % RMS and 150 faces flipped at worst, against 0.953 % and 247).
     std::vector<Eigen::Triplet<double>> entries;
     entries.reserve(topology.neighbours().size() + n);
+    weight_.assign(topology.neighbours().size(), 0.0);
     for (int v = 0; v < n; ++v) {
         if (!encoding.encoded(v)) continue;
         entries.emplace_back(v, v, 1.0);
+        const int m = topology.valence(v);
         const int* ring = topology.ring(v);
         const double* w = encoding.weights(v);
-        for (int k = 0; k < topology.valence(v); ++k) entries.emplace_back(v, ring[k], -w[k]);
+        double* mine = weight_.data() + topology.offsets()[v];
+        for (int k = 0; k < m; ++k) {
+            mine[k] = topology.isBoundary(v) ? 1.0 / m : w[k];
+            entries.emplace_back(v, ring[k], -mine[k]);
+        }
     }
     L_.resize(n, n);
     L_.setFromTriplets(entries.begin(), entries.end());
@@ -68,7 +77,7 @@ LocalGlobalSolver::LocalGlobalSolver(const TriMesh& rest, const MeshTopology& to
             delta0_[v].setZero();
             if (!encoding.encoded(v)) continue;
             const int* ring = topology.ring(v);
-            const double* w = encoding.weights(v);
+            const double* w = weight_.data() + topology.offsets()[v];
             delta0_[v] = rest.V.row(v).transpose();
             for (int k = 0; k < topology.valence(v); ++k)
                 delta0_[v] -= w[k] * rest.V.row(ring[k]).transpose();

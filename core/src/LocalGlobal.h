@@ -85,7 +85,8 @@ class LocalGlobalSolver {
     double tikhonov_ = 0;    // ε
     // L by rows (for the energy) and by columns (the global step's Lᵀ gather).
     Eigen::SparseMatrix<double, Eigen::RowMajor> L_, Lt_;
-    std::vector<Vec3> delta0_;  // (L V⁰)_i, zero for an unencoded vertex
+    std::vector<double> weight_;  // W's row per vertex, at the topology's ring offsets
+    std::vector<Vec3> delta0_;    // (L V⁰)_i, zero for an unencoded vertex
     RingFit rings_;
     std::vector<Vec3> restNormal_;   // per marker: its vertex's rest ring normal
     Eigen::SparseMatrix<double> A_;  // #V by #V, the whole matrix

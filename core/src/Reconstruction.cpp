@@ -344,7 +344,15 @@ SolveResult Reconstruction::solve(const Positions& targets, const Positions* gue
         throw SolverError("the initial guess has " + std::to_string(guess->rows()) +
                           " vertices, the mesh " + std::to_string(n));
     if (s.localGlobal) {
-        // Each frame from its own markers: no guess, so that no history can matter.
+        // Each frame from its own markers: no guess, so that no history can matter. With none
+        // visible there is nothing to follow: the rest pose.
+        bool anyVisible = false;
+        for (int k = 0; k < K; ++k) anyVisible = anyVisible || rowIsFinite(targets, k);
+        if (!anyVisible) {
+            SolveResult rest;
+            rest.V = s.rest.V;
+            return rest;
+        }
         Positions restMarkers(K, 3);
         for (int k = 0; k < K; ++k) restMarkers.row(k) = s.rest.V.row(s.markers[k]);
         return s.localGlobal->solve(targets, s.options.markerOffsets,

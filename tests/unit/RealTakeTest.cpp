@@ -97,28 +97,26 @@ TEST(RealTake, CmuTakeOnMakeHumanSolvesCleanly) {
         expectImportableObj(out / name, rest);
 }
 
-// Frames 500–503: the head turns and the hands close, and without the orientation guard the
-// corners of the mouth (slivers), a fingertip and the LMT5 marker's toe folded in every frame
-// (measured: 5 to 6 faces per frame). With it (the default): none, at the same residual.
-TEST(RealTake, TheOrientationGuardKeepsMouthFingersAndToesFromFolding) {
+// Frames 500–503: the head turns and the hands close, and the corners of the mouth (slivers), a
+// fingertip and the LMT5 marker's toe fold under the global step alone (measured before the
+// repair: 5 to 6 faces per frame). Both methods leave none: local/global repairs them, and the
+// exact method's orientation guard keeps them (it refines the local/global answer).
+TEST(RealTake, MouthFingersAndToesDoNotFold) {
     const fs::path take = data / "c3d" / "cmu" / "85_02.c3d";
     if (!haveData(take)) GTEST_SKIP() << "no shared data (" << data << ")";
-    auto solve = [&](const std::string& name, const std::string& extra) {
-        const fs::path out = freshTestDir(name);
-        const CliResult r = runCli(
-            "solve --quiet --mesh " + makeHuman.string() + " --group body --c3d " + take.string() +
-            " --map " + cmuMap.string() + " --out " + out.string() + " --frames 500:504" + extra);
-        EXPECT_EQ(r.exitCode, 0) << r.out;
-        return nlohmann::json::parse(std::ifstream(out / "body.json"));
-    };
-    const auto guarded = solve("cmu-guarded", "");
-    const auto unguarded = solve("cmu-unguarded", " --orientation-guard 0");
-    EXPECT_GT(guarded["solver"]["orientation_weight"].get<double>(), 0);
-    EXPECT_EQ(unguarded["solver"]["orientation_weight"].get<double>(), 0);
-    EXPECT_GT(unguarded["summary"]["folded_faces_worst_frame"].get<int>(), 0)
-        << "this window no longer folds without the guard: pick another";
-    EXPECT_EQ(guarded["summary"]["folded_faces_worst_frame"].get<int>(), 0) << guarded["summary"];
-    EXPECT_LT(guarded["summary"]["residual_rms_mm_worst_frame"].get<double>(), 1.0);
+    for (const char* solver : {"local-global", "exact"}) {
+        const fs::path out = freshTestDir(std::string("cmu-") + solver);
+        const CliResult r =
+            runCli("solve --quiet --mesh " + makeHuman.string() + " --group body --c3d " +
+                   take.string() + " --map " + cmuMap.string() + " --out " + out.string() +
+                   " --frames 500:504 --solver " + solver);
+        ASSERT_EQ(r.exitCode, 0) << r.out;
+        const auto sidecar = nlohmann::json::parse(std::ifstream(out / "body.json"));
+        EXPECT_EQ(sidecar["solver"]["method"], solver);
+        EXPECT_EQ(sidecar["summary"]["folded_faces_worst_frame"].get<int>(), 0)
+            << solver << ": " << sidecar["summary"];
+        EXPECT_LT(sidecar["summary"]["residual_rms_mm_worst_frame"].get<double>(), 1.5) << solver;
+    }
 }
 
 namespace {
@@ -195,7 +193,6 @@ TEST(RealTake, NumediartGapsPullNothing) {
 
     // One alignment for both, so that only the gaps differ.
     TakeSolveOptions options;
-    options.continuationSteps = 2;
     options.alignment = TakeSolver(mesh, take, full, options).calibration().takeToMesh;
     TakeSolver withGaps(mesh, take, full, options), withoutMarkers(mesh, take, reduced, options);
     const double diagonal = boundingBoxDiagonal(mesh.V);
@@ -204,8 +201,10 @@ TEST(RealTake, NumediartGapsPullNothing) {
         const Positions Va = withGaps.solve(f, a), Vb = withoutMarkers.solve(f, b);
         ASSERT_TRUE(Va.allFinite()) << "frame " << f;
         EXPECT_EQ(a.visibleMarkers, b.visibleMarkers);
+        // Only the coarse level differs (it keeps a map's markers): a hundredth of a pull.
         const double gap = (Va - Vb).rowwise().norm().maxCoeff() / diagonal;
-        EXPECT_LT(gap, 1e-6) << "frame " << f << ": a missing marker moved the mesh";
+        std::printf("frame %d: %.2e of the diagonal from the map without the markers\n", f, gap);
+        EXPECT_LT(gap, 1e-3) << "frame " << f << ": a missing marker moved the mesh";
     }
 
     // The check can fail: read the gaps' (0,0,0) samples as positions and the mesh is pulled.

@@ -32,19 +32,17 @@ struct Bound {
     int flippedMax;
 };
 
-// Measured with the default evaluation options (the direct method, the orientation guard on),
-// K = 40, every frame: horse 1.031 % mean, 1.441 % worst frame, 222 flipped faces at most; samba
-// 1.070 %, 1.680 %, 455. The bounds add about 4 % (5 % on flips) for floating-point differences
-// between machines.
-constexpr Bound kHorseMeasured{1.031, 1.441, 222};
-constexpr Bound kHorseBound{1.07, 1.50, 233};
-constexpr Bound kSambaBound{1.11, 1.75, 478};
+// Measured with the default evaluation options (the local/global method), K = 40, every frame:
+// horse 0.953 % mean, 1.350 % worst frame, 247 flipped faces at most; samba 0.857 %, 1.232 %,
+// 253. The RMS bounds add about 4 % for floating-point differences between machines. Flips
+// turn on a thin leg's twist, which a last bit can change by a hundred faces: their bound is
+// the issue's, ARAP's own count.
+constexpr Bound kHorseBound{0.99, 1.40, 305};
+constexpr Bound kSambaBound{0.89, 1.28, 554};
 
-Evaluation evaluateAtFortyMarkers(const MeshSequence& sequence,
-                                  SolverOptions::Method method = SolverOptions::Method::Direct) {
+Evaluation evaluateAtFortyMarkers(const MeshSequence& sequence) {
     EvaluationOptions options;
     options.markers = geodesicFarthestPoints(sequence.rest, 40, 0);
-    options.solver.method = method;
     return evaluateSequence(sequence, options);
 }
 
@@ -76,20 +74,4 @@ TEST(SequenceGroundTruth, SambaAtFortyMarkers) {
     const std::string folder = unpacked("samba/samba.tar.xz", "samba");
     if (folder.empty()) GTEST_SKIP() << "no shared data (" << BONELESS_SHARED_DATA << ")";
     expectWithin(folder, kSambaBound, {1.324, 2.016, 554});
-}
-
-// Issue 4: the multiresolution method is a faster way to the same answer, so its figures stay
-// within 5 % of the direct method's (kHorseMeasured), and like it, it folds no face. Measured:
-// 1.022 %, 1.458 %, 198 faces, none folded (5 with the input level's one step a frame and no
-// more for a face turned over), at a fifth of the time per frame.
-TEST(SequenceGroundTruth, TheMultiresolutionMethodKeepsTheHorsesAccuracy) {
-    const std::string folder = unpacked("horse-gallop/horse-gallop.tar.xz", "horse-gallop");
-    if (folder.empty()) GTEST_SKIP() << "no shared data (" << BONELESS_SHARED_DATA << ")";
-    const auto s =
-        evaluateAtFortyMarkers(readMeshSequence(folder), SolverOptions::Method::Multiresolution)
-            .summary;
-    EXPECT_LE(s.rmsPctMean, 1.05 * kHorseMeasured.rmsMean);
-    EXPECT_LE(s.rmsPctWorstFrame, 1.05 * kHorseMeasured.rmsWorst);
-    EXPECT_LE(s.flippedFacesMax, 1.05 * kHorseMeasured.flippedMax);
-    EXPECT_EQ(s.foldedFacesMax, 0);
 }

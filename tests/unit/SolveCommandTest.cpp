@@ -64,6 +64,7 @@ TEST(SolveCommand, TheDemoTakeComesBackCloseToItsTruth) {
     // Measured over these 30 frames, markers 10 mm off the skin, three occlusion gaps: 0.599 % of
     // the diagonal at worst, no flipped face (without the orientation guard: 0.615 %, 3 flipped).
     const TruthComparison c = compareWithTruth(demo, out, 30);
+    std::printf("worst RMS %.3f %%, worst flipped %d\n", c.worstRmsPct, c.worstFlipped);
     EXPECT_LT(c.worstRmsPct, 0.7);
     EXPECT_LE(c.worstFlipped, 1);
     const auto j = sidecar(out);
@@ -72,7 +73,7 @@ TEST(SolveCommand, TheDemoTakeComesBackCloseToItsTruth) {
     EXPECT_EQ(j["units"]["mesh_guess"], "dm");
     EXPECT_EQ(j["up_axis"]["mesh_guess"], "+z");
     EXPECT_EQ(j["per_frame"][25]["visible_markers"], 29);  // marker 4 is occluded there
-    EXPECT_TRUE(j["solver"]["coarsest_leads"].get<bool>());
+    EXPECT_EQ(j["solver"]["method"], "local-global");
     for (const auto& f : j["per_frame"]) EXPECT_LT(f["residual_rms_mm"].get<double>(), 1.0);
 }
 
@@ -82,6 +83,8 @@ TEST(SolveCommand, MarkersOnTheSkinMatchTheGroundTruthEvaluation) {
     const fs::path demo = makeDemo(30, 0.0), out = demo / "solved";
     ASSERT_EQ(runCli(solveArgs(demo, out) + " --quiet").exitCode, 0);
     const TruthComparison c = compareWithTruth(demo, out, 30);
+    std::printf("on the skin: worst RMS %.3f %%, worst flipped %d\n", c.worstRmsPct,
+                c.worstFlipped);
     EXPECT_LT(c.worstRmsPct, 0.47);
     EXPECT_EQ(c.worstFlipped, 0);
 }
@@ -89,12 +92,9 @@ TEST(SolveCommand, MarkersOnTheSkinMatchTheGroundTruthEvaluation) {
 TEST(SolveCommand, ObjAndPointCacheHoldTheSamePositions) {
     const fs::path demo = makeDemo(8);
     ASSERT_EQ(runCli(solveArgs(demo, demo / "obj") + " --quiet --frames 2:6").exitCode, 0);
-    // The demo is smaller than a coarsest level: whether it leads changes nothing, and the
-    // sidecar says which was asked for.
-    const CliResult r = runCli(solveArgs(demo, demo / "pc2") +
-                               " --quiet --frames 2:6 --format pc2 --no-coarse-lead");
+    const CliResult r =
+        runCli(solveArgs(demo, demo / "pc2") + " --quiet --frames 2:6 --format pc2");
     ASSERT_EQ(r.exitCode, 0) << r.out;
-    EXPECT_FALSE(sidecar(demo / "pc2")["solver"]["coarsest_leads"].get<bool>());
     double start = -1;
     const auto frames = readPointCache((demo / "pc2" / "creature.pc2").string(), &start);
     ASSERT_EQ(frames.size(), 4u);
@@ -110,9 +110,9 @@ TEST(SolveCommand, ObjAndPointCacheHoldTheSamePositions) {
 }
 
 TEST(SolveCommand, CtrlCStopsCleanlyWithCompleteFilesOnly) {
-    const fs::path demo = makeDemo(200), out = demo / "solved";
-    // SIGINT after a moment, as a user's Ctrl-C.
-    const CliResult r = runShell("timeout --preserve-status -s INT 2 " + std::string(BONELESS_CLI) +
+    // Long enough (a few seconds) to be stopped halfway by a SIGINT after one, as a user's Ctrl-C.
+    const fs::path demo = makeDemo(3000), out = demo / "solved";
+    const CliResult r = runShell("timeout --preserve-status -s INT 1 " + std::string(BONELESS_CLI) +
                                  " " + solveArgs(demo, out) + " --quiet 2>&1; echo exit=$?");
     EXPECT_NE(r.out.find("exit=1"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("interrupted"), std::string::npos) << r.out;
@@ -124,7 +124,7 @@ TEST(SolveCommand, CtrlCStopsCleanlyWithCompleteFilesOnly) {
         if (e.path().extension() == ".obj") ++objs;
     }
     EXPECT_EQ(objs, j["frames_written"].get<int>());
-    EXPECT_LT(objs, 200);
+    EXPECT_LT(objs, 3000);
 }
 
 TEST(SolveCommand, BadInputIsOneClearLine) {
