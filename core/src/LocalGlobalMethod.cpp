@@ -10,19 +10,21 @@ namespace boneless {
 
 namespace {
 
-// Measured on horse-gallop and samba at 20, 40 and 80 markers (eval, docs/engine.md): a coarse
-// level of about a thousand vertices, 20 iterations there with a stiffer ARAP term (thin parts
-// are thinner there, and twisted more often), then 2 on the input (with hard markers a third
-// changed no row's error by more than 0.006 points).
+// Measured on horse-gallop and samba at 20, 40 and 80 markers (eval) and on CMU 85_02 on
+// MakeHuman (docs/engine.md): a coarse level of about a thousand vertices, 20 iterations there
+// with a stiffer ARAP term (thin parts are thinner there, and twisted more often), then 2 on the
+// input (a third changed no eval row's error by more than 0.006 points).
 constexpr int kCoarsestVertices = 1000;
 constexpr int kCoarsestPerMarker = 10;
 constexpr double kCoarseRigidity = 0.1;
 constexpr int kCoarseIterations = 20;
-constexpr double kFineRigidity = 0.01;
 constexpr int kFineIterations = 2;
-// Soft markers take one more: where the mesh is not the actor, the pull settles slowly (CMU 85_02
-// on MakeHuman: marker residual 1.14 mm RMS with two, 0.73 mm with three).
-constexpr int kSoftFineIterations = 3;
+// Hard markers sit on a mesh that is the actor (eval's sequences): the shape term leads. Soft
+// markers come from a take, where the mesh is never the actor, and the stiffer ARAP term keeps
+// the mismatch from stretching the mesh (CMU 85_02: edge distortion 0.158 against 0.229, marker
+// residual 0.62 mm against 1.15 mm; with it on eval's sequences, 5-17 % more error).
+constexpr double kHardRigidity = 0.01;
+constexpr double kSoftRigidity = 0.1;
 
 }  // namespace
 
@@ -30,7 +32,8 @@ LocalGlobalMethod::LocalGlobalMethod(const TriMesh& rest, const MeshTopology& to
                                      const ShapeEncoding& encoding, const std::vector<int>& markers,
                                      bool hard, double softWeight) {
     const int n = rest.vertexCount();
-    const LocalGlobalSolver::Settings fine{hard, softWeight, kFineRigidity, kFineIterations, true};
+    const LocalGlobalSolver::Settings fine{hard, softWeight, hard ? kHardRigidity : kSoftRigidity,
+                                           kFineIterations, true};
     const LocalGlobalSolver::Settings coarse{hard, softWeight, kCoarseRigidity, kCoarseIterations,
                                              false};
     const int coarsest =

@@ -67,7 +67,7 @@ TakeSolver::TakeSolver(const TriMesh& rest, const C3dTake& take, const Correspon
     meshUnitsPerMm_ = calibration_.takeToMesh.scale / take_.unitToMm;
     for (const auto& m : map.markers)
         solverOptions.markerOffsets.push_back(m.offsetMm * meshUnitsPerMm_);
-    const bool exact = solverOptions.method == SolverOptions::Method::Exact;
+    const bool exact = options_.solver.method == SolverOptions::Method::Exact;
     solverOptions.method = SolverOptions::Method::LocalGlobal;
     solver_.setOptions(solverOptions);
     if (exact) {
