@@ -1,16 +1,13 @@
 // The window as a user drives it: open the demo, scrub, play, keyboard, and bad files that must
 // give a message while the window keeps working.
-#include <QAction>
 #include <QDir>
 #include <QFile>
 #include <QLabel>
 #include <QMessageBox>
 #include <QMimeData>
-#include <QSettings>
 #include <QSlider>
 #include <QUrl>
 #include <QtTest>
-#include <algorithm>
 #include <map>
 
 #include "ViewTestSupport.h"
@@ -208,59 +205,12 @@ class MainWindowTest : public QObject {
         QVERIFY(test::waitForFrame(*window_));
     }
 
-    void previewsShowFirstAndTheAnswerReplacesThem() {
-        // The demo is below the size where previews pay; the threshold is a setting.
-        QSettings().setValue("solver/previewMinVertices", 0);
-        MainWindow window;
-        QSettings().remove("solver/previewMinVertices");
-        window.setMessageBoxesEnabled(false);
-        QVERIFY(window.openProject(project_));
-        QVERIFY(test::showAndWait(window));
-        QVERIFY(window.frameSolver()->previewEnabled());
-        // The first frame's preview starts from the rest pose, as slowly as its answer.
-        QTRY_VERIFY_WITH_TIMEOUT(!window.frameSolver()->isBusy(), 30000);
-        // What the solver delivers is ordered (the preview first); what is rendered is not quite:
-        // a GUI thread starved for a whole solve handles both before one paint, and only the
-        // answer is drawn. That is right, so renders are asserted as a tail of the deliveries.
-        std::vector<std::pair<int, bool>> deliveries, renders;  // frame, preview
-        connect(window.frameSolver(), &FrameSolver::frameReady, this, [&](const FrameResult& r) {
-            deliveries.push_back({r.frame, r.preview});
-        });
-        connect(&window, &MainWindow::latencyMeasured, this,
-                [&](int frame, double, bool, bool preview) {
-                    renders.push_back({frame, preview});
-                });
-        window.timeline()->scrubTo(45);
-        QVERIFY(test::waitForFrame(window));  // waits for the answer, not the preview
-        const std::vector<std::pair<int, bool>> previewThenAnswer{{45, true}, {45, false}};
-        QCOMPARE(deliveries, previewThenAnswer);
-        QVERIFY(!renders.empty() && renders.size() <= 2);
-        QVERIFY(std::equal(renders.rbegin(), renders.rend(), previewThenAnswer.rbegin()));
-        const QString solve = window.findChild<QLabel*>("solveLabel")->text();
-        QVERIFY2(solve.startsWith("solved in"), qPrintable(solve));
-
-        // View → Fast Previews off: the next uncached frame comes as its answer only.
-        QAction* toggle = window.findChild<QAction*>("previewAction");
-        QVERIFY(toggle && toggle->isChecked());
-        toggle->trigger();
-        QVERIFY(!window.frameSolver()->previewEnabled());
-        QVERIFY(!QSettings().value("solver/preview").toBool());
-        deliveries.clear();
-        renders.clear();
-        window.timeline()->scrubTo(20);
-        QVERIFY(test::waitForFrame(window));
-        const std::vector<std::pair<int, bool>> answerOnly{{20, false}};
-        QCOMPARE(deliveries, answerOnly);
-        QCOMPARE(renders, answerOnly);
-        QSettings().remove("solver/preview");
-    }
-
     void scrubLatency() {
         // Not asserted (machines differ): printed for the record.
         std::map<int, std::pair<double, bool>> latency;
         connect(window_.get(), &MainWindow::latencyMeasured, this,
-                [&](int frame, double ms, bool cached, bool preview) {
-                    if (!preview) latency[frame] = {ms, cached};
+                [&](int frame, double ms, bool cached) {
+                    latency[frame] = {ms, cached};
                 });
         window_->timeline()->scrubTo(50);
         QVERIFY(test::waitForFrame(*window_));

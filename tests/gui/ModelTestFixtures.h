@@ -8,7 +8,6 @@
 #include <QString>
 #include <QtTest>
 
-#include "boneless/DemoFiles.h"
 #include "boneless/ui/DemoProject.h"
 #include "boneless/ui/Document.h"
 #include "boneless/ui/Project.h"
@@ -44,16 +43,6 @@ inline bool loadDemo(Document& document, const QString& folder) {
     if (Project::load(document, demoProject(folder), &error)) return true;
     qWarning("%s", qPrintable(error));
     return false;
-}
-
-// The demo creature at twice the resolution (5,700 vertices: enough for the multiresolution
-// solver's levels, and for FrameSolver's previews at their default threshold) loaded into
-// `document` from files written into `folder`.
-inline bool loadDenseDemo(Document& document, const QString& folder) {
-    const DemoFiles files = writeDemoFiles(folder.toStdString(), 60, 10.0, false, 2);
-    return document.loadMesh(QString::fromStdString(files.mesh)) &&
-           document.loadTake(QString::fromStdString(files.take)) &&
-           document.loadCorrespondence(QString::fromStdString(files.map));
 }
 
 }  // namespace boneless::ui::test

@@ -53,7 +53,9 @@ class ProjectTest : public QObject {
         TakeSolveOptions settings = d.settings();
         settings.markerWeight = 42;
         settings.lowPassHz = 6;
-        settings.coarsestLeads = !TakeSolveOptions{}.coarsestLeads;
+        settings.solver.method = SolverOptions::Method::Exact;
+        settings.solver.rigidityWeight = 0.02;
+        settings.solver.orientationWeight = 50;
         d.setSettings(settings);
         d.setViewSetting("labels", true);
         d.setViewSetting("trailFrames", 8);
@@ -74,7 +76,10 @@ class ProjectTest : public QObject {
         QCOMPARE(e.alignment()->takeToMesh.t, d.alignment()->takeToMesh.t);
         QCOMPARE(e.settings().markerWeight, 42.0);
         QCOMPARE(e.settings().lowPassHz, 6.0);
-        QCOMPARE(e.settings().coarsestLeads, !TakeSolveOptions{}.coarsestLeads);
+        QCOMPARE(e.settings().solver.method, SolverOptions::Method::Exact);
+        QCOMPARE(readJson(path)["settings"].toObject()["method"].toString(), QString("exact"));
+        QCOMPARE(e.settings().solver.rigidityWeight, 0.02);
+        QCOMPARE(e.settings().solver.orientationWeight, 50.0);
         QCOMPARE(e.viewSettings().value("trailFrames").toInt(), 8);
         QCOMPARE(e.undoStack()->count(), 0);
         QCOMPARE(e.meshPath(), QFileInfo(demo_ + "/creature.obj").absoluteFilePath());
@@ -93,28 +98,53 @@ class ProjectTest : public QObject {
         QVERIFY(!d.correspondenceModified());
     }
 
-    // Projects written before the orientation guard may ask for the iterative method, which
-    // refuses the guard (a SolverError on every frame): they must load with the guard off.
-    void anIterativeProjectWithoutAGuardSettingLoadsWithTheGuardOff() {
-        const QString folder = work_ + "/iterative";
+    void theDefaultMethodIsSavedAsLocalGlobal() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        QCOMPARE(d.settings().solver.method, SolverOptions::Method::LocalGlobal);
+        const QString path = work_ + "/default-method.boneless";
+        QVERIFY(Project::save(d, path));
+        const QJsonObject settings = readJson(path)["settings"].toObject();
+        QCOMPARE(settings["method"].toString(), QString("local-global"));
+        QVERIFY(!settings.contains("coarsest_leads"));
+        QVERIFY(!settings.contains("continuation_steps"));
+    }
+
+    // Projects written before the local/global engine name a method that is gone: "direct" (the
+    // default then, never chosen on purpose) or "iterative". Both open as local/global, with the
+    // keys of those methods ignored; "exact" opens as exact.
+    void anOldProjectOpensWithLocalGlobalUnlessItAsksForExact() {
+        const QString folder = work_ + "/old-methods";
         copyFolder(demo_, folder);
         const QString path = folder + "/demo.boneless";
-        QJsonObject root = readJson(path);
-        QJsonObject settings = root["settings"].toObject();
-        settings.remove("orientation_weight");
-        settings["method"] = "iterative";
-        root["settings"] = settings;
-        QFile f(path);
-        QVERIFY(f.open(QIODevice::WriteOnly | QIODevice::Truncate));
-        f.write(QJsonDocument(root).toJson());
-        f.close();
-        Document d;
-        QString error;
-        QVERIFY2(Project::load(d, path, &error), qPrintable(error));
-        QCOMPARE(d.settings().solver.method, SolverOptions::Method::Iterative);
-        QCOMPARE(d.settings().solver.orientationWeight, 0.0);
-        // The direct method keeps the guard's default.
-        QVERIFY(TakeSolveOptions{}.solver.orientationWeight > 0);
+        const QJsonObject original = readJson(path);
+        const std::pair<const char*, SolverOptions::Method> cases[] = {
+            {"direct", SolverOptions::Method::LocalGlobal},
+            {"iterative", SolverOptions::Method::LocalGlobal},
+            {"no-such-method", SolverOptions::Method::LocalGlobal},
+            {"exact", SolverOptions::Method::Exact}};
+        for (const auto& [name, method] : cases) {
+            QJsonObject root = original;
+            QJsonObject settings = root["settings"].toObject();
+            settings["method"] = name;
+            settings["coarsest_leads"] = true;
+            settings["continuation_steps"] = 3;
+            settings["marker_weight"] = 77.0;
+            root["settings"] = settings;
+            QFile f(path);
+            QVERIFY(f.open(QIODevice::WriteOnly | QIODevice::Truncate));
+            f.write(QJsonDocument(root).toJson());
+            f.close();
+            Document d;
+            QString error;
+            QVERIFY2(Project::load(d, path, &error), qPrintable(error));
+            QCOMPARE(d.settings().solver.method, method);
+            QCOMPARE(d.settings().markerWeight, 77.0);  // the keys around it still read
+            // Saved again, it names its method the new way.
+            QVERIFY(Project::save(d, path));
+            QCOMPARE(readJson(path)["settings"].toObject()["method"].toString(),
+                     QString(methodName(method)));
+        }
     }
 
     void aBrokenProjectLeavesTheDocumentAlone() {

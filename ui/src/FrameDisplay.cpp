@@ -64,8 +64,8 @@ void FrameDisplay::setHeatMapVisible(bool visible) {
 bool FrameDisplay::upToDate() const {
     const int frame = timeline_->frame();
     // While solving, only a solved frame counts: the unsolved picture shown before the problem
-    // was built has the right frame number but the rest pose, and a preview is not the answer.
-    const bool solved = !solving_ || (result_ && result_->frame == frame && !result_->preview);
+    // was built has the right frame number but the rest pose.
+    const bool solved = !solving_ || (result_ && result_->frame == frame);
     return !problemTimer_->isActive() && displayedFrame_ == frame && solved && !awaitingRender_;
 }
 
@@ -136,8 +136,6 @@ void FrameDisplay::showUnsolved(int frame) {
 
 void FrameDisplay::onFrameReady(const FrameResult& result) {
     if (!solving_ || result.generation != solver_->generation()) return;
-    // A preview that comes after the requested frame's answer is shown has nothing to add.
-    if (result.preview && result_ && !result_->preview && result_->frame == requestedFrame_) return;
     // A frame solved for an older request is still shown: during playback the newest request
     // is usually still in the solver, and showing nothing would freeze the picture.
     result_ = result;
@@ -152,7 +150,6 @@ void FrameDisplay::onFrameReady(const FrameResult& result) {
     if (result.frame == requestedFrame_) {
         awaitingRender_ = true;
         renderFromCache_ = result.fromCache;
-        renderPreview_ = result.preview;
     }
     timeline_->frameShown(result.frame);
     emitStatus();
@@ -162,8 +159,7 @@ void FrameDisplay::onFrameReady(const FrameResult& result) {
 void FrameDisplay::onRendered() {
     if (!awaitingRender_) return;
     awaitingRender_ = false;
-    emit latencyMeasured(requestedFrame_, requestClock_.nsecsElapsed() / 1e6, renderFromCache_,
-                         renderPreview_);
+    emit latencyMeasured(requestedFrame_, requestClock_.nsecsElapsed() / 1e6, renderFromCache_);
 }
 
 void FrameDisplay::updateMarkers() {
@@ -210,11 +206,8 @@ void FrameDisplay::emitStatus() {
         solve = notSolvingReason_.isEmpty() ? tr("Not solving")
                                             : tr("Not solving: %1").arg(notSolvingReason_);
     } else if (result_) {
-        if (result_->preview)
-            solve = tr("preview in %1 ms, solving…").arg(result_->solveMs, 0, 'f', 0);
-        else
-            solve = result_->fromCache ? tr("cached")
-                                       : tr("solved in %1 ms").arg(result_->solveMs, 0, 'f', 0);
+        solve = result_->fromCache ? tr("cached")
+                                   : tr("solved in %1 ms").arg(result_->solveMs, 0, 'f', 0);
         residual = tr("residual %1 mm (max %2)")
                        .arg(result_->report.residualRmsMm, 0, 'f', 2)
                        .arg(result_->report.residualMaxMm, 0, 'f', 2);

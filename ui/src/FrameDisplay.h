@@ -47,9 +47,8 @@ class FrameDisplay : public QObject {
   signals:
     void frameDisplayed(int frame);
     void statusChanged(const QString& frame, const QString& solve, const QString& residual);
-    // From the frame request to the end of the render that shows it (its preview, then its
-    // answer, when previews are on).
-    void latencyMeasured(int frame, double milliseconds, bool fromCache, bool preview);
+    // From the frame request to the end of the render that shows it.
+    void latencyMeasured(int frame, double milliseconds, bool fromCache);
     void solverFailed(const QString& message);
 
   private:
@@ -84,7 +83,6 @@ class FrameDisplay : public QObject {
     QElapsedTimer requestClock_;
     bool awaitingRender_ = false;
     bool renderFromCache_ = false;
-    bool renderPreview_ = false;
 };
 
 }  // namespace boneless::ui

@@ -47,13 +47,8 @@ struct FrameSolver::Shared {
     quint64 generation = 0;
     std::shared_ptr<const Problem> problem;
     std::optional<int> pending;
-    bool solving = false;  // or settling (see FrameSolver::settleMs)
+    bool solving = false;
     bool shapeError = false;
-    bool previewWanted = false;
-    bool previewSolving = false;
-    int previewMinVertices = 0;
-    std::optional<int> previewPending;
-    std::condition_variable previewWake;
 
     // Least recently used at the back.
     std::list<int> order;
@@ -61,29 +56,8 @@ struct FrameSolver::Shared {
         cache;
     std::size_t bytes = 0, limit = 0;
 
-    std::thread worker, previewWorker;
+    std::thread worker;
 
-    // A request taken from a queue slot, with the problem it was made for.
-    struct Request {
-        int frame;
-        quint64 generation;
-        std::shared_ptr<const Problem> problem;
-        bool shapeError;
-    };
-    // Waits on `wakeUp` for a request in `slot`; empty when stopping.
-    std::optional<Request> take(std::unique_lock<std::mutex>& lock, std::condition_variable& wakeUp,
-                                std::optional<int>& slot) {
-        wakeUp.wait(lock, [&] { return stop || (slot && problem); });
-        if (stop) return std::nullopt;
-        Request r{*slot, generation, problem, shapeError};
-        slot.reset();
-        return r;
-    }
-
-    // Previews wanted, and worth it for the problem's mesh.
-    bool previewOn() const {
-        return previewWanted && problem && problem->mesh.vertexCount() >= previewMinVertices;
-    }
     void clearCache() {
         order.clear();
         cache.clear();
@@ -150,39 +124,20 @@ std::shared_ptr<FrameResult> solveOne(TakeSolver& solver, const Problem& p, int 
     return r;
 }
 
-// What the preview solves: the same take, map and alignment, by the multiresolution solver's
-// coarsest level alone (prolonged, no step on the mesh), with at most 6 Gauss–Newton steps there.
-// On the demo at twice its resolution (5,700 vertices, markers 10 mm off the skin), frames 1–29:
-//   6 steps:   median 175 ms, marker residual ≤ 3.8 mm, edge distortion ≤ 0.118, ≤ 30 folds;
-//   10 steps:  median 312 ms, ≤ 4.0 mm, ≤ 0.111, ≤ 21 folds;
-//   4 steps left a frame after a jump at 0.35 distortion;
-//   the answer (direct, orientation guard): median 1.9 s, ≤ 0.40 mm, ≤ 0.080, ≤ 2 folds.
-// Without the orientation guard: with it the coarsest level takes direct steps, which on the
-// koala cost 160 ms a preview against 25–35 ms, all 6 of them, and land no nearer the markers.
-// (On the demo above, in one run: 167 against 119 ms, for ≤ 10 faces folded against ≤ 35.)
-TakeSolveOptions previewOptions(TakeSolveOptions o) {
-    o.solver.method = SolverOptions::Method::Multiresolution;
-    o.solver.coarsestIterations = 6;
-    o.solver.fineIterations = 0;
-    o.solver.correctionSteps = 0;
-    o.solver.orientationWeight = 0;
-    return o;
-}
-
-// The solver and shape encoding a worker keeps for one generation.
+// The solver and shape encoding the worker keeps for one generation.
 struct WorkerState {
     std::unique_ptr<TakeSolver> solver;
     std::unique_ptr<MeshTopology> topology;
     std::unique_ptr<ShapeEncoding> encoding;
     quint64 generation = 0, failedGeneration = 0;
 
-    std::shared_ptr<FrameResult> solve(const Problem& p, const TakeSolveOptions& options,
-                                       quint64 gen, int frame, bool wantShapeError) {
+    std::shared_ptr<FrameResult> solve(const Problem& p, quint64 gen, int frame,
+                                       bool wantShapeError) {
         if (generation != gen) {
             solver.reset();
             encoding.reset();
             topology.reset();
-            solver = std::make_unique<TakeSolver>(p.mesh, p.take, p.map, options);
+            solver = std::make_unique<TakeSolver>(p.mesh, p.take, p.map, p.options);
             generation = gen;
         }
         if (wantShapeError && !encoding) {
@@ -202,105 +157,59 @@ struct WorkerState {
 
 }  // namespace
 
-// The preview worker: the newest preview request, unless its frame is cached by now. A failure
-// is left to the solve's worker to report (it fails on the same problem).
-void FrameSolver::runPreviews(Shared* sh, FrameSolver* self) {
+// The worker: owns the solver, only ever touches `sh` and posts results back to `self`. No delay
+// before a solve: the newest request is taken as soon as the worker is free, so a scrub shows
+// answers as it goes and a stop waits for at most the solve in flight.
+void FrameSolver::run(Shared* sh, FrameSolver* self) {
     WorkerState state;
     for (;;) {
         std::unique_lock lock(sh->mutex);
-        const auto request = sh->take(lock, sh->previewWake, sh->previewPending);
-        if (!request) return;
-        const int frame = request->frame;
-        const quint64 generation = request->generation;
-        const auto& problem = request->problem;
-        const bool wantShapeError = request->shapeError;
-        if (generation == state.failedGeneration || sh->cache.count(frame)) {
-            sh->wake.notify_all();  // an answer may be waiting for this preview
+        sh->wake.wait(lock, [&] { return sh->stop || (sh->pending && sh->problem); });
+        if (sh->stop) return;
+        const int frame = *sh->pending;
+        sh->pending.reset();
+        const quint64 generation = sh->generation;
+        const std::shared_ptr<const Problem> problem = sh->problem;
+        const bool wantShapeError = sh->shapeError;
+        if (generation == state.failedGeneration) {  // reported once already
+            QMetaObject::invokeMethod(self, [self] { self->updateBusy(); });
             continue;
         }
-        sh->previewSolving = true;
+        if (auto hit = sh->lookup(frame)) {  // solved since it was asked for
+            auto copy = std::make_shared<FrameResult>(*hit);
+            copy->fromCache = true;
+            copy->solveMs = 0;
+            QMetaObject::invokeMethod(self, [self, copy] { self->deliver(copy); });
+            continue;
+        }
+        sh->solving = true;
         lock.unlock();
+
         std::shared_ptr<FrameResult> result;
+        QString error;
         try {
-            result = state.solve(*problem, previewOptions(problem->options), generation, frame,
-                                 wantShapeError);
-            result->preview = true;
-        } catch (const std::exception&) {
+            result = state.solve(*problem, generation, frame, wantShapeError);
+        } catch (const std::exception& e) {
+            error = QString::fromStdString(e.what());
             state.fail(generation);
         }
+
         lock.lock();
-        sh->previewSolving = false;
-        sh->wake.notify_all();
-        // Posted before the answer can start, so it arrives first.
-        if (result)
-            QMetaObject::invokeMethod(self, [self, result] { self->deliver(result); });
-        else
-            QMetaObject::invokeMethod(self, [self] { self->updateBusy(); });
+        sh->solving = false;
+        if (!result) {
+            QMetaObject::invokeMethod(
+                self, [self, generation, error] { self->deliverFailure(generation, error); });
+            continue;
+        }
+        if (generation == sh->generation) sh->insert(result);
+        QMetaObject::invokeMethod(self, [self, result] { self->deliver(result); });
     }
 }
 
 FrameSolver::FrameSolver(QObject* parent) : QObject(parent), shared_(std::make_shared<Shared>()) {
     qRegisterMetaType<boneless::ui::FrameResult>();
     shared_->limit = defaultCacheLimit();
-    // The worker owns the solver; it only ever touches `shared` and posts results back here.
-    shared_->worker = std::thread([sh = shared_.get(), self = this] {
-        WorkerState state;
-        for (;;) {
-            std::unique_lock lock(sh->mutex);
-            const auto request = sh->take(lock, sh->wake, sh->pending);
-            if (!request) return;
-            const int frame = request->frame;
-            const quint64 generation = request->generation;
-            const auto& problem = request->problem;
-            const bool wantShapeError = request->shapeError;
-            if (generation == state.failedGeneration) continue;
-            if (auto hit = sh->lookup(frame)) {
-                auto copy = std::make_shared<FrameResult>(*hit);
-                copy->fromCache = true;
-                copy->solveMs = 0;
-                QMetaObject::invokeMethod(self, [self, copy] { self->deliver(copy); });
-                continue;
-            }
-            sh->solving = true;
-            if (sh->previewOn()) {
-                // Settle: a newer request within settleMs replaces this one before any work.
-                auto superseded = [&] {
-                    return sh->stop || sh->pending.has_value() || sh->generation != generation;
-                };
-                sh->wake.wait_for(lock, std::chrono::milliseconds(settleMs), superseded);
-                // Then let the preview finish: with two cores busy, the answer could otherwise
-                // overtake it and the preview would never be shown.
-                sh->wake.wait(lock, [&] {
-                    return superseded() || (!sh->previewSolving && !sh->previewPending);
-                });
-                if (superseded()) {
-                    sh->solving = false;
-                    continue;
-                }
-            }
-            lock.unlock();
-
-            std::shared_ptr<FrameResult> result;
-            QString error;
-            try {
-                result = state.solve(*problem, problem->options, generation, frame, wantShapeError);
-            } catch (const std::exception& e) {
-                error = QString::fromStdString(e.what());
-                state.fail(generation);
-            }
-
-            lock.lock();
-            sh->solving = false;
-            if (!result) {
-                QMetaObject::invokeMethod(
-                    self, [self, generation, error] { self->deliverFailure(generation, error); });
-                continue;
-            }
-            if (generation == sh->generation) sh->insert(result);
-            QMetaObject::invokeMethod(self, [self, result] { self->deliver(result); });
-        }
-    });
-    shared_->previewWorker = std::thread(&FrameSolver::runPreviews, shared_.get(), this);
+    shared_->worker = std::thread(&FrameSolver::run, shared_.get(), this);
 }
 
 FrameSolver::~FrameSolver() {
@@ -309,9 +218,7 @@ FrameSolver::~FrameSolver() {
         shared_->stop = true;
     }
     shared_->wake.notify_all();
-    shared_->previewWake.notify_all();
     shared_->worker.join();
-    shared_->previewWorker.join();
 }
 
 std::size_t FrameSolver::defaultCacheLimit() {
@@ -343,10 +250,8 @@ bool FrameSolver::setProblem(const Document& document, QString* why) {
         ++shared_->generation;
         shared_->problem = p;
         shared_->pending.reset();
-        shared_->previewPending.reset();
         shared_->clearCache();
     }
-    shared_->wake.notify_all();  // a worker settling on the old problem gives up
     updateBusy();
     if (why) *why = reason;
     return p != nullptr;
@@ -357,9 +262,7 @@ void FrameSolver::clearProblem() {
     ++shared_->generation;
     shared_->problem.reset();
     shared_->pending.reset();
-    shared_->previewPending.reset();
     shared_->clearCache();
-    shared_->wake.notify_all();
 }
 
 bool FrameSolver::hasProblem() const {
@@ -447,40 +350,22 @@ void FrameSolver::requestFrame(int frame) {
             return;
         }
         shared_->pending = frame;  // replaces any older request still waiting
-        if (shared_->previewOn()) shared_->previewPending = frame;
     }
     shared_->wake.notify_one();
-    shared_->previewWake.notify_one();
     updateBusy();
-}
-
-void FrameSolver::setPreviewEnabled(bool enabled, int minVertices) {
-    std::lock_guard lock(shared_->mutex);
-    shared_->previewWanted = enabled;
-    shared_->previewMinVertices = minVertices;
-    if (!shared_->previewOn()) shared_->previewPending.reset();
-    shared_->wake.notify_all();
-}
-
-bool FrameSolver::previewEnabled() const {
-    std::lock_guard lock(shared_->mutex);
-    return shared_->previewOn();
 }
 
 void FrameSolver::cancelPending() {
     {
         std::lock_guard lock(shared_->mutex);
         shared_->pending.reset();
-        shared_->previewPending.reset();
     }
-    shared_->wake.notify_all();
     updateBusy();
 }
 
 bool FrameSolver::isBusy() const {
     std::lock_guard lock(shared_->mutex);
-    return shared_->pending.has_value() || shared_->solving ||
-           shared_->previewPending.has_value() || shared_->previewSolving;
+    return shared_->pending.has_value() || shared_->solving;
 }
 
 void FrameSolver::updateBusy() {

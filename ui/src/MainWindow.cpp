@@ -12,7 +12,6 @@
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QPushButton>
-#include <QSettings>
 #include <QShortcut>
 #include <QStatusBar>
 #include <QTableView>
@@ -195,19 +194,6 @@ void MainWindow::buildMenus() {
                         document_->setViewSetting(key, on);
                 });
     }
-
-    // An application preference, not a project's: it changes how fast frames show, never what
-    // is solved or exported.
-    QAction* preview = view->addAction(tr("Fast &Previews While Scrubbing"));
-    preview->setObjectName("previewAction");
-    preview->setCheckable(true);
-    preview->setChecked(QSettings().value("solver/preview", true).toBool());
-    const int previewMinVertices = QSettings().value("solver/previewMinVertices", 5000).toInt();
-    solver_->setPreviewEnabled(preview->isChecked(), previewMinVertices);
-    connect(preview, &QAction::toggled, this, [this, previewMinVertices](bool on) {
-        solver_->setPreviewEnabled(on, previewMinVertices);
-        QSettings().setValue("solver/preview", on);
-    });
 
     QMenu* help = menuBar()->addMenu(tr("&Help"));
     help->addAction(tr("&About Boneless"), this, [this] {

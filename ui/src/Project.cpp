@@ -51,35 +51,31 @@ bool readAlignment(const QJsonObject& o, Calibration& c) {
     return true;
 }
 
+// rigidity_weight, orientation_weight and max_iterations tune the exact method only; they are
+// written whatever the method, so that switching back to it finds them as they were.
 QJsonObject settingsJson(const TakeSolveOptions& o) {
-    return {
-        {"marker_weight", o.markerWeight},
-        {"continuation_steps", o.continuationSteps},
-        {"coarsest_leads", o.coarsestLeads},
-        {"low_pass_hz", o.lowPassHz},
-        {"calibration_frame", o.calibrationFrame},
-        {"rigidity_weight", o.solver.rigidityWeight},
-        {"orientation_weight", o.solver.orientationWeight},
-        {"max_iterations", o.solver.maxIterations},
-        {"method", o.solver.method == SolverOptions::Method::Iterative ? "iterative" : "direct"}};
+    return {{"marker_weight", o.markerWeight},
+            {"low_pass_hz", o.lowPassHz},
+            {"calibration_frame", o.calibrationFrame},
+            {"rigidity_weight", o.solver.rigidityWeight},
+            {"orientation_weight", o.solver.orientationWeight},
+            {"max_iterations", o.solver.maxIterations},
+            {"method", methodName(o.solver.method)}};
 }
 
 TakeSolveOptions readSettings(const QJsonObject& o) {
     TakeSolveOptions s;  // absent keys keep their defaults, so older projects still load
     s.markerWeight = o["marker_weight"].toDouble(s.markerWeight);
-    s.continuationSteps = o["continuation_steps"].toInt(s.continuationSteps);
-    s.coarsestLeads = o["coarsest_leads"].toBool(s.coarsestLeads);
     s.lowPassHz = o["low_pass_hz"].toDouble(s.lowPassHz);
     s.calibrationFrame = o["calibration_frame"].toInt(s.calibrationFrame);
     s.solver.rigidityWeight = o["rigidity_weight"].toDouble(s.solver.rigidityWeight);
-    s.solver.maxIterations = o["max_iterations"].toInt(s.solver.maxIterations);
-    if (o["method"].toString() == "iterative") {
-        s.solver.method = SolverOptions::Method::Iterative;
-        // The orientation guard needs the direct method: a project that asks for the iterative
-        // one and says nothing of the guard (written before there was one) solves without it.
-        s.solver.orientationWeight = 0;
-    }
     s.solver.orientationWeight = o["orientation_weight"].toDouble(s.solver.orientationWeight);
+    s.solver.maxIterations = o["max_iterations"].toInt(s.solver.maxIterations);
+    // "exact" only when asked for by name. Older projects say "direct" (the default then, never
+    // a user's choice) or "iterative", methods that are gone: they solve local/global. Their
+    // "continuation_steps" and "coarsest_leads" tuned those methods and are ignored.
+    SolverOptions::Method method = SolverOptions::Method::LocalGlobal;
+    if (parseMethod(o["method"].toString().toStdString(), method)) s.solver.method = method;
     return s;
 }
 

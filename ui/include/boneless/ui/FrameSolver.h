@@ -27,13 +27,10 @@ struct FrameResult {
     // Per vertex |v_i − F_i(V)| in mesh units, when FrameSolver::setShapeErrorEnabled(true);
     // else empty. Unencoded vertices have 0.
     std::vector<double> shapeError;
-    FrameReport report;       // residual RMS/max in mm, iterations, solve milliseconds
+    FrameReport report;  // residual RMS/max in mm, iterations, folded faces, solve milliseconds
     Calibration calibration;  // the alignment used
     double solveMs = 0;       // wall time of the solve (0 for a cache hit)
     bool fromCache = false;
-    // A fast preview of the frame (see FrameSolver::setPreviewEnabled), never cached: the
-    // frame's own solve follows and replaces it.
-    bool preview = false;
 
     std::size_t bytes() const;
 };
@@ -44,17 +41,13 @@ struct FrameResult {
 // cannot be interrupted halfway). Solved frames are cached, least recently used out first, up to
 // a memory cap.
 //
-// A frame is solved warm-started from the frame the worker solved last, as in a sequential solve;
-// so a frame's shape can differ slightly with the order frames were visited in.
-//
-// With previews on, a second worker answers each uncached request first with a preview: the
-// multiresolution solver's coarsest level, prolonged to the mesh, without the orientation guard
-// (tens of milliseconds where the solve takes seconds on a large mesh). The solve of a frame then
-// starts only once it has been the newest request for settleMs, so that scrubbing shows previews
-// at once and does not queue solves of frames the user has already left, and only once the
-// preview being solved is done, so that the preview is posted before the answer that follows
-// it. (Measured on the koala, 100K faces: the first frame, whose preview is slow, is shown as
-// soon as when the two were solved side by side; on two cores they only slowed each other.)
+// Each frame is solved from its own markers alone (TakeSolver keeps nothing from the frames it
+// solved before), so a cached frame, the same frame solved again after any others, and that
+// frame in an exported file agree exactly (the file to the digits it writes). A frame takes a few
+// milliseconds on small meshes and up to a couple of hundred on large ones, so what the user
+// sees is always the frame's answer, with no preview: while scrubbing, the worker takes the
+// newest frame whenever it is free, and once the playhead stops its frame follows the solve in
+// flight.
 class FrameSolver : public QObject {
     Q_OBJECT
   public:
@@ -79,18 +72,12 @@ class FrameSolver : public QObject {
     int cachedFrames() const;
     bool isCached(int frame) const;
     void setShapeErrorEnabled(bool enabled);  // clears the cache when it changes
-    // Off by default; the window turns it on from the QSettings value "solver/preview". Meshes
-    // with fewer than minVertices get none: their frames solve in a few hundred milliseconds,
-    // which a preview would only delay by settleMs.
-    void setPreviewEnabled(bool enabled, int minVertices = 5000);
-    bool previewEnabled() const;
-    static constexpr int settleMs = 150;
 
     // Asks for a frame; a cached frame is delivered without solving (still asynchronously).
     void requestFrame(int frame);
     // Drops queued requests (the frame being solved still finishes and is cached).
     void cancelPending();
-    bool isBusy() const;  // a request (or its preview) queued or being solved
+    bool isBusy() const;  // a request queued or being solved
 
     static std::size_t defaultCacheLimit();  // from QSettings
 
@@ -106,7 +93,7 @@ class FrameSolver : public QObject {
   private:
     struct Shared;
     std::shared_ptr<Shared> shared_;
-    static void runPreviews(Shared* shared, FrameSolver* self);
+    static void run(Shared* shared, FrameSolver* self);
     void deliver(std::shared_ptr<const FrameResult> result);
     void deliverFailure(quint64 generation, const QString& message);
     void updateBusy();

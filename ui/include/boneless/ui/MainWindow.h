@@ -66,9 +66,8 @@ class MainWindow : public QMainWindow {
   signals:
     void errorShown(const QString& message);
     void frameDisplayed(int frame);
-    // From moving the playhead to the render that shows the frame: its preview (when previews
-    // are on and the frame is not cached), then its answer.
-    void latencyMeasured(int frame, double milliseconds, bool fromCache, bool preview);
+    // From moving the playhead to the render that shows the frame.
+    void latencyMeasured(int frame, double milliseconds, bool fromCache);
 
   protected:
     void dragEnterEvent(QDragEnterEvent* event) override;
