@@ -54,11 +54,12 @@ double FoldRepair::projectedArea(const Positions& V, int f, const Vec3& u) const
     return faceNormal(rest_.F, V, f).dot(u) / restNormal_[f].norm();
 }
 
-std::vector<int> FoldRepair::folded(const Positions& V, const std::vector<Mat3>& rotations) const {
+std::vector<int> FoldRepair::folded(const Positions& V, const std::vector<Mat3>& rotations,
+                                    double margin) const {
     std::vector<int> out;
     for (int f = 0; f < rest_.faceCount(); ++f) {
         const Vec3 u = carriedNormal(f, rotations);
-        if (!u.isZero() && projectedArea(V, f, u) < 0) out.push_back(f);
+        if (!u.isZero() && projectedArea(V, f, u) < margin) out.push_back(f);
     }
     return out;
 }

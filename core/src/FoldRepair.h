@@ -33,8 +33,10 @@ class FoldRepair {
     int repair(Positions& V, const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& rhs,
                const std::vector<char>& pinned, std::vector<Mat3>& rotations) const;
 
-    // The faces folded in V for these ring rotations.
-    std::vector<int> folded(const Positions& V, const std::vector<Mat3>& rotations) const;
+    // The faces folded in V for these ring rotations: their projected area below `margin` of
+    // the rest area (0: turned over).
+    std::vector<int> folded(const Positions& V, const std::vector<Mat3>& rotations,
+                            double margin = 0) const;
 
   private:
     // s_f for the carried direction u_f (unit, or zero for a face with nothing to keep).

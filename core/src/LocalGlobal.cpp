@@ -28,8 +28,10 @@ constexpr int kMinimumPerThread = 128;
 // quadratically, so it is then within about 1e-7 rad.
 constexpr double kRotationStep = 1e-2;
 // Folds are counted in rotations fitted to about 1e-12 rad, so that a face on the edge of
-// folding is judged as a fresh fit judges it.
+// folding is judged as a fresh fit judges it; rotations fitted to kRotationStep (about 1e-4 rad)
+// only screen for faces whose projected area is below this share of their rest area.
 constexpr double kCountStep = 1e-6;
+constexpr double kNearlyFolded = 0.05;
 
 }  // namespace
 
@@ -300,10 +302,15 @@ SolveResult LocalGlobalSolver::solve(const Positions& targets, const std::vector
         }
     }
     if (repair_) {
-        // Folds are judged in the ring rotations of the answer itself, as Metrics judges them.
+        // Folds are judged in the ring rotations of the answer itself, as Metrics judges them:
+        // first roughly (a Newton step), and only where a face comes near folding, exactly.
         std::vector<Mat3> ring = rotation_;
-        rings_.fit(V, ring, true, kCountStep);
-        result.report.foldedFaces = repair_->repair(V, A_, rhs, pinned, ring);
+        rings_.fit(V, ring, true, kRotationStep);
+        result.report.foldedFaces = 0;
+        if (!repair_->folded(V, ring, kNearlyFolded).empty()) {
+            rings_.fit(V, ring, true, kCountStep);
+            result.report.foldedFaces = repair_->repair(V, A_, rhs, pinned, ring);
+        }
     }
     result.report.energyBefore = result.report.energyAfter =
         std::numeric_limits<double>::quiet_NaN();

@@ -12,28 +12,34 @@ namespace {
 
 // Measured on horse-gallop and samba at 20, 40 and 80 markers (eval) and on CMU 85_02 on
 // MakeHuman (docs/engine.md): a coarse level of about a thousand vertices, 20 iterations there
-// with a stiffer ARAP term (thin parts are thinner there, and twisted more often), then 2 on the
-// input (a third changed no eval row's error by more than 0.006 points).
+// with a stiffer ARAP term (thin parts are thinner there, and twisted more often).
 constexpr int kCoarsestVertices = 1000;
 constexpr int kCoarsestPerMarker = 10;
 constexpr double kCoarseRigidity = 0.1;
 constexpr int kCoarseIterations = 20;
-constexpr int kFineIterations = 2;
-// Hard markers sit on a mesh that is the actor (eval's sequences): the shape term leads. Soft
-// markers come from a take, where the mesh is never the actor, and the stiffer ARAP term keeps
-// the mismatch from stretching the mesh (CMU 85_02: edge distortion 0.158 against 0.229, marker
-// residual 0.62 mm against 1.15 mm; with it on eval's sequences, 5-17 % more error).
+// Hard markers sit on a mesh that is the actor (eval's sequences): the shape term leads, and one
+// iteration on the input does it (a second changed no eval row's error by more than 0.01
+// points). Soft markers come from a take, where the mesh is never the actor: the stiffer ARAP
+// term keeps the mismatch from stretching the mesh, and the pull needs a second iteration to
+// settle (CMU 85_02: marker residual 0.62 mm RMS, 1.95 mm with one; edge distortion 0.158,
+// 0.229 with the hard markers' share).
 constexpr double kHardRigidity = 0.01;
 constexpr double kSoftRigidity = 0.1;
+constexpr int kHardIterations = 1;
+constexpr int kSoftIterations = 2;
 
 }  // namespace
+
+LocalGlobalSolver::Settings LocalGlobalMethod::inputSettings(bool hard, double softWeight) {
+    return {hard, softWeight, hard ? kHardRigidity : kSoftRigidity,
+            hard ? kHardIterations : kSoftIterations, true};
+}
 
 LocalGlobalMethod::LocalGlobalMethod(const TriMesh& rest, const MeshTopology& topology,
                                      const ShapeEncoding& encoding, const std::vector<int>& markers,
                                      bool hard, double softWeight) {
     const int n = rest.vertexCount();
-    const LocalGlobalSolver::Settings fine{hard, softWeight, hard ? kHardRigidity : kSoftRigidity,
-                                           kFineIterations, true};
+    const LocalGlobalSolver::Settings fine = inputSettings(hard, softWeight);
     const LocalGlobalSolver::Settings coarse{hard, softWeight, kCoarseRigidity, kCoarseIterations,
                                              false};
     const int coarsest =

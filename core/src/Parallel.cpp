@@ -12,6 +12,7 @@ namespace boneless {
 namespace {
 
 thread_local bool insideTask = false;
+thread_local int serialScopes = 0;  // RunSerially objects alive on this thread
 
 // Workers spin this long for the next task before they sleep: the solver's loops come in quick
 // succession (conjugate gradients on a coarse level: a loop every few tens of microseconds), and
@@ -186,10 +187,17 @@ WorkerPool& pool() {
 
 }  // namespace
 
+RunSerially::RunSerially() {
+    ++serialScopes;
+}
+RunSerially::~RunSerially() {
+    --serialScopes;
+}
+
 void runOnWorkers(int count, const std::function<void(int)>& task) {
     // More tasks than the pool has threads (one core: none) run one after the other: a task left
     // to a worker that does not exist would never start, and the call would wait for it forever.
-    if (count > 1 && count <= solverThreadCount()) {
+    if (count > 1 && count <= solverThreadCount() && serialScopes == 0) {
         if (insideTask ? pool().tryNested(count, task) : pool().tryRun(count, task)) return;
     }
     for (int t = 0; t < count; ++t) task(t);

@@ -25,6 +25,17 @@ inline int solverThreadCount() {
 // tasks one after the other on the calling thread.
 void runOnWorkers(int count, const std::function<void(int)>& task);
 
+// While one exists on a thread, the loops that thread calls run on it alone: for callers that
+// keep every core busy with work of their own (frames solved side by side), where the pool's
+// threads would only compete with them.
+class RunSerially {
+  public:
+    RunSerially();
+    ~RunSerially();
+    RunSerially(const RunSerially&) = delete;
+    RunSerially& operator=(const RunSerially&) = delete;
+};
+
 // Runs body(begin, end, thread) over [0, n) split into one contiguous chunk per thread (at most
 // solverThreadCount()). Plain threads rather than OpenMP so that the core needs no compiler flag.
 // Loops shorter than two chunks of minimumPerThread stay on the calling thread.

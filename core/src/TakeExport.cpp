@@ -146,6 +146,7 @@ void solveInOrder(TakeSolver& first, const TriMesh& mesh, const C3dTake& take,
     bool stop = false;
     std::exception_ptr error;
     auto work = [&](int worker) {
+        const RunSerially serial;  // the cores are taken by the workers themselves
         try {
             std::unique_ptr<TakeSolver> own;
             if (worker > 0) own = std::make_unique<TakeSolver>(mesh, take, map, options);
