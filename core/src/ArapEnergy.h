@@ -21,23 +21,10 @@ class ArapEnergy {
     // steps are needed; the answer is the same.
     // curvature (optional): per vertex, the inverse of the 3×3 Hessian of tr(R S_v) over
     // rotations at the fitted R_v (zero where it is not positive definite), which is what
-    // addRotationCoupling() needs.
+    // the exact method's rotation coupling (couplingBlocks()) needs.
     // tolerance: the last Newton step's angle (radians) at which a rotation counts as fitted.
     void fitRotations(const Positions& V, std::vector<Mat3>& R, bool warmStart = false,
                       std::vector<Mat3>* curvature = nullptr, double tolerance = 1e-10) const;
-    // The part of E's exact Hessian (rotations refitted, E = min over R) that fixed rotations
-    // miss: y += scale · Σ_v G_vᵀ C_v G_v x, with G_v x = Σ w (R_v e⁰) × (x_j − x_k) over the
-    // edges of v's faces and C_v = curvature[v]. The full Hessian is 6 L ⊗ I − 2 Σ G_vᵀ C_v G_v;
-    // without this term Gauss–Newton converges only linearly on bends, where the rotations must
-    // change. x and y: 3 per vertex. The rotations come applied to the rest edges, by
-    // rotatedCouplingEdges(): R_i e⁰_c for each face's three corners i and three edges c (index
-    // 9 f + 3 s + c, i = F(f, s)). Conjugate gradients multiply with the same rotations dozens of
-    // times, and applying them in every product was half its time (koala, 100K faces: 16.0 ms a
-    // product of the input's exact Hessian, 8.9 ms with them applied once per pose).
-    void rotatedCouplingEdges(const std::vector<Mat3>& R, std::vector<Vec3>& edges) const;
-    void addRotationCoupling(const std::vector<Vec3>& rotatedEdges,
-                             const std::vector<Mat3>& curvature, const Eigen::VectorXd& x,
-                             double scale, Eigen::VectorXd& y) const;
     double energy(const Positions& V, const std::vector<Mat3>& R) const;
     // b with ∇_V E = 2 (3 L V − b) for fixed R: the rotated rest edges, summed per vertex.
     Eigen::MatrixXd rotatedRestEdges(const std::vector<Mat3>& R) const;
@@ -73,8 +60,6 @@ class ArapEnergy {
     std::vector<Vec3> cornerRest_;
     // Corners (3 f + c) around each vertex, CSR, so that per-vertex sums need no shared writes.
     std::vector<int> cornerOffsets_, corners_;
-    // Scratch of addRotationCoupling (called by one solver, never concurrently).
-    mutable std::vector<Vec3> cornerScratch_, vertexScratch_;
 };
 
 }  // namespace boneless

@@ -102,7 +102,7 @@ bool BlockSystem::factorize(double tikhonov) {
     if (!solver_) {
         solver_ = std::make_unique<Factor>();
         // Silent: a matrix that is not positive definite is a result the callers handle (the
-        // direct solver's exact Hessian may be indefinite), and CHOLMOD prints it as an error.
+        // exact method's Hessian may be indefinite), and CHOLMOD prints it as an error.
         // The callers see it, like any failed factorisation, through info().
         solver_->cholmod().print = 0;
         solver_->analyzePattern(matrix_);

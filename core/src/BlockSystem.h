@@ -59,8 +59,8 @@ class BlockSystem {
     // instead: three quarters of one's cost, so that a failed try costs less than the
     // factorisation after it.
     int reuseAllowance() const { return iterationsPerFactorization() * 3 / 4; }
-    // Below this allowance (small meshes, where factorising is cheap) the direct method does not
-    // try the reuse, and the iterative method's Preconditioner::LastFactor allows this many.
+    // Below this allowance (small meshes, where factorising is cheap) the exact method does not
+    // try the reuse.
     static constexpr int kMinimumReuseIterations = 4;
     // Adds tikhonov·I to the values (what factorize() does before factorising).
     void addToDiagonal(double tikhonov);

@@ -18,7 +18,7 @@ inline int solverThreadCount() {
 // worker threads, which start once and then wait for work. Starting threads per call cost tens
 // of microseconds, as much as a whole loop over a coarse level's few thousand vertices; waking
 // a waiting worker costs a few. A call made from inside a task offers its tasks to the pool's
-// threads that have finished theirs and runs what none of them takes: the multiresolution solver
+// threads that have finished theirs and runs what none of them takes: the local/global method
 // prepares two levels of unequal cost as two tasks, and the longer one's loops get the core the
 // shorter one leaves. A call while another thread's call is running, or from inside a task while
 // another such call's tasks are on offer, or with more tasks than solverThreadCount(), runs its

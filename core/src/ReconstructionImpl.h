@@ -82,7 +82,7 @@ struct Reconstruction::Impl {
     // factor must add too: it keeps directions the markers do not pin down (a component
     // without markers, a ring-less vertex) from making the matrix singular.
     double tikhonov() const { return 1e-9 * system->meanDiagonal(); }
-    // The direct method's last factorisation was made with no orientation-guard term.
+    // The exact method's last factorisation was made with no orientation-guard term.
     bool factorWithoutOrientationTerms = true;
     // Builds the system with build(kind) and factorises it, for each kind in turn until one is
     // positive definite; the last is retried with a stronger Tikhonov term. Returns the kind

@@ -66,7 +66,7 @@ TEST(Parallel, ACallFromInsideATaskRunsItsWorkToo) {
     EXPECT_EQ(total.load(), 64 * 100);
 }
 
-// The multiresolution solver prepares its levels as two tasks of unequal length; the longer one's
+// The local/global method prepares its two levels as two tasks of unequal length; the longer one's
 // own loops then use the thread the shorter one has left.
 TEST(Parallel, ACallFromInsideATaskUsesAThreadThatHasFinishedItsTask) {
     if (solverThreadCount() < 2) GTEST_SKIP() << "one hardware thread: no workers";
@@ -116,7 +116,7 @@ TEST(Parallel, TwoThreadsCallingAtOnceBothFinish) {
     EXPECT_EQ(results[1], std::vector<int>{1});
 }
 
-// The multiresolution solver prepares two levels as two tasks; on a machine with fewer threads
+// The local/global method prepares two levels as two tasks; on a machine with fewer threads
 // than tasks (one core: no worker at all) they run one after the other instead of one of them
 // waiting for a worker that does not exist.
 TEST(Parallel, MoreTasksThanThreadsAllRun) {

@@ -125,7 +125,7 @@ TEST(ExactReconstruction, EnergyNeverIncreasesAndDropsFromTheStart) {
 // With its rotations held, the fold guard's Gauss–Newton matrix converges slowly where a bend
 // turns the rings: here 0.85 per step, 5e-5 of the energy still to go after 40 steps (a koala
 // frame took all 10 factorisations). With the rotations' derivative (its exact Hessian), which
-// the direct method takes near a minimum when the orientation guard is on, it reaches 1e-10 in
+// the exact method takes near a minimum when the orientation guard is on, it reaches 1e-10 in
 // 14.
 TEST(ExactReconstruction, TheFoldGuardsExactHessianConvergesOnABend) {
     const TriMesh mesh = tube(12, 14, 5.0);

@@ -78,7 +78,7 @@ TEST(SolveCommand, TheDemoTakeComesBackCloseToItsTruth) {
 }
 
 TEST(SolveCommand, MarkersOnTheSkinMatchTheGroundTruthEvaluation) {
-    // With no offset the take route (alignment, soft constraints, continuation, gaps) should do
+    // With no offset the take route (alignment, soft constraints, gaps) should do
     // what eval does with exact markers: measured 0.45 % worst, eval's own worst frame 0.450 %.
     const fs::path demo = makeDemo(30, 0.0), out = demo / "solved";
     ASSERT_EQ(runCli(solveArgs(demo, out) + " --quiet").exitCode, 0);

@@ -15,7 +15,7 @@ struct DemoFiles {
 
 // Writes the demo into `folder` (created if missing). Throws Error naming the folder on failure.
 // detail = 1 is the shipped demo (2,784 faces); detail d has d² times as many faces, for runs
-// that need a mesh the multiresolution solver has levels for.
+// that need a mesh large enough for the local/global method's coarse level.
 DemoFiles writeDemoFiles(const std::string& folder, int frames = 60, double offsetMm = 10.0,
                          bool withTruth = true, int detail = 1);
 

@@ -36,7 +36,8 @@ struct HierarchyOptions {
     double minRemovedFraction = 0.05;
 };
 
-// The multiresolution hierarchy of algorithm.md §1.6. Every removed vertex is interior, not
+// The mesh hierarchy of algorithm.md §1.6 (the local/global method's coarse level is its
+// coarsest). Every removed vertex is interior, not
 // protected, and ShapeEncoding-Full on its level's mesh with a star-shaped ring (positive
 // mean-value weights), and its whole ring survives into the next level, so the next level's
 // positions determine it explicitly. Each level is a manifold mesh oriented like the input with the
