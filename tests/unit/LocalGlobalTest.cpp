@@ -28,16 +28,6 @@ SolverOptions soft() {
     return o;
 }
 
-// A tube whose fifth ring sits a hundredth of a ring spacing above the fourth: a band of
-// slivers (aspect ratio ~50), like the corners of a mouth.
-TriMesh tubeWithSlivers() {
-    const int segments = 12;
-    TriMesh mesh = tube(10, segments, 9.0);
-    for (int s = 0; s < segments; ++s)
-        mesh.V(5 * segments + s, 2) = mesh.V(4 * segments + s, 2) + 0.01;
-    return mesh;
-}
-
 }  // namespace
 
 // The app shows a frame it solves when the playhead stops there, and the export solves frames

@@ -11,16 +11,6 @@ using namespace boneless::testing;
 
 namespace {
 
-// A tube whose fifth ring sits a hundredth of a ring spacing above the fourth: a band of
-// slivers (aspect ratio ~50), like the corners of a mouth.
-TriMesh tubeWithSlivers() {
-    const int segments = 12;
-    TriMesh mesh = tube(10, segments, 9.0);
-    for (int s = 0; s < segments; ++s)
-        mesh.V(5 * segments + s, 2) = mesh.V(4 * segments + s, 2) + 0.01;
-    return mesh;
-}
-
 std::vector<int> sparseMarkers(int rings, int segments) {
     std::vector<int> ids;
     for (int r = 0; r < rings; r += 3)

@@ -70,6 +70,16 @@ inline TriMesh tube(int rings, int segments, double length) {
     return m;
 }
 
+// tube(10, 12, 9) whose fifth ring sits a hundredth of a ring spacing above the fourth: a band of
+// slivers (aspect ratio ~50), like the corners of a mouth.
+inline TriMesh tubeWithSlivers() {
+    const int segments = 12;
+    TriMesh mesh = tube(10, segments, 9.0);
+    for (int s = 0; s < segments; ++s)
+        mesh.V(5 * segments + s, 2) = mesh.V(4 * segments + s, 2) + 0.01;
+    return mesh;
+}
+
 // Moves every vertex by a smooth, non-rigid field: a bend plus a twist, so tests see real strain.
 inline Positions bent(const Positions& V, double amount) {
     Positions out = V;
