@@ -211,6 +211,104 @@ class FrameSolverTest : public QObject {
                 : "no (within 1e-12 of the diagonal)");
     }
 
+    // While playing, frames after the last request are solved into the cache, never delivered,
+    // and move on with the requests.
+    void readAheadFillsTheCacheWithoutDelivering() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        FrameSolver solver;
+        QVERIFY(solver.setProblem(d));
+        QSignalSpy ready(&solver, &FrameSolver::frameReady);
+        solver.requestFrame(10);
+        QVERIFY(ready.wait(30000));
+        QTest::qWait(100);
+        QCOMPARE(solver.cachedFrames(), 1);  // off by default
+
+        solver.setReadAhead(4);
+        QVERIFY(QTest::qWaitFor([&] { return solver.cachedFrames() == 5; }, 30000));
+        for (int f = 11; f <= 14; ++f) QVERIFY(solver.isCached(f));
+        QTest::qWait(100);
+        QCOMPARE(solver.cachedFrames(), 5);
+        QCOMPARE(ready.count(), 1);  // read-ahead frames are not delivered
+
+        // A request for a read-ahead frame is a cache hit, with the answer a request gives.
+        solver.requestFrame(12);
+        QVERIFY(ready.wait(5000));
+        const FrameResult ahead = resultOf(ready, 1);
+        QCOMPARE(ahead.frame, 12);
+        QVERIFY(ahead.fromCache);
+        FrameSolver other;
+        QVERIFY(other.setProblem(d));
+        QSignalSpy otherReady(&other, &FrameSolver::frameReady);
+        other.requestFrame(12);
+        QVERIFY(otherReady.wait(30000));
+        QVERIFY(resultOf(otherReady, 0).V == ahead.V);
+
+        // It moves with the requests: 15 and 16 now; a request elsewhere comes first.
+        QVERIFY(QTest::qWaitFor([&] { return solver.isCached(16); }, 30000));
+        solver.requestFrame(40);
+        QVERIFY(ready.wait(30000));
+        QCOMPARE(resultOf(ready, 2).frame, 40);
+        QVERIFY(QTest::qWaitFor([&] { return solver.isCached(44); }, 30000));
+        QVERIFY(!solver.isCached(45));
+
+        // Off: nothing more after the next request.
+        solver.setReadAhead(0);
+        solver.requestFrame(50);
+        QVERIFY(ready.wait(30000));
+        QTest::qWait(100);
+        QVERIFY(!solver.isCached(51));
+        QCOMPARE(ready.count(), 4);
+    }
+
+    void readAheadWrapsOnlyWhenAsked() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        const int last = d.frameCount() - 1;
+        FrameSolver solver;
+        QVERIFY(solver.setProblem(d));
+        QSignalSpy ready(&solver, &FrameSolver::frameReady);
+        solver.setReadAhead(3);
+        solver.requestFrame(last - 1);
+        QVERIFY(QTest::qWaitFor([&] { return solver.isCached(last); }, 30000));
+        QTest::qWait(100);
+        QCOMPARE(solver.cachedFrames(), 2);
+        solver.setReadAhead(3, true);  // looping: on past the last frame to the first
+        QVERIFY(QTest::qWaitFor([&] { return solver.isCached(0) && solver.isCached(1); }, 30000));
+        QVERIFY(!solver.isCached(2));
+        QCOMPARE(ready.count(), 1);
+    }
+
+    // Read-ahead counts against the cache cap and never evicts its own frames (which would
+    // solve them over and over), nor outlives the problem it was solving for.
+    void readAheadKeepsWithinTheCacheAndTheProblem() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        FrameSolver solver;
+        QVERIFY(solver.setProblem(d));
+        QSignalSpy ready(&solver, &FrameSolver::frameReady);
+        solver.requestFrame(0);
+        QVERIFY(ready.wait(30000));
+        const std::size_t perFrame = resultOf(ready, 0).bytes();
+        solver.setCacheLimit(3 * perFrame + perFrame / 2);  // three frames
+        solver.setReadAhead(8);
+        solver.requestFrame(20);
+        QVERIFY(ready.wait(30000));
+        QVERIFY(QTest::qWaitFor([&] { return solver.isCached(22); }, 30000));
+        QTest::qWait(200);
+        QCOMPARE(solver.cachedFrames(), 3);  // 20 and the two after it that fit
+        QVERIFY(solver.isCached(20) && solver.isCached(21) && solver.isCached(22));
+        QVERIFY(solver.cacheBytes() <= solver.cacheLimit());
+
+        solver.setCacheLimit(256 << 20);
+        solver.requestFrame(30);
+        QVERIFY(ready.wait(30000));
+        QVERIFY(solver.setProblem(d));  // a new generation: its cache starts empty...
+        QTest::qWait(300);
+        QCOMPARE(solver.cachedFrames(), 0);  // ...and nothing is read ahead until asked
+        QCOMPARE(ready.count(), 3);
+    }
+
     void aMapTheTakeCannotResolveIsRefused() {
         Document d;
         QVERIFY(test::loadDemo(d, demo_));

@@ -47,8 +47,12 @@ struct FrameSolver::Shared {
     quint64 generation = 0;
     std::shared_ptr<const Problem> problem;
     std::optional<int> pending;
-    bool solving = false;
+    bool solving = false;  // a requested frame (not a read-ahead one) is being solved
     bool shapeError = false;
+    std::optional<int> lastRequest;  // where read-ahead starts
+    int readAhead = 0;
+    bool wrap = false;
+    std::size_t frameBytes = 0;  // the size of the last frame solved
 
     // Least recently used at the back.
     std::list<int> order;
@@ -72,6 +76,7 @@ struct FrameSolver::Shared {
         const int frame = r->frame;
         order.push_front(frame);
         bytes += r->bytes();
+        frameBytes = r->bytes();
         cache[frame] = {std::move(r), order.begin()};
         // Always keep the newest frame, even when it alone is over the cap.
         while (bytes > limit && order.size() > 1) {
@@ -80,6 +85,23 @@ struct FrameSolver::Shared {
             cache.erase(victim);
             order.pop_back();
         }
+    }
+    // The first uncached frame of the read-ahead window, if any. The window shrinks to what the
+    // cache holds, and its cached frames and the request are marked used, so that read-ahead
+    // evicts other frames, never its own.
+    std::optional<int> nextAhead() {
+        if (!problem || !lastRequest || readAhead <= 0) return std::nullopt;
+        const int frames = int(problem->take.frameCount());
+        const std::size_t fits = frameBytes ? limit / frameBytes : std::size_t(readAhead) + 1;
+        const int window = int(std::min(std::size_t(readAhead) + 1, fits)) - 1;
+        std::optional<int> next;
+        for (int i = window; i >= 0; --i) {
+            if (*lastRequest + i >= frames && !wrap) continue;
+            const int frame = (*lastRequest + i) % frames;
+            if (i > 0 && frame == *lastRequest) continue;  // a take shorter than the window
+            if (!lookup(frame) && i > 0) next = frame;     // the nearest one wins
+        }
+        return next;
     }
     std::shared_ptr<const FrameResult> lookup(int frame) {
         auto it = cache.find(frame);
@@ -159,19 +181,23 @@ struct WorkerState {
 
 // The worker: owns the solver, only ever touches `sh` and posts results back to `self`. No delay
 // before a solve: the newest request is taken as soon as the worker is free, so a scrub shows
-// answers as it goes and a stop waits for at most the solve in flight.
+// answers as it goes and a stop waits for at most the solve in flight. With no request waiting
+// it solves the read-ahead frames one at a time, looking for a request between them.
 void FrameSolver::run(Shared* sh, FrameSolver* self) {
     WorkerState state;
     for (;;) {
         std::unique_lock lock(sh->mutex);
-        sh->wake.wait(lock, [&] { return sh->stop || (sh->pending && sh->problem); });
+        sh->wake.wait(
+            lock, [&] { return sh->stop || (sh->problem && (sh->pending || sh->nextAhead())); });
         if (sh->stop) return;
-        const int frame = *sh->pending;
+        const bool requested = sh->pending.has_value();
+        const int frame = requested ? *sh->pending : *sh->nextAhead();
         sh->pending.reset();
         const quint64 generation = sh->generation;
         const std::shared_ptr<const Problem> problem = sh->problem;
         const bool wantShapeError = sh->shapeError;
         if (generation == state.failedGeneration) {  // reported once already
+            sh->lastRequest.reset();  // nothing to read ahead in a problem that cannot be solved
             QMetaObject::invokeMethod(self, [self] { self->updateBusy(); });
             continue;
         }
@@ -182,7 +208,7 @@ void FrameSolver::run(Shared* sh, FrameSolver* self) {
             QMetaObject::invokeMethod(self, [self, copy] { self->deliver(copy); });
             continue;
         }
-        sh->solving = true;
+        sh->solving = requested;
         lock.unlock();
 
         std::shared_ptr<FrameResult> result;
@@ -202,7 +228,8 @@ void FrameSolver::run(Shared* sh, FrameSolver* self) {
             continue;
         }
         if (generation == sh->generation) sh->insert(result);
-        QMetaObject::invokeMethod(self, [self, result] { self->deliver(result); });
+        if (requested)  // read-ahead frames only go to the cache
+            QMetaObject::invokeMethod(self, [self, result] { self->deliver(result); });
     }
 }
 
@@ -250,6 +277,7 @@ bool FrameSolver::setProblem(const Document& document, QString* why) {
         ++shared_->generation;
         shared_->problem = p;
         shared_->pending.reset();
+        shared_->lastRequest.reset();
         shared_->clearCache();
     }
     updateBusy();
@@ -262,6 +290,7 @@ void FrameSolver::clearProblem() {
     ++shared_->generation;
     shared_->problem.reset();
     shared_->pending.reset();
+    shared_->lastRequest.reset();
     shared_->clearCache();
 }
 
@@ -341,18 +370,28 @@ void FrameSolver::requestFrame(int frame) {
         std::lock_guard lock(shared_->mutex);
         if (!shared_->problem || frame < 0 || frame >= int(shared_->problem->take.frameCount()))
             return;
+        shared_->lastRequest = frame;
         if (auto hit = shared_->lookup(frame)) {
             auto copy = std::make_shared<FrameResult>(*hit);
             copy->fromCache = true;
             copy->solveMs = 0;
             QMetaObject::invokeMethod(
                 this, [this, copy] { deliver(copy); }, Qt::QueuedConnection);
-            return;
+        } else {
+            shared_->pending = frame;  // replaces any older request still waiting
         }
-        shared_->pending = frame;  // replaces any older request still waiting
+    }
+    shared_->wake.notify_one();  // for the request, or for the read-ahead that moved with it
+    updateBusy();
+}
+
+void FrameSolver::setReadAhead(int frames, bool wrap) {
+    {
+        std::lock_guard lock(shared_->mutex);
+        shared_->readAhead = std::max(0, frames);
+        shared_->wrap = wrap;
     }
     shared_->wake.notify_one();
-    updateBusy();
 }
 
 void FrameSolver::cancelPending() {

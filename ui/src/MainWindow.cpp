@@ -45,6 +45,13 @@ MainWindow::MainWindow(QWidget* parent)
     setObjectName("mainWindow");
     proxy_->setSourceModel(markerModel_);
     display_ = new FrameDisplay(document_, solver_, timeline_, view_, markerModel_, this);
+    // Frames are solved ahead only while playing, so that playback finds them solved (about a
+    // quarter of a second at 30 Hz); scrubbing keeps the worker free for where the playhead stops.
+    auto readAhead = [this] {
+        solver_->setReadAhead(timeline_->isPlaying() ? 8 : 0, timeline_->loops());
+    };
+    connect(timeline_, &Timeline::playingChanged, solver_, readAhead);
+    connect(timeline_, &Timeline::loopChanged, solver_, readAhead);
 
     // The timeline sits under the view, not in a dock, so it keeps the view's width.
     auto* centre = new QWidget;

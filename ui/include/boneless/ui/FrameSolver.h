@@ -47,7 +47,9 @@ struct FrameResult {
 // milliseconds on small meshes and up to a couple of hundred on large ones, so what the user
 // sees is always the frame's answer, with no preview: while scrubbing, the worker takes the
 // newest frame whenever it is free, and once the playhead stops its frame follows the solve in
-// flight.
+// flight. While playing, the worker also reads ahead (setReadAhead()): when no request waits it
+// solves the frames after the last one asked for into the cache, so that the playhead finds them
+// there.
 class FrameSolver : public QObject {
     Q_OBJECT
   public:
@@ -78,6 +80,11 @@ class FrameSolver : public QObject {
     // Drops queued requests (the frame being solved still finishes and is cached).
     void cancelPending();
     bool isBusy() const;  // a request queued or being solved
+    // Up to `frames` frames after the last request (past the last frame to the first when
+    // `wrap`) are solved into the cache, one at a time, while no request waits; a request waits
+    // at most for the one read-ahead frame in flight. They are never delivered unasked and count
+    // against the cache cap. 0, the default, turns it off (scrubbing wants the worker free).
+    void setReadAhead(int frames, bool wrap = false);
 
     static std::size_t defaultCacheLimit();  // from QSettings
 
