@@ -252,7 +252,8 @@ Eigen::MatrixXd LocalGlobalSolver::solveSystem(const Eigen::MatrixXd& raw,
 }
 
 SolveResult LocalGlobalSolver::solve(const Positions& targets, const std::vector<double>& offsets,
-                                     const Positions& start, FirstRotations first) {
+                                     const Positions& start, FirstRotations first,
+                                     const std::atomic<bool>* stop) {
     const auto t0 = std::chrono::steady_clock::now();
     const int n = rest_.vertexCount();
     const int K = static_cast<int>(markers_.size());
@@ -280,6 +281,10 @@ SolveResult LocalGlobalSolver::solve(const Positions& targets, const std::vector
     const double still = 1e-7 * boundingBoxDiagonal(rest_.V);
     Eigen::MatrixXd rhs;
     for (int it = 0; it < settings_.iterations; ++it) {
+        if (stop && stop->load()) {
+            result.report.stopped = true;
+            return result;
+        }
         if (it == 0 && first.rotations) {
             rotation_ = *first.rotations;
             arapRotation_ = *first.arapRotations;

@@ -46,8 +46,10 @@ class LocalGlobalSolver {
         bool refit = false;
     };
     // targets: K by 3, NaN rows missing; offsets: K (soft) or empty; start: #V by 3.
+    // stop: read before each iteration (Reconstruction::solve's).
     SolveResult solve(const Positions& targets, const std::vector<double>& offsets,
-                      const Positions& start, FirstRotations first);
+                      const Positions& start, FirstRotations first,
+                      const std::atomic<bool>* stop = nullptr);
     // The rotations of the last local step.
     const std::vector<Mat3>& rotations() const { return rotation_; }
     const std::vector<Mat3>& arapRotations() const { return arapRotation_; }

@@ -86,7 +86,8 @@ LocalGlobalMethod::LocalGlobalMethod(const TriMesh& rest, const MeshTopology& to
 LocalGlobalMethod::~LocalGlobalMethod() = default;
 
 SolveResult LocalGlobalMethod::solve(const Positions& targets, const std::vector<double>& offsets,
-                                     const Positions& start, const Mat3& rigid) {
+                                     const Positions& start, const Mat3& rigid,
+                                     const std::atomic<bool>* stop) {
     const auto t0 = std::chrono::steady_clock::now();
     Coarse& c = *coarse_;
     const int nc = c.mesh.vertexCount();
@@ -95,7 +96,12 @@ SolveResult LocalGlobalMethod::solve(const Positions& targets, const std::vector
     // The start is the rest moved rigidly (hard markers on their targets): the rotations are
     // fitted to it from that motion's, a Newton step or two away.
     rotation_.assign(nc, rigid);
-    c.solver->solve(targets, offsets, coarseStart, {&rotation_, &rotation_, true});
+    if (c.solver->solve(targets, offsets, coarseStart, {&rotation_, &rotation_, true}, stop)
+            .report.stopped) {
+        SolveResult stopped;
+        stopped.report.stopped = true;
+        return stopped;
+    }
     const int n = static_cast<int>(coarseOf_.size());
     rotation_.resize(n);
     arapRotation_.resize(n);
@@ -103,7 +109,7 @@ SolveResult LocalGlobalMethod::solve(const Positions& targets, const std::vector
         rotation_[v] = c.solver->rotations()[coarseOf_[v]];
         arapRotation_[v] = c.solver->arapRotations()[coarseOf_[v]];
     }
-    SolveResult result = fine_->solve(targets, offsets, start, {&rotation_, &arapRotation_});
+    SolveResult result = fine_->solve(targets, offsets, start, {&rotation_, &arapRotation_}, stop);
     result.report.milliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return result;

@@ -23,7 +23,8 @@ class LocalGlobalMethod {
 
     // start: the rest pose moved rigidly onto the markers (#V by 3), by the rotation `rigid`.
     SolveResult solve(const Positions& targets, const std::vector<double>& offsets,
-                      const Positions& start, const Mat3& rigid);
+                      const Positions& start, const Mat3& rigid,
+                      const std::atomic<bool>* stop = nullptr);
     double energy(const Positions& V, const Positions& targets,
                   const std::vector<double>& offsets) const {
         return fine_->energy(V, targets, offsets);

@@ -92,7 +92,8 @@ struct Reconstruction::Impl {
     // The starting pose of a frame: the guess (or the rest pose moved rigidly onto the markers),
     // isolated vertices moved rigidly, hard markers on their targets.
     Positions startingPose(const Positions& targets, const Positions* guess) const;
-    SolveResult solveExact(const Positions& targets, const Positions* guess);
+    SolveResult solveExact(const Positions& targets, const Positions* guess,
+                           const std::atomic<bool>* stop);
 };
 
 }  // namespace boneless

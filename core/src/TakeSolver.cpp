@@ -98,17 +98,25 @@ Positions TakeSolver::targets(int frame) const {
     return T;
 }
 
-Positions TakeSolver::solve(int frame, FrameReport& report) {
+Positions TakeSolver::solve(int frame, FrameReport& report, const std::atomic<bool>* stop) {
     if (frame < 0 || frame >= frameCount())
         throw Error(take_.file + ": frame " + std::to_string(frame) + " is outside the take");
     const auto start = std::chrono::steady_clock::now();
     const Positions T = targets(frame);
     report = {};
     report.frame = frame;
-    SolveResult result = solver_.solve(T);
+    SolveResult result = solver_.solve(T, nullptr, stop);
+    if (result.report.stopped) {
+        report.stopped = true;
+        return result.V;
+    }
     if (exact_ && result.V.allFinite()) {
         // Refined from the local/global answer, so that the exact answer has no history either.
-        SolveResult refined = exact_->solve(T, &result.V);
+        SolveResult refined = exact_->solve(T, &result.V, stop);
+        if (refined.report.stopped) {
+            report.stopped = true;
+            return refined.V;
+        }
         refined.report.iterations += result.report.iterations;
         result = std::move(refined);
     }

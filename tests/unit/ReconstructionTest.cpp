@@ -307,3 +307,22 @@ TEST_P(EveryMethod, OffsetsNeedSoftConstraintsAndOnePerMarker) {
     EXPECT_THROW(solver.prepare(mesh, {0, 1}, o), SolverError);
     EXPECT_NO_THROW(solver.prepare(mesh, {0, 1, 2}, o));
 }
+
+// A caller whose request has been superseded (the app's scrub) raises the stop flag: the solve
+// returns before its first iteration, says so, and a flag left down changes nothing.
+TEST_P(EveryMethod, ARaisedStopEndsTheSolveAndALoweredOneChangesNothing) {
+    const TriMesh mesh = tube(16, 16, 6.0);
+    const auto markers = everyNth(mesh.vertexCount(), 7);
+    Reconstruction solver;
+    solver.prepare(mesh, markers, options());
+    const Positions targets = rows(bent(mesh.V, 0.3), markers);
+    const SolveResult plain = solver.solve(targets);
+    std::atomic<bool> stop{false};
+    const SolveResult down = solver.solve(targets, nullptr, &stop);
+    EXPECT_FALSE(down.report.stopped);
+    EXPECT_EQ(maxDistance(down.V, plain.V), 0.0);
+    stop = true;
+    const SolveResult up = solver.solve(targets, nullptr, &stop);
+    EXPECT_TRUE(up.report.stopped);
+    EXPECT_EQ(up.report.iterations, 0);
+}

@@ -3,6 +3,7 @@
 #include <QMetaObject>
 #include <QSettings>
 #include <QTimer>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
@@ -47,7 +48,11 @@ struct FrameSolver::Shared {
     quint64 generation = 0;
     std::shared_ptr<const Problem> problem;
     std::optional<int> pending;
-    bool solving = false;  // a requested frame (not a read-ahead one) is being solved
+    bool solving = false;                // a requested frame (not a read-ahead one) is being solved
+    std::optional<int> inFlight;         // the frame being solved, requested or read ahead
+    std::atomic<bool> stopSolve{false};  // raised when a request elsewhere supersedes it
+    std::chrono::steady_clock::time_point inFlightSince;
+    double lastSolveMs = 0;  // how long the last frame took, for how far along this one is
     bool shapeError = false;
     std::optional<int> lastRequest;  // where read-ahead starts
     int readAhead = 0;
@@ -113,12 +118,15 @@ struct FrameSolver::Shared {
 
 namespace {
 
+// Empty when `stop` was raised before the frame was done.
 std::shared_ptr<FrameResult> solveOne(TakeSolver& solver, const Problem& p, int frame,
-                                      const ShapeEncoding* encoding) {
+                                      const ShapeEncoding* encoding,
+                                      const std::atomic<bool>* stop) {
     auto r = std::make_shared<FrameResult>();
     r->frame = frame;
     const auto t0 = std::chrono::steady_clock::now();
-    r->V = solver.solve(frame, r->report);
+    r->V = solver.solve(frame, r->report, stop);
+    if (r->report.stopped) return nullptr;
     r->solveMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     r->calibration = solver.calibration();
@@ -154,7 +162,7 @@ struct WorkerState {
     quint64 generation = 0, failedGeneration = 0;
 
     std::shared_ptr<FrameResult> solve(const Problem& p, quint64 gen, int frame,
-                                       bool wantShapeError) {
+                                       bool wantShapeError, const std::atomic<bool>* stop) {
         if (generation != gen) {
             solver.reset();
             encoding.reset();
@@ -166,7 +174,8 @@ struct WorkerState {
             topology = std::make_unique<MeshTopology>(p.mesh);
             encoding = std::make_unique<ShapeEncoding>(p.mesh, *topology);
         }
-        auto result = solveOne(*solver, p, frame, wantShapeError ? encoding.get() : nullptr);
+        auto result = solveOne(*solver, p, frame, wantShapeError ? encoding.get() : nullptr, stop);
+        if (!result) return nullptr;
         result->generation = gen;
         return result;
     }
@@ -209,12 +218,15 @@ void FrameSolver::run(Shared* sh, FrameSolver* self) {
             continue;
         }
         sh->solving = requested;
+        sh->inFlight = frame;
+        sh->inFlightSince = std::chrono::steady_clock::now();
+        sh->stopSolve = false;
         lock.unlock();
 
         std::shared_ptr<FrameResult> result;
         QString error;
         try {
-            result = state.solve(*problem, generation, frame, wantShapeError);
+            result = state.solve(*problem, generation, frame, wantShapeError, &sh->stopSolve);
         } catch (const std::exception& e) {
             error = QString::fromStdString(e.what());
             state.fail(generation);
@@ -222,11 +234,17 @@ void FrameSolver::run(Shared* sh, FrameSolver* self) {
 
         lock.lock();
         sh->solving = false;
+        sh->inFlight.reset();
+        if (!result && error.isEmpty()) {  // stopped for a newer request: nothing to keep
+            QMetaObject::invokeMethod(self, [self] { self->updateBusy(); });
+            continue;
+        }
         if (!result) {
             QMetaObject::invokeMethod(
                 self, [self, generation, error] { self->deliverFailure(generation, error); });
             continue;
         }
+        sh->lastSolveMs = result->solveMs;
         if (generation == sh->generation) sh->insert(result);
         if (requested)  // read-ahead frames only go to the cache
             QMetaObject::invokeMethod(self, [self, result] { self->deliver(result); });
@@ -278,6 +296,7 @@ bool FrameSolver::setProblem(const Document& document, QString* why) {
         shared_->problem = p;
         shared_->pending.reset();
         shared_->lastRequest.reset();
+        shared_->stopSolve = true;  // a frame of the old problem is of no use
         shared_->clearCache();
     }
     updateBusy();
@@ -291,6 +310,7 @@ void FrameSolver::clearProblem() {
     shared_->problem.reset();
     shared_->pending.reset();
     shared_->lastRequest.reset();
+    shared_->stopSolve = true;
     shared_->clearCache();
 }
 
@@ -379,6 +399,15 @@ void FrameSolver::requestFrame(int frame) {
                 this, [this, copy] { deliver(copy); }, Qt::QueuedConnection);
         } else {
             shared_->pending = frame;  // replaces any older request still waiting
+            // The frame being solved is no longer wanted first: stopped if less than half done
+            // (by the last frame's time), so that a scrub that stops waits for one iteration
+            // of it at most, while one over a fast mesh still shows the frames it passes.
+            const double elapsedMs = std::chrono::duration<double, std::milli>(
+                                         std::chrono::steady_clock::now() - shared_->inFlightSince)
+                                         .count();
+            if (shared_->inFlight && *shared_->inFlight != frame &&
+                elapsedMs < 0.5 * shared_->lastSolveMs)
+                shared_->stopSolve = true;
         }
     }
     shared_->wake.notify_one();  // for the request, or for the read-ahead that moved with it

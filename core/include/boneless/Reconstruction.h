@@ -1,5 +1,6 @@
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <string>
 #include <vector>
@@ -49,6 +50,9 @@ struct SolveReport {
     // The last step moved no vertex by more than 1e-7 of the bounding-box diagonal, or (Exact)
     // the relative-decrease test was met.
     bool converged = false;
+    // The caller's stop flag was raised: the solve returned early and its positions are not an
+    // answer.
+    bool stopped = false;
     // LocalGlobal only (−1 otherwise): faces the answer leaves folded over against their own
     // neighbourhood (Metrics' foldedFaces, judged in each vertex's whole ring).
     int foldedFaces = -1;
@@ -85,8 +89,11 @@ class Reconstruction {
 
     // targets: K by 3; a row with a NaN is a missing marker, whose vertex is then solved for like
     // any other. guess (Exact only; LocalGlobal needs none): #V by 3, where Gauss–Newton starts;
-    // without one, the rest pose moved rigidly onto the markers.
-    SolveResult solve(const Positions& targets, const Positions* guess = nullptr);
+    // without one, the rest pose moved rigidly onto the markers. stop (optional): read between
+    // iterations; once true, the solve returns at once with report.stopped (for a caller whose
+    // request has been superseded, such as a scrub that moved on).
+    SolveResult solve(const Positions& targets, const Positions* guess = nullptr,
+                      const std::atomic<bool>* stop = nullptr);
 
     // The energy the method minimises at V, for the given targets (soft term included when soft;
     // LocalGlobal: its global step's, for rotations fitted to V).

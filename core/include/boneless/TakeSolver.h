@@ -34,6 +34,7 @@ struct FrameReport {
     double residualRmsMm = 0, residualMaxMm = 0;  // marker to its predicted position, mm
     int iterations = 0;                           // iterations on the full mesh
     int foldedFaces = -1;  // as SolveReport::foldedFaces (−1: not counted by the method)
+    bool stopped = false;  // as SolveReport::stopped: the positions are not an answer
     double milliseconds = 0;
 };
 
@@ -52,8 +53,8 @@ class TakeSolver {
     // The markers' targets at `frame` in mesh coordinates (K by 3, NaN rows where missing).
     Positions targets(int frame) const;
     // Solves `frame`. Never returns NaN: a frame that cannot be solved (too few markers) gives
-    // the rest pose moved rigidly onto what markers it has.
-    Positions solve(int frame, FrameReport& report);
+    // the rest pose moved rigidly onto what markers it has. stop: as Reconstruction::solve's.
+    Positions solve(int frame, FrameReport& report, const std::atomic<bool>* stop = nullptr);
     // The energy solve(frame) minimises, at V (#V by 3): shape, fold guards and marker pull.
     double energy(int frame, const Positions& V) const { return solver_.energy(V, targets(frame)); }
     // Where each marker sits on the posed mesh V: its vertex plus its offset along the normal.
