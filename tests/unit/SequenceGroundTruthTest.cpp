@@ -33,8 +33,8 @@ struct Bound {
 };
 
 // Measured with the default evaluation options (the local/global method), K = 40, every frame:
-// horse 0.953 % mean, 1.350 % worst frame, 247 flipped faces at most; samba 0.857 %, 1.232 %,
-// 253. The RMS bounds add about 4 % for floating-point differences between machines. Flips
+// horse 0.948 % mean, 1.327 % worst frame, 158 flipped faces at most; samba 0.859 %, 1.237 %,
+// 259. The RMS bounds add about 4 % for floating-point differences between machines. Flips
 // turn on a thin leg's twist, which a last bit can change by a hundred faces: their bound is
 // the issue's, ARAP's own count.
 constexpr Bound kHorseBound{0.99, 1.40, 305};
