@@ -184,23 +184,21 @@ void LocalGlobalSolver::rightHandSide(const Positions& targets, const std::vecto
 }
 
 void LocalGlobalSolver::cacheCorrections(const std::vector<int>& missing) {
-    std::vector<int> wanted;
-    for (int k : missing)
-        if (correction_[k].size() == 0) wanted.push_back(k);
-    if (wanted.empty()) return;
     const int rows = static_cast<int>(vertexOf_.size());
-    Eigen::MatrixXd columns = Eigen::MatrixXd::Zero(rows, static_cast<int>(wanted.size()));
-    for (size_t i = 0; i < wanted.size(); ++i) {
-        const int c = markers_[wanted[i]];
+    for (int k : missing) {
+        if (correction_[k].size() != 0) continue;
+        // One column at a time: solved with others, CHOLMOD takes another kernel, and a last
+        // bit could depend on which markers went missing first.
+        Eigen::MatrixXd column = Eigen::MatrixXd::Zero(rows, 1);
+        const int c = markers_[k];
         if (settings_.hard) {
             for (Eigen::SparseMatrix<double>::InnerIterator it(A_, c); it; ++it)
-                if (unknownOf_[it.row()] >= 0) columns(unknownOf_[it.row()], i) = it.value();
+                if (unknownOf_[it.row()] >= 0) column(unknownOf_[it.row()], 0) = it.value();
         } else {
-            columns(unknownOf_[c], i) = 1.0;
+            column(unknownOf_[c], 0) = 1.0;
         }
+        correction_[k] = factor_.solve(column).col(0);
     }
-    const Eigen::MatrixXd Z = factor_.solve(columns);
-    for (size_t i = 0; i < wanted.size(); ++i) correction_[wanted[i]] = Z.col(i);
 }
 
 Eigen::MatrixXd LocalGlobalSolver::solveSystem(const Eigen::MatrixXd& raw,
@@ -306,7 +304,7 @@ SolveResult LocalGlobalSolver::solve(const Positions& targets, const std::vector
             break;
         }
     }
-    if (repair_) {
+    if (repair_ && rhs.size() > 0) {
         // Folds are judged in the ring rotations of the answer itself, as Metrics judges them:
         // first roughly (a Newton step), and only where a face comes near folding, exactly.
         std::vector<Mat3> ring = rotation_;
