@@ -83,15 +83,22 @@ std::vector<int> FoldRepair::grow(std::vector<int> seeds, int rings) const {
     return out;
 }
 
-int FoldRepair::repair(Positions& V, const Eigen::SparseMatrix<double>& A,
-                       const Eigen::MatrixXd& rhs, const std::vector<char>& pinned,
+Vec3 FoldRepair::Quadratic::gradient(int v, const Positions& V) const {
+    Vec3 x = -rhs.row(v).transpose();
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, v); it; ++it)
+        x += it.value() * V.row(it.row()).transpose();
+    if (!shift.empty()) x += shift[v] * V.row(v).transpose();
+    return x;
+}
+
+int FoldRepair::repair(Positions& V, const Quadratic& q, const std::vector<char>& pinned,
                        std::vector<Mat3>& rotations) const {
     std::vector<int> bad = folded(V, rotations);
     // A patch that cannot unfold (a pinned marker on the fold's far side, a fingertip whose
     // rings turn with it) is tried wider.
     for (int rings = 2; rings <= 8 && !bad.empty(); rings += 2) {
         for (const std::vector<int>& cluster : clusters(bad))
-            solvePatch(V, A, rhs, pinned, rotations, cluster, rings);
+            solvePatch(V, q, pinned, rotations, cluster, rings);
         bad = folded(V, rotations);
     }
     return static_cast<int>(bad.size());
@@ -123,8 +130,7 @@ std::vector<std::vector<int>> FoldRepair::clusters(const std::vector<int>& faces
     return out;
 }
 
-void FoldRepair::solvePatch(Positions& V, const Eigen::SparseMatrix<double>& A,
-                            const Eigen::MatrixXd& rhs, const std::vector<char>& pinned,
+void FoldRepair::solvePatch(Positions& V, const Quadratic& q, const std::vector<char>& pinned,
                             std::vector<Mat3>& rotations, const std::vector<int>& faces,
                             int rings) const {
     const Faces& F = rest_.F;
@@ -158,10 +164,13 @@ void FoldRepair::solvePatch(Positions& V, const Eigen::SparseMatrix<double>& A,
             }
     }
     patch.threshold.assign(patch.faces.size(), kThreshold);
-    for (int p = 0; p < static_cast<int>(patch.vertices.size()); ++p)
-        for (Eigen::SparseMatrix<double>::InnerIterator it(A, patch.vertices[p]); it; ++it)
+    for (int p = 0; p < static_cast<int>(patch.vertices.size()); ++p) {
+        const int v = patch.vertices[p];
+        for (Eigen::SparseMatrix<double>::InnerIterator it(q.A, v); it; ++it)
             if (patch.local[it.row()] >= 0)
                 patch.A.emplace_back(patch.local[it.row()], p, it.value());
+        if (!q.shift.empty() && q.shift[v] != 0) patch.A.emplace_back(p, p, q.shift[v]);
+    }
     // The penalty's u_f follow the ring rotations, which follow the fold: the patch is solved
     // with them held, then they are refitted, until no face of the patch is folded in them.
     for (int round = 0; round < kRounds; ++round) {
@@ -177,7 +186,7 @@ void FoldRepair::solvePatch(Positions& V, const Eigen::SparseMatrix<double>& A,
         }
         if (!anyFolded) return;
         // A fold the markers hold against the penalty is held harder each round.
-        solveHeld(V, A, rhs, patch, rotations, scale_ * std::pow(kEscalation, round));
+        solveHeld(V, q, patch, rotations, scale_ * std::pow(kEscalation, round));
     }
     // The rotations stay fitted to V, which the last round moved.
     for (int v : ringVertices) rings_.fit(v, V, rotations[v], true, kRotationStep);
@@ -196,8 +205,7 @@ double FoldRepair::penalty(const Positions& V, const Patch& patch,
     return e;
 }
 
-void FoldRepair::solveHeld(Positions& V, const Eigen::SparseMatrix<double>& A,
-                           const Eigen::MatrixXd& rhs, const Patch& patch,
+void FoldRepair::solveHeld(Positions& V, const Quadratic& q, const Patch& patch,
                            const std::vector<Mat3>& rotations, double scale) const {
     const Faces& F = rest_.F;
     const int m = static_cast<int>(patch.vertices.size());
@@ -207,15 +215,11 @@ void FoldRepair::solveHeld(Positions& V, const Eigen::SparseMatrix<double>& A,
     // that its pattern, and the symbolic analysis, are the same at every step.
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
     bool analysed = false;
+    Positions trial = V;  // only the patch's rows ever differ from V
     for (int step = 0; step < kSteps && before > 0; ++step) {
         // ½ ∇ of VᵀAV − 2 Vᵀrhs on the patch; g adds the penalty's.
         Eigen::VectorXd gQ(3 * m);
-        for (int p = 0; p < m; ++p) {
-            Vec3 x = -rhs.row(patch.vertices[p]).transpose();
-            for (Eigen::SparseMatrix<double>::InnerIterator it(A, patch.vertices[p]); it; ++it)
-                x += it.value() * V.row(it.row()).transpose();
-            gQ.segment<3>(3 * p) = x;
-        }
+        for (int p = 0; p < m; ++p) gQ.segment<3>(3 * p) = q.gradient(patch.vertices[p], V);
         Eigen::VectorXd g = gQ;
         std::vector<Eigen::Triplet<double>> H;
         H.reserve(3 * patch.A.size());
@@ -261,7 +265,6 @@ void FoldRepair::solveHeld(Positions& V, const Eigen::SparseMatrix<double>& A,
         for (const auto& t : patch.A)
             Ad.segment<3>(3 * t.row()) += t.value() * delta.segment<3>(3 * t.col());
         const double linear = 2 * delta.dot(gQ), quadratic = delta.dot(Ad);
-        Positions trial = V;
         bool accepted = false, settled = false;
         for (double alpha = 1; alpha > 1e-4 && !accepted; alpha *= 0.5) {
             for (int p = 0; p < m; ++p)

@@ -26,12 +26,21 @@ class FoldRepair {
     // rest and rings must outlive it.
     FoldRepair(const TriMesh& rest, const RingFit& rings);
 
-    // V: the answer (#V by 3), changed in place. A: the global step's whole matrix (#V by #V)
-    // and rhs its right-hand side (#V by 3), so that the global step minimised VᵀAV − 2 Vᵀrhs;
-    // pinned: vertices that must not move; rotations: each vertex's ring rotation fitted to V,
-    // kept fitted to it. Returns how many faces are still folded.
-    int repair(Positions& V, const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& rhs,
-               const std::vector<char>& pinned, std::vector<Mat3>& rotations) const;
+    // What the global step minimised: Vᵀ(A + diag(shift))V − 2 Vᵀrhs. A: #V by #V; shift: per
+    // vertex, what this frame takes off A's diagonal (a missing soft marker's weight), or empty;
+    // rhs: #V by 3.
+    struct Quadratic {
+        const Eigen::SparseMatrix<double>& A;
+        const std::vector<double>& shift;
+        const Eigen::MatrixXd& rhs;
+        // (A + diag(shift)) restricted to row v, times V, minus rhs's row.
+        Vec3 gradient(int v, const Positions& V) const;
+    };
+    // V: the answer (#V by 3), changed in place; pinned: vertices that must not move;
+    // rotations: each vertex's ring rotation fitted to V, kept fitted to it. Returns how many
+    // faces are still folded.
+    int repair(Positions& V, const Quadratic& q, const std::vector<char>& pinned,
+               std::vector<Mat3>& rotations) const;
 
     // The faces folded in V for these ring rotations: their projected area below `margin` of
     // the rest area (0: turned over).
@@ -43,9 +52,8 @@ class FoldRepair {
     double projectedArea(const Positions& V, int f, const Vec3& u) const;
     Vec3 carriedNormal(int f, const std::vector<Mat3>& rotations) const;
     // One patch around `faces`, `rings` rings wide: Gauss–Newton until no face in it folds.
-    void solvePatch(Positions& V, const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& rhs,
-                    const std::vector<char>& pinned, std::vector<Mat3>& rotations,
-                    const std::vector<int>& faces, int rings) const;
+    void solvePatch(Positions& V, const Quadratic& q, const std::vector<char>& pinned,
+                    std::vector<Mat3>& rotations, const std::vector<int>& faces, int rings) const;
     struct Patch {
         std::vector<int> vertices;              // free, moved
         std::vector<int> local;                 // vertex -> index in vertices, or −1
@@ -57,8 +65,8 @@ class FoldRepair {
     double penalty(const Positions& V, const Patch& patch, const std::vector<Mat3>& rotations,
                    double scale) const;
     // Gauss–Newton steps on the patch, the rotations (so each u_f) held.
-    void solveHeld(Positions& V, const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& rhs,
-                   const Patch& patch, const std::vector<Mat3>& rotations, double scale) const;
+    void solveHeld(Positions& V, const Quadratic& q, const Patch& patch,
+                   const std::vector<Mat3>& rotations, double scale) const;
     // The faces in groups that share vertices.
     std::vector<std::vector<int>> clusters(const std::vector<int>& faces) const;
     // The vertices within `rings` rings of `seeds` (seeds included).

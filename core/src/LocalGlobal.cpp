@@ -312,7 +312,13 @@ SolveResult LocalGlobalSolver::solve(const Positions& targets, const std::vector
         result.report.foldedFaces = 0;
         if (!repair_->folded(V, ring, kNearlyFolded).empty()) {
             rings_.fit(V, ring, true, kCountStep);
-            result.report.foldedFaces = repair_->repair(V, A_, rhs, pinned, ring);
+            // A missing soft marker's weight is not on this frame's diagonal.
+            std::vector<double> shift;
+            if (!settings_.hard && !missing.empty()) {
+                shift.assign(n, 0.0);
+                for (int k : missing) shift[markers_[k]] -= settings_.softWeight;
+            }
+            result.report.foldedFaces = repair_->repair(V, {A_, shift, rhs}, pinned, ring);
         }
     }
     result.report.energyBefore = result.report.energyAfter =

@@ -15,8 +15,8 @@ thread_local bool insideTask = false;
 thread_local int serialScopes = 0;  // RunSerially objects alive on this thread
 
 // Workers spin this long for the next task before they sleep: the solver's loops come in quick
-// succession (conjugate gradients on a coarse level: a loop every few tens of microseconds), and
-// a sleeping worker takes a context switch to wake, which cost more than those loops.
+// succession (a coarse level's local steps: a loop every few tens of microseconds), and a
+// sleeping worker takes a context switch to wake, which cost more than those loops.
 constexpr auto spinTime = std::chrono::microseconds(200);
 
 class WorkerPool {
@@ -28,7 +28,7 @@ class WorkerPool {
         {
             std::lock_guard<std::mutex> lock(mutex_);
             stopping_ = true;
-            generation_.fetch_add(1);
+            publish(0);
         }
         wake_.notify_all();
         for (auto& w : workers_) w.join();
@@ -39,13 +39,12 @@ class WorkerPool {
         std::unique_lock<std::mutex> busy(busy_, std::try_to_lock);
         if (!busy.owns_lock()) return false;
         task_ = &task;
-        count_ = count;
         error_ = nullptr;
         pending_.store(count - 1);
         {
             // Under the lock, so that a worker between its check and its sleep sees it.
             std::lock_guard<std::mutex> lock(mutex_);
-            generation_.fetch_add(1);
+            publish(count);
         }
         wake_.notify_all();
         std::exception_ptr mine;
@@ -153,7 +152,7 @@ class WorkerPool {
             }
             if (stopping_) return;
             seen = generation_.load();
-            if (t >= count_) continue;
+            if (t >= static_cast<int>(seen & 0xff)) continue;  // not one of this call's tasks
             std::exception_ptr error;
             runTask(*task_, t, error);
             if (error) {
@@ -170,10 +169,14 @@ class WorkerPool {
     std::condition_variable left_;  // an offer's last helper has left
     // Written by the calling thread before generation_ moves on, read by workers after.
     const std::function<void(int)>* task_ = nullptr;
-    int count_ = 0;
     bool stopping_ = false;
     std::exception_ptr error_;
+    // A call's number and, in its low byte, its task count, in one word: a worker that read
+    // them apart could take a later call's count for the call it saw, and run a task twice.
     std::atomic<unsigned long> generation_{0};
+    void publish(int count) {
+        generation_.store((((generation_.load() >> 8) + 1) << 8) | static_cast<unsigned>(count));
+    }
     std::atomic<int> pending_{0};
     Offer* offer_ = nullptr;            // a nested call's tasks (under mutex_)
     std::atomic<bool> offered_{false};  // offer_ is set: checked without the lock

@@ -33,7 +33,12 @@ RigidMotion fitRigidMotion(const Positions& from, const Positions& to) {
     for (int r = 0; r < static_cast<int>(from.rows()); ++r)
         if (rowIsFinite(from, r) && rowIsFinite(to, r)) rows.push_back(r);
     RigidMotion motion;
-    if (rows.size() < 3) return motion;
+    if (rows.empty()) return motion;
+    if (rows.size() < 3) {  // no rotation to find: the mean translation
+        for (int r : rows) motion.t += (to.row(r) - from.row(r)).transpose();
+        motion.t /= static_cast<double>(rows.size());
+        return motion;
+    }
     Eigen::Matrix3Xd a(3, rows.size()), b(3, rows.size());
     for (size_t i = 0; i < rows.size(); ++i) {
         a.col(i) = from.row(rows[i]).transpose();
@@ -391,9 +396,9 @@ SolveResult Reconstruction::Impl::solveExact(const Positions& targets, const Pos
     result.V = startingPose(targets, guess);
     Positions& V = result.V;
     const bool hard = !s.softMarkers();
-    // The last factor, reused as a preconditioner, is this solver's own from an earlier step or
-    // frame. One left behind by a change of options may serve, which is harmless: every factor
-    // made is positive definite.
+    // The last factor is reused as a preconditioner by the steps after it, in this solve only:
+    // one from another frame would make the answer depend on which frame came before.
+    bool factorisedThisSolve = false;
 
     Eigen::VectorXd gradient;
     const double still = 1e-10 * boundingBoxDiagonal(s.rest.V);
@@ -434,7 +439,7 @@ SolveResult Reconstruction::Impl::solveExact(const Positions& targets, const Pos
         };
         Eigen::VectorXd step;
         std::optional<Kind> solvedWith;
-        // The last factor, while it is this solver's, preconditions conjugate gradients on this
+        // The last factor, made earlier in this solve, preconditions conjugate gradients on this
         // step's matrix (of either kind: a koala take's frame alternates them, and went from
         // 8.6 to 7.0 s when a factor of the other kind could serve); three quarters of a
         // factorisation's cost at most, so that a failed try costs less than the factorisation
@@ -444,8 +449,8 @@ SolveResult Reconstruction::Impl::solveExact(const Positions& targets, const Pos
         // without them, 95 s.
         const int reuseIterations = s.system->reuseAllowance();
         const Kind kind = exact ? Kind::Exact : Kind::GaussNewton;
-        if (s.system->hasFactor() && s.factorWithoutOrientationTerms &&
-            s.orientationTerms.empty() && reuseIterations >= BlockSystem::kMinimumReuseIterations) {
+        if (factorisedThisSolve && s.factorWithoutOrientationTerms && s.orientationTerms.empty() &&
+            reuseIterations >= BlockSystem::kMinimumReuseIterations) {
             buildSystem(kind);
             s.system->addToDiagonal(s.tikhonov());
             int its = 0;
@@ -465,6 +470,7 @@ SolveResult Reconstruction::Impl::solveExact(const Positions& targets, const Pos
                                : s.factorizeFirstOf({Kind::GaussNewton}, buildSystem);
             if (!solvedWith) break;
             s.factorWithoutOrientationTerms = s.orientationTerms.empty();
+            factorisedThisSolve = true;
             ++result.report.directSteps;
             step = s.system->solve(gradient);
         }

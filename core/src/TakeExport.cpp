@@ -1,6 +1,7 @@
 #include "boneless/TakeExport.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
@@ -124,9 +125,9 @@ json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibr
             {"per_frame", std::move(perFrame)}};
 }
 
-// Frames do not depend on each other, so each core solves frames of its own (each with a
-// TakeSolver of its own), and `write` gets them in order, on the calling thread, until it
-// returns false. A worker runs at most a few frames ahead of the writing.
+// Frames do not depend on each other, so each core solves frames of its own (each worker with a
+// TakeSolver of its own; the first is `first`), and `write` gets them in order on the calling
+// thread until it returns false. A worker runs at most a few frames ahead of the writing.
 using FrameSink = std::function<bool(int frame, const Positions& V, const FrameReport& report,
                                      double distortion)>;
 void solveInOrder(TakeSolver& first, const TriMesh& mesh, const C3dTake& take,
@@ -145,11 +146,18 @@ void solveInOrder(TakeSolver& first, const TriMesh& mesh, const C3dTake& take,
     int next = begin, written = begin;
     bool stop = false;
     std::exception_ptr error;
+    std::atomic<bool> stopSolving{false};  // the writing stopped: frames in flight are of no use
     auto work = [&](int worker) {
         const RunSerially serial;  // the cores are taken by the workers themselves
         try {
             std::unique_ptr<TakeSolver> own;
-            if (worker > 0) own = std::make_unique<TakeSolver>(mesh, take, map, options);
+            if (worker > 0) {
+                // The first solver's alignment, rather than finding it again.
+                TakeSolveOptions same = options;
+                same.alignment = first.calibration().takeToMesh;
+                same.calibrationFrame = first.calibration().frame;
+                own = std::make_unique<TakeSolver>(mesh, take, map, same);
+            }
             TakeSolver& solver = worker > 0 ? *own : first;
             for (;;) {
                 int f;
@@ -161,7 +169,8 @@ void solveInOrder(TakeSolver& first, const TriMesh& mesh, const C3dTake& take,
                     f = next++;
                 }
                 Solved s;
-                s.V = solver.solve(f, s.report);
+                s.V = solver.solve(f, s.report, &stopSolving);
+                if (s.report.stopped) return;
                 s.distortion = edgeLengthDistortion(mesh.F, s.V, mesh.V);
                 if (s.report.foldedFaces < 0)
                     s.report.foldedFaces = foldedFaceCount(mesh.F, s.V, mesh.V);
@@ -176,32 +185,39 @@ void solveInOrder(TakeSolver& first, const TriMesh& mesh, const C3dTake& take,
             changed.notify_all();
         }
     };
-    std::vector<std::thread> threads;
-    for (int w = 1; w < workers; ++w) threads.emplace_back(work, w);
-    // The calling thread solves too, while it has no frame to write.
-    std::thread own(work, 0);
-    bool more = true;
-    for (int f = begin; f < end && more; ++f) {
-        Solved s;
+    auto stopAll = [&] {
         {
-            std::unique_lock<std::mutex> lock(mutex);
-            changed.wait(lock, [&] { return error || solved.count(f); });
-            if (error) break;
-            s = std::move(solved.at(f));
-            solved.erase(f);
+            std::lock_guard<std::mutex> lock(mutex);
+            stop = true;
+            changed.notify_all();
         }
-        more = write(f, s.V, s.report, s.distortion);
-        std::lock_guard<std::mutex> lock(mutex);
-        written = f + 1;
-        stop = stop || !more;
-        changed.notify_all();
+        stopSolving = true;
+    };
+    std::vector<std::thread> threads;
+    try {
+        for (int w = 0; w < workers; ++w) threads.emplace_back(work, w);
+        bool more = true;
+        for (int f = begin; f < end && more; ++f) {
+            Solved s;
+            {
+                std::unique_lock<std::mutex> lock(mutex);
+                changed.wait(lock, [&] { return error || solved.count(f); });
+                if (error) break;
+                s = std::move(solved.at(f));
+                solved.erase(f);
+            }
+            more = write(f, s.V, s.report, s.distortion);
+            std::lock_guard<std::mutex> lock(mutex);
+            written = f + 1;
+            changed.notify_all();
+        }
+    } catch (...) {
+        // A write that failed (a full disk) ends the workers before it goes on up.
+        stopAll();
+        for (auto& t : threads) t.join();
+        throw;
     }
-    {
-        std::lock_guard<std::mutex> lock(mutex);
-        stop = true;
-        changed.notify_all();
-    }
-    own.join();
+    stopAll();
     for (auto& t : threads) t.join();
     if (error) std::rethrow_exception(error);
 }

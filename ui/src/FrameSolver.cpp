@@ -261,6 +261,7 @@ FrameSolver::~FrameSolver() {
     {
         std::lock_guard lock(shared_->mutex);
         shared_->stop = true;
+        shared_->stopSolve = true;  // closing need not wait for the frame in flight
     }
     shared_->wake.notify_all();
     shared_->worker.join();
