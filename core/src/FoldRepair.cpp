@@ -10,11 +10,10 @@ namespace {
 constexpr double kWeight = 100;     // w, as the exact method's orientation guard
 constexpr double kThreshold = 0.2;  // τ, and its step for a face that folds again
 constexpr double kMaxThreshold = 0.8;
-constexpr int kSteps = 10;              // Gauss–Newton steps with the rotations held, at most
-constexpr int kRounds = 4;              // refits of the rotations per patch
-constexpr double kEscalation = 10;      // the weight's growth from round to round
-constexpr double kSettled = 1e-3;       // a step that gains less than this share ends the steps
-constexpr double kRotationStep = 1e-6;  // as the count's (LocalGlobal.cpp)
+constexpr int kSteps = 10;          // Gauss–Newton steps with the rotations held, at most
+constexpr int kRounds = 4;          // refits of the rotations per patch
+constexpr double kEscalation = 10;  // the weight's growth from round to round
+constexpr double kSettled = 1e-3;   // a step that gains less than this share ends the steps
 
 Vec3 faceNormal(const Faces& F, const Positions& V, int f) {
     const Vec3 a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
@@ -174,7 +173,7 @@ void FoldRepair::solvePatch(Positions& V, const Quadratic& q, const std::vector<
     // The penalty's u_f follow the ring rotations, which follow the fold: the patch is solved
     // with them held, then they are refitted, until no face of the patch is folded in them.
     for (int round = 0; round < kRounds; ++round) {
-        for (int v : ringVertices) rings_.fit(v, V, rotations[v], true, kRotationStep);
+        for (int v : ringVertices) rings_.fit(v, V, rotations[v], true, kCountStep);
         bool anyFolded = false;
         for (size_t i = 0; i < patch.faces.size(); ++i) {
             const Vec3 u = carriedNormal(patch.faces[i], rotations);
@@ -189,7 +188,7 @@ void FoldRepair::solvePatch(Positions& V, const Quadratic& q, const std::vector<
         solveHeld(V, q, patch, rotations, scale_ * std::pow(kEscalation, round));
     }
     // The rotations stay fitted to V, which the last round moved.
-    for (int v : ringVertices) rings_.fit(v, V, rotations[v], true, kRotationStep);
+    for (int v : ringVertices) rings_.fit(v, V, rotations[v], true, kCountStep);
 }
 
 double FoldRepair::penalty(const Positions& V, const Patch& patch,

@@ -25,6 +25,9 @@ class FoldRepair {
   public:
     // rest and rings must outlive it.
     FoldRepair(const TriMesh& rest, const RingFit& rings);
+    // Folds are judged in ring rotations fitted until a Newton step turns them by less than this
+    // (radians): about 1e-12 rad, as a fresh fit would judge a face on the edge of folding.
+    static constexpr double kCountStep = 1e-6;
 
     // What the global step minimised: Vᵀ(A + diag(shift))V − 2 Vᵀrhs. A: #V by #V; shift: per
     // vertex, what this frame takes off A's diagonal (a missing soft marker's weight), or empty;

@@ -25,12 +25,11 @@ double trace(const Eigen::SparseMatrix<double>& A) {
 // hundred vertices on (a coarse level's thousand).
 constexpr int kMinimumPerThread = 128;
 // A rotation is fitted once a Newton step turns it by less than this: Newton converges
-// quadratically, so it is then within about 1e-7 rad.
+// quadratically, so it is then within about 1e-4 rad, plenty for a local step.
 constexpr double kRotationStep = 1e-2;
-// Folds are counted in rotations fitted to about 1e-12 rad, so that a face on the edge of
-// folding is judged as a fresh fit judges it; rotations fitted to kRotationStep (about 1e-4 rad)
-// only screen for faces whose projected area is below this share of their rest area.
-constexpr double kCountStep = 1e-6;
+// Rotations fitted that far only screen for faces whose projected area is below this share of
+// their rest area; the folds themselves are counted in rotations fitted to about 1e-12 rad
+// (FoldRepair::kCountStep), as a fresh fit would judge a face on the edge of folding.
 constexpr double kNearlyFolded = 0.05;
 
 }  // namespace
@@ -128,6 +127,7 @@ LocalGlobalSolver::LocalGlobalSolver(const TriMesh& rest, const MeshTopology& to
     }
     if (!factorised) throw SolverError("the local/global system could not be factorised");
     correction_.assign(K, Eigen::VectorXd());
+    diagonal_ = boundingBoxDiagonal(rest.V);
     if (settings_.repairFolds) repair_ = std::make_unique<FoldRepair>(rest, rings_);
 }
 
@@ -201,48 +201,66 @@ void LocalGlobalSolver::cacheCorrections(const std::vector<int>& missing) {
     }
 }
 
+LocalGlobalSolver::Gaps LocalGlobalSolver::gaps(const std::vector<int>& missing) {
+    cacheCorrections(missing);
+    Gaps g;
+    g.missing = missing;
+    const int m = static_cast<int>(missing.size());
+    if (m == 0) return g;
+    Eigen::MatrixXd S(m, m);
+    for (int j = 0; j < m; ++j) {
+        const int cj = markers_[missing[j]];
+        if (settings_.hard) {
+            // The missing markers' vertices join the unknowns: a bordered system, solved through
+            // its Schur complement S = A_MM − A_Mf B⁻¹ A_fM.
+            for (int k = 0; k < m; ++k) S(j, k) = A_.coeff(cj, markers_[missing[k]]);
+            for (Eigen::SparseMatrix<double>::InnerIterator it(A_, cj); it; ++it) {
+                const int u = unknownOf_[it.row()];
+                if (u < 0) continue;
+                for (int k = 0; k < m; ++k) S(j, k) -= it.value() * correction_[missing[k]](u);
+            }
+        } else {
+            // Woodbury: each missing marker's λ taken off the diagonal again.
+            const int uj = unknownOf_[cj];
+            for (int k = 0; k < m; ++k)
+                S(j, k) = (j == k ? 1.0 / settings_.softWeight : 0.0) - correction_[missing[k]](uj);
+        }
+    }
+    g.S.compute(S);
+    return g;
+}
+
 Eigen::MatrixXd LocalGlobalSolver::solveSystem(const Eigen::MatrixXd& raw,
-                                               const Eigen::MatrixXd& fixed,
-                                               const std::vector<int>& missing) {
+                                               const Eigen::MatrixXd& fixed, const Gaps& gaps) {
     const Eigen::MatrixXd rhs = settings_.hard ? Eigen::MatrixXd(raw - fixed) : raw;
     const int rows = static_cast<int>(vertexOf_.size());
     Eigen::MatrixXd r(rows, 3);
     for (int i = 0; i < rows; ++i) r.row(i) = rhs.row(vertexOf_[i]);
     Eigen::MatrixXd x = factor_.solve(r);
     Eigen::MatrixXd out = rhs;  // hard: the visible markers' rows are the caller's to set
+    const std::vector<int>& missing = gaps.missing;
     const int m = static_cast<int>(missing.size());
     if (m > 0) {
-        Eigen::MatrixXd S(m, m), g(m, 3);
-        if (settings_.hard) {
-            // The missing markers' vertices join the unknowns: a bordered system, solved through
-            // its Schur complement S = A_MM − A_Mf B⁻¹ A_fM.
-            for (int j = 0; j < m; ++j) {
-                const int cj = markers_[missing[j]];
+        Eigen::MatrixXd g(m, 3);
+        for (int j = 0; j < m; ++j) {
+            const int cj = markers_[missing[j]];
+            if (settings_.hard) {
                 g.row(j) = rhs.row(cj);
-                for (int k = 0; k < m; ++k) S(j, k) = A_.coeff(cj, markers_[missing[k]]);
-                for (Eigen::SparseMatrix<double>::InnerIterator it(A_, cj); it; ++it) {
-                    const int u = unknownOf_[it.row()];
-                    if (u < 0) continue;
-                    g.row(j) -= it.value() * x.row(u);
-                    for (int k = 0; k < m; ++k) S(j, k) -= it.value() * correction_[missing[k]](u);
-                }
+                for (Eigen::SparseMatrix<double>::InnerIterator it(A_, cj); it; ++it)
+                    if (unknownOf_[it.row()] >= 0)
+                        g.row(j) -= it.value() * x.row(unknownOf_[it.row()]);
+            } else {
+                g.row(j) = x.row(unknownOf_[cj]);
             }
-            const Eigen::MatrixXd xM = S.partialPivLu().solve(g);
-            for (int k = 0; k < m; ++k) {
-                x -= correction_[missing[k]] * xM.row(k);
-                out.row(markers_[missing[k]]) = xM.row(k);
+        }
+        const Eigen::MatrixXd y = gaps.S.solve(g);
+        for (int k = 0; k < m; ++k) {
+            if (settings_.hard) {
+                x -= correction_[missing[k]] * y.row(k);
+                out.row(markers_[missing[k]]) = y.row(k);
+            } else {
+                x += correction_[missing[k]] * y.row(k);
             }
-        } else {
-            // Woodbury: each missing marker's λ taken off the diagonal again.
-            for (int j = 0; j < m; ++j) {
-                const int uj = unknownOf_[markers_[missing[j]]];
-                g.row(j) = x.row(uj);
-                for (int k = 0; k < m; ++k)
-                    S(j, k) =
-                        (j == k ? 1.0 / settings_.softWeight : 0.0) - correction_[missing[k]](uj);
-            }
-            const Eigen::MatrixXd y = S.partialPivLu().solve(g);
-            for (int k = 0; k < m; ++k) x += correction_[missing[k]] * y.row(k);
         }
     }
     for (int i = 0; i < rows; ++i) out.row(vertexOf_[i]) = x.row(i);
@@ -257,7 +275,7 @@ SolveResult LocalGlobalSolver::solve(const Positions& targets, const std::vector
     const int K = static_cast<int>(markers_.size());
     std::vector<int> missing, visible;
     for (int k = 0; k < K; ++k) (targets.row(k).allFinite() ? visible : missing).push_back(k);
-    cacheCorrections(missing);
+    const Gaps frameGaps = gaps(missing);
 
     SolveResult result;
     result.V = start;
@@ -276,7 +294,7 @@ SolveResult LocalGlobalSolver::solve(const Positions& targets, const std::vector
                 fixed.row(it.row()) += it.value() * targets.row(k);
         }
     }
-    const double still = 1e-7 * boundingBoxDiagonal(rest_.V);
+    const double still = 1e-7 * diagonal_;
     Eigen::MatrixXd rhs;
     for (int it = 0; it < settings_.iterations; ++it) {
         if (stop && stop->load()) {
@@ -291,7 +309,7 @@ SolveResult LocalGlobalSolver::solve(const Positions& targets, const std::vector
             fitRotations(V, rotation_, arapRotation_, it > 0);
         }
         rightHandSide(targets, offsets, visible, base, rhs);
-        const Eigen::MatrixXd x = solveSystem(rhs, fixed, missing);
+        const Eigen::MatrixXd x = solveSystem(rhs, fixed, frameGaps);
         double moved = 0;
         for (int v = 0; v < n; ++v) {
             if (pinned[v]) continue;
@@ -311,7 +329,7 @@ SolveResult LocalGlobalSolver::solve(const Positions& targets, const std::vector
         rings_.fit(V, ring, true, kRotationStep);
         result.report.foldedFaces = 0;
         if (!repair_->folded(V, ring, kNearlyFolded).empty()) {
-            rings_.fit(V, ring, true, kCountStep);
+            rings_.fit(V, ring, true, FoldRepair::kCountStep);
             // A missing soft marker's weight is not on this frame's diagonal.
             std::vector<double> shift;
             if (!settings_.hard && !missing.empty()) {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <Eigen/LU>
 #include <Eigen/Sparse>
 #include <memory>
 #include <vector>
@@ -66,11 +67,18 @@ class LocalGlobalSolver {
     void rightHandSide(const Positions& targets, const std::vector<double>& offsets,
                        const std::vector<int>& visible, const Eigen::MatrixXd& base,
                        Eigen::MatrixXd& rhs);
-    // A x = rhs over every vertex (hard: the visible markers' rows of x are theirs), with this
+    // A frame's missing markers and the small system that takes them out of the factor (the
+    // same for every iteration of the frame).
+    struct Gaps {
+        std::vector<int> missing;
+        Eigen::PartialPivLU<Eigen::MatrixXd> S;
+    };
+    Gaps gaps(const std::vector<int>& missing);
+    // A x = raw over every vertex (hard: the visible markers' rows of x are theirs), with the
     // frame's missing markers taken out; fixed: A's columns of the visible hard markers times
     // their targets.
-    Eigen::MatrixXd solveSystem(const Eigen::MatrixXd& rhs, const Eigen::MatrixXd& fixed,
-                                const std::vector<int>& missing);
+    Eigen::MatrixXd solveSystem(const Eigen::MatrixXd& raw, const Eigen::MatrixXd& fixed,
+                                const Gaps& gaps);
     // The factor's answer to each missing marker's column, made the first time it is missing.
     void cacheCorrections(const std::vector<int>& missing);
     Vec3 markerTarget(int k, const Positions& targets, const std::vector<double>& offsets,
@@ -85,6 +93,7 @@ class LocalGlobalSolver {
     ArapEnergy arap_;
     double arapWeight_ = 0;  // a
     double tikhonov_ = 0;    // ε
+    double diagonal_ = 0;    // the rest pose's bounding-box diagonal
     // L by rows (for the energy) and by columns (the global step's Lᵀ gather).
     Eigen::SparseMatrix<double, Eigen::RowMajor> L_, Lt_;
     std::vector<double> weight_;  // W's row per vertex, at the topology's ring offsets

@@ -29,7 +29,6 @@ class LocalGlobalMethod {
                   const std::vector<double>& offsets) const {
         return fine_->energy(V, targets, offsets);
     }
-    int coarseVertexCount() const { return coarse_->mesh.vertexCount(); }
     // The input level's settings (what a benchmark's converged reference iterates further).
     static LocalGlobalSolver::Settings inputSettings(bool hard, double softWeight);
 

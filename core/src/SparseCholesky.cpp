@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "Parallel.h"
+#include "boneless/Error.h"
 
 namespace boneless {
 
@@ -33,7 +34,8 @@ struct Workspace {
         b.x = const_cast<double*>(B.col(first).data());
         b.xtype = CHOLMOD_REAL;
         b.dtype = CHOLMOD_DOUBLE;
-        cholmod_solve2(CHOLMOD_A, factor, &b, nullptr, &x, nullptr, &y, &e, &common);
+        if (!cholmod_solve2(CHOLMOD_A, factor, &b, nullptr, &x, nullptr, &y, &e, &common))
+            throw SolverError("a solve with the factorised system failed (out of memory?)");
         std::memcpy(X.col(first).data(), x->x, sizeof(double) * b.nzmax);
     }
 };

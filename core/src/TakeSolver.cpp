@@ -16,6 +16,9 @@ TakeSolver::TakeSolver(const TriMesh& rest, const C3dTake& take, const Correspon
     : rest_(rest), take_(take), options_(std::move(options)) {
     map.checkMesh(rest.vertexCount(), "the mesh");
     points_ = map.resolve(take_);
+    if (options_.calibrationFrame >= frameCount())
+        throw Error(take.file + ": calibration frame " + std::to_string(options_.calibrationFrame) +
+                    " is past the take's " + std::to_string(frameCount()) + " frames");
     if (options_.lowPassHz > 0) lowPassFilter(take_.samples, take_.rate, options_.lowPassHz);
 
     SolverOptions solverOptions = options_.solver;
@@ -42,9 +45,6 @@ TakeSolver::TakeSolver(const TriMesh& rest, const C3dTake& take, const Correspon
         }
         return R;
     };
-    if (options_.calibrationFrame >= frameCount())
-        throw Error(take.file + ": calibration frame " + std::to_string(options_.calibrationFrame) +
-                    " is past the take's " + std::to_string(frameCount()) + " frames");
     if (options_.alignment) {
         calibration_.takeToMesh = *options_.alignment;
         calibration_.frame = options_.calibrationFrame;

@@ -132,3 +132,32 @@ TEST(LocalGlobal, FacesTheGlobalStepTurnsOverAreRepaired) {
     // Faces the repair did not need are where they were.
     EXPECT_LE(maxDistance(r.V, truth), 1.05 * maxDistance(unrepaired, truth));
 }
+
+// The same with soft markers and one of them missing beside the slivers: the repair solves the
+// frame's own quadratic, so the missing marker's weight is not on the diagonal and its vertex
+// is not pulled towards the origin.
+TEST(LocalGlobal, ARepairBesideAMissingSoftMarkerLeavesItsVertexWhereTheShapePutsIt) {
+    const TriMesh mesh = tubeWithSlivers();
+    std::vector<int> markers;
+    for (int r = 0; r < 10; r += 3)
+        for (int s = 0; s < 12; s += 3) markers.push_back(r * 12 + s);
+    const Positions truth = bent(mesh.V, 1.0);
+    Positions targets = rows(truth, markers);
+    const int missing = 5;  // ring 3, next to the slivers
+    targets.row(missing).setConstant(kNaN);
+    const MeshTopology topology(mesh);
+    const ShapeEncoding encoding(mesh, topology);
+    LocalGlobalSolver::Settings settings;
+    settings.hard = false;
+    settings.iterations = 20;
+    LocalGlobalSolver plain(mesh, topology, encoding, markers, settings);
+    const Positions unrepaired = plain.solve(targets, {}, mesh.V, {}).V;
+    ASSERT_GT(foldedFaceCount(mesh.F, unrepaired, mesh.V), 0) << "the case no longer folds";
+    settings.repairFolds = true;
+    LocalGlobalSolver repaired(mesh, topology, encoding, markers, settings);
+    const SolveResult r = repaired.solve(targets, {}, mesh.V, {});
+    EXPECT_EQ(r.report.foldedFaces, 0);
+    const int v = markers[missing];
+    EXPECT_LT((r.V.row(v) - unrepaired.row(v)).norm(), 0.1 * boundingBoxDiagonal(mesh.V));
+    EXPECT_LE(maxDistance(r.V, truth), 1.05 * maxDistance(unrepaired, truth));
+}

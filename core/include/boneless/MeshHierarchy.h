@@ -37,12 +37,11 @@ struct HierarchyOptions {
 };
 
 // The mesh hierarchy of algorithm.md §1.6 (the local/global method's coarse level is its
-// coarsest). Every removed vertex is interior, not
-// protected, and ShapeEncoding-Full on its level's mesh with a star-shaped ring (positive
-// mean-value weights), and its whole ring survives into the next level, so the next level's
-// positions determine it explicitly. Each level is a manifold mesh oriented like the input with the
-// input's topology (half-edge collapses under the link condition); boundary vertices are never
-// removed.
+// coarsest). Every removed vertex is interior, not protected, and ShapeEncoding-Full on its
+// level's mesh with a star-shaped ring (positive mean-value weights), and its whole ring
+// survives into the next level, so the next level's positions determine it explicitly. Each level
+// is a manifold mesh oriented like the input with the input's topology (half-edge collapses under
+// the link condition); boundary vertices are never removed.
 class MeshHierarchy {
   public:
     // protectedVertices (input ids, e.g. the marker vertices) survive into every level. Throws

@@ -57,9 +57,9 @@ struct SolveReport {
     // neighbourhood (Metrics' foldedFaces, judged in each vertex's whole ring).
     int foldedFaces = -1;
     // Exact only (NaN and empty for LocalGlobal): the energy at the guess and at the answer, and
-    // after each accepted step (energies[0] = energyBefore); steps solved with an earlier step's
-    // factor as a preconditioner rather than a factorisation of their own, and their
-    // conjugate-gradient iterations.
+    // after each accepted step (energies[0] = energyBefore); the steps that factorised their
+    // matrix, and the conjugate-gradient iterations of the steps solved with an earlier step's
+    // factor as a preconditioner.
     double energyBefore = 0;
     double energyAfter = 0;
     std::vector<double> energies;

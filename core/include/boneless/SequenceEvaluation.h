@@ -21,8 +21,8 @@ struct EvaluationOptions {
     int endFrame = -1;       // one past the last frame; -1 = the end of the sequence
     double dropPercent = 0;  // each frame, this share of the markers goes missing (seeded)
     unsigned seed = 1;
-    // As a take is solved (TakeSolveOptions): the exact method with the orientation guard, so
-    // that what eval measures is what a user gets.
+    // As a take is solved (TakeSolveOptions), so that what eval measures is what a user gets:
+    // the orientation guard on for the exact method.
     SolverOptions solver = [] {
         SolverOptions s;
         s.orientationWeight = 100.0;

@@ -55,7 +55,8 @@ class TakeSolver {
     // Solves `frame`. Never returns NaN: a frame that cannot be solved (too few markers) gives
     // the rest pose moved rigidly onto what markers it has. stop: as Reconstruction::solve's.
     Positions solve(int frame, FrameReport& report, const std::atomic<bool>* stop = nullptr);
-    // The energy solve(frame) minimises, at V (#V by 3): shape, fold guards and marker pull.
+    // The local/global energy at V (#V by 3) for the frame's markers: shape, ARAP term and
+    // marker pull.
     double energy(int frame, const Positions& V) const { return solver_.energy(V, targets(frame)); }
     // Where each marker sits on the posed mesh V: its vertex plus its offset along the normal.
     Positions predictedMarkers(const Positions& V) const;

@@ -37,9 +37,9 @@ struct FrameResult {
 
 // Solves frames on a worker thread, never on the caller's: requestFrame() returns at once and
 // frameReady() follows on the thread FrameSolver lives in. Requests that are still queued when a
-// newer one arrives are dropped (the frame being solved finishes and is cached, since a frame
-// cannot be interrupted halfway). Solved frames are cached, least recently used out first, up to
-// a memory cap.
+// newer one arrives are dropped, and the frame being solved is stopped at its next iteration if
+// it is less than half done. Solved frames are cached, least recently used out first, up to a
+// memory cap.
 //
 // Each frame is solved from its own markers alone (TakeSolver keeps nothing from the frames it
 // solved before), so a cached frame, the same frame solved again after any others, and that
