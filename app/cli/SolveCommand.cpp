@@ -26,6 +26,7 @@ struct SolveArgs {
     std::string mesh, group, c3d, map, out, format = "obj", frames;
     double weight = TakeSolveOptions{}.markerWeight;
     double lowPass = 0;
+    double fillGaps = TakeSolveOptions{}.fillGapSeconds;
     int calibrationFrame = -1;
     std::string solver = methodName(SolverOptions{}.method);
     bool quiet = false;
@@ -65,6 +66,7 @@ void run(const SolveArgs& args) {
     request.end = range.end;
     request.options.markerWeight = args.weight;
     request.options.lowPassHz = args.lowPass;
+    request.options.fillGapSeconds = args.fillGaps;
     request.options.calibrationFrame = args.calibrationFrame;
     parseMethod(args.solver, request.options.solver.method);  // CLI11 has checked the name
 
@@ -118,6 +120,10 @@ void registerSolveCommand(CLI::App& app) {
     cmd->add_option("--weight", args->weight, "Marker weight (soft constraints)")
         ->check(CLI::PositiveNumber);
     cmd->add_option("--lowpass", args->lowPass, "Low-pass cutoff in Hz (0 = off)");
+    cmd->add_option("--fill-gaps", args->fillGaps,
+                    "Place a marker missing for at most this many seconds on its trajectory "
+                    "(0 = off)")
+        ->check(CLI::NonNegativeNumber);
     cmd->add_option("--calibration-frame", args->calibrationFrame,
                     "Frame to align the take at (default: chosen automatically)");
     cmd->add_option("--solver", args->solver,

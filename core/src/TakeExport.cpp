@@ -79,7 +79,8 @@ json summaryJson(const json& perFrame) {
 json solverJson(const TakeSolveOptions& o) {
     json j = {{"method", methodName(o.solver.method)},
               {"marker_weight", o.markerWeight},
-              {"low_pass_hz", o.lowPassHz}};
+              {"low_pass_hz", o.lowPassHz},
+              {"fill_gaps_s", o.fillGapSeconds}};
     if (o.solver.method == SolverOptions::Method::Exact) {
         j["rigidity_weight"] = o.solver.rigidityWeight;
         j["orientation_weight"] = o.solver.orientationWeight;

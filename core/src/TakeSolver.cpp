@@ -90,8 +90,13 @@ Positions TakeSolver::predictedMarkers(const Positions& V) const {
     return P;
 }
 
-Positions TakeSolver::targets(int frame) const {
+Positions TakeSolver::targets(int frame, bool filled) const {
     Positions T = takeFrame(take_, points_, frame);
+    const int maxFrames = static_cast<int>(std::floor(options_.fillGapSeconds * take_.rate));
+    if (filled)
+        for (int k = 0; k < T.rows(); ++k)
+            if (const auto x = gapFilled(take_.samples, frame, points_[k], maxFrames))
+                T.row(k) = x->transpose();
     for (int k = 0; k < T.rows(); ++k)
         if (T.row(k).allFinite())
             T.row(k) = calibration_.takeToMesh.apply(T.row(k).transpose()).transpose();
@@ -102,17 +107,18 @@ Positions TakeSolver::solve(int frame, FrameReport& report, const std::atomic<bo
     if (frame < 0 || frame >= frameCount())
         throw Error(take_.file + ": frame " + std::to_string(frame) + " is outside the take");
     const auto start = std::chrono::steady_clock::now();
-    const Positions T = targets(frame);
+    const Positions T = targets(frame);  // what was seen: the residual is measured on it
+    const Positions pull = targets(frame, true);
     report = {};
     report.frame = frame;
-    SolveResult result = solver_.solve(T, nullptr, stop);
+    SolveResult result = solver_.solve(pull, nullptr, stop);
     if (result.report.stopped) {
         report.stopped = true;
         return result.V;
     }
     if (exact_ && result.V.allFinite()) {
         // Refined from the local/global answer, so that the exact answer has no history either.
-        SolveResult refined = exact_->solve(T, &result.V, stop);
+        SolveResult refined = exact_->solve(pull, &result.V, stop);
         if (refined.report.stopped) {
             report.stopped = true;
             return refined.V;

@@ -99,4 +99,28 @@ void lowPassFilter(C3dSamples& samples, double rate, double cutoffHz) {
     }
 }
 
+std::optional<Eigen::Vector3d> gapFilled(const C3dSamples& samples, std::size_t frame,
+                                         std::size_t point, int maxFrames) {
+    if (maxFrames <= 0 || samples.valid(frame, point)) return std::nullopt;
+    const long f = static_cast<long>(frame), frames = static_cast<long>(samples.frames());
+    long a = f - 1, b = f + 1;
+    while (a >= 0 && f - a <= maxFrames && !samples.valid(a, point)) --a;
+    if (a < 0 || f - a > maxFrames) return std::nullopt;
+    while (b < frames && b - a - 1 <= maxFrames && !samples.valid(b, point)) ++b;
+    if (b >= frames || b - a - 1 > maxFrames) return std::nullopt;
+    const Eigen::Vector3d pa = *samples.position(a, point), pb = *samples.position(b, point);
+    const double span = static_cast<double>(b - a), t = (f - a) / span;
+    // Tangents per unit of t: a sample's velocity beyond each end, times the gap's span.
+    const Eigen::Vector3d chord = pb - pa;
+    const Eigen::Vector3d ta = a > 0 && samples.valid(a - 1, point)
+                                   ? Eigen::Vector3d(span * (pa - *samples.position(a - 1, point)))
+                                   : chord;
+    const Eigen::Vector3d tb = b + 1 < frames && samples.valid(b + 1, point)
+                                   ? Eigen::Vector3d(span * (*samples.position(b + 1, point) - pb))
+                                   : chord;
+    const double t2 = t * t, t3 = t2 * t;
+    return (2 * t3 - 3 * t2 + 1) * pa + (t3 - 2 * t2 + t) * ta + (-2 * t3 + 3 * t2) * pb +
+           (t3 - t2) * tb;
+}
+
 }  // namespace boneless

@@ -192,8 +192,9 @@ TEST(RealTake, NumediartGapsPullNothing) {
     for (const auto& m : full.markers)
         if (!window.missing.count(m.label)) reduced.markers.push_back(m);
 
-    // One alignment for both, so that only the gaps differ.
+    // One alignment for both, so that only the gaps differ; the gaps left empty.
     TakeSolveOptions options;
+    options.fillGapSeconds = 0;
     options.alignment = TakeSolver(mesh, take, full, options).calibration().takeToMesh;
     TakeSolver withGaps(mesh, take, full, options), withoutMarkers(mesh, take, reduced, options);
     const double diagonal = boundingBoxDiagonal(mesh.V);

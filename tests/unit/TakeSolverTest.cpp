@@ -63,6 +63,7 @@ TEST(TakeSolver, AMarkerMissingFromTheFrameShapesNothing) {
     reduced.map.markers.erase(reduced.map.markers.begin() + 3);
     TakeSolveOptions options;
     options.alignment = TakeSolver(t.mesh, t.take, t.map).calibration().takeToMesh;
+    options.fillGapSeconds = 0;  // the gap itself, not the marker put back on its path
     TakeSolver a(t.mesh, t.take, t.map, options),
         b(reduced.mesh, reduced.take, reduced.map, options);
     for (int f : {24, 25}) {
@@ -85,6 +86,7 @@ TEST(TakeSolver, AFrameWithoutMarkersIsTheRestPoseAndChangesNoOtherFrame) {
     TakeSolveOptions options;
     options.alignment =
         TakeSolver(untouched.mesh, untouched.take, untouched.map).calibration().takeToMesh;
+    options.fillGapSeconds = 0;  // a frame with no marker at all, not one put back
     TakeSolver solver(t.mesh, t.take, t.map, options),
         reference(untouched.mesh, untouched.take, untouched.map, options);
     FrameReport r11, r12, expected;
@@ -95,4 +97,27 @@ TEST(TakeSolver, AFrameWithoutMarkersIsTheRestPoseAndChangesNoOtherFrame) {
     EXPECT_EQ(maxDistance(V11, t.mesh.V), 0.0);
     EXPECT_EQ(r12.visibleMarkers, static_cast<int>(t.map.markers.size()));
     EXPECT_EQ(maxDistance(V12, reference.solve(12, expected)), 0.0);
+}
+
+// A gap short enough is filled from the marker's own path: the frame then lands closer to where
+// the take shows the marker just before and after than with the gap left empty, and what the
+// report counts as seen is still what was seen.
+TEST(TakeSolver, AShortGapIsFilledFromTheMarkersPath) {
+    Take t = demoTake("take-fill", 2);
+    const int frame = 12, point = 0;
+    for (int f = frame - 1; f <= frame + 1; ++f) t.take.samples.setMissing(f, point);
+    TakeSolveOptions filled, empty;
+    filled.alignment = empty.alignment = TakeSolver(t.mesh, t.take, t.map).calibration().takeToMesh;
+    empty.fillGapSeconds = 0;
+    TakeSolver a(t.mesh, t.take, t.map, filled), b(t.mesh, t.take, t.map, empty);
+    const Positions seen = a.targets(frame), pulled = a.targets(frame, true);
+    EXPECT_FALSE(seen.row(point).allFinite());
+    ASSERT_TRUE(pulled.row(point).allFinite());
+    FrameReport ra, rb;
+    const Positions Va = a.solve(frame, ra), Vb = b.solve(frame, rb);
+    EXPECT_EQ(ra.visibleMarkers, rb.visibleMarkers);
+    // The marker's predicted place sits near its filled target with the fill, farther without.
+    const double withFill = (a.predictedMarkers(Va).row(point) - pulled.row(point)).norm();
+    const double without = (b.predictedMarkers(Vb).row(point) - pulled.row(point)).norm();
+    EXPECT_LT(withFill, without);
 }

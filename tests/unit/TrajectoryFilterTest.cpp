@@ -59,3 +59,35 @@ TEST(TrajectoryFilter, RejectsACutoffAboveNyquist) {
     EXPECT_THROW(lowPassFilter(v, 100, 60), Error);
     EXPECT_THROW(lowPassFilter(v, 100, 0), Error);
 }
+
+// A marker lost for a few frames is put back on its path: a straight path exactly, a curved one
+// close to it; a gap longer than allowed, or at the take's ends, stays a gap.
+TEST(GapFill, ShortGapsFollowTheTrajectoryAndLongOnesStay) {
+    const int frames = 40;
+    C3dSamples samples(frames, 2);
+    for (int f = 0; f < frames; ++f) {
+        samples.set(f, 0, 2.0 * f, -f, 5.0);                           // a straight line
+        samples.set(f, 1, std::cos(0.2 * f), std::sin(0.2 * f), 0.0);  // a circle
+    }
+    for (int f = 10; f < 14; ++f) samples.setMissing(f, 0), samples.setMissing(f, 1);
+    for (int f = 20; f < 30; ++f) samples.setMissing(f, 0);  // ten frames
+    samples.setMissing(0, 1);                                // the take's first frame
+    for (int f = 10; f < 14; ++f) {
+        const auto line = gapFilled(samples, f, 0, 5);
+        ASSERT_TRUE(line.has_value()) << f;
+        EXPECT_LT((*line - Eigen::Vector3d(2.0 * f, -f, 5.0)).norm(), 1e-12) << f;
+        const auto arc = gapFilled(samples, f, 1, 5);
+        ASSERT_TRUE(arc.has_value()) << f;
+        const Eigen::Vector3d truth(std::cos(0.2 * f), std::sin(0.2 * f), 0);
+        // The chord between the gap's ends, a radian of arc apart, sags 0.12 at the middle.
+        const double t = (f - 9) / 5.0;
+        const Eigen::Vector3d chord =
+            (1 - t) * *samples.position(9, 1) + t * *samples.position(14, 1);
+        EXPECT_LT((*arc - truth).norm(), 0.2 * (chord - truth).norm()) << f;
+    }
+    EXPECT_FALSE(gapFilled(samples, 25, 0, 5).has_value());  // longer than five frames
+    EXPECT_TRUE(gapFilled(samples, 25, 0, 10).has_value());
+    EXPECT_FALSE(gapFilled(samples, 0, 1, 5).has_value());   // nothing before it
+    EXPECT_FALSE(gapFilled(samples, 5, 0, 5).has_value());   // not missing
+    EXPECT_FALSE(gapFilled(samples, 11, 0, 0).has_value());  // filling off
+}

@@ -56,6 +56,7 @@ bool readAlignment(const QJsonObject& o, Calibration& c) {
 QJsonObject settingsJson(const TakeSolveOptions& o) {
     return {{"marker_weight", o.markerWeight},
             {"low_pass_hz", o.lowPassHz},
+            {"fill_gaps_s", o.fillGapSeconds},
             {"calibration_frame", o.calibrationFrame},
             {"rigidity_weight", o.solver.rigidityWeight},
             {"orientation_weight", o.solver.orientationWeight},
@@ -67,6 +68,7 @@ TakeSolveOptions readSettings(const QJsonObject& o) {
     TakeSolveOptions s;  // absent keys keep their defaults, so older projects still load
     s.markerWeight = o["marker_weight"].toDouble(s.markerWeight);
     s.lowPassHz = o["low_pass_hz"].toDouble(s.lowPassHz);
+    s.fillGapSeconds = o["fill_gaps_s"].toDouble(s.fillGapSeconds);
     s.calibrationFrame = o["calibration_frame"].toInt(s.calibrationFrame);
     s.solver.rigidityWeight = o["rigidity_weight"].toDouble(s.solver.rigidityWeight);
     s.solver.orientationWeight = o["orientation_weight"].toDouble(s.solver.orientationWeight);

@@ -12,8 +12,12 @@
 namespace boneless {
 
 struct TakeSolveOptions {
-    double markerWeight = 100.0;          // soft-constraint weight (dimensionless)
-    double lowPassHz = 0.0;               // 0 = no filtering of the trajectories
+    double markerWeight = 100.0;  // soft-constraint weight (dimensionless)
+    double lowPassHz = 0.0;       // 0 = no filtering of the trajectories
+    // A marker missing for at most this long (seconds) is placed on its trajectory across the
+    // gap: each frame is solved from its own markers, so without this a limb whose markers are
+    // all occluded would fall back to its rest shape. 0 = off. Longer gaps stay missing.
+    double fillGapSeconds = 0.2;
     int calibrationFrame = -1;            // -1 = chosen automatically (see calibrate())
     std::optional<Similarity> alignment;  // overrides the automatic alignment
     // Constraints and offsets are set by the TakeSolver. With the exact method, each frame's
@@ -50,8 +54,9 @@ class TakeSolver {
 
     const Calibration& calibration() const { return calibration_; }
     int frameCount() const { return static_cast<int>(take_.frameCount()); }
-    // The markers' targets at `frame` in mesh coordinates (K by 3, NaN rows where missing).
-    Positions targets(int frame) const;
+    // The markers' targets at `frame` in mesh coordinates (K by 3, NaN rows where missing); with
+    // `filled`, a marker in a short gap has its place on its trajectory (what solve() pulls to).
+    Positions targets(int frame, bool filled = false) const;
     // Solves `frame`. Never returns NaN: a frame that cannot be solved (too few markers) gives
     // the rest pose moved rigidly onto what markers it has. stop: as Reconstruction::solve's.
     Positions solve(int frame, FrameReport& report, const std::atomic<bool>* stop = nullptr);

@@ -1,5 +1,8 @@
 #pragma once
 
+#include <Eigen/Core>
+#include <cstddef>
+#include <optional>
 #include <vector>
 
 namespace boneless {
@@ -16,5 +19,12 @@ void lowPassFilter(C3dSamples& samples, double rate, double cutoffHz);
 
 // The same for one run of values (in place), for tests and other signals.
 void lowPassFilter(std::vector<double>& values, double rate, double cutoffHz);
+
+// Where `point` is missing at `frame`, inside a gap of at most maxFrames frames with a sample
+// on each side: its position across the gap, a cubic Hermite curve through the two ends with
+// tangents from the samples beyond them (where an end has none, the chord's). Nothing
+// otherwise: at the take's ends and across longer gaps a marker stays missing.
+std::optional<Eigen::Vector3d> gapFilled(const C3dSamples& samples, std::size_t frame,
+                                         std::size_t point, int maxFrames);
 
 }  // namespace boneless
