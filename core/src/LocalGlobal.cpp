@@ -46,9 +46,6 @@ LocalGlobalSolver::LocalGlobalSolver(const TriMesh& rest, const MeshTopology& to
       rings_(rest, topology) {
     const int n = rest.vertexCount();
     const int K = static_cast<int>(markers_.size());
-    markerOf_.assign(n, -1);
-    for (int k = 0; k < K; ++k) markerOf_[markers_[k]] = k;
-
     // L = I − W over the encoded vertices; the others have no row (no shape of their own). A
     // boundary vertex's ring is closed by a chord it lies close to, where mean-value weights
     // are ill-conditioned (algorithm.md §1.5): it takes uniform weights instead (horse gallop,
@@ -103,10 +100,12 @@ LocalGlobalSolver::LocalGlobalSolver(const TriMesh& rest, const MeshTopology& to
         for (int v : markers_) A_.coeffRef(v, v) += settings_.softWeight;
     A_.makeCompressed();
 
+    std::vector<char> isMarker(n, 0);
+    for (int v : markers_) isMarker[v] = 1;
     unknownOf_.assign(n, -1);
     vertexOf_.clear();
     for (int v = 0; v < n; ++v)
-        if (!settings_.hard || markerOf_[v] < 0) {
+        if (!settings_.hard || !isMarker[v]) {
             unknownOf_[v] = static_cast<int>(vertexOf_.size());
             vertexOf_.push_back(v);
         }

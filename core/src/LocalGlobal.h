@@ -88,7 +88,6 @@ class LocalGlobalSolver {
     const MeshTopology& topology_;
     const ShapeEncoding& encoding_;
     std::vector<int> markers_;
-    std::vector<int> markerOf_;  // vertex -> marker, or -1
     Settings settings_;
     ArapEnergy arap_;
     double arapWeight_ = 0;  // a

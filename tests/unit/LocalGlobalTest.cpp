@@ -107,57 +107,53 @@ TEST(LocalGlobal, AGapGivesWhatASolverWithoutThoseMarkersGives) {
     }
 }
 
-// Slivers bent hard: the global step's compromise turns some over (the single-level solver
-// without repair shows it), and the answer has none.
-TEST(LocalGlobal, FacesTheGlobalStepTurnsOverAreRepaired) {
-    const TriMesh mesh = tubeWithSlivers();
+// Slivers bent hard, soft markers: the single-level solver without repair leaves faces turned
+// over (the global step's compromise), and the same solver with it.
+struct BentSlivers {
+    TriMesh mesh = tubeWithSlivers();
+    MeshTopology topology{mesh};
+    ShapeEncoding encoding{mesh, topology};
     std::vector<int> markers;
-    for (int r = 0; r < 10; r += 3)
-        for (int s = 0; s < 12; s += 3) markers.push_back(r * 12 + s);
-    const Positions truth = bent(mesh.V, 1.0);
-    const Positions targets = rows(truth, markers);
-    const MeshTopology topology(mesh);
-    const ShapeEncoding encoding(mesh, topology);
-    LocalGlobalSolver::Settings settings;
-    settings.hard = false;
-    settings.iterations = 20;
-    LocalGlobalSolver plain(mesh, topology, encoding, markers, settings);
-    const Positions unrepaired = plain.solve(targets, {}, mesh.V, {}).V;
-    ASSERT_GT(foldedFaceCount(mesh.F, unrepaired, mesh.V), 0) << "the case no longer folds";
-    settings.repairFolds = true;
-    LocalGlobalSolver repaired(mesh, topology, encoding, markers, settings);
-    const SolveResult r = repaired.solve(targets, {}, mesh.V, {});
-    EXPECT_EQ(foldedFaceCount(mesh.F, r.V, mesh.V), 0);
+    Positions truth = bent(mesh.V, 1.0);
+    BentSlivers() {
+        for (int r = 0; r < 10; r += 3)
+            for (int s = 0; s < 12; s += 3) markers.push_back(r * 12 + s);
+    }
+    SolveResult solve(const Positions& targets, bool repair) const {
+        LocalGlobalSolver::Settings settings;
+        settings.hard = false;
+        settings.iterations = 20;
+        settings.repairFolds = repair;
+        LocalGlobalSolver solver(mesh, topology, encoding, markers, settings);
+        return solver.solve(targets, {}, mesh.V, {});
+    }
+};
+
+TEST(LocalGlobal, FacesTheGlobalStepTurnsOverAreRepaired) {
+    const BentSlivers c;
+    const Positions targets = rows(c.truth, c.markers);
+    const Positions unrepaired = c.solve(targets, false).V;
+    ASSERT_GT(foldedFaceCount(c.mesh.F, unrepaired, c.mesh.V), 0) << "the case no longer folds";
+    const SolveResult r = c.solve(targets, true);
+    EXPECT_EQ(foldedFaceCount(c.mesh.F, r.V, c.mesh.V), 0);
     EXPECT_EQ(r.report.foldedFaces, 0);
     // Faces the repair did not need are where they were.
-    EXPECT_LE(maxDistance(r.V, truth), 1.05 * maxDistance(unrepaired, truth));
+    EXPECT_LE(maxDistance(r.V, c.truth), 1.05 * maxDistance(unrepaired, c.truth));
 }
 
-// The same with soft markers and one of them missing beside the slivers: the repair solves the
-// frame's own quadratic, so the missing marker's weight is not on the diagonal and its vertex
-// is not pulled towards the origin.
+// The same with one marker missing beside the slivers: the repair solves the frame's own
+// quadratic, so the missing marker's weight is not on the diagonal and its vertex is not pulled
+// towards the origin.
 TEST(LocalGlobal, ARepairBesideAMissingSoftMarkerLeavesItsVertexWhereTheShapePutsIt) {
-    const TriMesh mesh = tubeWithSlivers();
-    std::vector<int> markers;
-    for (int r = 0; r < 10; r += 3)
-        for (int s = 0; s < 12; s += 3) markers.push_back(r * 12 + s);
-    const Positions truth = bent(mesh.V, 1.0);
-    Positions targets = rows(truth, markers);
+    const BentSlivers c;
+    Positions targets = rows(c.truth, c.markers);
     const int missing = 5;  // ring 3, next to the slivers
     targets.row(missing).setConstant(kNaN);
-    const MeshTopology topology(mesh);
-    const ShapeEncoding encoding(mesh, topology);
-    LocalGlobalSolver::Settings settings;
-    settings.hard = false;
-    settings.iterations = 20;
-    LocalGlobalSolver plain(mesh, topology, encoding, markers, settings);
-    const Positions unrepaired = plain.solve(targets, {}, mesh.V, {}).V;
-    ASSERT_GT(foldedFaceCount(mesh.F, unrepaired, mesh.V), 0) << "the case no longer folds";
-    settings.repairFolds = true;
-    LocalGlobalSolver repaired(mesh, topology, encoding, markers, settings);
-    const SolveResult r = repaired.solve(targets, {}, mesh.V, {});
+    const Positions unrepaired = c.solve(targets, false).V;
+    ASSERT_GT(foldedFaceCount(c.mesh.F, unrepaired, c.mesh.V), 0) << "the case no longer folds";
+    const SolveResult r = c.solve(targets, true);
     EXPECT_EQ(r.report.foldedFaces, 0);
-    const int v = markers[missing];
-    EXPECT_LT((r.V.row(v) - unrepaired.row(v)).norm(), 0.1 * boundingBoxDiagonal(mesh.V));
-    EXPECT_LE(maxDistance(r.V, truth), 1.05 * maxDistance(unrepaired, truth));
+    const int v = c.markers[missing];
+    EXPECT_LT((r.V.row(v) - unrepaired.row(v)).norm(), 0.1 * boundingBoxDiagonal(c.mesh.V));
+    EXPECT_LE(maxDistance(r.V, c.truth), 1.05 * maxDistance(unrepaired, c.truth));
 }
