@@ -1,5 +1,6 @@
 #include "boneless/Correspondence.h"
 
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -8,6 +9,7 @@
 #include "boneless/C3dTake.h"
 #include "boneless/Error.h"
 #include "boneless/ObjWriter.h"
+#include "boneless/TriMesh.h"
 
 namespace boneless {
 
@@ -16,7 +18,7 @@ namespace {
 using nlohmann::json;
 
 constexpr const char* kFormat = "boneless-correspondence";
-constexpr int kVersion = 1;
+constexpr int kVersion = 2;  // read: 1 and 2; written: 1 unless a marker names a face point
 
 [[noreturn]] void fail(const std::string& file, const std::string& what) {
     throw Error(file + ": " + what);
@@ -59,9 +61,9 @@ Correspondence Correspondence::fromJson(const std::string& text, const std::stri
         fail(path, std::string("is not a Boneless correspondence file (\"format\" must be \"") +
                        kFormat + "\")");
     const int version = get<int>(doc, "version", path, "the file");
-    if (version != kVersion)
-        fail(path, "has version " + std::to_string(version) + "; this Boneless reads version " +
-                       std::to_string(kVersion));
+    if (version < 1 || version > kVersion)
+        fail(path, "has version " + std::to_string(version) +
+                       "; this Boneless reads versions 1 to " + std::to_string(kVersion));
     Correspondence c;
     c.source_ = path;
     const json mesh = doc.contains("mesh") ? doc["mesh"] : json::object();
@@ -81,7 +83,22 @@ Correspondence Correspondence::fromJson(const std::string& text, const std::stri
         mapping.label = get<std::string>(m, "label", path, where);
         mapping.vertex = get<int>(m, "vertex", path, where + " (" + mapping.label + ")");
         mapping.offsetMm = m.contains("offset_mm") ? get<double>(m, "offset_mm", path, where) : 0.0;
-        mapping.extraJson = withoutKeys(m, {"label", "vertex", "offset_mm"}).dump();
+        if (version >= 2 && m.contains("face")) {
+            const std::string at = where + " (" + mapping.label + ")";
+            mapping.face = get<int>(m, "face", path, at);
+            mapping.barycentric = get<std::array<double, 3>>(m, "barycentric", path, at);
+            if (mapping.face < 0)
+                fail(path, at + ": face " + std::to_string(mapping.face) + " is negative");
+            const auto& b = mapping.barycentric;
+            if (!(b[0] >= 0 && b[1] >= 0 && b[2] >= 0) || std::abs(b[0] + b[1] + b[2] - 1) > 1e-6)
+                fail(path, at + ": \"barycentric\" must be three numbers, none negative, that "
+                                "sum to 1");
+        }
+        // Version 1 files keep "face" and "barycentric" as keys of their own, unread.
+        mapping.extraJson =
+            (version >= 2 ? withoutKeys(m, {"label", "vertex", "offset_mm", "face", "barycentric"})
+                          : withoutKeys(m, {"label", "vertex", "offset_mm"}))
+                .dump();
         if (mapping.vertex < 0)
             fail(path, where + " (" + mapping.label + "): vertex " +
                            std::to_string(mapping.vertex) + " is negative");
@@ -101,7 +118,9 @@ Correspondence Correspondence::fromJson(const std::string& text, const std::stri
 std::string Correspondence::toJson() const {
     json doc = json::parse(extraJson_);
     doc["format"] = kFormat;
-    doc["version"] = kVersion;
+    bool facePoints = false;
+    for (const auto& m : markers) facePoints = facePoints || m.face >= 0;
+    doc["version"] = facePoints ? 2 : 1;
     json mesh = doc.contains("mesh") ? doc["mesh"] : json::object();
     mesh["file"] = meshFile;
     mesh["vertices"] = meshVertices;
@@ -112,6 +131,10 @@ std::string Correspondence::toJson() const {
         entry["label"] = m.label;
         entry["vertex"] = m.vertex;
         entry["offset_mm"] = m.offsetMm;
+        if (m.face >= 0) {
+            entry["face"] = m.face;
+            entry["barycentric"] = m.barycentric;
+        }
         list.push_back(entry);
     }
     doc["markers"] = list;
@@ -122,7 +145,8 @@ void Correspondence::write(const std::string& path) const {
     writeFileAtomically(path, toJson());
 }
 
-void Correspondence::checkMesh(int vertexCount, const std::string& meshPath) const {
+void Correspondence::checkMesh(int vertexCount, const std::string& meshPath,
+                               const TriMesh* mesh) const {
     const std::string file = source_.empty() ? "correspondence" : source_;
     if (meshVertices != 0 && meshVertices != vertexCount)
         fail(file, "was made for a mesh of " + std::to_string(meshVertices) + " vertices, but " +
@@ -132,6 +156,18 @@ void Correspondence::checkMesh(int vertexCount, const std::string& meshPath) con
             fail(file, "marker " + m.label + ": vertex " + std::to_string(m.vertex) +
                            " is out of range (" + meshPath + " has " + std::to_string(vertexCount) +
                            " vertices)");
+    if (!mesh) return;
+    for (const auto& m : markers) {
+        if (m.face < 0) continue;
+        if (m.face >= mesh->faceCount())
+            fail(file, "marker " + m.label + ": face " + std::to_string(m.face) +
+                           " is out of range (" + meshPath + " has " +
+                           std::to_string(mesh->faceCount()) + " triangles)");
+        const auto corners = mesh->F.row(m.face);
+        if (corners[0] != m.vertex && corners[1] != m.vertex && corners[2] != m.vertex)
+            fail(file, "marker " + m.label + ": vertex " + std::to_string(m.vertex) +
+                           " is not a corner of face " + std::to_string(m.face));
+    }
 }
 
 std::vector<std::size_t> Correspondence::resolve(const C3dTake& take) const {

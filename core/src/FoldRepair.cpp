@@ -86,7 +86,6 @@ Vec3 FoldRepair::Quadratic::gradient(int v, const Positions& V) const {
     Vec3 x = -rhs.row(v).transpose();
     for (Eigen::SparseMatrix<double>::InnerIterator it(A, v); it; ++it)
         x += it.value() * V.row(it.row()).transpose();
-    if (!shift.empty()) x += shift[v] * V.row(v).transpose();
     return x;
 }
 
@@ -168,7 +167,6 @@ void FoldRepair::solvePatch(Positions& V, const Quadratic& q, const std::vector<
         for (Eigen::SparseMatrix<double>::InnerIterator it(q.A, v); it; ++it)
             if (patch.local[it.row()] >= 0)
                 patch.A.emplace_back(patch.local[it.row()], p, it.value());
-        if (!q.shift.empty() && q.shift[v] != 0) patch.A.emplace_back(p, p, q.shift[v]);
     }
     // The penalty's u_f follow the ring rotations, which follow the fold: the patch is solved
     // with them held, then they are refitted, until no face of the patch is folded in them.

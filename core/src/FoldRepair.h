@@ -29,14 +29,12 @@ class FoldRepair {
     // (radians): about 1e-12 rad, as a fresh fit would judge a face on the edge of folding.
     static constexpr double kCountStep = 1e-6;
 
-    // What the global step minimised: Vᵀ(A + diag(shift))V − 2 Vᵀrhs. A: #V by #V; shift: per
-    // vertex, what this frame takes off A's diagonal (a missing soft marker's weight), or empty;
-    // rhs: #V by 3.
+    // What the global step minimised: VᵀAV − 2 Vᵀrhs (A: #V by #V, this frame's: without the
+    // pull of its missing soft markers; rhs: #V by 3).
     struct Quadratic {
         const Eigen::SparseMatrix<double>& A;
-        const std::vector<double>& shift;
         const Eigen::MatrixXd& rhs;
-        // (A + diag(shift)) restricted to row v, times V, minus rhs's row.
+        // A's row v times V, minus rhs's row.
         Vec3 gradient(int v, const Positions& V) const;
     };
     // V: the answer (#V by 3), changed in place; pinned: vertices that must not move;

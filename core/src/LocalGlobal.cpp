@@ -35,8 +35,8 @@ constexpr double kNearlyFolded = 0.05;
 }  // namespace
 
 LocalGlobalSolver::LocalGlobalSolver(const TriMesh& rest, const MeshTopology& topology,
-                                     const ShapeEncoding& encoding, std::vector<int> markers,
-                                     Settings settings)
+                                     const ShapeEncoding& encoding,
+                                     std::vector<MarkerPatch> markers, Settings settings)
     : rest_(rest),
       topology_(topology),
       encoding_(encoding),
@@ -81,10 +81,9 @@ LocalGlobalSolver::LocalGlobalSolver(const TriMesh& rest, const MeshTopology& to
                 delta0_[v] -= w[k] * rest.V.row(ring[k]).transpose();
         }
     });
-    restNormal_.resize(K);
-    for (int k = 0; k < K; ++k)
-        restNormal_[k] =
-            encoding.encoded(markers_[k]) ? encoding.ringNormal(markers_[k], rest.V) : Vec3::Zero();
+    for (const MarkerPatch& p : markers_)
+        if (settings_.hard && p.vertices.size() != 1)
+            throw SolverError("a hard marker holds one vertex, not a patch");
 
     const Eigen::SparseMatrix<double> Lc = L_;
     const Eigen::SparseMatrix<double> LtL = Eigen::SparseMatrix<double>(Lc.transpose()) * Lc;
@@ -96,12 +95,23 @@ LocalGlobalSolver::LocalGlobalSolver(const TriMesh& rest, const MeshTopology& to
     // markers, an isolated vertex) from making the matrix singular.
     tikhonov_ = 1e-9 * std::max(trace(A_) / std::max(n, 1), 1e-300);
     for (int v = 0; v < n; ++v) A_.coeffRef(v, v) += tikhonov_;
-    if (!settings_.hard)
-        for (int v : markers_) A_.coeffRef(v, v) += settings_.softWeight;
+    if (!settings_.hard) {
+        // λ u_k u_kᵀ per marker: a patch's vertices are coupled through its centroid.
+        std::vector<Eigen::Triplet<double>> pull;
+        for (const MarkerPatch& p : markers_)
+            for (size_t i = 0; i < p.vertices.size(); ++i)
+                for (size_t j = 0; j < p.vertices.size(); ++j)
+                    pull.emplace_back(p.vertices[i], p.vertices[j],
+                                      settings_.softWeight * p.weights[i] * p.weights[j]);
+        Eigen::SparseMatrix<double> P(n, n);
+        P.setFromTriplets(pull.begin(), pull.end());
+        A_ += P;
+    }
     A_.makeCompressed();
 
     std::vector<char> isMarker(n, 0);
-    for (int v : markers_) isMarker[v] = 1;
+    if (settings_.hard)
+        for (const MarkerPatch& p : markers_) isMarker[p.vertex] = 1;
     unknownOf_.assign(n, -1);
     vertexOf_.clear();
     for (int v = 0; v < n; ++v)
@@ -139,14 +149,32 @@ void LocalGlobalSolver::fitRotations(const Positions& V, std::vector<Mat3>& rota
 }
 
 Vec3 LocalGlobalSolver::markerTarget(int k, const Positions& targets,
-                                     const std::vector<double>& offsets,
-                                     const std::vector<Mat3>& rotation) const {
-    Vec3 t = targets.row(k).transpose();
-    // The offset goes along the rest normal turned by the ring's fitted rotation: the current
+                                     const std::vector<double>& offsets, const Mat3& R) const {
+    // The offset goes along the rest normal turned by the patch's fitted rotation: the current
     // ring normal turns over on thin parts, the rotation does not.
-    if (k < static_cast<int>(offsets.size()) && offsets[k] != 0)
-        t -= offsets[k] * (rotation[markers_[k]] * restNormal_[k]);
-    return t;
+    const MarkerPatch& p = markers_[k];
+    const double o = k < static_cast<int>(offsets.size()) ? offsets[k] : 0.0;
+    return targets.row(k).transpose() - R * (p.sag + o * p.restNormal);
+}
+
+void LocalGlobalSolver::fitPatchRotations(const Positions& V, const std::vector<Mat3>& rotation,
+                                          std::vector<Mat3>& patchRotation) const {
+    patchRotation.resize(markers_.size());
+    for (size_t k = 0; k < markers_.size(); ++k)
+        patchRotation[k] = markers_[k].rotation(rest_.V, V, rotation[markers_[k].vertex]);
+}
+
+Eigen::SparseMatrix<double> LocalGlobalSolver::frameMatrix(const std::vector<int>& missing) const {
+    Eigen::SparseMatrix<double> A = A_;
+    if (settings_.hard) return A;
+    for (int k : missing) {
+        const MarkerPatch& p = markers_[k];
+        for (size_t i = 0; i < p.vertices.size(); ++i)
+            for (size_t j = 0; j < p.vertices.size(); ++j)
+                A.coeffRef(p.vertices[i], p.vertices[j]) -=
+                    settings_.softWeight * p.weights[i] * p.weights[j];
+    }
+    return A;
 }
 
 void LocalGlobalSolver::rightHandSide(const Positions& targets, const std::vector<double>& offsets,
@@ -177,9 +205,12 @@ void LocalGlobalSolver::rightHandSide(const Positions& targets, const std::vecto
         },
         kMinimumPerThread);
     if (!settings_.hard)
-        for (int k : visible)
-            rhs.row(markers_[k]) +=
-                settings_.softWeight * markerTarget(k, targets, offsets, rotation_).transpose();
+        for (int k : visible) {
+            const MarkerPatch& p = markers_[k];
+            const Vec3 t = markerTarget(k, targets, offsets, patchRotation_[k]);
+            for (size_t j = 0; j < p.vertices.size(); ++j)
+                rhs.row(p.vertices[j]) += settings_.softWeight * p.weights[j] * t.transpose();
+        }
 }
 
 void LocalGlobalSolver::cacheCorrections(const std::vector<int>& missing) {
@@ -189,12 +220,13 @@ void LocalGlobalSolver::cacheCorrections(const std::vector<int>& missing) {
         // One column at a time: solved with others, CHOLMOD takes another kernel, and a last
         // bit could depend on which markers went missing first.
         Eigen::MatrixXd column = Eigen::MatrixXd::Zero(rows, 1);
-        const int c = markers_[k];
+        const MarkerPatch& p = markers_[k];
         if (settings_.hard) {
-            for (Eigen::SparseMatrix<double>::InnerIterator it(A_, c); it; ++it)
+            for (Eigen::SparseMatrix<double>::InnerIterator it(A_, p.vertex); it; ++it)
                 if (unknownOf_[it.row()] >= 0) column(unknownOf_[it.row()], 0) = it.value();
         } else {
-            column(unknownOf_[c], 0) = 1.0;
+            for (size_t j = 0; j < p.vertices.size(); ++j)
+                column(unknownOf_[p.vertices[j]], 0) = p.weights[j];
         }
         correction_[k] = factor_.solve(column).col(0);
     }
@@ -208,21 +240,25 @@ LocalGlobalSolver::Gaps LocalGlobalSolver::gaps(const std::vector<int>& missing)
     if (m == 0) return g;
     Eigen::MatrixXd S(m, m);
     for (int j = 0; j < m; ++j) {
-        const int cj = markers_[missing[j]];
+        const int cj = markers_[missing[j]].vertex;
         if (settings_.hard) {
             // The missing markers' vertices join the unknowns: a bordered system, solved through
             // its Schur complement S = A_MM − A_Mf B⁻¹ A_fM.
-            for (int k = 0; k < m; ++k) S(j, k) = A_.coeff(cj, markers_[missing[k]]);
+            for (int k = 0; k < m; ++k) S(j, k) = A_.coeff(cj, markers_[missing[k]].vertex);
             for (Eigen::SparseMatrix<double>::InnerIterator it(A_, cj); it; ++it) {
                 const int u = unknownOf_[it.row()];
                 if (u < 0) continue;
                 for (int k = 0; k < m; ++k) S(j, k) -= it.value() * correction_[missing[k]](u);
             }
         } else {
-            // Woodbury: each missing marker's λ taken off the diagonal again.
-            const int uj = unknownOf_[cj];
-            for (int k = 0; k < m; ++k)
-                S(j, k) = (j == k ? 1.0 / settings_.softWeight : 0.0) - correction_[missing[k]](uj);
+            // Woodbury: each missing marker's λ u uᵀ taken off again.
+            const MarkerPatch& p = markers_[missing[j]];
+            for (int k = 0; k < m; ++k) {
+                double uBu = 0;
+                for (size_t i = 0; i < p.vertices.size(); ++i)
+                    uBu += p.weights[i] * correction_[missing[k]](unknownOf_[p.vertices[i]]);
+                S(j, k) = (j == k ? 1.0 / settings_.softWeight : 0.0) - uBu;
+            }
         }
     }
     g.S.compute(S);
@@ -242,21 +278,24 @@ Eigen::MatrixXd LocalGlobalSolver::solveSystem(const Eigen::MatrixXd& raw,
     if (m > 0) {
         Eigen::MatrixXd g(m, 3);
         for (int j = 0; j < m; ++j) {
-            const int cj = markers_[missing[j]];
+            const MarkerPatch& p = markers_[missing[j]];
+            const int cj = p.vertex;
             if (settings_.hard) {
                 g.row(j) = rhs.row(cj);
                 for (Eigen::SparseMatrix<double>::InnerIterator it(A_, cj); it; ++it)
                     if (unknownOf_[it.row()] >= 0)
                         g.row(j) -= it.value() * x.row(unknownOf_[it.row()]);
             } else {
-                g.row(j) = x.row(unknownOf_[cj]);
+                g.row(j).setZero();
+                for (size_t i = 0; i < p.vertices.size(); ++i)
+                    g.row(j) += p.weights[i] * x.row(unknownOf_[p.vertices[i]]);
             }
         }
         const Eigen::MatrixXd y = gaps.S.solve(g);
         for (int k = 0; k < m; ++k) {
             if (settings_.hard) {
                 x -= correction_[missing[k]] * y.row(k);
-                out.row(markers_[missing[k]]) = y.row(k);
+                out.row(markers_[missing[k]].vertex) = y.row(k);
             } else {
                 x += correction_[missing[k]] * y.row(k);
             }
@@ -286,7 +325,7 @@ SolveResult LocalGlobalSolver::solve(const Positions& targets, const std::vector
     if (settings_.hard) {
         fixed = Eigen::MatrixXd::Zero(n, 3);
         for (int k : visible) {
-            const int c = markers_[k];
+            const int c = markers_[k].vertex;
             V.row(c) = targets.row(k);
             pinned[c] = 1;
             for (Eigen::SparseMatrix<double>::InnerIterator it(A_, c); it; ++it)
@@ -307,6 +346,7 @@ SolveResult LocalGlobalSolver::solve(const Positions& targets, const std::vector
         } else {
             fitRotations(V, rotation_, arapRotation_, it > 0);
         }
+        fitPatchRotations(V, rotation_, patchRotation_);
         rightHandSide(targets, offsets, visible, base, rhs);
         const Eigen::MatrixXd x = solveSystem(rhs, fixed, frameGaps);
         double moved = 0;
@@ -329,13 +369,13 @@ SolveResult LocalGlobalSolver::solve(const Positions& targets, const std::vector
         result.report.foldedFaces = 0;
         if (!repair_->folded(V, ring, kNearlyFolded).empty()) {
             rings_.fit(V, ring, true, FoldRepair::kCountStep);
-            // A missing soft marker's weight is not on this frame's diagonal.
-            std::vector<double> shift;
+            // A missing soft marker's pull is not in this frame's matrix.
             if (!settings_.hard && !missing.empty()) {
-                shift.assign(n, 0.0);
-                for (int k : missing) shift[markers_[k]] -= settings_.softWeight;
+                const Eigen::SparseMatrix<double> A = frameMatrix(missing);
+                result.report.foldedFaces = repair_->repair(V, {A, rhs}, pinned, ring);
+            } else {
+                result.report.foldedFaces = repair_->repair(V, {A_, rhs}, pinned, ring);
             }
-            result.report.foldedFaces = repair_->repair(V, {A_, shift, rhs}, pinned, ring);
         }
     }
     result.report.energyBefore = result.report.energyAfter =
@@ -354,12 +394,15 @@ double LocalGlobalSolver::energy(const Positions& V, const Positions& targets,
     for (int v = 0; v < rest_.vertexCount(); ++v)
         if (encoding_.encoded(v)) e += (LV.row(v).transpose() - R[v] * delta0_[v]).squaredNorm();
     e += arapWeight_ / 3.0 * arap_.energy(V, RA);
-    if (!settings_.hard)
+    if (!settings_.hard) {
+        std::vector<Mat3> P;
+        fitPatchRotations(V, R, P);
         for (int k = 0; k < static_cast<int>(markers_.size()); ++k)
             if (targets.row(k).allFinite())
                 e += settings_.softWeight *
-                     (V.row(markers_[k]).transpose() - markerTarget(k, targets, offsets, R))
+                     (markers_[k].centroid(V) - markerTarget(k, targets, offsets, P[k]))
                          .squaredNorm();
+    }
     return e;
 }
 

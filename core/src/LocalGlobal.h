@@ -7,6 +7,7 @@
 
 #include "ArapEnergy.h"
 #include "FoldRepair.h"
+#include "MarkerPatch.h"
 #include "RingFit.h"
 #include "SparseCholesky.h"
 #include "boneless/Reconstruction.h"
@@ -18,8 +19,9 @@ namespace boneless {
 // the rest's (L V⁰)_i = δ⁰_i lies along the ring's normal. The local step fits each ring's
 // rotation R_i from rest to pose (centre included, uniform weights), and the ARAP term's own
 // rotations (cotangent covariance); the global step then minimises, for those rotations,
-//   |L V − R δ⁰|² + (a/3) E_arap(V) + λ Σ_visible |v_c + o_k R_c n⁰_c − m_k|² (+ ε |V − start|²),
-// whose matrix LᵀL + a L_cot (+ λ on the markers' diagonal) never changes: it is factorised once,
+//   |L V − R δ⁰|² + (a/3) E_arap(V) + λ Σ_visible |u_kᵀ V + R_k (s_k + o_k n⁰_k) − m_k|²
+//   (+ ε |V − start|²), with u_k marker k's patch weights and R_k the patch's fitted rotation,
+// whose matrix LᵀL + a L_cot (+ λ Σ u_k u_kᵀ) never changes: it is factorised once,
 // and an iteration is a 3-column back-substitution. The ARAP term keeps thin parts that few
 // markers hold from twisting. A marker missing from a frame is taken out by a low-rank
 // correction of that one factor (a Schur complement when hard, Woodbury when soft), so a gap
@@ -35,8 +37,10 @@ class LocalGlobalSolver {
     };
 
     // rest, topology and encoding must outlive the solver.
+    // Hard markers hold one vertex each (their patches of radius 0 at a vertex).
     LocalGlobalSolver(const TriMesh& rest, const MeshTopology& topology,
-                      const ShapeEncoding& encoding, std::vector<int> markers, Settings settings);
+                      const ShapeEncoding& encoding, std::vector<MarkerPatch> markers,
+                      Settings settings);
     ~LocalGlobalSolver();
 
     // The first iteration's rotations (#V each): used as they are, or (refit) fitted to the
@@ -81,13 +85,20 @@ class LocalGlobalSolver {
                                 const Gaps& gaps);
     // The factor's answer to each missing marker's column, made the first time it is missing.
     void cacheCorrections(const std::vector<int>& missing);
+    // Where the patch's centroid must go for marker k to meet its target, for the patch
+    // rotation R.
     Vec3 markerTarget(int k, const Positions& targets, const std::vector<double>& offsets,
-                      const std::vector<Mat3>& rotation) const;
+                      const Mat3& R) const;
+    // Each patch's rotation for the pose V, given the ring rotations fitted to it.
+    void fitPatchRotations(const Positions& V, const std::vector<Mat3>& rotation,
+                           std::vector<Mat3>& patchRotation) const;
+    // The frame's matrix: A_ with the missing soft markers' terms taken off (for the repair).
+    Eigen::SparseMatrix<double> frameMatrix(const std::vector<int>& missing) const;
 
     const TriMesh& rest_;
     const MeshTopology& topology_;
     const ShapeEncoding& encoding_;
-    std::vector<int> markers_;
+    std::vector<MarkerPatch> markers_;
     Settings settings_;
     ArapEnergy arap_;
     double arapWeight_ = 0;  // a
@@ -98,7 +109,6 @@ class LocalGlobalSolver {
     std::vector<double> weight_;  // W's row per vertex, at the topology's ring offsets
     std::vector<Vec3> delta0_;    // (L V⁰)_i, zero for an unencoded vertex
     RingFit rings_;
-    std::vector<Vec3> restNormal_;   // per marker: its vertex's rest ring normal
     Eigen::SparseMatrix<double> A_;  // #V by #V, the whole matrix
     // Unknowns: the free vertices when hard (unknownOf_ is −1 for a marker's), every vertex when
     // soft.
@@ -106,7 +116,7 @@ class LocalGlobalSolver {
     SparseCholesky factor_;
     std::vector<Eigen::VectorXd> correction_;  // per marker, empty until first missing
     // The last local step's rotations, and per-iteration scratch.
-    std::vector<Mat3> rotation_, arapRotation_, faceRotation_;
+    std::vector<Mat3> rotation_, arapRotation_, faceRotation_, patchRotation_;
     std::vector<Vec3> rotatedDelta_;
     std::unique_ptr<FoldRepair> repair_;
 };

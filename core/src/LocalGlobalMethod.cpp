@@ -36,14 +36,17 @@ LocalGlobalSolver::Settings LocalGlobalMethod::inputSettings(bool hard, double s
 }
 
 LocalGlobalMethod::LocalGlobalMethod(const TriMesh& rest, const MeshTopology& topology,
-                                     const ShapeEncoding& encoding, const std::vector<int>& markers,
-                                     bool hard, double softWeight) {
+                                     const ShapeEncoding& encoding,
+                                     const std::vector<MarkerPatch>& markers, bool hard,
+                                     double softWeight) {
     const int n = rest.vertexCount();
     const LocalGlobalSolver::Settings fine = inputSettings(hard, softWeight);
     const LocalGlobalSolver::Settings coarse{hard, softWeight, kCoarseRigidity, kCoarseIterations,
                                              false};
     const int coarsest =
         std::max(kCoarsestVertices, kCoarsestPerMarker * static_cast<int>(markers.size()));
+    std::vector<int> markerVertices;
+    for (const MarkerPatch& p : markers) markerVertices.push_back(p.vertex);
     coarse_ = std::make_unique<Coarse>();
     Coarse& c = *coarse_;
     // The input level's factorisation on one core, the hierarchy and the coarse level's on the
@@ -57,7 +60,7 @@ LocalGlobalMethod::LocalGlobalMethod(const TriMesh& rest, const MeshTopology& to
         } else {
             HierarchyOptions options;
             options.coarsestVertices = coarsest;
-            const MeshHierarchy hierarchy(rest, topology, markers, options);
+            const MeshHierarchy hierarchy(rest, topology, markerVertices, options);
             c.mesh = hierarchy.coarsest().mesh;
             c.original = hierarchy.coarsest().original;
             // Down the levels: a vertex that survives keeps its index there, a removed one
@@ -70,10 +73,20 @@ LocalGlobalMethod::LocalGlobalMethod(const TriMesh& rest, const MeshTopology& to
                 for (int& x : coarseOf_) x = next[x];
             }
         }
-        std::vector<int> coarseMarkers;
-        for (int v : markers) coarseMarkers.push_back(coarseOf_[v]);
         c.topology = std::make_unique<MeshTopology>(c.mesh);
         c.encoding = std::make_unique<ShapeEncoding>(c.mesh, *c.topology);
+        // Each marker pulls its vertex there, from where its point sits on the input's rest
+        // (with its normal), so that rest markers still give the rest and a rigid motion stays
+        // rigid on the coarse level.
+        std::vector<MarkerPatch> coarseMarkers = vertexPatches(c.mesh, *c.encoding, {});
+        for (const MarkerPatch& fine : markers) {
+            SurfacePoint point;
+            point.vertex = coarseOf_[fine.vertex];
+            MarkerPatch p = makeMarkerPatch(c.mesh, *c.encoding, point);
+            p.sag = fine.restCentroid + fine.sag - c.mesh.V.row(point.vertex).transpose();
+            p.restNormal = fine.restNormal;
+            coarseMarkers.push_back(std::move(p));
+        }
         c.solver = std::make_unique<LocalGlobalSolver>(c.mesh, *c.topology, *c.encoding,
                                                        coarseMarkers, coarse);
     };

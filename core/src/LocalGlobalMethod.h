@@ -12,13 +12,14 @@ namespace boneless {
 // thousand vertices, markers kept) is solved from the rest pose moved rigidly onto the markers,
 // where a local/global iteration carries a rotation across the mesh in a few hops; its rotations,
 // given to every input vertex by the coarse vertex it was collapsed into, start the input level's
-// few iterations. On a mesh too small for a coarse level the coarse solve runs on the mesh itself.
+// few iterations. The coarse level's markers hold their vertices alone: it only finds rotations. On
+// a mesh too small for a coarse level the coarse solve runs on the mesh itself.
 class LocalGlobalMethod {
   public:
     // rest, topology and encoding must outlive it.
     LocalGlobalMethod(const TriMesh& rest, const MeshTopology& topology,
-                      const ShapeEncoding& encoding, const std::vector<int>& markers, bool hard,
-                      double softWeight);
+                      const ShapeEncoding& encoding, const std::vector<MarkerPatch>& markers,
+                      bool hard, double softWeight);
     ~LocalGlobalMethod();
 
     // start: the rest pose moved rigidly onto the markers (#V by 3), by the rotation `rigid`.

@@ -266,11 +266,28 @@ Reconstruction& Reconstruction::operator=(Reconstruction&&) noexcept = default;
 
 void Reconstruction::prepare(const TriMesh& rest, std::vector<int> markerVertices,
                              SolverOptions options) {
+    std::vector<SurfacePoint> points(markerVertices.size());
+    for (size_t k = 0; k < points.size(); ++k) points[k].vertex = markerVertices[k];
+    prepare(rest, std::move(points), std::move(options));
+}
+
+void Reconstruction::prepare(const TriMesh& rest, std::vector<SurfacePoint> points,
+                             SolverOptions options) {
     auto impl = std::make_unique<Impl>();
     impl->rest = rest;
     impl->options = options;
     const int n = rest.vertexCount();
     impl->markerOf.assign(n, -1);
+    std::vector<int> markerVertices;
+    for (size_t k = 0; k < points.size(); ++k) {
+        const SurfacePoint& p = points[k];
+        if (p.face >= rest.faceCount() ||
+            (p.face >= 0 && (rest.F.row(p.face).array() != p.vertex).all()))
+            throw SolverError("marker " + std::to_string(k) + " is on face " +
+                              std::to_string(p.face) + ", which is not a face of the mesh around " +
+                              "vertex " + std::to_string(p.vertex));
+        markerVertices.push_back(p.vertex);
+    }
     for (size_t k = 0; k < markerVertices.size(); ++k) {
         const int v = markerVertices[k];
         if (v < 0 || v >= n)
@@ -294,11 +311,18 @@ void Reconstruction::prepare(const TriMesh& rest, std::vector<int> markerVertice
                 throw SolverError(
                     "marker offsets need soft constraints (a hard constraint puts the "
                     "vertex itself on the marker)");
+    if (options.constraints == SolverOptions::Constraints::Hard)
+        for (const SurfacePoint& p : points)
+            if (p.face >= 0)
+                throw SolverError(
+                    "a hard constraint puts a vertex on its marker, not a face point");
     impl->topology = std::make_unique<MeshTopology>(impl->rest);
     impl->encoding = std::make_unique<ShapeEncoding>(impl->rest, *impl->topology);
     if (options.method == SolverOptions::Method::LocalGlobal) {
+        for (const SurfacePoint& p : points)
+            impl->patches.push_back(makeMarkerPatch(impl->rest, *impl->encoding, p));
         impl->localGlobal = std::make_unique<LocalGlobalMethod>(
-            impl->rest, *impl->topology, *impl->encoding, impl->markers,
+            impl->rest, *impl->topology, *impl->encoding, impl->patches,
             options.constraints == SolverOptions::Constraints::Hard, options.softWeight);
     } else {
         impl->residualIndex.assign(n, -1);
@@ -311,15 +335,37 @@ void Reconstruction::prepare(const TriMesh& rest, std::vector<int> markerVertice
         impl->updateOrientationGuard();
         impl->system = std::make_unique<BlockSystem>(n, impl->stencils());
     }
+    impl->points = std::move(points);
     impl_ = std::move(impl);
+    impl_->restMarkers = markerPositions(impl_->rest.V);
+}
+
+Positions Reconstruction::markerPositions(const Positions& V) const {
+    const Impl& s = *impl_;
+    const int K = static_cast<int>(s.markers.size());
+    Positions P(K, 3);
+    for (int k = 0; k < K; ++k) {
+        if (s.patches.empty()) {  // the exact method: the vertex, off along its ring's normal
+            P.row(k) = s.markerPoint(k, V).transpose();
+            continue;
+        }
+        const MarkerPatch& p = s.patches[k];
+        // A patch too small to fit a rotation turns its offset with the ring's normal.
+        Mat3 R = Mat3::Identity();
+        if (!p.fittable && s.encoding->encoded(p.vertex)) {
+            const Vec3 from = s.encoding->ringNormal(p.vertex, s.rest.V);
+            const Vec3 to = s.encoding->ringNormal(p.vertex, V);
+            R = Eigen::Quaterniond::FromTwoVectors(from, to).toRotationMatrix();
+        }
+        P.row(k) = p.point(V, p.rotation(s.rest.V, V, R), s.offset(k)).transpose();
+    }
+    return P;
 }
 
 Positions Reconstruction::Impl::startingPose(const Positions& targets,
                                              const Positions* guess) const {
     const int n = rest.vertexCount();
     const int K = static_cast<int>(markers.size());
-    Positions restMarkers(K, 3);
-    for (int k = 0; k < K; ++k) restMarkers.row(k) = rest.V.row(markers[k]);
     const RigidMotion motion = fitRigidMotion(restMarkers, targets);
     Positions V;
     if (guess) {
@@ -359,11 +405,9 @@ SolveResult Reconstruction::solve(const Positions& targets, const Positions* gue
             rest.V = s.rest.V;
             return rest;
         }
-        Positions restMarkers(K, 3);
-        for (int k = 0; k < K; ++k) restMarkers.row(k) = s.rest.V.row(s.markers[k]);
         return s.localGlobal->solve(targets, s.options.markerOffsets,
                                     s.startingPose(targets, nullptr),
-                                    fitRigidMotion(restMarkers, targets).R, stop);
+                                    fitRigidMotion(s.restMarkers, targets).R, stop);
     }
     return s.solveExact(targets, guess, stop);
 }
@@ -541,11 +585,12 @@ void Reconstruction::setOptions(const SolverOptions& options) {
     if (options.method != old.method || options.constraints != old.constraints ||
         (options.method == SolverOptions::Method::LocalGlobal &&
          options.softWeight != old.softWeight)) {
-        prepare(TriMesh(impl_->rest), impl_->markers, options);
+        prepare(TriMesh(impl_->rest), std::vector<SurfacePoint>(impl_->points), options);
         return;
     }
     const bool guardChanged = options.orientationWeight != old.orientationWeight;
     impl_->options = options;
+    impl_->restMarkers = markerPositions(impl_->rest.V);  // the offsets may have changed
     if (guardChanged && impl_->system) impl_->updateOrientationGuard();
 }
 

@@ -12,6 +12,7 @@
 #include "ArapEnergy.h"
 #include "BlockSystem.h"
 #include "LocalGlobalMethod.h"
+#include "MarkerPatch.h"
 #include "OrientationGuard.h"
 #include "boneless/Reconstruction.h"
 
@@ -28,10 +29,13 @@ struct Reconstruction::Impl {
     TriMesh rest;
     std::unique_ptr<MeshTopology> topology;
     std::unique_ptr<ShapeEncoding> encoding;
-    std::vector<int> markers;
-    std::vector<int> markerOf;       // vertex -> marker index, or -1
-    std::vector<int> residualOf;     // residual -> vertex
-    std::vector<int> residualIndex;  // vertex -> residual, or -1
+    std::vector<SurfacePoint> points;
+    std::vector<int> markers;          // each marker's (nearest) vertex
+    std::vector<MarkerPatch> patches;  // each marker's surface (Method::LocalGlobal)
+    std::vector<int> markerOf;         // vertex -> marker index, or -1
+    Positions restMarkers;             // where the markers sit on the rest pose (K by 3)
+    std::vector<int> residualOf;       // residual -> vertex
+    std::vector<int> residualIndex;    // vertex -> residual, or -1
     SolverOptions options;
     std::unique_ptr<LocalGlobalMethod> localGlobal;  // Method::LocalGlobal
     // Method::Exact:

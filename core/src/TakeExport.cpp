@@ -55,7 +55,7 @@ std::string exportStem(const ExportRequest& request) {
 namespace {
 
 json summaryJson(const json& perFrame) {
-    double residualSum = 0, residualWorst = 0, distortionWorst = 0;
+    double residualSum = 0, residualWorst = 0, distortionWorst = 0, dentWorst = 0;
     int foldedWorst = 0;
     std::vector<double> ms;
     for (const json& f : perFrame) {
@@ -63,6 +63,7 @@ json summaryJson(const json& perFrame) {
         residualWorst = std::max(residualWorst, f["residual_rms_mm"].get<double>());
         distortionWorst = std::max(distortionWorst, f["edge_distortion"].get<double>());
         foldedWorst = std::max(foldedWorst, f["folded_faces"].get<int>());
+        dentWorst = std::max(dentWorst, f["dent_ratio"].get<double>());
         ms.push_back(f["ms"].get<double>());
     }
     std::sort(ms.begin(), ms.end());
@@ -71,6 +72,7 @@ json summaryJson(const json& perFrame) {
             {"residual_rms_mm_worst_frame", residualWorst},
             {"edge_distortion_worst_frame", distortionWorst},
             {"folded_faces_worst_frame", foldedWorst},
+            {"dent_ratio_worst_frame", dentWorst},
             {"ms_per_frame_mean", n ? std::accumulate(ms.begin(), ms.end(), 0.0) / n : 0.0},
             {"ms_per_frame_worst", n ? ms.back() : 0.0},
             {"ms_per_frame_median", n ? ms[n / 2] : 0.0}};
@@ -268,6 +270,7 @@ ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspo
                                          {"residual_max_mm", report.residualMaxMm},
                                          {"edge_distortion", distortion},
                                          {"folded_faces", report.foldedFaces},
+                                         {"dent_ratio", report.dentRatio},
                                          {"iterations", report.iterations},
                                          {"ms", report.milliseconds}});
                      ++result.framesWritten;

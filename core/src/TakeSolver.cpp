@@ -6,6 +6,8 @@
 #include <exception>
 #include <limits>
 
+#include "DentGauge.h"
+#include "MarkerPatch.h"
 #include "boneless/Error.h"
 #include "boneless/TrajectoryFilter.h"
 
@@ -14,7 +16,7 @@ namespace boneless {
 TakeSolver::TakeSolver(const TriMesh& rest, const C3dTake& take, const Correspondence& map,
                        TakeSolveOptions options)
     : rest_(rest), take_(take), options_(std::move(options)) {
-    map.checkMesh(rest.vertexCount(), "the mesh");
+    map.checkMesh(rest.vertexCount(), "the mesh", &rest);
     points_ = map.resolve(take_);
     if (options_.calibrationFrame >= frameCount())
         throw Error(take.file + ": calibration frame " + std::to_string(options_.calibrationFrame) +
@@ -26,23 +28,27 @@ TakeSolver::TakeSolver(const TriMesh& rest, const C3dTake& take, const Correspon
     solverOptions.constraints = SolverOptions::Constraints::Soft;
     solverOptions.softWeight = options_.markerWeight;
     solverOptions.markerOffsets.clear();
-    std::vector<int> vertices;
-    for (const auto& m : map.markers) vertices.push_back(m.vertex);
-    solver_.prepare(rest_, vertices, solverOptions);
+    std::vector<SurfacePoint> points;
+    for (const auto& m : map.markers) {
+        SurfacePoint p;
+        p.vertex = m.vertex;
+        p.face = m.face;
+        p.barycentric = Vec3(m.barycentric[0], m.barycentric[1], m.barycentric[2]);
+        points.push_back(p);
+    }
+    topology_ = std::make_unique<MeshTopology>(rest_);
+    encoding_ = std::make_unique<ShapeEncoding>(rest_, *topology_);
 
     // The markers sit off the skin, so the rest pose's marker positions depend on the mesh's
     // unit, which the alignment finds: align, place the markers with that scale, align again.
     // Without this, a 1 cm offset on a small mesh inflates the scale by a few percent.
     auto restMarkers = [&](double meshUnitsPerMm) {
         Positions R(points_.size(), 3);
-        for (size_t k = 0; k < points_.size(); ++k) {
-            const int v = vertices[k];
-            Vec3 x = rest_.V.row(v).transpose();
-            if (solver_.encoding().encoded(v))
-                x += map.markers[k].offsetMm * meshUnitsPerMm *
-                     solver_.encoding().ringNormal(v, rest_.V);
-            R.row(k) = x.transpose();
-        }
+        for (size_t k = 0; k < points_.size(); ++k)
+            R.row(k) = (surfacePosition(rest_, rest_.V, points[k]) +
+                        map.markers[k].offsetMm * meshUnitsPerMm *
+                            surfaceNormal(rest_, *encoding_, points[k]))
+                           .transpose();
         return R;
     };
     if (options_.alignment) {
@@ -67,27 +73,20 @@ TakeSolver::TakeSolver(const TriMesh& rest, const C3dTake& take, const Correspon
     meshUnitsPerMm_ = calibration_.takeToMesh.scale / take_.unitToMm;
     for (const auto& m : map.markers)
         solverOptions.markerOffsets.push_back(m.offsetMm * meshUnitsPerMm_);
-    const bool exact = options_.solver.method == SolverOptions::Method::Exact;
-    solverOptions.method = SolverOptions::Method::LocalGlobal;
-    solver_.setOptions(solverOptions);
-    if (exact) {
+    solver_.prepare(rest_, points, solverOptions);
+    dents_ = std::make_unique<DentGauge>(rest_, *topology_, *encoding_, points,
+                                         kDentRadiusMm * meshUnitsPerMm_);
+    if (options_.solver.method == SolverOptions::Method::Exact) {
         solverOptions.method = SolverOptions::Method::Exact;
         exact_ = std::make_unique<Reconstruction>();
-        exact_->prepare(rest_, vertices, solverOptions);
+        exact_->prepare(rest_, points, solverOptions);
     }
 }
 
+TakeSolver::~TakeSolver() = default;
+
 Positions TakeSolver::predictedMarkers(const Positions& V) const {
-    const auto& markers = solver_.markerVertices();
-    const auto& offsets = solver_.options().markerOffsets;
-    Positions P(markers.size(), 3);
-    for (size_t k = 0; k < markers.size(); ++k) {
-        Vec3 x = V.row(markers[k]).transpose();
-        if (k < offsets.size() && offsets[k] != 0 && solver_.encoding().encoded(markers[k]))
-            x += offsets[k] * solver_.encoding().ringNormal(markers[k], V);
-        P.row(k) = x.transpose();
-    }
-    return P;
+    return solver_.markerPositions(V);
 }
 
 Positions TakeSolver::targets(int frame, bool filled) const {
@@ -147,6 +146,7 @@ Positions TakeSolver::solve(int frame, FrameReport& report, const std::atomic<bo
     report.residualRmsMm = report.visibleMarkers ? std::sqrt(sum / report.visibleMarkers) : 0.0;
     report.iterations = result.report.iterations;
     report.foldedFaces = result.report.foldedFaces;
+    report.dentRatio = dents_->worstRatio(result.V);
     report.milliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return result.V;

@@ -104,7 +104,8 @@ json checkConverged(const TriMesh& mesh, const bench::BendWorkload& work,
         LocalGlobalMethod::inputSettings(true, SolverOptions{}.softWeight);
     settings.iterations = 1;
     settings.repairFolds = false;
-    LocalGlobalSolver solver(mesh, topology, encoding, work.markers, settings);
+    LocalGlobalSolver solver(mesh, topology, encoding, vertexPatches(mesh, encoding, work.markers),
+                             settings);
     const double diagonal = boundingBoxDiagonal(mesh.V);
     std::vector<double> distance, energyRatio;
     int unconverged = 0, iterations = 0;

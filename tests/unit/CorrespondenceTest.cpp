@@ -77,10 +77,10 @@ TEST(Correspondence, RejectsBadFilesNamingFileAndEntry) {
         << e;
 
     e = errorOf([] {
-        Correspondence::read(writeText("v2.json", R"({"format": "boneless-correspondence",
-          "version": 2, "markers": []})"));
+        Correspondence::read(writeText("v3.json", R"({"format": "boneless-correspondence",
+          "version": 3, "markers": []})"));
     });
-    EXPECT_NE(e.find("version 2"), std::string::npos) << e;
+    EXPECT_NE(e.find("version 3"), std::string::npos) << e;
 
     e = errorOf([] {
         Correspondence::read(writeText("nolabel.json", R"({"format": "boneless-correspondence",

@@ -90,8 +90,10 @@ TEST(LocalGlobal, AGapGivesWhatASolverWithoutThoseMarkersGives) {
         LocalGlobalSolver::Settings settings;
         settings.hard = hard;
         settings.iterations = 4;
-        LocalGlobalSolver all(mesh, topology, encoding, markers, settings);
-        LocalGlobalSolver some(mesh, topology, encoding, kept, settings);
+        LocalGlobalSolver all(mesh, topology, encoding, vertexPatches(mesh, encoding, markers),
+                              settings);
+        LocalGlobalSolver some(mesh, topology, encoding, vertexPatches(mesh, encoding, kept),
+                               settings);
         Positions targets = rows(pose, markers);
         for (int k : missing) targets.row(k).setConstant(kNaN);
         const std::vector<Mat3> identity(mesh.vertexCount(), Mat3::Identity());
@@ -124,7 +126,8 @@ struct BentSlivers {
         settings.hard = false;
         settings.iterations = 20;
         settings.repairFolds = repair;
-        LocalGlobalSolver solver(mesh, topology, encoding, markers, settings);
+        LocalGlobalSolver solver(mesh, topology, encoding, vertexPatches(mesh, encoding, markers),
+                                 settings);
         return solver.solve(targets, {}, mesh.V, {});
     }
 };

@@ -68,6 +68,7 @@ bool Document::assign(int marker, int vertex) {
     const int mapping = markers_[marker].mapping;
     if (mapping >= 0) {
         after.map.markers[mapping].vertex = vertex;
+        after.map.markers[mapping].face = -1;  // the vertex itself, not a point of an old face
         after.map.markers[mapping].extraJson =
             withoutSuggested(after.map.markers[mapping].extraJson);
     } else {

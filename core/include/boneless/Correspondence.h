@@ -1,25 +1,35 @@
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
 namespace boneless {
 
 struct C3dTake;
+struct TriMesh;
 
-// One marker of a take mapped to one mesh vertex.
+// One marker of a take mapped to a point of the mesh surface: a vertex, or (version 2) a point
+// of a face, of which `vertex` is then the corner nearest the point.
 struct MarkerMapping {
     std::string label;  // matched against a take's labels ignoring subject prefixes
     int vertex = -1;    // 0-based, in the mesh file's vertex order (an OBJ group: its own order)
     double offsetMm = 0.0;  // how far the marker sits off the skin, along the normal
     std::string extraJson;  // keys this version does not know, kept on rewrite ("{}" if none)
+    // 0-based in the triangulated mesh (polygons split as the reader splits them), or −1: the
+    // marker sits on `vertex` itself.
+    int face = -1;
+    std::array<double, 3> barycentric{1.0, 0.0, 0.0};  // of the face's corners, summing to 1
 };
 
 // The user's marker-to-vertex map, stored as a versioned JSON file:
 //   {"format": "boneless-correspondence", "version": 1,
 //    "mesh": {"file": "body.obj", "vertices": 13380},
 //    "markers": [{"label": "LFHD", "vertex": 1234, "offset_mm": 9.5}, ...]}
-// Keys this version does not know, at any level, survive a read and a rewrite.
+// Version 2 lets an entry name a point of a face: "face": 2310, "barycentric": [0.6, 0.3, 0.1]
+// ("vertex" stays, the corner nearest the point). A map without such a point is written as
+// version 1, so older readers keep reading it. Keys this version does not know, at any level,
+// survive a read and a rewrite.
 class Correspondence {
   public:
     std::string meshFile;
@@ -35,8 +45,10 @@ class Correspondence {
     void write(const std::string& path) const;
     std::string toJson() const;
 
-    // Checks against a mesh: vertex count as recorded, every id in range. Throws Error.
-    void checkMesh(int vertexCount, const std::string& meshPath) const;
+    // Checks against a mesh: vertex count as recorded, every id in range, each face point's
+    // vertex one of its corners (faces: the triangulated mesh's, when given). Throws Error.
+    void checkMesh(int vertexCount, const std::string& meshPath,
+                   const TriMesh* mesh = nullptr) const;
     // The take's point index for each marker, in order; throws Error listing unknown labels.
     std::vector<std::size_t> resolve(const C3dTake& take) const;
 

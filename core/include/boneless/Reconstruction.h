@@ -10,6 +10,14 @@
 
 namespace boneless {
 
+// A point of the mesh surface where a marker sits: a vertex, or a point of a face by barycentric
+// coordinates of its corners.
+struct SurfacePoint {
+    int vertex = -1;  // the point itself when face < 0; otherwise the corner nearest the point
+    int face = -1;
+    Vec3 barycentric = Vec3(1, 0, 0);
+};
+
 struct SolverOptions {
     // How a frame is found.
     //  LocalGlobal: from the frame's markers alone (a coarse level from the rest pose moved
@@ -25,7 +33,7 @@ struct SolverOptions {
     Constraints constraints = Constraints::Hard;
     double softWeight = 100.0;
     // Soft only: how far each marker sits off the skin (mesh units, one per marker; empty = on
-    // the skin), along its vertex's normal.
+    // the skin), along its point's rest normal turned with the surface around it.
     std::vector<double> markerOffsets;
 
     // Exact only.
@@ -86,6 +94,10 @@ class Reconstruction {
 
     // markerVertices: K distinct vertex ids, the k-th marker drives vertex markerVertices[k].
     void prepare(const TriMesh& rest, std::vector<int> markerVertices, SolverOptions options = {});
+    // The same with each marker at a surface point (their vertices distinct). The exact method
+    // pulls each point's vertex.
+    void prepare(const TriMesh& rest, std::vector<SurfacePoint> markers,
+                 SolverOptions options = {});
 
     // targets: K by 3; a row with a NaN is a missing marker, whose vertex is then solved for like
     // any other. guess (Exact only; LocalGlobal needs none): #V by 3, where Gauss–Newton starts;
@@ -101,7 +113,10 @@ class Reconstruction {
 
     const TriMesh& rest() const;
     const ShapeEncoding& encoding() const;
-    const std::vector<int>& markerVertices() const;
+    const std::vector<int>& markerVertices() const;  // each marker's (nearest) vertex
+    // Where each marker sits on the pose V (K by 3): on its surface, plus its offset along its
+    // rest normal turned as the surface around it turned.
+    Positions markerPositions(const Positions& V) const;
     const SolverOptions& options() const;
     void setOptions(const SolverOptions& options);
 

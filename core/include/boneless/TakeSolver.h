@@ -7,9 +7,12 @@
 #include "boneless/Alignment.h"
 #include "boneless/C3dTake.h"
 #include "boneless/Correspondence.h"
+#include "boneless/MeshTopology.h"
 #include "boneless/Reconstruction.h"
 
 namespace boneless {
+
+class DentGauge;
 
 struct TakeSolveOptions {
     double markerWeight = 100.0;  // soft-constraint weight (dimensionless)
@@ -38,6 +41,9 @@ struct FrameReport {
     double residualRmsMm = 0, residualMaxMm = 0;  // marker to its predicted position, mm
     int iterations = 0;                           // iterations on the full mesh
     int foldedFaces = -1;  // as SolveReport::foldedFaces (−1: not counted by the method)
+    // The worst marker's dent: around each marker, the surface's mean curvature posed over its
+    // mean curvature at rest (DentGauge; 1 at rest).
+    double dentRatio = 1.0;
     bool stopped = false;  // as SolveReport::stopped: the positions are not an answer
     double milliseconds = 0;
 };
@@ -51,6 +57,10 @@ class TakeSolver {
   public:
     TakeSolver(const TriMesh& rest, const C3dTake& take, const Correspondence& map,
                TakeSolveOptions options = {});
+    ~TakeSolver();
+    // How far about each marker's point the dent ratio looks (mm): past the one ring of a
+    // 13K-vertex human, whose edges are about 15 mm.
+    static constexpr double kDentRadiusMm = 25.0;
 
     const Calibration& calibration() const { return calibration_; }
     int frameCount() const { return static_cast<int>(take_.frameCount()); }
@@ -63,7 +73,8 @@ class TakeSolver {
     // The local/global energy at V (#V by 3) for the frame's markers: shape, ARAP term and
     // marker pull.
     double energy(int frame, const Positions& V) const { return solver_.energy(V, targets(frame)); }
-    // Where each marker sits on the posed mesh V: its vertex plus its offset along the normal.
+    // Where each marker sits on the posed mesh V: its surface point plus its offset along its
+    // rest normal, turned with the surface around it.
     Positions predictedMarkers(const Positions& V) const;
 
   private:
@@ -75,6 +86,9 @@ class TakeSolver {
     Reconstruction solver_;                  // local/global
     std::unique_ptr<Reconstruction> exact_;  // the exact method, when asked for
     double meshUnitsPerMm_ = 1.0;
+    std::unique_ptr<MeshTopology> topology_;  // the rest's, for the alignment and dent gauge
+    std::unique_ptr<ShapeEncoding> encoding_;
+    std::unique_ptr<DentGauge> dents_;
 };
 
 }  // namespace boneless

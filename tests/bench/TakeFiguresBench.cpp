@@ -1,0 +1,138 @@
+// boneless-bench-take: the quality figures of solved takes, issue 28's targets beside them. Each
+// --solved DIR is a `boneless-cli solve --format pc2` output (the cache and its sidecar) of the
+// same mesh, take and map; each is measured by the same code, so that a run before a change and
+// one after it compare directly. Per frame: the 95th percentile edge strain |len/rest − 1|, the
+// edge distortion (RMS of the same), folded faces (Metrics' foldedFaces, refitted from scratch),
+// the dent ratio (DentGauge) and the sidecar's marker residual; printed as worst frame and mean.
+// Nothing is asserted.
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "DentGauge.h"  // core/src
+#include "boneless/Correspondence.h"
+#include "boneless/MeshReader.h"
+#include "boneless/Metrics.h"
+#include "boneless/PointCacheWriter.h"
+#include "boneless/TakeSolver.h"
+
+using namespace boneless;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Issue 28's targets.
+constexpr double kTargetStrainP95 = 0.15, kTargetDistortion = 0.08, kTargetResidualMm = 2.0,
+                 kTargetDent = 2.0;
+
+double percentile95(std::vector<double> x) {
+    if (x.empty()) return 0;
+    const size_t i = static_cast<size_t>(0.95 * static_cast<double>(x.size() - 1));
+    std::nth_element(x.begin(), x.begin() + i, x.end());
+    return x[i];
+}
+
+struct Worst {
+    double worst = 0, sum = 0;
+    int frame = -1, count = 0;
+    void add(double x, int f) {
+        sum += x;
+        ++count;
+        if (frame < 0 || x > worst) worst = x, frame = f;
+    }
+    double mean() const { return count ? sum / count : 0; }
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"Quality figures of solved takes (issue 28)"};
+    std::string meshPath, group, mapPath;
+    std::vector<std::string> solved;
+    app.add_option("--mesh", meshPath)->required();
+    app.add_option("--group", group);
+    app.add_option("--map", mapPath)->required();
+    app.add_option("--solved", solved, "boneless-cli solve --format pc2 output folders")
+        ->required();
+    CLI11_PARSE(app, argc, argv);
+
+    MeshReadOptions read;
+    read.group = group;
+    const TriMesh rest = readMesh(meshPath, read).mesh;
+    const Correspondence map = Correspondence::read(mapPath);
+    std::vector<SurfacePoint> points;
+    for (const auto& m : map.markers) {
+        SurfacePoint p;
+        p.vertex = m.vertex;
+        p.face = m.face;
+        p.barycentric = Vec3(m.barycentric[0], m.barycentric[1], m.barycentric[2]);
+        points.push_back(p);
+    }
+    const MeshTopology topology(rest);
+    const ShapeEncoding encoding(rest, topology);
+    std::vector<std::pair<int, int>> edges;
+    for (int f = 0; f < rest.faceCount(); ++f)
+        for (int c = 0; c < 3; ++c) {
+            const int a = rest.F(f, c), b = rest.F(f, (c + 1) % 3);
+            if (a < b) edges.emplace_back(a, b);  // each interior edge once (closed: both ways)
+        }
+
+    for (const std::string& dir : solved) {
+        const std::string stem = group.empty() ? fs::path(meshPath).stem().string() : group;
+        const auto sidecar = nlohmann::json::parse(std::ifstream(fs::path(dir) / (stem + ".json")));
+        const double unitsPerMm = sidecar["units"]["mesh_units_per_mm"].get<double>();
+        const DentGauge dents(rest, topology, encoding, points,
+                              TakeSolver::kDentRadiusMm * unitsPerMm);
+        const std::vector<Positions> frames =
+            readPointCache((fs::path(dir) / (stem + ".pc2")).string());
+        const int first = sidecar["frame_range"][0].get<int>();
+        Worst strain, distortion, folded, dent, residual;
+        int foldedFrames = 0, foldedTotal = 0;
+        std::vector<double> perMarker(points.size(), 0.0);
+        for (size_t i = 0; i < frames.size(); ++i) {
+            const Positions& V = frames[i];
+            const int f = first + static_cast<int>(i);
+            std::vector<double> e;
+            e.reserve(edges.size());
+            for (const auto& [a, b] : edges)
+                e.push_back(std::abs(
+                    (V.row(a) - V.row(b)).norm() / (rest.V.row(a) - rest.V.row(b)).norm() - 1));
+            strain.add(percentile95(e), f);
+            distortion.add(edgeLengthDistortion(rest.F, V, rest.V), f);
+            const int fold = foldedFaceCount(rest.F, V, rest.V);
+            folded.add(fold, f);
+            foldedFrames += fold > 0;
+            foldedTotal += fold;
+            const std::vector<double> r = dents.ratios(V);
+            for (size_t k = 0; k < r.size(); ++k) perMarker[k] = std::max(perMarker[k], r[k]);
+            dent.add(*std::max_element(r.begin(), r.end()), f);
+            residual.add(sidecar["per_frame"][i]["residual_rms_mm"].get<double>(), f);
+        }
+        std::printf("%s: %zu frames from %d\n", dir.c_str(), frames.size(), first);
+        auto row = [](const char* name, const Worst& w, double target) {
+            std::printf("  %-26s worst %8.4f (frame %d), mean %8.4f", name, w.worst, w.frame,
+                        w.mean());
+            if (target > 0) std::printf("  (target <= %g)", target);
+            std::printf("\n");
+        };
+        row("edge strain p95", strain, kTargetStrainP95);
+        row("edge distortion RMS", distortion, kTargetDistortion);
+        row("marker residual RMS mm", residual, kTargetResidualMm);
+        row("dent ratio", dent, kTargetDent);
+        std::printf("  %-26s worst %d, %d faces over %d frames (target 0)\n", "folded faces",
+                    static_cast<int>(folded.worst), foldedTotal, foldedFrames);
+        std::printf("  worst dent per marker:");
+        for (size_t k = 0; k < points.size(); ++k)
+            if (perMarker[k] > 1.5)
+                std::printf(" %s %.2f", map.markers[k].label.c_str(), perMarker[k]);
+        std::printf("\n");
+    }
+    return 0;
+}
