@@ -6,13 +6,14 @@
 #include "boneless/C3dWriter.h"
 #include "boneless/DemoCreature.h"
 #include "boneless/DemoTake.h"
+#include "boneless/DemoWalker.h"
 #include "boneless/Error.h"
 #include "boneless/ObjWriter.h"
 
 namespace boneless {
 
 DemoFiles writeDemoFiles(const std::string& folder, int frames, double offsetMm, bool withTruth,
-                         int detail) {
+                         int detail, DemoSubject subject) {
     namespace fs = std::filesystem;
     const fs::path out(folder), truth = out / "truth";
     std::error_code ec;
@@ -20,29 +21,49 @@ DemoFiles writeDemoFiles(const std::string& folder, int frames, double offsetMm,
     if (ec) throw Error(folder + ": cannot create the folder (" + ec.message() + ")");
     if (detail < 1)
         throw Error("demo detail must be at least 1 (got " + std::to_string(detail) + ")");
-    const DemoCreature demo = makeDemoCreature(frames, 48 * detail, 24 * detail);
-    const DemoTake take = makeDemoTake(demo, 30, offsetMm);
+    TriMesh rest;
+    std::vector<Positions> truthFrames;
+    DemoTake take;
+    std::string name, units;
+    if (subject == DemoSubject::Walker) {
+        if (detail > 4)
+            throw Error("the walker's detail is at most 4 (got " + std::to_string(detail) + ")");
+        DemoWalker walker = makeDemoWalker(frames, 1 + detail);
+        take = makeDemoWalkerTake(walker, offsetMm);
+        rest = std::move(walker.rest);
+        truthFrames = std::move(walker.frames);
+        name = "walker";
+        units = "metres";
+    } else {
+        DemoCreature creature = makeDemoCreature(frames, 48 * detail, 24 * detail);
+        take = makeDemoTake(creature, 30, offsetMm);
+        rest = std::move(creature.rest);
+        truthFrames = std::move(creature.frames);
+        name = "creature";
+        units = "decimetres";
+    }
 
     DemoFiles files;
     files.folder = folder;
-    files.mesh = (out / "creature.obj").string();
-    files.take = (out / "creature.c3d").string();
-    files.map = (out / "creature.map.json").string();
-    writeObj(files.mesh, demo.rest.V, demo.rest.F,
-             "Boneless generated demo creature, rest pose (decimetres, z up)");
+    files.mesh = (out / (name + ".obj")).string();
+    files.take = (out / (name + ".c3d")).string();
+    files.map = (out / (name + ".map.json")).string();
+    writeObj(files.mesh, rest.V, rest.F,
+             "Boneless generated demo " + name + ", rest pose (" + units + ", z up)");
     writeC3d(take.take, files.take);
     take.map.write(files.map);
     if (withTruth) {
         files.truthFolder = truth.string();
-        for (int t = 0; t < static_cast<int>(demo.frames.size()); ++t) {
-            char name[32];
-            std::snprintf(name, sizeof name, "creature_%04d.obj", t);
-            writeObj((truth / name).string(), demo.frames[t], demo.rest.F,
-                     "Boneless generated demo creature, true pose of frame " + std::to_string(t));
+        for (int t = 0; t < static_cast<int>(truthFrames.size()); ++t) {
+            char file[64];
+            std::snprintf(file, sizeof file, "%s_%04d.obj", name.c_str(), t);
+            writeObj(
+                (truth / file).string(), truthFrames[t], rest.F,
+                "Boneless generated demo " + name + ", true pose of frame " + std::to_string(t));
         }
     }
-    files.vertices = demo.rest.vertexCount();
-    files.faces = demo.rest.faceCount();
+    files.vertices = rest.vertexCount();
+    files.faces = rest.faceCount();
     files.markers = static_cast<int>(take.take.points.size());
     files.frames = static_cast<int>(take.take.frameCount());
     files.rate = take.take.rate;

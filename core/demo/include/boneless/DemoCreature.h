@@ -6,9 +6,10 @@
 
 namespace boneless {
 
-// The project's own demo subject, made entirely in code: a closed, capsule-shaped creature lying
-// along x (a tube with hemispherical caps, a bulging head, a tapered tail), and a swimming motion
-// whose every vertex is known, so a reconstruction of it can be checked against the truth.
+// A subject made entirely in code for the solver's tests (the demo users see is DemoWalker): a
+// closed, capsule-shaped creature lying along x (a tube with hemispherical caps, a bulging head,
+// a tapered tail), and a swimming motion whose every vertex is known, so a reconstruction of it
+// can be checked against the truth.
 struct DemoCreature {
     TriMesh rest;
     // frames[t] is the true pose at frame t (#V by 3); frames[0] is the rest pose.
