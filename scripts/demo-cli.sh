@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Builds the command-line tool and runs it on the project's generated demo: a creature whose true motion is
-# known, its markers recorded as a C3D take (10 mm off the skin, with gaps), and its
-# correspondence file. The take is solved into an OBJ sequence, then the truth is reconstructed
-# from 30 vertices by Boneless and by ARAP and the errors printed side by side.
+# Builds the command-line tool and runs it on the project's generated demo: a human body walking,
+# whose true motion is known, its 39 markers (a Plug-in Gait style set) recorded as a C3D take
+# (10 mm off the skin, with gaps), and its correspondence file. The take is solved into an OBJ
+# sequence, then the truth is reconstructed from 39 vertices by Boneless and by ARAP and the errors
+# printed side by side.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${BONELESS_BUILD_DIR:-$root/build}
@@ -11,7 +12,7 @@ export OPENBLAS_NUM_THREADS=1
 cli="$build/bin/boneless-cli"
 demo="$build/demo"
 "$cli" demo --out "$demo"
-"$cli" solve --mesh "$demo/creature.obj" --c3d "$demo/creature.c3d" \
-  --map "$demo/creature.map.json" --out "$demo/solved"
+"$cli" solve --mesh "$demo/walker.obj" --c3d "$demo/walker.c3d" \
+  --map "$demo/walker.map.json" --out "$demo/solved"
 echo "OBJ sequence and its sidecar: $demo/solved/"
-"$cli" eval --sequence "$demo/truth" --markers 30 --method both --quiet
+"$cli" eval --sequence "$demo/truth" --markers 39 --method both --quiet

@@ -1,4 +1,4 @@
-// boneless-cli demo: writes the project's generated demo (a creature, its take, its map, its
+// boneless-cli demo: writes the project's generated demo (a walking body, its take, its map, its
 // truth).
 #include <cstdio>
 #include <memory>
@@ -18,21 +18,21 @@ void registerDemoCommand(CLI::App& app) {
     auto args = std::make_shared<Args>();
     CLI::App* cmd = app.add_subcommand(
         "demo",
-        "Write the generated demo: creature.obj (rest pose), creature.c3d (its markers, with "
-        "gaps), creature.map.json (the correspondence) and truth/ (the true motion, one OBJ per "
-        "frame)");
+        "Write the generated demo, a human body walking: walker.obj (rest pose), walker.c3d (a "
+        "39-marker Plug-in Gait style set, with gaps), walker.map.json (the correspondence) and "
+        "truth/ (the true motion, one OBJ per frame)");
     cmd->add_option("--out", args->out, "Output folder (created if missing)")->required();
     cmd->add_option("--frames", args->frames, "Number of frames")->check(CLI::Range(1, 100000));
     cmd->add_option("--offset-mm", args->offsetMm, "How far the markers sit off the skin");
     cmd->add_option("--detail", args->detail,
-                    "Resolution factor: d gives d² times the faces (1 = 2,784 faces)")
-        ->check(CLI::Range(1, 20));
+                    "Resolution: each step up has 4 times the faces (1 = 6,848 faces)")
+        ->check(CLI::Range(1, 4));
     cmd->callback([args] {
-        const DemoFiles demo =
-            writeDemoFiles(args->out, args->frames, args->offsetMm, true, args->detail);
+        const DemoFiles demo = writeDemoFiles(args->out, args->frames, args->offsetMm, true,
+                                              args->detail, DemoSubject::Walker);
         std::printf(
-            "%s: creature.obj (%d vertices, %d faces), creature.c3d (%d markers, %d "
-            "frames at %g Hz), creature.map.json, truth/ (%d frames)\n",
+            "%s: walker.obj (%d vertices, %d faces), walker.c3d (%d markers, %d "
+            "frames at %g Hz), walker.map.json, truth/ (%d frames)\n",
             args->out.c_str(), demo.vertices, demo.faces, demo.markers, demo.frames, demo.rate,
             demo.frames);
     });

@@ -63,10 +63,17 @@ int main(int argc, char** argv) {
     QApplication app(argc, argv);
     QApplication::setApplicationName("Boneless");
     QApplication::setOrganizationName("Boneless");
-    QApplication::setApplicationVersion("0.1.0");
+    QApplication::setApplicationVersion(BONELESS_VERSION);
 
     QCommandLineParser parser;
-    parser.setApplicationDescription("Skeleton-free mesh animation from motion-capture markers.");
+    parser.setApplicationDescription(
+        "Skeleton-free mesh animation from motion-capture markers.\n\n"
+        "With no file it opens a generated demo. Files open by extension: meshes (.obj .ply .off\n"
+        ".stl), takes (.c3d), correspondence files (.json) and projects (.boneless).\n\n"
+        "Examples:\n"
+        "  boneless body.obj take.c3d map.json\n"
+        "  boneless --project walk.boneless --frame 40 --screenshot walk.png --size 640x480\n\n"
+        "boneless-cli solves, inspects and maps takes from scripts.");
     parser.addHelpOption();
     parser.addVersionOption();
     const QCommandLineOption project("project", "Open the project file P.", "P");

@@ -24,7 +24,7 @@
 #include <string>
 
 #include "BenchWorkload.h"
-#include "LocalGlobalMethod.h"  // core/src: the converged reference
+#include "LocalGlobalMethod.h"  // core/solver/src: the converged reference
 #include "boneless/MeshReader.h"
 #include "boneless/MeshTopology.h"
 #include "boneless/ObjWriter.h"

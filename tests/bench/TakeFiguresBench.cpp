@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "DentGauge.h"  // core/src
 #include "boneless/Correspondence.h"
+#include "boneless/DentGauge.h"
 #include "boneless/MeshReader.h"
 #include "boneless/Metrics.h"
 #include "boneless/PointCacheWriter.h"

@@ -128,7 +128,7 @@ class ExportTest : public QObject {
         QVERIFY(runner.result().cancelled);
         const int written = runner.result().framesWritten;
         QVERIFY(written >= 1 && written < d.frameCount());
-        const QJsonObject sidecar = sidecarWithoutTimes(out + "/creature.json");
+        const QJsonObject sidecar = sidecarWithoutTimes(out + "/walker.json");
         QCOMPARE(sidecar["interrupted"].toBool(), true);
         QCOMPARE(sidecar["frames_written"].toInt(), written);
         QCOMPARE(QDir(out).entryList({"*.obj"}, QDir::Files).size(), written);
@@ -137,7 +137,7 @@ class ExportTest : public QObject {
 
     void refusedWithAMessageWhenNothingCanBeSolved() {
         Document d;
-        QVERIFY(d.loadMesh(demo_ + "/creature.obj"));
+        QVERIFY(d.loadMesh(demo_ + "/walker.obj"));
         ExportRunner runner;
         QString error;
         QVERIFY(

@@ -130,7 +130,7 @@ class MainWindowTest : public QObject {
         const QString takeBefore = window_->document()->takePath();
 
         // The demo take cut short, and a file of garbage.
-        QFile good(folder_ + "/demo/creature.c3d");
+        QFile good(folder_ + "/demo/walker.c3d");
         QVERIFY(good.open(QIODevice::ReadOnly));
         const QByteArray bytes = good.readAll();
         const QString truncated = folder_ + "/truncated.c3d", garbage = folder_ + "/garbage.c3d";
@@ -173,9 +173,9 @@ class MainWindowTest : public QObject {
         window.setMessageBoxesEnabled(false);
         QSignalSpy errors(&window, &MainWindow::errorShown);
         QMimeData mime;
-        mime.setUrls({QUrl::fromLocalFile(folder_ + "/demo/creature.map.json"),
-                      QUrl::fromLocalFile(folder_ + "/demo/creature.c3d"),
-                      QUrl::fromLocalFile(folder_ + "/demo/creature.obj")});
+        mime.setUrls({QUrl::fromLocalFile(folder_ + "/demo/walker.map.json"),
+                      QUrl::fromLocalFile(folder_ + "/demo/walker.c3d"),
+                      QUrl::fromLocalFile(folder_ + "/demo/walker.obj")});
         QDragEnterEvent enter(QPoint(20, 20), Qt::CopyAction, &mime, Qt::LeftButton, {});
         QCoreApplication::sendEvent(&window, &enter);
         QVERIFY(enter.isAccepted());
@@ -199,7 +199,7 @@ class MainWindowTest : public QObject {
         QVERIFY2(finished.at(0).at(0).toBool(), qPrintable(finished.at(0).at(1).toString()));
         const QStringList objs = QDir(out).entryList({"*.obj"}, QDir::Files);
         QCOMPARE(objs.size(), window_->document()->frameCount());
-        QVERIFY(QFileInfo::exists(out + "/creature.json"));
+        QVERIFY(QFileInfo::exists(out + "/walker.json"));
         // The window is still alive and solving.
         window_->timeline()->scrubTo(7);
         QVERIFY(test::waitForFrame(*window_));

@@ -48,7 +48,7 @@ class MeshViewTest : public QObject {
         MeshView view;
         view.setMultiSampling(0);
         view.resize(640, 480);
-        view.setMesh(readMesh((folder_ + "/demo/creature.obj").toStdString()).mesh);
+        view.setMesh(readMesh((folder_ + "/demo/walker.obj").toStdString()).mesh);
         view.show();
         QVERIFY(QTest::qWaitForWindowExposed(&view));
         QVERIFY(!view.grabImage().isNull());  // one render: the camera is fitted

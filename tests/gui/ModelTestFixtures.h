@@ -30,7 +30,7 @@ inline void isolateSettings(const QString& name) {
     QCoreApplication::setApplicationName(name);
 }
 
-// The demo project (creature, 60 frames, 30 markers all mapped) written into `folder`.
+// The demo project (the walker, 60 frames, 39 markers all mapped) written into `folder`.
 inline QString demoProject(const QString& folder) {
     QString error;
     const QString path = DemoProject::ensure(folder, &error);

@@ -82,19 +82,19 @@ class ProjectTest : public QObject {
         QCOMPARE(e.settings().solver.orientationWeight, 50.0);
         QCOMPARE(e.viewSettings().value("trailFrames").toInt(), 8);
         QCOMPARE(e.undoStack()->count(), 0);
-        QCOMPARE(e.meshPath(), QFileInfo(demo_ + "/creature.obj").absoluteFilePath());
+        QCOMPARE(e.meshPath(), QFileInfo(demo_ + "/walker.obj").absoluteFilePath());
     }
 
     void pathsAreRelativeSoTheFolderCanMove() {
         const QString moved = work_ + "/moved/elsewhere";
         copyFolder(demo_, moved);
         const QJsonObject json = readJson(moved + "/demo.boneless");
-        QCOMPARE(json["mesh"].toObject()["file"].toString(), QString("creature.obj"));
-        QCOMPARE(json["take"].toObject()["file"].toString(), QString("creature.c3d"));
+        QCOMPARE(json["mesh"].toObject()["file"].toString(), QString("walker.obj"));
+        QCOMPARE(json["take"].toObject()["file"].toString(), QString("walker.c3d"));
         Document d;
         QString error;
         QVERIFY2(Project::load(d, moved + "/demo.boneless", &error), qPrintable(error));
-        QCOMPARE(d.takePath(), moved + "/creature.c3d");
+        QCOMPARE(d.takePath(), moved + "/walker.c3d");
         QVERIFY(!d.correspondenceModified());
     }
 
@@ -163,16 +163,16 @@ class ProjectTest : public QObject {
         // A project whose take is corrupt.
         const QString folder = work_ + "/corrupt-take";
         copyFolder(demo_, folder);
-        QFile take(folder + "/creature.c3d");
+        QFile take(folder + "/walker.c3d");
         QVERIFY(take.resize(600));
         QVERIFY(!Project::load(d, folder + "/demo.boneless", &error));
-        QVERIFY2(error.contains("creature.c3d"), qPrintable(error));
+        QVERIFY2(error.contains("walker.c3d"), qPrintable(error));
 
         QVERIFY(!Project::load(d, work_ + "/missing.boneless", &error));
         QVERIFY(!Project::save(d, work_ + "/no/such/folder/p.boneless", &error));
         QVERIFY(!error.isEmpty());
 
-        QCOMPARE(d.takePath(), QFileInfo(demo_ + "/creature.c3d").absoluteFilePath());
+        QCOMPARE(d.takePath(), QFileInfo(demo_ + "/walker.c3d").absoluteFilePath());
         QCOMPARE(d.frameCount(), 60);
         QVERIFY(d.canSolve());
     }
@@ -197,14 +197,14 @@ class ProjectTest : public QObject {
         // What a crash right now would leave on disk.
         Document reopened;
         QVERIFY(Project::load(reopened, path));
-        QCOMPARE(reopened.mappedCount(), 28);
+        QCOMPARE(reopened.mappedCount(), 37);
 
         // Undo is an edit like any other.
         d.undoStack()->undo();
         QVERIFY(autosave.saveNow());
         Document again;
         QVERIFY(Project::load(again, path));
-        QCOMPARE(again.mappedCount(), 29);
+        QCOMPARE(again.mappedCount(), 38);
 
         // Loading is a change of the document too, but the file already holds it.
         QVERIFY(Project::load(d, path));
@@ -217,7 +217,7 @@ class ProjectTest : public QObject {
         QFile::remove(ProjectAutosave::recoveryPath());
         Document d;
         ProjectAutosave autosave(&d);
-        QVERIFY(d.loadMesh(demo_ + "/creature.obj"));
+        QVERIFY(d.loadMesh(demo_ + "/walker.obj"));
         QVERIFY(autosave.saveNow());
         QVERIFY(QFileInfo::exists(ProjectAutosave::recoveryPath()));
         Document recovered;
@@ -252,12 +252,12 @@ class ProjectTest : public QObject {
         QString error;
         const QString path = DemoProject::ensure(folder, &error);
         QVERIFY2(!path.isEmpty(), qPrintable(error));
-        const QDateTime written = QFileInfo(folder + "/creature.c3d").lastModified();
+        const QDateTime written = QFileInfo(folder + "/walker.c3d").lastModified();
         QCOMPARE(DemoProject::ensure(folder), path);
-        QCOMPARE(QFileInfo(folder + "/creature.c3d").lastModified(), written);
+        QCOMPARE(QFileInfo(folder + "/walker.c3d").lastModified(), written);
         Document d;
         QVERIFY(Project::load(d, path));
-        QCOMPARE(d.mappedCount(), 30);
+        QCOMPARE(d.mappedCount(), 39);
         QVERIFY(!d.alignment());
         QVERIFY(DemoProject::defaultFolder().endsWith("/demo"));
     }

@@ -29,7 +29,7 @@ inline void isolate(const QString& name) {
     QCoreApplication::setApplicationName(name);
 }
 
-// The generated demo (creature, 60 frames, 30 markers all mapped) as a project in `folder`:
+// The generated demo (the walker, 60 frames, 39 markers all mapped) as a project in `folder`:
 // never the user's demo, which may carry their autosaved edits.
 inline QString writeDemoProject(const QString& folder) {
     QString error;

@@ -17,9 +17,9 @@ QString defaultFolder() {
 QString ensure(const QString& folder, QString* error) {
     const QDir dir(folder.isEmpty() ? defaultFolder() : folder);
     const QString project = dir.absoluteFilePath("demo.boneless");
-    const QString mesh = dir.absoluteFilePath("creature.obj");
-    const QString take = dir.absoluteFilePath("creature.c3d");
-    const QString map = dir.absoluteFilePath("creature.map.json");
+    const QString mesh = dir.absoluteFilePath("walker.obj");
+    const QString take = dir.absoluteFilePath("walker.c3d");
+    const QString map = dir.absoluteFilePath("walker.map.json");
     // An existing demo project is the user's own session by now (autosaved edits): keep it.
     if (QFileInfo::exists(project) && QFileInfo::exists(mesh) && QFileInfo::exists(take) &&
         QFileInfo::exists(map))
@@ -27,7 +27,8 @@ QString ensure(const QString& folder, QString* error) {
 
     try {
         // No true motion: the application has no use for it, and it is the bulk of the files.
-        writeDemoFiles(dir.absolutePath().toStdString(), 60, 10.0, /*withTruth=*/false);
+        writeDemoFiles(dir.absolutePath().toStdString(), 60, 10.0, /*withTruth=*/false, 1,
+                       DemoSubject::Walker);
     } catch (const std::exception& e) {
         if (error) *error = QString::fromStdString(e.what());
         return {};

@@ -19,6 +19,7 @@
 #include <QVBoxLayout>
 
 #include "FrameDisplay.h"
+#include "boneless/ui/AppIcon.h"
 #include "boneless/ui/Document.h"
 #include "boneless/ui/ExportRunner.h"
 #include "boneless/ui/FrameSolver.h"
@@ -43,6 +44,8 @@ MainWindow::MainWindow(QWidget* parent)
       autosave_(new ProjectAutosave(document_, this)),
       exporter_(new ExportRunner(this, this)) {
     setObjectName("mainWindow");
+    // The About box shows its parent's icon.
+    setWindowIcon(applicationIcon());
     proxy_->setSourceModel(markerModel_);
     display_ = new FrameDisplay(document_, solver_, timeline_, view_, markerModel_, this);
     // Frames are solved ahead only while playing, so that playback finds them solved (about a

@@ -1,0 +1,30 @@
+#pragma once
+
+#include <string>
+
+namespace boneless {
+
+// Who the generated demo shows. The walker (a human body walking, a Plug-in Gait style marker
+// set) is the demo of the application and of `boneless-cli demo`; the creature (a swimming
+// capsule, 30 sampled markers) is the subject the solver's tests were measured on.
+enum class DemoSubject { Walker, Creature };
+
+// The generated demo as files, the way a user would get them from a capture session:
+// <subject>.obj (rest pose), <subject>.c3d (markers with gaps), <subject>.map.json (the
+// correspondence) and, when asked, truth/<subject>_<frame:04>.obj (the true motion), where
+// <subject> is walker or creature.
+struct DemoFiles {
+    std::string folder, mesh, take, map, truthFolder;
+    int vertices = 0, faces = 0, markers = 0, frames = 0;
+    double rate = 0;
+};
+
+// Writes the demo into `folder` (created if missing). Throws Error naming the folder on failure.
+// detail = 1 is the shipped resolution, more is finer, for runs that need a mesh large enough
+// for the local/global method's coarse level: the creature has d² times the faces (2,784 at 1),
+// the walker 4^(d−1) times (6,848 at 1).
+DemoFiles writeDemoFiles(const std::string& folder, int frames = 60, double offsetMm = 10.0,
+                         bool withTruth = true, int detail = 1,
+                         DemoSubject subject = DemoSubject::Creature);
+
+}  // namespace boneless

@@ -1,0 +1,139 @@
+#pragma once
+
+#include <atomic>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "boneless/RigidFit.h"
+#include "boneless/ShapeEncoding.h"
+#include "boneless/TriMesh.h"
+
+namespace boneless {
+
+// A point of the mesh surface where a marker sits: a vertex, or a point of a face by barycentric
+// coordinates of its corners.
+struct SurfacePoint {
+    int vertex = -1;  // the point itself when face < 0; otherwise the corner nearest the point
+    int face = -1;
+    Vec3 barycentric = Vec3(1, 0, 0);
+};
+
+// The point's position in V (its vertex, or the barycentric mix of its face's corners).
+Vec3 surfacePosition(const TriMesh& mesh, const Positions& V, const SurfacePoint& p);
+// The point's rest normal: its corners' ring normals mixed barycentrically, normalised (zero
+// when none of them has a ring).
+Vec3 surfaceNormal(const TriMesh& mesh, const ShapeEncoding& encoding, const SurfacePoint& p);
+// The vertices within `radius` of the point (straight-line distance in the rest pose), reached
+// over edges through such vertices from its corners, which are always in.
+std::vector<int> surfaceDisk(const TriMesh& mesh, const MeshTopology& topology,
+                             const SurfacePoint& p, double radius);
+
+struct SolverOptions {
+    // How a frame is found.
+    //  LocalGlobal: from the frame's markers alone (a coarse level from the rest pose moved
+    //    rigidly onto them, then local/global iterations on one factorisation), so that no frame
+    //    depends on the frames solved before it; faces left folded are repaired locally. Fast.
+    //  Exact: Gauss–Newton on the seed energy with the fold and orientation guards, from a guess
+    //    (a take solves LocalGlobal first and refines its answer): the energy's minimum, slower.
+    enum class Method { LocalGlobal, Exact };
+    Method method = Method::LocalGlobal;
+    // Hard: marker vertices are placed on their targets. Soft: pulled there with softWeight
+    // (dimensionless: the shape terms and the pull are both squared lengths).
+    enum class Constraints { Hard, Soft };
+    Constraints constraints = Constraints::Hard;
+    double softWeight = 100.0;
+    // Soft only: how far each marker sits off the skin (mesh units, one per marker; empty = on
+    // the skin), along its point's rest normal turned with the surface around it.
+    std::vector<double> markerOffsets;
+
+    // Exact only.
+    int maxIterations = 10;           // Gauss–Newton steps per frame, at most
+    double relativeTolerance = 1e-3;  // stop once a step lowers the energy by less than this
+    // The fold guard: a weak as-rigid-as-possible term, since the seed energy is blind to
+    // in-plane maps of flat and thin parts, mirror images included (0 = the seed energy alone).
+    double rigidityWeight = 0.01;
+    // The orientation guard: a one-sided penalty on faces that shrink below a fifth of their
+    // rest area or turn over (dimensionless; 0 = off; takes use 100).
+    double orientationWeight = 0;
+};
+
+// The method's name everywhere a user meets it (CLI flags, sidecar, project): "local-global",
+// "exact"; parseMethod() takes those back (false for anything else).
+const char* methodName(SolverOptions::Method method);
+bool parseMethod(const std::string& name, SolverOptions::Method& method);
+
+struct SolveReport {
+    int iterations = 0;  // on the input mesh
+    double milliseconds = 0;
+    // The last step moved no vertex by more than 1e-7 of the bounding-box diagonal, or (Exact)
+    // the relative-decrease test was met.
+    bool converged = false;
+    // The caller's stop flag was raised: the solve returned early and its positions are not an
+    // answer.
+    bool stopped = false;
+    // LocalGlobal only (−1 otherwise): faces the answer leaves folded over against their own
+    // neighbourhood (Metrics' foldedFaces, judged in each vertex's whole ring).
+    int foldedFaces = -1;
+    // Exact only (NaN and empty for LocalGlobal): the energy at the guess and at the answer, and
+    // after each accepted step (energies[0] = energyBefore); the steps that factorised their
+    // matrix, and the conjugate-gradient iterations of the steps solved with an earlier step's
+    // factor as a preconditioner.
+    double energyBefore = 0;
+    double energyAfter = 0;
+    std::vector<double> energies;
+    int directSteps = 0;
+    int linearIterations = 0;
+};
+
+struct SolveResult {
+    Positions V;  // #V by 3
+    SolveReport report;
+};
+
+// "Prepare once, solve per frame" (libigl's precomputation/solve; CGAL's preprocess/deform):
+//   Reconstruction r;  r.prepare(rest, markers);
+//   for each frame: result = r.solve(targets);
+// Every vertex keeps its shape relative to its one-ring (Kraevoy & Sheffer's encoding) while the
+// marker vertices go where the markers are; SolverOptions::method says how.
+class Reconstruction {
+  public:
+    Reconstruction();
+    ~Reconstruction();
+    Reconstruction(Reconstruction&&) noexcept;
+    Reconstruction& operator=(Reconstruction&&) noexcept;
+
+    // markerVertices: K distinct vertex ids, the k-th marker drives vertex markerVertices[k].
+    void prepare(const TriMesh& rest, std::vector<int> markerVertices, SolverOptions options = {});
+    // The same with each marker at a surface point (their vertices distinct). The exact method
+    // pulls each point's vertex.
+    void prepare(const TriMesh& rest, std::vector<SurfacePoint> markers,
+                 SolverOptions options = {});
+
+    // targets: K by 3; a row with a NaN is a missing marker, whose vertex is then solved for like
+    // any other. guess (Exact only; LocalGlobal needs none): #V by 3, where Gauss–Newton starts;
+    // without one, the rest pose moved rigidly onto the markers. stop (optional): read between
+    // iterations; once true, the solve returns at once with report.stopped (for a caller whose
+    // request has been superseded, such as a scrub that moved on).
+    SolveResult solve(const Positions& targets, const Positions* guess = nullptr,
+                      const std::atomic<bool>* stop = nullptr);
+
+    // The energy the method minimises at V, for the given targets (soft term included when soft;
+    // LocalGlobal: its global step's, for rotations fitted to V).
+    double energy(const Positions& V, const Positions& targets) const;
+
+    const TriMesh& rest() const;
+    const ShapeEncoding& encoding() const;
+    const std::vector<int>& markerVertices() const;  // each marker's (nearest) vertex
+    // Where each marker sits on the pose V (K by 3): on its surface, plus its offset along its
+    // rest normal turned as the surface around it turned.
+    Positions markerPositions(const Positions& V) const;
+    const SolverOptions& options() const;
+    void setOptions(const SolverOptions& options);
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace boneless

@@ -1,0 +1,30 @@
+#pragma once
+
+#include <vector>
+
+#include "boneless/RigidFit.h"
+#include "boneless/TriMesh.h"
+
+namespace boneless {
+
+struct C3dTake;
+
+// The take's frame chosen to align it with the rest mesh, and the alignment found there.
+struct Calibration {
+    int frame = -1;  // 0-based frame of the take
+    Similarity takeToMesh;
+    double residual = 0;     // RMS marker distance after alignment, in mesh units
+    int visibleMarkers = 0;  // markers seen at that frame (all of them unless the take is gappy)
+};
+
+// Among the frames where every given point is visible, the one that is closest to the rest pose
+// after its own similarity alignment (docs/algorithm.md §8); when no frame shows them all, among the
+// frames that show the most. restPositions: the mapped vertices' rest positions, one row per entry
+// of `points`. Throws Error when no frame shows three usable markers.
+Calibration calibrate(const C3dTake& take, const std::vector<std::size_t>& points,
+                      const Positions& restPositions);
+
+// The take's positions of `points` at `frame`, NaN rows where missing.
+Positions takeFrame(const C3dTake& take, const std::vector<std::size_t>& points, int frame);
+
+}  // namespace boneless

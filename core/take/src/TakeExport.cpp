@@ -1,0 +1,293 @@
+#include "boneless/TakeExport.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <numeric>
+#include <optional>
+#include <thread>
+
+#include "boneless/Parallel.h"
+#include "boneless/Error.h"
+#include "boneless/Metrics.h"
+#include "boneless/ObjWriter.h"
+#include "boneless/PointCacheWriter.h"
+
+namespace boneless {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+const char* guessMeshUnits(double meshUnitsPerMm) {
+    const struct {
+        const char* name;
+        double perMm;
+    } units[] = {{"mm", 1.0}, {"cm", 0.1}, {"dm", 0.01}, {"m", 0.001}};
+    const char* best = "mm";
+    double bestGap = 1e300;
+    for (const auto& u : units) {
+        const double gap = std::abs(std::log(meshUnitsPerMm / u.perMm));
+        if (gap < bestGap) best = u.name, bestGap = gap;
+    }
+    return best;
+}
+
+std::string guessUpAxis(const Similarity& s) {
+    const Vec3 up = s.R * Vec3::UnitZ();
+    int axis = 0;
+    up.cwiseAbs().maxCoeff(&axis);
+    return std::string(up[axis] < 0 ? "-" : "+") + "xyz"[axis];
+}
+
+std::string exportStem(const ExportRequest& request) {
+    return fs::path(request.group.empty() ? request.meshPath : request.group).stem().string();
+}
+
+namespace {
+
+json summaryJson(const json& perFrame) {
+    double residualSum = 0, residualWorst = 0, distortionWorst = 0, dentWorst = 0;
+    int foldedWorst = 0;
+    std::vector<double> ms;
+    for (const json& f : perFrame) {
+        residualSum += f["residual_rms_mm"].get<double>();
+        residualWorst = std::max(residualWorst, f["residual_rms_mm"].get<double>());
+        distortionWorst = std::max(distortionWorst, f["edge_distortion"].get<double>());
+        foldedWorst = std::max(foldedWorst, f["folded_faces"].get<int>());
+        dentWorst = std::max(dentWorst, f["dent_ratio"].get<double>());
+        ms.push_back(f["ms"].get<double>());
+    }
+    std::sort(ms.begin(), ms.end());
+    const std::size_t n = perFrame.size();
+    return {{"residual_rms_mm_mean", n ? residualSum / n : 0.0},
+            {"residual_rms_mm_worst_frame", residualWorst},
+            {"edge_distortion_worst_frame", distortionWorst},
+            {"folded_faces_worst_frame", foldedWorst},
+            {"dent_ratio_worst_frame", dentWorst},
+            {"ms_per_frame_mean", n ? std::accumulate(ms.begin(), ms.end(), 0.0) / n : 0.0},
+            {"ms_per_frame_worst", n ? ms.back() : 0.0},
+            {"ms_per_frame_median", n ? ms[n / 2] : 0.0}};
+}
+
+json solverJson(const TakeSolveOptions& o) {
+    json j = {{"method", methodName(o.solver.method)},
+              {"marker_weight", o.markerWeight},
+              {"low_pass_hz", o.lowPassHz},
+              {"fill_gaps_s", o.fillGapSeconds}};
+    if (o.solver.method == SolverOptions::Method::Exact) {
+        j["rigidity_weight"] = o.solver.rigidityWeight;
+        j["orientation_weight"] = o.solver.orientationWeight;
+        j["max_iterations"] = o.solver.maxIterations;
+    }
+    return j;
+}
+
+json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibration& c,
+                 const ExportResult& result, json perFrame) {
+    const Similarity& s = c.takeToMesh;
+    const double meshUnitsPerMm = s.scale / take.unitToMm;
+    const TakeSolveOptions& o = request.options;
+    return {{"format", "boneless-solve"},
+            {"version", 1},
+            {"fps", take.rate},
+            {"frame_range", {result.first, result.first + result.framesWritten}},
+            {"frames_written", result.framesWritten},
+            {"interrupted", result.cancelled},
+            {"output", request.format == ExportRequest::Format::Pc2 ? "pc2" : "obj"},
+            {"source",
+             {{"mesh", request.meshPath},
+              {"group", request.group},
+              {"c3d", request.c3dPath},
+              {"map", request.mapPath}}},
+            {"units",
+             {{"take", take.units},
+              {"mesh_guess", guessMeshUnits(meshUnitsPerMm)},
+              {"mesh_units_per_mm", meshUnitsPerMm}}},
+            {"up_axis", {{"take", "+z"}, {"mesh_guess", guessUpAxis(s)}}},
+            {"alignment",
+             {{"calibration_frame", c.frame},
+              {"residual_mm", c.residual / meshUnitsPerMm},
+              {"scale", s.scale},
+              {"rotation",
+               {{s.R(0, 0), s.R(0, 1), s.R(0, 2)},
+                {s.R(1, 0), s.R(1, 1), s.R(1, 2)},
+                {s.R(2, 0), s.R(2, 1), s.R(2, 2)}}},
+              {"translation", {s.t.x(), s.t.y(), s.t.z()}},
+              {"overridden", o.alignment.has_value()}}},
+            {"solver", solverJson(o)},
+            {"summary", summaryJson(perFrame)},
+            {"per_frame", std::move(perFrame)}};
+}
+
+// Frames do not depend on each other, so each core solves frames of its own (each worker with a
+// TakeSolver of its own; the first is `first`), and `write` gets them in order on the calling
+// thread until it returns false. A worker runs at most a few frames ahead of the writing.
+using FrameSink = std::function<bool(int frame, const Positions& V, const FrameReport& report,
+                                     double distortion)>;
+void solveInOrder(TakeSolver& first, const TriMesh& mesh, const C3dTake& take,
+                  const Correspondence& map, const TakeSolveOptions& options, int begin, int end,
+                  const FrameSink& write) {
+    struct Solved {
+        Positions V;
+        FrameReport report;
+        double distortion = 0;
+    };
+    const int workers = std::max(1, std::min(solverThreadCount(), end - begin));
+    const int window = 4 * workers;
+    std::mutex mutex;
+    std::condition_variable changed;
+    std::map<int, Solved> solved;
+    int next = begin, written = begin;
+    bool stop = false;
+    std::exception_ptr error;
+    std::atomic<bool> stopSolving{false};  // the writing stopped: frames in flight are of no use
+    auto work = [&](int worker) {
+        const RunSerially serial;  // the cores are taken by the workers themselves
+        try {
+            std::unique_ptr<TakeSolver> own;
+            if (worker > 0) {
+                // The first solver's alignment, rather than finding it again.
+                TakeSolveOptions same = options;
+                same.alignment = first.calibration().takeToMesh;
+                same.calibrationFrame = first.calibration().frame;
+                own = std::make_unique<TakeSolver>(mesh, take, map, same);
+            }
+            TakeSolver& solver = worker > 0 ? *own : first;
+            for (;;) {
+                int f;
+                {
+                    std::unique_lock<std::mutex> lock(mutex);
+                    changed.wait(lock,
+                                 [&] { return stop || next >= end || next < written + window; });
+                    if (stop || next >= end) return;
+                    f = next++;
+                }
+                Solved s;
+                s.V = solver.solve(f, s.report, &stopSolving);
+                if (s.report.stopped) return;
+                s.distortion = edgeLengthDistortion(mesh.F, s.V, mesh.V);
+                if (s.report.foldedFaces < 0)
+                    s.report.foldedFaces = foldedFaceCount(mesh.F, s.V, mesh.V);
+                std::lock_guard<std::mutex> lock(mutex);
+                solved.emplace(f, std::move(s));
+                changed.notify_all();
+            }
+        } catch (...) {
+            std::lock_guard<std::mutex> lock(mutex);
+            if (!error) error = std::current_exception();
+            stop = true;
+            changed.notify_all();
+        }
+    };
+    auto stopAll = [&] {
+        {
+            std::lock_guard<std::mutex> lock(mutex);
+            stop = true;
+            changed.notify_all();
+        }
+        stopSolving = true;
+    };
+    std::vector<std::thread> threads;
+    try {
+        for (int w = 0; w < workers; ++w) threads.emplace_back(work, w);
+        bool more = true;
+        for (int f = begin; f < end && more; ++f) {
+            Solved s;
+            {
+                std::unique_lock<std::mutex> lock(mutex);
+                changed.wait(lock, [&] { return error || solved.count(f); });
+                if (error) break;
+                s = std::move(solved.at(f));
+                solved.erase(f);
+            }
+            more = write(f, s.V, s.report, s.distortion);
+            std::lock_guard<std::mutex> lock(mutex);
+            written = f + 1;
+            changed.notify_all();
+        }
+    } catch (...) {
+        // A write that failed (a full disk) ends the workers before it goes on up.
+        stopAll();
+        for (auto& t : threads) t.join();
+        throw;
+    }
+    stopAll();
+    for (auto& t : threads) t.join();
+    if (error) std::rethrow_exception(error);
+}
+
+}  // namespace
+
+ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspondence& map,
+                        const ExportRequest& request, const ExportProgress& progress,
+                        const ExportCalibrated& calibrated) {
+    TakeSolver solver(mesh, take, map, request.options);
+    const int count = solver.frameCount();
+    const int end = request.end < 0 ? count : std::min(request.end, count);
+    if (request.first < 0 || request.first >= end)
+        throw Error("frames " + std::to_string(request.first) + ":" +
+                    (request.end < 0 ? std::string() : std::to_string(request.end)) +
+                    " select no frame of " + request.c3dPath + " (" + std::to_string(count) +
+                    " frames)");
+
+    std::error_code ec;
+    fs::create_directories(request.outDir, ec);
+    if (ec) throw Error(request.outDir + ": cannot create the folder (" + ec.message() + ")");
+    const std::string stem = exportStem(request);
+    const fs::path out(request.outDir);
+    std::optional<PointCacheWriter> cache;
+    if (request.format == ExportRequest::Format::Pc2)
+        cache.emplace((out / (stem + ".pc2")).string(), mesh.vertexCount(), request.first, 1.0);
+
+    if (calibrated) calibrated(solver.calibration());
+    ExportResult result;
+    result.first = request.first;
+    json perFrame = json::array();
+    solveInOrder(solver, mesh, take, map, request.options, request.first, end,
+                 [&](int f, const Positions& V, const FrameReport& report, double distortion) {
+                     if (cache) {
+                         cache->append(V);
+                     } else {
+                         char name[16];
+                         std::snprintf(name, sizeof name, "_%04d.obj", f);
+                         writeObj((out / (stem + name)).string(), V, mesh.F,
+                                  "Boneless: " + request.c3dPath + " frame " + std::to_string(f));
+                     }
+                     // Quality a user checks before importing: stretch against the rest pose,
+                     // and folds.
+                     perFrame.push_back({{"frame", f},
+                                         {"visible_markers", report.visibleMarkers},
+                                         {"residual_rms_mm", report.residualRmsMm},
+                                         {"residual_max_mm", report.residualMaxMm},
+                                         {"edge_distortion", distortion},
+                                         {"folded_faces", report.foldedFaces},
+                                         {"dent_ratio", report.dentRatio},
+                                         {"iterations", report.iterations},
+                                         {"ms", report.milliseconds}});
+                     ++result.framesWritten;
+                     if (progress && !progress(result.framesWritten, end - request.first, report) &&
+                         f + 1 < end) {
+                         result.cancelled = true;
+                         return false;
+                     }
+                     return true;
+                 });
+    if (cache) cache->finish();
+    result.sidecarPath = (out / (stem + ".json")).string();
+    writeFileAtomically(
+        result.sidecarPath,
+        sidecarJson(take, request, solver.calibration(), result, std::move(perFrame)).dump(2) +
+            "\n");
+    return result;
+}
+
+}  // namespace boneless

@@ -1,0 +1,154 @@
+#include "boneless/TakeSolver.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <limits>
+
+#include "boneless/DentGauge.h"
+#include "boneless/Error.h"
+#include "boneless/TrajectoryFilter.h"
+
+namespace boneless {
+
+TakeSolver::TakeSolver(const TriMesh& rest, const C3dTake& take, const Correspondence& map,
+                       TakeSolveOptions options)
+    : rest_(rest), take_(take), options_(std::move(options)) {
+    map.checkMesh(rest.vertexCount(), "the mesh", &rest);
+    points_ = map.resolve(take_);
+    if (options_.calibrationFrame >= frameCount())
+        throw Error(take.file + ": calibration frame " + std::to_string(options_.calibrationFrame) +
+                    " is past the take's " + std::to_string(frameCount()) + " frames");
+    if (options_.lowPassHz > 0) lowPassFilter(take_.samples, take_.rate, options_.lowPassHz);
+
+    SolverOptions solverOptions = options_.solver;
+    solverOptions.method = SolverOptions::Method::LocalGlobal;
+    solverOptions.constraints = SolverOptions::Constraints::Soft;
+    solverOptions.softWeight = options_.markerWeight;
+    solverOptions.markerOffsets.clear();
+    std::vector<SurfacePoint> points;
+    for (const auto& m : map.markers) {
+        SurfacePoint p;
+        p.vertex = m.vertex;
+        p.face = m.face;
+        p.barycentric = Vec3(m.barycentric[0], m.barycentric[1], m.barycentric[2]);
+        points.push_back(p);
+    }
+    topology_ = std::make_unique<MeshTopology>(rest_);
+    encoding_ = std::make_unique<ShapeEncoding>(rest_, *topology_);
+
+    // The markers sit off the skin, so the rest pose's marker positions depend on the mesh's
+    // unit, which the alignment finds: align, place the markers with that scale, align again.
+    // Without this, a 1 cm offset on a small mesh inflates the scale by a few percent.
+    auto restMarkers = [&](double meshUnitsPerMm) {
+        Positions R(points_.size(), 3);
+        for (size_t k = 0; k < points_.size(); ++k)
+            R.row(k) = (surfacePosition(rest_, rest_.V, points[k]) +
+                        map.markers[k].offsetMm * meshUnitsPerMm *
+                            surfaceNormal(rest_, *encoding_, points[k]))
+                           .transpose();
+        return R;
+    };
+    if (options_.alignment) {
+        calibration_.takeToMesh = *options_.alignment;
+        calibration_.frame = options_.calibrationFrame;
+    } else {
+        double meshUnitsPerMm = 0;  // first pass: markers on the skin
+        for (int pass = 0; pass < 3; ++pass) {
+            const Positions R = restMarkers(meshUnitsPerMm);
+            if (options_.calibrationFrame >= 0) {
+                const Positions P = takeFrame(take_, points_, options_.calibrationFrame);
+                calibration_.frame = options_.calibrationFrame;
+                calibration_.takeToMesh = fitSimilarity(P, R);
+                calibration_.residual = alignmentResidual(calibration_.takeToMesh, P, R);
+            } else {
+                calibration_ = calibrate(take_, points_, R);
+            }
+            meshUnitsPerMm = calibration_.takeToMesh.scale / take_.unitToMm;
+        }
+    }
+    // Offsets are given in millimetres of the take; the solver works in mesh units.
+    meshUnitsPerMm_ = calibration_.takeToMesh.scale / take_.unitToMm;
+    for (const auto& m : map.markers)
+        solverOptions.markerOffsets.push_back(m.offsetMm * meshUnitsPerMm_);
+    solver_.prepare(rest_, points, solverOptions);
+    dents_ = std::make_unique<DentGauge>(rest_, *topology_, *encoding_, points,
+                                         kDentRadiusMm * meshUnitsPerMm_);
+    if (options_.solver.method == SolverOptions::Method::Exact) {
+        solverOptions.method = SolverOptions::Method::Exact;
+        exact_ = std::make_unique<Reconstruction>();
+        exact_->prepare(rest_, points, solverOptions);
+    }
+}
+
+TakeSolver::~TakeSolver() = default;
+
+Positions TakeSolver::predictedMarkers(const Positions& V) const {
+    return solver_.markerPositions(V);
+}
+
+Positions TakeSolver::targets(int frame, bool filled) const {
+    Positions T = takeFrame(take_, points_, frame);
+    const int maxFrames = static_cast<int>(std::floor(options_.fillGapSeconds * take_.rate));
+    if (filled)
+        for (int k = 0; k < T.rows(); ++k)
+            if (const auto x = gapFilled(take_.samples, frame, points_[k], maxFrames))
+                T.row(k) = x->transpose();
+    for (int k = 0; k < T.rows(); ++k)
+        if (T.row(k).allFinite())
+            T.row(k) = calibration_.takeToMesh.apply(T.row(k).transpose()).transpose();
+    return T;
+}
+
+Positions TakeSolver::solve(int frame, FrameReport& report, const std::atomic<bool>* stop) {
+    if (frame < 0 || frame >= frameCount())
+        throw Error(take_.file + ": frame " + std::to_string(frame) + " is outside the take");
+    const auto start = std::chrono::steady_clock::now();
+    const Positions T = targets(frame);  // what was seen: the residual is measured on it
+    const Positions pull = targets(frame, true);
+    report = {};
+    report.frame = frame;
+    SolveResult result = solver_.solve(pull, nullptr, stop);
+    if (result.report.stopped) {
+        report.stopped = true;
+        return result.V;
+    }
+    if (exact_ && result.V.allFinite()) {
+        // Refined from the local/global answer, so that the exact answer has no history either.
+        SolveResult refined = exact_->solve(pull, &result.V, stop);
+        if (refined.report.stopped) {
+            report.stopped = true;
+            return refined.V;
+        }
+        refined.report.iterations += result.report.iterations;
+        result = std::move(refined);
+    }
+    if (!result.V.allFinite()) {
+        // Never NaN: the rest pose moved rigidly onto what markers the frame has.
+        Positions restMarkers(T.rows(), 3);
+        for (int k = 0; k < T.rows(); ++k)
+            restMarkers.row(k) = rest_.V.row(solver_.markerVertices()[k]);
+        const RigidMotion motion = fitRigidMotion(restMarkers, T);
+        for (int v = 0; v < rest_.vertexCount(); ++v)
+            result.V.row(v) = motion.apply(rest_.V.row(v).transpose()).transpose();
+    }
+    const Positions predicted = predictedMarkers(result.V);
+    double sum = 0;
+    for (int k = 0; k < T.rows(); ++k) {
+        if (!T.row(k).allFinite()) continue;
+        const double mm = (predicted.row(k) - T.row(k)).norm() / meshUnitsPerMm_;
+        sum += mm * mm;
+        report.residualMaxMm = std::max(report.residualMaxMm, mm);
+        ++report.visibleMarkers;
+    }
+    report.residualRmsMm = report.visibleMarkers ? std::sqrt(sum / report.visibleMarkers) : 0.0;
+    report.iterations = result.report.iterations;
+    report.foldedFaces = result.report.foldedFaces;
+    report.dentRatio = dents_->worstRatio(result.V);
+    report.milliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return result.V;
+}
+
+}  // namespace boneless

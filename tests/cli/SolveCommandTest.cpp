@@ -1,0 +1,178 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "CliRunner.h"
+#include "boneless/MeshReader.h"
+#include "boneless/Metrics.h"
+#include "boneless/PointCacheWriter.h"
+
+using namespace boneless;
+using namespace boneless::testing;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path makeDemo(int frames, double offsetMm = 10) {
+    const fs::path dir = freshTestDir("demo");
+    const CliResult r = runCli("demo --out " + dir.string() + " --frames " +
+                               std::to_string(frames) + " --offset-mm " + std::to_string(offsetMm));
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    return dir;
+}
+
+std::string solveArgs(const fs::path& demo, const fs::path& out) {
+    return "solve --mesh " + (demo / "walker.obj").string() + " --c3d " +
+           (demo / "walker.c3d").string() + " --map " + (demo / "walker.map.json").string() +
+           " --out " + out.string();
+}
+
+nlohmann::json sidecar(const fs::path& out) {
+    return nlohmann::json::parse(std::ifstream(out / "walker.json"));
+}
+
+}  // namespace
+
+struct TruthComparison {
+    double worstRmsPct = 0;
+    int worstFlipped = 0;
+};
+
+TruthComparison compareWithTruth(const fs::path& demo, const fs::path& out, int frames) {
+    TruthComparison c;
+    const TriMesh rest = readMesh((demo / "walker.obj").string()).mesh;
+    const double diagonal = boundingBoxDiagonal(rest.V);
+    for (int f = 0; f < frames; ++f) {
+        char name[32];
+        std::snprintf(name, sizeof name, "walker_%04d.obj", f);
+        const TriMesh solved = readMesh((out / name).string()).mesh;
+        const TriMesh truth = readMesh((demo / "truth" / name).string()).mesh;
+        EXPECT_EQ(solved.F, rest.F);  // same faces, same vertex order
+        EXPECT_TRUE(solved.V.allFinite());
+        c.worstRmsPct = std::max(c.worstRmsPct, 100 * rmsVertexError(solved.V, truth.V) / diagonal);
+        c.worstFlipped = std::max(c.worstFlipped, flippedFaceCount(rest.F, solved.V, truth.V));
+    }
+    return c;
+}
+
+TEST(SolveCommand, TheDemoTakeComesBackCloseToItsTruth) {
+    const fs::path demo = makeDemo(30), out = demo / "solved";
+    const CliResult r = runCli(solveArgs(demo, out) + " --quiet");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    // Measured over these 30 frames of the walker, 39 markers 10 mm off the skin, occlusion gaps:
+    // 0.384 % of the diagonal at worst, no flipped face.
+    const TruthComparison c = compareWithTruth(demo, out, 30);
+    std::printf("worst RMS %.3f %%, worst flipped %d\n", c.worstRmsPct, c.worstFlipped);
+    EXPECT_LT(c.worstRmsPct, 0.45);
+    EXPECT_LE(c.worstFlipped, 1);
+    const auto j = sidecar(out);
+    EXPECT_EQ(j["frames_written"], 30);
+    EXPECT_NEAR(j["alignment"]["scale"].get<double>(), 0.001, 1e-6);  // metres vs millimetres
+    EXPECT_EQ(j["units"]["mesh_guess"], "m");
+    EXPECT_EQ(j["up_axis"]["mesh_guess"], "+z");
+    EXPECT_EQ(j["per_frame"][18]["visible_markers"], 38);  // LWRB is occluded there
+    EXPECT_EQ(j["solver"]["method"], "local-global");
+    for (const auto& f : j["per_frame"]) EXPECT_LT(f["residual_rms_mm"].get<double>(), 1.0);
+    // No dent around any marker: the curvature there stays within twice the rest's (measured
+    // over the whole 60-frame demo: 1.50 at worst), and the summary gives the worst frame's.
+    double dentWorst = 0;
+    for (const auto& f : j["per_frame"]) {
+        EXPECT_GE(f["dent_ratio"].get<double>(), 0.5);
+        dentWorst = std::max(dentWorst, f["dent_ratio"].get<double>());
+    }
+    EXPECT_LE(dentWorst, 2.0);
+    EXPECT_EQ(j["summary"]["dent_ratio_worst_frame"].get<double>(), dentWorst);
+}
+
+TEST(SolveCommand, MarkersOnTheSkinMatchTheGroundTruthEvaluation) {
+    // With no offset the take route (alignment, soft constraints, gaps) should do
+    // what eval does with exact markers: measured 0.369 % worst on the walker.
+    const fs::path demo = makeDemo(30, 0.0), out = demo / "solved";
+    ASSERT_EQ(runCli(solveArgs(demo, out) + " --quiet").exitCode, 0);
+    const TruthComparison c = compareWithTruth(demo, out, 30);
+    std::printf("on the skin: worst RMS %.3f %%, worst flipped %d\n", c.worstRmsPct,
+                c.worstFlipped);
+    EXPECT_LT(c.worstRmsPct, 0.42);
+    EXPECT_EQ(c.worstFlipped, 0);
+}
+
+TEST(SolveCommand, ObjAndPointCacheHoldTheSamePositions) {
+    const fs::path demo = makeDemo(8);
+    ASSERT_EQ(runCli(solveArgs(demo, demo / "obj") + " --quiet --frames 2:6").exitCode, 0);
+    const CliResult r =
+        runCli(solveArgs(demo, demo / "pc2") + " --quiet --frames 2:6 --format pc2");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    double start = -1;
+    const auto frames = readPointCache((demo / "pc2" / "walker.pc2").string(), &start);
+    ASSERT_EQ(frames.size(), 4u);
+    EXPECT_EQ(start, 2.0);
+    for (int f = 2; f < 6; ++f) {
+        char name[32];
+        std::snprintf(name, sizeof name, "walker_%04d.obj", f);
+        const TriMesh obj = readMesh((demo / "obj" / name).string()).mesh;
+        EXPECT_LT((obj.V - frames[f - 2]).cwiseAbs().maxCoeff(), 1e-5);  // PC2 stores float32
+    }
+    EXPECT_FALSE(fs::exists(demo / "obj" / "walker_0001.obj"));
+    EXPECT_FALSE(fs::exists(demo / "obj" / "walker_0006.obj"));
+}
+
+TEST(SolveCommand, CtrlCStopsCleanlyWithCompleteFilesOnly) {
+    // Long enough (a few seconds) to be stopped halfway by a SIGINT after one, as a user's Ctrl-C.
+    const fs::path demo = makeDemo(3000), out = demo / "solved";
+    const CliResult r = runShell("timeout --preserve-status -s INT 1 " + std::string(BONELESS_CLI) +
+                                 " " + solveArgs(demo, out) + " --quiet 2>&1; echo exit=$?");
+    EXPECT_NE(r.out.find("exit=1"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("interrupted"), std::string::npos) << r.out;
+    const auto j = sidecar(out);
+    EXPECT_TRUE(j["interrupted"].get<bool>());
+    int objs = 0;
+    for (const auto& e : fs::directory_iterator(out)) {
+        EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();
+        if (e.path().extension() == ".obj") ++objs;
+    }
+    EXPECT_EQ(objs, j["frames_written"].get<int>());
+    EXPECT_LT(objs, 3000);
+}
+
+TEST(SolveCommand, BadInputIsOneClearLine) {
+    const fs::path demo = makeDemo(3);
+    std::ofstream(demo / "bad.map.json") << R"({"format": "boneless-correspondence", "version": 1,
+        "markers": [{"label": "NOPE", "vertex": 1}, {"label": "LFHD", "vertex": 2}]})";
+    const CliResult r =
+        runCli("solve --mesh " + (demo / "walker.obj").string() + " --c3d " +
+               (demo / "walker.c3d").string() + " --map " + (demo / "bad.map.json").string() +
+               " --out " + (demo / "x").string());
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.out.find("NOPE"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("bad.map.json"), std::string::npos) << r.out;
+}
+
+TEST(SolveCommand, AFrameRangeWithTrailingCharactersIsRefused) {
+    const fs::path demo = makeDemo(3);
+    const CliResult r =
+        runCli("solve --mesh " + (demo / "walker.obj").string() + " --c3d " +
+               (demo / "walker.c3d").string() + " --map " + (demo / "walker.map.json").string() +
+               " --out " + (demo / "x").string() + " --frames 0:2:1");
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.out.find("0:2:1"), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(demo / "x" / "walker_0000.obj"));
+}
+
+TEST(DemoCommand, DetailRefinesTheSameWalker) {
+    const fs::path dir = freshTestDir("demo-detail");
+    const CliResult r = runCli("demo --out " + dir.string() + " --frames 2 --detail 2");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    const TriMesh fine = readMesh((dir / "walker.obj").string()).mesh;
+    // One more Catmull–Clark step: 4 times the quads, each two triangles.
+    const TriMesh coarse = readMesh((makeDemo(2) / "walker.obj").string()).mesh;
+    EXPECT_EQ(fine.faceCount(), 4 * coarse.faceCount());
+    EXPECT_NE(r.out.find(std::to_string(fine.faceCount()) + " faces"), std::string::npos) << r.out;
+    // The same walker: the bounding box hardly depends on the resolution.
+    EXPECT_NEAR(boundingBoxDiagonal(fine.V), boundingBoxDiagonal(coarse.V),
+                0.01 * boundingBoxDiagonal(coarse.V));
+    const CliResult bad = runCli("demo --out " + dir.string() + " --detail 0");
+    EXPECT_NE(bad.exitCode, 0);
+    EXPECT_NE(bad.out.find("--detail"), std::string::npos) << bad.out;
+}

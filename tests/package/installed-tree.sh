@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Installs the build into a temporary root and runs the installed binaries from there: the
+# version, and the application rendering its demo to a PNG (under Xvfb when there is no display).
+# Usage: installed-tree.sh BUILD_DIR SOURCE_DIR VERSION
+set -euo pipefail
+build=$1 source=$2 version=$3
+root=$(mktemp -d "$build/install-test.XXXXXX")
+trap 'rm -rf "$root"' EXIT
+cmake --install "$build" --prefix "$root/usr" >/dev/null
+
+fail() { echo "installed-tree: $*" >&2; exit 1; }
+for f in bin/boneless bin/boneless-cli share/applications/org.boneless.Boneless.desktop \
+         share/metainfo/org.boneless.Boneless.metainfo.xml \
+         share/icons/hicolor/scalable/apps/org.boneless.Boneless.svg \
+         share/icons/hicolor/48x48/apps/org.boneless.Boneless.png share/doc/boneless/LICENSE; do
+  [ -e "$root/usr/$f" ] || fail "the install has no $f"
+done
+desktop-file-validate "$root/usr/share/applications/org.boneless.Boneless.desktop"
+appstreamcli validate --no-net "$root/usr/share/metainfo/org.boneless.Boneless.metainfo.xml" \
+  >/dev/null || fail "the AppStream metainfo does not validate"
+
+printed=$("$root/usr/bin/boneless-cli" --version)
+[ "$printed" = "boneless-cli $version" ] || fail "boneless-cli --version printed '$printed'"
+printed=$(QT_QPA_PLATFORM=offscreen "$root/usr/bin/boneless" --version)
+[[ "$printed" == *"$version"* ]] || fail "boneless --version printed '$printed'"
+
+# The demo is written into the per-user data folder: a fresh one, so the test writes its own.
+export XDG_DATA_HOME="$root/data" XDG_CONFIG_HOME="$root/config"
+"$source/tests/gui/run-with-display.sh" "$root/usr/bin/boneless" --size 160x120 \
+  --screenshot "$root/shot.png"
+[ -s "$root/shot.png" ] || fail "the installed boneless wrote no screenshot"
+echo "installed-tree: $root/usr runs boneless-cli $version and renders the demo"
