@@ -76,7 +76,8 @@ TEST(SolveCommand, TheDemoTakeComesBackCloseToItsTruth) {
     EXPECT_EQ(j["solver"]["method"], "local-global");
     for (const auto& f : j["per_frame"]) EXPECT_LT(f["residual_rms_mm"].get<double>(), 1.0);
     // No dent around any marker: the curvature there stays within twice the rest's (measured
-    // over the whole 60-frame demo: 1.50 at worst), and the summary gives the worst frame's.
+    // over these 30 frames: 1.81 at worst, at the front of the hip, where the walk creases the
+    // body; 2.01 over the 60-frame demo), and the summary gives the worst frame's.
     double dentWorst = 0;
     for (const auto& f : j["per_frame"]) {
         EXPECT_GE(f["dent_ratio"].get<double>(), 0.5);
