@@ -17,6 +17,7 @@
 #include <QTableView>
 #include <QUndoStack>
 #include <QVBoxLayout>
+#include <cmath>
 
 #include "FrameDisplay.h"
 #include "boneless/ui/Document.h"
@@ -245,9 +246,15 @@ void MainWindow::buildShortcuts() {
 }
 
 void MainWindow::connectDocument() {
-    connect(document_, &Document::errorOccurred, this, &MainWindow::showError);
-    connect(display_, &FrameDisplay::solverFailed, this, &MainWindow::showError);
-    connect(autosave_, &ProjectAutosave::failed, this, &MainWindow::showError);
+    connect(document_, &Document::errorOccurred, this,
+            [this](const QString& message) { showError(message); });
+    connect(display_, &FrameDisplay::solverFailed, this, [this](const QString& message) {
+        showError(tr("This frame could not be solved."), message);
+    });
+    connect(autosave_, &ProjectAutosave::failed, this,
+            [this](const QString& message) { showError(message); });
+    connect(autosave_, &ProjectAutosave::aboutToSave, this, &MainWindow::storeSession,
+            Qt::DirectConnection);
     connect(display_, &FrameDisplay::frameDisplayed, this, &MainWindow::frameDisplayed);
     connect(display_, &FrameDisplay::latencyMeasured, this, &MainWindow::latencyMeasured);
     connect(document_, &Document::selectionChanged, this, &MainWindow::syncTableSelection);
@@ -268,6 +275,41 @@ void MainWindow::onTakeLoaded() {
         startFrame_ = -1;
     }
     updateTitle();
+}
+
+namespace {
+
+// The speed's name in the project file.
+const std::pair<Timeline::Speed, const char*> kSpeedNames[] = {
+    {Timeline::Speed::Realtime, "realtime"},
+    {Timeline::Speed::Half, "half"},
+    {Timeline::Speed::Quarter, "quarter"},
+    {Timeline::Speed::EveryFrame, "every_frame"}};
+
+}  // namespace
+
+// Where the user was: frame, speed and camera go into the project's view settings.
+void MainWindow::storeSession() {
+    if (!document_->hasTake() && !document_->hasMesh()) return;
+    if (document_->hasTake()) document_->setViewSetting("frame", timeline_->frame());
+    for (const auto& [speed, name] : kSpeedNames)
+        if (speed == timeline_->speed()) document_->setViewSetting("speed", QString(name));
+    if (document_->hasMesh()) document_->setViewSetting("camera", view_->cameraState());
+}
+
+// What a hostile file holds there is checked: a frame out of range, an unknown speed or a camera
+// that is not one leave the window's own.
+void MainWindow::restoreSession() {
+    const QVariantMap settings = document_->viewSettings();
+    const QVariant frame = settings.value("frame");
+    bool ok = false;
+    const double f = frame.toDouble(&ok);
+    if (ok && f >= 0 && f < timeline_->frameCount() && f == std::floor(f))
+        timeline_->setFrame(int(f));
+    const QString speedName = settings.value("speed").toString();
+    for (const auto& [speed, name] : kSpeedNames)
+        if (speedName == name) timeline_->setSpeed(speed);
+    if (settings.contains("camera")) view_->setCameraState(settings.value("camera").toMap());
 }
 
 void MainWindow::applyViewSettings() {
@@ -328,17 +370,21 @@ QString MainWindow::frameSummary() const {
     return parts.join(" · ");
 }
 
-void MainWindow::showError(const QString& message) {
-    statusBar()->showMessage(message, 15000);
-    emit errorShown(message);
-    if (!messageBoxes_) return;
+QMessageBox* MainWindow::errorBox(const QString& message, const QString& detail) {
     // Not exec(): a nested event loop would hold back frames and tests; the box just stays up.
     auto* box =
         new QMessageBox(QMessageBox::Warning, tr("Boneless"), message, QMessageBox::Ok, this);
     box->setObjectName("errorMessage");
+    box->setDetailedText(detail);
     box->setAttribute(Qt::WA_DeleteOnClose);
     box->setModal(false);
-    box->show();
+    return box;
+}
+
+void MainWindow::showError(const QString& message, const QString& detail) {
+    statusBar()->showMessage(message, 15000);
+    emit errorShown(detail.isEmpty() ? message : message + "\n" + detail);
+    if (messageBoxes_) errorBox(message, detail)->show();
 }
 
 }  // namespace boneless::ui

@@ -8,6 +8,7 @@ class QLabel;
 class QLineEdit;
 class QComboBox;
 class QMenu;
+class QMessageBox;
 class QTableView;
 
 namespace boneless::ui {
@@ -43,11 +44,19 @@ class MainWindow : public QMainWindow {
 
     // Opens by extension: .boneless project; .obj/.ply/.off/.stl mesh; .c3d take; .json map.
     bool openFile(const QString& path);
+    // A project that will not open leaves the window as it was and the file untouched, and the
+    // message offers the recovery autosave (openRecovery()).
     bool openProject(const QString& path);
+    // Writes the demo afresh and opens it. The demo is never saved into: Save goes to Save As,
+    // autosave to the recovery file.
     bool openDemo();
-    bool saveProject();
+    bool isDemoOpen() const { return demo_; }
+    // Opens ProjectAutosave::recoveryPath() as an untitled project.
+    bool openRecovery();
+    bool saveProject();  // Save As when untitled or the demo
     bool saveProjectAs(const QString& path);
     QString projectPath() const { return projectPath_; }
+    ProjectAutosave* autosave() const { return autosave_; }
     bool exportTo(const QString& folder, bool pointCache);
 
     // The frame the timeline moves to once the next take is loaded (for --frame).
@@ -61,7 +70,8 @@ class MainWindow : public QMainWindow {
     // What the status bar shows about the frame: "Frame 10 / 59 · solved in 80 ms · residual …".
     QString frameSummary() const;
 
-    void showError(const QString& message);
+    // `message` is one plain sentence; `detail` (the technical cause) goes under "Show Details".
+    void showError(const QString& message, const QString& detail = {});
 
   signals:
     void errorShown(const QString& message);
@@ -86,6 +96,10 @@ class MainWindow : public QMainWindow {
     void syncTableSelection(int marker);
     void onVertexPicked(int vertex);
     void onTakeLoaded();
+    void startUntitled();
+    void storeSession();
+    void restoreSession();
+    QMessageBox* errorBox(const QString& message, const QString& detail);
 
     void chooseMesh();
     void chooseTake();
@@ -118,6 +132,7 @@ class MainWindow : public QMainWindow {
     QAction* heatMapAction_ = nullptr;
 
     QString projectPath_;
+    bool demo_ = false;
     int startFrame_ = -1;
     bool messageBoxes_ = true;
 };
