@@ -149,8 +149,12 @@ void MainWindow::buildMarkerDock() {
 void MainWindow::buildMenus() {
     QMenu* file = menuBar()->addMenu(tr("&File"));
     file->addAction(tr("Open &Project…"), QKeySequence::Open, this, &MainWindow::chooseProject);
-    file->addAction(tr("Open &Mesh…"), this, &MainWindow::chooseMesh);
-    file->addAction(tr("Open &Take…"), this, &MainWindow::chooseTake);
+    file->addAction(tr("Open &Mesh…"), QKeySequence(Qt::CTRL | Qt::Key_M), this,
+                    &MainWindow::chooseMesh)
+        ->setObjectName("actionOpenMesh");
+    file->addAction(tr("Open &Take…"), QKeySequence(Qt::CTRL | Qt::Key_T), this,
+                    &MainWindow::chooseTake)
+        ->setObjectName("actionOpenTake");
     file->addAction(tr("Open &Correspondence…"), this, &MainWindow::chooseCorrespondence);
     file->addAction(tr("Open &Demo"), this, &MainWindow::openDemo);
     recentMenu_ = file->addMenu(tr("&Recent Files"));
@@ -204,6 +208,42 @@ void MainWindow::buildMenus() {
     }
 
     QMenu* help = menuBar()->addMenu(tr("&Help"));
+    help->addAction(
+            tr("&Getting Started"), QKeySequence::HelpContents, this,
+            [this] {
+                showHelp(
+                    tr("Getting Started"),
+                    tr("<ol><li>File → Open Mesh (Ctrl+M): the character, OBJ/PLY/OFF/STL.</li>"
+                       "<li>File → Open Take (Ctrl+T): the C3D motion capture.</li>"
+                       "<li>Map markers: select one in the Markers list, click the mesh where it "
+                       "sits. After four, <i>Suggest rest</i> maps the others; <i>Align</i> fixes "
+                       "the take onto the mesh.</li>"
+                       "<li>Play (Space), scrub the timeline, check the residual column.</li>"
+                       "<li>File → Export: an OBJ sequence or a PC2 point cache.</li></ol>"
+                       "The README that comes with Boneless is the full manual."));
+            })
+        ->setObjectName("actionGettingStarted");
+    help->addAction(tr("&Keyboard Shortcuts"), this,
+                    [this] {
+                        showHelp(
+                            tr("Keyboard Shortcuts"),
+                            tr("<table cellspacing=6>"
+                               "<tr><td>Space</td><td>play / pause</td></tr>"
+                               "<tr><td>← →</td><td>previous / next frame</td></tr>"
+                               "<tr><td>Shift+← →</td><td>10 frames back / on</td></tr>"
+                               "<tr><td>Home / End</td><td>first / last frame</td></tr>"
+                               "<tr><td>frame box, Enter</td><td>go to the frame typed</td></tr>"
+                               "<tr><td>Ctrl+O</td><td>open a project</td></tr>"
+                               "<tr><td>Ctrl+M / Ctrl+T</td><td>open a mesh / a take</td></tr>"
+                               "<tr><td>Ctrl+S / Ctrl+Shift+S</td><td>save / save as</td></tr>"
+                               "<tr><td>Ctrl+Z / Ctrl+Shift+Z</td><td>undo / redo</td></tr>"
+                               "<tr><td>Ctrl+R</td><td>reset the camera</td></tr>"
+                               "<tr><td>mouse</td><td>left drag turns, right drag or wheel zooms, "
+                               "middle drag pans; a click maps the selected marker</td></tr>"
+                               "</table>"));
+                    })
+        ->setObjectName("actionShortcuts");
+    help->addSeparator();
     help->addAction(tr("&About Boneless"), this, [this] {
         QMessageBox::about(
             this, tr("About Boneless"),
@@ -211,6 +251,16 @@ void MainWindow::buildMenus() {
                "markers (Kraevoy &amp; Sheffer).<br><br>Select a marker in the list, "
                "click the mesh to map it; drag to turn the camera."));
     });
+}
+
+void MainWindow::showHelp(const QString& title, const QString& html) {
+    // Non-modal, so it can stay open beside the window while the user tries the keys.
+    auto* box = new QMessageBox(QMessageBox::NoIcon, title, html, QMessageBox::Close, this);
+    box->setObjectName("helpMessage");
+    box->setTextFormat(Qt::RichText);
+    box->setAttribute(Qt::WA_DeleteOnClose);
+    box->setModal(false);
+    box->show();
 }
 
 void MainWindow::buildStatusBar() {

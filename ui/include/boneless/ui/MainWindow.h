@@ -97,6 +97,7 @@ class MainWindow : public QMainWindow {
     void onVertexPicked(int vertex);
     void onTakeLoaded();
     void startUntitled();
+    void showHelp(const QString& title, const QString& html);
     void storeSession();
     void restoreSession();
     QMessageBox* errorBox(const QString& message, const QString& detail);
