@@ -311,6 +311,14 @@ void MainWindow::connectDocument() {
     connect(document_, &Document::takeChanged, this, &MainWindow::onTakeLoaded);
     connect(document_, &Document::meshChanged, this, &MainWindow::updateTitle);
     connect(view_, &MeshView::vertexPicked, this, &MainWindow::onVertexPicked);
+    connect(view_, &MeshView::pickMissed, this, [this] {
+        const int selected = document_->selectedMarker();
+        statusBar()->showMessage(selected >= 0
+                                     ? tr("The click missed the mesh: nothing was mapped to %1")
+                                           .arg(document_->markerLabel(selected))
+                                     : tr("The click missed the mesh"),
+                                 8000);
+    });
     connect(exporter_, &ExportRunner::finished, this, [this](bool ok, const QString& message) {
         if (ok)
             statusBar()->showMessage(message, 10000);

@@ -57,9 +57,12 @@ bool MainWindow::openFile(const QString& path) {
             ok = document_->loadTake(path);
             if (ok) startUntitled();
             break;
-        case FileKind::Correspondence:
-            ok = document_->loadCorrespondence(path);
+        case FileKind::Correspondence: {
+            Document::MapLoad mode = Document::MapLoad::Replace;
+            if (!askMapLoad(path, mode)) return false;
+            ok = document_->loadCorrespondence(path, mode);
             break;
+        }
         case FileKind::Unknown:
             showError(tr("Cannot open %1: not a project (.boneless), mesh (.obj, .ply, .off, "
                          ".stl), take (.c3d) or correspondence (.json)")
@@ -110,6 +113,34 @@ bool MainWindow::openProject(const QString& path) {
     restoreSession();
     updateTitle();
     statusBar()->showMessage(tr("Opened %1").arg(QFileInfo(path).fileName()), 5000);
+    return true;
+}
+
+bool MainWindow::askMapLoad(const QString& path, Document::MapLoad& mode) {
+    const int mapped = document_->mappedCount();
+    if (mapped == 0 || !messageBoxes_) return true;
+    QMessageBox box(QMessageBox::Question, tr("Open Correspondence"),
+                    tr("%n marker(s) are mapped already. Open %1:", nullptr, mapped)
+                        .arg(QFileInfo(path).fileName()),
+                    QMessageBox::NoButton, this);
+    box.setObjectName("mapLoadQuestion");
+    QPushButton* replace = box.addButton(tr("Replace Them"), QMessageBox::DestructiveRole);
+    QPushButton* merge = box.addButton(tr("Merge (Keep Mine)"), QMessageBox::AcceptRole);
+    QPushButton* cancel = box.addButton(QMessageBox::Cancel);
+    replace->setObjectName("replaceButton");
+    merge->setObjectName("mergeButton");
+    cancel->setObjectName("cancelButton");
+    box.setDefaultButton(merge);
+    box.setInformativeText(
+        tr("Merge adds the file's mappings of the markers not mapped yet. "
+           "Either can be undone (Ctrl+Z)."));
+    box.exec();  // a question must be answered before anything is loaded
+    if (box.clickedButton() == replace)
+        mode = Document::MapLoad::Replace;
+    else if (box.clickedButton() == merge)
+        mode = Document::MapLoad::Merge;
+    else
+        return false;
     return true;
 }
 

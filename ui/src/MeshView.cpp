@@ -347,7 +347,10 @@ void MeshView::mouseReleaseEvent(QMouseEvent* event) {
             // A press and release without a drag is a pick; a drag only turns the camera.
             if (click) {
                 const int vertex = pickVertex(event->position().toPoint());
-                if (vertex >= 0) emit vertexPicked(vertex);
+                if (vertex >= 0)
+                    emit vertexPicked(vertex);
+                else
+                    emit pickMissed();
             }
             break;
         }

@@ -3,6 +3,8 @@
 #include <QMainWindow>
 #include <QString>
 
+#include "boneless/ui/Document.h"
+
 class QAction;
 class QLabel;
 class QLineEdit;
@@ -13,7 +15,6 @@ class QTableView;
 
 namespace boneless::ui {
 
-class Document;
 class ExportRunner;
 class FrameDisplay;
 class FrameSolver;
@@ -97,6 +98,9 @@ class MainWindow : public QMainWindow {
     void onVertexPicked(int vertex);
     void onTakeLoaded();
     void startUntitled();
+    // Over existing mappings, asks replace, merge or cancel (false); without message boxes,
+    // replace.
+    bool askMapLoad(const QString& path, Document::MapLoad& mode);
     void showHelp(const QString& title, const QString& html);
     void storeSession();
     void restoreSession();

@@ -65,6 +65,8 @@ class MeshView : public QOpenGLWidget {
   signals:
     // A click (press and release without a drag) landed on the mesh near this vertex.
     void vertexPicked(int vertex);
+    // A click landed beside the mesh.
+    void pickMissed();
     // Emitted after each render, with how long it took.
     void rendered(double milliseconds);
 
