@@ -296,8 +296,12 @@ void MainWindow::buildShortcuts() {
 }
 
 void MainWindow::connectDocument() {
-    connect(document_, &Document::errorOccurred, this,
-            [this](const QString& message) { showError(message); });
+    connect(document_, &Document::errorOccurred, this, [this](const QString& message) {
+        if (opening_.isEmpty())
+            showError(message);
+        else
+            showError(plainError(opening_), message);
+    });
     connect(display_, &FrameDisplay::solverFailed, this, [this](const QString& message) {
         showError(tr("This frame could not be solved."), message);
     });

@@ -2,6 +2,7 @@
 #include <QCloseEvent>
 #include <QDragEnterEvent>
 #include <QDropEvent>
+#include <QFile>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QInputDialog>
@@ -10,6 +11,7 @@
 #include <QMessageBox>
 #include <QMimeData>
 #include <QPushButton>
+#include <QScopeGuard>
 #include <QStatusBar>
 #include <QUrl>
 
@@ -40,11 +42,34 @@ FileKind kindOf(const QString& path) {
 
 }  // namespace
 
+QString MainWindow::plainError(const QString& path) const {
+    const QString name = QFileInfo(path).fileName();
+    switch (kindOf(path)) {
+        case FileKind::Mesh:
+            return tr("%1 could not be opened as a mesh.").arg(name);
+        case FileKind::Take: {
+            // Every C3D file has 0x50 as its second byte: without it, it is something else.
+            QFile file(path);
+            const QByteArray head = file.open(QIODevice::ReadOnly) ? file.read(2) : QByteArray();
+            if (head.size() < 2 || head[1] != '\x50') return tr("%1 is not a C3D file.").arg(name);
+            return tr("%1 is a C3D file that Boneless could not read.").arg(name);
+        }
+        case FileKind::Correspondence:
+            return tr("%1 could not be opened as a marker correspondence for this mesh.").arg(name);
+        default:
+            return tr("%1 could not be opened.").arg(name);
+    }
+}
+
 bool MainWindow::openFile(const QString& path) {
     if (!QFileInfo(path).isFile()) {
-        showError(tr("Cannot open %1: no such file").arg(path));
+        showError(tr("%1 does not exist.").arg(QFileInfo(path).fileName()),
+                  tr("No such file: %1").arg(path));
         return false;
     }
+    // The document's own message (technical) goes under the plain sentence.
+    opening_ = path;
+    const auto done = qScopeGuard([this] { opening_.clear(); });
     bool ok = false;
     switch (kindOf(path)) {
         case FileKind::Project:
@@ -64,8 +89,9 @@ bool MainWindow::openFile(const QString& path) {
             break;
         }
         case FileKind::Unknown:
-            showError(tr("Cannot open %1: not a project (.boneless), mesh (.obj, .ply, .off, "
-                         ".stl), take (.c3d) or correspondence (.json)")
+            showError(tr("Boneless does not open %1 files.").arg(QFileInfo(path).suffix()),
+                      tr("%1 is not a project (.boneless), mesh (.obj, .ply, .off, .stl), take "
+                         "(.c3d) or correspondence (.json).")
                           .arg(path));
             return false;
     }
@@ -241,6 +267,8 @@ void MainWindow::chooseMesh() {
         showError(QString::fromStdString(e.what()));
         return;
     }
+    opening_ = path;
+    const auto done = qScopeGuard([this] { opening_.clear(); });
     if (document_->loadMesh(path, group)) {
         startUntitled();
         RecentFiles::add(path);

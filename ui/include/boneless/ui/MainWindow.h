@@ -98,6 +98,8 @@ class MainWindow : public QMainWindow {
     void onVertexPicked(int vertex);
     void onTakeLoaded();
     void startUntitled();
+    // One plain sentence for a file that would not open ("garbage.c3d is not a C3D file.").
+    QString plainError(const QString& path) const;
     // Over existing mappings, asks replace, merge or cancel (false); without message boxes,
     // replace.
     bool askMapLoad(const QString& path, Document::MapLoad& mode);
@@ -138,6 +140,7 @@ class MainWindow : public QMainWindow {
 
     QString projectPath_;
     bool demo_ = false;
+    QString opening_;  // the file being opened, for plainError()
     int startFrame_ = -1;
     bool messageBoxes_ = true;
 };
