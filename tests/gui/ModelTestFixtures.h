@@ -33,7 +33,7 @@ inline void isolateSettings(const QString& name) {
 // The demo project (the walker, 60 frames, 39 markers all mapped) written into `folder`.
 inline QString demoProject(const QString& folder) {
     QString error;
-    const QString path = DemoProject::ensure(folder, &error);
+    const QString path = DemoProject::write(folder, &error);
     if (path.isEmpty()) qFatal("cannot write the demo: %s", qPrintable(error));
     return path;
 }

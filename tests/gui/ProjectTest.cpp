@@ -247,19 +247,28 @@ class ProjectTest : public QObject {
         QCOMPARE(RecentFiles::list().first(), files[10]);
     }
 
-    void theDemoIsWrittenOnce() {
-        const QString folder = work_ + "/demo-once";
+    void theDemoIsWrittenAsGeneratedOverAnyEdits() {
+        const QString folder = work_ + "/demo-again";
         QString error;
-        const QString path = DemoProject::ensure(folder, &error);
+        const QString path = DemoProject::write(folder, &error);
         QVERIFY2(!path.isEmpty(), qPrintable(error));
-        const QDateTime written = QFileInfo(folder + "/walker.c3d").lastModified();
-        QCOMPARE(DemoProject::ensure(folder), path);
-        QCOMPARE(QFileInfo(folder + "/walker.c3d").lastModified(), written);
+        // Someone's work saved over it, and its map edited.
+        QFile project(path);
+        QVERIFY(project.open(QIODevice::WriteOnly));
+        project.write("{\"format\": \"boneless-project\", \"version\": 1}");
+        project.close();
+        QFile map(folder + "/walker.map.json");
+        QVERIFY(map.open(QIODevice::WriteOnly));
+        map.write("{}");
+        map.close();
+        QCOMPARE(DemoProject::write(folder), path);
         Document d;
         QVERIFY(Project::load(d, path));
         QCOMPARE(d.mappedCount(), 39);
         QVERIFY(!d.alignment());
         QVERIFY(DemoProject::defaultFolder().endsWith("/demo"));
+        QVERIFY(DemoProject::isDemo(DemoProject::defaultFolder() + "/demo.boneless"));
+        QVERIFY(!DemoProject::isDemo(path));
     }
 };
 

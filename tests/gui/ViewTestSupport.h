@@ -33,7 +33,7 @@ inline void isolate(const QString& name) {
 // never the user's demo, which may carry their autosaved edits.
 inline QString writeDemoProject(const QString& folder) {
     QString error;
-    const QString path = DemoProject::ensure(folder, &error);
+    const QString path = DemoProject::write(folder, &error);
     if (path.isEmpty()) qFatal("cannot write the demo: %s", qPrintable(error));
     return path;
 }

@@ -14,17 +14,17 @@ QString defaultFolder() {
     return QStandardPaths::writableLocation(QStandardPaths::AppDataLocation) + "/demo";
 }
 
-QString ensure(const QString& folder, QString* error) {
+bool isDemo(const QString& path) {
+    return !path.isEmpty() && QFileInfo(path).absoluteFilePath() ==
+                                  QDir(defaultFolder()).absoluteFilePath("demo.boneless");
+}
+
+QString write(const QString& folder, QString* error) {
     const QDir dir(folder.isEmpty() ? defaultFolder() : folder);
     const QString project = dir.absoluteFilePath("demo.boneless");
     const QString mesh = dir.absoluteFilePath("walker.obj");
     const QString take = dir.absoluteFilePath("walker.c3d");
     const QString map = dir.absoluteFilePath("walker.map.json");
-    // An existing demo project is the user's own session by now (autosaved edits): keep it.
-    if (QFileInfo::exists(project) && QFileInfo::exists(mesh) && QFileInfo::exists(take) &&
-        QFileInfo::exists(map))
-        return project;
-
     try {
         // No true motion: the application has no use for it, and it is the bulk of the files.
         writeDemoFiles(dir.absolutePath().toStdString(), 60, 10.0, /*withTruth=*/false, 1,

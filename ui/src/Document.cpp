@@ -2,6 +2,7 @@
 
 #include <QFileInfo>
 #include <QUndoStack>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -129,17 +130,30 @@ bool Document::loadTake(const QString& path) {
     return true;
 }
 
-bool Document::loadCorrespondence(const QString& path) {
+bool Document::loadCorrespondence(const QString& path, MapLoad mode) {
     MapState after = mapState();
+    Correspondence file;
     try {
-        after.map = Correspondence::read(std8(path));
-        if (hasMesh_) after.map.checkMesh(mesh_.vertexCount(), std8(meshPath_));
+        file = Correspondence::read(std8(path));
+        if (hasMesh_) file.checkMesh(mesh_.vertexCount(), std8(meshPath_));
     } catch (const std::exception& e) {
         return fail(QString::fromStdString(e.what()));
     }
-    after.mapPath = path;
-    savedMapJson_ = after.map.toJson();
-    pushMapEdit(tr("Load correspondence"), std::move(after));
+    if (mode == MapLoad::Replace) {
+        after.map = std::move(file);
+        after.mapPath = path;
+        savedMapJson_ = after.map.toJson();
+        pushMapEdit(tr("Load correspondence"), std::move(after));
+        return true;
+    }
+    for (const MarkerMapping& m : file.markers) {
+        const bool vertexTaken =
+            std::any_of(after.map.markers.begin(), after.map.markers.end(),
+                        [&](const MarkerMapping& mine) { return mine.vertex == m.vertex; });
+        if (!after.map.find(m.label) && !vertexTaken) after.map.markers.push_back(m);
+    }
+    if (after.mapPath.isEmpty()) after.mapPath = path;
+    pushMapEdit(tr("Merge correspondence"), std::move(after));
     return true;
 }
 

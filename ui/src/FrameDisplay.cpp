@@ -71,6 +71,7 @@ bool FrameDisplay::upToDate() const {
 
 void FrameDisplay::scheduleProblem() {
     problemTimer_->start();
+    emitStatus();  // the picture is the old problem's answer until the new one's comes
 }
 
 void FrameDisplay::onMeshChanged() {
@@ -121,6 +122,7 @@ void FrameDisplay::onFrameChanged(int frame) {
     requestedFrame_ = frame;
     requestClock_.start();
     solver_->requestFrame(frame);
+    emitStatus();
 }
 
 void FrameDisplay::showUnsolved(int frame) {
@@ -197,15 +199,21 @@ void FrameDisplay::updateTrails(int frame) {
 }
 
 void FrameDisplay::emitStatus() {
-    const QString frame =
-        document_->hasTake()
-            ? tr("Frame %1 / %2").arg(displayedFrame_).arg(document_->frameCount() - 1)
-            : tr("No take");
+    const int playhead = timeline_->frame();
+    // The count, not the last index: a 60-frame take shows "Frame 59 / 60" at its end.
+    QString frame = document_->hasTake()
+                        ? tr("Frame %1 / %2").arg(displayedFrame_).arg(document_->frameCount())
+                        : tr("No take");
+    if (document_->hasTake() && displayedFrame_ != playhead)
+        frame += tr(" (preview; playhead at %1)").arg(playhead);
     QString solve, residual;
-    if (!solving_) {
+    const bool current = result_ && result_->frame == playhead && !problemTimer_->isActive();
+    if (!solving_ && !problemTimer_->isActive()) {
         solve = notSolvingReason_.isEmpty() ? tr("Not solving")
                                             : tr("Not solving: %1").arg(notSolvingReason_);
-    } else if (result_) {
+    } else if (!current) {
+        solve = tr("solving frame %1…").arg(playhead);
+    } else {
         solve = result_->fromCache ? tr("cached")
                                    : tr("solved in %1 ms").arg(result_->solveMs, 0, 'f', 0);
         residual = tr("residual %1 mm (max %2)")

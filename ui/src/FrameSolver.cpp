@@ -8,15 +8,14 @@
 #include <cmath>
 #include <condition_variable>
 #include <limits>
-#include <list>
 #include <mutex>
 #include <optional>
 #include <thread>
-#include <unordered_map>
 
 #include "boneless/MeshTopology.h"
 #include "boneless/ShapeEncoding.h"
 #include "boneless/ui/Document.h"
+#include "boneless/ui/FrameCache.h"
 
 namespace boneless::ui {
 
@@ -48,6 +47,8 @@ struct FrameSolver::Shared {
     quint64 generation = 0;
     std::shared_ptr<const Problem> problem;
     std::optional<int> pending;
+    quint64 requests = 0;                // requests numbered in order, the newest last
+    quint64 pendingRequest = 0;          // the number of `pending`
     bool solving = false;                // a requested frame (not a read-ahead one) is being solved
     std::optional<int> inFlight;         // the frame being solved, requested or read ahead
     std::atomic<bool> stopSolve{false};  // raised when a request elsewhere supersedes it
@@ -57,62 +58,37 @@ struct FrameSolver::Shared {
     std::optional<int> lastRequest;  // where read-ahead starts
     int readAhead = 0;
     bool wrap = false;
-    std::size_t frameBytes = 0;  // the size of the last frame solved
-
-    // Least recently used at the back.
-    std::list<int> order;
-    std::unordered_map<int, std::pair<std::shared_ptr<const FrameResult>, std::list<int>::iterator>>
-        cache;
-    std::size_t bytes = 0, limit = 0;
-
+    FrameCache cache;
     std::thread worker;
 
-    void clearCache() {
-        order.clear();
-        cache.clear();
-        bytes = 0;
-    }
-    void insert(std::shared_ptr<const FrameResult> r) {
-        if (auto it = cache.find(r->frame); it != cache.end()) {
-            bytes -= it->second.first->bytes();
-            order.erase(it->second.second);
-            cache.erase(it);
-        }
-        const int frame = r->frame;
-        order.push_front(frame);
-        bytes += r->bytes();
-        frameBytes = r->bytes();
-        cache[frame] = {std::move(r), order.begin()};
-        // Always keep the newest frame, even when it alone is over the cap.
-        while (bytes > limit && order.size() > 1) {
-            auto victim = cache.find(order.back());
-            bytes -= victim->second.first->bytes();
-            cache.erase(victim);
-            order.pop_back();
-        }
-    }
     // The first uncached frame of the read-ahead window, if any. The window shrinks to what the
     // cache holds, and its cached frames and the request are marked used, so that read-ahead
     // evicts other frames, never its own.
     std::optional<int> nextAhead() {
         if (!problem || !lastRequest || readAhead <= 0) return std::nullopt;
         const int frames = int(problem->take.frameCount());
-        const std::size_t fits = frameBytes ? limit / frameBytes : std::size_t(readAhead) + 1;
+        const std::size_t frameBytes = cache.lastFrameBytes();
+        const std::size_t fits =
+            frameBytes ? cache.limit() / frameBytes : std::size_t(readAhead) + 1;
         const int window = int(std::min(std::size_t(readAhead) + 1, fits)) - 1;
         std::optional<int> next;
         for (int i = window; i >= 0; --i) {
             if (*lastRequest + i >= frames && !wrap) continue;
             const int frame = (*lastRequest + i) % frames;
             if (i > 0 && frame == *lastRequest) continue;  // a take shorter than the window
-            if (!lookup(frame) && i > 0) next = frame;     // the nearest one wins
+            if (!cache.use(frame) && i > 0) next = frame;  // the nearest one wins
         }
         return next;
     }
-    std::shared_ptr<const FrameResult> lookup(int frame) {
-        auto it = cache.find(frame);
-        if (it == cache.end()) return nullptr;
-        order.splice(order.begin(), order, it->second.second);
-        return it->second.first;
+    // A request for `frame` arrived: the frame being solved is no longer wanted first. It is
+    // stopped if less than half done (by the last frame's time), so that a scrub that stops
+    // waits for one iteration of it at most, while one over a fast mesh still shows the frames
+    // it passes (as previews: see FrameSolver::deliver).
+    void supersede(int frame) {
+        const double elapsedMs = std::chrono::duration<double, std::milli>(
+                                     std::chrono::steady_clock::now() - inFlightSince)
+                                     .count();
+        if (inFlight && *inFlight != frame && elapsedMs < 0.5 * lastSolveMs) stopSolve = true;
     }
 };
 
@@ -201,6 +177,7 @@ void FrameSolver::run(Shared* sh, FrameSolver* self) {
         if (sh->stop) return;
         const bool requested = sh->pending.has_value();
         const int frame = requested ? *sh->pending : *sh->nextAhead();
+        const quint64 request = requested ? sh->pendingRequest : 0;
         sh->pending.reset();
         const quint64 generation = sh->generation;
         const std::shared_ptr<const Problem> problem = sh->problem;
@@ -210,11 +187,8 @@ void FrameSolver::run(Shared* sh, FrameSolver* self) {
             QMetaObject::invokeMethod(self, [self] { self->updateBusy(); });
             continue;
         }
-        if (auto hit = sh->lookup(frame)) {  // solved since it was asked for
-            auto copy = std::make_shared<FrameResult>(*hit);
-            copy->fromCache = true;
-            copy->solveMs = 0;
-            QMetaObject::invokeMethod(self, [self, copy] { self->deliver(copy); });
+        if (auto hit = sh->cache.use(frame)) {  // solved since it was asked for
+            if (requested) self->deliverHit(*hit, request);
             continue;
         }
         sh->solving = requested;
@@ -245,7 +219,8 @@ void FrameSolver::run(Shared* sh, FrameSolver* self) {
             continue;
         }
         sh->lastSolveMs = result->solveMs;
-        if (generation == sh->generation) sh->insert(result);
+        result->request = request;
+        if (generation == sh->generation) sh->cache.insert(result);
         if (requested)  // read-ahead frames only go to the cache
             QMetaObject::invokeMethod(self, [self, result] { self->deliver(result); });
     }
@@ -253,7 +228,7 @@ void FrameSolver::run(Shared* sh, FrameSolver* self) {
 
 FrameSolver::FrameSolver(QObject* parent) : QObject(parent), shared_(std::make_shared<Shared>()) {
     qRegisterMetaType<boneless::ui::FrameResult>();
-    shared_->limit = defaultCacheLimit();
+    shared_->cache.setLimit(defaultCacheLimit());
     shared_->worker = std::thread(&FrameSolver::run, shared_.get(), this);
 }
 
@@ -298,7 +273,7 @@ bool FrameSolver::setProblem(const Document& document, QString* why) {
         shared_->pending.reset();
         shared_->lastRequest.reset();
         shared_->stopSolve = true;  // a frame of the old problem is of no use
-        shared_->clearCache();
+        shared_->cache.clear();
     }
     updateBusy();
     if (why) *why = reason;
@@ -312,7 +287,7 @@ void FrameSolver::clearProblem() {
     shared_->pending.reset();
     shared_->lastRequest.reset();
     shared_->stopSolve = true;
-    shared_->clearCache();
+    shared_->cache.clear();
 }
 
 bool FrameSolver::hasProblem() const {
@@ -350,40 +325,34 @@ void FrameSolver::watch(const Document* document) {
 
 void FrameSolver::setCacheLimit(std::size_t bytes) {
     std::lock_guard lock(shared_->mutex);
-    shared_->limit = bytes;
-    while (shared_->bytes > bytes && !shared_->order.empty()) {
-        auto victim = shared_->cache.find(shared_->order.back());
-        shared_->bytes -= victim->second.first->bytes();
-        shared_->cache.erase(victim);
-        shared_->order.pop_back();
-    }
+    shared_->cache.setLimit(bytes);
 }
 
 std::size_t FrameSolver::cacheLimit() const {
     std::lock_guard lock(shared_->mutex);
-    return shared_->limit;
+    return shared_->cache.limit();
 }
 
 std::size_t FrameSolver::cacheBytes() const {
     std::lock_guard lock(shared_->mutex);
-    return shared_->bytes;
+    return shared_->cache.bytes();
 }
 
 int FrameSolver::cachedFrames() const {
     std::lock_guard lock(shared_->mutex);
-    return int(shared_->cache.size());
+    return shared_->cache.size();
 }
 
 bool FrameSolver::isCached(int frame) const {
     std::lock_guard lock(shared_->mutex);
-    return shared_->cache.count(frame) > 0;
+    return shared_->cache.contains(frame);
 }
 
 void FrameSolver::setShapeErrorEnabled(bool enabled) {
     std::lock_guard lock(shared_->mutex);
     if (shared_->shapeError == enabled) return;
     shared_->shapeError = enabled;
-    shared_->clearCache();
+    shared_->cache.clear();
 }
 
 void FrameSolver::requestFrame(int frame) {
@@ -392,23 +361,16 @@ void FrameSolver::requestFrame(int frame) {
         if (!shared_->problem || frame < 0 || frame >= int(shared_->problem->take.frameCount()))
             return;
         shared_->lastRequest = frame;
-        if (auto hit = shared_->lookup(frame)) {
-            auto copy = std::make_shared<FrameResult>(*hit);
-            copy->fromCache = true;
-            copy->solveMs = 0;
-            QMetaObject::invokeMethod(
-                this, [this, copy] { deliver(copy); }, Qt::QueuedConnection);
+        const quint64 request = ++shared_->requests;
+        // Any older request still waiting is no longer wanted, whether or not this one is
+        // cached: solved after it, it would replace this frame on screen.
+        shared_->pending.reset();
+        shared_->supersede(frame);
+        if (auto hit = shared_->cache.use(frame)) {
+            deliverHit(*hit, request);
         } else {
-            shared_->pending = frame;  // replaces any older request still waiting
-            // The frame being solved is no longer wanted first: stopped if less than half done
-            // (by the last frame's time), so that a scrub that stops waits for one iteration
-            // of it at most, while one over a fast mesh still shows the frames it passes.
-            const double elapsedMs = std::chrono::duration<double, std::milli>(
-                                         std::chrono::steady_clock::now() - shared_->inFlightSince)
-                                         .count();
-            if (shared_->inFlight && *shared_->inFlight != frame &&
-                elapsedMs < 0.5 * shared_->lastSolveMs)
-                shared_->stopSolve = true;
+            shared_->pending = frame;
+            shared_->pendingRequest = request;
         }
     }
     shared_->wake.notify_one();  // for the request, or for the read-ahead that moved with it
@@ -444,9 +406,22 @@ void FrameSolver::updateBusy() {
     emit busyChanged(busy);
 }
 
+void FrameSolver::deliverHit(const FrameResult& hit, quint64 request) {
+    auto copy = std::make_shared<FrameResult>(hit);
+    copy->fromCache = true;
+    copy->solveMs = 0;
+    copy->request = request;
+    QMetaObject::invokeMethod(
+        this, [this, copy] { deliver(copy); }, Qt::QueuedConnection);
+}
+
 void FrameSolver::deliver(std::shared_ptr<const FrameResult> result) {
     updateBusy();
     if (result->generation != generation()) return;  // solved for a problem since replaced
+    // Answers can arrive out of request order (a cache hit overtakes the solve in flight): an
+    // older request's answer after a newer one's would put a frame the user left on screen.
+    if (result->request < delivered_) return;
+    delivered_ = result->request;
     emit frameReady(*result);
 }
 

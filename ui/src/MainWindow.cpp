@@ -17,6 +17,7 @@
 #include <QTableView>
 #include <QUndoStack>
 #include <QVBoxLayout>
+#include <cmath>
 
 #include "FrameDisplay.h"
 #include "boneless/ui/AppIcon.h"
@@ -151,8 +152,12 @@ void MainWindow::buildMarkerDock() {
 void MainWindow::buildMenus() {
     QMenu* file = menuBar()->addMenu(tr("&File"));
     file->addAction(tr("Open &Project…"), QKeySequence::Open, this, &MainWindow::chooseProject);
-    file->addAction(tr("Open &Mesh…"), this, &MainWindow::chooseMesh);
-    file->addAction(tr("Open &Take…"), this, &MainWindow::chooseTake);
+    file->addAction(tr("Open &Mesh…"), QKeySequence(Qt::CTRL | Qt::Key_M), this,
+                    &MainWindow::chooseMesh)
+        ->setObjectName("actionOpenMesh");
+    file->addAction(tr("Open &Take…"), QKeySequence(Qt::CTRL | Qt::Key_T), this,
+                    &MainWindow::chooseTake)
+        ->setObjectName("actionOpenTake");
     file->addAction(tr("Open &Correspondence…"), this, &MainWindow::chooseCorrespondence);
     file->addAction(tr("Open &Demo"), this, &MainWindow::openDemo);
     recentMenu_ = file->addMenu(tr("&Recent Files"));
@@ -206,6 +211,42 @@ void MainWindow::buildMenus() {
     }
 
     QMenu* help = menuBar()->addMenu(tr("&Help"));
+    help->addAction(
+            tr("&Getting Started"), QKeySequence::HelpContents, this,
+            [this] {
+                showHelp(
+                    tr("Getting Started"),
+                    tr("<ol><li>File → Open Mesh (Ctrl+M): the character, OBJ/PLY/OFF/STL.</li>"
+                       "<li>File → Open Take (Ctrl+T): the C3D motion capture.</li>"
+                       "<li>Map markers: select one in the Markers list, click the mesh where it "
+                       "sits. After four, <i>Suggest rest</i> maps the others; <i>Align</i> fixes "
+                       "the take onto the mesh.</li>"
+                       "<li>Play (Space), scrub the timeline, check the residual column.</li>"
+                       "<li>File → Export: an OBJ sequence or a PC2 point cache.</li></ol>"
+                       "The README that comes with Boneless is the full manual."));
+            })
+        ->setObjectName("actionGettingStarted");
+    help->addAction(tr("&Keyboard Shortcuts"), this,
+                    [this] {
+                        showHelp(
+                            tr("Keyboard Shortcuts"),
+                            tr("<table cellspacing=6>"
+                               "<tr><td>Space</td><td>play / pause</td></tr>"
+                               "<tr><td>← →</td><td>previous / next frame</td></tr>"
+                               "<tr><td>Shift+← →</td><td>10 frames back / on</td></tr>"
+                               "<tr><td>Home / End</td><td>first / last frame</td></tr>"
+                               "<tr><td>frame box, Enter</td><td>go to the frame typed</td></tr>"
+                               "<tr><td>Ctrl+O</td><td>open a project</td></tr>"
+                               "<tr><td>Ctrl+M / Ctrl+T</td><td>open a mesh / a take</td></tr>"
+                               "<tr><td>Ctrl+S / Ctrl+Shift+S</td><td>save / save as</td></tr>"
+                               "<tr><td>Ctrl+Z / Ctrl+Shift+Z</td><td>undo / redo</td></tr>"
+                               "<tr><td>Ctrl+R</td><td>reset the camera</td></tr>"
+                               "<tr><td>mouse</td><td>left drag turns, right drag or wheel zooms, "
+                               "middle drag pans; a click maps the selected marker</td></tr>"
+                               "</table>"));
+                    })
+        ->setObjectName("actionShortcuts");
+    help->addSeparator();
     help->addAction(tr("&About Boneless"), this, [this] {
         QMessageBox::about(
             this, tr("About Boneless"),
@@ -213,6 +254,16 @@ void MainWindow::buildMenus() {
                "markers (Kraevoy &amp; Sheffer).<br><br>Select a marker in the list, "
                "click the mesh to map it; drag to turn the camera."));
     });
+}
+
+void MainWindow::showHelp(const QString& title, const QString& html) {
+    // Non-modal, so it can stay open beside the window while the user tries the keys.
+    auto* box = new QMessageBox(QMessageBox::NoIcon, title, html, QMessageBox::Close, this);
+    box->setObjectName("helpMessage");
+    box->setTextFormat(Qt::RichText);
+    box->setAttribute(Qt::WA_DeleteOnClose);
+    box->setModal(false);
+    box->show();
 }
 
 void MainWindow::buildStatusBar() {
@@ -248,15 +299,33 @@ void MainWindow::buildShortcuts() {
 }
 
 void MainWindow::connectDocument() {
-    connect(document_, &Document::errorOccurred, this, &MainWindow::showError);
-    connect(display_, &FrameDisplay::solverFailed, this, &MainWindow::showError);
-    connect(autosave_, &ProjectAutosave::failed, this, &MainWindow::showError);
+    connect(document_, &Document::errorOccurred, this, [this](const QString& message) {
+        if (opening_.isEmpty())
+            showError(message);
+        else
+            showError(plainError(opening_), message);
+    });
+    connect(display_, &FrameDisplay::solverFailed, this, [this](const QString& message) {
+        showError(tr("This frame could not be solved."), message);
+    });
+    connect(autosave_, &ProjectAutosave::failed, this,
+            [this](const QString& message) { showError(message); });
+    connect(autosave_, &ProjectAutosave::aboutToSave, this, &MainWindow::storeSession,
+            Qt::DirectConnection);
     connect(display_, &FrameDisplay::frameDisplayed, this, &MainWindow::frameDisplayed);
     connect(display_, &FrameDisplay::latencyMeasured, this, &MainWindow::latencyMeasured);
     connect(document_, &Document::selectionChanged, this, &MainWindow::syncTableSelection);
     connect(document_, &Document::takeChanged, this, &MainWindow::onTakeLoaded);
     connect(document_, &Document::meshChanged, this, &MainWindow::updateTitle);
     connect(view_, &MeshView::vertexPicked, this, &MainWindow::onVertexPicked);
+    connect(view_, &MeshView::pickMissed, this, [this] {
+        const int selected = document_->selectedMarker();
+        statusBar()->showMessage(selected >= 0
+                                     ? tr("The click missed the mesh: nothing was mapped to %1")
+                                           .arg(document_->markerLabel(selected))
+                                     : tr("The click missed the mesh"),
+                                 8000);
+    });
     connect(exporter_, &ExportRunner::finished, this, [this](bool ok, const QString& message) {
         if (ok)
             statusBar()->showMessage(message, 10000);
@@ -271,6 +340,41 @@ void MainWindow::onTakeLoaded() {
         startFrame_ = -1;
     }
     updateTitle();
+}
+
+namespace {
+
+// The speed's name in the project file.
+const std::pair<Timeline::Speed, const char*> kSpeedNames[] = {
+    {Timeline::Speed::Realtime, "realtime"},
+    {Timeline::Speed::Half, "half"},
+    {Timeline::Speed::Quarter, "quarter"},
+    {Timeline::Speed::EveryFrame, "every_frame"}};
+
+}  // namespace
+
+// Where the user was: frame, speed and camera go into the project's view settings.
+void MainWindow::storeSession() {
+    if (!document_->hasTake() && !document_->hasMesh()) return;
+    if (document_->hasTake()) document_->setViewSetting("frame", timeline_->frame());
+    for (const auto& [speed, name] : kSpeedNames)
+        if (speed == timeline_->speed()) document_->setViewSetting("speed", QString(name));
+    if (document_->hasMesh()) document_->setViewSetting("camera", view_->cameraState());
+}
+
+// What a hostile file holds there is checked: a frame out of range, an unknown speed or a camera
+// that is not one leave the window's own.
+void MainWindow::restoreSession() {
+    const QVariantMap settings = document_->viewSettings();
+    const QVariant frame = settings.value("frame");
+    bool ok = false;
+    const double f = frame.toDouble(&ok);
+    if (ok && f >= 0 && f < timeline_->frameCount() && f == std::floor(f))
+        timeline_->setFrame(int(f));
+    const QString speedName = settings.value("speed").toString();
+    for (const auto& [speed, name] : kSpeedNames)
+        if (speedName == name) timeline_->setSpeed(speed);
+    if (settings.contains("camera")) view_->setCameraState(settings.value("camera").toMap());
 }
 
 void MainWindow::applyViewSettings() {
@@ -331,17 +435,21 @@ QString MainWindow::frameSummary() const {
     return parts.join(" · ");
 }
 
-void MainWindow::showError(const QString& message) {
-    statusBar()->showMessage(message, 15000);
-    emit errorShown(message);
-    if (!messageBoxes_) return;
+QMessageBox* MainWindow::errorBox(const QString& message, const QString& detail) {
     // Not exec(): a nested event loop would hold back frames and tests; the box just stays up.
     auto* box =
         new QMessageBox(QMessageBox::Warning, tr("Boneless"), message, QMessageBox::Ok, this);
     box->setObjectName("errorMessage");
+    box->setDetailedText(detail);
     box->setAttribute(Qt::WA_DeleteOnClose);
     box->setModal(false);
-    box->show();
+    return box;
+}
+
+void MainWindow::showError(const QString& message, const QString& detail) {
+    statusBar()->showMessage(message, 15000);
+    emit errorShown(detail.isEmpty() ? message : message + "\n" + detail);
+    if (messageBoxes_) errorBox(message, detail)->show();
 }
 
 }  // namespace boneless::ui

@@ -2,11 +2,16 @@
 #include <QCloseEvent>
 #include <QDragEnterEvent>
 #include <QDropEvent>
+#include <QFile>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QInputDialog>
+#include <QLocale>
 #include <QMenu>
+#include <QMessageBox>
 #include <QMimeData>
+#include <QPushButton>
+#include <QScopeGuard>
 #include <QStatusBar>
 #include <QUrl>
 
@@ -37,27 +42,56 @@ FileKind kindOf(const QString& path) {
 
 }  // namespace
 
+QString MainWindow::plainError(const QString& path) const {
+    const QString name = QFileInfo(path).fileName();
+    switch (kindOf(path)) {
+        case FileKind::Mesh:
+            return tr("%1 could not be opened as a mesh.").arg(name);
+        case FileKind::Take: {
+            // Every C3D file has 0x50 as its second byte: without it, it is something else.
+            QFile file(path);
+            const QByteArray head = file.open(QIODevice::ReadOnly) ? file.read(2) : QByteArray();
+            if (head.size() < 2 || head[1] != '\x50') return tr("%1 is not a C3D file.").arg(name);
+            return tr("%1 is a C3D file that Boneless could not read.").arg(name);
+        }
+        case FileKind::Correspondence:
+            return tr("%1 could not be opened as a marker correspondence for this mesh.").arg(name);
+        default:
+            return tr("%1 could not be opened.").arg(name);
+    }
+}
+
 bool MainWindow::openFile(const QString& path) {
     if (!QFileInfo(path).isFile()) {
-        showError(tr("Cannot open %1: no such file").arg(path));
+        showError(tr("%1 does not exist.").arg(QFileInfo(path).fileName()),
+                  tr("No such file: %1").arg(path));
         return false;
     }
+    // The document's own message (technical) goes under the plain sentence.
+    opening_ = path;
+    const auto done = qScopeGuard([this] { opening_.clear(); });
     bool ok = false;
     switch (kindOf(path)) {
         case FileKind::Project:
             return openProject(path);
         case FileKind::Mesh:
             ok = document_->loadMesh(path);
+            if (ok) startUntitled();  // never into the project (or demo) open before
             break;
         case FileKind::Take:
             ok = document_->loadTake(path);
+            if (ok) startUntitled();
             break;
-        case FileKind::Correspondence:
-            ok = document_->loadCorrespondence(path);
+        case FileKind::Correspondence: {
+            Document::MapLoad mode = Document::MapLoad::Replace;
+            if (!askMapLoad(path, mode)) return false;
+            ok = document_->loadCorrespondence(path, mode);
             break;
+        }
         case FileKind::Unknown:
-            showError(tr("Cannot open %1: not a project (.boneless), mesh (.obj, .ply, .off, "
-                         ".stl), take (.c3d) or correspondence (.json)")
+            showError(tr("Boneless does not open %1 files.").arg(QFileInfo(path).suffix()),
+                      tr("%1 is not a project (.boneless), mesh (.obj, .ply, .off, .stl), take "
+                         "(.c3d) or correspondence (.json).")
                           .arg(path));
             return false;
     }
@@ -72,44 +106,124 @@ bool MainWindow::openFile(const QString& path) {
 bool MainWindow::openProject(const QString& path) {
     QString error;
     if (!Project::load(*document_, path, &error)) {
-        showError(error.isEmpty() ? tr("Cannot open the project %1").arg(path) : error);
+        const QString message =
+            tr("%1 could not be opened as a Boneless project.").arg(QFileInfo(path).fileName());
+        const QString recovery = ProjectAutosave::recoveryPath();
+        statusBar()->showMessage(message, 15000);
+        emit errorShown(message + "\n" + error);
+        if (!messageBoxes_) return false;
+        QMessageBox* box = errorBox(message, error);
+        box->setObjectName("projectErrorMessage");
+        if (QFileInfo::exists(recovery) &&
+            QFileInfo(recovery).absoluteFilePath() != QFileInfo(path).absoluteFilePath()) {
+            box->setInformativeText(
+                tr("The file is left as it is. The last autosave, from %1, can be opened "
+                   "instead.")
+                    .arg(QLocale().toString(QFileInfo(recovery).lastModified(),
+                                            QLocale::ShortFormat)));
+            QPushButton* open = box->addButton(tr("Open Last Autosave"), QMessageBox::AcceptRole);
+            open->setObjectName("openRecoveryButton");
+            connect(open, &QPushButton::clicked, this, [this] { openRecovery(); });
+        }
+        box->show();
         return false;
     }
     projectPath_ = QFileInfo(path).absoluteFilePath();
-    autosave_->setProjectPath(projectPath_);
-    RecentFiles::add(projectPath_);
+    demo_ = DemoProject::isDemo(projectPath_);
+    autosave_->setProjectPath(demo_ ? QString() : projectPath_);
+    // The file holds what was just loaded: saving it again now would only overwrite the
+    // recovery file with it (or, for the demo, with the demo).
+    autosave_->discardPending();
+    if (!demo_) RecentFiles::add(projectPath_);
     applyViewSettings();
+    restoreSession();
     updateTitle();
     statusBar()->showMessage(tr("Opened %1").arg(QFileInfo(path).fileName()), 5000);
     return true;
 }
 
+bool MainWindow::askMapLoad(const QString& path, Document::MapLoad& mode) {
+    const int mapped = document_->mappedCount();
+    if (mapped == 0 || !messageBoxes_) return true;
+    QMessageBox box(QMessageBox::Question, tr("Open Correspondence"),
+                    tr("%n marker(s) are mapped already. Open %1:", nullptr, mapped)
+                        .arg(QFileInfo(path).fileName()),
+                    QMessageBox::NoButton, this);
+    box.setObjectName("mapLoadQuestion");
+    QPushButton* replace = box.addButton(tr("Replace Them"), QMessageBox::DestructiveRole);
+    QPushButton* merge = box.addButton(tr("Merge (Keep Mine)"), QMessageBox::AcceptRole);
+    QPushButton* cancel = box.addButton(QMessageBox::Cancel);
+    replace->setObjectName("replaceButton");
+    merge->setObjectName("mergeButton");
+    cancel->setObjectName("cancelButton");
+    box.setDefaultButton(merge);
+    box.setInformativeText(
+        tr("Merge adds the file's mappings of the markers not mapped yet. "
+           "Either can be undone (Ctrl+Z)."));
+    box.exec();  // a question must be answered before anything is loaded
+    if (box.clickedButton() == replace)
+        mode = Document::MapLoad::Replace;
+    else if (box.clickedButton() == merge)
+        mode = Document::MapLoad::Merge;
+    else
+        return false;
+    return true;
+}
+
+bool MainWindow::openRecovery() {
+    QString error;
+    if (!Project::load(*document_, ProjectAutosave::recoveryPath(), &error)) {
+        showError(tr("The last autosave could not be opened either."), error);
+        return false;
+    }
+    startUntitled();
+    autosave_->discardPending();
+    applyViewSettings();
+    restoreSession();
+    statusBar()->showMessage(tr("Opened the last autosave, untitled: Save As keeps it"), 10000);
+    return true;
+}
+
+void MainWindow::startUntitled() {
+    projectPath_.clear();
+    demo_ = false;
+    autosave_->setProjectPath({});
+    updateTitle();
+}
+
 bool MainWindow::openDemo() {
     QString error;
-    const QString path = DemoProject::ensure({}, &error);
+    const QString path = DemoProject::write({}, &error);
     if (path.isEmpty()) {
-        showError(error.isEmpty() ? tr("Cannot write the demo project") : error);
+        showError(tr("The demo could not be written."), error);
         return false;
     }
     return openProject(path);
 }
 
 bool MainWindow::saveProject() {
-    if (projectPath_.isEmpty()) {
+    if (projectPath_.isEmpty() || demo_) {
         chooseSaveProjectAs();
-        return !projectPath_.isEmpty();
+        return !projectPath_.isEmpty() && !demo_;
     }
     return saveProjectAs(projectPath_);
 }
 
 bool MainWindow::saveProjectAs(const QString& path) {
+    if (DemoProject::isDemo(path)) {
+        showError(tr("The demo is written afresh each time it opens: save the project elsewhere."));
+        return false;
+    }
+    storeSession();
     QString error;
     if (!Project::save(*document_, path, &error)) {
-        showError(error.isEmpty() ? tr("Cannot save the project %1").arg(path) : error);
+        showError(tr("%1 could not be saved.").arg(QFileInfo(path).fileName()), error);
         return false;
     }
     projectPath_ = QFileInfo(path).absoluteFilePath();
+    demo_ = false;
     autosave_->setProjectPath(projectPath_);
+    autosave_->discardPending();
     RecentFiles::add(projectPath_);
     updateTitle();
     statusBar()->showMessage(tr("Saved %1").arg(QFileInfo(path).fileName()), 5000);
@@ -153,7 +267,12 @@ void MainWindow::chooseMesh() {
         showError(QString::fromStdString(e.what()));
         return;
     }
-    if (document_->loadMesh(path, group)) RecentFiles::add(path);
+    opening_ = path;
+    const auto done = qScopeGuard([this] { opening_.clear(); });
+    if (document_->loadMesh(path, group)) {
+        startUntitled();
+        RecentFiles::add(path);
+    }
 }
 
 void MainWindow::chooseTake() {
@@ -175,8 +294,9 @@ void MainWindow::chooseProject() {
 }
 
 void MainWindow::chooseSaveProjectAs() {
-    QString path = QFileDialog::getSaveFileName(this, tr("Save Project As"), projectPath_,
-                                                tr("Boneless projects (*.boneless)"));
+    QString path =
+        QFileDialog::getSaveFileName(this, tr("Save Project As"), demo_ ? QString() : projectPath_,
+                                     tr("Boneless projects (*.boneless)"));
     if (path.isEmpty()) return;
     if (QFileInfo(path).suffix().isEmpty()) path += ".boneless";
     saveProjectAs(path);
@@ -210,7 +330,9 @@ void MainWindow::rebuildRecentMenu() {
 }
 
 void MainWindow::updateTitle() {
-    QString name = projectPath_.isEmpty() ? tr("untitled") : QFileInfo(projectPath_).fileName();
+    QString name = projectPath_.isEmpty() ? tr("untitled")
+                   : demo_                ? tr("demo (Save As to keep changes)")
+                                          : QFileInfo(projectPath_).fileName();
     if (document_->hasMesh()) name += " — " + QFileInfo(document_->meshPath()).fileName();
     setWindowTitle(tr("%1 — Boneless").arg(name));
 }
@@ -239,6 +361,8 @@ void MainWindow::dropEvent(QDropEvent* event) {
 
 void MainWindow::closeEvent(QCloseEvent* event) {
     if (exporter_->isRunning()) exporter_->cancel();
+    // The frame and camera only count as a change at the end; the demo's never do.
+    if (!demo_) storeSession();
     autosave_->saveNow();
     event->accept();
 }

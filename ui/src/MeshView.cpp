@@ -267,6 +267,58 @@ Eigen::Vector3d MeshView::cameraPosition() const {
     return {p[0], p[1], p[2]};
 }
 
+namespace {
+
+QVariantList listOf(const double v[3]) {
+    return {v[0], v[1], v[2]};
+}
+
+bool vectorOf(const QVariant& value, Eigen::Vector3d& v) {
+    const QVariantList list = value.toList();
+    if (list.size() != 3) return false;
+    for (int k = 0; k < 3; ++k) {
+        bool ok = false;
+        v[k] = list[k].toDouble(&ok);
+        if (!ok || !std::isfinite(v[k]) || std::abs(v[k]) > 1e12) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+QVariantMap MeshView::cameraState() const {
+    vtkCamera* camera = d_->scene.renderer()->GetActiveCamera();
+    double p[3], f[3], up[3];
+    camera->GetPosition(p);
+    camera->GetFocalPoint(f);
+    camera->GetViewUp(up);
+    return {{"position", listOf(p)},
+            {"focal_point", listOf(f)},
+            {"view_up", listOf(up)},
+            {"view_angle", camera->GetViewAngle()}};
+}
+
+bool MeshView::setCameraState(const QVariantMap& state) {
+    Eigen::Vector3d p, f, up;
+    bool ok = false;
+    const double angle = state.value("view_angle").toDouble(&ok);
+    if (!vectorOf(state.value("position"), p) || !vectorOf(state.value("focal_point"), f) ||
+        !vectorOf(state.value("view_up"), up) || !ok || !(angle > 1 && angle < 179))
+        return false;
+    const Eigen::Vector3d direction = f - p;
+    if (direction.norm() < 1e-9 || up.cross(direction).norm() < 1e-9 * direction.norm())
+        return false;
+    vtkCamera* camera = d_->scene.renderer()->GetActiveCamera();
+    camera->SetPosition(p.data());
+    camera->SetFocalPoint(f.data());
+    camera->SetViewUp(up.data());
+    camera->SetViewAngle(angle);
+    camera->OrthogonalizeViewUp();
+    d_->cameraPending = false;  // the first resize must not fit the mesh over it
+    update();
+    return true;
+}
+
 void MeshView::mousePressEvent(QMouseEvent* event) {
     switch (event->button()) {
         case Qt::LeftButton:
@@ -295,7 +347,10 @@ void MeshView::mouseReleaseEvent(QMouseEvent* event) {
             // A press and release without a drag is a pick; a drag only turns the camera.
             if (click) {
                 const int vertex = pickVertex(event->position().toPoint());
-                if (vertex >= 0) emit vertexPicked(vertex);
+                if (vertex >= 0)
+                    emit vertexPicked(vertex);
+                else
+                    emit pickMissed();
             }
             break;
         }

@@ -7,6 +7,7 @@
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QSaveFile>
+#include <cmath>
 
 #include "boneless/Correspondence.h"
 #include "boneless/ui/Document.h"
@@ -35,14 +36,27 @@ QJsonObject alignmentJson(const Calibration& c) {
             {"residual", c.residual},       {"visible_markers", c.visibleMarkers}};
 }
 
+// A number the solver can work with: finite and no larger than `limit` in magnitude.
+bool sane(const QJsonValue& v, double limit = 1e12) {
+    return v.isDouble() && std::isfinite(v.toDouble()) && std::abs(v.toDouble()) <= limit;
+}
+
 bool readAlignment(const QJsonObject& o, Calibration& c) {
     const QJsonArray rotation = o["rotation"].toArray(), t = o["translation"].toArray();
-    if (rotation.size() != 3 || t.size() != 3 || !o["scale"].isDouble()) return false;
+    if (rotation.size() != 3 || t.size() != 3 || !sane(o["scale"]) || o["scale"].toDouble() <= 0)
+        return false;
     for (int r = 0; r < 3; ++r) {
         const QJsonArray row = rotation[r].toArray();
         if (row.size() != 3) return false;
-        for (int k = 0; k < 3; ++k) c.takeToMesh.R(r, k) = row[k].toDouble();
+        for (int k = 0; k < 3; ++k) {
+            if (!sane(row[k], 2.0)) return false;
+            c.takeToMesh.R(r, k) = row[k].toDouble();
+        }
     }
+    for (int k = 0; k < 3; ++k)
+        if (!sane(t[k])) return false;
+    // A rotation, not any matrix: a hostile one would shear the take out of shape.
+    if (!(c.takeToMesh.R * c.takeToMesh.R.transpose()).isIdentity(1e-3)) return false;
     c.takeToMesh.scale = o["scale"].toDouble();
     c.takeToMesh.t = Vec3(t[0].toDouble(), t[1].toDouble(), t[2].toDouble());
     c.frame = o["calibration_frame"].toInt(-1);
@@ -62,6 +76,27 @@ QJsonObject settingsJson(const TakeSolveOptions& o) {
             {"orientation_weight", o.solver.orientationWeight},
             {"max_iterations", o.solver.maxIterations},
             {"method", methodName(o.solver.method)}};
+}
+
+// Each setting, when present, must be a number in the range the solver accepts; the name of the
+// first that is not goes to *bad.
+bool checkSettings(const QJsonObject& o, QString* bad) {
+    const struct {
+        const char* key;
+        double low, high;
+    } ranges[] = {{"marker_weight", 1e-9, 1e9}, {"low_pass_hz", 0, 1e5},
+                  {"fill_gaps_s", 0, 3600},     {"calibration_frame", -1, 1e9},
+                  {"rigidity_weight", 0, 1e9},  {"orientation_weight", 0, 1e9},
+                  {"max_iterations", 1, 1e4}};
+    for (const auto& r : ranges) {
+        const QJsonValue v = o[r.key];
+        if (v.isUndefined()) continue;
+        if (!sane(v) || v.toDouble() < r.low || v.toDouble() > r.high) {
+            *bad = r.key;
+            return false;
+        }
+    }
+    return true;
 }
 
 TakeSolveOptions readSettings(const QJsonObject& o) {
@@ -138,6 +173,7 @@ bool load(Document& document, const QString& path, QString* error) {
         return fail(QObject::tr("not JSON (%1 at byte %2)")
                         .arg(parseError.errorString())
                         .arg(parseError.offset));
+    if (!json.isObject()) return fail(QObject::tr("not a Boneless project (not a JSON object)"));
     const QJsonObject root = json.object();
     if (root["format"].toString() != kFormat)
         return fail(QObject::tr("not a Boneless project (format is not \"%1\")").arg(kFormat));
@@ -171,6 +207,9 @@ bool load(Document& document, const QString& path, QString* error) {
             return fail(QObject::tr("the alignment is incomplete"));
         state.alignment = c;
     }
+    QString bad;
+    if (!checkSettings(root["settings"].toObject(), &bad))
+        return fail(QObject::tr("the setting \"%1\" is not a number in its range").arg(bad));
     state.settings = readSettings(root["settings"].toObject());
     state.viewSettings = root["view"].toObject().toVariantMap();
     if (!document.restoreState(std::move(state))) return fail(document.lastError());

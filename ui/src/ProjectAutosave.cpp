@@ -51,15 +51,23 @@ bool ProjectAutosave::saveNow() {
     pending_ = false;
     // An empty untitled session has nothing worth recovering.
     if (path_.isEmpty() && !document_->hasMesh() && !document_->hasTake()) return true;
-    const QString target = path_.isEmpty() ? recoveryPath() : path_;
-    QDir().mkpath(QFileInfo(target).absolutePath());
-    QString error;
-    if (!Project::save(*document_, target, &error)) {
-        pending_ = true;  // try again after the next change
-        emit failed(error);
-        return false;
+    emit aboutToSave();  // the window stores its session; that change is this save's
+    timer_->stop();
+    pending_ = false;
+    // The recovery file always holds the last session saved, titled or not: it is what the
+    // window offers when a project file will not open.
+    QStringList targets{recoveryPath()};
+    if (!path_.isEmpty()) targets.prepend(path_);
+    for (const QString& target : targets) {
+        QDir().mkpath(QFileInfo(target).absolutePath());
+        QString error;
+        if (!Project::save(*document_, target, &error)) {
+            pending_ = true;  // try again after the next change
+            emit failed(error);
+            return false;
+        }
     }
-    emit saved(target);
+    emit saved(targets.front());
     return true;
 }
 

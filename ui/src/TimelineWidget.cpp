@@ -2,6 +2,7 @@
 
 #include <QComboBox>
 #include <QHBoxLayout>
+#include <QKeyEvent>
 #include <QLabel>
 #include <QSignalBlocker>
 #include <QSlider>
@@ -45,7 +46,10 @@ TimelineWidget::TimelineWidget(Timeline* timeline, QWidget* parent)
     slider_->setFocusPolicy(Qt::NoFocus);
     frameBox_ = new QSpinBox(this);
     frameBox_->setObjectName("frameBox");
-    frameBox_->setToolTip(tr("Frame (0-based)"));
+    frameBox_->setToolTip(tr("Frame (0-based); Enter goes there"));
+    // Typing "100" must not visit frames 1 and 10 on the way: the box applies on Enter.
+    frameBox_->setKeyboardTracking(false);
+    frameBox_->installEventFilter(this);
     countLabel_ = new QLabel(this);
 
     speed_ = new QComboBox(this);
@@ -77,6 +81,10 @@ TimelineWidget::TimelineWidget(Timeline* timeline, QWidget* parent)
     // valueChanged also fires for clicks on the groove and keyboard moves: all of them scrub.
     connect(slider_, &QSlider::valueChanged, timeline, &Timeline::scrubTo);
     connect(frameBox_, &QSpinBox::valueChanged, timeline, &Timeline::scrubTo);
+    // Once applied, the window's keys (arrows, Home, End) move the playhead again.
+    connect(frameBox_, &QSpinBox::editingFinished, frameBox_, [this] {
+        if (frameBox_->hasFocus()) frameBox_->clearFocus();
+    });
     connect(speed_, &QComboBox::currentIndexChanged, timeline, [this](int index) {
         timeline_->setSpeed(Timeline::Speed(speed_->itemData(index).toInt()));
     });
@@ -95,6 +103,19 @@ TimelineWidget::TimelineWidget(Timeline* timeline, QWidget* parent)
     syncRange(timeline->frameCount());
 }
 
+bool TimelineWidget::eventFilter(QObject* watched, QEvent* event) {
+    // Space in the frame box applies the number typed and lets the window's Space (play) act,
+    // instead of being typed into the box.
+    if (watched == frameBox_ && event->type() == QEvent::ShortcutOverride &&
+        static_cast<QKeyEvent*>(event)->key() == Qt::Key_Space) {
+        frameBox_->interpretText();
+        frameBox_->clearFocus();
+        event->ignore();
+        return true;
+    }
+    return QWidget::eventFilter(watched, event);
+}
+
 void TimelineWidget::syncFrame(int frame) {
     // Blocked, or following the playhead during playback would count as scrubbing and stop it.
     const QSignalBlocker blockSlider(slider_);
@@ -111,7 +132,7 @@ void TimelineWidget::syncRange(int frames) {
         frameBox_->setRange(0, std::max(0, frames - 1));
         slider_->setPageStep(std::max(1, frames / 20));
     }
-    countLabel_->setText(tr("/ %1").arg(std::max(0, frames - 1)));
+    countLabel_->setText(tr("/ %1").arg(frames));  // the count: frames 0 to 59 of 60
     setEnabled(frames > 0);
     syncFrame(timeline_->frame());
 }

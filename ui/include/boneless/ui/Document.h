@@ -36,7 +36,10 @@ class Document : public QObject {
     bool loadMesh(const QString& path, const QString& group = {});
     bool loadTake(const QString& path);
     // Replaces the map (one undo step). Entries that do not fit the mesh are an error.
-    bool loadCorrespondence(const QString& path);
+    // Replace: the file's map instead of this one. Merge: this map plus the file's mappings of
+    // markers not mapped here (unless their vertex is taken). One undo step either way.
+    enum class MapLoad { Replace, Merge };
+    bool loadCorrespondence(const QString& path, MapLoad mode = MapLoad::Replace);
     // Writes the map as a correspondence file (atomic); remembers the path.
     bool saveCorrespondence(const QString& path);
     // Back to an empty session: no mesh, no take, empty map, default settings, empty undo stack.

@@ -17,6 +17,7 @@ class Document;
 struct FrameResult {
     int frame = -1;
     quint64 generation = 0;  // which problem it belongs to (see FrameSolver::setProblem)
+    quint64 request = 0;     // which requestFrame() it answers, numbered from 1; 0 if unasked
     Positions V;             // the posed mesh, #V by 3
     // Every marker row of the Document (markerCount() by 3) in mesh coordinates, with the
     // solver's alignment; NaN rows where missing.
@@ -38,8 +39,10 @@ struct FrameResult {
 // Solves frames on a worker thread, never on the caller's: requestFrame() returns at once and
 // frameReady() follows on the thread FrameSolver lives in. Requests that are still queued when a
 // newer one arrives are dropped, and the frame being solved is stopped at its next iteration if
-// it is less than half done. Solved frames are cached, least recently used out first, up to a
-// memory cap.
+// it is less than half done. Answers are delivered in request order: one to an older request
+// that comes after a newer request's answer is not delivered (it is cached), so the last frame
+// delivered is always the answer to the newest request answered so far. Solved frames are cached,
+// least recently used out first, up to a memory cap.
 //
 // Each frame is solved from its own markers alone (TakeSolver keeps nothing from the frames it
 // solved before), so a cached frame, the same frame solved again after any others, and that
@@ -102,11 +105,13 @@ class FrameSolver : public QObject {
     std::shared_ptr<Shared> shared_;
     static void run(Shared* shared, FrameSolver* self);
     void deliver(std::shared_ptr<const FrameResult> result);
+    void deliverHit(const FrameResult& hit, quint64 request);  // queued, from any thread
     void deliverFailure(quint64 generation, const QString& message);
     void updateBusy();
     const Document* watched_ = nullptr;
     bool refreshQueued_ = false;
     bool busy_ = false;
+    quint64 delivered_ = 0;  // the newest request answered
 };
 
 }  // namespace boneless::ui

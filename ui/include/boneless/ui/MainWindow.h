@@ -3,16 +3,18 @@
 #include <QMainWindow>
 #include <QString>
 
+#include "boneless/ui/Document.h"
+
 class QAction;
 class QLabel;
 class QLineEdit;
 class QComboBox;
 class QMenu;
+class QMessageBox;
 class QTableView;
 
 namespace boneless::ui {
 
-class Document;
 class ExportRunner;
 class FrameDisplay;
 class FrameSolver;
@@ -43,11 +45,19 @@ class MainWindow : public QMainWindow {
 
     // Opens by extension: .boneless project; .obj/.ply/.off/.stl mesh; .c3d take; .json map.
     bool openFile(const QString& path);
+    // A project that will not open leaves the window as it was and the file untouched, and the
+    // message offers the recovery autosave (openRecovery()).
     bool openProject(const QString& path);
+    // Writes the demo afresh and opens it. The demo is never saved into: Save goes to Save As,
+    // autosave to the recovery file.
     bool openDemo();
-    bool saveProject();
+    bool isDemoOpen() const { return demo_; }
+    // Opens ProjectAutosave::recoveryPath() as an untitled project.
+    bool openRecovery();
+    bool saveProject();  // Save As when untitled or the demo
     bool saveProjectAs(const QString& path);
     QString projectPath() const { return projectPath_; }
+    ProjectAutosave* autosave() const { return autosave_; }
     bool exportTo(const QString& folder, bool pointCache);
 
     // The frame the timeline moves to once the next take is loaded (for --frame).
@@ -61,7 +71,8 @@ class MainWindow : public QMainWindow {
     // What the status bar shows about the frame: "Frame 10 / 59 · solved in 80 ms · residual …".
     QString frameSummary() const;
 
-    void showError(const QString& message);
+    // `message` is one plain sentence; `detail` (the technical cause) goes under "Show Details".
+    void showError(const QString& message, const QString& detail = {});
 
   signals:
     void errorShown(const QString& message);
@@ -86,6 +97,16 @@ class MainWindow : public QMainWindow {
     void syncTableSelection(int marker);
     void onVertexPicked(int vertex);
     void onTakeLoaded();
+    void startUntitled();
+    // One plain sentence for a file that would not open ("garbage.c3d is not a C3D file.").
+    QString plainError(const QString& path) const;
+    // Over existing mappings, asks replace, merge or cancel (false); without message boxes,
+    // replace.
+    bool askMapLoad(const QString& path, Document::MapLoad& mode);
+    void showHelp(const QString& title, const QString& html);
+    void storeSession();
+    void restoreSession();
+    QMessageBox* errorBox(const QString& message, const QString& detail);
 
     void chooseMesh();
     void chooseTake();
@@ -118,6 +139,8 @@ class MainWindow : public QMainWindow {
     QAction* heatMapAction_ = nullptr;
 
     QString projectPath_;
+    bool demo_ = false;
+    QString opening_;  // the file being opened, for plainError()
     int startFrame_ = -1;
     bool messageBoxes_ = true;
 };

@@ -5,6 +5,7 @@
 #include <QPoint>
 #include <QString>
 #include <QStringList>
+#include <QVariantMap>
 #include <memory>
 #include <vector>
 
@@ -55,10 +56,17 @@ class MeshView : public QOpenGLWidget {
     QPoint projectVertex(int vertex);
     // The camera's position in mesh coordinates (the vertex nearest to it is never occluded).
     Eigen::Vector3d cameraPosition() const;
+    // The camera as {"position": [x,y,z], "focal_point": [...], "view_up": [...],
+    // "view_angle": degrees}, what a project stores; setCameraState() returns false (and keeps
+    // the camera) for anything else, such as non-finite numbers or a zero view direction.
+    QVariantMap cameraState() const;
+    bool setCameraState(const QVariantMap& state);
 
   signals:
     // A click (press and release without a drag) landed on the mesh near this vertex.
     void vertexPicked(int vertex);
+    // A click landed beside the mesh.
+    void pickMissed();
     // Emitted after each render, with how long it took.
     void rendered(double milliseconds);
 

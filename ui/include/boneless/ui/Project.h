@@ -15,8 +15,8 @@ class Document;
 // paths relative to the project file, the map itself, the fixed alignment, the solver settings
 // and the view settings:
 //   {"format": "boneless-project", "version": 1,
-//    "mesh": {"file": "creature.obj", "group": ""}, "take": {"file": "creature.c3d"},
-//    "correspondence": {"file": "creature.map.json", "modified": false, "map": {...}},
+//    "mesh": {"file": "walker.obj", "group": ""}, "take": {"file": "walker.c3d"},
+//    "correspondence": {"file": "walker.map.json", "modified": false, "map": {...}},
 //    "alignment": null | {"calibration_frame", "scale", "rotation", "translation", ...},
 //    "settings": {"marker_weight", ...}, "view": {...}}
 // The map is stored whole, so unsaved edits of a correspondence file are kept by the project.
@@ -33,8 +33,9 @@ QByteArray toJson(const Document& document, const QString& path);
 }  // namespace Project
 
 // Keeps a project file up to date: after each change of the document (Document::changed) it
-// saves the project within a short delay, so a crash loses at most that delay's edits. Without a
-// project path it saves to recoveryPath() instead, which the window can offer to reopen.
+// saves the project within a short delay, so a crash loses at most that delay's edits. Each save
+// also goes to recoveryPath() (the only place it goes without a project path), which the window
+// offers to reopen when a project file will not open.
 class ProjectAutosave : public QObject {
     Q_OBJECT
   public:
@@ -55,6 +56,9 @@ class ProjectAutosave : public QObject {
     void discardPending();
 
   signals:
+    // Before writing: a direct connection may still change the document (the window's frame,
+    // speed and camera), and that change is saved with the rest.
+    void aboutToSave();
     void saved(const QString& path);
     void failed(const QString& message);
 

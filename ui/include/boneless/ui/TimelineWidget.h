@@ -13,8 +13,8 @@ namespace boneless::ui {
 class Timeline;
 
 // Slider, frame number, first/previous/play/next/last, loop and speed for a Timeline. Dragging
-// the slider or typing a frame scrubs (and so stops playback). Keyboard shortcuts belong to the
-// window, which calls the Timeline's slots.
+// the slider or typing a frame and Enter scrubs (and so stops playback). Keyboard shortcuts belong
+// to the window, which calls the Timeline's slots.
 class TimelineWidget : public QWidget {
     Q_OBJECT
   public:
@@ -24,6 +24,9 @@ class TimelineWidget : public QWidget {
     QSpinBox* frameBox() const { return frameBox_; }
     QToolButton* playButton() const { return play_; }
     QComboBox* speedBox() const { return speed_; }
+
+  protected:
+    bool eventFilter(QObject* watched, QEvent* event) override;
 
   private:
     void syncFrame(int frame);

@@ -1,0 +1,104 @@
+// Keys whichever widget has focus: the frame box applies on Enter and never on the way, Space
+// plays after typing a frame, the arrows step once the number is applied; menu shortcuts.
+#include <QLabel>
+#include <QMenuBar>
+#include <QSpinBox>
+#include <QtTest>
+
+#include "ViewTestSupport.h"
+#include "boneless/ui/MainWindow.h"
+#include "boneless/ui/Timeline.h"
+#include "boneless/ui/TimelineWidget.h"
+
+using namespace boneless::ui;
+
+class KeysTest : public QObject {
+    Q_OBJECT
+  public:
+    static void initMain() { setDefaultSurfaceFormat(); }
+
+  private slots:
+    void initTestCase() {
+        test::isolate("KeysTest");
+        project_ = test::writeDemoProject(test::freshFolder("KeysTest") + "/demo");
+    }
+
+    void init() {
+        window_ = std::make_unique<MainWindow>();
+        window_->setMessageBoxesEnabled(false);
+        QVERIFY(window_->openProject(project_));
+        QVERIFY(test::showAndWait(*window_));
+    }
+    void cleanup() { window_.reset(); }
+
+    void theFrameBoxGoesToTheNumberOnEnterOnly() {
+        Timeline* timeline = window_->timeline();
+        QSpinBox* box = window_->timelineWidget()->frameBox();
+        QSignalSpy moves(timeline, &Timeline::frameChanged);
+        box->setFocus();
+        QTRY_VERIFY(box->hasFocus());
+        box->selectAll();
+        QTest::keyClicks(box, "45");
+        QCOMPARE(moves.count(), 0);  // not frame 4 on the way
+        QTest::keyClick(box, Qt::Key_Return);
+        QCOMPARE(timeline->frame(), 45);
+        QCOMPARE(moves.count(), 1);
+        // Applied, the box lets go: the arrows step frames again.
+        QVERIFY(!box->hasFocus());
+        QTest::keyClick(window_.get(), Qt::Key_Right);
+        QCOMPARE(timeline->frame(), 46);
+        QVERIFY(test::waitForFrame(*window_));
+        QCOMPARE(window_->displayedFrame(), 46);
+    }
+
+    void spaceAfterTypingAFramePlaysFromIt() {
+        Timeline* timeline = window_->timeline();
+        timeline->setSpeed(Timeline::Speed::Quarter);
+        QSpinBox* box = window_->timelineWidget()->frameBox();
+        box->setFocus();
+        QTRY_VERIFY(box->hasFocus());
+        box->selectAll();
+        QTest::keyClicks(box, "12");
+        QTest::keyClick(box, Qt::Key_Space);
+        QVERIFY(timeline->isPlaying());
+        QVERIFY2(timeline->frame() >= 12 && timeline->frame() < 20,
+                 qPrintable(QString::number(timeline->frame())));
+        QCOMPARE(box->text().trimmed().isEmpty(), false);
+        QTest::keyClick(window_.get(), Qt::Key_Space);
+        QVERIFY(!timeline->isPlaying());
+    }
+
+    void theCountIsTheNumberOfFrames() {
+        const int frames = window_->timeline()->frameCount();
+        QCOMPARE(frames, 60);
+        bool found = false;
+        for (auto* label : window_->timelineWidget()->findChildren<QLabel*>())
+            found = found || label->text() == "/ 60";
+        QVERIFY(found);
+        window_->timeline()->goToLast();
+        QVERIFY(test::waitForFrame(*window_));
+        QVERIFY2(window_->frameSummary().startsWith("Frame 59 / 60"),
+                 qPrintable(window_->frameSummary()));
+    }
+
+    void menusHaveShortcutsAndHelp() {
+        auto* mesh = window_->findChild<QAction*>("actionOpenMesh");
+        auto* take = window_->findChild<QAction*>("actionOpenTake");
+        QVERIFY(mesh && take);
+        QCOMPARE(mesh->shortcut(), QKeySequence(Qt::CTRL | Qt::Key_M));
+        QCOMPARE(take->shortcut(), QKeySequence(Qt::CTRL | Qt::Key_T));
+        QVERIFY(window_->findChild<QAction*>("actionShortcuts"));
+        QVERIFY(window_->findChild<QAction*>("actionGettingStarted"));
+        window_->findChild<QAction*>("actionShortcuts")->trigger();
+        auto* help = window_->findChild<QWidget*>("helpMessage");
+        QVERIFY(help && help->isVisible());
+        help->close();
+    }
+
+  private:
+    QString project_;
+    std::unique_ptr<MainWindow> window_;
+};
+
+QTEST_MAIN(KeysTest)
+#include "KeysTest.moc"
