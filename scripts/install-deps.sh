@@ -5,7 +5,7 @@ packages=(
   # toolchain
   g++ cmake ninja-build pkg-config git xz-utils
   # core
-  libeigen3-dev libopenmesh-dev libsuitesparse-dev libopenblas-dev
+  libeigen3-dev libopenmesh-dev libsuitesparse-dev libopenblas-dev libtinygltf-dev
   # CLI
   nlohmann-json3-dev libcli11-dev
   # application: Qt6 and VTK 9.1 (never libvtk9-qt-dev: Debian builds it for Qt5)
@@ -16,6 +16,8 @@ packages=(
   xvfb xauth x11-utils libgl1-mesa-dri mesa-utils
   # tests, benchmarks, fuzzing (clang's libFuzzer and sanitizer runtimes)
   libgtest-dev libbenchmark-dev clang libclang-rt-14-dev
+  # a real client reading the exports back: headless Blender (its glTF importer needs numpy)
+  blender python3-numpy
 )
 if [ "$(id -u)" -ne 0 ]; then
   echo "install-deps.sh: run as root (it calls apt-get)" >&2

@@ -8,3 +8,4 @@ void registerDemoCommand(CLI::App& app);
 void registerMapCommand(CLI::App& app);
 void registerSolveCommand(CLI::App& app);
 void registerInspectCommand(CLI::App& app);
+void registerBatchCommand(CLI::App& app);

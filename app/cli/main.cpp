@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
     registerMapCommand(app);
     registerSolveCommand(app);
     registerInspectCommand(app);
+    registerBatchCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -127,7 +127,7 @@ TEST(SolveCommand, CtrlCStopsCleanlyWithCompleteFilesOnly) {
     EXPECT_NE(r.out.find("exit=1"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("interrupted"), std::string::npos) << r.out;
     const auto j = sidecar(out);
-    EXPECT_TRUE(j["interrupted"].get<bool>());
+    EXPECT_FALSE(j["complete"].get<bool>());
     int objs = 0;
     for (const auto& e : fs::directory_iterator(out)) {
         EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();

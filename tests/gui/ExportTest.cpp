@@ -77,7 +77,7 @@ class ExportTest : public QObject {
     Q_OBJECT
     QString work_, demo_;
 
-    void exportAndCompare(ExportRequest::Format format, const QString& name, int files) {
+    void exportAndCompare(ExportFormat format, const QString& name, int files) {
         Document d;
         QVERIFY(test::loadDemo(d, demo_));
         ExportRequest request = d.exportRequest(work_ + "/app-" + name, format);
@@ -105,8 +105,8 @@ class ExportTest : public QObject {
         test::demoProject(demo_);
     }
 
-    void objFramesMatchTheCli() { exportAndCompare(ExportRequest::Format::Obj, "obj", 11); }
-    void pointCacheMatchesTheCli() { exportAndCompare(ExportRequest::Format::Pc2, "pc2", 2); }
+    void objFramesMatchTheCli() { exportAndCompare(ExportFormat::Obj, "obj", 11); }
+    void pointCacheMatchesTheCli() { exportAndCompare(ExportFormat::Pc2, "pc2", 2); }
 
     void cancelStopsCleanly() {
         Document d;
@@ -117,7 +117,7 @@ class ExportTest : public QObject {
         const QString out = work_ + "/cancelled";
         QSignalSpy finished(&runner, &ExportRunner::finished);
         QSignalSpy progress(&runner, &ExportRunner::progress);
-        QVERIFY(runner.start(d, d.exportRequest(out, ExportRequest::Format::Obj)));
+        QVERIFY(runner.start(d, d.exportRequest(out, ExportFormat::Obj)));
         QVERIFY(runner.dialog());
         QVERIFY(progress.wait(60000));
         auto* cancel = runner.dialog()->findChild<QPushButton*>();
@@ -129,7 +129,7 @@ class ExportTest : public QObject {
         const int written = runner.result().framesWritten;
         QVERIFY(written >= 1 && written < d.frameCount());
         const QJsonObject sidecar = sidecarWithoutTimes(out + "/walker.json");
-        QCOMPARE(sidecar["interrupted"].toBool(), true);
+        QCOMPARE(sidecar["complete"].toBool(), false);
         QCOMPARE(sidecar["frames_written"].toInt(), written);
         QCOMPARE(QDir(out).entryList({"*.obj"}, QDir::Files).size(), written);
         QVERIFY(!runner.isRunning());
@@ -141,7 +141,7 @@ class ExportTest : public QObject {
         ExportRunner runner;
         QString error;
         QVERIFY(
-            !runner.start(d, d.exportRequest(work_ + "/none", ExportRequest::Format::Obj), &error));
+            !runner.start(d, d.exportRequest(work_ + "/none", ExportFormat::Obj), &error));
         QVERIFY2(error.contains("take"), qPrintable(error));
         QVERIFY(!runner.isRunning());
         QVERIFY(!QDir(work_ + "/none").exists());
@@ -151,7 +151,7 @@ class ExportTest : public QObject {
         Document d;
         QVERIFY(test::loadDemo(d, demo_));
         ExportRunner runner;
-        ExportRequest request = d.exportRequest(work_ + "/bad-range", ExportRequest::Format::Obj);
+        ExportRequest request = d.exportRequest(work_ + "/bad-range", ExportFormat::Obj);
         request.first = 500;
         QSignalSpy finished(&runner, &ExportRunner::finished);
         QVERIFY(runner.start(d, request));

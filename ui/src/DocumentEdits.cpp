@@ -256,7 +256,7 @@ bool Document::correspondenceModified() const {
     return mapPath_.isEmpty() || map_.toJson() != savedMapJson_;
 }
 
-ExportRequest Document::exportRequest(const QString& outDir, ExportRequest::Format format,
+ExportRequest Document::exportRequest(const QString& outDir, ExportFormat format,
                                       const QString& mapLabel) const {
     ExportRequest r;
     r.meshPath = meshPath_.toStdString();

@@ -237,7 +237,7 @@ bool MainWindow::exportTo(const QString& folder, bool pointCache) {
         return false;
     }
     const ExportRequest request = document_->exportRequest(
-        folder, pointCache ? ExportRequest::Format::Pc2 : ExportRequest::Format::Obj);
+        folder, pointCache ? ExportFormat::Pc2 : ExportFormat::Obj);
     QString error;
     if (!exporter_->start(*document_, request, &error)) {
         showError(error);

@@ -16,11 +16,11 @@
 #include <optional>
 #include <thread>
 
+#include "FrameOutput.h"
 #include "boneless/Parallel.h"
 #include "boneless/Error.h"
 #include "boneless/Metrics.h"
 #include "boneless/ObjWriter.h"
-#include "boneless/PointCacheWriter.h"
 
 namespace boneless {
 
@@ -101,8 +101,8 @@ json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibr
             {"fps", take.rate},
             {"frame_range", {result.first, result.first + result.framesWritten}},
             {"frames_written", result.framesWritten},
-            {"interrupted", result.cancelled},
-            {"output", request.format == ExportRequest::Format::Pc2 ? "pc2" : "obj"},
+            {"complete", !result.cancelled},
+            {"output", exportFormatInfo(request.format).name},
             {"source",
              {{"mesh", request.meshPath},
               {"group", request.group},
@@ -244,24 +244,19 @@ ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspo
     if (ec) throw Error(request.outDir + ": cannot create the folder (" + ec.message() + ")");
     const std::string stem = exportStem(request);
     const fs::path out(request.outDir);
-    std::optional<PointCacheWriter> cache;
-    if (request.format == ExportRequest::Format::Pc2)
-        cache.emplace((out / (stem + ".pc2")).string(), mesh.vertexCount(), request.first, 1.0);
+    ExportResult result;
+    result.sidecarPath = (out / (stem + ".json")).string();
+    // While the outputs are being rewritten, no earlier sidecar may say they are complete.
+    fs::remove(result.sidecarPath, ec);
+    FrameOutput output = openFrameOutput(request.format, request.outDir, stem, mesh, request.first,
+                                         take.rate, "Boneless: " + request.c3dPath);
 
     if (calibrated) calibrated(solver.calibration());
-    ExportResult result;
     result.first = request.first;
     json perFrame = json::array();
     solveInOrder(solver, mesh, take, map, request.options, request.first, end,
                  [&](int f, const Positions& V, const FrameReport& report, double distortion) {
-                     if (cache) {
-                         cache->append(V);
-                     } else {
-                         char name[16];
-                         std::snprintf(name, sizeof name, "_%04d.obj", f);
-                         writeObj((out / (stem + name)).string(), V, mesh.F,
-                                  "Boneless: " + request.c3dPath + " frame " + std::to_string(f));
-                     }
+                     output.append(f, V);
                      // Quality a user checks before importing: stretch against the rest pose,
                      // and folds.
                      perFrame.push_back({{"frame", f},
@@ -281,8 +276,7 @@ ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspo
                      }
                      return true;
                  });
-    if (cache) cache->finish();
-    result.sidecarPath = (out / (stem + ".json")).string();
+    output.finish();
     writeFileAtomically(
         result.sidecarPath,
         sidecarJson(take, request, solver.calibration(), result, std::move(perFrame)).dump(2) +

@@ -5,21 +5,22 @@
 
 #include "boneless/C3dTake.h"
 #include "boneless/Correspondence.h"
+#include "boneless/ExportFormat.h"
 #include "boneless/TakeSolver.h"
 #include "boneless/TriMesh.h"
 
 namespace boneless {
 
 // What `boneless-cli solve` and the application's export both write, so that the two produce the
-// same files: DIR/<stem>_<frame:04>.obj (input vertex order, same faces) or DIR/<stem>.pc2, plus
-// the sidecar DIR/<stem>.json (fps, frame range, units, up axis, sources, alignment, solver
-// settings, per-frame residuals). Every file appears atomically.
+// same files: DIR/<stem>_<frame:04>.obj (input vertex order, same faces) or one DIR/<stem>.pc2,
+// .mdd or .glb, plus the sidecar DIR/<stem>.json (fps, frame range, whether the run completed,
+// units, up axis, sources, alignment, solver settings, per-frame residuals). Every file appears
+// atomically, the sidecar last.
 struct ExportRequest {
-    enum class Format { Obj, Pc2 };
     // As the user named them; recorded in the sidecar and the OBJ comments.
     std::string meshPath, group, c3dPath, mapPath;
     std::string outDir;
-    Format format = Format::Obj;
+    ExportFormat format = ExportFormat::Obj;
     int first = 0;  // 0-based take frames [first, end); end < 0 = to the take's end
     int end = -1;
     TakeSolveOptions options;

@@ -120,7 +120,7 @@ class Document : public QObject {
     bool canSolve(QString* why = nullptr) const;
     // The request `boneless-cli solve` would make for the same inputs. mapPath is the
     // correspondence file when the map is unchanged since it was read or saved, else `mapLabel`.
-    ExportRequest exportRequest(const QString& outDir, ExportRequest::Format format,
+    ExportRequest exportRequest(const QString& outDir, ExportFormat format,
                                 const QString& mapLabel = {}) const;
     // True when the map differs from correspondencePath()'s content (or there is no file).
     bool correspondenceModified() const;

@@ -1,0 +1,200 @@
+// boneless-cli batch: many takes from one manifest, resumable and shardable (docs/batch.md).
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "Commands.h"
+#include "TakeJob.h"
+#include "boneless/Error.h"
+
+using namespace boneless;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct BatchArgs {
+    std::string manifest, shard;
+    bool quiet = false;
+};
+
+// The keys a manifest entry may hold: the names of `solve`'s options.
+void applyKeys(const json& object, const fs::path& base, const std::string& where, TakeJob& job) {
+    auto path = [&](const json& v) {
+        const fs::path p(v.get<std::string>());
+        return (p.is_absolute() ? p : base / p).lexically_normal().string();
+    };
+    for (const auto& [key, value] : object.items()) {
+        try {
+            if (key == "mesh")
+                job.mesh = path(value);
+            else if (key == "c3d")
+                job.c3d = path(value);
+            else if (key == "map")
+                job.map = path(value);
+            else if (key == "out")
+                job.out = path(value);
+            else if (key == "group")
+                job.group = value.get<std::string>();
+            else if (key == "format")
+                job.format = value.get<std::string>();
+            else if (key == "frames")
+                job.frames = value.get<std::string>();
+            else if (key == "solver")
+                job.solver = value.get<std::string>();
+            else if (key == "weight")
+                job.weight = value.get<double>();
+            else if (key == "lowpass")
+                job.lowPass = value.get<double>();
+            else if (key == "fill-gaps")
+                job.fillGaps = value.get<double>();
+            else if (key == "calibration-frame")
+                job.calibrationFrame = value.get<int>();
+            else
+                throw Error(where + ": unknown key '" + key + "'");
+        } catch (const json::exception&) {
+            throw Error(where + ": '" + key + "' has the wrong type (" + value.dump() + ")");
+        }
+    }
+}
+
+void requireKeys(const TakeJob& job, const std::string& where) {
+    for (const auto& [key, value] : {std::pair<const char*, const std::string*>{"mesh", &job.mesh},
+                                     {"c3d", &job.c3d},
+                                     {"map", &job.map},
+                                     {"out", &job.out}})
+        if (value->empty()) throw Error(where + ": '" + key + "' is missing");
+}
+
+// Entries in manifest order: "takes" first, then each of "folders" expanded in file-name order.
+std::vector<TakeJob> readManifest(const std::string& file) {
+    std::ifstream in(file);
+    if (!in) throw Error(file + ": cannot open the batch manifest");
+    json m;
+    try {
+        m = json::parse(in);
+    } catch (const json::exception& e) {
+        throw Error(file + ": not valid JSON (" + e.what() + ")");
+    }
+    if (!m.is_object()) throw Error(file + ": a batch manifest is a JSON object");
+    const fs::path base = fs::path(file).parent_path();
+    TakeJob defaults;
+    for (const auto& [key, value] : m.items())
+        if (key != "defaults" && key != "takes" && key != "folders")
+            throw Error(file + ": unknown key '" + key + "' (expected defaults, takes, folders)");
+    if (m.contains("defaults")) applyKeys(m["defaults"], base, file + ": defaults", defaults);
+    std::vector<TakeJob> jobs;
+    const json takes = m.value("takes", json::array()), folders = m.value("folders", json::array());
+    for (std::size_t i = 0; i < takes.size(); ++i) {
+        const std::string where = file + ": takes[" + std::to_string(i) + "]";
+        TakeJob job = defaults;
+        applyKeys(takes[i], base, where, job);
+        requireKeys(job, where);
+        jobs.push_back(job);
+    }
+    for (std::size_t i = 0; i < folders.size(); ++i) {
+        const std::string where = file + ": folders[" + std::to_string(i) + "]";
+        TakeJob pattern = defaults;
+        applyKeys(folders[i], base, where, pattern);
+        requireKeys(pattern, where);
+        std::error_code ec;
+        std::vector<fs::path> found;
+        for (const auto& e : fs::directory_iterator(pattern.c3d, ec)) {
+            std::string ext = e.path().extension().string();
+            std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+            if (e.is_regular_file() && ext == ".c3d") found.push_back(e.path());
+        }
+        if (ec) throw Error(where + ": cannot list " + pattern.c3d + " (" + ec.message() + ")");
+        std::sort(found.begin(), found.end());
+        for (const fs::path& take : found) {
+            TakeJob job = pattern;
+            job.c3d = take.string();
+            job.out = (fs::path(pattern.out) / take.stem()).string();
+            jobs.push_back(job);
+        }
+    }
+    if (jobs.empty()) throw Error(file + ": the manifest lists no take");
+    return jobs;
+}
+
+// "I/N", 1-based: entry k (0-based) belongs to shard k mod N + 1.
+std::pair<int, int> parseShard(const std::string& text) {
+    int i = 0, n = 0;
+    char slash = 0, extra = 0;
+    if (std::sscanf(text.c_str(), "%d%c%d%c", &i, &slash, &n, &extra) != 3 || slash != '/' ||
+        n < 1 || i < 1 || i > n)
+        throw Error("--shard expects I/N with 1 <= I <= N, got '" + text + "'");
+    return {i, n};
+}
+
+// A take is done when its sidecar says it completed from the same sources into the same format.
+bool finished(const TakeJob& job) {
+    std::ifstream in(takeJobSidecar(job));
+    if (!in) return false;
+    try {
+        const json s = json::parse(in);
+        const json& src = s.at("source");
+        return s.at("complete").get<bool>() && s.at("output") == job.format &&
+               src.at("mesh") == job.mesh && src.at("group") == job.group &&
+               src.at("c3d") == job.c3d && src.at("map") == job.map;
+    } catch (const json::exception&) {
+        return false;  // unreadable or from an older version: solve it again
+    }
+}
+
+void run(const BatchArgs& args) {
+    const auto [shard, shards] = args.shard.empty() ? std::pair{1, 1} : parseShard(args.shard);
+    const std::vector<TakeJob> jobs = readManifest(args.manifest);
+    int mine = 0, solved = 0, skipped = 0, failed = 0;
+    for (std::size_t k = 0; k < jobs.size(); ++k)
+        if (static_cast<int>(k % shards) == shard - 1) ++mine;
+    int done = 0;
+    for (std::size_t k = 0; k < jobs.size(); ++k) {
+        if (static_cast<int>(k % shards) != shard - 1) continue;
+        const TakeJob& job = jobs[k];
+        std::printf("[%d/%d] %s -> %s: ", ++done, mine, job.c3d.c_str(), job.out.c_str());
+        if (finished(job)) {
+            std::printf("skipped (its sidecar says it is complete)\n");
+            ++skipped;
+            continue;
+        }
+        std::fflush(stdout);
+        const auto start = std::chrono::steady_clock::now();
+        try {
+            const ExportResult r = runTakeJob(job, true);
+            std::printf(
+                "%d frames in %.1f s\n", r.framesWritten,
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+            ++solved;
+        } catch (const TakeJobInterrupted& e) {
+            std::printf("interrupted\n");
+            throw;
+        } catch (const Error& e) {
+            std::printf("FAILED: %s\n", e.what());
+            ++failed;
+        }
+        std::fflush(stdout);
+    }
+    std::printf("batch: %d of %zu entries in shard %d/%d: %d solved, %d skipped, %d failed\n", mine,
+                jobs.size(), shard, shards, solved, skipped, failed);
+    std::fflush(stdout);
+    if (failed)
+        throw Error(std::to_string(failed) + " of " + std::to_string(mine) + " takes failed");
+}
+
+}  // namespace
+
+void registerBatchCommand(CLI::App& app) {
+    auto args = std::make_shared<BatchArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "batch", "Solve every take a manifest lists, skipping those already complete");
+    cmd->add_option("MANIFEST", args->manifest, "Batch manifest (JSON; see docs/batch.md)")
+        ->required();
+    cmd->add_option("--shard", args->shard,
+                    "I/N: only every N-th entry, starting at the I-th (for job arrays)");
+    cmd->callback([args] { run(*args); });
+}

@@ -1,0 +1,158 @@
+#include "TakeJob.h"
+
+#include <unistd.h>
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+
+#include "FrameRange.h"
+#include "boneless/C3dReader.h"
+#include "boneless/Error.h"
+#include "boneless/MeshReader.h"
+
+using namespace boneless;
+
+namespace {
+
+std::atomic<bool> interrupted{false};
+extern "C" void onInterrupt(int) {
+    interrupted = true;
+}
+
+void progress(int done, int total, double elapsedSeconds, const FrameReport& last) {
+    // On a terminal the bar redraws in place; into a log it is a line every tenth of the take.
+    static const bool terminal = ::isatty(STDERR_FILENO);
+    if (!terminal && done != total && done % std::max(1, total / 10) != 0) return;
+    const int width = 30;
+    const int filled = total ? width * done / total : width;
+    const double perFrame = done ? elapsedSeconds / done : 0;
+    const int eta = static_cast<int>(perFrame * (total - done) + 0.5);
+    std::fprintf(stderr, "%s[%.*s%.*s] %d/%d frames  %.3f s/frame  ETA %d:%02d  residual %.1f mm%s",
+                 terminal ? "\r" : "", filled, "##############################", width - filled,
+                 "..............................", done, total, perFrame, eta / 60, eta % 60,
+                 last.residualRmsMm, terminal ? " " : "\n");
+    std::fflush(stderr);
+}
+
+std::vector<std::string> formatNames() {
+    std::vector<std::string> names;
+    for (const ExportFormatInfo& f : exportFormats()) names.push_back(f.name);
+    return names;
+}
+
+}  // namespace
+
+void addTakeJobOptions(CLI::App* cmd, TakeJob& job) {
+    std::string formats;
+    for (const ExportFormatInfo& f : exportFormats())
+        formats += std::string(formats.empty() ? "" : "; ") + f.name + ": " + f.description;
+    cmd->add_option("--format", job.format, formats)->check(CLI::IsMember(formatNames()));
+    cmd->add_option("--frames", job.frames, "Frame range A:B (0-based, B excluded)");
+    cmd->add_option("--weight", job.weight, "Marker weight (soft constraints)")
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--lowpass", job.lowPass, "Low-pass cutoff in Hz (0 = off)");
+    cmd->add_option("--fill-gaps", job.fillGaps,
+                    "Place a marker missing for at most this many seconds on its trajectory "
+                    "(0 = off)")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--calibration-frame", job.calibrationFrame,
+                    "Frame to align the take at (default: chosen automatically)");
+    cmd->add_option("--solver", job.solver,
+                    "local-global (each frame from its own markers, fast) or exact (Gauss-Newton "
+                    "refining it: the energy's minimum, slower)")
+        ->check(CLI::IsMember({methodName(SolverOptions::Method::LocalGlobal),
+                               methodName(SolverOptions::Method::Exact)}));
+}
+
+std::string takeJobSidecar(const TakeJob& job) {
+    ExportRequest request;
+    request.meshPath = job.mesh;
+    request.group = job.group;
+    return (std::filesystem::path(job.out) / (exportStem(request) + ".json")).string();
+}
+
+ExportResult runTakeJob(const TakeJob& job, bool quiet) {
+    ExportRequest request;
+    const auto format = findExportFormat(job.format);
+    if (!format) throw Error("unknown output format '" + job.format + "'");
+    request.format = *format;
+    if (!parseMethod(job.solver, request.options.solver.method))
+        throw Error("unknown solver '" + job.solver + "'");
+    const FrameRange range = parseFrameRange(job.frames);
+    request.first = range.first;
+    request.end = range.end;
+    request.options.markerWeight = job.weight;
+    request.options.lowPassHz = job.lowPass;
+    request.options.fillGapSeconds = job.fillGaps;
+    request.options.calibrationFrame = job.calibrationFrame;
+    request.meshPath = job.mesh;
+    request.group = job.group;
+    request.c3dPath = job.c3d;
+    request.mapPath = job.map;
+    request.outDir = job.out;
+
+    MeshReadOptions meshOptions;
+    meshOptions.group = job.group;
+    const TriMesh mesh = readMesh(job.mesh, meshOptions).mesh;
+    const C3dTake take = readC3d(job.c3d);
+    const Correspondence map = Correspondence::read(job.map);
+
+    auto announce = [&](const Calibration& c) {
+        if (quiet) return;
+        const double meshUnitsPerMm = c.takeToMesh.scale / take.unitToMm;
+        std::fprintf(stderr,
+                     "%s: %zu frames at %g Hz, units %s; aligned at frame %d (residual %.1f mm), "
+                     "mesh units look like %s, mesh up axis %s\n",
+                     job.c3d.c_str(), take.frameCount(), take.rate, take.units.c_str(), c.frame,
+                     c.residual / meshUnitsPerMm, guessMeshUnits(meshUnitsPerMm),
+                     guessUpAxis(c.takeToMesh).c_str());
+    };
+    const auto start = std::chrono::steady_clock::now();
+    auto onFrame = [&](int done, int total, const FrameReport& report) {
+        const double elapsed =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (!quiet) progress(done, total, elapsed, report);
+        return !interrupted.load();
+    };
+
+    interrupted = false;
+    auto previousHandler = std::signal(SIGINT, onInterrupt);
+    ExportResult result;
+    try {
+        result = exportTake(mesh, take, map, request, onFrame, announce);
+    } catch (...) {
+        std::signal(SIGINT, previousHandler);
+        throw;
+    }
+    std::signal(SIGINT, previousHandler);
+    if (!quiet && ::isatty(STDERR_FILENO)) std::fprintf(stderr, "\n");
+    if (result.cancelled)
+        throw TakeJobInterrupted("interrupted after " + std::to_string(result.framesWritten) +
+                                 " frames; " + "the frames written and " + exportStem(request) +
+                                 ".json are complete");
+    if (!quiet) {
+        namespace fs = std::filesystem;
+        const std::string stem = exportStem(request);
+        std::uintmax_t bytes = 0;
+        std::string written;
+        if (request.format == ExportFormat::Obj) {
+            for (int f = result.first; f < result.first + result.framesWritten; ++f) {
+                char name[16];
+                std::snprintf(name, sizeof name, "_%04d.obj", f);
+                bytes += fs::file_size(fs::path(job.out) / (stem + name));
+            }
+            written = (fs::path(job.out) / (stem + "_*.obj")).string();
+        } else {
+            written =
+                (fs::path(job.out) / (stem + exportFormatInfo(request.format).extension)).string();
+            bytes = fs::file_size(written);
+        }
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        std::fprintf(stderr, "wrote %s: %d frames, %.1f MB in %.1f s\n", written.c_str(),
+                     result.framesWritten, bytes / 1e6, seconds);
+    }
+    return result;
+}

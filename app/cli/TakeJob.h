@@ -1,0 +1,34 @@
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "boneless/Error.h"
+#include "boneless/TakeExport.h"
+
+// Thrown by runTakeJob when Ctrl-C stopped it: a batch stops there rather than going on.
+struct TakeJobInterrupted : boneless::Error {
+    using boneless::Error::Error;
+};
+
+// One take solved into one output folder: what `solve` runs once and `batch` runs per manifest
+// entry, so both read their inputs, align, solve and write the same way.
+struct TakeJob {
+    std::string mesh, group, c3d, map, out, format = "obj", frames;
+    double weight = boneless::TakeSolveOptions{}.markerWeight;
+    double lowPass = 0;
+    double fillGaps = boneless::TakeSolveOptions{}.fillGapSeconds;
+    int calibrationFrame = -1;
+    std::string solver = boneless::methodName(boneless::SolverOptions{}.method);
+};
+
+// The solver and format options of `solve` (everything but the input and output paths).
+void addTakeJobOptions(CLI::App* command, TakeJob& job);
+
+// Where the job's sidecar goes: OUT/<stem>.json.
+std::string takeJobSidecar(const TakeJob& job);
+
+// Reads the inputs, solves and writes. Progress goes to stderr unless `quiet`. Ctrl-C stops after
+// the frames being solved and throws Error (the files written and the sidecar are complete).
+// Throws Error naming the file or option for bad input.
+boneless::ExportResult runTakeJob(const TakeJob& job, bool quiet);

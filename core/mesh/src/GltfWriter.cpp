@@ -1,0 +1,226 @@
+#include "boneless/GltfWriter.h"
+
+#include <tiny_gltf.h>
+#include <unistd.h>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "SpoolFile.h"
+#include "boneless/Error.h"
+
+namespace boneless {
+
+namespace {
+
+// The GLB container stores chunk lengths as uint32; the sparse weight keys index an N×N array.
+constexpr std::uint64_t kMaxGlbBytes = std::numeric_limits<std::uint32_t>::max() - (1u << 20);
+constexpr int kMaxFrames = 65535;
+
+int addView(tinygltf::Model& m, size_t offset, size_t length, int target = 0) {
+    tinygltf::BufferView view;
+    view.buffer = 0;
+    view.byteOffset = offset;
+    view.byteLength = length;
+    view.target = target;
+    m.bufferViews.push_back(view);
+    return static_cast<int>(m.bufferViews.size()) - 1;
+}
+
+int addAccessor(tinygltf::Model& m, int view, int componentType, int type, size_t count,
+                std::vector<double> min = {}, std::vector<double> max = {}) {
+    tinygltf::Accessor a;
+    a.bufferView = view;
+    a.componentType = componentType;
+    a.type = type;
+    a.count = count;
+    a.minValues = std::move(min);
+    a.maxValues = std::move(max);
+    m.accessors.push_back(a);
+    return static_cast<int>(m.accessors.size()) - 1;
+}
+
+template <class T>
+void appendBytes(std::string& out, const std::vector<T>& values) {
+    out.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+}
+
+void appendU32(std::string& out, std::uint32_t v) {  // GLB is little-endian, as is the build
+    out.append(reinterpret_cast<const char*>(&v), 4);
+}
+
+}  // namespace
+
+GltfWriter::GltfWriter(std::string path, const TriMesh& rest, std::string name)
+    : path_(std::move(path)),
+      spool_(path_ + ".frames.tmp" + std::to_string(::getpid())),
+      name_(std::move(name)),
+      rest_(rest) {
+    file_ = std::fopen(spool_.c_str(), "wb+");
+    if (!file_) throw Error(path_ + ": cannot be written (cannot create " + spool_ + ")");
+}
+
+GltfWriter::~GltfWriter() {
+    if (file_) {
+        std::fclose(file_);
+        std::remove(spool_.c_str());
+    }
+}
+
+void GltfWriter::append(double seconds, const Positions& positions) {
+    if (!file_) throw Error(path_ + ": the glTF file is already finished");
+    const int n = rest_.vertexCount();
+    if (positions.rows() != n)
+        throw Error(path_ + ": frame with " + std::to_string(positions.rows()) +
+                    " vertices, the mesh has " + std::to_string(n));
+    const std::uint64_t bytes = 12ull * n * (times_.size() + 2) + 12ull * rest_.F.rows();
+    if (static_cast<int>(times_.size()) >= kMaxFrames || bytes > kMaxGlbBytes)
+        throw Error(path_ + ": a .glb holds at most " + std::to_string(kMaxFrames) +
+                    " frames and 4 GB; export fewer frames (--frames) or a point cache");
+    std::vector<float> offsets(3 * static_cast<size_t>(n));
+    std::array<double, 6> b = {1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
+    for (int v = 0; v < n; ++v)
+        for (int c = 0; c < 3; ++c) {
+            const float d = static_cast<float>(positions(v, c) - rest_.V(v, c));
+            offsets[3 * v + c] = d;
+            b[c] = std::min(b[c], double(d));
+            b[3 + c] = std::max(b[3 + c], double(d));
+        }
+    if (std::fwrite(offsets.data(), sizeof(float), offsets.size(), file_) != offsets.size())
+        throw Error(path_ + ": writing failed (disk full?)");
+    times_.push_back(static_cast<float>(seconds));
+    bounds_.push_back(b);
+}
+
+void GltfWriter::finish() {
+    if (!file_) return;
+    const int n = rest_.vertexCount();
+    const size_t frames = times_.size();
+    tinygltf::Model m;
+    m.asset.version = "2.0";
+    m.asset.generator = "Boneless";
+    m.buffers.emplace_back();
+
+    // BIN chunk: rest positions, triangles, the spooled offsets, times, sparse weight keys.
+    std::string head;
+    std::vector<float> rest(3 * static_cast<size_t>(n));
+    std::vector<double> lo(3, 1e300), hi(3, -1e300);
+    for (int v = 0; v < n; ++v)
+        for (int c = 0; c < 3; ++c) {
+            rest[3 * v + c] = static_cast<float>(rest_.V(v, c));
+            lo[c] = std::min(lo[c], double(rest[3 * v + c]));
+            hi[c] = std::max(hi[c], double(rest[3 * v + c]));
+        }
+    std::vector<std::uint32_t> triangles(3 * static_cast<size_t>(rest_.F.rows()));
+    for (int f = 0; f < rest_.F.rows(); ++f)
+        for (int c = 0; c < 3; ++c)
+            triangles[3 * f + c] = static_cast<std::uint32_t>(rest_.F(f, c));
+    size_t offset = 0;
+    auto place = [&](size_t length, int target = 0) {
+        const int view = addView(m, offset, length, target);
+        offset += length;
+        return view;
+    };
+    const int restAccessor =
+        addAccessor(m, place(rest.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
+                    TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n, lo, hi);
+    const int triangleAccessor =
+        addAccessor(m, place(triangles.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+                    TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, triangles.size());
+    tinygltf::Primitive primitive;
+    primitive.attributes["POSITION"] = restAccessor;
+    primitive.indices = triangleAccessor;
+    primitive.mode = TINYGLTF_MODE_TRIANGLES;
+    std::vector<tinygltf::Value> targetNames;
+    for (size_t k = 0; k < frames; ++k) {
+        const auto& b = bounds_[k];
+        primitive.targets.push_back(
+            {{"POSITION", addAccessor(m, place(12ull * n, TINYGLTF_TARGET_ARRAY_BUFFER),
+                                      TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n,
+                                      {b[0], b[1], b[2]}, {b[3], b[4], b[5]})}});
+        char label[32];
+        std::snprintf(label, sizeof label, "frame_%04zu", k);
+        targetNames.emplace_back(std::string(label));
+    }
+    const double tMin = frames ? *std::min_element(times_.begin(), times_.end()) : 0.0;
+    const double tMax = frames ? *std::max_element(times_.begin(), times_.end()) : 0.0;
+    const int timeAccessor = addAccessor(m, place(frames * 4), TINYGLTF_COMPONENT_TYPE_FLOAT,
+                                         TINYGLTF_TYPE_SCALAR, frames, {tMin}, {tMax});
+    // Key k sets weight k to 1 and every other to 0: only the N ones are stored.
+    std::vector<std::uint32_t> keyIndices(frames);
+    for (size_t k = 0; k < frames; ++k) keyIndices[k] = static_cast<std::uint32_t>(k * frames + k);
+    const std::vector<float> ones(frames, 1.0f);
+    const int weightAccessor =
+        addAccessor(m, -1, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, frames * frames);
+    auto& sparse = m.accessors[weightAccessor].sparse;
+    sparse.isSparse = true;
+    sparse.count = static_cast<int>(frames);
+    sparse.indices.bufferView = place(frames * 4);
+    sparse.indices.byteOffset = 0;  // tinygltf leaves these uninitialised
+    sparse.values.byteOffset = 0;
+    sparse.indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+    sparse.values.bufferView = place(frames * 4);
+
+    tinygltf::Mesh mesh;
+    mesh.name = name_;
+    mesh.primitives.push_back(primitive);
+    mesh.weights.assign(frames, 0.0);
+    mesh.extras =
+        tinygltf::Value(tinygltf::Value::Object{{"targetNames", tinygltf::Value(targetNames)}});
+    m.meshes.push_back(mesh);
+    tinygltf::Node node;
+    node.name = name_;
+    node.mesh = 0;
+    m.nodes.push_back(node);
+    m.scenes.emplace_back();
+    m.scenes[0].nodes = {0};
+    m.defaultScene = 0;
+    if (frames > 0) {
+        tinygltf::Animation animation;
+        animation.name = name_;
+        tinygltf::AnimationSampler sampler;
+        sampler.input = timeAccessor;
+        sampler.output = weightAccessor;
+        sampler.interpolation = "LINEAR";
+        animation.samplers.push_back(sampler);
+        tinygltf::AnimationChannel channel;
+        channel.sampler = 0;
+        channel.target_node = 0;
+        channel.target_path = "weights";
+        animation.channels.push_back(channel);
+        m.animations.push_back(animation);
+    }
+
+    // tinygltf writes the document; the buffer's bytes are streamed from the spool, so its entry
+    // is replaced by one that names the BIN chunk's length.
+    std::ostringstream text;
+    tinygltf::TinyGLTF gltf;
+    gltf.WriteGltfSceneToStream(&m, text, false, false);
+    nlohmann::json document = nlohmann::json::parse(text.str());
+    document["buffers"] = nlohmann::json::array({{{"byteLength", offset}}});
+    std::string json = document.dump();
+    json.append((4 - json.size() % 4) % 4, ' ');
+
+    std::string tail;
+    appendBytes(tail, times_);
+    appendBytes(tail, keyIndices);
+    appendBytes(tail, ones);
+    head.reserve(28 + json.size() + rest.size() * 4 + triangles.size() * 4);
+    head.append("glTF");
+    appendU32(head, 2);
+    appendU32(head, static_cast<std::uint32_t>(12 + 8 + json.size() + 8 + offset));
+    appendU32(head, static_cast<std::uint32_t>(json.size()));
+    head.append("JSON");
+    head.append(json);
+    appendU32(head, static_cast<std::uint32_t>(offset));
+    head.append("BIN", 4);  // with its NUL: the chunk type is 0x004E4942
+    appendBytes(head, rest);
+    appendBytes(head, triangles);
+    std::FILE* spool = file_;
+    file_ = nullptr;
+    writeSpooled(path_, head, spool, spool_, tail);
+}
+
+}  // namespace boneless

@@ -1,0 +1,147 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "CliRunner.h"
+
+using namespace boneless::testing;
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+// Three takes of different lengths in DIR/takes, one mesh and map in DIR.
+fs::path makeLibrary() {
+    const fs::path dir = freshTestDir("library");
+    fs::create_directories(dir / "takes");
+    const char* names[] = {"walk_a", "walk_b", "walk_c"};
+    for (int i = 0; i < 3; ++i) {
+        const fs::path demo = dir / ("demo" + std::to_string(i));
+        const CliResult r =
+            runCli("demo --out " + demo.string() + " --frames " + std::to_string(4 + i));
+        EXPECT_EQ(r.exitCode, 0) << r.out;
+        fs::copy_file(demo / "walker.c3d", dir / "takes" / (std::string(names[i]) + ".c3d"));
+        if (i == 0) {
+            fs::copy_file(demo / "walker.obj", dir / "walker.obj");
+            fs::copy_file(demo / "walker.map.json", dir / "walker.map.json");
+        }
+    }
+    return dir;
+}
+
+fs::path writeManifest(const fs::path& dir, const std::string& name, const json& manifest) {
+    const fs::path path = dir / name;
+    std::ofstream(path) << manifest.dump(2);
+    return path;
+}
+
+json folderManifest(const std::string& out) {
+    return {{"defaults", {{"format", "obj"}}},
+            {"folders",
+             {{{"c3d", "takes"},
+               {"mesh", "walker.obj"},
+               {"map", "walker.map.json"},
+               {"out", out}}}}};
+}
+
+// Every file under `root` by relative path; sidecars without their timings (they differ run to
+// run), everything else byte for byte.
+std::map<std::string, std::string> contents(const fs::path& root) {
+    std::map<std::string, std::string> files;
+    for (const auto& e : fs::recursive_directory_iterator(root)) {
+        if (!e.is_regular_file()) continue;
+        std::ostringstream bytes;
+        bytes << std::ifstream(e.path(), std::ios::binary).rdbuf();
+        std::string text = bytes.str();
+        if (e.path().extension() == ".json") {
+            json j = json::parse(text);
+            for (json& f : j["per_frame"]) f.erase("ms");
+            for (const char* k : {"ms_per_frame_mean", "ms_per_frame_worst", "ms_per_frame_median"})
+                j["summary"].erase(k);
+            text = j.dump();
+        }
+        files[fs::relative(e.path(), root).string()] = text;
+    }
+    return files;
+}
+
+}  // namespace
+
+TEST(Batch, TwoShardsTogetherWriteExactlyWhatOneRunWrites) {
+    const fs::path dir = makeLibrary();
+    const fs::path whole = writeManifest(dir, "whole.json", folderManifest("whole"));
+    const fs::path split = writeManifest(dir, "split.json", folderManifest("split"));
+    const CliResult one = runCli("batch " + whole.string());
+    ASSERT_EQ(one.exitCode, 0) << one.out;
+    EXPECT_NE(one.out.find("3 of 3 entries in shard 1/1: 3 solved, 0 skipped, 0 failed"),
+              std::string::npos)
+        << one.out;
+    const CliResult first = runCli("batch " + split.string() + " --shard 1/2");
+    const CliResult second = runCli("batch " + split.string() + " --shard 2/2");
+    ASSERT_EQ(first.exitCode, 0) << first.out;
+    ASSERT_EQ(second.exitCode, 0) << second.out;
+    EXPECT_NE(first.out.find("2 of 3 entries in shard 1/2: 2 solved"), std::string::npos)
+        << first.out;
+    EXPECT_NE(second.out.find("1 of 3 entries in shard 2/2: 1 solved"), std::string::npos)
+        << second.out;
+
+    const auto a = contents(dir / "whole"), b = contents(dir / "split");
+    EXPECT_EQ(a.size(), 3u + 4u + 5u + 6u);  // a sidecar and the OBJ frames per take
+    ASSERT_EQ(a.size(), b.size());
+    for (const auto& [name, bytes] : a) {
+        ASSERT_TRUE(b.count(name)) << name;
+        EXPECT_TRUE(b.at(name) == bytes) << name << " differs";
+    }
+    EXPECT_TRUE(json::parse(std::ifstream(dir / "whole" / "walk_b" / "walker.json"))["complete"]);
+}
+
+TEST(Batch, ARunAgainSkipsTheTakesItFinished) {
+    const fs::path dir = makeLibrary();
+    const fs::path manifest = writeManifest(dir, "m.json", folderManifest("out"));
+    ASSERT_EQ(runCli("batch " + manifest.string()).exitCode, 0);
+    // A take whose run did not finish has a sidecar saying so: it is solved again.
+    const fs::path sidecar = dir / "out" / "walk_c" / "walker.json";
+    json j = json::parse(std::ifstream(sidecar));
+    j["complete"] = false;
+    std::ofstream(sidecar) << j.dump();
+    const auto before = fs::last_write_time(dir / "out" / "walk_a" / "walker_0000.obj");
+    const CliResult again = runCli("batch " + manifest.string());
+    ASSERT_EQ(again.exitCode, 0) << again.out;
+    EXPECT_NE(again.out.find("3 of 3 entries in shard 1/1: 1 solved, 2 skipped, 0 failed"),
+              std::string::npos)
+        << again.out;
+    EXPECT_EQ(fs::last_write_time(dir / "out" / "walk_a" / "walker_0000.obj"), before);
+    EXPECT_TRUE(json::parse(std::ifstream(sidecar))["complete"]);
+}
+
+TEST(Batch, AFailingTakeDoesNotStopTheOthersButFailsTheRun) {
+    const fs::path dir = makeLibrary();
+    std::ofstream(dir / "takes" / "broken.c3d") << "not a c3d file";
+    const json manifest = {
+        {"defaults", {{"mesh", "walker.obj"}, {"map", "walker.map.json"}, {"format", "pc2"}}},
+        {"takes",
+         {{{"c3d", "takes/broken.c3d"}, {"out", "out/broken"}},
+          {{"c3d", "takes/walk_a.c3d"}, {"out", "out/walk_a"}}}}};
+    const CliResult r = runCli("batch " + writeManifest(dir, "m.json", manifest).string());
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("FAILED: "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("broken.c3d"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("2 of 2 entries in shard 1/1: 1 solved, 0 skipped, 1 failed"),
+              std::string::npos)
+        << r.out;
+    EXPECT_TRUE(fs::exists(dir / "out" / "walk_a" / "walker.pc2"));
+}
+
+TEST(Batch, AManifestMistakeNamesTheFileAndTheEntry) {
+    const fs::path dir = freshTestDir("bad");
+    const json manifest = {{"takes", {{{"c3d", "a.c3d"}, {"mesh", "m.obj"}, {"ouput", "x"}}}}};
+    const CliResult r = runCli("batch " + writeManifest(dir, "m.json", manifest).string());
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("m.json: takes[0]: unknown key 'ouput'"), std::string::npos) << r.out;
+    EXPECT_NE(runCli("batch " + (dir / "m.json").string() + " --shard 3/2").out.find("--shard"),
+              std::string::npos);
+}

@@ -1,0 +1,65 @@
+// Blender 3.4, headless, as the client: each export format read back the way a user would, at the
+// first, middle and last frame exported (tests/blender/read_export.py). Skipped without Blender.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "CliRunner.h"
+
+using namespace boneless::testing;
+namespace fs = std::filesystem;
+
+namespace {
+
+bool haveBlender() {
+    return runShell("command -v blender >/dev/null 2>&1").exitCode == 0;
+}
+
+// Solves take frames 2..11 of a 12-frame demo into OBJ (the reference, 17 digits) and `format`,
+// then has Blender read the export at frames 2, 7 and 11.
+void checkInBlender(const std::string& format) {
+    if (!haveBlender()) GTEST_SKIP() << "blender is not installed (scripts/install-deps.sh)";
+    const fs::path dir = freshTestDir("blender-" + format);
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frames 12").exitCode, 0);
+    auto solve = [&](const std::string& f) {
+        const CliResult r = runCli(
+            "solve --quiet --frames 2:12 --format " + f + " --mesh " +
+            (dir / "walker.obj").string() + " --c3d " + (dir / "walker.c3d").string() +
+            " --map " + (dir / "walker.map.json").string() + " --out " + (dir / f).string());
+        ASSERT_EQ(r.exitCode, 0) << r.out;
+    };
+    solve("obj");
+    if (format != "obj") solve(format);
+    const double fps =
+        nlohmann::json::parse(std::ifstream(dir / "obj" / "walker.json"))["fps"].get<double>();
+    const std::string exported =
+        format == "obj" ? (dir / "obj").string() : (dir / format / ("walker." + format)).string();
+    const CliResult r =
+        runShell("blender -b --factory-startup --python " BONELESS_SOURCE_DIR
+                 "/tests/blender/read_export.py -- " +
+                 format + " " + exported + " " + (dir / "obj").string() + " walker " +
+                 std::to_string(static_cast<int>(fps)) + " 2,7,11 2>&1");
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find(format + ": frames [2, 7, 11] read back within"), std::string::npos)
+        << r.out;
+}
+
+}  // namespace
+
+TEST(BlenderReads, TheObjSequenceFrameByFrame) {
+    checkInBlender("obj");
+}
+
+TEST(BlenderReads, ThePc2CacheThroughItsMeshCacheModifier) {
+    checkInBlender("pc2");
+}
+
+TEST(BlenderReads, TheMddCacheThroughItsMeshCacheModifier) {
+    checkInBlender("mdd");
+}
+
+TEST(BlenderReads, TheGlbAnimationThroughItsGltfImporter) {
+    checkInBlender("glb");
+}
