@@ -4,7 +4,9 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <fstream>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "Commands.h"
 #include "FrameRange.h"
@@ -29,6 +31,8 @@ struct SolveArgs {
     double fillGaps = TakeSolveOptions{}.fillGapSeconds;
     int calibrationFrame = -1;
     std::string solver = methodName(SolverOptions{}.method);
+    std::string calibrate = calibrateModeName(TakeSolveOptions{}.calibrate);
+    bool writeCalibratedRest = false;
     bool quiet = false;
 };
 
@@ -45,6 +49,25 @@ void progress(int done, int total, double elapsedSeconds, const FrameReport& las
                  "..............................", done, total, perFrame, eta / 60, eta % 60,
                  last.residualRmsMm, terminal ? " " : "\n");
     std::fflush(stderr);
+}
+
+// The sidecar's quality figures, so a run's stretch and fit are seen without opening it.
+void printSummary(const std::string& sidecarPath) {
+    std::ifstream in(sidecarPath);
+    const nlohmann::json sidecar = nlohmann::json::parse(in);
+    const nlohmann::json& s = sidecar.at("summary");
+    const nlohmann::json& c = sidecar.at("calibration");
+    std::fprintf(stderr,
+                 "calibrate %s: marker residual RMS %.2f mm mean, %.2f mm worst frame; edge "
+                 "distortion RMS %.3f mean, %.3f worst frame; 95th percentile edge strain %.3f "
+                 "worst frame; folded faces %d worst frame\n",
+                 c.at("calibrate").get<std::string>().c_str(),
+                 s.at("residual_rms_mm_mean").get<double>(),
+                 s.at("residual_rms_mm_worst_frame").get<double>(),
+                 s.at("edge_distortion_mean").get<double>(),
+                 s.at("edge_distortion_worst_frame").get<double>(),
+                 s.at("edge_strain_p95_worst_frame").get<double>(),
+                 s.at("folded_faces_worst_frame").get<int>());
 }
 
 void run(const SolveArgs& args) {
@@ -69,6 +92,8 @@ void run(const SolveArgs& args) {
     request.options.fillGapSeconds = args.fillGaps;
     request.options.calibrationFrame = args.calibrationFrame;
     parseMethod(args.solver, request.options.solver.method);  // CLI11 has checked the name
+    parseCalibrateMode(args.calibrate, request.options.calibrate);
+    request.writeCalibratedRest = args.writeCalibratedRest;
 
     auto announce = [&](const Calibration& c) {
         if (args.quiet) return;
@@ -99,6 +124,7 @@ void run(const SolveArgs& args) {
     }
     std::signal(SIGINT, previousHandler);
     if (!args.quiet && ::isatty(STDERR_FILENO)) std::fprintf(stderr, "\n");
+    if (!args.quiet) printSummary(result.sidecarPath);
     if (result.cancelled)
         throw Error("interrupted after " + std::to_string(result.framesWritten) + " frames; " +
                     "the frames written and " + exportStem(request) + ".json are complete");
@@ -131,6 +157,13 @@ void registerSolveCommand(CLI::App& app) {
                     "refining it: the energy's minimum, slower)")
         ->check(CLI::IsMember({methodName(SolverOptions::Method::LocalGlobal),
                                methodName(SolverOptions::Method::Exact)}));
+    cmd->add_option("--calibrate", args->calibrate,
+                    "shape (fit the rest mesh to the actor at the calibration frame, then solve "
+                    "every frame against it) or none (solve against the rest mesh as given)")
+        ->check(CLI::IsMember(
+            {calibrateModeName(CalibrateMode::Shape), calibrateModeName(CalibrateMode::None)}));
+    cmd->add_flag("--write-calibrated-rest", args->writeCalibratedRest,
+                  "Also write <stem>_calibrated_rest.obj, the rest fitted to the actor");
     cmd->add_flag("--quiet", args->quiet, "No progress on stderr");
     cmd->callback([args] { run(*args); });
 }

@@ -70,6 +70,24 @@ TakeSolver::TakeSolver(const TriMesh& rest, const C3dTake& take, const Correspon
     const bool exact = options_.solver.method == SolverOptions::Method::Exact;
     solverOptions.method = SolverOptions::Method::LocalGlobal;
     solver_.setOptions(solverOptions);
+    if (options_.calibrate == CalibrateMode::Shape) {
+        if (calibration_.frame < 0)
+            calibration_.frame = calibrate(take_, points_, restMarkers(meshUnitsPerMm_)).frame;
+        if (options_.calibratedRest) {
+            if (options_.calibratedRest->rows() != rest_.vertexCount() ||
+                options_.calibratedRest->cols() != 3)
+                throw Error("the calibrated rest has " +
+                            std::to_string(options_.calibratedRest->rows()) +
+                            " vertices, the mesh " + std::to_string(rest_.vertexCount()));
+            rest_.V = *options_.calibratedRest;
+        } else {
+            std::vector<std::string> labels;
+            for (const auto& m : map.markers) labels.push_back(m.label);
+            rest_.V = fitActorShape(solver_, targets(calibration_.frame, true), labels,
+                                    1.0 / meshUnitsPerMm_);
+        }
+        solver_.prepare(rest_, vertices, solverOptions);
+    }
     if (exact) {
         solverOptions.method = SolverOptions::Method::Exact;
         exact_ = std::make_unique<Reconstruction>();
