@@ -1,11 +1,14 @@
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <random>
 
 #include "TestMeshes.h"
+#include "boneless/C3dReader.h"
 #include "boneless/C3dTake.h"
 #include "boneless/Error.h"
 #include "boneless/MarkerSuggestion.h"
+#include "boneless/MeshReader.h"
 
 using namespace boneless;
 using namespace boneless::testing;
@@ -63,4 +66,32 @@ TEST(MarkerSuggestion, NeedsFourMappedMarkers) {
     Correspondence partial;
     for (int k = 0; k < 3; ++k) partial.markers.push_back({"M" + std::to_string(k), k, 0, "{}"});
     EXPECT_THROW(suggestMappings(mesh, take, partial), Error);
+}
+
+// From 6 correct picks (shoulders, wrists, ankles) on CMU 85_02, the MakeHuman map in tests/data
+// is found again for the markers the fit pins down. Measured: 14 of 35 within 30 mm (the rigid
+// alignment alone: 5 of 35 in issue 28's trial), median 38 mm; the issue's target is 80 %.
+TEST(MarkerSuggestion, SixPicksOnTheCmuTakeLandNearThePublishedMap) {
+    const std::filesystem::path data = BONELESS_SHARED_DATA;
+    const auto take = data / "c3d" / "cmu" / "85_02.c3d";
+    const auto mesh = data / "meshes" / "makehuman" / "makehuman_base.obj";
+    if (!std::filesystem::exists(take) || !std::filesystem::exists(mesh))
+        GTEST_SKIP() << "no shared data (" << data << ")";
+    MeshReadOptions group;
+    group.group = "body";
+    const TriMesh body = readMesh(mesh.string(), group).mesh;
+    const C3dTake cmu = readC3d(take.string());
+    const Correspondence published =
+        Correspondence::read(BONELESS_SOURCE_DIR "/tests/data/cmu-85_02-makehuman-body.map.json");
+    Correspondence picks = published;
+    picks.markers.clear();
+    for (const char* label : {"LSHO", "RSHO", "LWRA", "RWRA", "LANK", "RANK"})
+        picks.markers.push_back(*published.find(label));
+    const Suggestion s = suggestMappings(body, cmu, picks);
+    const SuggestionCheck check = checkSuggestion(body, cmu, s, published, 30.0);
+    std::printf("%d of %d within 30 mm, median %.1f mm, %d to review\n", check.within,
+                check.compared, check.medianMm, s.needsReview);
+    EXPECT_EQ(check.compared, 35);
+    EXPECT_GE(check.within, 12);
+    EXPECT_LT(check.medianMm, 50.0);
 }
