@@ -70,6 +70,8 @@ TakeSolver::TakeSolver(const TriMesh& rest, const C3dTake& take, const Correspon
     const bool exact = options_.solver.method == SolverOptions::Method::Exact;
     solverOptions.method = SolverOptions::Method::LocalGlobal;
     solver_.setOptions(solverOptions);
+    // The calibration stage (docs/calibration.md): the engine's answer at the calibration frame
+    // becomes the rest every frame is encoded, solved and measured against.
     if (options_.calibrate == CalibrateMode::Shape) {
         if (calibration_.frame < 0)
             calibration_.frame = calibrate(take_, points_, restMarkers(meshUnitsPerMm_)).frame;
