@@ -54,6 +54,10 @@ void applyKeys(const json& object, const fs::path& base, const std::string& wher
                 job.fillGaps = value.get<double>();
             else if (key == "calibration-frame")
                 job.calibrationFrame = value.get<int>();
+            else if (key == "calibrate")
+                job.calibrate = value.get<std::string>();
+            else if (key == "write-calibrated-rest")
+                job.writeCalibratedRest = value.get<bool>();
             else
                 throw Error(where + ": unknown key '" + key + "'");
         } catch (const json::exception&) {

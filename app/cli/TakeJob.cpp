@@ -6,6 +6,8 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "FrameRange.h"
 #include "boneless/C3dReader.h"
@@ -44,6 +46,26 @@ std::vector<std::string> formatNames() {
 
 }  // namespace
 
+// The sidecar's quality figures, so a run's stretch and fit are seen without opening it.
+static void printSummary(const std::string& sidecarPath) {
+    std::ifstream in(sidecarPath);
+    const nlohmann::json sidecar = nlohmann::json::parse(in);
+    const nlohmann::json& s = sidecar.at("summary");
+    const nlohmann::json& c = sidecar.at("calibration");
+    std::fprintf(stderr,
+                 "calibrate %s: marker residual RMS %.2f mm mean, %.2f mm worst frame; edge "
+                 "distortion RMS %.3f mean, %.3f worst frame; 95th percentile edge strain %.3f "
+                 "worst frame; folded faces %d worst frame; dent ratio %.2f worst frame\n",
+                 c.at("calibrate").get<std::string>().c_str(),
+                 s.at("residual_rms_mm_mean").get<double>(),
+                 s.at("residual_rms_mm_worst_frame").get<double>(),
+                 s.at("edge_distortion_mean").get<double>(),
+                 s.at("edge_distortion_worst_frame").get<double>(),
+                 s.at("edge_strain_p95_worst_frame").get<double>(),
+                 s.at("folded_faces_worst_frame").get<int>(),
+                 s.at("dent_ratio_worst_frame").get<double>());
+}
+
 void addTakeJobOptions(CLI::App* cmd, TakeJob& job) {
     std::string formats;
     for (const ExportFormatInfo& f : exportFormats())
@@ -64,6 +86,13 @@ void addTakeJobOptions(CLI::App* cmd, TakeJob& job) {
                     "refining it: the energy's minimum, slower)")
         ->check(CLI::IsMember({methodName(SolverOptions::Method::LocalGlobal),
                                methodName(SolverOptions::Method::Exact)}));
+    cmd->add_option("--calibrate", job.calibrate,
+                    "shape (fit the rest mesh to the actor at the calibration frame, then solve "
+                    "every frame against it) or none (solve against the rest mesh as given)")
+        ->check(CLI::IsMember(
+            {calibrateModeName(CalibrateMode::Shape), calibrateModeName(CalibrateMode::None)}));
+    cmd->add_flag("--write-calibrated-rest", job.writeCalibratedRest,
+                  "Also write <stem>_calibrated_rest.obj, the rest fitted to the actor");
 }
 
 std::string takeJobSidecar(const TakeJob& job) {
@@ -87,6 +116,9 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet) {
     request.options.lowPassHz = job.lowPass;
     request.options.fillGapSeconds = job.fillGaps;
     request.options.calibrationFrame = job.calibrationFrame;
+    if (!parseCalibrateMode(job.calibrate, request.options.calibrate))
+        throw Error("unknown calibrate mode '" + job.calibrate + "'");
+    request.writeCalibratedRest = job.writeCalibratedRest;
     request.meshPath = job.mesh;
     request.group = job.group;
     request.c3dPath = job.c3d;
@@ -153,6 +185,7 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet) {
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         std::fprintf(stderr, "wrote %s: %d frames, %.1f MB in %.1f s\n", written.c_str(),
                      result.framesWritten, bytes / 1e6, seconds);
+        printSummary(result.sidecarPath);
     }
     return result;
 }

@@ -20,6 +20,8 @@ struct TakeJob {
     double fillGaps = boneless::TakeSolveOptions{}.fillGapSeconds;
     int calibrationFrame = -1;
     std::string solver = boneless::methodName(boneless::SolverOptions{}.method);
+    std::string calibrate = boneless::calibrateModeName(boneless::TakeSolveOptions{}.calibrate);
+    bool writeCalibratedRest = false;
 };
 
 // The solver and format options of `solve` (everything but the input and output paths).

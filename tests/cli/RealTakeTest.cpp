@@ -192,9 +192,11 @@ TEST(RealTake, NumediartGapsPullNothing) {
     for (const auto& m : full.markers)
         if (!window.missing.count(m.label)) reduced.markers.push_back(m);
 
-    // One alignment for both, so that only the gaps differ; the gaps left empty.
+    // One alignment for both, so that only the gaps differ; the gaps left empty; no calibration,
+    // which the markers missing here would shape (and the (0,0,0) samples below would refuse).
     TakeSolveOptions options;
     options.fillGapSeconds = 0;
+    options.calibrate = CalibrateMode::None;
     options.alignment = TakeSolver(mesh, take, full, options).calibration().takeToMesh;
     TakeSolver withGaps(mesh, take, full, options), withoutMarkers(mesh, take, reduced, options);
     const double diagonal = boundingBoxDiagonal(mesh.V);

@@ -56,6 +56,7 @@ class ProjectTest : public QObject {
         settings.solver.method = SolverOptions::Method::Exact;
         settings.solver.rigidityWeight = 0.02;
         settings.solver.orientationWeight = 50;
+        settings.calibrate = CalibrateMode::None;
         d.setSettings(settings);
         d.setViewSetting("labels", true);
         d.setViewSetting("trailFrames", 8);
@@ -78,6 +79,8 @@ class ProjectTest : public QObject {
         QCOMPARE(e.settings().lowPassHz, 6.0);
         QCOMPARE(e.settings().solver.method, SolverOptions::Method::Exact);
         QCOMPARE(readJson(path)["settings"].toObject()["method"].toString(), QString("exact"));
+        QCOMPARE(e.settings().calibrate, CalibrateMode::None);
+        QCOMPARE(readJson(path)["settings"].toObject()["calibrate"].toString(), QString("none"));
         QCOMPARE(e.settings().solver.rigidityWeight, 0.02);
         QCOMPARE(e.settings().solver.orientationWeight, 50.0);
         QCOMPARE(e.viewSettings().value("trailFrames").toInt(), 8);
@@ -130,6 +133,7 @@ class ProjectTest : public QObject {
             settings["coarsest_leads"] = true;
             settings["continuation_steps"] = 3;
             settings["marker_weight"] = 77.0;
+            settings.remove("calibrate");  // from before calibration
             root["settings"] = settings;
             QFile f(path);
             QVERIFY(f.open(QIODevice::WriteOnly | QIODevice::Truncate));
@@ -140,6 +144,7 @@ class ProjectTest : public QObject {
             QVERIFY2(Project::load(d, path, &error), qPrintable(error));
             QCOMPARE(d.settings().solver.method, method);
             QCOMPARE(d.settings().markerWeight, 77.0);  // the keys around it still read
+            QCOMPARE(d.settings().calibrate, CalibrateMode::Shape);
             // Saved again, it names its method the new way.
             QVERIFY(Project::save(d, path));
             QCOMPARE(readJson(path)["settings"].toObject()["method"].toString(),

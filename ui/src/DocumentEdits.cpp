@@ -133,6 +133,7 @@ bool Document::align(int calibrationFrame) {
         TakeSolveOptions options = settings_;
         options.alignment.reset();
         options.calibrationFrame = calibrationFrame;
+        options.calibrate = CalibrateMode::None;  // the alignment alone, not the fit
         TakeSolver solver(mesh_, take_, map_, options);
         after.alignment = solver.calibration();
     } catch (const std::exception& e) {

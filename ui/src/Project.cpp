@@ -72,6 +72,7 @@ QJsonObject settingsJson(const TakeSolveOptions& o) {
             {"low_pass_hz", o.lowPassHz},
             {"fill_gaps_s", o.fillGapSeconds},
             {"calibration_frame", o.calibrationFrame},
+            {"calibrate", calibrateModeName(o.calibrate)},
             {"rigidity_weight", o.solver.rigidityWeight},
             {"orientation_weight", o.solver.orientationWeight},
             {"max_iterations", o.solver.maxIterations},
@@ -105,6 +106,10 @@ TakeSolveOptions readSettings(const QJsonObject& o) {
     s.lowPassHz = o["low_pass_hz"].toDouble(s.lowPassHz);
     s.fillGapSeconds = o["fill_gaps_s"].toDouble(s.fillGapSeconds);
     s.calibrationFrame = o["calibration_frame"].toInt(s.calibrationFrame);
+    // Projects from before calibration have no "calibrate": they calibrate, as solve does now.
+    CalibrateMode calibrate = s.calibrate;
+    if (parseCalibrateMode(o["calibrate"].toString().toStdString(), calibrate))
+        s.calibrate = calibrate;
     s.solver.rigidityWeight = o["rigidity_weight"].toDouble(s.solver.rigidityWeight);
     s.solver.orientationWeight = o["orientation_weight"].toDouble(s.solver.orientationWeight);
     s.solver.maxIterations = o["max_iterations"].toInt(s.solver.maxIterations);

@@ -17,6 +17,7 @@
 #include <thread>
 
 #include "FrameOutput.h"
+#include "boneless/ActorCalibration.h"
 #include "boneless/Parallel.h"
 #include "boneless/Error.h"
 #include "boneless/Metrics.h"
@@ -55,13 +56,16 @@ std::string exportStem(const ExportRequest& request) {
 namespace {
 
 json summaryJson(const json& perFrame) {
-    double residualSum = 0, residualWorst = 0, distortionWorst = 0, dentWorst = 0;
+    double residualSum = 0, residualWorst = 0, distortionWorst = 0, distortionSum = 0,
+           strainWorst = 0, dentWorst = 0;
     int foldedWorst = 0;
     std::vector<double> ms;
     for (const json& f : perFrame) {
         residualSum += f["residual_rms_mm"].get<double>();
         residualWorst = std::max(residualWorst, f["residual_rms_mm"].get<double>());
         distortionWorst = std::max(distortionWorst, f["edge_distortion"].get<double>());
+        distortionSum += f["edge_distortion"].get<double>();
+        strainWorst = std::max(strainWorst, f["edge_strain_p95"].get<double>());
         foldedWorst = std::max(foldedWorst, f["folded_faces"].get<int>());
         dentWorst = std::max(dentWorst, f["dent_ratio"].get<double>());
         ms.push_back(f["ms"].get<double>());
@@ -70,7 +74,9 @@ json summaryJson(const json& perFrame) {
     const std::size_t n = perFrame.size();
     return {{"residual_rms_mm_mean", n ? residualSum / n : 0.0},
             {"residual_rms_mm_worst_frame", residualWorst},
+            {"edge_distortion_mean", n ? distortionSum / n : 0.0},
             {"edge_distortion_worst_frame", distortionWorst},
+            {"edge_strain_p95_worst_frame", strainWorst},
             {"folded_faces_worst_frame", foldedWorst},
             {"dent_ratio_worst_frame", dentWorst},
             {"ms_per_frame_mean", n ? std::accumulate(ms.begin(), ms.end(), 0.0) / n : 0.0},
@@ -91,8 +97,20 @@ json solverJson(const TakeSolveOptions& o) {
     return j;
 }
 
+// How the rest was fitted to the actor, and how far that moved it from the input mesh.
+json calibrationJson(const ExportRequest& request, const TriMesh& mesh, const TakeSolver& solver,
+                     const std::string& restFile) {
+    json j = {{"calibrate", calibrateModeName(request.options.calibrate)}};
+    if (request.options.calibrate == CalibrateMode::None) return j;
+    j["frame"] = solver.calibration().frame;
+    j["overridden"] = request.options.calibratedRest.has_value();
+    j["edge_distortion_from_rest"] = edgeLengthDistortion(mesh.F, solver.rest().V, mesh.V);
+    j["calibrated_rest"] = restFile.empty() ? json(nullptr) : json(restFile);
+    return j;
+}
+
 json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibration& c,
-                 const ExportResult& result, json perFrame) {
+                 const ExportResult& result, json calibration, json perFrame) {
     const Similarity& s = c.takeToMesh;
     const double meshUnitsPerMm = s.scale / take.unitToMm;
     const TakeSolveOptions& o = request.options;
@@ -123,6 +141,7 @@ json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibr
                 {s.R(2, 0), s.R(2, 1), s.R(2, 2)}}},
               {"translation", {s.t.x(), s.t.y(), s.t.z()}},
               {"overridden", o.alignment.has_value()}}},
+            {"calibration", std::move(calibration)},
             {"solver", solverJson(o)},
             {"summary", summaryJson(perFrame)},
             {"per_frame", std::move(perFrame)}};
@@ -132,14 +151,14 @@ json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibr
 // TakeSolver of its own; the first is `first`), and `write` gets them in order on the calling
 // thread until it returns false. A worker runs at most a few frames ahead of the writing.
 using FrameSink = std::function<bool(int frame, const Positions& V, const FrameReport& report,
-                                     double distortion)>;
+                                     double distortion, double strainP95)>;
 void solveInOrder(TakeSolver& first, const TriMesh& mesh, const C3dTake& take,
                   const Correspondence& map, const TakeSolveOptions& options, int begin, int end,
                   const FrameSink& write) {
     struct Solved {
         Positions V;
         FrameReport report;
-        double distortion = 0;
+        double distortion = 0, strainP95 = 0;
     };
     const int workers = std::max(1, std::min(solverThreadCount(), end - begin));
     const int window = 4 * workers;
@@ -159,6 +178,7 @@ void solveInOrder(TakeSolver& first, const TriMesh& mesh, const C3dTake& take,
                 TakeSolveOptions same = options;
                 same.alignment = first.calibration().takeToMesh;
                 same.calibrationFrame = first.calibration().frame;
+                if (options.calibrate == CalibrateMode::Shape) same.calibratedRest = first.rest().V;
                 own = std::make_unique<TakeSolver>(mesh, take, map, same);
             }
             TakeSolver& solver = worker > 0 ? *own : first;
@@ -174,9 +194,13 @@ void solveInOrder(TakeSolver& first, const TriMesh& mesh, const C3dTake& take,
                 Solved s;
                 s.V = solver.solve(f, s.report, &stopSolving);
                 if (s.report.stopped) return;
-                s.distortion = edgeLengthDistortion(mesh.F, s.V, mesh.V);
+                // Measured against what the frame was solved from: the calibrated rest when
+                // calibrating, since the actor's proportions are not a stretch.
+                const Positions& rest = solver.rest().V;
+                s.distortion = edgeLengthDistortion(mesh.F, s.V, rest);
+                s.strainP95 = quantile(edgeStrains(mesh.F, s.V, rest), 0.95);
                 if (s.report.foldedFaces < 0)
-                    s.report.foldedFaces = foldedFaceCount(mesh.F, s.V, mesh.V);
+                    s.report.foldedFaces = foldedFaceCount(mesh.F, s.V, rest);
                 std::lock_guard<std::mutex> lock(mutex);
                 solved.emplace(f, std::move(s));
                 changed.notify_all();
@@ -209,7 +233,7 @@ void solveInOrder(TakeSolver& first, const TriMesh& mesh, const C3dTake& take,
                 s = std::move(solved.at(f));
                 solved.erase(f);
             }
-            more = write(f, s.V, s.report, s.distortion);
+            more = write(f, s.V, s.report, s.distortion, s.strainP95);
             std::lock_guard<std::mutex> lock(mutex);
             written = f + 1;
             changed.notify_all();
@@ -251,11 +275,22 @@ ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspo
     FrameOutput output = openFrameOutput(request.format, request.outDir, stem, mesh, request.first,
                                          take.rate, "Boneless: " + request.c3dPath);
 
+    std::string restFile;
+    if (request.writeCalibratedRest) {
+        if (request.options.calibrate == CalibrateMode::None)
+            throw Error(
+                "writing the calibrated rest needs calibration (calibrate: none was given)");
+        restFile = stem + "_calibrated_rest.obj";
+        writeObj((out / restFile).string(), solver.rest().V, mesh.F,
+                 "Boneless: " + request.meshPath + " fitted to " + request.c3dPath + " at frame " +
+                     std::to_string(solver.calibration().frame));
+    }
     if (calibrated) calibrated(solver.calibration());
     result.first = request.first;
     json perFrame = json::array();
     solveInOrder(solver, mesh, take, map, request.options, request.first, end,
-                 [&](int f, const Positions& V, const FrameReport& report, double distortion) {
+                 [&](int f, const Positions& V, const FrameReport& report, double distortion,
+                     double strainP95) {
                      output.append(f, V);
                      // Quality a user checks before importing: stretch against the rest pose,
                      // and folds.
@@ -264,6 +299,7 @@ ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspo
                                          {"residual_rms_mm", report.residualRmsMm},
                                          {"residual_max_mm", report.residualMaxMm},
                                          {"edge_distortion", distortion},
+                                         {"edge_strain_p95", strainP95},
                                          {"folded_faces", report.foldedFaces},
                                          {"dent_ratio", report.dentRatio},
                                          {"iterations", report.iterations},
@@ -279,7 +315,9 @@ ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspo
     output.finish();
     writeFileAtomically(
         result.sidecarPath,
-        sidecarJson(take, request, solver.calibration(), result, std::move(perFrame)).dump(2) +
+        sidecarJson(take, request, solver.calibration(), result,
+                    calibrationJson(request, mesh, solver, restFile), std::move(perFrame))
+                .dump(2) +
             "\n");
     return result;
 }

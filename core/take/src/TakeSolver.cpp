@@ -73,9 +73,31 @@ TakeSolver::TakeSolver(const TriMesh& rest, const C3dTake& take, const Correspon
     for (const auto& m : map.markers)
         solverOptions.markerOffsets.push_back(m.offsetMm * meshUnitsPerMm_);
     solver_.prepare(rest_, points, solverOptions);
+    const bool exact = options_.solver.method == SolverOptions::Method::Exact;
+    // The calibration stage (docs/calibration.md): the engine's answer at the calibration frame
+    // becomes the rest every frame is encoded, solved and measured against.
+    if (options_.calibrate == CalibrateMode::Shape) {
+        if (calibration_.frame < 0)
+            calibration_.frame = calibrate(take_, points_, restMarkers(meshUnitsPerMm_)).frame;
+        if (options_.calibratedRest) {
+            if (options_.calibratedRest->rows() != rest_.vertexCount() ||
+                options_.calibratedRest->cols() != 3)
+                throw Error("the calibrated rest has " +
+                            std::to_string(options_.calibratedRest->rows()) +
+                            " vertices, the mesh " + std::to_string(rest_.vertexCount()));
+            rest_.V = *options_.calibratedRest;
+        } else {
+            std::vector<std::string> labels;
+            for (const auto& m : map.markers) labels.push_back(m.label);
+            rest_.V = fitActorShape(solver_, targets(calibration_.frame, true), labels,
+                                    1.0 / meshUnitsPerMm_);
+        }
+        encoding_ = std::make_unique<ShapeEncoding>(rest_, *topology_);
+        solver_.prepare(rest_, points, solverOptions);
+    }
     dents_ = std::make_unique<DentGauge>(rest_, *topology_, *encoding_, points,
                                          kDentRadiusMm * meshUnitsPerMm_);
-    if (options_.solver.method == SolverOptions::Method::Exact) {
+    if (exact) {
         solverOptions.method = SolverOptions::Method::Exact;
         exact_ = std::make_unique<Reconstruction>();
         exact_->prepare(rest_, points, solverOptions);

@@ -24,6 +24,9 @@ struct ExportRequest {
     int first = 0;  // 0-based take frames [first, end); end < 0 = to the take's end
     int end = -1;
     TakeSolveOptions options;
+    // Also write DIR/<stem>_calibrated_rest.obj, the rest fitted to the actor (input vertex
+    // order and faces), and name it in the sidecar.
+    bool writeCalibratedRest = false;
 };
 
 struct ExportResult {

@@ -4,6 +4,7 @@
 #include <optional>
 #include <vector>
 
+#include "boneless/ActorCalibration.h"
 #include "boneless/Alignment.h"
 #include "boneless/C3dTake.h"
 #include "boneless/Correspondence.h"
@@ -23,6 +24,11 @@ struct TakeSolveOptions {
     double fillGapSeconds = 0.2;
     int calibrationFrame = -1;            // -1 = chosen automatically (see calibrate())
     std::optional<Similarity> alignment;  // overrides the automatic alignment
+    // Shape: the rest mesh is first fitted to the actor at the calibration frame, and every frame
+    // is solved against that calibrated rest (see docs/calibration.md). None: against the rest.
+    CalibrateMode calibrate = CalibrateMode::Shape;
+    // Overrides the fit (#V by 3): a project's saved calibrated rest, or another worker's.
+    std::optional<Positions> calibratedRest;
     // Constraints and offsets are set by the TakeSolver. With the exact method, each frame's
     // local/global answer is refined, with the orientation guard on: a real take on a mesh that
     // was not made for its actor strains the mesh, and slivers (the corners of a mouth) and thin
@@ -50,7 +56,8 @@ struct FrameReport {
 
 // Turns a take into an animation of the rest mesh: aligns the take onto the mesh (a similarity
 // applied to the take, never to the mesh, so the encoding's heights keep their meaning), filters
-// the trajectories if asked, and solves any frame from its own markers, with soft constraints
+// the trajectories if asked, fits the rest mesh to the actor at the calibration frame (unless
+// told not to), and solves any frame from its own markers, with soft constraints
 // that model each marker's offset from the skin. Missing markers drop out of their frame. A
 // frame's answer is the same whatever frames were solved before it, in any order.
 class TakeSolver {
@@ -63,6 +70,8 @@ class TakeSolver {
     static constexpr double kDentRadiusMm = 25.0;
 
     const Calibration& calibration() const { return calibration_; }
+    // What frames are solved against: the calibrated rest when calibrating, else the rest mesh.
+    const TriMesh& rest() const { return rest_; }
     int frameCount() const { return static_cast<int>(take_.frameCount()); }
     // The markers' targets at `frame` in mesh coordinates (K by 3, NaN rows where missing); with
     // `filled`, a marker in a short gap has its place on its trajectory (what solve() pulls to).
