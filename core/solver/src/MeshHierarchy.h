@@ -41,7 +41,8 @@ struct HierarchyOptions {
 // level's mesh with a star-shaped ring (positive mean-value weights), and its whole ring
 // survives into the next level, so the next level's positions determine it explicitly. Each level
 // is a manifold mesh oriented like the input with the input's topology (half-edge collapses under
-// the link condition); boundary vertices are never removed.
+// the link condition); boundary vertices are never removed. Hand-written rather than OpenMesh's
+// Decimater: that was measured slower to build and less accurate (docs/benchmarks.md, 27 Nov 2026).
 class MeshHierarchy {
   public:
     // protectedVertices (input ids, e.g. the marker vertices) survive into every level. Throws
