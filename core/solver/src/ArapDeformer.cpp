@@ -19,7 +19,8 @@ struct ArapDeformer::Impl {
     std::vector<char> activeKey;  // markers present when the factorisation was made
     std::vector<int> freeIndex;   // vertex -> row in the free system, or -1
     std::vector<int> fixedIndex;  // vertex -> column of freeToFixed, or -1
-    Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> factor;
+    // Simplicial: CHOLMOD's Supernodal module is GPL (docs/licence.md).
+    Eigen::CholmodSimplicialLLT<Eigen::SparseMatrix<double>> factor;
     Eigen::SparseMatrix<double> freeToFixed;
 
     void refactorise(const std::vector<char>& active) {

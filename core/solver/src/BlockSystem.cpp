@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "boneless/Parallel.h"
 #include "StencilPattern.h"
+#include "boneless/Parallel.h"
 
 namespace boneless {
 
@@ -166,9 +166,9 @@ int BlockSystem::iterationsPerFactorization() const {
     const cholmod_common& c = const_cast<Factor&>(*solver_).cholmod();
     // A solve reads L twice (2 flops per entry each way); the product reads H once.
     const double perIteration = 4.0 * c.lnz + 2.0 * matrix_.nonZeros();
-    // The factorisation's dense supernodal kernels do more flops per second than the
-    // memory-bound solve and product: measured, its time was 1.4–3.9 times less than the flops'
-    // ratio says (1,458 to 49,999 vertices).
+    // The factorisation does more flops per second than the memory-bound solve and product:
+    // measured with CHOLMOD's supernodal kernels, its time was 1.4–3.9 times less than the flops'
+    // ratio says (1,458 to 49,999 vertices); not yet re-measured for the simplicial factor.
     constexpr double kDenseAdvantage = 2.5;
     return static_cast<int>(c.fl / perIteration / kDenseAdvantage);
 }

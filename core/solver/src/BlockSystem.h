@@ -71,7 +71,8 @@ class BlockSystem {
     int stencilSize(int r) const { return stencilSizes_[r]; }
 
     Eigen::SparseMatrix<double> matrix_;
-    using Factor = Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower>;
+    // Simplicial: CHOLMOD's Supernodal module is GPL (docs/licence.md).
+    using Factor = Eigen::CholmodSimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower>;
     std::unique_ptr<Factor> solver_;  // made on the first factorize()
     bool factorValid_ = false;
     std::vector<int> stencilSizes_;

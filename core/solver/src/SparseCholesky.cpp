@@ -4,8 +4,8 @@
 
 #include <cstring>
 
-#include "boneless/Parallel.h"
 #include "boneless/Error.h"
+#include "boneless/Parallel.h"
 
 namespace boneless {
 
@@ -70,12 +70,15 @@ bool SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
     view.dtype = CHOLMOD_DOUBLE;
     view.sorted = 1;
     view.packed = 1;
-    c.supernodal = CHOLMOD_SUPERNODAL;
+    // Simplicial LL' only: CHOLMOD's Supernodal module is GPL, its Cholesky module LGPL
+    // (docs/licence.md). LL', not LDL', so that an indefinite matrix fails here.
+    c.supernodal = CHOLMOD_SIMPLICIAL;
+    c.final_asis = 0;
+    c.final_ll = 1;
     state_->factor = cholmod_analyze(&view, &c);
     if (!state_->factor) return false;
     cholmod_factorize(&view, state_->factor, &c);
     if (c.status != CHOLMOD_OK || state_->factor->minor < state_->factor->n) return false;
-    cholmod_change_factor(CHOLMOD_REAL, 1, 0, 1, 1, state_->factor, &c);
     size_ = static_cast<int>(lower.rows());
     return c.status == CHOLMOD_OK;
 }
