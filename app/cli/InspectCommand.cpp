@@ -145,7 +145,9 @@ void registerInspectCommand(CLI::App& app) {
         const boneless::C3dTake take = boneless::readC3d(opts->take, ro);
         if (!opts->csv.empty()) writeCsv(take, opts->csv);
         if (opts->json)
-            std::cout << toJson(take).dump(2) << "\n";
+            // Labels are UTF-8 already (the reader converts them); a path need not be.
+            std::cout << toJson(take).dump(2, ' ', false, nlohmann::json::error_handler_t::replace)
+                      << "\n";
         else
             printSummary(take, std::cout);
     });

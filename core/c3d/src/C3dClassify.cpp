@@ -74,7 +74,10 @@ void classifyPoints(const C3dParameters& params, std::vector<C3dPoint>& points) 
     std::map<std::string, C3dPointKind> byLabel;
     for (const auto& [list, kind] : lists)
         for (const auto& label : params.continuedStrings("POINT", list))
-            if (!label.empty()) byLabel.emplace(upper(label), kind);
+            if (!label.empty()) {
+                bool latin1 = false;  // the reader has said so already, for the labels
+                byLabel.emplace(upper(textFromC3d(label, latin1)), kind);
+            }
 
     const std::set<std::string> axes = segmentAxisNames(points);
     for (auto& p : points) {

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "boneless/C3dError.h"
@@ -36,6 +37,13 @@ struct HeaderWords {
     std::uint16_t analogSamplesPerFrame = 0;  // word 10
     float rate = 0.0f;                        // words 11-12
 };
+
+bool isUtf8(std::string_view s);
+// UTF-8 of a string read from the file: as is when it is already UTF-8, else decoded as Latin-1
+// (every byte sequence is valid Latin-1) and wasLatin1 set.
+std::string textFromC3d(std::string_view raw, bool& wasLatin1);
+// The file's bytes for a UTF-8 string; in Latin-1, characters it cannot hold become '?'.
+std::string textToC3d(std::string_view utf8, C3dTextEncoding encoding);
 
 HeaderWords readHeaderWords(const Source& src, C3dProcessor proc);
 // Without a parameter section the processor is unknown: pick the one whose header reads sanely.

@@ -183,9 +183,12 @@ C3dTake readC3dMemory(const std::uint8_t* data, std::size_t size, const std::str
     }
     take.rate = rate;
 
+    // Text leaves the reader as UTF-8; latin1 records that some of it had to be converted.
+    bool latin1 = false;
+
     // Units.
     if (const C3dParameter* u = ps.find("POINT", "UNITS")) {
-        take.units = u->string();
+        take.units = textFromC3d(u->string(), latin1);
         if (auto mm = c3dUnitToMm(take.units)) {
             take.unitToMm = *mm;
         } else {
@@ -342,12 +345,16 @@ C3dTake readC3dMemory(const std::uint8_t* data, std::size_t size, const std::str
     std::size_t unnamed = 0;
     for (std::size_t i = 0; i < points; ++i) {
         C3dPoint& p = take.points[i];
-        if (i < labels.size()) p.label = labels[i];
+        if (i < labels.size()) p.label = textFromC3d(labels[i], latin1);
         if (p.label.empty()) {
             p.label = "P" + std::to_string(i + 1);
             ++unnamed;
         }
-        if (i < descriptions.size()) p.description = descriptions[i];
+        if (i < descriptions.size()) p.description = textFromC3d(descriptions[i], latin1);
+    }
+    if (latin1) {
+        take.textEncoding = C3dTextEncoding::Latin1;
+        warn.push_back("labels, descriptions or units are not UTF-8; read as Latin-1");
     }
     if (unnamed > 0 && labels.size() >= points)
         warn.push_back(std::to_string(unnamed) + " points have empty labels; named P<n>");

@@ -43,6 +43,14 @@ std::string hexByte(unsigned v) {
     return buf;
 }
 
+// A record the reader can step over when its offset names the next one (an unknown type), or
+// one that makes the section unreadable (it runs past the section's end).
+struct RecordError {
+    std::size_t at;
+    std::string cause;
+    bool runsPast;  // nothing after it can be reached
+};
+
 struct PendingParameter {
     int groupId;
     std::size_t offset;
@@ -62,9 +70,10 @@ class SectionReader {
     // Fails unless [pos, pos + n) lies inside the section.
     void need(std::size_t record, std::size_t pos, std::size_t n, const char* what) const {
         if (pos > limit_ || n > limit_ - pos)
-            src_.fail(record, std::string("corrupt parameter section: a record's ") + what +
-                                  " runs past " + limitWhat_ + " at byte " +
-                                  std::to_string(limit_));
+            throw RecordError{record,
+                              std::string("a record's ") + what + " runs past " + limitWhat_ +
+                                  " at byte " + std::to_string(limit_),
+                              true};
     }
 
     std::string name(std::size_t record, std::size_t pos, std::size_t n) const {
@@ -72,8 +81,9 @@ class SectionReader {
         for (std::size_t i = 0; i < n; ++i) {
             const unsigned char c = static_cast<unsigned char>(s[i]);
             // Names are upper-case letters, digits and underscores; printable ASCII is tolerated
-            // (some writers use lower case), anything else means we are reading garbage.
-            if (c < 0x21 || c > 0x7E)
+            // (lower case, and spaces from Qualisys and BTK), anything else means we are reading
+            // garbage.
+            if (c < 0x20 || c > 0x7E)
                 src_.fail(pos + i, "invalid character " + hexByte(c) +
                                        " in a parameter or group name: the parameter section is "
                                        "corrupt");
@@ -87,11 +97,15 @@ class SectionReader {
         const int type = static_cast<std::int8_t>(src_.data[pos]);
         const int ndims = src_.data[pos + 1];
         if (type != -1 && type != 1 && type != 2 && type != 4)
-            src_.fail(pos, "parameter " + paramName + " has unknown type " + std::to_string(type) +
-                               " (expected -1, 1, 2 or 4)");
+            throw RecordError{pos,
+                              "parameter " + paramName + " has unknown type " +
+                                  std::to_string(type) + " (expected -1, 1, 2 or 4)",
+                              false};
         if (ndims > 7)
-            src_.fail(pos + 1, "parameter " + paramName + " has " + std::to_string(ndims) +
-                                   " dimensions (at most 7)");
+            throw RecordError{pos + 1,
+                              "parameter " + paramName + " has " + std::to_string(ndims) +
+                                  " dimensions (at most 7)",
+                              false};
         need(record, pos + 2, std::size_t(ndims), "dimensions");
         std::vector<int> dims;
         std::size_t count = 1;  // at most 255^7, fits in 64 bits
@@ -102,9 +116,11 @@ class SectionReader {
         const std::size_t elem = static_cast<std::size_t>(std::abs(type));
         const std::size_t dataPos = pos + 2 + std::size_t(ndims);
         if (count > (limit_ - std::min(limit_, dataPos)) / elem)
-            src_.fail(record, "corrupt parameter section: the values of parameter " + paramName +
-                                  " (" + std::to_string(count * elem) + " bytes) run past " +
-                                  limitWhat_ + " at byte " + std::to_string(limit_));
+            throw RecordError{record,
+                              "the values of parameter " + paramName + " (" +
+                                  std::to_string(count * elem) + " bytes) run past " + limitWhat_ +
+                                  " at byte " + std::to_string(limit_),
+                              true};
         const std::uint8_t* d = src_.data + dataPos;
         std::vector<std::uint8_t> bytes;
         std::vector<std::int16_t> ints;
@@ -159,10 +175,10 @@ C3dParameters readParameterSection(const Source& src, std::size_t start, std::si
         const int nameLen = static_cast<std::int8_t>(src.data[pos]);
         if (nameLen == 0) break;  // zero padding after the last record
         const int id = static_cast<std::int8_t>(src.data[pos + 1]);
-        if (id == 0)
-            src.fail(pos + 1, "parameter record with group id 0: the parameter section is corrupt");
         const std::size_t n = static_cast<std::size_t>(std::abs(nameLen));
-        in.need(record, pos + 2, n + 2, "name");
+        if (pos + 2 + n + 2 > limit)
+            src.fail(record, "corrupt parameter section: a record's name runs past " +
+                                 std::string(limitWhat) + " at byte " + std::to_string(limit));
         const std::string name = in.name(record, pos + 2, n);
         const std::size_t offsetPos = pos + 2 + n;
         const int offset = c3d::i16(src.data + offsetPos, proc);
@@ -170,38 +186,53 @@ C3dParameters readParameterSection(const Source& src, std::size_t start, std::si
             src.fail(offsetPos, "record " + name + " gives a negative offset (" +
                                     std::to_string(offset) +
                                     ") to the next record: the parameter section is corrupt");
+        if (id == 0) {  // belongs to no group: step over it
+            warnings.push_back("parameter section: record " + name + " at byte " +
+                               std::to_string(record) + " has group id 0; ignored");
+            if (offset == 0) break;
+            pos = offsetPos + std::size_t(offset);
+            continue;
+        }
         const std::size_t body = offsetPos + 2;
         std::size_t end = body;
-        if (id < 0) {
-            PendingGroup g;
-            g.group.name = name;
-            g.group.locked = nameLen < 0;
-            g.offset = record;
-            // Some writers leave out the description of a group; an offset of 2 says so.
-            if (offset == 0 || body < offsetPos + std::size_t(offset))
-                g.group.description = in.description(record, body, end);
-            if (groupById.count(-id)) {
-                warnings.push_back("parameter section: group id " + std::to_string(-id) +
-                                   " is defined twice (" + groups[groupById[-id]].group.name +
-                                   ", " + name + "); the second is ignored");
+        try {
+            if (id < 0) {
+                PendingGroup g;
+                g.group.name = name;
+                g.group.locked = nameLen < 0;
+                g.offset = record;
+                // Some writers leave out the description of a group; an offset of 2 says so.
+                if (offset == 0 || body < offsetPos + std::size_t(offset))
+                    g.group.description = in.description(record, body, end);
+                if (groupById.count(-id)) {
+                    warnings.push_back("parameter section: group id " + std::to_string(-id) +
+                                       " is defined twice (" + groups[groupById[-id]].group.name +
+                                       ", " + name + "); the second is ignored");
+                } else {
+                    groupById[-id] = groups.size();
+                    groups.push_back(std::move(g));
+                }
             } else {
-                groupById[-id] = groups.size();
-                groups.push_back(std::move(g));
+                std::size_t dataEnd = body;
+                C3dParameter p = in.values(record, body, name, dataEnd);
+                p.locked = nameLen < 0;
+                p.fileOffset = static_cast<std::int64_t>(record);
+                end = dataEnd;
+                if (offset != 0 && offsetPos + std::size_t(offset) < dataEnd)
+                    src.fail(offsetPos,
+                             "parameter " + name + "'s offset to the next record (" +
+                                 std::to_string(offset) +
+                                 ") points inside its own values: the parameter section is "
+                                 "corrupt");
+                if (offset == 0 || dataEnd < offsetPos + std::size_t(offset))
+                    p.description = in.description(record, dataEnd, end);
+                parameters.push_back(PendingParameter{id, record, std::move(p)});
             }
-        } else {
-            std::size_t dataEnd = body;
-            C3dParameter p = in.values(record, body, name, dataEnd);
-            p.locked = nameLen < 0;
-            p.fileOffset = static_cast<std::int64_t>(record);
-            end = dataEnd;
-            if (offset != 0 && offsetPos + std::size_t(offset) < dataEnd)
-                src.fail(offsetPos, "parameter " + name + "'s offset to the next record (" +
-                                        std::to_string(offset) +
-                                        ") points inside its own values: the parameter section is "
-                                        "corrupt");
-            if (offset == 0 || dataEnd < offsetPos + std::size_t(offset))
-                p.description = in.description(record, dataEnd, end);
-            parameters.push_back(PendingParameter{id, record, std::move(p)});
+        } catch (const RecordError& e) {
+            if (e.runsPast || offset == 0) src.fail(e.at, "corrupt parameter section: " + e.cause);
+            warnings.push_back("parameter section: " + e.cause + "; the record is ignored");
+            pos = offsetPos + std::size_t(offset);
+            continue;
         }
         furthest = std::max(furthest, end);
         if (offset == 0) break;  // the last record says so

@@ -11,6 +11,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "C3dDetail.h"
 #include "boneless/C3dError.h"
 
 namespace boneless {
@@ -84,8 +85,9 @@ void checkName(const std::string& name) {
     if (name.empty() || name.size() > 127)
         throw std::invalid_argument("C3D writer: name \"" + name +
                                     "\" must have 1..127 characters");
+    // Spaces as the reader accepts them, so a file read and written keeps its names.
     for (unsigned char c : name)
-        if (c < 0x21 || c > 0x7E)
+        if (c < 0x20 || c > 0x7E)
             throw std::invalid_argument("C3D writer: name \"" + name +
                                         "\" has a character outside printable ASCII");
 }
@@ -197,7 +199,9 @@ std::vector<std::uint8_t> encodeC3d(const C3dTake& take, const C3dWriteOptions& 
     pt.set(C3dParameter::int16s("USED", {asWord(points)}, {}));
     pt.set(C3dParameter::floats("SCALE", {scale}, {}));
     pt.set(C3dParameter::floats("RATE", {rate}, {}));
-    pt.set(C3dParameter::chars("UNITS", {take.units.empty() ? std::string("mm") : take.units}));
+    pt.set(C3dParameter::chars(
+        "UNITS", {take.units.empty() ? std::string("mm")
+                                     : c3d_detail::textToC3d(take.units, take.textEncoding)}));
     pt.remove("LONG_FRAMES");
     if (!longCount) {
         pt.set(C3dParameter::int16s("FRAMES", {asWord(frames)}, {}));
@@ -210,11 +214,12 @@ std::vector<std::uint8_t> encodeC3d(const C3dTake& take, const C3dWriteOptions& 
     std::vector<std::string> labels, descriptions;
     std::vector<std::string> byKind[7];
     bool anyDescription = false;
+    const C3dTextEncoding enc = take.textEncoding;
     for (const C3dPoint& p : take.points) {
-        labels.push_back(p.label);
-        descriptions.push_back(p.description);
+        labels.push_back(c3d_detail::textToC3d(p.label, enc));
+        descriptions.push_back(c3d_detail::textToC3d(p.description, enc));
         anyDescription = anyDescription || !p.description.empty();
-        byKind[static_cast<int>(p.kind)].push_back(p.label);
+        byKind[static_cast<int>(p.kind)].push_back(labels.back());
     }
     setList(pt, "LABELS", labels);
     setList(pt, "DESCRIPTIONS", anyDescription ? descriptions : std::vector<std::string>{});

@@ -1,10 +1,12 @@
 #include "boneless/Correspondence.h"
 
+#include <climits>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
+#include <type_traits>
 
 #include "boneless/C3dTake.h"
 #include "boneless/Error.h"
@@ -28,7 +30,13 @@ template <typename T>
 T get(const json& object, const char* key, const std::string& file, const std::string& where) {
     if (!object.contains(key)) fail(file, where + " has no \"" + key + "\"");
     try {
-        return object.at(key).get<T>();
+        const json& value = object.at(key);
+        if constexpr (std::is_same_v<T, int>) {
+            // get<int> would wrap 3e9 and cast 1e30 (undefined): only integers that fit.
+            if (!value.is_number_integer() || value < json(INT_MIN) || value > json(INT_MAX))
+                fail(file, where + ": \"" + key + "\" is not a whole number in the int range");
+        }
+        return value.get<T>();
     } catch (const json::exception&) {
         fail(file, where + ": \"" + key + "\" has the wrong type");
     }
@@ -53,7 +61,7 @@ Correspondence Correspondence::fromJson(const std::string& text, const std::stri
     json doc;
     try {
         doc = json::parse(text);
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {  // parse errors, and numbers past double's range
         fail(path, std::string("is not valid JSON (") + e.what() + ")");
     }
     if (!doc.is_object()) fail(path, "is not a JSON object");

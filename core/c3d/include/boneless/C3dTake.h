@@ -17,6 +17,9 @@ namespace boneless {
 
 enum class C3dStorage { Int16, Float };
 
+// How the file stores text (labels, descriptions, units). The take always holds UTF-8.
+enum class C3dTextEncoding { Utf8, Latin1 };
+
 enum class C3dPointKind { Marker, Angle, Force, Moment, Power, Scalar, Virtual };
 
 const char* toString(C3dProcessor processor);  // "intel", "dec", "mips"
@@ -92,6 +95,9 @@ struct C3dTake {
     int analogChannels = 0;
     double analogRate = 0.0;
     int analogSamplesPerFrame = 0;
+    // Latin-1 when some label, description or unit in the file was not UTF-8; the writer encodes
+    // the take's text this way again, so a file read and written keeps its bytes.
+    C3dTextEncoding textEncoding = C3dTextEncoding::Utf8;
 
     std::vector<C3dPoint> points;
     C3dSamples samples;
