@@ -5,6 +5,8 @@
 #include <OpenMesh/Core/IO/IOManager.hh>
 #include <OpenMesh/Core/IO/importer/BaseImporter.hh>
 #include <OpenMesh/Core/System/omstream.hh>
+#include <algorithm>
+#include <filesystem>
 #include <mutex>
 #include <sstream>
 
@@ -20,7 +22,9 @@ using namespace OpenMesh;
 
 class SoupImporter : public IO::BaseImporter {
   public:
-    explicit SoupImporter(PolygonSoup& soup) : soup_(soup) {}
+    // inputBytes bounds what a header may make us reserve: no vertex or face takes under 4 bytes.
+    SoupImporter(PolygonSoup& soup, std::size_t inputBytes)
+        : soup_(soup), mostElements_(inputBytes / 4 + 1) {}
 
     VertexHandle add_vertex(const Vec3f& p) override { return add_vertex(Vec3d(p)); }
     VertexHandle add_vertex(const Vec3d& p) override {
@@ -38,9 +42,11 @@ class SoupImporter : public IO::BaseImporter {
         return FaceHandle(soup_.faceCount() - 1);
     }
     void reserve(unsigned int nV, unsigned int, unsigned int nF) override {
-        soup_.xyz.reserve(3 * size_t(nV));
-        soup_.faceStart.reserve(size_t(nF) + 1);
-        soup_.faceIndex.reserve(3 * size_t(nF));
+        const std::size_t vertices = std::min<std::size_t>(nV, mostElements_);
+        const std::size_t faces = std::min<std::size_t>(nF, mostElements_);
+        soup_.xyz.reserve(3 * vertices);
+        soup_.faceStart.reserve(faces + 1);
+        soup_.faceIndex.reserve(3 * faces);
     }
     size_t n_vertices() const override { return soup_.vertexCount(); }
     size_t n_faces() const override { return soup_.faceCount(); }
@@ -84,6 +90,7 @@ class SoupImporter : public IO::BaseImporter {
 
   private:
     PolygonSoup& soup_;
+    std::size_t mostElements_;
 };
 
 // OpenMesh writes diagnostics to its global streams omerr/omlog/omout, which forward to
@@ -135,7 +142,9 @@ std::string joined(const std::vector<std::string>& lines) {
 PolygonSoup readWithOpenMesh(const std::string& path) {
     const Precheck facts = precheckForOpenMesh(path);
     PolygonSoup soup;
-    SoupImporter importer(soup);
+    std::error_code ec;
+    const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
+    SoupImporter importer(soup, facts.offText.empty() ? (ec ? 0 : bytes) : facts.offText.size());
     IO::Options options;  // no attributes: positions and faces only
     bool ok;
     std::vector<std::string> messages;
