@@ -3,6 +3,7 @@
 #include <QDir>
 #include <QFile>
 #include <QLabel>
+#include <QMenu>
 #include <QMessageBox>
 #include <QMimeData>
 #include <QSlider>
@@ -194,7 +195,7 @@ class MainWindowTest : public QObject {
         QDir(out).removeRecursively();
         QSignalSpy finished(window_->findChild<ExportRunner*>(), &ExportRunner::finished);
         QVERIFY(finished.isValid());
-        QVERIFY(window_->exportTo(out, false));
+        QVERIFY(window_->exportTo(out, ExportFormat::Obj));
         QVERIFY(finished.wait(120000));
         QVERIFY2(finished.at(0).at(0).toBool(), qPrintable(finished.at(0).at(1).toString()));
         const QStringList objs = QDir(out).entryList({"*.obj"}, QDir::Files);
@@ -203,6 +204,22 @@ class MainWindowTest : public QObject {
         // The window is still alive and solving.
         window_->timeline()->scrubTo(7);
         QVERIFY(test::waitForFrame(*window_));
+    }
+
+    void theExportMenuOffersEveryFormatAndWritesAGlb() {
+        QMenu* exportMenu = nullptr;
+        for (QMenu* menu : window_->findChildren<QMenu*>())
+            if (menu->title() == "&Export") exportMenu = menu;
+        QVERIFY(exportMenu);
+        QCOMPARE(exportMenu->actions().size(), int(exportFormats().size()));
+        const QString out = folder_ + "/export-glb";
+        QDir(out).removeRecursively();
+        QSignalSpy finished(window_->findChild<ExportRunner*>(), &ExportRunner::finished);
+        QVERIFY(window_->exportTo(out, ExportFormat::Glb));
+        QVERIFY(finished.wait(120000));
+        QVERIFY2(finished.at(0).at(0).toBool(), qPrintable(finished.at(0).at(1).toString()));
+        QVERIFY(QFileInfo(out + "/walker.glb").size() > 0);
+        QVERIFY(QDir(out).entryList({"*.obj"}, QDir::Files).isEmpty());
     }
 
     void scrubLatency() {

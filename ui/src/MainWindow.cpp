@@ -168,8 +168,11 @@ void MainWindow::buildMenus() {
                     &MainWindow::chooseSaveProjectAs);
     file->addAction(tr("Save Co&rrespondence As…"), this, &MainWindow::chooseSaveCorrespondence);
     file->addSeparator();
-    file->addAction(tr("&Export OBJ Sequence…"), this, [this] { chooseExport(false); });
-    file->addAction(tr("Export &PC2 Point Cache…"), this, [this] { chooseExport(true); });
+    // One entry per format core offers, so a new format appears here without a UI change.
+    QMenu* exportMenu = file->addMenu(tr("&Export"));
+    for (const ExportFormatInfo& f : exportFormats())
+        exportMenu->addAction(QString::fromUtf8(f.description) + tr("…"), this,
+                              [this, format = f.format] { chooseExport(format); });
     file->addSeparator();
     file->addAction(tr("&Quit"), QKeySequence::Quit, this, &QWidget::close);
 

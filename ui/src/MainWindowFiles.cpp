@@ -230,14 +230,13 @@ bool MainWindow::saveProjectAs(const QString& path) {
     return true;
 }
 
-bool MainWindow::exportTo(const QString& folder, bool pointCache) {
+bool MainWindow::exportTo(const QString& folder, ExportFormat format) {
     QString why;
     if (!document_->canSolve(&why)) {
         showError(tr("Nothing to export: %1").arg(why));
         return false;
     }
-    const ExportRequest request = document_->exportRequest(
-        folder, pointCache ? ExportFormat::Pc2 : ExportFormat::Obj);
+    const ExportRequest request = document_->exportRequest(folder, format);
     QString error;
     if (!exporter_->start(*document_, request, &error)) {
         showError(error);
@@ -312,10 +311,10 @@ void MainWindow::chooseSaveCorrespondence() {
         statusBar()->showMessage(tr("Saved %1").arg(QFileInfo(path).fileName()), 5000);
 }
 
-void MainWindow::chooseExport(bool pointCache) {
+void MainWindow::chooseExport(ExportFormat format) {
     const QString folder = QFileDialog::getExistingDirectory(
-        this, pointCache ? tr("Export PC2 Into") : tr("Export OBJ Sequence Into"));
-    if (!folder.isEmpty()) exportTo(folder, pointCache);
+        this, tr("Export %1 Into").arg(QString::fromUtf8(exportFormatInfo(format).name).toUpper()));
+    if (!folder.isEmpty()) exportTo(folder, format);
 }
 
 void MainWindow::rebuildRecentMenu() {

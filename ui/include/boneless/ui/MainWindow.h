@@ -58,7 +58,7 @@ class MainWindow : public QMainWindow {
     bool saveProjectAs(const QString& path);
     QString projectPath() const { return projectPath_; }
     ProjectAutosave* autosave() const { return autosave_; }
-    bool exportTo(const QString& folder, bool pointCache);
+    bool exportTo(const QString& folder, ExportFormat format);
 
     // The frame the timeline moves to once the next take is loaded (for --frame).
     void setStartFrame(int frame) { startFrame_ = frame; }
@@ -114,7 +114,7 @@ class MainWindow : public QMainWindow {
     void chooseProject();
     void chooseSaveProjectAs();
     void chooseSaveCorrespondence();
-    void chooseExport(bool pointCache);
+    void chooseExport(ExportFormat format);
 
     Document* document_;
     FrameSolver* solver_;
