@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "boneless/Parallel.h"
 #include "Rotation.h"
+#include "boneless/Parallel.h"
 
 namespace boneless {
 

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-
 namespace boneless {
 
 DentGauge::DentGauge(const TriMesh& rest, const MeshTopology& topology,

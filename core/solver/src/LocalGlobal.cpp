@@ -5,9 +5,9 @@
 #include <cmath>
 #include <limits>
 
-#include "boneless/Parallel.h"
 #include "Rotation.h"
 #include "boneless/Error.h"
+#include "boneless/Parallel.h"
 
 namespace boneless {
 

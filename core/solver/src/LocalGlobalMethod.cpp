@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <chrono>
 
-#include "boneless/Parallel.h"
 #include "MeshHierarchy.h"
+#include "boneless/Parallel.h"
 
 namespace boneless {
 

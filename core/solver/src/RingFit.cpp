@@ -1,7 +1,7 @@
 #include "RingFit.h"
 
-#include "boneless/Parallel.h"
 #include "Rotation.h"
+#include "boneless/Parallel.h"
 
 namespace boneless {
 

@@ -29,7 +29,8 @@ RigidMotion fitRigidMotion(const Positions& from, const Positions& to);
 // since the scale and rotation are then undetermined.
 Similarity fitSimilarity(const Positions& from, const Positions& to);
 
-// RMS distance between the mapped `from` rows and the `to` rows (finite rows only; infinity for none).
+// RMS distance between the mapped `from` rows and the `to` rows (finite rows only; infinity for
+// none).
 double alignmentResidual(const Similarity& s, const Positions& from, const Positions& to);
 
 }  // namespace boneless

@@ -18,9 +18,9 @@ struct Calibration {
 };
 
 // Among the frames where every given point is visible, the one that is closest to the rest pose
-// after its own similarity alignment (docs/algorithm.md §8); when no frame shows them all, among the
-// frames that show the most. restPositions: the mapped vertices' rest positions, one row per entry
-// of `points`. Throws Error when no frame shows three usable markers.
+// after its own similarity alignment (docs/algorithm.md §8); when no frame shows them all, among
+// the frames that show the most. restPositions: the mapped vertices' rest positions, one row per
+// entry of `points`. Throws Error when no frame shows three usable markers.
 Calibration calibrate(const C3dTake& take, const std::vector<std::size_t>& points,
                       const Positions& restPositions);
 
