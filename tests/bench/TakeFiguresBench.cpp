@@ -67,14 +67,7 @@ int main(int argc, char** argv) {
     read.group = group;
     const TriMesh rest = readMesh(meshPath, read).mesh;
     const Correspondence map = Correspondence::read(mapPath);
-    std::vector<SurfacePoint> points;
-    for (const auto& m : map.markers) {
-        SurfacePoint p;
-        p.vertex = m.vertex;
-        p.face = m.face;
-        p.barycentric = Vec3(m.barycentric[0], m.barycentric[1], m.barycentric[2]);
-        points.push_back(p);
-    }
+    const std::vector<SurfacePoint> points = surfacePoints(map);
     const MeshTopology topology(rest);
     const ShapeEncoding encoding(rest, topology);
     std::vector<std::pair<int, int>> edges;

@@ -12,6 +12,14 @@
 
 namespace boneless {
 
+std::vector<SurfacePoint> surfacePoints(const Correspondence& map) {
+    std::vector<SurfacePoint> points;
+    for (const auto& m : map.markers)
+        points.push_back(
+            {m.vertex, m.face, Vec3(m.barycentric[0], m.barycentric[1], m.barycentric[2])});
+    return points;
+}
+
 TakeSolver::TakeSolver(const TriMesh& rest, const C3dTake& take, const Correspondence& map,
                        TakeSolveOptions options)
     : rest_(rest), take_(take), options_(std::move(options)) {
@@ -27,14 +35,7 @@ TakeSolver::TakeSolver(const TriMesh& rest, const C3dTake& take, const Correspon
     solverOptions.constraints = SolverOptions::Constraints::Soft;
     solverOptions.softWeight = options_.markerWeight;
     solverOptions.markerOffsets.clear();
-    std::vector<SurfacePoint> points;
-    for (const auto& m : map.markers) {
-        SurfacePoint p;
-        p.vertex = m.vertex;
-        p.face = m.face;
-        p.barycentric = Vec3(m.barycentric[0], m.barycentric[1], m.barycentric[2]);
-        points.push_back(p);
-    }
+    const std::vector<SurfacePoint> points = surfacePoints(map);
     topology_ = std::make_unique<MeshTopology>(rest_);
     encoding_ = std::make_unique<ShapeEncoding>(rest_, *topology_);
 

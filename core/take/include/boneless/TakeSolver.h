@@ -54,6 +54,9 @@ struct FrameReport {
     double milliseconds = 0;
 };
 
+// The map's markers as the solver takes them, one per entry in order.
+std::vector<SurfacePoint> surfacePoints(const Correspondence& map);
+
 // Turns a take into an animation of the rest mesh: aligns the take onto the mesh (a similarity
 // applied to the take, never to the mesh, so the encoding's heights keep their meaning), filters
 // the trajectories if asked, fits the rest mesh to the actor at the calibration frame (unless
