@@ -43,6 +43,13 @@ Number classify(const std::string& t) {
     return std::isfinite(v) ? Number::Finite : Number::NonFinite;
 }
 
+// A token classify() found finite.
+double number(const std::string& t) {
+    double v = 0;
+    std::from_chars(t.data() + (t[0] == '+'), t.data() + t.size(), v);
+    return v;
+}
+
 bool isInteger(const std::string& t) {
     long long v;
     const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
@@ -102,6 +109,7 @@ Precheck checkOff(const std::string& path) {
     Precheck p;
     p.declaredVertices = std::stoll(counts[0]);
     p.declaredFaces = std::stoll(counts[1]);
+    PolygonSoup& soup = p.offSoup.emplace();
     for (long long v = 0; v < p.declaredVertices; ++v, ++next) {
         if (next >= lines.size())
             throw MeshError(path, "file ends after " + std::to_string(v) + " of " +
@@ -111,8 +119,9 @@ Precheck checkOff(const std::string& path) {
         if (toks.size() < 3)
             throw MeshError(path, what + " has fewer than 3 coordinates", at(lines[next].first));
         requireNumbers(path, toks, lines[next].first, what);
+        for (int k = 0; k < 3; ++k) soup.xyz.push_back(number(toks[k]));  // rest: colour, normal
+        soup.vertexLine.push_back(lines[next].first);
     }
-    const size_t firstVertex = next - p.declaredVertices;
     for (long long f = 0; f < p.declaredFaces; ++f, ++next) {
         if (next >= lines.size())
             throw MeshError(path, "file ends after " + std::to_string(f) + " of " +
@@ -126,12 +135,17 @@ Precheck checkOff(const std::string& path) {
         if (k < 3 || static_cast<long long>(toks.size()) < k + 1)
             throw MeshError(path, what + " lists fewer than 3 corners or fewer than announced",
                             at(line));
-        for (long long i = 1; i <= k; ++i)
-            if (!isInteger(toks[i]))
+        for (long long i = 1; i <= k; ++i) {
+            int index;
+            const auto [end, ec] =
+                std::from_chars(toks[i].data(), toks[i].data() + toks[i].size(), index);
+            if (ec != std::errc() || end != toks[i].data() + toks[i].size())
                 throw MeshError(path, what + ": '" + toks[i] + "' is not a vertex index", at(line));
+            soup.faceIndex.push_back(index);  // range-checked by the mesh reader
+        }
+        soup.endFace();  // what follows the corners (a colour) is not kept
+        soup.faceLine.push_back(line);
     }
-    p.offText = keyword + "\n" + counts[0] + " " + counts[1] + " 0\n";
-    for (size_t i = firstVertex; i < next; ++i) p.offText += lines[i].second + "\n";
     return p;
 }
 

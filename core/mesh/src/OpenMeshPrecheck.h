@@ -1,6 +1,9 @@
 #pragma once
 
+#include <optional>
 #include <string>
+
+#include "PolygonSoup.h"
 
 namespace boneless::detail {
 
@@ -13,9 +16,10 @@ struct Precheck {
     long long triangles = -1;         // STL: triangles in the file
     long long declaredVertices = -1;  // OFF/PLY header counts (-1: not known)
     long long declaredFaces = -1;
-    // Text OFF restated without comments and with the counts on their own line: OpenMesh's OFF
-    // reader takes neither comments nor "OFF nv nf ne" and reads garbage counts instead.
-    std::string offText;
+    // Text OFF, read here in full from the tokens this pass checked. OpenMesh's OFF reader takes
+    // neither comments nor "OFF nv nf ne", and read from a stream it parses with the header flags
+    // (binary, colours, normals) of the previous file it opened; it only reads binary OFF.
+    std::optional<PolygonSoup> offSoup;
 };
 
 Precheck precheckForOpenMesh(const std::string& path);

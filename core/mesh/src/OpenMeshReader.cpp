@@ -1,6 +1,7 @@
-// OFF, PLY and STL through OpenMesh's readers, into a PolygonSoup. The importer below records what
-// the readers deliver and builds no topology, so vertex order stays the file's and non-manifold
-// input reaches our own checks instead of OpenMesh's silent vertex duplication.
+// Binary OFF, PLY and STL through OpenMesh's readers (text OFF is read by the precheck), into a
+// PolygonSoup. The importer below records what the readers deliver and builds no topology, so
+// vertex order stays the file's and non-manifold input reaches our own checks instead of
+// OpenMesh's silent vertex duplication.
 
 #include <OpenMesh/Core/IO/IOManager.hh>
 #include <OpenMesh/Core/IO/importer/BaseImporter.hh>
@@ -140,23 +141,20 @@ std::string joined(const std::vector<std::string>& lines) {
 }  // namespace
 
 PolygonSoup readWithOpenMesh(const std::string& path) {
-    const Precheck facts = precheckForOpenMesh(path);
+    Precheck facts = precheckForOpenMesh(path);
+    if (facts.offSoup) return std::move(*facts.offSoup);
     PolygonSoup soup;
     std::error_code ec;
     const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
-    SoupImporter importer(soup, facts.offText.empty() ? (ec ? 0 : bytes) : facts.offText.size());
+    SoupImporter importer(soup, ec ? 0 : bytes);
     IO::Options options;  // no attributes: positions and faces only
     bool ok;
     std::vector<std::string> messages;
     {
         OpenMeshLogCapture capture;
         try {
-            if (facts.offText.empty()) {
-                ok = IO::IOManager().read(path, importer, options);
-            } else {
-                std::istringstream text(facts.offText);
-                ok = IO::IOManager().read(text, "off", importer, options);
-            }
+            // By path, so that each reader parses this file's header afresh.
+            ok = IO::IOManager().read(path, importer, options);
         } catch (const std::exception& e) {
             ok = false;
             capture.note(e.what());

@@ -34,8 +34,8 @@ std::string vertexWhere(const PolygonSoup& soup, int vertex);
 PolygonSoup readObj(const std::string& path, const std::string& group);
 std::vector<std::string> readObjGroupNames(const std::string& path);
 
-// OFF, PLY, STL through OpenMesh (plus a plausibility pass over the text formats, whose OpenMesh
-// parsers turn malformed numbers into silent garbage).
+// OFF, PLY, STL: a plausibility pass over the text formats, whose OpenMesh parsers turn malformed
+// numbers into silent garbage (text OFF it reads itself), then OpenMesh for the rest.
 PolygonSoup readWithOpenMesh(const std::string& path);
 
 // Splits polygon `corners` (>= 3 vertex indices into V) into corners.size() - 2 triangles

@@ -9,6 +9,7 @@
 #include <limits>
 #include <map>
 #include <sstream>
+#include <tuple>
 
 #include "boneless/Error.h"
 #include "boneless/MeshReader.h"
@@ -52,7 +53,7 @@ std::string objText(const Positions& V, const Polygons& P) {
 
 std::string offText(const Positions& V, const Polygons& P) {
     std::ostringstream s;
-    s.precision(9);
+    s.precision(17);
     s << "OFF\n# comment\n" << V.rows() << ' ' << P.size() << " 0\n";
     for (int i = 0; i < V.rows(); ++i) s << V(i, 0) << ' ' << V(i, 1) << ' ' << V(i, 2) << '\n';
     for (const auto& f : P) {
@@ -61,6 +62,19 @@ std::string offText(const Positions& V, const Polygons& P) {
         s << '\n';
     }
     return s.str();
+}
+
+// OpenMesh's binary OFF: the keyword line, then little-endian 32-bit counts, floats and indices.
+std::string offBinary(const Positions& V, const Polygons& P) {
+    std::string s = "OFF BINARY\n";
+    for (uint32_t n : {uint32_t(V.rows()), uint32_t(P.size()), 0u}) put(s, n);
+    for (int i = 0; i < V.rows(); ++i)
+        for (int k = 0; k < 3; ++k) put(s, float(V(i, k)));
+    for (const auto& f : P) {
+        put(s, uint32_t(f.size()));
+        for (int v : f) put(s, uint32_t(v));
+    }
+    return s;
 }
 
 std::string plyHeader(const char* format, int nv, size_t nf) {
@@ -205,6 +219,44 @@ TEST(MeshReaderFormats, StlVerticesComeInOrderOfFirstAppearance) {
         EXPECT_EQ(r.mesh.V, expectedV);
         EXPECT_EQ(r.mesh.F, expectedF);
     }
+}
+
+// OpenMesh's readers are process-wide objects that keep the header flags of the last file they
+// opened (binary, colours, normals); no read may depend on which file was read before it.
+TEST(MeshReaderFormats, EachReadIsIndependentOfTheFileReadBefore) {
+    const Positions V = tentV();
+    const Faces stlF = (Faces(4, 3) << 0, 1, 2, 0, 2, 3, 0, 3, 4, 0, 4, 1).finished();
+    Positions stlV(5, 3);
+    for (int i = 0; i < 5; ++i) stlV.row(i) = V.row(std::vector<int>{4, 0, 1, 2, 3}[i]);
+    std::string coff = "COFF\n5 4 0\n";  // text OFF with vertex and face colours
+    for (int i = 0; i < 5; ++i)
+        coff += std::to_string(V(i, 0)) + ' ' + std::to_string(V(i, 1)) + ' ' +
+                std::to_string(V(i, 2)) + " 0.5 0.5 0.5 1\n";
+    for (const auto& f : tentP)
+        coff += "3 " + std::to_string(f[0]) + ' ' + std::to_string(f[1]) + ' ' +
+                std::to_string(f[2]) + " 255 0 0\n";
+    struct File {
+        std::string path;
+        Positions V;
+        Faces F;
+    };
+    const std::vector<File> files = {
+        {writeFile("seq.off", offText(V, tentP)), V, toFaces(tentP)},
+        {writeFile("seq_binary.off", offBinary(V, tentP)), V, toFaces(tentP)},
+        {writeFile("seq_colour.off", coff), V, toFaces(tentP)},
+        {writeFile("seq_ascii.ply", plyAscii(V, tentP)), V, toFaces(tentP)},
+        {writeFile("seq_binary.ply", plyBinary(V, tentP)), V, toFaces(tentP)},
+        {writeFile("seq_ascii.stl", stlAscii(V, toFaces(tentP))), stlV, stlF},
+        {writeFile("seq_binary.stl", stlBinary(V, toFaces(tentP))), stlV, stlF}};
+    for (const File& before : files)
+        for (const File& file : files) {
+            SCOPED_TRACE(fs::path(before.path).filename().string() + " then " +
+                         fs::path(file.path).filename().string());
+            readMesh(before.path);
+            const MeshReadResult r = readMesh(file.path);
+            EXPECT_EQ(r.mesh.V, file.V);
+            EXPECT_EQ(r.mesh.F, file.F);
+        }
 }
 
 TEST(MeshReaderFormats, StlTriangleWhoseCornersMergeIsDroppedWithAWarning) {
@@ -588,16 +640,19 @@ TEST(MeshReaderRealData, HorseThroughEveryFormat) {
     EXPECT_EQ(obj.boundaryEdges, 19);
     EXPECT_EQ(obj.boundaryLoops, 2);
 
-    // OpenMesh delivers floats: compare with the float-rounded OBJ positions.
+    // OpenMesh delivers floats: compare with the float-rounded OBJ positions. Text OFF is read
+    // in double precision, as OBJ is.
     const Positions asFloat = obj.mesh.V.cast<float>().cast<double>();
     Polygons P;
     for (int t = 0; t < obj.mesh.faceCount(); ++t)
         P.push_back({obj.mesh.F(t, 0), obj.mesh.F(t, 1), obj.mesh.F(t, 2)});
-    for (const auto& [name, bytes] : std::map<std::string, std::string>{
-             {"horse.ply", plyBinary(asFloat, P)}, {"horse.off", offText(asFloat, P)}}) {
+    for (const auto& [name, bytes, V] :
+         std::vector<std::tuple<std::string, std::string, Positions>>{
+             {"horse.ply", plyBinary(asFloat, P), asFloat},
+             {"horse.off", offText(obj.mesh.V, P), obj.mesh.V}}) {
         SCOPED_TRACE(name);
         const MeshReadResult r = readMesh(writeFile(name, bytes));
-        EXPECT_EQ(r.mesh.V, asFloat);
+        EXPECT_EQ(r.mesh.V, V);
         EXPECT_EQ(r.mesh.F, obj.mesh.F);
         EXPECT_EQ(r.boundaryLoops, 2);
     }
