@@ -5,7 +5,6 @@
 #include <QFile>
 #include <QFileDialog>
 #include <QFileInfo>
-#include <QInputDialog>
 #include <QLocale>
 #include <QMenu>
 #include <QMessageBox>
@@ -21,6 +20,7 @@
 #include "boneless/ui/DemoProject.h"
 #include "boneless/ui/Document.h"
 #include "boneless/ui/ExportRunner.h"
+#include "boneless/ui/GroupChooser.h"
 #include "boneless/ui/MainWindow.h"
 #include "boneless/ui/Project.h"
 
@@ -252,18 +252,14 @@ void MainWindow::chooseMesh() {
     if (path.isEmpty()) return;
     QString group;
     try {
-        const std::vector<std::string> groups = objGroups(path.toStdString());
+        const std::vector<ObjGroup> groups = objGroups(path.toStdString());
         if (groups.size() > 1) {
-            QStringList items{tr("(whole file)")};
-            for (const std::string& g : groups) items << QString::fromStdString(g);
-            bool ok = false;
-            const QString chosen = QInputDialog::getItem(
-                this, tr("Open Mesh"), tr("The file has groups. Animate:"), items, 0, false, &ok);
-            if (!ok) return;
-            if (chosen != items.front()) group = chosen;
+            GroupChooser chooser(QFileInfo(path).fileName(), groups, this);
+            if (chooser.exec() != QDialog::Accepted) return;
+            group = chooser.group();
         }
     } catch (const Error& e) {
-        showError(QString::fromStdString(e.what()));
+        showError(plainError(path), QString::fromStdString(e.what()));
         return;
     }
     opening_ = path;
