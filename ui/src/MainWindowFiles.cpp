@@ -19,7 +19,7 @@
 #include "boneless/MeshReader.h"
 #include "boneless/ui/DemoProject.h"
 #include "boneless/ui/Document.h"
-#include "boneless/ui/ExportRunner.h"
+#include "boneless/ui/ExportDialog.h"
 #include "boneless/ui/GroupChooser.h"
 #include "boneless/ui/MainWindow.h"
 #include "boneless/ui/Project.h"
@@ -230,20 +230,14 @@ bool MainWindow::saveProjectAs(const QString& path) {
     return true;
 }
 
-bool MainWindow::exportTo(const QString& folder, ExportFormat format) {
+void MainWindow::showExportDialog() {
     QString why;
     if (!document_->canSolve(&why)) {
         showError(tr("Nothing to export: %1").arg(why));
-        return false;
+        return;
     }
-    const ExportRequest request = document_->exportRequest(folder, format);
-    QString error;
-    if (!exporter_->start(*document_, request, &error)) {
-        showError(error);
-        return false;
-    }
-    statusBar()->showMessage(tr("Exporting to %1…").arg(folder));
-    return true;
+    exportDialog_->show();
+    exportDialog_->raise();
 }
 
 void MainWindow::chooseMesh() {
@@ -307,12 +301,6 @@ void MainWindow::chooseSaveCorrespondence() {
         statusBar()->showMessage(tr("Saved %1").arg(QFileInfo(path).fileName()), 5000);
 }
 
-void MainWindow::chooseExport(ExportFormat format) {
-    const QString folder = QFileDialog::getExistingDirectory(
-        this, tr("Export %1 Into").arg(QString::fromUtf8(exportFormatInfo(format).name).toUpper()));
-    if (!folder.isEmpty()) exportTo(folder, format);
-}
-
 void MainWindow::rebuildRecentMenu() {
     recentMenu_->clear();
     const QStringList files = RecentFiles::list();
@@ -355,7 +343,7 @@ void MainWindow::dropEvent(QDropEvent* event) {
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {
-    if (exporter_->isRunning()) exporter_->cancel();
+    exportDialog_->cancelExport();
     // The frame and camera only count as a change at the end; the demo's never do.
     if (!demo_) storeSession();
     autosave_->saveNow();
