@@ -34,10 +34,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     using namespace boneless;
     const std::string path = fuzzInputFile(data, size, "obj");
     try {
-        const std::vector<std::string> groups = objGroups(path);
+        const std::vector<ObjGroup> groups = objGroups(path);
         MeshReadOptions options;
-        if (!groups.empty()) options.group = groups[size % groups.size()];
+        int groupVertices = -1;
+        if (!groups.empty()) {
+            options.group = groups[size % groups.size()].name;
+            groupVertices = groups[size % groups.size()].vertices;
+        }
         const MeshReadResult r = readMesh(path, options);
+        // The chooser's count is the size of the mesh the group reads as.
+        if (groupVertices >= 0 && groupVertices != r.mesh.vertexCount()) std::abort();
         if (r.sourceVertexIndex.size() != std::size_t(r.mesh.vertexCount())) std::abort();
         if (r.sourceFaceIndex.size() != std::size_t(r.mesh.faceCount())) std::abort();
         for (int v : r.sourceVertexIndex)

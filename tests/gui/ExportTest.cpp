@@ -5,10 +5,7 @@
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QProcess>
-#include <QProgressDialog>
-#include <QPushButton>
 #include <QSignalSpy>
-#include <QWidget>
 #include <QtTest>
 
 #include "ModelTestFixtures.h"
@@ -108,40 +105,12 @@ class ExportTest : public QObject {
     void objFramesMatchTheCli() { exportAndCompare(ExportFormat::Obj, "obj", 11); }
     void pointCacheMatchesTheCli() { exportAndCompare(ExportFormat::Pc2, "pc2", 2); }
 
-    void cancelStopsCleanly() {
-        Document d;
-        QVERIFY(test::loadDemo(d, demo_));
-        QWidget window;
-        window.show();
-        ExportRunner runner(&window);
-        const QString out = work_ + "/cancelled";
-        QSignalSpy finished(&runner, &ExportRunner::finished);
-        QSignalSpy progress(&runner, &ExportRunner::progress);
-        QVERIFY(runner.start(d, d.exportRequest(out, ExportFormat::Obj)));
-        QVERIFY(runner.dialog());
-        QVERIFY(progress.wait(60000));
-        auto* cancel = runner.dialog()->findChild<QPushButton*>();
-        QVERIFY(cancel);
-        cancel->click();
-        QVERIFY(finished.wait(60000));
-        QVERIFY(finished.first().at(0).toBool());
-        QVERIFY(runner.result().cancelled);
-        const int written = runner.result().framesWritten;
-        QVERIFY(written >= 1 && written < d.frameCount());
-        const QJsonObject sidecar = sidecarWithoutTimes(out + "/walker.json");
-        QCOMPARE(sidecar["complete"].toBool(), false);
-        QCOMPARE(sidecar["frames_written"].toInt(), written);
-        QCOMPARE(QDir(out).entryList({"*.obj"}, QDir::Files).size(), written);
-        QVERIFY(!runner.isRunning());
-    }
-
     void refusedWithAMessageWhenNothingCanBeSolved() {
         Document d;
         QVERIFY(d.loadMesh(demo_ + "/walker.obj"));
         ExportRunner runner;
         QString error;
-        QVERIFY(
-            !runner.start(d, d.exportRequest(work_ + "/none", ExportFormat::Obj), &error));
+        QVERIFY(!runner.start(d, d.exportRequest(work_ + "/none", ExportFormat::Obj), &error));
         QVERIFY2(error.contains("take"), qPrintable(error));
         QVERIFY(!runner.isRunning());
         QVERIFY(!QDir(work_ + "/none").exists());

@@ -1,5 +1,7 @@
 // The window as a user drives it: open the demo, scrub, play, keyboard, and bad files that must
 // give a message while the window keeps working.
+#include <QAction>
+#include <QComboBox>
 #include <QDir>
 #include <QFile>
 #include <QLabel>
@@ -13,7 +15,7 @@
 
 #include "ViewTestSupport.h"
 #include "boneless/ui/Document.h"
-#include "boneless/ui/ExportRunner.h"
+#include "boneless/ui/ExportDialog.h"
 #include "boneless/ui/FrameSolver.h"
 #include "boneless/ui/MainWindow.h"
 #include "boneless/ui/MeshView.h"
@@ -193,9 +195,14 @@ class MainWindowTest : public QObject {
     void exportWritesObjSequence() {
         const QString out = folder_ + "/export";
         QDir(out).removeRecursively();
-        QSignalSpy finished(window_->findChild<ExportRunner*>(), &ExportRunner::finished);
-        QVERIFY(finished.isValid());
-        QVERIFY(window_->exportTo(out, ExportFormat::Obj));
+        window_->findChild<QAction*>("actionExport")->trigger();
+        ExportDialog* dialog = window_->exportDialog();
+        QVERIFY(dialog->isVisible());
+        QSignalSpy finished(dialog, &ExportDialog::finished);
+        dialog->setFolder(out);
+        dialog->setFormat(ExportFormat::Obj);
+        dialog->setRange(ExportDialog::Range::All);
+        QVERIFY(dialog->startExport());
         QVERIFY(finished.wait(120000));
         QVERIFY2(finished.at(0).at(0).toBool(), qPrintable(finished.at(0).at(1).toString()));
         const QStringList objs = QDir(out).entryList({"*.obj"}, QDir::Files);
@@ -206,16 +213,17 @@ class MainWindowTest : public QObject {
         QVERIFY(test::waitForFrame(*window_));
     }
 
-    void theExportMenuOffersEveryFormatAndWritesAGlb() {
-        QMenu* exportMenu = nullptr;
-        for (QMenu* menu : window_->findChildren<QMenu*>())
-            if (menu->title() == "&Export") exportMenu = menu;
-        QVERIFY(exportMenu);
-        QCOMPARE(exportMenu->actions().size(), int(exportFormats().size()));
+    void theExportDialogOffersEveryFormatAndWritesAGlb() {
+        ExportDialog* dialog = window_->exportDialog();
+        QCOMPARE(dialog->findChild<QComboBox*>("exportFormat")->count(),
+                 int(exportFormats().size()));
         const QString out = folder_ + "/export-glb";
         QDir(out).removeRecursively();
-        QSignalSpy finished(window_->findChild<ExportRunner*>(), &ExportRunner::finished);
-        QVERIFY(window_->exportTo(out, ExportFormat::Glb));
+        QSignalSpy finished(dialog, &ExportDialog::finished);
+        dialog->setFolder(out);
+        dialog->setFormat(ExportFormat::Glb);
+        dialog->setRange(ExportDialog::Range::All);
+        QVERIFY(dialog->startExport());
         QVERIFY(finished.wait(120000));
         QVERIFY2(finished.at(0).at(0).toBool(), qPrintable(finished.at(0).at(1).toString()));
         QVERIFY(QFileInfo(out + "/walker.glb").size() > 0);

@@ -3,6 +3,7 @@
 #include <QEventLoop>
 #include <QFuture>
 #include <QMetaObject>
+#include <QPointer>
 #include <QTimer>
 #include <QtConcurrent/QtConcurrentRun>
 
@@ -21,8 +22,7 @@ struct ExportRunner::Job {
     QFuture<void> future;
 };
 
-ExportRunner::ExportRunner(QWidget* dialogParent, QObject* parent)
-    : QObject(parent), dialogParent_(dialogParent) {}
+ExportRunner::ExportRunner(QObject* parent) : QObject(parent) {}
 
 ExportRunner::~ExportRunner() {
     if (job_) {
@@ -30,7 +30,6 @@ ExportRunner::~ExportRunner() {
         // The job posts back to this object, so it must end before this object does.
         job_->future.waitForFinished();
     }
-    delete dialog_.data();
 }
 
 bool ExportRunner::start(const Document& document, const ExportRequest& request, QString* error) {
@@ -52,21 +51,6 @@ bool ExportRunner::start(const Document& document, const ExportRequest& request,
     running_ = true;
     error_.clear();
     result_ = ExportResult();
-
-    if (dialogParent_) {
-        const int count = document.frameCount();
-        const int end = request.end < 0 ? count : std::min(request.end, count);
-        auto* dialog = new QProgressDialog(tr("Solving and writing frames…"), tr("Cancel"), 0,
-                                           std::max(1, end - request.first), dialogParent_);
-        dialog->setWindowTitle(tr("Export"));
-        dialog->setWindowModality(Qt::WindowModal);
-        dialog->setMinimumDuration(0);
-        dialog->setAutoClose(false);
-        dialog->setAutoReset(false);
-        dialog->setValue(0);
-        connect(dialog, &QProgressDialog::canceled, this, &ExportRunner::cancel);
-        dialog_ = dialog;
-    }
 
     QPointer<ExportRunner> self(this);
     job->future = QtConcurrent::run([job, self] {
@@ -92,19 +76,9 @@ bool ExportRunner::start(const Document& document, const ExportRequest& request,
 
 void ExportRunner::cancel() {
     if (job_) job_->cancel = true;
-    if (dialog_) dialog_->setLabelText(tr("Stopping after the current frame…"));
 }
 
 void ExportRunner::onProgress(int done, int total, double residualRmsMm) {
-    if (dialog_) {
-        dialog_->setMaximum(total);
-        dialog_->setValue(done);
-        if (!job_ || !job_->cancel)
-            dialog_->setLabelText(tr("Frame %1 of %2 (residual %3 mm)")
-                                      .arg(done)
-                                      .arg(total)
-                                      .arg(residualRmsMm, 0, 'f', 1));
-    }
     emit progress(done, total, residualRmsMm);
 }
 
@@ -115,7 +89,6 @@ void ExportRunner::onFinished() {
     error_ = job->error;
     running_ = false;
     job_.reset();
-    if (dialog_) dialog_->deleteLater();
     QString message;
     if (!error_.isEmpty())
         message = error_;

@@ -22,7 +22,7 @@
 #include "FrameDisplay.h"
 #include "boneless/ui/AppIcon.h"
 #include "boneless/ui/Document.h"
-#include "boneless/ui/ExportRunner.h"
+#include "boneless/ui/ExportDialog.h"
 #include "boneless/ui/FrameSolver.h"
 #include "boneless/ui/MarkerListModel.h"
 #include "boneless/ui/MeshView.h"
@@ -43,7 +43,7 @@ MainWindow::MainWindow(QWidget* parent)
       proxy_(new MarkerFilterProxy(this)),
       display_(nullptr),
       autosave_(new ProjectAutosave(document_, this)),
-      exporter_(new ExportRunner(this, this)) {
+      exportDialog_(new ExportDialog(document_, solver_, timeline_, this)) {
     setObjectName("mainWindow");
     // The About box shows its parent's icon.
     setWindowIcon(applicationIcon());
@@ -168,11 +168,9 @@ void MainWindow::buildMenus() {
                     &MainWindow::chooseSaveProjectAs);
     file->addAction(tr("Save Co&rrespondence As…"), this, &MainWindow::chooseSaveCorrespondence);
     file->addSeparator();
-    // One entry per format core offers, so a new format appears here without a UI change.
-    QMenu* exportMenu = file->addMenu(tr("&Export"));
-    for (const ExportFormatInfo& f : exportFormats())
-        exportMenu->addAction(QString::fromUtf8(f.description) + tr("…"), this,
-                              [this, format = f.format] { chooseExport(format); });
+    file->addAction(tr("&Export…"), QKeySequence(Qt::CTRL | Qt::Key_E), this,
+                    &MainWindow::showExportDialog)
+        ->setObjectName("actionExport");
     file->addSeparator();
     file->addAction(tr("&Quit"), QKeySequence::Quit, this, &QWidget::close);
 
@@ -225,7 +223,7 @@ void MainWindow::buildMenus() {
                        "sits. After four, <i>Suggest rest</i> maps the others; <i>Align</i> fixes "
                        "the take onto the mesh.</li>"
                        "<li>Play (Space), scrub the timeline, check the residual column.</li>"
-                       "<li>File → Export: an OBJ sequence or a PC2 point cache.</li></ol>"
+                       "<li>File → Export (Ctrl+E): the frames, format and folder.</li></ol>"
                        "The README that comes with Boneless is the full manual."));
             })
         ->setObjectName("actionGettingStarted");
@@ -242,6 +240,7 @@ void MainWindow::buildMenus() {
                                "<tr><td>Ctrl+O</td><td>open a project</td></tr>"
                                "<tr><td>Ctrl+M / Ctrl+T</td><td>open a mesh / a take</td></tr>"
                                "<tr><td>Ctrl+S / Ctrl+Shift+S</td><td>save / save as</td></tr>"
+                               "<tr><td>Ctrl+E</td><td>export</td></tr>"
                                "<tr><td>Ctrl+Z / Ctrl+Shift+Z</td><td>undo / redo</td></tr>"
                                "<tr><td>Ctrl+R</td><td>reset the camera</td></tr>"
                                "<tr><td>mouse</td><td>left drag turns, right drag or wheel zooms, "
@@ -329,7 +328,7 @@ void MainWindow::connectDocument() {
                                      : tr("The click missed the mesh"),
                                  8000);
     });
-    connect(exporter_, &ExportRunner::finished, this, [this](bool ok, const QString& message) {
+    connect(exportDialog_, &ExportDialog::finished, this, [this](bool ok, const QString& message) {
         if (ok)
             statusBar()->showMessage(message, 10000);
         else

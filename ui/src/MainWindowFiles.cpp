@@ -5,7 +5,6 @@
 #include <QFile>
 #include <QFileDialog>
 #include <QFileInfo>
-#include <QInputDialog>
 #include <QLocale>
 #include <QMenu>
 #include <QMessageBox>
@@ -20,7 +19,8 @@
 #include "boneless/MeshReader.h"
 #include "boneless/ui/DemoProject.h"
 #include "boneless/ui/Document.h"
-#include "boneless/ui/ExportRunner.h"
+#include "boneless/ui/ExportDialog.h"
+#include "boneless/ui/GroupChooser.h"
 #include "boneless/ui/MainWindow.h"
 #include "boneless/ui/Project.h"
 
@@ -230,20 +230,14 @@ bool MainWindow::saveProjectAs(const QString& path) {
     return true;
 }
 
-bool MainWindow::exportTo(const QString& folder, ExportFormat format) {
+void MainWindow::showExportDialog() {
     QString why;
     if (!document_->canSolve(&why)) {
         showError(tr("Nothing to export: %1").arg(why));
-        return false;
+        return;
     }
-    const ExportRequest request = document_->exportRequest(folder, format);
-    QString error;
-    if (!exporter_->start(*document_, request, &error)) {
-        showError(error);
-        return false;
-    }
-    statusBar()->showMessage(tr("Exporting to %1…").arg(folder));
-    return true;
+    exportDialog_->show();
+    exportDialog_->raise();
 }
 
 void MainWindow::chooseMesh() {
@@ -252,18 +246,14 @@ void MainWindow::chooseMesh() {
     if (path.isEmpty()) return;
     QString group;
     try {
-        const std::vector<std::string> groups = objGroups(path.toStdString());
+        const std::vector<ObjGroup> groups = objGroups(path.toStdString());
         if (groups.size() > 1) {
-            QStringList items{tr("(whole file)")};
-            for (const std::string& g : groups) items << QString::fromStdString(g);
-            bool ok = false;
-            const QString chosen = QInputDialog::getItem(
-                this, tr("Open Mesh"), tr("The file has groups. Animate:"), items, 0, false, &ok);
-            if (!ok) return;
-            if (chosen != items.front()) group = chosen;
+            GroupChooser chooser(QFileInfo(path).fileName(), groups, this);
+            if (chooser.exec() != QDialog::Accepted) return;
+            group = chooser.group();
         }
     } catch (const Error& e) {
-        showError(QString::fromStdString(e.what()));
+        showError(plainError(path), QString::fromStdString(e.what()));
         return;
     }
     opening_ = path;
@@ -311,12 +301,6 @@ void MainWindow::chooseSaveCorrespondence() {
         statusBar()->showMessage(tr("Saved %1").arg(QFileInfo(path).fileName()), 5000);
 }
 
-void MainWindow::chooseExport(ExportFormat format) {
-    const QString folder = QFileDialog::getExistingDirectory(
-        this, tr("Export %1 Into").arg(QString::fromUtf8(exportFormatInfo(format).name).toUpper()));
-    if (!folder.isEmpty()) exportTo(folder, format);
-}
-
 void MainWindow::rebuildRecentMenu() {
     recentMenu_->clear();
     const QStringList files = RecentFiles::list();
@@ -359,7 +343,7 @@ void MainWindow::dropEvent(QDropEvent* event) {
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {
-    if (exporter_->isRunning()) exporter_->cancel();
+    exportDialog_->cancelExport();
     // The frame and camera only count as a change at the end; the demo's never do.
     if (!demo_) storeSession();
     autosave_->saveNow();

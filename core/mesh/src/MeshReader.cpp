@@ -143,9 +143,9 @@ MeshReadResult readMesh(const std::string& path, const MeshReadOptions& options)
     return r;
 }
 
-std::vector<std::string> objGroups(const std::string& path) {
+std::vector<ObjGroup> objGroups(const std::string& path) {
     if (lowerExtension(path) != "obj") return {};
-    return readObjGroupNames(path);
+    return readObjGroups(path);
 }
 
 }  // namespace boneless

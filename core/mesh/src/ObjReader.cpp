@@ -8,6 +8,7 @@
 #include <cstring>
 #include <map>
 #include <string_view>
+#include <unordered_map>
 
 #include "PolygonSoup.h"
 #include "boneless/Error.h"
@@ -116,7 +117,10 @@ class ObjParser {
                 if (!namesOnly) vertex(rest);
                 ++vertexCount_;
             } else if (key == "f") {
-                if (!namesOnly && selected_) face(rest);
+                if (namesOnly)
+                    countGroupFace(rest);
+                else if (selected_)
+                    face(rest);
                 ++fileFaces_;
             } else if (key == "g") {
                 currentG_.clear();
@@ -142,6 +146,18 @@ class ObjParser {
     }
 
     const std::vector<std::string>& names() const { return names_; }
+
+    // Per name, the distinct file vertices its faces use (what readMesh of that group keeps).
+    std::vector<int> groupVertexCounts() const {
+        std::vector<int> counts(names_.size(), 0), seenBy(size_t(vertexCount_), -1);
+        for (size_t g = 0; g < groupCorners_.size(); ++g)
+            for (int v : groupCorners_[g])
+                if (v >= 0 && v < vertexCount_ && seenBy[size_t(v)] != int(g)) {
+                    seenBy[size_t(v)] = int(g);
+                    ++counts[g];
+                }
+        return counts;
+    }
 
   private:
     static bool isKnownIgnored(std::string_view key) {
@@ -189,13 +205,31 @@ class ObjParser {
         if (!group_.empty()) soup_.fileFace.push_back(fileFaces_);
     }
 
+    // Names only: the corners of a face go to every group it belongs to. Bad references are
+    // left to readMesh, which names them; here they count nothing.
+    void countGroupFace(std::string_view rest) {
+        corners_.clear();
+        for (auto t = nextToken(rest); !t.empty(); t = nextToken(rest)) {
+            int index = 0;
+            std::from_chars(t.data(), t.data() + t.size(), index);
+            if (index != 0) corners_.push_back(index > 0 ? index - 1 : vertexCount_ + index);
+        }
+        for (size_t g : activeGroups_)
+            groupCorners_[g].insert(groupCorners_[g].end(), corners_.begin(), corners_.end());
+    }
+
     void addName(const std::string& name) {
-        if (std::find(names_.begin(), names_.end(), name) == names_.end()) names_.push_back(name);
+        if (nameIndex_.emplace(name, names_.size()).second) names_.push_back(name);
     }
 
     void updateSelected() {
         selected_ = group_.empty() || currentO_ == group_ ||
                     std::find(currentG_.begin(), currentG_.end(), group_) != currentG_.end();
+        // The same membership by name index, for counting each group's vertices.
+        groupCorners_.resize(names_.size());
+        activeGroups_.clear();
+        for (const std::string& g : currentG_) activeGroups_.push_back(nameIndex_.at(g));
+        if (!currentO_.empty()) activeGroups_.push_back(nameIndex_.at(currentO_));
     }
 
     std::string nameList() const {
@@ -212,6 +246,10 @@ class ObjParser {
     int fileFaces_ = 0;
     bool selected_ = group_.empty();
     std::vector<std::string> currentG_, names_;
+    std::vector<std::vector<int>> groupCorners_;  // names only: per name, its faces' corners
+    std::unordered_map<std::string, size_t> nameIndex_;
+    std::vector<size_t> activeGroups_;  // indices into names_ of the current g and o
+    std::vector<int> corners_;
     std::string currentO_;
     std::map<std::string, int> unknown_;
 };
@@ -222,10 +260,14 @@ PolygonSoup readObj(const std::string& path, const std::string& group) {
     return ObjParser(path, group).parse(false);
 }
 
-std::vector<std::string> readObjGroupNames(const std::string& path) {
+std::vector<ObjGroup> readObjGroups(const std::string& path) {
     ObjParser parser(path, {});
     parser.parse(true);
-    return parser.names();
+    const std::vector<int> counts = parser.groupVertexCounts();
+    std::vector<ObjGroup> groups;
+    for (size_t g = 0; g < parser.names().size(); ++g)
+        groups.push_back({parser.names()[g], g < counts.size() ? counts[g] : 0});
+    return groups;
 }
 
 }  // namespace boneless::detail

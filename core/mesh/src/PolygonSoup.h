@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "boneless/MeshReader.h"
 #include "boneless/TriMesh.h"
 
 namespace boneless::detail {
@@ -32,7 +33,7 @@ std::string vertexWhere(const PolygonSoup& soup, int vertex);
 
 // OBJ, own parser. group empty = every face; otherwise only faces of that "g"/"o" group.
 PolygonSoup readObj(const std::string& path, const std::string& group);
-std::vector<std::string> readObjGroupNames(const std::string& path);
+std::vector<ObjGroup> readObjGroups(const std::string& path);
 
 // OFF, PLY, STL: a plausibility pass over the text formats, whose OpenMesh parsers turn malformed
 // numbers into silent garbage (text OFF it reads itself), then OpenMesh for the rest.

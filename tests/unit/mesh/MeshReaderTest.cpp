@@ -564,7 +564,15 @@ TEST(MeshReaderGroups, SelectedGroupKeepsItsVerticesInFileOrder) {
                                        "g left\nf 1 2 3\nf 2 4 3\n"
                                        "g right shared\nf 2 5 6\nf -5 6 4\n"
                                        "o lonely\ng\nf 1 2 3\n");  // bare "g": back to no group
-    EXPECT_EQ(objGroups(path), (std::vector<std::string>{"left", "right", "shared", "lonely"}));
+    const std::vector<ObjGroup> groups = objGroups(path);
+    std::vector<std::string> names;
+    for (const ObjGroup& g : groups) names.push_back(g.name);
+    EXPECT_EQ(names, (std::vector<std::string>{"left", "right", "shared", "lonely"}));
+    // Each group's size is the vertex count of the mesh read for it.
+    for (const ObjGroup& g : groups)
+        EXPECT_EQ(g.vertices, readMesh(path, {g.name}).mesh.vertexCount()) << g.name;
+    EXPECT_EQ(groups[0].vertices, 4);
+    EXPECT_EQ(groups[3].vertices, 3);
 
     const MeshReadResult r = readMesh(path, {"right"});
     EXPECT_EQ(r.sourceVertexCount, 6);
@@ -598,7 +606,8 @@ TEST(MeshReaderRealData, MakeHumanWholeFileAndBodyGroup) {
     if (!fs::exists(path)) GTEST_SKIP() << "no " << path;
     const auto groups = objGroups(path);
     ASSERT_FALSE(groups.empty());
-    EXPECT_EQ(groups.front(), "body");
+    EXPECT_EQ(groups.front().name, "body");
+    EXPECT_EQ(groups.front().vertices, 13380);
 
     const MeshReadResult all = readMesh(path);
     EXPECT_EQ(all.mesh.vertexCount(), 19158);

@@ -46,8 +46,14 @@ struct MeshReadResult {
 // coordinates arrive rounded to float. OBJ is parsed here, in double precision.
 MeshReadResult readMesh(const std::string& path, const MeshReadOptions& options = {});
 
-// Names of the OBJ file's "g" and "o" groups in order of first appearance (for a group chooser).
-// Empty for files without groups and for other formats; throws MeshError if an OBJ cannot be read.
-std::vector<std::string> objGroups(const std::string& path);
+struct ObjGroup {
+    std::string name;
+    int vertices = 0;  // distinct vertices its faces use: readMesh(path, {name})'s vertex count
+};
+
+// The OBJ file's "g" and "o" groups in order of first appearance, with their sizes (for a group
+// chooser). Empty for files without groups and for other formats; throws MeshError if an OBJ
+// cannot be read.
+std::vector<ObjGroup> objGroups(const std::string& path);
 
 }  // namespace boneless

@@ -1,28 +1,23 @@
 #pragma once
 
 #include <QObject>
-#include <QPointer>
-#include <QProgressDialog>
 #include <QString>
 #include <atomic>
 #include <memory>
 
 #include "boneless/TakeExport.h"
 
-class QWidget;
-
 namespace boneless::ui {
 
 class Document;
 
 // Runs boneless::exportTake (the very function `boneless-cli solve` uses, so the files are the
-// same byte for byte) on a worker thread, with a progress dialog whose Cancel stops after the
-// current frame. The inputs are copied at start, so the document may change meanwhile.
+// same byte for byte) on a worker thread; cancel() stops after the frames being solved. The
+// inputs are copied at start, so the document may change meanwhile. ExportDialog shows it.
 class ExportRunner : public QObject {
     Q_OBJECT
   public:
-    // dialogParent: where the modal progress dialog appears; nullptr = no dialog.
-    explicit ExportRunner(QWidget* dialogParent = nullptr, QObject* parent = nullptr);
+    explicit ExportRunner(QObject* parent = nullptr);
     ~ExportRunner() override;  // cancels and waits
 
     // Starts exporting; false with *error when the document cannot be solved or an export is
@@ -35,7 +30,6 @@ class ExportRunner : public QObject {
 
     const ExportResult& result() const { return result_; }
     QString errorMessage() const { return error_; }
-    QProgressDialog* dialog() const { return dialog_; }
 
   signals:
     void progress(int done, int total, double residualRmsMm);
@@ -47,8 +41,6 @@ class ExportRunner : public QObject {
     void onProgress(int done, int total, double residualRmsMm);
     void onFinished();
 
-    QPointer<QWidget> dialogParent_;
-    QPointer<QProgressDialog> dialog_;
     std::shared_ptr<Job> job_;
     bool running_ = false;
     ExportResult result_;

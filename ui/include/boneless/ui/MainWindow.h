@@ -15,7 +15,7 @@ class QTableView;
 
 namespace boneless::ui {
 
-class ExportRunner;
+class ExportDialog;
 class FrameDisplay;
 class FrameSolver;
 class MarkerFilterProxy;
@@ -58,7 +58,9 @@ class MainWindow : public QMainWindow {
     bool saveProjectAs(const QString& path);
     QString projectPath() const { return projectPath_; }
     ProjectAutosave* autosave() const { return autosave_; }
-    bool exportTo(const QString& folder, ExportFormat format);
+    // File → Export: range, format, folder, estimate, progress.
+    ExportDialog* exportDialog() const { return exportDialog_; }
+    void showExportDialog();
 
     // The frame the timeline moves to once the next take is loaded (for --frame).
     void setStartFrame(int frame) { startFrame_ = frame; }
@@ -114,7 +116,6 @@ class MainWindow : public QMainWindow {
     void chooseProject();
     void chooseSaveProjectAs();
     void chooseSaveCorrespondence();
-    void chooseExport(ExportFormat format);
 
     Document* document_;
     FrameSolver* solver_;
@@ -125,7 +126,7 @@ class MainWindow : public QMainWindow {
     MarkerFilterProxy* proxy_;
     FrameDisplay* display_;
     ProjectAutosave* autosave_;
-    ExportRunner* exporter_;
+    ExportDialog* exportDialog_;
 
     QTableView* markerTable_ = nullptr;
     QLineEdit* filterEdit_ = nullptr;

@@ -1,0 +1,159 @@
+// File → Export's dialog: the frames chosen are the frames written, the time is estimated before
+// starting and counted down while writing, and Cancel leaves an export that says it is incomplete.
+#include <QDir>
+#include <QFile>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QLabel>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QSignalSpy>
+#include <QtTest>
+
+#include "ModelTestFixtures.h"
+#include "boneless/ui/ExportDialog.h"
+#include "boneless/ui/ExportRunner.h"
+#include "boneless/ui/FrameSolver.h"
+#include "boneless/ui/Timeline.h"
+
+using namespace boneless;
+using namespace boneless::ui;
+
+namespace {
+
+QJsonObject readJson(const QString& path) {
+    QFile f(path);
+    return f.open(QIODevice::ReadOnly) ? QJsonDocument::fromJson(f.readAll()).object()
+                                       : QJsonObject();
+}
+
+template <class Widget>
+Widget* part(const ExportDialog& dialog, const char* name) {
+    auto* widget = dialog.findChild<Widget*>(name);
+    if (!widget) qFatal("the export dialog has no %s", name);
+    return widget;
+}
+
+QLabel* estimate(const ExportDialog& d) {
+    return part<QLabel>(d, "exportEstimate");
+}
+QLabel* progressText(const ExportDialog& d) {
+    return part<QLabel>(d, "exportProgressText");
+}
+
+QStringList objFiles(const QString& folder) {
+    return QDir(folder).entryList({"*.obj"}, QDir::Files, QDir::Name);
+}
+
+}  // namespace
+
+class ExportDialogTest : public QObject {
+    Q_OBJECT
+    QString work_;
+    Document document_;
+    FrameSolver solver_;
+    Timeline timeline_;
+
+    bool exportInto(ExportDialog& dialog, const QString& folder) {
+        QSignalSpy finished(&dialog, &ExportDialog::finished);
+        dialog.setFolder(folder);
+        if (!dialog.startExport() || !finished.wait(120000)) return false;
+        return finished.first().at(0).toBool();
+    }
+
+  private slots:
+    void initTestCase() {
+        test::isolateSettings("ExportDialogTest");
+        work_ = test::scratchFolder("ExportDialogTest");
+        QVERIFY(test::loadDemo(document_, work_ + "/demo"));
+        QVERIFY(solver_.setProblem(document_));
+        timeline_.setFrameCount(document_.frameCount());
+    }
+
+    void theEstimateIsMeasuredAndShownBeforeExporting() {
+        ExportDialog dialog(&document_, &solver_, &timeline_);
+        QCOMPARE(dialog.measuredMsPerFrame(), 0.0);
+        QVERIFY(estimate(dialog)->text().contains("measuring"));
+        // Showing it solves the current frame once: the quick measurement.
+        dialog.show();
+        QVERIFY(QTest::qWaitFor([&] { return dialog.measuredMsPerFrame() > 0; }, 60000));
+        const QString all = estimate(dialog)->text();
+        QVERIFY2(all.startsWith("60 frames, ") && all.contains("ms a frame"), qPrintable(all));
+        const double allMs = dialog.estimatedMs();
+        dialog.setRange(ExportDialog::Range::Current);
+        QVERIFY2(estimate(dialog)->text().startsWith("1 frame, "),
+                 qPrintable(estimate(dialog)->text()));
+        QVERIFY(dialog.estimatedMs() > 0);
+        QVERIFY(allMs > 10 * dialog.estimatedMs());
+    }
+
+    void theFramesChosenAreTheFramesWritten() {
+        ExportDialog dialog(&document_, &solver_, &timeline_);
+        dialog.show();
+        dialog.setFormat(ExportFormat::Obj);
+        dialog.setInOut(5, 9);
+        QCOMPARE(dialog.range(), ExportDialog::Range::InOut);
+        QCOMPARE(dialog.frameCountToWrite(), 5);
+        const QString inOut = work_ + "/in-out";
+        QVERIFY(exportInto(dialog, inOut));
+        QCOMPARE(objFiles(inOut),
+                 (QStringList{"walker_0005.obj", "walker_0006.obj", "walker_0007.obj",
+                              "walker_0008.obj", "walker_0009.obj"}));
+        QJsonObject sidecar = readJson(inOut + "/walker.json");
+        QCOMPARE(sidecar["frame_range"].toArray(), (QJsonArray{5, 10}));
+        QCOMPARE(sidecar["complete"].toBool(), true);
+        QCOMPARE(part<QProgressBar>(dialog, "exportProgress")->value(), 5);
+        QCOMPARE(part<QProgressBar>(dialog, "exportProgress")->maximum(), 5);
+
+        timeline_.setFrame(12);
+        dialog.setRange(ExportDialog::Range::Current);
+        const QString current = work_ + "/current";
+        QVERIFY(exportInto(dialog, current));
+        QCOMPARE(objFiles(current), QStringList{"walker_0012.obj"});
+        sidecar = readJson(current + "/walker.json");
+        QCOMPARE(sidecar["frame_range"].toArray(), (QJsonArray{12, 13}));
+    }
+
+    void cancelLeavesAnExportThatSaysItIsIncomplete() {
+        ExportDialog dialog(&document_, &solver_, &timeline_);
+        dialog.show();
+        dialog.setFormat(ExportFormat::Obj);
+        dialog.setRange(ExportDialog::Range::All);
+        QString timeLeft;
+        // After the dialog's own handler of the first frame: its time left, then Cancel.
+        connect(dialog.runner(), &ExportRunner::progress, &dialog, [&] {
+            if (!timeLeft.isEmpty()) return;
+            timeLeft = progressText(dialog)->text();
+            QVERIFY(part<QPushButton>(dialog, "exportCancel")->isEnabled());
+            part<QPushButton>(dialog, "exportCancel")->click();
+        });
+        const QString out = work_ + "/cancelled";
+        QSignalSpy finished(&dialog, &ExportDialog::finished);
+        dialog.setFolder(out);
+        QVERIFY(dialog.startExport());
+        QVERIFY(!part<QPushButton>(dialog, "exportStart")->isEnabled());
+        QVERIFY(finished.wait(120000));
+        QVERIFY2(timeLeft.endsWith(" left"), qPrintable(timeLeft));
+        QVERIFY(finished.first().at(0).toBool());
+        QVERIFY(dialog.runner()->result().cancelled);
+        const int written = dialog.runner()->result().framesWritten;
+        QVERIFY(written >= 1 && written < document_.frameCount());
+        const QJsonObject sidecar = readJson(out + "/walker.json");
+        QCOMPARE(sidecar["complete"].toBool(), false);
+        QCOMPARE(sidecar["frames_written"].toInt(), written);
+        QCOMPARE(objFiles(out).size(), written);
+        QVERIFY(part<QPushButton>(dialog, "exportStart")->isEnabled());
+    }
+
+    void aMissingFolderIsAMessageNotAnExport() {
+        ExportDialog dialog(&document_, &solver_, &timeline_);
+        dialog.setFolder("  ");
+        QVERIFY(!dialog.startExport());
+        QVERIFY(!dialog.runner()->isRunning());
+        QVERIFY(progressText(dialog)->text().contains("folder"));
+    }
+};
+
+QTEST_MAIN(ExportDialogTest)
+#include "ExportDialogTest.moc"

@@ -1,0 +1,95 @@
+#pragma once
+
+#include <QDialog>
+#include <QElapsedTimer>
+#include <deque>
+
+#include "boneless/TakeExport.h"
+
+class QButtonGroup;
+class QComboBox;
+class QLabel;
+class QLineEdit;
+class QProgressBar;
+class QPushButton;
+class QRadioButton;
+class QSpinBox;
+
+namespace boneless::ui {
+
+class Document;
+class ExportRunner;
+class FrameSolver;
+class Timeline;
+
+// File → Export: which frames (all, in–out, the current one), the format (core's table), the
+// folder, an estimate of the time before starting, then a progress bar with the time left and
+// Cancel. The estimate comes from the solve times of the frames the window solved (the dialog
+// listens from the start); with none yet, showing the dialog asks the solver for the current
+// frame, a quick measurement. A cancelled export's sidecar says "complete": false.
+class ExportDialog : public QDialog {
+    Q_OBJECT
+  public:
+    enum class Range { All, InOut, Current };
+
+    ExportDialog(Document* document, FrameSolver* solver, Timeline* timeline,
+                 QWidget* parent = nullptr);
+    ~ExportDialog() override;
+
+    void setRange(Range range);
+    Range range() const;
+    void setInOut(int in, int out);  // inclusive, 0-based
+    void setFolder(const QString& folder);
+    QString folder() const;
+    void setFormat(ExportFormat format);
+    // What Export would start: the document's request for the folder, format and frames.
+    ExportRequest request() const;
+    int frameCountToWrite() const;
+    // Median solve milliseconds of the frames measured so far; 0 when none.
+    double measuredMsPerFrame() const;
+    // The estimate for the chosen frames in milliseconds; 0 when nothing is measured yet.
+    double estimatedMs() const;
+
+    // The widgets have object names for tests: exportFormat, exportEstimate, exportProgress,
+    // exportProgressText, exportStart, exportCancel.
+    ExportRunner* runner() const { return runner_; }
+
+  public slots:
+    // Starts writing (false with the reason in the dialog when refused).
+    bool startExport();
+    void cancelExport();
+    void reject() override;  // closing while writing cancels first
+
+  signals:
+    // As ExportRunner::finished: the message names the folder or the reason.
+    void finished(bool ok, const QString& message);
+
+  protected:
+    void showEvent(QShowEvent* event) override;
+
+  private:
+    void syncFromDocument();
+    void updateEstimate();
+    void onProgress(int done, int total);
+    void onFinished(bool ok, const QString& message);
+    void setRunning(bool running);
+
+    Document* document_;
+    FrameSolver* solver_;
+    Timeline* timeline_;
+    ExportRunner* runner_;
+    std::deque<double> solveMs_;  // the latest frames' solve times
+
+    QButtonGroup* rangeGroup_;
+    QRadioButton *all_, *inOut_, *current_;
+    QSpinBox *in_, *out_;
+    QComboBox* format_;
+    QLineEdit* folder_;
+    QLabel* estimate_;
+    QProgressBar* progress_;
+    QLabel* progressText_;
+    QPushButton *start_, *cancel_, *close_;
+    QElapsedTimer clock_;
+};
+
+}  // namespace boneless::ui

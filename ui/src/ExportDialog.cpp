@@ -1,0 +1,307 @@
+#include "boneless/ui/ExportDialog.h"
+
+#include <QButtonGroup>
+#include <QComboBox>
+#include <QDialogButtonBox>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QFormLayout>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QLineEdit>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QRadioButton>
+#include <QSettings>
+#include <QSpinBox>
+#include <QVBoxLayout>
+#include <algorithm>
+#include <vector>
+
+#include "boneless/Parallel.h"
+#include "boneless/ui/Document.h"
+#include "boneless/ui/ExportRunner.h"
+#include "boneless/ui/FrameSolver.h"
+#include "boneless/ui/Timeline.h"
+
+namespace boneless::ui {
+
+namespace {
+
+constexpr std::size_t kSamples = 32;  // recent enough to follow a new mesh or take
+
+// "about 45 s", "about 3 min 20 s", "under a second".
+QString duration(double ms) {
+    const int s = int(ms / 1000.0 + 0.5);
+    if (s < 1) return QObject::tr("under a second");
+    if (s < 60) return QObject::tr("about %1 s").arg(s);
+    return QObject::tr("about %1 min %2 s").arg(s / 60).arg(s % 60);
+}
+
+QString frameCount(int frames) {
+    return frames == 1 ? QObject::tr("1 frame") : QObject::tr("%1 frames").arg(frames);
+}
+
+}  // namespace
+
+ExportDialog::ExportDialog(Document* document, FrameSolver* solver, Timeline* timeline,
+                           QWidget* parent)
+    : QDialog(parent),
+      document_(document),
+      solver_(solver),
+      timeline_(timeline),
+      runner_(new ExportRunner(this)) {
+    setObjectName("exportDialog");
+    setWindowTitle(tr("Export"));
+
+    all_ = new QRadioButton(tr("All frames"));
+    inOut_ = new QRadioButton(tr("Frames"));
+    current_ = new QRadioButton(tr("Current frame"));
+    rangeGroup_ = new QButtonGroup(this);
+    rangeGroup_->addButton(all_, int(Range::All));
+    rangeGroup_->addButton(inOut_, int(Range::InOut));
+    rangeGroup_->addButton(current_, int(Range::Current));
+    all_->setChecked(true);
+    in_ = new QSpinBox;
+    out_ = new QSpinBox;
+    in_->setObjectName("exportIn");
+    out_->setObjectName("exportOut");
+    auto* inOutRow = new QHBoxLayout;
+    inOutRow->addWidget(inOut_);
+    inOutRow->addWidget(in_);
+    inOutRow->addWidget(new QLabel(tr("to")));
+    inOutRow->addWidget(out_);
+    inOutRow->addStretch(1);
+    auto* rangeBox = new QVBoxLayout;
+    rangeBox->addWidget(all_);
+    rangeBox->addLayout(inOutRow);
+    rangeBox->addWidget(current_);
+
+    format_ = new QComboBox;
+    format_->setObjectName("exportFormat");
+    for (const ExportFormatInfo& f : exportFormats())
+        format_->addItem(QString::fromUtf8(f.description), int(f.format));
+
+    folder_ = new QLineEdit;
+    folder_->setObjectName("exportFolder");
+    folder_->setText(QSettings().value("export/folder").toString());
+    auto* browse = new QPushButton(tr("Browse…"));
+    auto* folderRow = new QHBoxLayout;
+    folderRow->addWidget(folder_, 1);
+    folderRow->addWidget(browse);
+
+    estimate_ = new QLabel;
+    estimate_->setObjectName("exportEstimate");
+    progress_ = new QProgressBar;
+    progress_->setObjectName("exportProgress");
+    progress_->setFormat(tr("%v / %m frames"));
+    progress_->setValue(0);
+    progressText_ = new QLabel;
+    progressText_->setObjectName("exportProgressText");
+
+    auto* form = new QFormLayout;
+    form->addRow(tr("Range:"), rangeBox);
+    form->addRow(tr("Format:"), format_);
+    form->addRow(tr("Folder:"), folderRow);
+    form->addRow(tr("Time:"), estimate_);
+
+    auto* buttons = new QDialogButtonBox;
+    start_ = buttons->addButton(tr("Export"), QDialogButtonBox::AcceptRole);
+    cancel_ = buttons->addButton(tr("Cancel Export"), QDialogButtonBox::ActionRole);
+    close_ = buttons->addButton(QDialogButtonBox::Close);
+    start_->setObjectName("exportStart");
+    cancel_->setObjectName("exportCancel");
+    start_->setDefault(true);
+
+    auto* layout = new QVBoxLayout(this);
+    layout->addLayout(form);
+    layout->addWidget(progress_);
+    layout->addWidget(progressText_);
+    layout->addWidget(buttons);
+    setRunning(false);
+
+    connect(start_, &QPushButton::clicked, this, &ExportDialog::startExport);
+    connect(cancel_, &QPushButton::clicked, this, &ExportDialog::cancelExport);
+    connect(close_, &QPushButton::clicked, this, &ExportDialog::reject);
+    connect(browse, &QPushButton::clicked, this, [this] {
+        const QString chosen =
+            QFileDialog::getExistingDirectory(this, tr("Export Into"), folder_->text());
+        if (!chosen.isEmpty()) folder_->setText(chosen);
+    });
+    connect(rangeGroup_, &QButtonGroup::idClicked, this, &ExportDialog::updateEstimate);
+    // Editing the frames means exporting them.
+    for (QSpinBox* box : {in_, out_})
+        connect(box, &QSpinBox::valueChanged, this, [this] {
+            inOut_->setChecked(true);
+            updateEstimate();
+        });
+    connect(timeline_, &Timeline::frameChanged, this, &ExportDialog::updateEstimate);
+    connect(solver_, &FrameSolver::frameReady, this, [this](const FrameResult& result) {
+        // A cached frame still carries the time of its solve.
+        if (result.report.milliseconds <= 0) return;
+        solveMs_.push_back(result.report.milliseconds);
+        if (solveMs_.size() > kSamples) solveMs_.pop_front();
+        updateEstimate();
+    });
+    connect(runner_, &ExportRunner::progress, this,
+            [this](int done, int total, double) { onProgress(done, total); });
+    connect(runner_, &ExportRunner::finished, this, &ExportDialog::onFinished);
+    updateEstimate();
+}
+
+ExportDialog::~ExportDialog() = default;
+
+void ExportDialog::setRange(Range range) {
+    rangeGroup_->button(int(range))->setChecked(true);
+    updateEstimate();
+}
+
+ExportDialog::Range ExportDialog::range() const {
+    return Range(rangeGroup_->checkedId());
+}
+
+void ExportDialog::setInOut(int in, int out) {
+    in_->setValue(in);
+    out_->setValue(out);
+}
+
+void ExportDialog::setFolder(const QString& folder) {
+    folder_->setText(folder);
+}
+
+QString ExportDialog::folder() const {
+    return folder_->text().trimmed();
+}
+
+void ExportDialog::setFormat(ExportFormat format) {
+    format_->setCurrentIndex(format_->findData(int(format)));
+}
+
+ExportRequest ExportDialog::request() const {
+    ExportRequest r =
+        document_->exportRequest(folder(), ExportFormat(format_->currentData().toInt()));
+    switch (range()) {
+        case Range::All:
+            break;
+        case Range::InOut:
+            r.first = std::min(in_->value(), out_->value());
+            r.end = std::max(in_->value(), out_->value()) + 1;
+            break;
+        case Range::Current:
+            r.first = timeline_->frame();
+            r.end = r.first + 1;
+            break;
+    }
+    return r;
+}
+
+int ExportDialog::frameCountToWrite() const {
+    const ExportRequest r = request();
+    const int count = document_->frameCount();
+    return std::max(0, (r.end < 0 ? count : std::min(r.end, count)) - r.first);
+}
+
+double ExportDialog::measuredMsPerFrame() const {
+    if (solveMs_.empty()) return 0;
+    std::vector<double> sorted(solveMs_.begin(), solveMs_.end());
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    return sorted[sorted.size() / 2];
+}
+
+double ExportDialog::estimatedMs() const {
+    // The export solves on every core at once, each frame as long as one solved here.
+    const int frames = frameCountToWrite();
+    const int workers = std::max(1, std::min(solverThreadCount(), frames));
+    return frames * measuredMsPerFrame() / workers;
+}
+
+void ExportDialog::syncFromDocument() {
+    const int last = std::max(0, document_->frameCount() - 1);
+    for (QSpinBox* box : {in_, out_}) {
+        const QSignalBlocker block(box);
+        box->setRange(0, last);
+    }
+    if (out_->value() == 0) {
+        const QSignalBlocker block(out_);
+        out_->setValue(last);
+    }
+    current_->setText(tr("Current frame (%1)").arg(timeline_->frame()));
+    if (folder_->text().isEmpty() && document_->hasMesh())
+        folder_->setText(QFileInfo(document_->meshPath()).absolutePath() + "/export");
+}
+
+void ExportDialog::updateEstimate() {
+    current_->setText(tr("Current frame (%1)").arg(timeline_->frame()));
+    const int frames = frameCountToWrite();
+    const double ms = measuredMsPerFrame();
+    if (ms <= 0) {
+        estimate_->setText(tr("%1; measuring the time a frame takes…").arg(frameCount(frames)));
+        return;
+    }
+    estimate_->setText(tr("%1, %2 (%3 ms a frame as solved here)")
+                           .arg(frameCount(frames), duration(estimatedMs()))
+                           .arg(ms, 0, 'f', 0));
+}
+
+void ExportDialog::showEvent(QShowEvent* event) {
+    syncFromDocument();
+    // A quick measurement: the current frame, solved (or its cached solve time) once more.
+    if (solveMs_.empty() && solver_->hasProblem()) solver_->requestFrame(timeline_->frame());
+    updateEstimate();
+    QDialog::showEvent(event);
+}
+
+bool ExportDialog::startExport() {
+    progressText_->clear();
+    if (folder().isEmpty()) {
+        progressText_->setText(tr("Choose a folder to export into."));
+        return false;
+    }
+    QString error;
+    if (!runner_->start(*document_, request(), &error)) {
+        progressText_->setText(error);
+        return false;
+    }
+    QSettings().setValue("export/folder", folder());
+    progress_->setRange(0, std::max(1, frameCountToWrite()));
+    progress_->setValue(0);
+    progressText_->setText(tr("Preparing the solver…"));
+    clock_.start();
+    setRunning(true);
+    return true;
+}
+
+void ExportDialog::cancelExport() {
+    if (!runner_->isRunning()) return;
+    runner_->cancel();
+    progressText_->setText(tr("Stopping after the frames being solved…"));
+}
+
+void ExportDialog::reject() {
+    cancelExport();
+    QDialog::reject();
+}
+
+void ExportDialog::onProgress(int done, int total) {
+    progress_->setRange(0, total);
+    progress_->setValue(done);
+    // The time left from this run's own pace, which includes preparing and writing.
+    const double msPerFrame = clock_.elapsed() / double(std::max(1, done));
+    progressText_->setText(tr("%1 left").arg(duration(msPerFrame * (total - done))));
+}
+
+void ExportDialog::onFinished(bool ok, const QString& message) {
+    setRunning(false);
+    progressText_->setText(message);
+    emit finished(ok, message);
+}
+
+void ExportDialog::setRunning(bool running) {
+    start_->setEnabled(!running);
+    cancel_->setEnabled(running);
+    for (QWidget* w :
+         std::initializer_list<QWidget*>{all_, inOut_, current_, in_, out_, format_, folder_})
+        w->setEnabled(!running);
+}
+
+}  // namespace boneless::ui
