@@ -142,9 +142,7 @@ void FrameDisplay::onFrameReady(const FrameResult& result) {
     // is usually still in the solver, and showing nothing would freeze the picture.
     result_ = result;
     displayedFrame_ = result.frame;
-    view_->setPositions(result.V);
-    markerPositions_ = result.markers;
-    updateMarkers();
+    showResult();
     updateTrails(result.frame);
     if (heatMap_ && !result.shapeError.empty())
         view_->setHeatMap(std::vector<float>(result.shapeError.begin(), result.shapeError.end()));
@@ -156,6 +154,25 @@ void FrameDisplay::onFrameReady(const FrameResult& result) {
     timeline_->frameShown(result.frame);
     emitStatus();
     emit frameDisplayed(result.frame);
+}
+
+void FrameDisplay::setShown(Shown shown) {
+    if (shown_ == shown) return;
+    shown_ = shown;
+    if (result_ && solving_) showResult();
+}
+
+void FrameDisplay::showResult() {
+    const FrameResult& result = *result_;
+    const bool frame = shown_ == Shown::Frame;
+    if (frame)
+        view_->setPositions(result.V);
+    else if (shown_ == Shown::CalibratedRest && result.rest)
+        view_->setPositions(*result.rest);
+    else
+        view_->setPositions(document_->mesh().V);
+    markerPositions_ = frame ? result.markers : Positions(0, 3);
+    updateMarkers();
 }
 
 void FrameDisplay::onRendered() {

@@ -24,11 +24,17 @@ class Timeline;
 class FrameDisplay : public QObject {
     Q_OBJECT
   public:
+    // What the view shows of a solved frame: the frame itself, the rest it was solved against
+    // (the calibrated rest when calibrating: the mesh in the actor's proportions and pose at the
+    // calibration frame), or the mesh's own rest. The take's markers are drawn on the frame only.
+    enum class Shown { Frame, CalibratedRest, Rest };
     FrameDisplay(Document* document, FrameSolver* solver, Timeline* timeline, MeshView* view,
                  MarkerListModel* markers, QObject* parent = nullptr);
 
     void setTrailsVisible(bool visible);
     void setHeatMapVisible(bool visible);
+    void setShown(Shown shown);
+    Shown shown() const { return shown_; }
     bool trailsVisible() const { return trails_; }
     bool heatMapVisible() const { return heatMap_; }
 
@@ -59,6 +65,7 @@ class FrameDisplay : public QObject {
     void onRendered();
     void rebuildProblem();
     void showUnsolved(int frame);
+    void showResult();  // result_ as shown_ says
     void updateMarkers();
     void updateTrails(int frame);
     void updateUpAxis(bool force);
@@ -74,6 +81,7 @@ class FrameDisplay : public QObject {
     bool solving_ = false;
     QString notSolvingReason_;
     bool trails_ = false, heatMap_ = false;
+    Shown shown_ = Shown::Frame;
     int displayedFrame_ = -1;
     std::optional<FrameResult> result_;
     Positions markerPositions_;

@@ -133,6 +133,7 @@ std::shared_ptr<FrameResult> solveOne(TakeSolver& solver, const Problem& p, int 
 // The solver and shape encoding the worker keeps for one generation.
 struct WorkerState {
     std::unique_ptr<TakeSolver> solver;
+    std::shared_ptr<const Positions> rest;  // the solver's rest, handed to every result
     std::unique_ptr<MeshTopology> topology;
     std::unique_ptr<ShapeEncoding> encoding;
     quint64 generation = 0, failedGeneration = 0;
@@ -144,6 +145,7 @@ struct WorkerState {
             encoding.reset();
             topology.reset();
             solver = std::make_unique<TakeSolver>(p.mesh, p.take, p.map, p.options);
+            rest = std::make_shared<const Positions>(solver->rest().V);
             generation = gen;
         }
         if (wantShapeError && !encoding) {
@@ -153,6 +155,7 @@ struct WorkerState {
         auto result = solveOne(*solver, p, frame, wantShapeError ? encoding.get() : nullptr, stop);
         if (!result) return nullptr;
         result->generation = gen;
+        result->rest = rest;
         return result;
     }
     void fail(quint64 gen) {

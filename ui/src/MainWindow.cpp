@@ -19,6 +19,7 @@
 #include <QVBoxLayout>
 #include <cmath>
 
+#include "CalibrationMenu.h"
 #include "FrameDisplay.h"
 #include "boneless/ui/AppIcon.h"
 #include "boneless/ui/Document.h"
@@ -210,6 +211,8 @@ void MainWindow::buildMenus() {
                         document_->setViewSetting(key, on);
                 });
     }
+
+    addCalibrationActions(edit, view, document_, timeline_, display_);
 
     QMenu* help = menuBar()->addMenu(tr("&Help"));
     help->addAction(

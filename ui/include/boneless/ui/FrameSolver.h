@@ -30,7 +30,10 @@ struct FrameResult {
     std::vector<double> shapeError;
     FrameReport report;  // residual RMS/max in mm, iterations, folded faces, solve milliseconds
     Calibration calibration;  // the alignment used
-    double solveMs = 0;       // wall time of the solve (0 for a cache hit)
+    // What the frame was solved against (#V by 3): the calibrated rest when calibrating, else
+    // the mesh's rest; one copy shared by every frame of a generation.
+    std::shared_ptr<const Positions> rest;
+    double solveMs = 0;  // wall time of the solve (0 for a cache hit)
     bool fromCache = false;
 
     std::size_t bytes() const;

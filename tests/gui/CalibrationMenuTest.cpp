@@ -1,0 +1,151 @@
+// Actor calibration in the window: the user picks the calibration frame (Edit → Calibrate at This
+// Frame, kept in the project) and the view shows the frame, the calibrated rest or the rest
+// (View → Show).
+#include <QAction>
+#include <QFile>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QtTest>
+
+#include "ViewTestSupport.h"
+#include "boneless/ui/Document.h"
+#include "boneless/ui/FrameSolver.h"
+#include "boneless/ui/MainWindow.h"
+#include "boneless/ui/MeshView.h"
+#include "boneless/ui/Timeline.h"
+
+using namespace boneless;
+using namespace boneless::ui;
+
+namespace {
+
+double maxDistance(const Positions& a, const Positions& b) {
+    return (a - b).rowwise().norm().maxCoeff();
+}
+
+// Triggers the window's action `name` and waits for the frame on screen to be redrawn by it.
+bool trigger(MainWindow& window, const char* name) {
+    auto* action = window.findChild<QAction*>(name);
+    if (!action || !action->isEnabled()) return false;
+    const quint64 generation = window.frameSolver()->generation();
+    action->trigger();
+    // A calibration change rebuilds the solver (a new generation) before the frame is solved.
+    if (QString(name).startsWith("calibrate") &&
+        !QTest::qWaitFor([&] { return window.frameSolver()->generation() != generation; }, 10000))
+        return false;
+    return test::waitForFrame(window);
+}
+
+}  // namespace
+
+class CalibrationMenuTest : public QObject {
+    Q_OBJECT
+  public:
+    static void initMain() { setDefaultSurfaceFormat(); }
+
+  private slots:
+    void initTestCase() {
+        test::isolate("CalibrationMenuTest");
+        folder_ = test::freshFolder("CalibrationMenuTest");
+        project_ = test::writeDemoProject(folder_ + "/demo");
+    }
+
+    void init() {
+        window_ = std::make_unique<MainWindow>();
+        window_->setMessageBoxesEnabled(false);
+        QVERIFY(window_->openProject(project_));
+        QVERIFY(test::showAndWait(*window_));
+    }
+    void cleanup() { window_.reset(); }
+
+    void calibratingAtTheFrameOnScreenIsKeptInTheProjectAndChangesTheCalibratedRest() {
+        Document* document = window_->document();
+        QCOMPARE(document->settings().calibrationFrame, -1);
+        QVERIFY(trigger(*window_, "showCalibratedRest"));
+
+        window_->timeline()->scrubTo(25);
+        QVERIFY(test::waitForFrame(*window_));
+        QVERIFY(trigger(*window_, "calibrateAtFrame"));
+        QCOMPARE(document->settings().calibrationFrame, 25);
+        QVERIFY(document->settings().calibrate == CalibrateMode::Shape);
+        if (document->alignment()) QCOMPARE(document->alignment()->frame, 25);
+        const Positions at25 = window_->meshView()->positions();
+
+        window_->timeline()->scrubTo(5);
+        QVERIFY(test::waitForFrame(*window_));
+        // The calibrated rest is the same whatever frame is on screen.
+        QCOMPARE(maxDistance(window_->meshView()->positions(), at25), 0.0);
+        QVERIFY(trigger(*window_, "calibrateAtFrame"));
+        QCOMPARE(document->settings().calibrationFrame, 5);
+        // The walker's pose at frame 5 is not its pose at frame 25, and the calibrated rest
+        // carries the actor's pose at the calibration frame.
+        const double size = boundingBoxDiagonal(document->mesh().V);
+        const double moved = maxDistance(window_->meshView()->positions(), at25);
+        QVERIFY2(moved > 0.01 * size, qPrintable(QString("moved %1 of %2").arg(moved).arg(size)));
+
+        const QString saved = folder_ + "/calibrated.boneless";
+        QVERIFY(window_->saveProjectAs(saved));
+        QFile file(saved);
+        QVERIFY(file.open(QIODevice::ReadOnly));
+        const QJsonObject settings = QJsonDocument::fromJson(file.readAll())["settings"].toObject();
+        QCOMPARE(settings["calibration_frame"].toInt(), 5);
+        QCOMPARE(settings["calibrate"].toString(), QString("shape"));
+        MainWindow reopened;
+        reopened.setMessageBoxesEnabled(false);
+        QVERIFY(reopened.openProject(saved));
+        QCOMPARE(reopened.document()->settings().calibrationFrame, 5);
+
+        QVERIFY(trigger(*window_, "calibrateAutomatically"));
+        QCOMPARE(document->settings().calibrationFrame, -1);
+    }
+
+    void theShowMenuTogglesFrameCalibratedRestAndRest() {
+        Document* document = window_->document();
+        // Calibrated at a frame whose pose is far from the rest's (the automatic choice is the
+        // frame nearest to it, and the walker is its mesh).
+        window_->timeline()->scrubTo(25);
+        QVERIFY(test::waitForFrame(*window_));
+        QVERIFY(trigger(*window_, "calibrateAtFrame"));
+        window_->timeline()->scrubTo(30);
+        QVERIFY(test::waitForFrame(*window_));
+        const Positions frame = window_->meshView()->positions();
+        const Positions& rest = document->mesh().V;
+        const double size = boundingBoxDiagonal(rest);
+
+        QVERIFY(trigger(*window_, "showRest"));
+        QCOMPARE(maxDistance(window_->meshView()->positions(), rest), 0.0);
+        // It stays the rest while the playhead moves.
+        window_->timeline()->scrubTo(40);
+        QVERIFY(test::waitForFrame(*window_));
+        QCOMPARE(window_->displayedFrame(), 40);
+        QCOMPARE(maxDistance(window_->meshView()->positions(), rest), 0.0);
+
+        QVERIFY(trigger(*window_, "showCalibratedRest"));
+        const Positions calibrated = window_->meshView()->positions();
+        QVERIFY(maxDistance(calibrated, rest) > 0.01 * size);
+        QVERIFY(maxDistance(calibrated, frame) > 0.01 * size);
+
+        window_->timeline()->scrubTo(30);
+        QVERIFY(test::waitForFrame(*window_));
+        QVERIFY(trigger(*window_, "showFrame"));
+        QCOMPARE(maxDistance(window_->meshView()->positions(), frame), 0.0);
+
+        // Without calibration the rest solved against is the mesh's own.
+        TakeSolveOptions settings = document->settings();
+        settings.calibrate = CalibrateMode::None;
+        const quint64 generation = window_->frameSolver()->generation();
+        document->setSettings(settings);
+        QVERIFY(QTest::qWaitFor([&] { return window_->frameSolver()->generation() != generation; },
+                                10000));
+        QVERIFY(test::waitForFrame(*window_));
+        QVERIFY(trigger(*window_, "showCalibratedRest"));
+        QCOMPARE(maxDistance(window_->meshView()->positions(), rest), 0.0);
+    }
+
+  private:
+    QString folder_, project_;
+    std::unique_ptr<MainWindow> window_;
+};
+
+QTEST_MAIN(CalibrationMenuTest)
+#include "CalibrationMenuTest.moc"

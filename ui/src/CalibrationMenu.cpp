@@ -1,0 +1,62 @@
+#include "CalibrationMenu.h"
+
+#include <QAction>
+#include <QActionGroup>
+#include <QMenu>
+
+#include "FrameDisplay.h"
+#include "boneless/ui/Document.h"
+#include "boneless/ui/Timeline.h"
+
+namespace boneless::ui {
+
+namespace {
+
+// frame −1: chosen automatically. A fixed alignment is redone at the same frame, since the
+// solver aligns and fits at one frame (Document::solveOptions).
+void calibrateAt(Document* document, int frame) {
+    TakeSolveOptions settings = document->settings();
+    settings.calibrationFrame = frame;
+    settings.calibrate = CalibrateMode::Shape;
+    document->setSettings(settings);
+    if (document->alignment()) document->align(frame);
+}
+
+}  // namespace
+
+void addCalibrationActions(QMenu* edit, QMenu* view, Document* document, Timeline* timeline,
+                           FrameDisplay* display) {
+    QAction* atFrame = edit->addAction(QObject::tr("Calibrate at &This Frame"), document,
+                                       [=] { calibrateAt(document, timeline->frame()); });
+    atFrame->setObjectName("calibrateAtFrame");
+    atFrame->setStatusTip(QObject::tr(
+        "Fit the mesh to the actor at the frame on screen, and solve every frame against it"));
+    QAction* automatic = edit->addAction(QObject::tr("Calibrate A&utomatically"), document,
+                                         [=] { calibrateAt(document, -1); });
+    automatic->setObjectName("calibrateAutomatically");
+    auto enable = [=] {
+        atFrame->setEnabled(document->hasTake());
+        automatic->setEnabled(document->hasTake());
+    };
+    QObject::connect(document, &Document::takeChanged, atFrame, enable);
+    enable();
+
+    QMenu* show = view->addMenu(QObject::tr("&Show"));
+    auto* group = new QActionGroup(show);
+    const std::tuple<const char*, QString, FrameDisplay::Shown> choices[] = {
+        {"showFrame", QObject::tr("&Frame"), FrameDisplay::Shown::Frame},
+        {"showCalibratedRest", QObject::tr("&Calibrated Rest"),
+         FrameDisplay::Shown::CalibratedRest},
+        {"showRest", QObject::tr("&Rest"), FrameDisplay::Shown::Rest}};
+    for (const auto& [name, text, shown] : choices) {
+        QAction* action = show->addAction(text);
+        action->setObjectName(name);
+        action->setCheckable(true);
+        action->setChecked(shown == display->shown());
+        group->addAction(action);
+        QObject::connect(action, &QAction::triggered, display,
+                         [display, shown = shown] { display->setShown(shown); });
+    }
+}
+
+}  // namespace boneless::ui

@@ -1,0 +1,20 @@
+#pragma once
+
+class QMenu;
+
+namespace boneless::ui {
+
+class Document;
+class FrameDisplay;
+class Timeline;
+
+// The app's side of actor calibration (docs/calibration.md):
+//  Edit → Calibrate at This Frame / Calibrate Automatically: the frame the take is aligned and
+//    the rest fitted at (the project's settings.calibration_frame), and calibration on;
+//  View → Show → Frame / Calibrated Rest / Rest: what the view draws (FrameDisplay::Shown).
+// The actions' object names: calibrateAtFrame, calibrateAutomatically, showFrame,
+// showCalibratedRest, showRest.
+void addCalibrationActions(QMenu* edit, QMenu* view, Document* document, Timeline* timeline,
+                           FrameDisplay* display);
+
+}  // namespace boneless::ui
