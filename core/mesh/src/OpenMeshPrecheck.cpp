@@ -85,18 +85,56 @@ std::vector<std::pair<int, std::string>> contentLines(const std::string& text, c
     return out;
 }
 
+// Binary OFF as OpenMesh reads it: after the keyword line, 32-bit little-endian vertex, face and
+// edge counts; per vertex its floats (position, then normal, colour, texture coordinates when the
+// keyword's [ST][C][N] prefix says so); per face a corner count and the indices. OpenMesh reads a
+// count the file cannot hold as billions of stale corners, so such a count is refused here.
+Precheck checkBinaryOff(const std::string& path, const std::string& data,
+                        const std::string& keyword) {
+    const size_t newline = data.find('\n');
+    size_t at = newline == std::string::npos ? data.size() : newline + 1;
+    const auto word = [&](const std::string& where) {
+        if (data.size() - at < 4) throw MeshError(path, "binary OFF file ends in " + where);
+        uint32_t v;
+        std::memcpy(&v, data.data() + at, 4);
+        at += 4;
+        return v;
+    };
+    Precheck p;
+    p.declaredVertices = word("the counts");
+    p.declaredFaces = word("the counts");
+    word("the counts");
+    const std::string prefix = keyword.substr(0, keyword.size() - 3);
+    const size_t vertexBytes = 12 + (prefix.compare(0, 2, "ST") == 0 ? 8 : 0) +
+                               (prefix.find('C') != std::string::npos ? 12 : 0) +
+                               (prefix.find('N') != std::string::npos ? 12 : 0);
+    if (uint64_t(p.declaredVertices) > (data.size() - at) / vertexBytes)
+        throw MeshError(path, "header announces " + std::to_string(p.declaredVertices) +
+                                  " vertices, more than the file holds");
+    at += p.declaredVertices * vertexBytes;
+    for (long long f = 0; f < p.declaredFaces; ++f) {
+        const uint32_t corners = word("face " + std::to_string(f));
+        if (corners > (data.size() - at) / 4)
+            throw MeshError(path, "face " + std::to_string(f) + " announces " +
+                                      std::to_string(corners) +
+                                      " corners, more than the file holds");
+        at += 4 * size_t(corners);
+    }
+    return p;
+}
+
 Precheck checkOff(const std::string& path) {
-    const auto lines = contentLines(readAll(path), '#');
+    const std::string data = readAll(path);
+    const auto lines = contentLines(data, '#');
     if (lines.empty()) throw MeshError(path, "empty OFF file");
     auto head = tokens(lines[0].second);
     const std::string keyword = head[0];
     if (keyword.size() < 3 || keyword.compare(keyword.size() - 3, 3, "OFF") != 0)
         throw MeshError(path, "not an OFF file: first word is '" + keyword + "'",
                         at(lines[0].first));
-    // Binary OFF and the dimension-prefixed variants are left to OpenMesh alone.
-    if (keyword.find_first_of("4n") != std::string::npos ||
-        (head.size() > 1 && head[1] == "BINARY"))
-        return {};
+    // OpenMesh refuses the dimension-prefixed variants by itself.
+    if (keyword.find_first_of("4n") != std::string::npos) return {};
+    if (head.size() > 1 && head[1] == "BINARY") return checkBinaryOff(path, data, keyword);
     size_t next = 1;
     std::vector<std::string> counts(head.begin() + 1, head.end());
     if (counts.empty()) {

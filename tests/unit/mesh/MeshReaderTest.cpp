@@ -395,6 +395,24 @@ TEST(MeshReaderErrors, MalformedTextThatOpenMeshWouldAccept) {
         "expected 'vertex x y z'");
 }
 
+// Found by fuzzing: OpenMesh read a corner count of 2^32-1 as that many stale indices.
+TEST(MeshReaderErrors, BinaryOffCountsTheFileCannotHold) {
+    const std::string good = offBinary(tentV(), tentP);
+    const size_t faces = good.size() - 4 * 16;  // the first face's corner count
+    std::string corners = good;
+    corners.replace(faces, 4, std::string(4, '\xff'));
+    EXPECT_CONTAINS(errorOf(writeFile("corners.off", corners)),
+                    "face 0 announces 4294967295 corners, more than the file holds");
+    std::string vertices = good;
+    vertices[11] = '\x7f';  // vertex count 127
+    EXPECT_CONTAINS(errorOf(writeFile("vertices.off", vertices)),
+                    "header announces 127 vertices, more than the file holds");
+    EXPECT_CONTAINS(errorOf(writeFile("cut.off", good.substr(0, good.size() - 2))),
+                    "face 3 announces 3 corners, more than the file holds");
+    EXPECT_CONTAINS(errorOf(writeFile("cut2.off", good.substr(0, good.size() - 14))),
+                    "binary OFF file ends in face 3");
+}
+
 TEST(MeshReaderErrors, OpenMeshMessagesEndUpInTheErrorNotOnTheConsole) {
     std::string bytes = plyBinary(tentV(), tentP);
     bytes.resize(bytes.size() - 10);
