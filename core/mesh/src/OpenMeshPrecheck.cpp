@@ -187,11 +187,51 @@ Precheck checkOff(const std::string& path) {
     return p;
 }
 
+bool isCount(const std::string& t) {
+    unsigned int v;
+    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    return ec == std::errc() && end == t.data() + t.size();
+}
+
+// The header as OpenMesh's PLY reader walks it, word by word up to the word "end_header". That
+// reader never stops on a number it cannot read or a missing end_header: it loops for ever.
+void checkPlyHeader(const std::string& path, const std::string& text) {
+    size_t at = text.find('\n');
+    const auto word = [&] {
+        const size_t b = text.find_first_not_of(" \t\r\n\v\f", at);
+        if (b == std::string::npos) throw MeshError(path, "PLY header has no end_header");
+        at = std::min(text.find_first_of(" \t\r\n\v\f", b), text.size());
+        return text.substr(b, at - b);
+    };
+    word();  // "format"
+    word();
+    const std::string version = word();
+    if (version.find_first_not_of("0123456789.") != std::string::npos)
+        throw MeshError(path, "PLY header: version '" + version + "' is not a number");
+    bool element = false;
+    for (std::string w = word(); w != "end_header"; w = word()) {
+        if (w == "comment") {
+            at = std::min(text.find('\n', at), text.size());
+        } else if (w == "element") {
+            const std::string name = word(), count = word();
+            if (!isCount(count))
+                throw MeshError(path,
+                                "PLY header: element " + name + " has no count ('" + count + "')");
+            element = true;
+        } else if (w == "property") {
+            if (!element) throw MeshError(path, "PLY header: a property before any element");
+            if (word() == "list") word(), word();
+            word();
+        }
+    }
+}
+
 Precheck checkPly(const std::string& path) {
     const std::string text = readAll(path);
     const size_t headerEnd = text.find("end_header");
     if (text.compare(0, 3, "ply") != 0 || headerEnd == std::string::npos)
         throw MeshError(path, "not a PLY file (no 'ply' ... 'end_header' header)");
+    checkPlyHeader(path, text);
     std::istringstream header(text.substr(0, headerEnd));
     std::vector<std::pair<std::string, long long>> elements;
     bool ascii = false;

@@ -413,6 +413,23 @@ TEST(MeshReaderErrors, BinaryOffCountsTheFileCannotHold) {
                     "binary OFF file ends in face 3");
 }
 
+// Found by fuzzing: OpenMesh's PLY header parser loops for ever on a count it cannot read.
+TEST(MeshReaderErrors, PlyHeaderThatOpenMeshWouldNeverFinish) {
+    const std::string good = plyAscii(tentV(), tentP);
+    std::string count = good;
+    count.replace(count.find("vertex 5"), 8, "vertex ]");
+    EXPECT_CONTAINS(errorOf(writeFile("count.ply", count)), "element vertex has no count (']')");
+    std::string version = good;
+    version.replace(version.find("1.0"), 3, "x");
+    EXPECT_CONTAINS(errorOf(writeFile("version.ply", version)), "version 'x' is not a number");
+    std::string end = good;
+    end.replace(end.find("end_header"), 10, "xend_header");
+    EXPECT_CONTAINS(errorOf(writeFile("end.ply", end)), "PLY header has no end_header");
+    EXPECT_CONTAINS(
+        errorOf(writeFile("property.ply", "ply\nformat ascii 1.0\nproperty float x\nend_header\n")),
+        "a property before any element");
+}
+
 TEST(MeshReaderErrors, OpenMeshMessagesEndUpInTheErrorNotOnTheConsole) {
     std::string bytes = plyBinary(tentV(), tentP);
     bytes.resize(bytes.size() - 10);
