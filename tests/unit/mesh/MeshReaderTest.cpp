@@ -430,15 +430,35 @@ TEST(MeshReaderErrors, PlyHeaderThatOpenMeshWouldNeverFinish) {
         "a property before any element");
 }
 
+// Found by fuzzing: OpenMesh reads a list length the file cannot hold as that many values.
+TEST(MeshReaderErrors, PlyListLongerThanTheFile) {
+    std::string binary = plyBinary(tentV(), tentP);
+    binary.replace(binary.find("list uchar int"), 14, "list int int");
+    const size_t faces = binary.size() - 4 * 13;
+    std::string body = binary.substr(0, faces);
+    for (const auto& f : tentP) {
+        put(body, int32_t(f.size()));
+        for (int v : f) put(body, int32_t(v));
+    }
+    EXPECT_EQ(readMesh(writeFile("list.ply", body)).mesh.F, toFaces(tentP));
+    body.replace(faces, 4, "\xff\xff\xff\x7f");
+    EXPECT_CONTAINS(errorOf(writeFile("long.ply", body)),
+                    "face 0 lists more values than the file holds");
+    std::string ascii = plyAscii(tentV(), tentP);
+    ascii.replace(ascii.rfind("\n3 "), 3, "\n9 ");
+    EXPECT_CONTAINS(errorOf(writeFile("long_ascii.ply", ascii)),
+                    "face 3: list length '9' is more than the line holds");
+}
+
 TEST(MeshReaderErrors, OpenMeshMessagesEndUpInTheErrorNotOnTheConsole) {
     std::string bytes = plyBinary(tentV(), tentP);
-    bytes.resize(bytes.size() - 10);
-    const std::string path = writeFile("truncated_binary.ply", bytes);
+    bytes.replace(bytes.find("little"), 6, "middle");
+    const std::string path = writeFile("middle_endian.ply", bytes);
     ::testing::internal::CaptureStderr();
     const std::string msg = errorOf(path);
     const std::string console = ::testing::internal::GetCapturedStderr();
     EXPECT_CONTAINS(msg, "OpenMesh could not read the file");
-    EXPECT_CONTAINS(msg, "Unexpected end of file");
+    EXPECT_CONTAINS(msg, "Unsupported PLY format: binary_middle_endian");
     EXPECT_EQ(console, "");
 }
 
