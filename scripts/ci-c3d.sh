@@ -47,18 +47,20 @@ if [ "$status" -ne 0 ]; then
     exit "$status"
 fi
 
-# The OBJ reader and the correspondence loader, seeded by their own writers (--write-seeds).
-# The OpenMesh fuzzer (boneless-fuzz-mesh) is not run here yet: OpenMesh's OFF reader keeps
-# state from one read to the next, which the fuzzer trips over (docs/fuzzing.md).
+# The other loaders, each seeded by the project's own writers (--write-seeds): the OBJ reader,
+# PLY/OFF/STL through OpenMesh, the correspondence loader and the app's project loader (whose
+# seeds are whole saved projects, larger than the other inputs).
 LOADER_SECONDS="${LOADER_SECONDS:-20}"
-for name in obj correspondence; do
+for name in obj mesh correspondence project; do
+    max_len=4096
+    [ "$name" = project ] && max_len=65536
     echo "== $name loader fuzzing, ${LOADER_SECONDS} s"
     cmake --build "$FUZZ_BUILD" --target "boneless-fuzz-$name" -j"$JOBS"
     dir="$FUZZ_BUILD/fuzz-ci-$name"
     mkdir -p "$dir/corpus"
     "$FUZZ_BUILD/bin/boneless-fuzz-$name" --write-seeds="$dir/seeds" >/dev/null 2>&1 || true
     set +e
-    "$FUZZ_BUILD/bin/boneless-fuzz-$name" -max_total_time="$LOADER_SECONDS" -max_len=4096 \
+    "$FUZZ_BUILD/bin/boneless-fuzz-$name" -max_total_time="$LOADER_SECONDS" -max_len="$max_len" \
         -dict="$ROOT/tests/fuzz/$name.dict" -artifact_prefix="$dir/" -print_final_stats=1 \
         "$dir/corpus" "$dir/seeds" 2>&1 | grep -E '^(stat::number_of_executed|Done)|ERROR|SUMMARY|crash'
     status=${PIPESTATUS[0]}

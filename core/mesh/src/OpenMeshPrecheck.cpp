@@ -85,18 +85,56 @@ std::vector<std::pair<int, std::string>> contentLines(const std::string& text, c
     return out;
 }
 
+// Binary OFF as OpenMesh reads it: after the keyword line, 32-bit little-endian vertex, face and
+// edge counts; per vertex its floats (position, then normal, colour, texture coordinates when the
+// keyword's [ST][C][N] prefix says so); per face a corner count and the indices. OpenMesh reads a
+// count the file cannot hold as billions of stale corners, so such a count is refused here.
+Precheck checkBinaryOff(const std::string& path, const std::string& data,
+                        const std::string& keyword) {
+    const size_t newline = data.find('\n');
+    size_t at = newline == std::string::npos ? data.size() : newline + 1;
+    const auto word = [&](const std::string& where) {
+        if (data.size() - at < 4) throw MeshError(path, "binary OFF file ends in " + where);
+        uint32_t v;
+        std::memcpy(&v, data.data() + at, 4);
+        at += 4;
+        return v;
+    };
+    Precheck p;
+    p.declaredVertices = word("the counts");
+    p.declaredFaces = word("the counts");
+    word("the counts");
+    const std::string prefix = keyword.substr(0, keyword.size() - 3);
+    const size_t vertexBytes = 12 + (prefix.compare(0, 2, "ST") == 0 ? 8 : 0) +
+                               (prefix.find('C') != std::string::npos ? 12 : 0) +
+                               (prefix.find('N') != std::string::npos ? 12 : 0);
+    if (uint64_t(p.declaredVertices) > (data.size() - at) / vertexBytes)
+        throw MeshError(path, "header announces " + std::to_string(p.declaredVertices) +
+                                  " vertices, more than the file holds");
+    at += p.declaredVertices * vertexBytes;
+    for (long long f = 0; f < p.declaredFaces; ++f) {
+        const uint32_t corners = word("face " + std::to_string(f));
+        if (corners > (data.size() - at) / 4)
+            throw MeshError(path, "face " + std::to_string(f) + " announces " +
+                                      std::to_string(corners) +
+                                      " corners, more than the file holds");
+        at += 4 * size_t(corners);
+    }
+    return p;
+}
+
 Precheck checkOff(const std::string& path) {
-    const auto lines = contentLines(readAll(path), '#');
+    const std::string data = readAll(path);
+    const auto lines = contentLines(data, '#');
     if (lines.empty()) throw MeshError(path, "empty OFF file");
     auto head = tokens(lines[0].second);
     const std::string keyword = head[0];
     if (keyword.size() < 3 || keyword.compare(keyword.size() - 3, 3, "OFF") != 0)
         throw MeshError(path, "not an OFF file: first word is '" + keyword + "'",
                         at(lines[0].first));
-    // Binary OFF and the dimension-prefixed variants are left to OpenMesh alone.
-    if (keyword.find_first_of("4n") != std::string::npos ||
-        (head.size() > 1 && head[1] == "BINARY"))
-        return {};
+    // OpenMesh refuses the dimension-prefixed variants by itself.
+    if (keyword.find_first_of("4n") != std::string::npos) return {};
+    if (head.size() > 1 && head[1] == "BINARY") return checkBinaryOff(path, data, keyword);
     size_t next = 1;
     std::vector<std::string> counts(head.begin() + 1, head.end());
     if (counts.empty()) {
@@ -149,48 +187,163 @@ Precheck checkOff(const std::string& path) {
     return p;
 }
 
+bool isCount(const std::string& t) {
+    unsigned int v;
+    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    return ec == std::errc() && end == t.data() + t.size();
+}
+
+// Bytes of a PLY value type, 0 for a type OpenMesh does not know.
+int plyTypeBytes(const std::string& type) {
+    static const std::pair<const char*, int> sizes[] = {
+        {"char", 1},  {"uchar", 1},   {"int8", 1},   {"uint8", 1},  {"short", 2}, {"ushort", 2},
+        {"int16", 2}, {"uint16", 2},  {"int", 4},    {"uint", 4},   {"int32", 4}, {"uint32", 4},
+        {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
+    for (const auto& [name, bytes] : sizes)
+        if (type == name) return bytes;
+    return 0;
+}
+
+struct PlyProperty {
+    int countBytes = 0;  // 0: a single value; else a list whose length takes this many bytes
+    int valueBytes = 0;
+};
+struct PlyElement {
+    std::string name;
+    long long count = 0;
+    std::vector<PlyProperty> properties;
+};
+
+// The header as OpenMesh's PLY reader walks it, word by word up to the word "end_header". That
+// reader never stops on a number it cannot read or a missing end_header: it loops for ever.
+struct PlyHeader {
+    std::string format;  // ascii, binary_little_endian, binary_big_endian
+    std::vector<PlyElement> elements;
+};
+PlyHeader readPlyHeader(const std::string& path, const std::string& text) {
+    size_t at = text.find('\n');
+    const auto word = [&] {
+        const size_t b = text.find_first_not_of(" \t\r\n\v\f", at);
+        if (b == std::string::npos) throw MeshError(path, "PLY header has no end_header");
+        at = std::min(text.find_first_of(" \t\r\n\v\f", b), text.size());
+        return text.substr(b, at - b);
+    };
+    const auto bytesOf = [&](const std::string& type) {
+        const int bytes = plyTypeBytes(type);
+        if (!bytes) throw MeshError(path, "PLY header: unknown type '" + type + "'");
+        return bytes;
+    };
+    PlyHeader header;
+    word();  // "format"
+    header.format = word();
+    const std::string version = word();
+    if (version.find_first_not_of("0123456789.") != std::string::npos)
+        throw MeshError(path, "PLY header: version '" + version + "' is not a number");
+    std::vector<PlyElement>& elements = header.elements;
+    for (std::string w = word(); w != "end_header"; w = word()) {
+        if (w == "comment") {
+            at = std::min(text.find('\n', at), text.size());
+        } else if (w == "element") {
+            const std::string name = word(), count = word();
+            if (!isCount(count))
+                throw MeshError(path,
+                                "PLY header: element " + name + " has no count ('" + count + "')");
+            elements.push_back({name, std::stoll(count), {}});
+        } else if (w == "property") {
+            if (elements.empty())
+                throw MeshError(path, "PLY header: a property before any element");
+            PlyProperty property;
+            std::string type = word();
+            if (type == "list") property.countBytes = bytesOf(word()), type = word();
+            // OpenMesh takes "name type" as well as "type name" for a single value.
+            const std::string name = word();
+            property.valueBytes = plyTypeBytes(type) ? plyTypeBytes(type) : bytesOf(name);
+            elements.back().properties.push_back(property);
+        }
+    }
+    return header;
+}
+
+// A list's length from the binary body, in the file's byte order.
+uint64_t plyListLength(const std::string& data, size_t at, int bytes, bool bigEndian) {
+    uint64_t n = 0;
+    for (int k = 0; k < bytes; ++k)
+        n |= uint64_t(uint8_t(data[at + (bigEndian ? bytes - 1 - k : k)])) << (8 * k);
+    if (bytes == 4 && (n & 0x80000000u)) n = ~uint64_t(0);  // a negative int: never enough bytes
+    return n;
+}
+
+// OpenMesh reads a list length the file cannot hold as that many stale values (billions for a
+// 32-bit length), so each element is walked here first.
+void checkPlyBody(const std::string& path, const std::string& text, size_t bodyStart,
+                  const std::vector<PlyElement>& elements, bool ascii, bool bigEndian) {
+    int lineNumber = static_cast<int>(std::count(text.begin(), text.begin() + bodyStart, '\n'));
+    std::istringstream body(text.substr(bodyStart));
+    size_t pos = bodyStart;
+    std::string line;
+    for (const PlyElement& e : elements) {
+        for (long long i = 0; i < e.count; ++i) {
+            const std::string what = e.name + " " + std::to_string(i);
+            if (!ascii) {
+                for (const PlyProperty& p : e.properties) {
+                    uint64_t values = 1;
+                    if (p.countBytes) {
+                        if (text.size() - pos < size_t(p.countBytes))
+                            throw MeshError(path, "file ends in " + what);
+                        values = plyListLength(text, pos, p.countBytes, bigEndian);
+                        pos += p.countBytes;
+                    }
+                    if (values > (text.size() - pos) / p.valueBytes)
+                        throw MeshError(path, what + " lists more values than the file holds");
+                    pos += values * p.valueBytes;
+                }
+                continue;
+            }
+            do {
+                if (!std::getline(body, line))
+                    throw MeshError(path, "file ends after " + std::to_string(i) + " of " +
+                                              std::to_string(e.count) + " " + e.name + " lines");
+                ++lineNumber;
+            } while (line.find_first_not_of(" \t\r") == std::string::npos);
+            const auto t = tokens(line);
+            requireNumbers(path, t, lineNumber, what);
+            size_t k = 0;
+            for (const PlyProperty& p : e.properties) {
+                if (k >= t.size())
+                    throw MeshError(path, what + " has too few values", at(lineNumber));
+                if (p.countBytes && (!isCount(t[k]) || std::stoull(t[k]) > t.size() - k - 1))
+                    throw MeshError(
+                        path, what + ": list length '" + t[k] + "' is more than the line holds",
+                        at(lineNumber));
+                k += p.countBytes ? 1 + std::stoull(t[k]) : 1;
+            }
+        }
+    }
+}
+
 Precheck checkPly(const std::string& path) {
     const std::string text = readAll(path);
     const size_t headerEnd = text.find("end_header");
     if (text.compare(0, 3, "ply") != 0 || headerEnd == std::string::npos)
         throw MeshError(path, "not a PLY file (no 'ply' ... 'end_header' header)");
-    std::istringstream header(text.substr(0, headerEnd));
-    std::vector<std::pair<std::string, long long>> elements;
-    bool ascii = false;
-    for (std::string line; std::getline(header, line);) {
-        const auto t = tokens(line);
-        if (t.size() >= 2 && t[0] == "format") ascii = t[1] == "ascii";
-        if (t.size() >= 3 && t[0] == "element" && isInteger(t[2]))
-            elements.emplace_back(t[1], std::stoll(t[2]));
-    }
+    const PlyHeader header = readPlyHeader(path, text);
+    const std::vector<PlyElement>& elements = header.elements;
     Precheck p;
-    for (const auto& [name, count] : elements) {
-        if (name == "vertex") p.declaredVertices = count;
-        if (name == "face") p.declaredFaces = count;
+    for (const PlyElement& e : elements) {
+        if (e.name == "vertex") p.declaredVertices = e.count;
+        if (e.name == "face") p.declaredFaces = e.count;
     }
     // Every element takes at least one byte (binary) or one line (ascii); more than that is a
     // broken header, on which OpenMesh would try to reserve absurd amounts of memory.
     const size_t bodySize = text.size() - headerEnd;
-    for (const auto& [name, count] : elements)
-        if (count < 0 || static_cast<unsigned long long>(count) > bodySize)
-            throw MeshError(path, "header announces " + std::to_string(count) + " " + name +
+    for (const PlyElement& e : elements)
+        if (static_cast<unsigned long long>(e.count) > bodySize)
+            throw MeshError(path, "header announces " + std::to_string(e.count) + " " + e.name +
                                       " elements, more than the file holds");
-    if (!ascii) return p;
-
-    int lineNumber = static_cast<int>(std::count(text.begin(), text.begin() + headerEnd, '\n')) + 1;
-    std::istringstream body(text.substr(text.find('\n', headerEnd) + 1));
-    std::string line;
-    for (const auto& [name, count] : elements) {
-        for (long long i = 0; i < count; ++i) {
-            do {
-                if (!std::getline(body, line))
-                    throw MeshError(path, "file ends after " + std::to_string(i) + " of " +
-                                              std::to_string(count) + " " + name + " lines");
-                ++lineNumber;
-            } while (line.find_first_not_of(" \t\r") == std::string::npos);
-            requireNumbers(path, tokens(line), lineNumber, name + " " + std::to_string(i));
-        }
-    }
+    const size_t newline = text.find('\n', headerEnd);
+    const size_t bodyStart = newline == std::string::npos ? text.size() : newline + 1;
+    checkPlyBody(path, text, bodyStart, elements, header.format == "ascii",
+                 header.format == "binary_big_endian");
     return p;
 }
 

@@ -395,15 +395,70 @@ TEST(MeshReaderErrors, MalformedTextThatOpenMeshWouldAccept) {
         "expected 'vertex x y z'");
 }
 
+// Found by fuzzing: OpenMesh read a corner count of 2^32-1 as that many stale indices.
+TEST(MeshReaderErrors, BinaryOffCountsTheFileCannotHold) {
+    const std::string good = offBinary(tentV(), tentP);
+    const size_t faces = good.size() - 4 * 16;  // the first face's corner count
+    std::string corners = good;
+    corners.replace(faces, 4, std::string(4, '\xff'));
+    EXPECT_CONTAINS(errorOf(writeFile("corners.off", corners)),
+                    "face 0 announces 4294967295 corners, more than the file holds");
+    std::string vertices = good;
+    vertices[11] = '\x7f';  // vertex count 127
+    EXPECT_CONTAINS(errorOf(writeFile("vertices.off", vertices)),
+                    "header announces 127 vertices, more than the file holds");
+    EXPECT_CONTAINS(errorOf(writeFile("cut.off", good.substr(0, good.size() - 2))),
+                    "face 3 announces 3 corners, more than the file holds");
+    EXPECT_CONTAINS(errorOf(writeFile("cut2.off", good.substr(0, good.size() - 14))),
+                    "binary OFF file ends in face 3");
+}
+
+// Found by fuzzing: OpenMesh's PLY header parser loops for ever on a count it cannot read.
+TEST(MeshReaderErrors, PlyHeaderThatOpenMeshWouldNeverFinish) {
+    const std::string good = plyAscii(tentV(), tentP);
+    std::string count = good;
+    count.replace(count.find("vertex 5"), 8, "vertex ]");
+    EXPECT_CONTAINS(errorOf(writeFile("count.ply", count)), "element vertex has no count (']')");
+    std::string version = good;
+    version.replace(version.find("1.0"), 3, "x");
+    EXPECT_CONTAINS(errorOf(writeFile("version.ply", version)), "version 'x' is not a number");
+    std::string end = good;
+    end.replace(end.find("end_header"), 10, "xend_header");
+    EXPECT_CONTAINS(errorOf(writeFile("end.ply", end)), "PLY header has no end_header");
+    EXPECT_CONTAINS(
+        errorOf(writeFile("property.ply", "ply\nformat ascii 1.0\nproperty float x\nend_header\n")),
+        "a property before any element");
+}
+
+// Found by fuzzing: OpenMesh reads a list length the file cannot hold as that many values.
+TEST(MeshReaderErrors, PlyListLongerThanTheFile) {
+    std::string binary = plyBinary(tentV(), tentP);
+    binary.replace(binary.find("list uchar int"), 14, "list int int");
+    const size_t faces = binary.size() - 4 * 13;
+    std::string body = binary.substr(0, faces);
+    for (const auto& f : tentP) {
+        put(body, int32_t(f.size()));
+        for (int v : f) put(body, int32_t(v));
+    }
+    EXPECT_EQ(readMesh(writeFile("list.ply", body)).mesh.F, toFaces(tentP));
+    body.replace(faces, 4, "\xff\xff\xff\x7f");
+    EXPECT_CONTAINS(errorOf(writeFile("long.ply", body)),
+                    "face 0 lists more values than the file holds");
+    std::string ascii = plyAscii(tentV(), tentP);
+    ascii.replace(ascii.rfind("\n3 "), 3, "\n9 ");
+    EXPECT_CONTAINS(errorOf(writeFile("long_ascii.ply", ascii)),
+                    "face 3: list length '9' is more than the line holds");
+}
+
 TEST(MeshReaderErrors, OpenMeshMessagesEndUpInTheErrorNotOnTheConsole) {
     std::string bytes = plyBinary(tentV(), tentP);
-    bytes.resize(bytes.size() - 10);
-    const std::string path = writeFile("truncated_binary.ply", bytes);
+    bytes.replace(bytes.find("little"), 6, "middle");
+    const std::string path = writeFile("middle_endian.ply", bytes);
     ::testing::internal::CaptureStderr();
     const std::string msg = errorOf(path);
     const std::string console = ::testing::internal::GetCapturedStderr();
     EXPECT_CONTAINS(msg, "OpenMesh could not read the file");
-    EXPECT_CONTAINS(msg, "Unexpected end of file");
+    EXPECT_CONTAINS(msg, "Unsupported PLY format: binary_middle_endian");
     EXPECT_EQ(console, "");
 }
 
