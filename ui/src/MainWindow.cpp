@@ -28,6 +28,7 @@
 #include "boneless/ui/MeshView.h"
 #include "boneless/ui/Project.h"
 #include "boneless/ui/Timeline.h"
+#include "boneless/ui/TimelineStrip.h"
 #include "boneless/ui/TimelineWidget.h"
 
 namespace boneless::ui {
@@ -63,6 +64,9 @@ MainWindow::MainWindow(QWidget* parent)
     layout->setContentsMargins(0, 0, 0, 0);
     layout->setSpacing(2);
     timelineWidget_ = new TimelineWidget(timeline_);
+    auto* strip = new TimelineStrip(document_, solver_, timeline_);
+    strip->setSlider(timelineWidget_->slider());
+    timelineWidget_->setOverview(strip);
     layout->addWidget(view_, 1);
     layout->addWidget(timelineWidget_);
     setCentralWidget(centre);
