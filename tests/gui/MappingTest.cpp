@@ -1,15 +1,28 @@
-// Mapping as a user does it: a click beside the mesh says so, and opening a correspondence file
-// over mappings already made asks first (replace, merge or cancel).
+// Mapping as a user does it: a click beside the mesh says so, opening a correspondence file over
+// mappings already made asks first (replace, merge or cancel), the picture holds still while
+// mapping (each mapping re-solves the frame, which would move the surface under the cursor) and
+// leaving shows the playhead's frame, and suggestions far off the surface stand out.
+#include <QAction>
+#include <QFile>
+#include <QFileInfo>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
 #include <QMessageBox>
 #include <QPushButton>
 #include <QStatusBar>
+#include <QTableView>
 #include <QtTest>
 
 #include "ViewTestSupport.h"
 #include "boneless/ui/Document.h"
+#include "boneless/ui/FrameSolver.h"
 #include "boneless/ui/MainWindow.h"
+#include "boneless/ui/MarkerListModel.h"
 #include "boneless/ui/MeshView.h"
+#include "boneless/ui/Timeline.h"
 
+using namespace boneless;
 using namespace boneless::ui;
 
 namespace {
@@ -82,8 +95,115 @@ class MappingTest : public QObject {
         QCOMPARE(d->mappedCount(), all);
     }
 
+    void whileMappingTheMeshAndCameraHoldStillAndLeavingShowsThePlayhead() {
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        QVERIFY(window.openProject(freshProject()));
+        QVERIFY(test::showAndWait(window));
+        window.timeline()->scrubTo(30);
+        QVERIFY(test::waitForFrame(window));
+        MeshView* view = window.meshView();
+        Document* d = window.document();
+
+        auto* mapping = window.findChild<QAction*>("actionMapMarkers");
+        QVERIFY(mapping);
+        mapping->trigger();
+        QVERIFY(mapping->isChecked());
+        const Positions held = view->positions();
+        const QVariantMap camera = view->cameraState();
+
+        // A mapping moved to a neighbouring vertex: the frame is solved again from the new map.
+        const Faces& F = d->mesh().F;
+        int neighbour = -1;
+        for (int t = 0; t < F.rows() && neighbour < 0; ++t)
+            for (int c = 0; c < 3; ++c)
+                if (F(t, c) == d->mappedVertex(0))
+                    for (int o = 1; o < 3; ++o)
+                        if (neighbour < 0 && d->markerForVertex(F(t, (c + o) % 3)) < 0)
+                            neighbour = F(t, (c + o) % 3);
+        QVERIFY(neighbour >= 0);
+        QVERIFY(d->assign(0, neighbour));
+        window.timeline()->scrubTo(45);
+        QTest::qWait(300);
+        QVERIFY(QTest::qWaitFor([&] { return !window.frameSolver()->isBusy(); }, 60000));
+        QTest::qWait(100);
+        QCOMPARE(view->positions(), held);
+        QCOMPARE(view->cameraState(), camera);
+        QCOMPARE(window.displayedFrame(), 30);
+        const QString status = window.frameSummary();
+        QVERIFY2(status.contains("held while mapping; playhead at 45"), qPrintable(status));
+
+        mapping->trigger();
+        QVERIFY(!mapping->isChecked());
+        QVERIFY(test::waitForFrame(window));
+        QCOMPARE(window.displayedFrame(), 45);
+        QVERIFY((view->positions() - held).cwiseAbs().maxCoeff() > 1e-6);
+    }
+
+    void openingAMeshOrTakeLeavesMappingMode() {
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        QVERIFY(window.openProject(freshProject()));
+        QVERIFY(test::showAndWait(window));
+        auto* mapping = window.findChild<QAction*>("actionMapMarkers");
+        mapping->trigger();
+        QVERIFY(window.openFile(window.document()->takePath()));
+        QVERIFY(!mapping->isChecked());
+        QVERIFY(test::waitForFrame(window));
+    }
+
+    void suggestionsFarOffTheSurfaceAreHighlighted() {
+        // A map as `boneless-cli map suggest` writes it, one suggestion 80 mm off the skin.
+        const QString project = freshProject();
+        QFile in(QFileInfo(project).absolutePath() + "/walker.map.json");
+        QVERIFY(in.open(QIODevice::ReadOnly));
+        QJsonObject map = QJsonDocument::fromJson(in.readAll()).object();
+        QJsonArray markers = map["markers"].toArray();
+        QVERIFY(markers.size() > 20);
+        QString farLabel;
+        for (int i = 4; i < 20; ++i) {
+            QJsonObject entry = markers[i].toObject();
+            entry["suggested"] = true;
+            if (i == 11) {
+                entry["offset_mm"] = 80.0;
+                farLabel = entry["label"].toString();
+            }
+            markers[i] = entry;
+        }
+        map["markers"] = markers;
+        const QString path = folder_ + "/suggested.json";
+        QFile out(path);
+        QVERIFY(out.open(QIODevice::WriteOnly));
+        out.write(QJsonDocument(map).toJson());
+        out.close();
+
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        QVERIFY(window.openProject(project));
+        QVERIFY(window.document()->loadCorrespondence(path));
+        QAbstractItemModel* model = window.markerTable()->model();
+        Document* d = window.document();
+        const int far = d->markerByLabel(farLabel);
+        QVERIFY(far >= 0);
+        QList<int> highlighted;
+        for (int row = 0; row < model->rowCount(); ++row)
+            if (model->index(row, 0).data(Qt::BackgroundRole).isValid())
+                highlighted << model->index(row, 0).data(MarkerListModel::MarkerRole).toInt();
+        QCOMPARE(highlighted, QList<int>{far});
+        // Unmapping it clears the doubt.
+        QVERIFY(d->clearMapping(far));
+        for (int row = 0; row < model->rowCount(); ++row)
+            QVERIFY(!model->index(row, 0).data(Qt::BackgroundRole).isValid());
+    }
+
   private:
+    // A demo project of its own: autosave writes each test's edits into its project.
+    QString freshProject() {
+        return test::writeDemoProject(folder_ + QString("/demo%1").arg(++projects_));
+    }
+
     QString folder_, project_;
+    int projects_ = 0;
 };
 
 QTEST_MAIN(MappingTest)

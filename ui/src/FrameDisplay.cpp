@@ -61,6 +61,15 @@ void FrameDisplay::setHeatMapVisible(bool visible) {
     if (solving_) onFrameChanged(timeline_->frame());
 }
 
+void FrameDisplay::setFrozen(bool frozen) {
+    if (frozen_ == frozen) return;
+    frozen_ = frozen;
+    if (frozen_)
+        emitStatus();
+    else
+        onFrameChanged(timeline_->frame());
+}
+
 bool FrameDisplay::upToDate() const {
     const int frame = timeline_->frame();
     // While solving, only a solved frame counts: the unsolved picture shown before the problem
@@ -113,6 +122,10 @@ void FrameDisplay::rebuildProblem() {
 }
 
 void FrameDisplay::onFrameChanged(int frame) {
+    if (frozen_) {
+        emitStatus();
+        return;
+    }
     markers_->setFrame(frame);
     if (!document_->hasMesh()) return;
     if (!solving_) {
@@ -137,7 +150,7 @@ void FrameDisplay::showUnsolved(int frame) {
 }
 
 void FrameDisplay::onFrameReady(const FrameResult& result) {
-    if (!solving_ || result.generation != solver_->generation()) return;
+    if (!solving_ || result.generation != solver_->generation() || frozen_) return;
     // A frame solved for an older request is still shown: during playback the newest request
     // is usually still in the solver, and showing nothing would freeze the picture.
     result_ = result;
@@ -221,11 +234,15 @@ void FrameDisplay::emitStatus() {
     QString frame = document_->hasTake()
                         ? tr("Frame %1 / %2").arg(displayedFrame_).arg(document_->frameCount())
                         : tr("No take");
-    if (document_->hasTake() && displayedFrame_ != playhead)
+    if (frozen_)
+        frame += tr(" (held while mapping; playhead at %1)").arg(playhead);
+    else if (document_->hasTake() && displayedFrame_ != playhead)
         frame += tr(" (preview; playhead at %1)").arg(playhead);
     QString solve, residual;
     const bool current = result_ && result_->frame == playhead && !problemTimer_->isActive();
-    if (!solving_ && !problemTimer_->isActive()) {
+    if (frozen_) {
+        solve = tr("mapping markers");
+    } else if (!solving_ && !problemTimer_->isActive()) {
         solve = notSolvingReason_.isEmpty() ? tr("Not solving")
                                             : tr("Not solving: %1").arg(notSolvingReason_);
     } else if (!current) {

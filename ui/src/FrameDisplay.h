@@ -38,6 +38,12 @@ class FrameDisplay : public QObject {
     bool trailsVisible() const { return trails_; }
     bool heatMapVisible() const { return heatMap_; }
 
+    // While mapping markers the picture holds still (mesh, markers, camera) whatever is solved or
+    // wherever the playhead goes, so the surface does not move under the cursor as each mapping
+    // re-solves; mapping states still update. Unfreezing shows the playhead's frame.
+    void setFrozen(bool frozen);
+    bool frozen() const { return frozen_; }
+
     bool solving() const { return solving_; }
     QString notSolvingReason() const { return notSolvingReason_; }
     int displayedFrame() const { return displayedFrame_; }
@@ -82,6 +88,7 @@ class FrameDisplay : public QObject {
     QString notSolvingReason_;
     bool trails_ = false, heatMap_ = false;
     Shown shown_ = Shown::Frame;
+    bool frozen_ = false;
     int displayedFrame_ = -1;
     std::optional<FrameResult> result_;
     Positions markerPositions_;

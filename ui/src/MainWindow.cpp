@@ -15,12 +15,14 @@
 #include <QShortcut>
 #include <QStatusBar>
 #include <QTableView>
+#include <QToolButton>
 #include <QUndoStack>
 #include <QVBoxLayout>
 #include <cmath>
 
 #include "CalibrationMenu.h"
 #include "FrameDisplay.h"
+#include "SuggestionHighlight.h"
 #include "boneless/ui/AppIcon.h"
 #include "boneless/ui/Document.h"
 #include "boneless/ui/ExportDialog.h"
@@ -29,6 +31,7 @@
 #include "boneless/ui/MeshView.h"
 #include "boneless/ui/Project.h"
 #include "boneless/ui/Timeline.h"
+#include "boneless/ui/TimelineStrip.h"
 #include "boneless/ui/TimelineWidget.h"
 
 namespace boneless::ui {
@@ -48,7 +51,9 @@ MainWindow::MainWindow(QWidget* parent)
     setObjectName("mainWindow");
     // The About box shows its parent's icon.
     setWindowIcon(applicationIcon());
-    proxy_->setSourceModel(markerModel_);
+    auto* highlight = new SuggestionHighlight(document_, this);
+    highlight->setSourceModel(markerModel_);
+    proxy_->setSourceModel(highlight);
     display_ = new FrameDisplay(document_, solver_, timeline_, view_, markerModel_, this);
     // Frames are solved ahead only while playing, so that playback finds them solved (about a
     // quarter of a second at 30 Hz); scrubbing keeps the worker free for where the playhead stops.
@@ -64,6 +69,9 @@ MainWindow::MainWindow(QWidget* parent)
     layout->setContentsMargins(0, 0, 0, 0);
     layout->setSpacing(2);
     timelineWidget_ = new TimelineWidget(timeline_);
+    auto* strip = new TimelineStrip(document_, solver_, timeline_);
+    strip->setSlider(timelineWidget_->slider());
+    timelineWidget_->setOverview(strip);
     layout->addWidget(view_, 1);
     layout->addWidget(timelineWidget_);
     setCentralWidget(centre);
@@ -133,6 +141,21 @@ void MainWindow::buildMarkerDock() {
         tr("Map every unmapped marker to the nearest free vertex (needs 4 mapped)"));
     auto* align = new QPushButton(tr("Align"));
     align->setToolTip(tr("Fix the take's alignment onto the mesh from the mapped markers"));
+    // Mapping holds the picture still, so that each mapping's re-solve does not move the
+    // surface under the cursor; leaving shows the playhead's frame again.
+    mappingAction_ = new QAction(tr("&Map Markers"), this);
+    mappingAction_->setObjectName("actionMapMarkers");
+    mappingAction_->setCheckable(true);
+    mappingAction_->setToolTip(tr("Hold the mesh and camera still while clicking markers onto it"));
+    connect(mappingAction_, &QAction::toggled, this, [this](bool on) {
+        if (on) timeline_->pause();
+        display_->setFrozen(on);
+    });
+    for (auto changed : {&Document::meshChanged, &Document::takeChanged})
+        connect(document_, changed, mappingAction_, [this] { mappingAction_->setChecked(false); });
+    auto* map = new QToolButton;
+    map->setDefaultAction(mappingAction_);
+    buttons->addWidget(map);
     buttons->addWidget(clear);
     buttons->addWidget(suggest);
     buttons->addWidget(align);
@@ -185,6 +208,7 @@ void MainWindow::buildMenus() {
     edit->addAction(undo);
     edit->addAction(redo);
     edit->addSeparator();
+    edit->addAction(mappingAction_);
     edit->addAction(tr("&Suggest Rest"), document_, &Document::suggestMappings);
     edit->addAction(tr("&Align Take to Mesh"), this, [this] { document_->align(); });
     edit->addAction(tr("&Clear Mapping"), this, [this] {

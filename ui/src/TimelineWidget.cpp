@@ -9,6 +9,7 @@
 #include <QSpinBox>
 #include <QStyle>
 #include <QToolButton>
+#include <QVBoxLayout>
 
 #include "boneless/ui/Timeline.h"
 
@@ -66,7 +67,11 @@ TimelineWidget::TimelineWidget(Timeline* timeline, QWidget* parent)
          {static_cast<QWidget*>(first_), static_cast<QWidget*>(previous_),
           static_cast<QWidget*>(play_), static_cast<QWidget*>(next_), static_cast<QWidget*>(last_)})
         layout->addWidget(w);
-    layout->addWidget(slider_, 1);
+    sliderColumn_ = new QVBoxLayout;
+    sliderColumn_->setContentsMargins(0, 0, 0, 0);
+    sliderColumn_->setSpacing(0);
+    sliderColumn_->addWidget(slider_);
+    layout->addLayout(sliderColumn_, 1);
     layout->addWidget(frameBox_);
     layout->addWidget(countLabel_);
     layout->addWidget(loop_);
@@ -114,6 +119,10 @@ bool TimelineWidget::eventFilter(QObject* watched, QEvent* event) {
         return true;
     }
     return QWidget::eventFilter(watched, event);
+}
+
+void TimelineWidget::setOverview(QWidget* strip) {
+    sliderColumn_->insertWidget(0, strip);
 }
 
 void TimelineWidget::syncFrame(int frame) {

@@ -138,6 +138,7 @@ class MainWindow : public QMainWindow {
     QAction* labelsAction_ = nullptr;
     QAction* trailsAction_ = nullptr;
     QAction* heatMapAction_ = nullptr;
+    QAction* mappingAction_ = nullptr;
 
     QString projectPath_;
     bool demo_ = false;

@@ -7,6 +7,7 @@ class QSpinBox;
 class QToolButton;
 class QComboBox;
 class QLabel;
+class QVBoxLayout;
 
 namespace boneless::ui {
 
@@ -24,6 +25,8 @@ class TimelineWidget : public QWidget {
     QSpinBox* frameBox() const { return frameBox_; }
     QToolButton* playButton() const { return play_; }
     QComboBox* speedBox() const { return speed_; }
+    // Puts `strip` right over the slider, the same width (TimelineStrip lines up its frames).
+    void setOverview(QWidget* strip);
 
   protected:
     bool eventFilter(QObject* watched, QEvent* event) override;
@@ -34,6 +37,7 @@ class TimelineWidget : public QWidget {
 
     Timeline* timeline_;
     QSlider* slider_;
+    QVBoxLayout* sliderColumn_;
     QSpinBox* frameBox_;
     QLabel* countLabel_;
     QToolButton *first_, *previous_, *play_, *next_, *last_, *loop_;

@@ -1,0 +1,169 @@
+#include "boneless/ui/TimelineStrip.h"
+
+#include <QHelpEvent>
+#include <QMouseEvent>
+#include <QPainter>
+#include <QSlider>
+#include <QStyle>
+#include <QStyleOptionSlider>
+#include <QToolTip>
+#include <algorithm>
+
+#include "boneless/ui/Document.h"
+#include "boneless/ui/FrameSolver.h"
+#include "boneless/ui/Timeline.h"
+
+namespace boneless::ui {
+
+namespace {
+constexpr int kCacheRow = 3;  // pixels
+constexpr int kGapRow = 8;
+}  // namespace
+
+TimelineStrip::TimelineStrip(Document* document, FrameSolver* solver, Timeline* timeline,
+                             QWidget* parent)
+    : QWidget(parent), document_(document), solver_(solver), timeline_(timeline) {
+    setObjectName("timelineStrip");
+    setMouseTracking(true);
+    setSizePolicy(QSizePolicy::Expanding, QSizePolicy::Fixed);
+    connect(document_, &Document::takeChanged, this, &TimelineStrip::rebuildGaps);
+    connect(document_, &Document::correspondenceChanged, this, &TimelineStrip::rebuildGaps);
+    connect(document_, &Document::selectionChanged, this, qOverload<>(&QWidget::update));
+    connect(timeline_, &Timeline::frameChanged, this, qOverload<>(&QWidget::update));
+    // Read-ahead fills the cache without delivering: the worker going idle says when.
+    connect(solver_, &FrameSolver::frameReady, this, &TimelineStrip::refreshCache);
+    connect(solver_, &FrameSolver::busyChanged, this, &TimelineStrip::refreshCache);
+    connect(solver_, &FrameSolver::problemChanged, this, &TimelineStrip::refreshCache);
+    rebuildGaps();
+}
+
+void TimelineStrip::setSlider(QSlider* slider) {
+    slider_ = slider;
+    update();
+}
+
+QSize TimelineStrip::sizeHint() const {
+    return {200, kCacheRow + 1 + kGapRow};
+}
+
+QSize TimelineStrip::minimumSizeHint() const {
+    return {20, kCacheRow + 1 + kGapRow};
+}
+
+void TimelineStrip::rebuildGaps() {
+    const int frames = document_->frameCount();
+    gaps_.assign(document_->markerCount(), {});
+    missingCount_.assign(frames, 0);
+    for (int k = 0; k < document_->markerCount(); ++k) {
+        for (int f = 0; f < frames; ++f) {
+            if (document_->markerVisible(k, f)) continue;
+            ++missingCount_[f];
+            if (!gaps_[k].empty() && gaps_[k].back().second == f - 1)
+                gaps_[k].back().second = f;
+            else
+                gaps_[k].push_back({f, f});
+        }
+    }
+    cached_.assign(frames, false);
+    refreshCache();
+}
+
+void TimelineStrip::refreshCache() {
+    const int frames = document_->frameCount();
+    if (int(cached_.size()) != frames) cached_.assign(frames, false);
+    bool changed = false;
+    for (int f = 0; f < frames; ++f) {
+        const bool cached = solver_->hasProblem() && solver_->isCached(f);
+        changed |= cached != cached_[f];
+        cached_[f] = cached;
+    }
+    if (changed) update();
+}
+
+std::pair<int, int> TimelineStrip::span() const {
+    if (!slider_) return {0, std::max(0, width() - 1)};
+    // Where the slider's handle centre sits at its first and last value.
+    QStyleOptionSlider option;
+    option.initFrom(slider_);
+    option.orientation = Qt::Horizontal;
+    option.minimum = slider_->minimum();
+    option.maximum = slider_->maximum();
+    option.sliderPosition = option.sliderValue = slider_->minimum();
+    const QStyle* style = slider_->style();
+    const QRect groove =
+        style->subControlRect(QStyle::CC_Slider, &option, QStyle::SC_SliderGroove, slider_);
+    const int handle =
+        style->subControlRect(QStyle::CC_Slider, &option, QStyle::SC_SliderHandle, slider_).width();
+    const int first = groove.x() + handle / 2;
+    return {first, first + std::max(0, groove.width() - handle)};
+}
+
+int TimelineStrip::xOfFrame(int frame) const {
+    const int last = std::max(1, document_->frameCount() - 1);
+    const auto [x0, x1] = span();
+    return x0 + int(double(frame) / last * (x1 - x0) + 0.5);
+}
+
+int TimelineStrip::frameAtX(int x) const {
+    const int last = std::max(0, document_->frameCount() - 1);
+    const auto [x0, x1] = span();
+    if (x1 <= x0) return 0;
+    return std::clamp(int(double(x - x0) / (x1 - x0) * last + 0.5), 0, last);
+}
+
+void TimelineStrip::paintEvent(QPaintEvent*) {
+    QPainter painter(this);
+    const int frames = document_->frameCount();
+    if (frames == 0) return;
+    const QColor cached = palette().color(QPalette::Highlight);
+    const QColor gap(200, 40, 40);
+    // Each frame spans half-way to its neighbours, at least a pixel.
+    auto frameRect = [&](int first, int last, int top, int height) {
+        const int half = std::max(1, (xOfFrame(1) - xOfFrame(0)) / 2);
+        const int left = xOfFrame(first) - half;
+        return QRect(left, top, std::max(1, xOfFrame(last) + half - left), height);
+    };
+    for (int f = 0; f < frames; ++f)
+        if (cached_[f]) painter.fillRect(frameRect(f, f, 0, kCacheRow), cached);
+    const int top = kCacheRow + 1;
+    const int markers = std::max(1, document_->markerCount());
+    for (int f = 0; f < frames; ++f) {
+        if (missingCount_[f] == 0) continue;
+        QColor faint = gap;
+        faint.setAlphaF(0.15 + 0.45 * missingCount_[f] / markers);
+        painter.fillRect(frameRect(f, f, top, kGapRow), faint);
+    }
+    const int selected = document_->selectedMarker();
+    if (selected >= 0 && selected < int(gaps_.size()))
+        for (const auto& [first, last] : gaps_[selected])
+            painter.fillRect(frameRect(first, last, top, kGapRow), gap);
+    painter.setPen(palette().color(QPalette::WindowText));
+    const int x = xOfFrame(timeline_->frame());
+    painter.drawLine(x, 0, x, height());
+}
+
+void TimelineStrip::mousePressEvent(QMouseEvent* event) {
+    if (event->button() == Qt::LeftButton && document_->frameCount() > 0)
+        timeline_->scrubTo(frameAtX(event->position().toPoint().x()));
+}
+
+bool TimelineStrip::event(QEvent* event) {
+    if (event->type() != QEvent::ToolTip) return QWidget::event(event);
+    const auto* help = static_cast<QHelpEvent*>(event);
+    if (document_->frameCount() == 0) return true;
+    const int frame = frameAtX(help->pos().x());
+    QStringList missing;
+    for (int k = 0; k < document_->markerCount(); ++k)
+        if (!document_->markerVisible(k, frame)) missing << document_->markerLabel(k);
+    QString text =
+        tr("Frame %1%2")
+            .arg(frame)
+            .arg(frame < int(cached_.size()) && cached_[frame] ? tr(", solved") : QString());
+    if (!missing.isEmpty())
+        text += "\n" + tr("Missing: %1").arg(missing.mid(0, 12).join(", ")) +
+                (missing.size() > 12 ? tr(" and %1 more").arg(missing.size() - 12) : QString());
+    QToolTip::showText(help->globalPos(), text, this);
+    return true;
+}
+
+}  // namespace boneless::ui
