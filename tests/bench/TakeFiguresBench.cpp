@@ -4,6 +4,8 @@
 // one after it compare directly. Per frame: the 95th percentile edge strain |len/rest − 1|, the
 // edge distortion (RMS of the same), folded faces (Metrics' foldedFaces, refitted from scratch),
 // the dent ratio (DentGauge) and the sidecar's marker residual; printed as worst frame and mean.
+// A take solved with calibration is measured against its calibrated rest, as the sidecar measures
+// it (solve it with --write-calibrated-rest); the actor's proportions are not a stretch.
 // Nothing is asserted.
 
 #include <CLI/CLI.hpp>
@@ -65,21 +67,34 @@ int main(int argc, char** argv) {
 
     MeshReadOptions read;
     read.group = group;
-    const TriMesh rest = readMesh(meshPath, read).mesh;
+    const TriMesh input = readMesh(meshPath, read).mesh;
     const Correspondence map = Correspondence::read(mapPath);
     const std::vector<SurfacePoint> points = surfacePoints(map);
-    const MeshTopology topology(rest);
-    const ShapeEncoding encoding(rest, topology);
+    const MeshTopology topology(input);
     std::vector<std::pair<int, int>> edges;
-    for (int f = 0; f < rest.faceCount(); ++f)
+    for (int f = 0; f < input.faceCount(); ++f)
         for (int c = 0; c < 3; ++c) {
-            const int a = rest.F(f, c), b = rest.F(f, (c + 1) % 3);
+            const int a = input.F(f, c), b = input.F(f, (c + 1) % 3);
             if (a < b) edges.emplace_back(a, b);  // each interior edge once (closed: both ways)
         }
 
     for (const std::string& dir : solved) {
         const std::string stem = group.empty() ? fs::path(meshPath).stem().string() : group;
         const auto sidecar = nlohmann::json::parse(std::ifstream(fs::path(dir) / (stem + ".json")));
+        TriMesh rest = input;
+        const auto& calibration = sidecar["calibration"];
+        if (calibration.value("calibrate", "none") != "none") {
+            if (!calibration["calibrated_rest"].is_string()) {
+                std::fprintf(stderr, "%s: calibrated, but without --write-calibrated-rest\n",
+                             dir.c_str());
+                return 1;
+            }
+            rest.V =
+                readMesh(
+                    (fs::path(dir) / calibration["calibrated_rest"].get<std::string>()).string())
+                    .mesh.V;
+        }
+        const ShapeEncoding encoding(rest, topology);
         const double unitsPerMm = sidecar["units"]["mesh_units_per_mm"].get<double>();
         const DentGauge dents(rest, topology, encoding, points,
                               TakeSolver::kDentRadiusMm * unitsPerMm);
