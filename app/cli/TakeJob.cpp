@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "FrameRange.h"
-#include "boneless/C3dReader.h"
+#include "boneless/C3dFrameReader.h"
 #include "boneless/Error.h"
 #include "boneless/MeshReader.h"
 
@@ -127,18 +127,19 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet) {
     MeshReadOptions meshOptions;
     meshOptions.group = job.group;
     const TriMesh mesh = readMesh(job.mesh, meshOptions).mesh;
-    const C3dTake take = readC3d(job.c3d);
+    // Streamed: a take of any length solves in the memory of a short one.
+    const C3dFrameReader take(job.c3d);
     const Correspondence map = Correspondence::read(job.map);
 
     auto announce = [&](const Calibration& c) {
         if (quiet) return;
-        const double meshUnitsPerMm = c.takeToMesh.scale / take.unitToMm;
+        const double meshUnitsPerMm = c.takeToMesh.scale / take.take().unitToMm;
         std::fprintf(stderr,
                      "%s: %zu frames at %g Hz, units %s; aligned at frame %d (residual %.1f mm), "
                      "mesh units look like %s, mesh up axis %s\n",
-                     job.c3d.c_str(), take.frameCount(), take.rate, take.units.c_str(), c.frame,
-                     c.residual / meshUnitsPerMm, guessMeshUnits(meshUnitsPerMm),
-                     guessUpAxis(c.takeToMesh).c_str());
+                     job.c3d.c_str(), take.frameCount(), take.take().rate,
+                     take.take().units.c_str(), c.frame, c.residual / meshUnitsPerMm,
+                     guessMeshUnits(meshUnitsPerMm), guessUpAxis(c.takeToMesh).c_str());
     };
     const auto start = std::chrono::steady_clock::now();
     auto onFrame = [&](int done, int total, const FrameReport& report) {

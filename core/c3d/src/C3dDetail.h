@@ -10,6 +10,7 @@
 #include "boneless/C3dError.h"
 #include "boneless/C3dNumbers.h"
 #include "boneless/C3dParameters.h"
+#include "boneless/C3dReader.h"
 #include "boneless/C3dTake.h"
 
 namespace boneless::c3d_detail {
@@ -76,6 +77,14 @@ struct DecodeStats {
 
 // The caller guarantees dataStart + frames * frameBytes() <= src.size.
 DecodeStats decodePoints(const Source& src, const PointLayout& layout, C3dSamples& samples);
+
+// Everything of a take but its samples: validates the header and parameters, fills `take`
+// (file, header fields, parameters, points, warnings) and returns where the frames lie, the
+// complete frames only. Throws C3dError as readC3dMemory does.
+PointLayout readTakeLayout(const Source& src, const C3dReadOptions& options, C3dTake& take);
+// The warnings readC3dMemory gives for what decoding the samples found.
+void noteDecodeStats(const DecodeStats& stats, const C3dReadOptions& options,
+                     std::vector<std::string>& warnings);
 
 // Fills kind (and subject/name) of every point from POINT:ANGLES, FORCES, ... and known
 // model-output names.

@@ -84,9 +84,12 @@ std::size_t countOr(std::vector<std::string>& warn, double v, double max, const 
 
 }  // namespace
 
-C3dTake readC3dMemory(const std::uint8_t* data, std::size_t size, const std::string& name,
-                      const C3dReadOptions& options) {
-    const Source src{data, size, name};
+namespace c3d_detail {
+
+PointLayout readTakeLayout(const Source& src, const C3dReadOptions& options, C3dTake& take) {
+    const std::uint8_t* data = src.data;
+    const std::size_t size = src.size;
+    const std::string& name = src.file;
     if (size == 0) src.fail(0, "empty file (0 bytes), not a C3D file");
     if (size < kBlock)
         src.fail(size, "file is " + std::to_string(size) +
@@ -95,7 +98,6 @@ C3dTake readC3dMemory(const std::uint8_t* data, std::size_t size, const std::str
         src.fail(1, "not a C3D file: header byte 2 is " + std::to_string(data[1]) +
                         ", the C3D key is 80 (0x50)");
 
-    C3dTake take;
     take.file = name;
     auto& warn = take.warnings;
 
@@ -359,15 +361,28 @@ C3dTake readC3dMemory(const std::uint8_t* data, std::size_t size, const std::str
     if (unnamed > 0 && labels.size() >= points)
         warn.push_back(std::to_string(unnamed) + " points have empty labels; named P<n>");
     classifyPoints(ps, take.points);
+    return L;
+}
 
-    take.samples = C3dSamples(L.frames, points);
-    const DecodeStats stats = decodePoints(src, L, take.samples);
+void noteDecodeStats(const DecodeStats& stats, const C3dReadOptions& options,
+                     std::vector<std::string>& warn) {
     if (stats.nonFinite > 0)
         warn.push_back(std::to_string(stats.nonFinite) +
                        " samples have non-finite coordinates; treated as missing");
     if (stats.zeroSamples > 0 && !options.keepZeroSamples)
         warn.push_back(std::to_string(stats.zeroSamples) +
                        " samples are exactly (0, 0, 0); treated as missing");
+}
+
+}  // namespace c3d_detail
+
+C3dTake readC3dMemory(const std::uint8_t* data, std::size_t size, const std::string& name,
+                      const C3dReadOptions& options) {
+    const Source src{data, size, name};
+    C3dTake take;
+    const PointLayout L = readTakeLayout(src, options, take);
+    take.samples = C3dSamples(L.frames, L.points);
+    noteDecodeStats(decodePoints(src, L, take.samples), options, take.warnings);
     return take;
 }
 

@@ -8,8 +8,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "SpoolFile.h"
 #include "boneless/Error.h"
+#include "boneless/SpoolFile.h"
 
 namespace boneless {
 

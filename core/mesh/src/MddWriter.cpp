@@ -5,8 +5,8 @@
 #include <cstring>
 #include <filesystem>
 
-#include "SpoolFile.h"
 #include "boneless/Error.h"
+#include "boneless/SpoolFile.h"
 
 namespace boneless {
 

@@ -1,4 +1,4 @@
-#include "SpoolFile.h"
+#include "boneless/SpoolFile.h"
 
 #include <unistd.h>
 #include <filesystem>
@@ -23,7 +23,7 @@ void writeSpooled(const std::string& path, const std::string& head, std::FILE* s
     ok = ok && !std::ferror(spool) && std::fwrite(tail.data(), 1, tail.size(), out) == tail.size();
     if (out) ok = std::fclose(out) == 0 && ok;
     std::fclose(spool);
-    std::remove(spoolPath.c_str());
+    if (!spoolPath.empty()) std::remove(spoolPath.c_str());
     std::error_code ec;
     if (ok) std::filesystem::rename(temporary, path, ec);
     if (!ok || ec) {

@@ -18,10 +18,12 @@
 
 #include "FrameOutput.h"
 #include "boneless/ActorCalibration.h"
-#include "boneless/Parallel.h"
+#include "boneless/C3dFrameReader.h"
 #include "boneless/Error.h"
 #include "boneless/Metrics.h"
 #include "boneless/ObjWriter.h"
+#include "boneless/Parallel.h"
+#include "boneless/SpoolFile.h"
 
 namespace boneless {
 
@@ -55,34 +57,67 @@ std::string exportStem(const ExportRequest& request) {
 
 namespace {
 
-json summaryJson(const json& perFrame) {
-    double residualSum = 0, residualWorst = 0, distortionWorst = 0, distortionSum = 0,
-           strainWorst = 0, dentWorst = 0;
-    int foldedWorst = 0;
-    std::vector<double> ms;
-    for (const json& f : perFrame) {
-        residualSum += f["residual_rms_mm"].get<double>();
-        residualWorst = std::max(residualWorst, f["residual_rms_mm"].get<double>());
-        distortionWorst = std::max(distortionWorst, f["edge_distortion"].get<double>());
-        distortionSum += f["edge_distortion"].get<double>();
-        strainWorst = std::max(strainWorst, f["edge_strain_p95"].get<double>());
-        foldedWorst = std::max(foldedWorst, f["folded_faces"].get<int>());
-        dentWorst = std::max(dentWorst, f["dent_ratio"].get<double>());
-        ms.push_back(f["ms"].get<double>());
+// The sidecar's per-frame figures, written out as they come (a long take's would not fit in
+// memory as JSON), and its summary of them, kept as they pass.
+class PerFrameFigures {
+  public:
+    PerFrameFigures() : spool_(std::tmpfile()) {
+        if (!spool_) throw Error("cannot create a temporary file for the sidecar's figures");
     }
-    std::sort(ms.begin(), ms.end());
-    const std::size_t n = perFrame.size();
-    return {{"residual_rms_mm_mean", n ? residualSum / n : 0.0},
-            {"residual_rms_mm_worst_frame", residualWorst},
-            {"edge_distortion_mean", n ? distortionSum / n : 0.0},
-            {"edge_distortion_worst_frame", distortionWorst},
-            {"edge_strain_p95_worst_frame", strainWorst},
-            {"folded_faces_worst_frame", foldedWorst},
-            {"dent_ratio_worst_frame", dentWorst},
-            {"ms_per_frame_mean", n ? std::accumulate(ms.begin(), ms.end(), 0.0) / n : 0.0},
-            {"ms_per_frame_worst", n ? ms.back() : 0.0},
-            {"ms_per_frame_median", n ? ms[n / 2] : 0.0}};
-}
+    ~PerFrameFigures() {
+        if (spool_) std::fclose(spool_);
+    }
+    void add(const json& f) {
+        residualSum_ += f["residual_rms_mm"].get<double>();
+        residualWorst_ = std::max(residualWorst_, f["residual_rms_mm"].get<double>());
+        distortionWorst_ = std::max(distortionWorst_, f["edge_distortion"].get<double>());
+        distortionSum_ += f["edge_distortion"].get<double>();
+        strainWorst_ = std::max(strainWorst_, f["edge_strain_p95"].get<double>());
+        foldedWorst_ = std::max(foldedWorst_, f["folded_faces"].get<int>());
+        dentWorst_ = std::max(dentWorst_, f["dent_ratio"].get<double>());
+        ms_.push_back(f["ms"].get<double>());
+        // As json::dump(2) lays out an array element two levels down.
+        const std::string lead = ms_.size() > 1 ? ",\n    " : "    ";
+        std::string text = lead + f.dump(2);
+        for (std::size_t i = text.find('\n', lead.size()); i != std::string::npos;
+             i = text.find('\n', i + 1))
+            text.insert(i + 1, "    ");
+        if (std::fwrite(text.data(), 1, text.size(), spool_) != text.size())
+            throw Error("cannot write the sidecar's figures to a temporary file (disk full?)");
+    }
+    json summary() const {
+        std::vector<double> ms = ms_;
+        std::sort(ms.begin(), ms.end());
+        const std::size_t n = ms.size();
+        return {{"residual_rms_mm_mean", n ? residualSum_ / n : 0.0},
+                {"residual_rms_mm_worst_frame", residualWorst_},
+                {"edge_distortion_mean", n ? distortionSum_ / n : 0.0},
+                {"edge_distortion_worst_frame", distortionWorst_},
+                {"edge_strain_p95_worst_frame", strainWorst_},
+                {"folded_faces_worst_frame", foldedWorst_},
+                {"dent_ratio_worst_frame", dentWorst_},
+                {"ms_per_frame_mean", n ? std::accumulate(ms.begin(), ms.end(), 0.0) / n : 0.0},
+                {"ms_per_frame_worst", n ? ms.back() : 0.0},
+                {"ms_per_frame_median", n ? ms[n / 2] : 0.0}};
+    }
+    // Writes `sidecar` (whose "per_frame" is an empty array) to path with the figures in it.
+    void write(const std::string& path, const json& sidecar) {
+        const std::string text = sidecar.dump(2) + "\n";
+        const std::string slot = "\"per_frame\": []";
+        const std::size_t at = text.find(slot) + slot.size() - 1;
+        std::FILE* spool = spool_;
+        spool_ = nullptr;  // writeSpooled closes it
+        writeSpooled(path, text.substr(0, at) + (ms_.empty() ? "" : "\n"), spool, "",
+                     (ms_.empty() ? "" : "\n  ") + text.substr(at));
+    }
+
+  private:
+    std::FILE* spool_;
+    double residualSum_ = 0, residualWorst_ = 0, distortionWorst_ = 0, distortionSum_ = 0,
+           strainWorst_ = 0, dentWorst_ = 0;
+    int foldedWorst_ = 0;
+    std::vector<double> ms_;
+};
 
 json solverJson(const TakeSolveOptions& o) {
     json j = {{"method", methodName(o.solver.method)},
@@ -110,7 +145,7 @@ json calibrationJson(const ExportRequest& request, const TriMesh& mesh, const Ta
 }
 
 json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibration& c,
-                 const ExportResult& result, json calibration, json perFrame) {
+                 const ExportResult& result, json calibration, json summary) {
     const Similarity& s = c.takeToMesh;
     const double meshUnitsPerMm = s.scale / take.unitToMm;
     const TakeSolveOptions& o = request.options;
@@ -143,8 +178,8 @@ json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibr
               {"overridden", o.alignment.has_value()}}},
             {"calibration", std::move(calibration)},
             {"solver", solverJson(o)},
-            {"summary", summaryJson(perFrame)},
-            {"per_frame", std::move(perFrame)}};
+            {"summary", std::move(summary)},
+            {"per_frame", json::array()}};
 }
 
 // Frames do not depend on each other, so each core solves frames of its own (each worker with a
@@ -152,9 +187,8 @@ json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibr
 // thread until it returns false. A worker runs at most a few frames ahead of the writing.
 using FrameSink = std::function<bool(int frame, const Positions& V, const FrameReport& report,
                                      double distortion, double strainP95)>;
-void solveInOrder(TakeSolver& first, const TriMesh& mesh, const C3dTake& take,
-                  const Correspondence& map, const TakeSolveOptions& options, int begin, int end,
-                  const FrameSink& write) {
+void solveInOrder(TakeSolver& first, const TriMesh& mesh, const Correspondence& map,
+                  const TakeSolveOptions& options, int begin, int end, const FrameSink& write) {
     struct Solved {
         Positions V;
         FrameReport report;
@@ -174,12 +208,12 @@ void solveInOrder(TakeSolver& first, const TriMesh& mesh, const C3dTake& take,
         try {
             std::unique_ptr<TakeSolver> own;
             if (worker > 0) {
-                // The first solver's alignment, rather than finding it again.
+                // The first solver's trajectories and alignment, rather than finding them again.
                 TakeSolveOptions same = options;
                 same.alignment = first.calibration().takeToMesh;
                 same.calibrationFrame = first.calibration().frame;
                 if (options.calibrate == CalibrateMode::Shape) same.calibratedRest = first.rest().V;
-                own = std::make_unique<TakeSolver>(mesh, take, map, same);
+                own = std::make_unique<TakeSolver>(mesh, first, map, same);
             }
             TakeSolver& solver = worker > 0 ? *own : first;
             for (;;) {
@@ -249,12 +283,10 @@ void solveInOrder(TakeSolver& first, const TriMesh& mesh, const C3dTake& take,
     if (error) std::rethrow_exception(error);
 }
 
-}  // namespace
-
-ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspondence& map,
-                        const ExportRequest& request, const ExportProgress& progress,
-                        const ExportCalibrated& calibrated) {
-    TakeSolver solver(mesh, take, map, request.options);
+// take: what the sidecar says of the take (its samples are not read).
+ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake& take,
+                          const Correspondence& map, const ExportRequest& request,
+                          const ExportProgress& progress, const ExportCalibrated& calibrated) {
     const int count = solver.frameCount();
     const int end = request.end < 0 ? count : std::min(request.end, count);
     if (request.first < 0 || request.first >= end)
@@ -287,23 +319,23 @@ ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspo
     }
     if (calibrated) calibrated(solver.calibration());
     result.first = request.first;
-    json perFrame = json::array();
-    solveInOrder(solver, mesh, take, map, request.options, request.first, end,
+    PerFrameFigures perFrame;
+    solveInOrder(solver, mesh, map, request.options, request.first, end,
                  [&](int f, const Positions& V, const FrameReport& report, double distortion,
                      double strainP95) {
                      output.append(f, V);
                      // Quality a user checks before importing: stretch against the rest pose,
                      // and folds.
-                     perFrame.push_back({{"frame", f},
-                                         {"visible_markers", report.visibleMarkers},
-                                         {"residual_rms_mm", report.residualRmsMm},
-                                         {"residual_max_mm", report.residualMaxMm},
-                                         {"edge_distortion", distortion},
-                                         {"edge_strain_p95", strainP95},
-                                         {"folded_faces", report.foldedFaces},
-                                         {"dent_ratio", report.dentRatio},
-                                         {"iterations", report.iterations},
-                                         {"ms", report.milliseconds}});
+                     perFrame.add({{"frame", f},
+                                   {"visible_markers", report.visibleMarkers},
+                                   {"residual_rms_mm", report.residualRmsMm},
+                                   {"residual_max_mm", report.residualMaxMm},
+                                   {"edge_distortion", distortion},
+                                   {"edge_strain_p95", strainP95},
+                                   {"folded_faces", report.foldedFaces},
+                                   {"dent_ratio", report.dentRatio},
+                                   {"iterations", report.iterations},
+                                   {"ms", report.milliseconds}});
                      ++result.framesWritten;
                      if (progress && !progress(result.framesWritten, end - request.first, report) &&
                          f + 1 < end) {
@@ -313,13 +345,26 @@ ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspo
                      return true;
                  });
     output.finish();
-    writeFileAtomically(
-        result.sidecarPath,
-        sidecarJson(take, request, solver.calibration(), result,
-                    calibrationJson(request, mesh, solver, restFile), std::move(perFrame))
-                .dump(2) +
-            "\n");
+    perFrame.write(result.sidecarPath, sidecarJson(take, request, solver.calibration(), result,
+                                                   calibrationJson(request, mesh, solver, restFile),
+                                                   perFrame.summary()));
     return result;
+}
+
+}  // namespace
+
+ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspondence& map,
+                        const ExportRequest& request, const ExportProgress& progress,
+                        const ExportCalibrated& calibrated) {
+    TakeSolver solver(mesh, take, map, request.options);
+    return exportSolved(solver, mesh, take, map, request, progress, calibrated);
+}
+
+ExportResult exportTake(const TriMesh& mesh, const C3dFrameReader& take, const Correspondence& map,
+                        const ExportRequest& request, const ExportProgress& progress,
+                        const ExportCalibrated& calibrated) {
+    TakeSolver solver(mesh, take, map, request.options);
+    return exportSolved(solver, mesh, take.take(), map, request, progress, calibrated);
 }
 
 }  // namespace boneless

@@ -6,6 +6,7 @@
 #include <exception>
 #include <limits>
 
+#include "boneless/C3dFrameReader.h"
 #include "boneless/DentGauge.h"
 #include "boneless/Error.h"
 #include "boneless/TrajectoryFilter.h"
@@ -20,16 +21,51 @@ std::vector<SurfacePoint> surfacePoints(const Correspondence& map) {
     return points;
 }
 
+namespace {
+// Frames read past the one asked for: frames are mostly asked for in order.
+constexpr std::size_t kWindowAhead = 256;
+
+void checkCalibrationFrame(int frame, std::size_t frames, const std::string& file) {
+    if (frame >= 0 && static_cast<std::size_t>(frame) >= frames)
+        throw Error(file + ": calibration frame " + std::to_string(frame) + " is past the take's " +
+                    std::to_string(frames) + " frames");
+}
+}  // namespace
+
 TakeSolver::TakeSolver(const TriMesh& rest, const C3dTake& take, const Correspondence& map,
                        TakeSolveOptions options)
-    : rest_(rest), take_(take), options_(std::move(options)) {
+    : rest_(rest), options_(std::move(options)) {
     map.checkMesh(rest.vertexCount(), "the mesh", &rest);
-    points_ = map.resolve(take_);
-    if (options_.calibrationFrame >= frameCount())
-        throw Error(take.file + ": calibration frame " + std::to_string(options_.calibrationFrame) +
-                    " is past the take's " + std::to_string(frameCount()) + " frames");
-    if (options_.lowPassHz > 0) lowPassFilter(take_.samples, take_.rate, options_.lowPassHz);
+    const std::vector<std::size_t> points = map.resolve(take);
+    checkCalibrationFrame(options_.calibrationFrame, take.frameCount(), take.file);
+    track_ = std::make_shared<MarkerTrack>(take, points, options_.lowPassHz);
+    prepare(map);
+}
 
+TakeSolver::TakeSolver(const TriMesh& rest, const C3dFrameReader& take, const Correspondence& map,
+                       TakeSolveOptions options)
+    : rest_(rest), options_(std::move(options)) {
+    map.checkMesh(rest.vertexCount(), "the mesh", &rest);
+    const std::vector<std::size_t> points = map.resolve(take.take());
+    checkCalibrationFrame(options_.calibrationFrame, take.frameCount(), take.take().file);
+    track_ = std::make_shared<MarkerTrack>(take, points, options_.lowPassHz);
+    prepare(map);
+}
+
+TakeSolver::TakeSolver(const TriMesh& rest, const TakeSolver& same, const Correspondence& map,
+                       TakeSolveOptions options)
+    : rest_(rest), track_(same.track_), options_(std::move(options)) {
+    map.checkMesh(rest.vertexCount(), "the mesh", &rest);
+    options_.lowPassHz = same.options_.lowPassHz;
+    checkCalibrationFrame(options_.calibrationFrame, track_->frames(), track_->file());
+    prepare(map);
+}
+
+void TakeSolver::prepare(const Correspondence& map) {
+    auto calibrateTrack = [&](const Positions& R) {
+        return calibrate(
+            frameCount(), [&](int f) { return trackFrame(f, false); }, track_->file(), R);
+    };
     SolverOptions solverOptions = options_.solver;
     solverOptions.method = SolverOptions::Method::LocalGlobal;
     solverOptions.constraints = SolverOptions::Constraints::Soft;
@@ -43,8 +79,8 @@ TakeSolver::TakeSolver(const TriMesh& rest, const C3dTake& take, const Correspon
     // unit, which the alignment finds: align, place the markers with that scale, align again.
     // Without this, a 1 cm offset on a small mesh inflates the scale by a few percent.
     auto restMarkers = [&](double meshUnitsPerMm) {
-        Positions R(points_.size(), 3);
-        for (size_t k = 0; k < points_.size(); ++k)
+        Positions R(track_->markers(), 3);
+        for (size_t k = 0; k < track_->markers(); ++k)
             R.row(k) = (surfacePosition(rest_, rest_.V, points[k]) +
                         map.markers[k].offsetMm * meshUnitsPerMm *
                             surfaceNormal(rest_, *encoding_, points[k]))
@@ -59,18 +95,18 @@ TakeSolver::TakeSolver(const TriMesh& rest, const C3dTake& take, const Correspon
         for (int pass = 0; pass < 3; ++pass) {
             const Positions R = restMarkers(meshUnitsPerMm);
             if (options_.calibrationFrame >= 0) {
-                const Positions P = takeFrame(take_, points_, options_.calibrationFrame);
+                const Positions P = trackFrame(options_.calibrationFrame, false);
                 calibration_.frame = options_.calibrationFrame;
                 calibration_.takeToMesh = fitSimilarity(P, R);
                 calibration_.residual = alignmentResidual(calibration_.takeToMesh, P, R);
             } else {
-                calibration_ = calibrate(take_, points_, R);
+                calibration_ = calibrateTrack(R);
             }
-            meshUnitsPerMm = calibration_.takeToMesh.scale / take_.unitToMm;
+            meshUnitsPerMm = calibration_.takeToMesh.scale / track_->unitToMm();
         }
     }
     // Offsets are given in millimetres of the take; the solver works in mesh units.
-    meshUnitsPerMm_ = calibration_.takeToMesh.scale / take_.unitToMm;
+    meshUnitsPerMm_ = calibration_.takeToMesh.scale / track_->unitToMm();
     for (const auto& m : map.markers)
         solverOptions.markerOffsets.push_back(m.offsetMm * meshUnitsPerMm_);
     solver_.prepare(rest_, points, solverOptions);
@@ -79,7 +115,7 @@ TakeSolver::TakeSolver(const TriMesh& rest, const C3dTake& take, const Correspon
     // becomes the rest every frame is encoded, solved and measured against.
     if (options_.calibrate == CalibrateMode::Shape) {
         if (calibration_.frame < 0)
-            calibration_.frame = calibrate(take_, points_, restMarkers(meshUnitsPerMm_)).frame;
+            calibration_.frame = calibrateTrack(restMarkers(meshUnitsPerMm_)).frame;
         if (options_.calibratedRest) {
             if (options_.calibratedRest->rows() != rest_.vertexCount() ||
                 options_.calibratedRest->cols() != 3)
@@ -111,13 +147,34 @@ Positions TakeSolver::predictedMarkers(const Positions& V) const {
     return solver_.markerPositions(V);
 }
 
+Positions TakeSolver::trackFrame(int frame, bool filled) const {
+    const std::size_t frames = track_->frames(), f = static_cast<std::size_t>(frame);
+    const int maxFrames = static_cast<int>(std::floor(options_.fillGapSeconds * track_->rate()));
+    // gapFilled looks at most maxFrames + 2 frames either side of the frame; the window always
+    // holds that much, so a frame reads the same whichever window it was read through.
+    const std::size_t margin =
+        std::min(frames, static_cast<std::size_t>(std::max(0, maxFrames)) + 2);
+    const std::size_t from = f >= margin ? f - margin : 0, to = std::min(frames, f + margin + 1);
+    std::lock_guard<std::mutex> lock(windowMutex_);
+    if (from < windowFirst_ || to > windowFirst_ + window_.frames()) {
+        windowFirst_ = from;
+        window_ = track_->read(from, std::min(frames - from, to - from + kWindowAhead));
+    }
+    const std::size_t w = f - windowFirst_;
+    Positions T(window_.points(), 3);
+    for (int k = 0; k < T.rows(); ++k) {
+        auto x = window_.position(w, k);
+        if (!x && filled) x = gapFilled(window_, w, k, maxFrames);
+        if (x)
+            T.row(k) = x->transpose();
+        else
+            T.row(k).setConstant(std::numeric_limits<double>::quiet_NaN());
+    }
+    return T;
+}
+
 Positions TakeSolver::targets(int frame, bool filled) const {
-    Positions T = takeFrame(take_, points_, frame);
-    const int maxFrames = static_cast<int>(std::floor(options_.fillGapSeconds * take_.rate));
-    if (filled)
-        for (int k = 0; k < T.rows(); ++k)
-            if (const auto x = gapFilled(take_.samples, frame, points_[k], maxFrames))
-                T.row(k) = x->transpose();
+    Positions T = trackFrame(frame, filled);
     for (int k = 0; k < T.rows(); ++k)
         if (T.row(k).allFinite())
             T.row(k) = calibration_.takeToMesh.apply(T.row(k).transpose()).transpose();
@@ -126,7 +183,7 @@ Positions TakeSolver::targets(int frame, bool filled) const {
 
 Positions TakeSolver::solve(int frame, FrameReport& report, const std::atomic<bool>* stop) {
     if (frame < 0 || frame >= frameCount())
-        throw Error(take_.file + ": frame " + std::to_string(frame) + " is outside the take");
+        throw Error(track_->file() + ": frame " + std::to_string(frame) + " is outside the take");
     const auto start = std::chrono::steady_clock::now();
     const Positions T = targets(frame);  // what was seen: the residual is measured on it
     const Positions pull = targets(frame, true);

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <functional>
+#include <string>
 #include <vector>
 
 #include "boneless/RigidFit.h"
@@ -23,6 +25,11 @@ struct Calibration {
 // entry of `points`. Throws Error when no frame shows three usable markers.
 Calibration calibrate(const C3dTake& take, const std::vector<std::size_t>& points,
                       const Positions& restPositions);
+
+// The same over frames given one at a time by frameAt (K by 3, NaN rows where missing), for a
+// take not held in memory; `file` names the take in the error.
+Calibration calibrate(int frames, const std::function<Positions(int)>& frameAt,
+                      const std::string& file, const Positions& restPositions);
 
 // The take's positions of `points` at `frame`, NaN rows where missing.
 Positions takeFrame(const C3dTake& take, const std::vector<std::size_t>& points, int frame);

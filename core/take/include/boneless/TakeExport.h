@@ -11,6 +11,8 @@
 
 namespace boneless {
 
+class C3dFrameReader;
+
 // What `boneless-cli solve` and the application's export both write, so that the two produce the
 // same files: DIR/<stem>_<frame:04>.obj (input vertex order, same faces) or one DIR/<stem>.pc2,
 // .mdd or .glb, plus the sidecar DIR/<stem>.json (fps, frame range, whether the run completed,
@@ -48,6 +50,11 @@ using ExportCalibrated = std::function<void(const Calibration&)>;
 
 // Solves and writes the frames. Throws Error naming the file or option for bad input.
 ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspondence& map,
+                        const ExportRequest& request, const ExportProgress& progress = {},
+                        const ExportCalibrated& calibrated = {});
+// The same for a take streamed from its file (what `boneless-cli solve` does): memory does not
+// grow with the take's length, and the files are the ones the take read whole gives.
+ExportResult exportTake(const TriMesh& mesh, const C3dFrameReader& take, const Correspondence& map,
                         const ExportRequest& request, const ExportProgress& progress = {},
                         const ExportCalibrated& calibrated = {});
 

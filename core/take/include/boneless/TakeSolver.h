@@ -1,6 +1,7 @@
 #pragma once
 
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <vector>
 
@@ -8,11 +9,13 @@
 #include "boneless/Alignment.h"
 #include "boneless/C3dTake.h"
 #include "boneless/Correspondence.h"
+#include "boneless/MarkerTrack.h"
 #include "boneless/MeshTopology.h"
 #include "boneless/Reconstruction.h"
 
 namespace boneless {
 
+class C3dFrameReader;
 class DentGauge;
 
 struct TakeSolveOptions {
@@ -67,6 +70,14 @@ class TakeSolver {
   public:
     TakeSolver(const TriMesh& rest, const C3dTake& take, const Correspondence& map,
                TakeSolveOptions options = {});
+    // The same for a take streamed from its file: memory does not grow with the take's length,
+    // and every frame's answer is the one the take read whole gives.
+    TakeSolver(const TriMesh& rest, const C3dFrameReader& take, const Correspondence& map,
+               TakeSolveOptions options = {});
+    // Another solver of the same take and map as `same`, sharing its trajectories (read and
+    // filtered once): for workers. options.lowPassHz is `same`'s.
+    TakeSolver(const TriMesh& rest, const TakeSolver& same, const Correspondence& map,
+               TakeSolveOptions options);
     ~TakeSolver();
     // How far about each marker's point the dent ratio looks (mm): past the one ring of a
     // 13K-vertex human, whose edges are about 15 mm.
@@ -75,7 +86,7 @@ class TakeSolver {
     const Calibration& calibration() const { return calibration_; }
     // What frames are solved against: the calibrated rest when calibrating, else the rest mesh.
     const TriMesh& rest() const { return rest_; }
-    int frameCount() const { return static_cast<int>(take_.frameCount()); }
+    int frameCount() const { return static_cast<int>(track_->frames()); }
     // The markers' targets at `frame` in mesh coordinates (K by 3, NaN rows where missing); with
     // `filled`, a marker in a short gap has its place on its trajectory (what solve() pulls to).
     Positions targets(int frame, bool filled = false) const;
@@ -90,9 +101,16 @@ class TakeSolver {
     Positions predictedMarkers(const Positions& V) const;
 
   private:
+    void prepare(const Correspondence& map);
+    // The track's markers at `frame` (K by 3, NaN rows where missing), and with `filled` the
+    // short gaps filled, read through a window of frames about it.
+    Positions trackFrame(int frame, bool filled) const;
+
     TriMesh rest_;
-    C3dTake take_;
-    std::vector<std::size_t> points_;
+    std::shared_ptr<const MarkerTrack> track_;
+    mutable std::mutex windowMutex_;
+    mutable C3dSamples window_;  // frames [windowFirst_, windowFirst_ + window_.frames())
+    mutable std::size_t windowFirst_ = 0;
     TakeSolveOptions options_;
     Calibration calibration_;
     Reconstruction solver_;                  // local/global

@@ -1,0 +1,92 @@
+#include "boneless/C3dFrameReader.h"
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <cerrno>
+#include <cstring>
+#include <stdexcept>
+#include <vector>
+
+#include "C3dDetail.h"
+
+namespace boneless {
+
+using namespace c3d_detail;
+
+namespace {
+[[noreturn]] void failSystem(const std::string& path, const char* what) {
+    throw C3dError(path, C3dError::kNoOffset, std::string(what) + ": " + std::strerror(errno));
+}
+}  // namespace
+
+C3dFrameReader::C3dFrameReader(const std::string& path, const C3dReadOptions& options)
+    : options_(options) {
+    fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd_ < 0) failSystem(path, "cannot open");
+    try {
+        struct stat st {};
+        if (::fstat(fd_, &st) != 0) failSystem(path, "cannot determine the file size");
+        if (S_ISDIR(st.st_mode))
+            throw C3dError(path, C3dError::kNoOffset, "is a directory, not a C3D file");
+        const std::size_t size = static_cast<std::size_t>(st.st_size);
+        // The reader's checks run on a mapping of the file: they touch the header and the
+        // parameters only, so the 3D data is never brought into memory here.
+        void* map = size ? ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd_, 0) : nullptr;
+        if (map == MAP_FAILED) failSystem(path, "cannot map");
+        PointLayout L;
+        try {
+            L = readTakeLayout({static_cast<const std::uint8_t*>(map), size, path}, options, take_);
+        } catch (...) {
+            if (map) ::munmap(map, size);
+            throw;
+        }
+        if (map) ::munmap(map, size);
+        frames_ = L.frames;
+        points_ = L.points;
+        dataStart_ = L.dataStart;
+        frameBytes_ = L.frameBytes();
+        analogWords_ = L.analogWords;
+        scale_ = L.scale;
+        take_.samples = C3dSamples(0, points_);
+    } catch (...) {
+        ::close(fd_);
+        throw;
+    }
+}
+
+C3dFrameReader::~C3dFrameReader() {
+    ::close(fd_);
+}
+
+C3dSamples C3dFrameReader::read(std::size_t first, std::size_t count) const {
+    if (first > frames_ || count > frames_ - first)
+        throw std::out_of_range("C3dFrameReader: frames " + std::to_string(first) + "+" +
+                                std::to_string(count) + " outside " + std::to_string(frames_));
+    C3dSamples samples(count, points_);
+    if (count == 0 || points_ == 0) return samples;
+    std::vector<std::uint8_t> bytes(count * frameBytes_);
+    const std::size_t offset = dataStart_ + first * frameBytes_;
+    for (std::size_t done = 0; done < bytes.size();) {
+        const ssize_t n = ::pread(fd_, bytes.data() + done, bytes.size() - done, offset + done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0)
+            throw C3dError(take_.file, offset + done,
+                           n == 0 ? std::string("the file became shorter while being read")
+                                  : std::string("read error: ") + std::strerror(errno));
+        done += static_cast<std::size_t>(n);
+    }
+    PointLayout L;
+    L.frames = count;
+    L.points = points_;
+    L.analogWords = analogWords_;
+    L.storage = take_.storage;
+    L.scale = scale_;
+    L.processor = take_.processor;
+    L.keepZeroSamples = options_.keepZeroSamples;
+    decodePoints({bytes.data(), bytes.size(), take_.file}, L, samples);
+    return samples;
+}
+
+}  // namespace boneless

@@ -1,0 +1,54 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "boneless/C3dTake.h"
+
+namespace boneless {
+
+class C3dFrameReader;
+
+// The trajectories of a take's mapped markers as the TakeSolver solves from them (one column per
+// mapped point, in the take's units), low-pass filtered when lowPassHz > 0, read a window of
+// frames at a time. Built from a take in memory they stay in memory; streamed from its file they
+// are spooled to an unnamed temporary file, so memory does not grow with the take's length.
+// Either way a frame's samples are the same.
+class MarkerTrack {
+  public:
+    MarkerTrack(const C3dTake& take, const std::vector<std::size_t>& points, double lowPassHz);
+    MarkerTrack(const C3dFrameReader& reader, const std::vector<std::size_t>& points,
+                double lowPassHz);
+    ~MarkerTrack();
+    MarkerTrack(const MarkerTrack&) = delete;
+    MarkerTrack& operator=(const MarkerTrack&) = delete;
+
+    std::size_t frames() const { return frames_; }
+    std::size_t markers() const { return markers_; }
+    const std::string& file() const { return file_; }
+    double rate() const { return rate_; }
+    double unitToMm() const { return unitToMm_; }
+
+    // Frames [first, first + count) of the markers (residuals are not kept). Safe to call from
+    // several threads. Throws Error when the spool cannot be read.
+    C3dSamples read(std::size_t first, std::size_t count) const;
+
+  private:
+    void describe(const C3dTake& take, std::size_t frames, std::size_t markers);
+    // A marker's frames [first, first + xyz.size() / 3) to and from the spool.
+    void spoolColumn(std::size_t marker, std::size_t first, std::vector<double>& xyz);
+    void unspoolColumn(std::size_t marker, std::size_t first, std::vector<double>& xyz) const;
+    void moveColumn(bool write, std::size_t marker, std::size_t first, double* xyz,
+                    std::size_t count) const;
+
+    std::string file_;
+    double rate_ = 0, unitToMm_ = 1;
+    std::size_t frames_ = 0, markers_ = 0;
+    C3dSamples memory_;           // when built from a take in memory
+    std::FILE* spool_ = nullptr;  // when streamed: marker-major, xyz doubles, NaN where missing
+};
+
+}  // namespace boneless

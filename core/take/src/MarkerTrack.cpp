@@ -1,0 +1,138 @@
+#include "boneless/MarkerTrack.h"
+
+#include <unistd.h>
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+
+#include "boneless/C3dFrameReader.h"
+#include "boneless/Error.h"
+#include "boneless/TrajectoryFilter.h"
+
+namespace boneless {
+
+namespace {
+// Frames read from the file at a time while spooling: a few MB for a hundred markers.
+constexpr std::size_t kSpoolBlock = 2048;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+}  // namespace
+
+void MarkerTrack::describe(const C3dTake& take, std::size_t frames, std::size_t markers) {
+    file_ = take.file;
+    rate_ = take.rate;
+    unitToMm_ = take.unitToMm;
+    frames_ = frames;
+    markers_ = markers;
+}
+
+MarkerTrack::MarkerTrack(const C3dTake& take, const std::vector<std::size_t>& points,
+                         double lowPassHz) {
+    describe(take, take.frameCount(), points.size());
+    memory_ = C3dSamples(frames_, markers_);
+    for (std::size_t f = 0; f < frames_; ++f)
+        for (std::size_t k = 0; k < markers_; ++k)
+            if (const auto p = take.samples.position(f, points[k]))
+                memory_.set(f, k, p->x(), p->y(), p->z());
+    if (lowPassHz > 0) lowPassFilter(memory_, rate_, lowPassHz);
+}
+
+MarkerTrack::MarkerTrack(const C3dFrameReader& reader, const std::vector<std::size_t>& points,
+                         double lowPassHz) {
+    describe(reader.take(), reader.frameCount(), points.size());
+    spool_ = std::tmpfile();
+    if (!spool_)
+        throw Error(file_ + ": cannot create a temporary file for the take's trajectories: " +
+                    std::strerror(errno));
+    // The file's frames are stored point by point; the spool turns them marker by marker, so
+    // that a marker's whole trajectory can be filtered alone.
+    std::vector<double> xyz;
+    for (std::size_t first = 0; first < frames_; first += kSpoolBlock) {
+        const std::size_t count = std::min(kSpoolBlock, frames_ - first);
+        const C3dSamples block = reader.read(first, count);
+        for (std::size_t k = 0; k < markers_; ++k) {
+            xyz.assign(3 * count, kNaN);
+            for (std::size_t f = 0; f < count; ++f)
+                if (const auto p = block.position(f, points[k]))
+                    for (int c = 0; c < 3; ++c) xyz[3 * f + c] = (*p)[c];
+            spoolColumn(k, first, xyz);
+        }
+    }
+    if (!(lowPassHz > 0)) return;
+    // The filter runs over whole runs of a trajectory: one marker's at a time is in memory.
+    for (std::size_t k = 0; k < markers_; ++k) {
+        C3dSamples column(frames_, 1);
+        for (std::size_t first = 0; first < frames_; first += kSpoolBlock) {
+            const std::size_t count = std::min(kSpoolBlock, frames_ - first);
+            xyz.assign(3 * count, kNaN);
+            unspoolColumn(k, first, xyz);
+            for (std::size_t f = 0; f < count; ++f)
+                column.set(first + f, 0, xyz[3 * f], xyz[3 * f + 1], xyz[3 * f + 2]);
+        }
+        lowPassFilter(column, rate_, lowPassHz);
+        for (std::size_t first = 0; first < frames_; first += kSpoolBlock) {
+            const std::size_t count = std::min(kSpoolBlock, frames_ - first);
+            xyz.assign(column.xyzData() + 3 * first, column.xyzData() + 3 * (first + count));
+            spoolColumn(k, first, xyz);
+        }
+    }
+}
+
+MarkerTrack::~MarkerTrack() {
+    if (spool_) std::fclose(spool_);
+}
+
+void MarkerTrack::moveColumn(bool write, std::size_t marker, std::size_t first, double* xyz,
+                             std::size_t count) const {
+    char* bytes = reinterpret_cast<char*>(xyz);
+    const std::size_t size = 3 * count * sizeof(double);
+    const off_t offset = static_cast<off_t>((marker * frames_ + first) * 3 * sizeof(double));
+    for (std::size_t done = 0; done < size;) {
+        const int fd = ::fileno(spool_);
+        const ssize_t n = write ? ::pwrite(fd, bytes + done, size - done, offset + done)
+                                : ::pread(fd, bytes + done, size - done, offset + done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0)
+            throw Error(
+                file_ + ": cannot " +
+                (write ? "write the take's trajectories to" : "read the take's trajectories from") +
+                " a temporary file: " +
+                (n == 0 ? std::string("it is shorter than written")
+                        : std::string(std::strerror(errno))));
+        done += static_cast<std::size_t>(n);
+    }
+}
+
+void MarkerTrack::spoolColumn(std::size_t marker, std::size_t first, std::vector<double>& xyz) {
+    moveColumn(true, marker, first, xyz.data(), xyz.size() / 3);
+}
+
+void MarkerTrack::unspoolColumn(std::size_t marker, std::size_t first,
+                                std::vector<double>& xyz) const {
+    moveColumn(false, marker, first, xyz.data(), xyz.size() / 3);
+}
+
+C3dSamples MarkerTrack::read(std::size_t first, std::size_t count) const {
+    if (first > frames_ || count > frames_ - first)
+        throw std::out_of_range("MarkerTrack: frames " + std::to_string(first) + "+" +
+                                std::to_string(count) + " outside " + std::to_string(frames_));
+    C3dSamples out(count, markers_);
+    if (!spool_) {
+        for (std::size_t f = 0; f < count; ++f)
+            for (std::size_t k = 0; k < markers_; ++k)
+                if (const auto p = memory_.position(first + f, k))
+                    out.set(f, k, p->x(), p->y(), p->z());
+        return out;
+    }
+    std::vector<double> xyz(3 * count);
+    for (std::size_t k = 0; k < markers_; ++k) {
+        unspoolColumn(k, first, xyz);
+        for (std::size_t f = 0; f < count; ++f)  // NaN stays missing
+            out.set(f, k, xyz[3 * f], xyz[3 * f + 1], xyz[3 * f + 2]);
+    }
+    return out;
+}
+
+}  // namespace boneless
