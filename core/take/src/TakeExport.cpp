@@ -18,10 +18,11 @@
 
 #include "FrameOutput.h"
 #include "boneless/ActorCalibration.h"
-#include "boneless/Parallel.h"
 #include "boneless/Error.h"
 #include "boneless/Metrics.h"
 #include "boneless/ObjWriter.h"
+#include "boneless/Parallel.h"
+#include "boneless/TakeOptionsJson.h"
 
 namespace boneless {
 
@@ -84,19 +85,6 @@ json summaryJson(const json& perFrame) {
             {"ms_per_frame_median", n ? ms[n / 2] : 0.0}};
 }
 
-json solverJson(const TakeSolveOptions& o) {
-    json j = {{"method", methodName(o.solver.method)},
-              {"marker_weight", o.markerWeight},
-              {"low_pass_hz", o.lowPassHz},
-              {"fill_gaps_s", o.fillGapSeconds}};
-    if (o.solver.method == SolverOptions::Method::Exact) {
-        j["rigidity_weight"] = o.solver.rigidityWeight;
-        j["orientation_weight"] = o.solver.orientationWeight;
-        j["max_iterations"] = o.solver.maxIterations;
-    }
-    return j;
-}
-
 // How the rest was fitted to the actor, and how far that moved it from the input mesh.
 json calibrationJson(const ExportRequest& request, const TriMesh& mesh, const TakeSolver& solver,
                      const std::string& restFile) {
@@ -115,7 +103,7 @@ json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibr
     const double meshUnitsPerMm = s.scale / take.unitToMm;
     const TakeSolveOptions& o = request.options;
     return {{"format", "boneless-solve"},
-            {"version", 1},
+            {"version", 2},
             {"fps", take.rate},
             {"frame_range", {result.first, result.first + result.framesWritten}},
             {"frames_written", result.framesWritten},
@@ -142,7 +130,7 @@ json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibr
               {"translation", {s.t.x(), s.t.y(), s.t.z()}},
               {"overridden", o.alignment.has_value()}}},
             {"calibration", std::move(calibration)},
-            {"solver", solverJson(o)},
+            {"options", toJson(o)},
             {"summary", summaryJson(perFrame)},
             {"per_frame", std::move(perFrame)}};
 }
@@ -254,6 +242,7 @@ void solveInOrder(TakeSolver& first, const TriMesh& mesh, const C3dTake& take,
 ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspondence& map,
                         const ExportRequest& request, const ExportProgress& progress,
                         const ExportCalibrated& calibrated) {
+    validate(request.options);
     TakeSolver solver(mesh, take, map, request.options);
     const int count = solver.frameCount();
     const int end = request.end < 0 ? count : std::min(request.end, count);
