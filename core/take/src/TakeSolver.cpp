@@ -6,9 +6,9 @@
 #include <exception>
 #include <limits>
 
+#include "TrajectoryFilter.h"
 #include "boneless/DentGauge.h"
 #include "boneless/Error.h"
-#include "boneless/TrajectoryFilter.h"
 
 namespace boneless {
 
