@@ -1,7 +1,9 @@
 # boneless_add_module(<name> [DEPENDS <module>...] [PUBLIC_LIBS <lib>...] [PRIVATE_LIBS <lib>...])
 #
 # One core module: the static library boneless_<name> from core/<name>/src, its public headers in
-# core/<name>/include/boneless. A module sees only the modules it names in DEPENDS (which must be
+# core/<name>/include/boneless, and boneless_<name>_internal, which adds the private headers of
+# core/<name>/src for the tests and benchmarks that check private pieces (never for ui/ or app/).
+# A module sees only the modules it names in DEPENDS (which must be
 # declared before it, so the order is a DAG), never Qt or VTK, and the configure step fails when a
 # source includes a header of a module it does not depend on.
 function(boneless_add_module name)
@@ -43,4 +45,9 @@ function(boneless_add_module name)
   boneless_forbid_dependencies(boneless_${name} PATTERNS "Qt" "VTK" "vtk" "boneless_ui"
     HEADERS "[<\"](Q[A-Z][A-Za-z]*|Qt[A-Za-z]*/|vtk[A-Za-z0-9_]*\\.h|boneless/ui/)")
   set_property(GLOBAL APPEND PROPERTY BONELESS_CORE_MODULES boneless_${name})
+
+  add_library(boneless_${name}_internal INTERFACE)
+  target_include_directories(boneless_${name}_internal INTERFACE ${dir}/src)
+  target_link_libraries(boneless_${name}_internal INTERFACE boneless_${name})
+  set_property(GLOBAL APPEND PROPERTY BONELESS_CORE_INTERNALS boneless_${name}_internal)
 endfunction()

@@ -10,6 +10,7 @@
 #include "Commands.h"
 #include "TakeJob.h"
 #include "boneless/Error.h"
+#include "boneless/TakeOptionsJson.h"
 
 using namespace boneless;
 using nlohmann::json;
@@ -22,13 +23,18 @@ struct BatchArgs {
     bool quiet = false;
 };
 
-// The keys a manifest entry may hold: the names of `solve`'s options.
+// The keys a manifest entry may hold: the names of `solve`'s options, each its flag's name with
+// '_' for '-' (the options of core's table: their JSON keys). Dashed keys, which manifests held
+// before, read the same.
 void applyKeys(const json& object, const fs::path& base, const std::string& where, TakeJob& job) {
     auto path = [&](const json& v) {
         const fs::path p(v.get<std::string>());
         return (p.is_absolute() ? p : base / p).lexically_normal().string();
     };
-    for (const auto& [key, value] : object.items()) {
+    if (!object.is_object()) throw Error(where + ": an entry is a JSON object");
+    for (const auto& [written, value] : object.items()) {
+        std::string key = written;
+        std::replace(key.begin(), key.end(), '-', '_');
         try {
             if (key == "mesh")
                 job.mesh = path(value);
@@ -44,24 +50,17 @@ void applyKeys(const json& object, const fs::path& base, const std::string& wher
                 job.format = value.get<std::string>();
             else if (key == "frames")
                 job.frames = value.get<std::string>();
-            else if (key == "solver")
-                job.solver = value.get<std::string>();
-            else if (key == "weight")
-                job.weight = value.get<double>();
-            else if (key == "lowpass")
-                job.lowPass = value.get<double>();
-            else if (key == "fill-gaps")
-                job.fillGaps = value.get<double>();
-            else if (key == "calibration-frame")
-                job.calibrationFrame = value.get<int>();
-            else if (key == "calibrate")
-                job.calibrate = value.get<std::string>();
-            else if (key == "write-calibrated-rest")
+            else if (key == "write_calibrated_rest")
                 job.writeCalibratedRest = value.get<bool>();
-            else
-                throw Error(where + ": unknown key '" + key + "'");
+            else if (const TakeOption* option = findTakeOption(key)) {
+                TakeSolveOptions check;  // names the key and what is wrong, before any solve
+                fromJson(json{{key, value}}, check, where);
+                for (const std::string& old : option->oldKeys) job.options.erase(old);
+                job.options[option->key] = value;
+            } else
+                throw Error(where + ": unknown key '" + written + "'");
         } catch (const json::exception&) {
-            throw Error(where + ": '" + key + "' has the wrong type (" + value.dump() + ")");
+            throw Error(where + ": '" + written + "' has the wrong type (" + value.dump() + ")");
         }
     }
 }

@@ -7,9 +7,11 @@
 
 #include "Commands.h"
 #include "FrameRange.h"
+#include "OptionFlags.h"
 #include "boneless/Error.h"
 #include "boneless/Sampling.h"
 #include "boneless/SequenceEvaluation.h"
+#include "boneless/TakeOptionsJson.h"
 
 using namespace boneless;
 
@@ -23,7 +25,7 @@ struct EvalArgs {
     std::string method = "boneless";
     double drop = 0;
     unsigned seed = 1;
-    std::string solver = methodName(SolverOptions{}.method);
+    nlohmann::json options = nlohmann::json::object();  // the solver's options given
     bool json = false;
     bool quiet = false;
 };
@@ -90,7 +92,7 @@ void run(const EvalArgs& args) {
     options.endFrame = range.end;
     options.dropPercent = args.drop;
     options.seed = args.seed;
-    parseMethod(args.solver, options.solver.method);  // CLI11 has checked the name
+    fromJson(args.options, options.solver, "eval");
 
     std::vector<EvaluationOptions::Method> methods;
     if (args.method == "boneless" || args.method == "both")
@@ -105,7 +107,7 @@ void run(const EvalArgs& args) {
                     args.drop > 0
                         ? (", " + std::to_string(args.drop) + " % dropped per frame").c_str()
                         : "",
-                    args.solver.c_str());
+                    methodName(options.solver.method));
     std::vector<Evaluation> results;
     for (auto method : methods) {
         options.method = method;
@@ -127,7 +129,7 @@ void run(const EvalArgs& args) {
         out["faces"] = sequence.rest.faceCount();
         out["markers"] = options.markers.size();
         out["drop_pct"] = args.drop;
-        out["solver"] = args.solver;
+        out["options"] = toJson(options.solver);
         nlohmann::json perFrame = nlohmann::json::array();
         for (const auto& f : results[0].frames)
             perFrame.push_back({{"frame", f.frame},
@@ -175,11 +177,7 @@ void registerEvalCommand(CLI::App& app) {
     cmd->add_option("--drop", args->drop, "Percentage of markers missing in each frame (seeded)")
         ->check(CLI::Range(0.0, 100.0));
     cmd->add_option("--seed", args->seed, "Seed for --drop");
-    cmd->add_option("--solver", args->solver,
-                    "local-global (each frame from its own markers, fast) or exact (Gauss-Newton "
-                    "refining it: the energy's minimum, slower)")
-        ->check(CLI::IsMember({methodName(SolverOptions::Method::LocalGlobal),
-                               methodName(SolverOptions::Method::Exact)}));
+    addOptionFlags(cmd, args->options, toJson(EvaluationOptions{}.solver), true);
     cmd->add_flag("--json", args->json, "Print one JSON object");
     cmd->add_flag("--quiet", args->quiet, "No per-frame lines");
     cmd->callback([args, k, file] {

@@ -10,9 +10,11 @@
 #include <nlohmann/json.hpp>
 
 #include "FrameRange.h"
+#include "OptionFlags.h"
 #include "boneless/C3dFrameReader.h"
 #include "boneless/Error.h"
 #include "boneless/MeshReader.h"
+#include "boneless/TakeOptionsJson.h"
 
 using namespace boneless;
 
@@ -71,25 +73,7 @@ void addTakeJobOptions(CLI::App* cmd, TakeJob& job) {
         formats += std::string(formats.empty() ? "" : "; ") + f.name + ": " + f.description;
     cmd->add_option("--format", job.format, formats)->check(CLI::IsMember(formatNames()));
     cmd->add_option("--frames", job.frames, "Frame range A:B (0-based, B excluded)");
-    cmd->add_option("--weight", job.weight, "Marker weight (soft constraints)")
-        ->check(CLI::PositiveNumber);
-    cmd->add_option("--lowpass", job.lowPass, "Low-pass cutoff in Hz (0 = off)");
-    cmd->add_option("--fill-gaps", job.fillGaps,
-                    "Place a marker missing for at most this many seconds on its trajectory "
-                    "(0 = off)")
-        ->check(CLI::NonNegativeNumber);
-    cmd->add_option("--calibration-frame", job.calibrationFrame,
-                    "Frame to align the take at (default: chosen automatically)");
-    cmd->add_option("--solver", job.solver,
-                    "local-global (each frame from its own markers, fast) or exact (Gauss-Newton "
-                    "refining it: the energy's minimum, slower)")
-        ->check(CLI::IsMember({methodName(SolverOptions::Method::LocalGlobal),
-                               methodName(SolverOptions::Method::Exact)}));
-    cmd->add_option("--calibrate", job.calibrate,
-                    "shape (fit the rest mesh to the actor at the calibration frame, then solve "
-                    "every frame against it) or none (solve against the rest mesh as given)")
-        ->check(CLI::IsMember(
-            {calibrateModeName(CalibrateMode::Shape), calibrateModeName(CalibrateMode::None)}));
+    addOptionFlags(cmd, job.options, toJson(TakeSolveOptions{}), false);
     cmd->add_flag("--write-calibrated-rest", job.writeCalibratedRest,
                   "Also write <stem>_calibrated_rest.obj, the rest fitted to the actor");
 }
@@ -106,17 +90,10 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet) {
     const auto format = findExportFormat(job.format);
     if (!format) throw Error("unknown output format '" + job.format + "'");
     request.format = *format;
-    if (!parseMethod(job.solver, request.options.solver.method))
-        throw Error("unknown solver '" + job.solver + "'");
     const FrameRange range = parseFrameRange(job.frames);
     request.first = range.first;
     request.end = range.end;
-    request.options.markerWeight = job.weight;
-    request.options.lowPassHz = job.lowPass;
-    request.options.fillGapSeconds = job.fillGaps;
-    request.options.calibrationFrame = job.calibrationFrame;
-    if (!parseCalibrateMode(job.calibrate, request.options.calibrate))
-        throw Error("unknown calibrate mode '" + job.calibrate + "'");
+    fromJson(job.options, request.options, "options");
     request.writeCalibratedRest = job.writeCalibratedRest;
     request.meshPath = job.mesh;
     request.group = job.group;

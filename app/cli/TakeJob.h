@@ -1,6 +1,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "boneless/Error.h"
@@ -15,16 +16,14 @@ struct TakeJobInterrupted : boneless::Error {
 // entry, so both read their inputs, align, solve and write the same way.
 struct TakeJob {
     std::string mesh, group, c3d, map, out, format = "obj", frames;
-    double weight = boneless::TakeSolveOptions{}.markerWeight;
-    double lowPass = 0;
-    double fillGaps = boneless::TakeSolveOptions{}.fillGapSeconds;
-    int calibrationFrame = -1;
-    std::string solver = boneless::methodName(boneless::SolverOptions{}.method);
-    std::string calibrate = boneless::calibrateModeName(boneless::TakeSolveOptions{}.calibrate);
     bool writeCalibratedRest = false;
+    // The solve options given (core's table, TakeOptionsJson: flags and manifest keys alike);
+    // the others keep TakeSolveOptions' defaults.
+    nlohmann::json options = nlohmann::json::object();
 };
 
-// The solver and format options of `solve` (everything but the input and output paths).
+// The solver and format options of `solve` (everything but the input and output paths): one
+// flag per option of core's table, named as its JSON key.
 void addTakeJobOptions(CLI::App* command, TakeJob& job);
 
 // Where the job's sidecar goes: OUT/<stem>.json.

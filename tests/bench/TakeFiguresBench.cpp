@@ -23,6 +23,7 @@
 #include "boneless/MeshReader.h"
 #include "boneless/Metrics.h"
 #include "boneless/PointCacheWriter.h"
+#include "boneless/TakeOptionsJson.h"
 #include "boneless/TakeSolver.h"
 
 using namespace boneless;
@@ -123,7 +124,17 @@ int main(int argc, char** argv) {
             dent.add(*std::max_element(r.begin(), r.end()), f);
             residual.add(sidecar["per_frame"][i]["residual_rms_mm"].get<double>(), f);
         }
-        std::printf("%s: %zu frames from %d\n", dir.c_str(), frames.size(), first);
+        // The options the run was solved with, read as the project reads its settings (a sidecar
+        // before version 2 kept them under "solver", the calibrate mode under "calibration").
+        TakeSolveOptions options;
+        if (sidecar.contains("options")) {
+            fromJson(sidecar["options"], options, dir);
+        } else {
+            fromJson(sidecar["solver"], options, dir);
+            fromJson(sidecar["calibration"], options, dir);
+        }
+        std::printf("%s: %zu frames from %d\n  options %s\n", dir.c_str(), frames.size(), first,
+                    toJson(options).dump().c_str());
         auto row = [](const char* name, const Worst& w, double target) {
             std::printf("  %-26s worst %8.4f (frame %d), mean %8.4f", name, w.worst, w.frame,
                         w.mean());

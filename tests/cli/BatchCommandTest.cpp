@@ -40,12 +40,10 @@ fs::path writeManifest(const fs::path& dir, const std::string& name, const json&
 }
 
 json folderManifest(const std::string& out) {
-    return {{"defaults", {{"format", "obj"}}},
-            {"folders",
-             {{{"c3d", "takes"},
-               {"mesh", "walker.obj"},
-               {"map", "walker.map.json"},
-               {"out", out}}}}};
+    return {
+        {"defaults", {{"format", "obj"}}},
+        {"folders",
+         {{{"c3d", "takes"}, {"mesh", "walker.obj"}, {"map", "walker.map.json"}, {"out", out}}}}};
 }
 
 // Every file under `root` by relative path; sidecars without their timings (they differ run to
@@ -144,4 +142,37 @@ TEST(Batch, AManifestMistakeNamesTheFileAndTheEntry) {
     EXPECT_NE(r.out.find("m.json: takes[0]: unknown key 'ouput'"), std::string::npos) << r.out;
     EXPECT_NE(runCli("batch " + (dir / "m.json").string() + " --shard 3/2").out.find("--shard"),
               std::string::npos);
+}
+
+// Options go under their JSON keys (core's table), checked before anything is solved; the dashed
+// keys and old names of the first manifests still read.
+TEST(Batch, AnOptionOutOfItsRangeIsNamedBeforeAnythingIsSolved) {
+    const fs::path dir = freshTestDir("bad-option");
+    const json manifest = {{"defaults", {{"fill_gaps_s", -1}}},
+                           {"takes", {{{"c3d", "a.c3d"}, {"mesh", "m.obj"}, {"map", "x"}}}}};
+    const CliResult r = runCli("batch " + writeManifest(dir, "m.json", manifest).string());
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("m.json: defaults: \"fill_gaps_s\" must be a number (s) from 0 to 3600"),
+              std::string::npos)
+        << r.out;
+}
+
+TEST(Batch, TheOldDashedKeysOfAManifestStillRead) {
+    const fs::path dir = makeLibrary();
+    const json manifest = {{"defaults", {{"fill-gaps", 0.1}, {"weight", 60}, {"lowpass", 9}}},
+                           {"takes",
+                            {{{"c3d", "takes/walk_a.c3d"},
+                              {"mesh", "walker.obj"},
+                              {"map", "walker.map.json"},
+                              {"calibration-frame", 2},
+                              {"write-calibrated-rest", true},
+                              {"out", "old"}}}}};
+    const CliResult r = runCli("batch " + writeManifest(dir, "old.json", manifest).string());
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    const json options = json::parse(std::ifstream(dir / "old" / "walker.json"))["options"];
+    EXPECT_EQ(options["fill_gaps_s"], 0.1);
+    EXPECT_EQ(options["marker_weight"], 60.0);
+    EXPECT_EQ(options["low_pass_hz"], 9.0);
+    EXPECT_EQ(options["calibration_frame"], 2);
+    EXPECT_TRUE(fs::exists(dir / "old" / "walker_calibrated_rest.obj"));
 }

@@ -112,7 +112,7 @@ TEST(RealTake, MouthFingersAndToesDoNotFold) {
                    " --frames 500:504 --solver " + solver);
         ASSERT_EQ(r.exitCode, 0) << r.out;
         const auto sidecar = nlohmann::json::parse(std::ifstream(out / "body.json"));
-        EXPECT_EQ(sidecar["solver"]["method"], solver);
+        EXPECT_EQ(sidecar["options"]["solver"], solver);
         EXPECT_EQ(sidecar["summary"]["folded_faces_worst_frame"].get<int>(), 0)
             << solver << ": " << sidecar["summary"];
         EXPECT_LT(sidecar["summary"]["residual_rms_mm_worst_frame"].get<double>(), 1.5) << solver;

@@ -73,7 +73,7 @@ TEST(SolveCommand, TheDemoTakeComesBackCloseToItsTruth) {
     EXPECT_EQ(j["units"]["mesh_guess"], "m");
     EXPECT_EQ(j["up_axis"]["mesh_guess"], "+z");
     EXPECT_EQ(j["per_frame"][18]["visible_markers"], 38);  // LWRB is occluded there
-    EXPECT_EQ(j["solver"]["method"], "local-global");
+    EXPECT_EQ(j["options"]["solver"], "local-global");
     for (const auto& f : j["per_frame"]) EXPECT_LT(f["residual_rms_mm"].get<double>(), 1.0);
     // No dent around any marker: the curvature there stays within twice the rest's (measured
     // over these 30 frames: 1.81 at worst, at the front of the hip, where the walk creases the

@@ -78,7 +78,7 @@ class ProjectTest : public QObject {
         QCOMPARE(e.settings().markerWeight, 42.0);
         QCOMPARE(e.settings().lowPassHz, 6.0);
         QCOMPARE(e.settings().solver.method, SolverOptions::Method::Exact);
-        QCOMPARE(readJson(path)["settings"].toObject()["method"].toString(), QString("exact"));
+        QCOMPARE(readJson(path)["settings"].toObject()["solver"].toString(), QString("exact"));
         QCOMPARE(e.settings().calibrate, CalibrateMode::None);
         QCOMPARE(readJson(path)["settings"].toObject()["calibrate"].toString(), QString("none"));
         QCOMPARE(e.settings().solver.rigidityWeight, 0.02);
@@ -108,14 +108,15 @@ class ProjectTest : public QObject {
         const QString path = work_ + "/default-method.boneless";
         QVERIFY(Project::save(d, path));
         const QJsonObject settings = readJson(path)["settings"].toObject();
-        QCOMPARE(settings["method"].toString(), QString("local-global"));
+        QCOMPARE(settings["solver"].toString(), QString("local-global"));
         QVERIFY(!settings.contains("coarsest_leads"));
         QVERIFY(!settings.contains("continuation_steps"));
     }
 
     // Projects written before the local/global engine name a method that is gone: "direct" (the
     // default then, never chosen on purpose) or "iterative". Both open as local/global, with the
-    // keys of those methods ignored; "exact" opens as exact.
+    // keys of those methods ignored; "exact" opens as exact. They name it "method", and the fold
+    // guard "rigidity_weight". A method nobody wrote is refused, naming the key.
     void anOldProjectOpensWithLocalGlobalUnlessItAsksForExact() {
         const QString folder = work_ + "/old-methods";
         copyFolder(demo_, folder);
@@ -124,12 +125,14 @@ class ProjectTest : public QObject {
         const std::pair<const char*, SolverOptions::Method> cases[] = {
             {"direct", SolverOptions::Method::LocalGlobal},
             {"iterative", SolverOptions::Method::LocalGlobal},
-            {"no-such-method", SolverOptions::Method::LocalGlobal},
             {"exact", SolverOptions::Method::Exact}};
         for (const auto& [name, method] : cases) {
             QJsonObject root = original;
             QJsonObject settings = root["settings"].toObject();
+            settings.remove("solver");
+            settings.remove("fold_guard");
             settings["method"] = name;
+            settings["rigidity_weight"] = 0.04;
             settings["coarsest_leads"] = true;
             settings["continuation_steps"] = 3;
             settings["marker_weight"] = 77.0;
@@ -144,12 +147,28 @@ class ProjectTest : public QObject {
             QVERIFY2(Project::load(d, path, &error), qPrintable(error));
             QCOMPARE(d.settings().solver.method, method);
             QCOMPARE(d.settings().markerWeight, 77.0);  // the keys around it still read
+            QCOMPARE(d.settings().solver.rigidityWeight, 0.04);
             QCOMPARE(d.settings().calibrate, CalibrateMode::Shape);
             // Saved again, it names its method the new way.
             QVERIFY(Project::save(d, path));
-            QCOMPARE(readJson(path)["settings"].toObject()["method"].toString(),
-                     QString(methodName(method)));
+            const QJsonObject saved = readJson(path)["settings"].toObject();
+            QCOMPARE(saved["solver"].toString(), QString(methodName(method)));
+            QVERIFY(!saved.contains("method"));
+            QCOMPARE(saved["fold_guard"].toDouble(), 0.04);
         }
+        QJsonObject root = original;
+        QJsonObject settings = root["settings"].toObject();
+        settings["solver"] = "no-such-method";
+        root["settings"] = settings;
+        QFile f(path);
+        QVERIFY(f.open(QIODevice::WriteOnly | QIODevice::Truncate));
+        f.write(QJsonDocument(root).toJson());
+        f.close();
+        Document d;
+        QString error;
+        QVERIFY(!Project::load(d, path, &error));
+        QVERIFY2(error.contains("\"solver\" must be one of local-global, exact"),
+                 qPrintable(error));
     }
 
     void aBrokenProjectLeavesTheDocumentAlone() {

@@ -8,8 +8,10 @@
 #include <QJsonObject>
 #include <QSaveFile>
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 #include "boneless/Correspondence.h"
+#include "boneless/TakeOptionsJson.h"
 #include "boneless/ui/Document.h"
 
 namespace boneless::ui::Project {
@@ -65,60 +67,24 @@ bool readAlignment(const QJsonObject& o, Calibration& c) {
     return true;
 }
 
-// rigidity_weight, orientation_weight and max_iterations tune the exact method only; they are
-// written whatever the method, so that switching back to it finds them as they were.
+// Every option is written whatever the method, so that switching back to one finds its options
+// as they were. Core's table (TakeOptionsJson) writes, reads and checks them.
 QJsonObject settingsJson(const TakeSolveOptions& o) {
-    return {{"marker_weight", o.markerWeight},
-            {"low_pass_hz", o.lowPassHz},
-            {"fill_gaps_s", o.fillGapSeconds},
-            {"calibration_frame", o.calibrationFrame},
-            {"calibrate", calibrateModeName(o.calibrate)},
-            {"rigidity_weight", o.solver.rigidityWeight},
-            {"orientation_weight", o.solver.orientationWeight},
-            {"max_iterations", o.solver.maxIterations},
-            {"method", methodName(o.solver.method)}};
+    return QJsonDocument::fromJson(QByteArray::fromStdString(toJson(o).dump())).object();
 }
 
-// Each setting, when present, must be a number in the range the solver accepts; the name of the
-// first that is not goes to *bad.
-bool checkSettings(const QJsonObject& o, QString* bad) {
-    const struct {
-        const char* key;
-        double low, high;
-    } ranges[] = {{"marker_weight", 1e-9, 1e9}, {"low_pass_hz", 0, 1e5},
-                  {"fill_gaps_s", 0, 3600},     {"calibration_frame", -1, 1e9},
-                  {"rigidity_weight", 0, 1e9},  {"orientation_weight", 0, 1e9},
-                  {"max_iterations", 1, 1e4}};
-    for (const auto& r : ranges) {
-        const QJsonValue v = o[r.key];
-        if (v.isUndefined()) continue;
-        if (!sane(v) || v.toDouble() < r.low || v.toDouble() > r.high) {
-            *bad = r.key;
-            return false;
-        }
+// Absent keys keep their defaults, so older projects still load; old keys and method names read
+// as today's. False with *error naming the key for a value of the wrong type or out of range.
+bool readSettings(const QJsonObject& o, TakeSolveOptions& settings, QString* error) {
+    try {
+        const auto json =
+            nlohmann::json::parse(QJsonDocument(o).toJson(QJsonDocument::Compact).toStdString());
+        fromJson(json, settings, "settings");
+    } catch (const std::exception& e) {
+        *error = QString::fromStdString(e.what());
+        return false;
     }
     return true;
-}
-
-TakeSolveOptions readSettings(const QJsonObject& o) {
-    TakeSolveOptions s;  // absent keys keep their defaults, so older projects still load
-    s.markerWeight = o["marker_weight"].toDouble(s.markerWeight);
-    s.lowPassHz = o["low_pass_hz"].toDouble(s.lowPassHz);
-    s.fillGapSeconds = o["fill_gaps_s"].toDouble(s.fillGapSeconds);
-    s.calibrationFrame = o["calibration_frame"].toInt(s.calibrationFrame);
-    // Projects from before calibration have no "calibrate": they calibrate, as solve does now.
-    CalibrateMode calibrate = s.calibrate;
-    if (parseCalibrateMode(o["calibrate"].toString().toStdString(), calibrate))
-        s.calibrate = calibrate;
-    s.solver.rigidityWeight = o["rigidity_weight"].toDouble(s.solver.rigidityWeight);
-    s.solver.orientationWeight = o["orientation_weight"].toDouble(s.solver.orientationWeight);
-    s.solver.maxIterations = o["max_iterations"].toInt(s.solver.maxIterations);
-    // "exact" only when asked for by name. Older projects say "direct" (the default then, never
-    // a user's choice) or "iterative", methods that are gone: they solve local/global. Their
-    // "continuation_steps" and "coarsest_leads" tuned those methods and are ignored.
-    SolverOptions::Method method = SolverOptions::Method::LocalGlobal;
-    if (parseMethod(o["method"].toString().toStdString(), method)) s.solver.method = method;
-    return s;
 }
 
 bool readEmbeddedMap(const QJsonObject& o, Correspondence& map, QString* error) {
@@ -212,10 +178,7 @@ bool load(Document& document, const QString& path, QString* error) {
             return fail(QObject::tr("the alignment is incomplete"));
         state.alignment = c;
     }
-    QString bad;
-    if (!checkSettings(root["settings"].toObject(), &bad))
-        return fail(QObject::tr("the setting \"%1\" is not a number in its range").arg(bad));
-    state.settings = readSettings(root["settings"].toObject());
+    if (!readSettings(root["settings"].toObject(), state.settings, &why)) return fail(why);
     state.viewSettings = root["view"].toObject().toVariantMap();
     if (!document.restoreState(std::move(state))) return fail(document.lastError());
     return true;

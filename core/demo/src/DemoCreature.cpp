@@ -1,4 +1,4 @@
-#include "boneless/DemoCreature.h"
+#include "DemoCreature.h"
 
 #include <algorithm>
 #include <cmath>

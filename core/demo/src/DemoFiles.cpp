@@ -3,10 +3,10 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "DemoCreature.h"
+#include "DemoTake.h"
+#include "DemoWalker.h"
 #include "boneless/C3dWriter.h"
-#include "boneless/DemoCreature.h"
-#include "boneless/DemoTake.h"
-#include "boneless/DemoWalker.h"
 #include "boneless/Error.h"
 #include "boneless/ObjWriter.h"
 

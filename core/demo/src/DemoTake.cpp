@@ -1,4 +1,4 @@
-#include "boneless/DemoTake.h"
+#include "DemoTake.h"
 
 #include <cstdio>
 

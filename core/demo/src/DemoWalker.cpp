@@ -1,4 +1,4 @@
-#include "boneless/DemoWalker.h"
+#include "DemoWalker.h"
 
 #include "boneless/TriMesh.h"  // Vec3
 

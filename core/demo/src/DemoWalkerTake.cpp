@@ -1,7 +1,7 @@
 #include <array>
 #include <string>
 
-#include "boneless/DemoWalker.h"
+#include "DemoWalker.h"
 #include "boneless/MeshTopology.h"
 #include "boneless/ShapeEncoding.h"
 

@@ -24,6 +24,7 @@
 #include "boneless/ObjWriter.h"
 #include "boneless/Parallel.h"
 #include "boneless/SpoolFile.h"
+#include "boneless/TakeOptionsJson.h"
 
 namespace boneless {
 
@@ -119,19 +120,6 @@ class PerFrameFigures {
     std::vector<double> ms_;
 };
 
-json solverJson(const TakeSolveOptions& o) {
-    json j = {{"method", methodName(o.solver.method)},
-              {"marker_weight", o.markerWeight},
-              {"low_pass_hz", o.lowPassHz},
-              {"fill_gaps_s", o.fillGapSeconds}};
-    if (o.solver.method == SolverOptions::Method::Exact) {
-        j["rigidity_weight"] = o.solver.rigidityWeight;
-        j["orientation_weight"] = o.solver.orientationWeight;
-        j["max_iterations"] = o.solver.maxIterations;
-    }
-    return j;
-}
-
 // How the rest was fitted to the actor, and how far that moved it from the input mesh.
 json calibrationJson(const ExportRequest& request, const TriMesh& mesh, const TakeSolver& solver,
                      const std::string& restFile) {
@@ -150,7 +138,7 @@ json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibr
     const double meshUnitsPerMm = s.scale / take.unitToMm;
     const TakeSolveOptions& o = request.options;
     return {{"format", "boneless-solve"},
-            {"version", 1},
+            {"version", 2},
             {"fps", take.rate},
             {"frame_range", {result.first, result.first + result.framesWritten}},
             {"frames_written", result.framesWritten},
@@ -177,7 +165,7 @@ json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibr
               {"translation", {s.t.x(), s.t.y(), s.t.z()}},
               {"overridden", o.alignment.has_value()}}},
             {"calibration", std::move(calibration)},
-            {"solver", solverJson(o)},
+            {"options", toJson(o)},
             {"summary", std::move(summary)},
             {"per_frame", json::array()}};
 }
@@ -356,6 +344,7 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
 ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspondence& map,
                         const ExportRequest& request, const ExportProgress& progress,
                         const ExportCalibrated& calibrated) {
+    validate(request.options);
     TakeSolver solver(mesh, take, map, request.options);
     return exportSolved(solver, mesh, take, map, request, progress, calibrated);
 }
@@ -363,6 +352,7 @@ ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspo
 ExportResult exportTake(const TriMesh& mesh, const C3dFrameReader& take, const Correspondence& map,
                         const ExportRequest& request, const ExportProgress& progress,
                         const ExportCalibrated& calibrated) {
+    validate(request.options);
     TakeSolver solver(mesh, take, map, request.options);
     return exportSolved(solver, mesh, take.take(), map, request, progress, calibrated);
 }

@@ -6,10 +6,10 @@
 #include <exception>
 #include <limits>
 
+#include "TrajectoryFilter.h"
 #include "boneless/C3dFrameReader.h"
 #include "boneless/DentGauge.h"
 #include "boneless/Error.h"
-#include "boneless/TrajectoryFilter.h"
 
 namespace boneless {
 

@@ -1,4 +1,4 @@
-#include "boneless/TrajectoryFilter.h"
+#include "TrajectoryFilter.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "boneless/DemoCreature.h"
+#include "DemoCreature.h"
 #include "boneless/MeshTopology.h"
 #include "boneless/Metrics.h"
 #include "boneless/Reconstruction.h"

@@ -5,7 +5,7 @@
 #include <map>
 #include <set>
 
-#include "boneless/DemoWalker.h"
+#include "DemoWalker.h"
 #include "boneless/MeshTopology.h"
 #include "boneless/Metrics.h"
 #include "boneless/ShapeEncoding.h"

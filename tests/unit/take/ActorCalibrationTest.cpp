@@ -7,10 +7,10 @@
 #include <nlohmann/json.hpp>
 
 #include "CliRunner.h"
+#include "DemoCreature.h"
+#include "DemoTake.h"
 #include "boneless/ActorCalibration.h"
 #include "boneless/C3dWriter.h"
-#include "boneless/DemoCreature.h"
-#include "boneless/DemoTake.h"
 #include "boneless/Error.h"
 #include "boneless/MeshReader.h"
 #include "boneless/Metrics.h"

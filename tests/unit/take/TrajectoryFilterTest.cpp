@@ -2,9 +2,9 @@
 
 #include <cmath>
 
+#include "TrajectoryFilter.h"
 #include "boneless/C3dTake.h"
 #include "boneless/Error.h"
-#include "boneless/TrajectoryFilter.h"
 
 using namespace boneless;
 

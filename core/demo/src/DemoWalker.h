@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "boneless/DemoTake.h"
+#include "DemoTake.h"
 #include "boneless/TriMesh.h"
 
 namespace boneless {

@@ -1,8 +1,8 @@
 #pragma once
 
+#include "DemoCreature.h"
 #include "boneless/C3dTake.h"
 #include "boneless/Correspondence.h"
-#include "boneless/DemoCreature.h"
 
 namespace boneless {
 

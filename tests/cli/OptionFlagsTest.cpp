@@ -1,0 +1,95 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
+#include <string>
+
+#include "CliRunner.h"
+#include "boneless/TakeOptionsJson.h"
+
+using namespace boneless;
+using namespace boneless::testing;
+namespace fs = std::filesystem;
+
+namespace {
+
+// The long flags a command's --help lists, as JSON keys ("fill_gaps_s" for --fill-gaps-s).
+std::set<std::string> flagKeys(const std::string& command) {
+    const CliResult r = runCli(command + " --help");
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    std::set<std::string> keys;
+    const std::regex flag("(^|[ ,])--([a-z][a-z0-9-]*)");
+    for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), flag);
+         it != std::sregex_iterator(); ++it) {
+        std::string key = (*it)[2];
+        std::replace(key.begin(), key.end(), '-', '_');
+        keys.insert(key);
+    }
+    return keys;
+}
+
+}  // namespace
+
+// One name per option: `solve`'s flags are core's table (TakeOptionsJson) keys, with '-' for '_',
+// or the paths and output choices a batch manifest names the same way; every option of the table
+// is a flag of solve, and the solver's own are flags of eval.
+TEST(OptionFlags, EverySolveFlagIsNamedAsItsJsonKey) {
+    const std::set<std::string> jobKeys = {"mesh",  "group",  "c3d",    "map",
+                                           "out",   "format", "frames", "write_calibrated_rest",
+                                           "quiet", "help"};
+    const std::set<std::string> solve = flagKeys("solve");
+    for (const std::string& key : solve) {
+        const TakeOption* option = findTakeOption(key);
+        EXPECT_TRUE(jobKeys.count(key) || (option && option->key == key))
+            << "--" << key << " is neither an option of the table nor a path or output key";
+    }
+    const std::set<std::string> eval = flagKeys("eval");
+    for (const TakeOption& o : takeOptions()) {
+        EXPECT_TRUE(solve.count(o.key)) << optionFlag(o) << " is missing from solve";
+        EXPECT_EQ(eval.count(o.key), o.solver ? 1u : 0u) << optionFlag(o) << " on eval";
+    }
+}
+
+// A flag's value is checked as the JSON reader checks it, with the same words.
+TEST(OptionFlags, ABadFlagValueIsRefusedAsTheJsonReaderRefusesIt) {
+    const CliResult r =
+        runCli("solve --mesh m.obj --c3d t.c3d --map m.json --out o --fill-gaps-s -1");
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.out.find("--fill-gaps-s"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("must be a number (s) from 0 to 3600, got -1"), std::string::npos)
+        << r.out;
+    const CliResult e = runCli("eval --sequence x --markers 3 --solver fast");
+    EXPECT_NE(e.exitCode, 0);
+    EXPECT_NE(e.out.find("must be one of local-global, exact, got \"fast\""), std::string::npos)
+        << e.out;
+}
+
+// The options given on the command line reach the sidecar under the same keys.
+TEST(OptionFlags, TheSidecarRecordsTheOptionsUnderTheFlagsNames) {
+    const fs::path demo = freshTestDir("option-flags");
+    ASSERT_EQ(runCli("demo --frames 3 --out " + demo.string()).exitCode, 0);
+    const fs::path out = demo / "solved";
+    const CliResult r =
+        runCli("solve --quiet --mesh " + (demo / "walker.obj").string() + " --c3d " +
+               (demo / "walker.c3d").string() + " --map " + (demo / "walker.map.json").string() +
+               " --out " + out.string() +
+               " --format pc2 --marker-weight 40 --fill-gaps-s 0.1 --low-pass-hz 8 "
+               "--calibrate none --calibration-frame 1 --fold-guard 0.02 --max-iterations 4");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    const auto sidecar = nlohmann::json::parse(std::ifstream(out / "walker.json"));
+    const nlohmann::json& o = sidecar.at("options");
+    EXPECT_EQ(sidecar["version"], 2);
+    EXPECT_EQ(o["marker_weight"], 40.0);
+    EXPECT_EQ(o["fill_gaps_s"], 0.1);
+    EXPECT_EQ(o["low_pass_hz"], 8.0);
+    EXPECT_EQ(o["calibrate"], "none");
+    EXPECT_EQ(o["calibration_frame"], 1);
+    EXPECT_EQ(o["fold_guard"], 0.02);
+    EXPECT_EQ(o["max_iterations"], 4);
+    EXPECT_EQ(o["solver"], "local-global");
+    EXPECT_EQ(sidecar["alignment"]["calibration_frame"], 1);
+}
