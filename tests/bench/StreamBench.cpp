@@ -21,8 +21,8 @@
 #include <vector>
 
 #include "boneless/C3dWriter.h"
-#include "boneless/DemoCreature.h"
-#include "boneless/DemoTake.h"
+#include "DemoCreature.h"
+#include "DemoTake.h"
 #include "boneless/ObjWriter.h"
 
 using namespace boneless;

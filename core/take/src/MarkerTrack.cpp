@@ -10,7 +10,7 @@
 
 #include "boneless/C3dFrameReader.h"
 #include "boneless/Error.h"
-#include "boneless/TrajectoryFilter.h"
+#include "TrajectoryFilter.h"
 
 namespace boneless {
 

@@ -15,7 +15,7 @@
 #include "boneless/MeshReader.h"
 #include "boneless/TakeExport.h"
 #include "boneless/TakeSolver.h"
-#include "boneless/TrajectoryFilter.h"
+#include "TrajectoryFilter.h"
 
 using namespace boneless;
 
