@@ -117,11 +117,12 @@ void TimelineStrip::paintEvent(QPaintEvent*) {
     if (frames == 0) return;
     const QColor cached = palette().color(QPalette::Highlight);
     const QColor gap(200, 40, 40);
-    // Each frame spans half-way to its neighbours, at least a pixel.
+    // Each frame spans half-way to its neighbours, so runs of frames draw as one bar.
+    const auto [x0, x1] = span();
+    const double step = frames > 1 ? double(x1 - x0) / (frames - 1) : double(x1 - x0);
     auto frameRect = [&](int first, int last, int top, int height) {
-        const int half = std::max(1, (xOfFrame(1) - xOfFrame(0)) / 2);
-        const int left = xOfFrame(first) - half;
-        return QRect(left, top, std::max(1, xOfFrame(last) + half - left), height);
+        return QRectF(x0 + (first - 0.5) * step, top, std::max(1.0, (last - first + 1) * step),
+                      height);
     };
     for (int f = 0; f < frames; ++f)
         if (cached_[f]) painter.fillRect(frameRect(f, f, 0, kCacheRow), cached);
