@@ -137,6 +137,7 @@ class MainWindow : public QMainWindow {
     QAction* labelsAction_ = nullptr;
     QAction* trailsAction_ = nullptr;
     QAction* heatMapAction_ = nullptr;
+    QAction* followAction_ = nullptr;
 
     QString projectPath_;
     bool demo_ = false;
