@@ -1,5 +1,7 @@
 // Camera follow: an energetic take (the demo walker sprinting, leaping and turning back) never
-// leaves the screen, and the camera does not shake with the body's sway.
+// leaves the screen, the camera does not shake with the body's sway, and View → Follow the Mesh is
+// on by default and kept in the project.
+#include <QAction>
 #include <QtTest>
 #include <cmath>
 
@@ -62,7 +64,25 @@ class CameraFollowTest : public QObject {
     static void initMain() { setDefaultSurfaceFormat(); }
 
   private slots:
-    void initTestCase() { test::isolate("CameraFollowTest"); }
+    void initTestCase() { project_ = test::demoProjectFor("CameraFollowTest", &folder_); }
+
+    void followIsOnByDefaultAndAProjectKeepsItTurnedOff() {
+        const QString saved = folder_ + "/still.boneless";
+        {
+            const auto window = test::openShown(project_);
+            QVERIFY(window);
+            auto* follow = window->findChild<QAction*>("actionFollow");
+            QVERIFY(follow && follow->isChecked());
+            QVERIFY(window->meshView()->cameraFollow());
+            follow->setChecked(false);
+            QVERIFY(!window->meshView()->cameraFollow());
+            QVERIFY(window->saveProjectAs(saved));
+        }
+        const auto reopened = test::openShown(saved);
+        QVERIFY(reopened);
+        QVERIFY(!reopened->findChild<QAction*>("actionFollow")->isChecked());
+        QVERIFY(!reopened->meshView()->cameraFollow());
+    }
 
     void anEnergeticTakeStaysOnScreenOnlyWithFollow() {
         const DemoWalker walker = makeDemoWalker(60);
@@ -126,6 +146,9 @@ class CameraFollowTest : public QObject {
         QVERIFY(insideView(view, centroidOf(V)));
         QVERIFY((view.focalPoint() - paused).norm() < 8.0);
     }
+
+  private:
+    QString folder_, project_;
 };
 
 QTEST_MAIN(CameraFollowTest)
