@@ -7,9 +7,11 @@
 #include <QStandardPaths>
 #include <QString>
 #include <QtTest>
+#include <memory>
 
 #include "boneless/ui/DemoProject.h"
 #include "boneless/ui/MainWindow.h"
+#include "boneless/ui/MeshView.h"
 #include "boneless/ui/SurfaceFormat.h"
 
 namespace boneless::ui::test {
@@ -46,6 +48,33 @@ inline bool showAndWait(MainWindow& window, int timeoutMs = 60000) {
     // Without a window manager the window may never become active; shortcuts still work.
     (void)QTest::qWaitForWindowActive(&window, 2000);
     return QTest::qWaitFor([&] { return window.frameUpToDate(); }, timeoutMs);
+}
+
+// A test's own settings, scratch folder `name` and demo project in it; returns the project.
+inline QString demoProjectFor(const QString& name, QString* folder = nullptr) {
+    isolate(name);
+    const QString dir = freshFolder(name);
+    if (folder) *folder = dir;
+    return writeDemoProject(dir + "/demo");
+}
+
+// A window without message boxes, showing `project` with its frame solved; null if it fails.
+inline std::unique_ptr<MainWindow> openShown(const QString& project) {
+    auto window = std::make_unique<MainWindow>();
+    window->setMessageBoxesEnabled(false);
+    if (!window->openProject(project) || !showAndWait(*window)) return nullptr;
+    return window;
+}
+
+// A bare view of `mesh`, 640 by 480 without multisampling, shown and rendered once (the camera
+// is fitted at the first paint).
+inline bool showMesh(MeshView& view, const TriMesh& mesh,
+                     const Eigen::Vector3d& up = Eigen::Vector3d::UnitY()) {
+    view.setMultiSampling(0);
+    view.resize(640, 480);
+    view.setMesh(mesh, up);
+    view.show();
+    return QTest::qWaitForWindowExposed(&view) && !view.grabImage().isNull();
 }
 
 inline bool waitForFrame(MainWindow& window, int timeoutMs = 60000) {

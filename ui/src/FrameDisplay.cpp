@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "FloorGrid.h"
 #include "boneless/TakeExport.h"
 #include "boneless/ui/Document.h"
 #include "boneless/ui/MarkerListModel.h"
@@ -45,6 +46,7 @@ FrameDisplay::FrameDisplay(Document* document, FrameSolver* solver, Timeline* ti
     connect(solver_, &FrameSolver::frameReady, this, &FrameDisplay::onFrameReady);
     connect(solver_, &FrameSolver::failed, this, &FrameDisplay::solverFailed);
     connect(view_, &MeshView::rendered, this, &FrameDisplay::onRendered);
+    connect(timeline_, &Timeline::playingChanged, view_, &MeshView::setPlaying);
 }
 
 void FrameDisplay::setTrailsVisible(bool visible) {
@@ -56,7 +58,7 @@ void FrameDisplay::setHeatMapVisible(bool visible) {
     if (heatMap_ == visible) return;
     heatMap_ = visible;
     solver_->setShapeErrorEnabled(visible);
-    if (!visible) view_->setHeatMap({});
+    if (!visible) view_->setHeatMap({}, {});
     // The cache was emptied: the shown frame has no shape error yet.
     if (solving_) onFrameChanged(timeline_->frame());
 }
@@ -118,6 +120,7 @@ void FrameDisplay::rebuildProblem() {
     notSolvingReason_ = solving_ ? QString() : why;
     result_.reset();
     if (!solving_) solver_->clearProblem();
+    updateFloor();
     onFrameChanged(timeline_->frame());
 }
 
@@ -144,7 +147,7 @@ void FrameDisplay::showUnsolved(int frame) {
     markerPositions_ = document_->markerPositions(frame);
     updateMarkers();
     updateTrails(frame);
-    view_->setHeatMap({});
+    view_->setHeatMap({}, {});
     emitStatus();
     emit frameDisplayed(frame);
 }
@@ -157,8 +160,15 @@ void FrameDisplay::onFrameReady(const FrameResult& result) {
     displayedFrame_ = result.frame;
     showResult();
     updateTrails(result.frame);
-    if (heatMap_ && !result.shapeError.empty())
-        view_->setHeatMap(std::vector<float>(result.shapeError.begin(), result.shapeError.end()));
+    if (heatMap_ && !result.shapeError.empty()) {
+        // Shape error comes in mesh units; a user reads millimetres, as in the residuals.
+        const double meshUnitsPerMm =
+            result.calibration.takeToMesh.scale / document_->take().unitToMm;
+        std::vector<float> mm(result.shapeError.size());
+        for (std::size_t i = 0; i < mm.size(); ++i)
+            mm[i] = float(result.shapeError[i] / meshUnitsPerMm);
+        view_->setHeatMap(mm, tr("Shape error (mm)"));
+    }
     markers_->setFrameResult(result);
     if (result.frame == requestedFrame_) {
         awaitingRender_ = true;
@@ -186,6 +196,22 @@ void FrameDisplay::showResult() {
         view_->setPositions(document_->mesh().V);
     markerPositions_ = frame ? result.markers : Positions(0, 3);
     updateMarkers();
+}
+
+void FrameDisplay::updateFloor() {
+    view_->setFloor(floorOf(*document_, up_));
+}
+
+bool FrameDisplay::frameMarker(int marker) {
+    if (marker < 0 || marker >= document_->markerCount()) return false;
+    if (marker < markerPositions_.rows() && markerPositions_.row(marker).allFinite()) {
+        view_->frame(markerPositions_.row(marker).transpose());
+        return true;
+    }
+    const int vertex = document_->mappedVertex(marker);
+    if (vertex < 0 || vertex >= view_->positions().rows()) return false;
+    view_->frame(view_->positions().row(vertex).transpose());
+    return true;
 }
 
 void FrameDisplay::onRendered() {

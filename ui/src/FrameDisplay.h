@@ -50,6 +50,9 @@ class FrameDisplay : public QObject {
     // The timeline's frame has been drawn (solved, or unsolved when nothing can be solved).
     bool upToDate() const;
     const std::optional<FrameResult>& lastResult() const { return result_; }
+    // Moves the camera to the marker where it is shown (or, missing this frame, to its vertex).
+    // False when it has neither.
+    bool frameMarker(int marker);
 
   public slots:
     // Rebuilds the solver's problem from the document on the next turn of the event loop, so
@@ -75,6 +78,7 @@ class FrameDisplay : public QObject {
     void updateMarkers();
     void updateTrails(int frame);
     void updateUpAxis(bool force);
+    void updateFloor();
     void emitStatus();
 
     Document* document_;

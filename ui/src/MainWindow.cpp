@@ -124,9 +124,19 @@ void MainWindow::buildMarkerDock() {
     markerTable_->setSelectionMode(QAbstractItemView::SingleSelection);
     markerTable_->setEditTriggers(QAbstractItemView::NoEditTriggers);
     markerTable_->verticalHeader()->hide();
-    markerTable_->horizontalHeader()->setStretchLastSection(true);
+    // The numbers keep their width; a long label is elided instead, so the Residual column is
+    // never cut off.
+    markerTable_->horizontalHeader()->setStretchLastSection(false);
     markerTable_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+    markerTable_->horizontalHeader()->setSectionResizeMode(MarkerListModel::LabelColumn,
+                                                           QHeaderView::Stretch);
+    markerTable_->setTextElideMode(Qt::ElideMiddle);
+    panel->setMinimumWidth(340);
     layout->addWidget(markerTable_, 1);
+    connect(markerTable_, &QTableView::doubleClicked, this, [this](const QModelIndex& index) {
+        if (!display_->frameMarker(proxy_->markerAt(index.row())))
+            statusBar()->showMessage(tr("This marker has no place to show in this frame"), 5000);
+    });
     connect(
         markerTable_->selectionModel(), &QItemSelectionModel::currentRowChanged, this,
         [this](const QModelIndex& current) {
@@ -222,8 +232,12 @@ void MainWindow::buildMenus() {
     labelsAction_ = view->addAction(tr("Marker &Labels"));
     trailsAction_ = view->addAction(tr("Marker &Trails"));
     heatMapAction_ = view->addAction(tr("Shape Error &Heat Map"));
-    const std::pair<QAction*, const char*> toggles[] = {
-        {labelsAction_, "labels"}, {trailsAction_, "trails"}, {heatMapAction_, "heatMap"}};
+    followAction_ = view->addAction(tr("&Follow the Mesh"));
+    followAction_->setObjectName("actionFollow");
+    const std::pair<QAction*, const char*> toggles[] = {{labelsAction_, "labels"},
+                                                        {trailsAction_, "trails"},
+                                                        {heatMapAction_, "heatMap"},
+                                                        {followAction_, "follow"}};
     for (const auto& [action, key] : toggles) {
         action->setCheckable(true);
         connect(action, &QAction::toggled, this,
@@ -231,10 +245,15 @@ void MainWindow::buildMenus() {
                     if (action == labelsAction_) view_->setLabelsVisible(on);
                     if (action == trailsAction_) display_->setTrailsVisible(on);
                     if (action == heatMapAction_) display_->setHeatMapVisible(on);
-                    if (document_->viewSettings().value(key).toBool() != on)
-                        document_->setViewSetting(key, on);
+                    if (action == followAction_) view_->setCameraFollow(on);
+                    // Follow is on unless the project says otherwise; the others are off.
+                    const bool stored =
+                        document_->viewSettings().value(key, action == followAction_).toBool();
+                    if (stored != on) document_->setViewSetting(key, on);
                 });
     }
+    const QSignalBlocker quiet(followAction_);  // on by default, not an edit of the session
+    followAction_->setChecked(true);
 
     addCalibrationActions(edit, view, document_, timeline_, display_);
 
@@ -270,6 +289,8 @@ void MainWindow::buildMenus() {
                                "<tr><td>Ctrl+E</td><td>export</td></tr>"
                                "<tr><td>Ctrl+Z / Ctrl+Shift+Z</td><td>undo / redo</td></tr>"
                                "<tr><td>Ctrl+R</td><td>reset the camera</td></tr>"
+                               "<tr><td>double-click a marker in the list</td><td>bring the "
+                               "camera to it</td></tr>"
                                "<tr><td>mouse</td><td>left drag turns, right drag or wheel zooms, "
                                "middle drag pans; a click maps the selected marker</td></tr>"
                                "</table>"));
@@ -411,6 +432,7 @@ void MainWindow::applyViewSettings() {
     labelsAction_->setChecked(settings.value("labels").toBool());
     trailsAction_->setChecked(settings.value("trails").toBool());
     heatMapAction_->setChecked(settings.value("heatMap").toBool());
+    followAction_->setChecked(settings.value("follow", true).toBool());
 }
 
 void MainWindow::syncTableSelection(int marker) {

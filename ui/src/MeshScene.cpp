@@ -8,7 +8,6 @@
 #include <vtkDoubleArray.h>
 #include <vtkFloatArray.h>
 #include <vtkGlyph3DMapper.h>
-#include <vtkLabeledDataMapper.h>
 #include <vtkLookupTable.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -16,9 +15,9 @@
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
 #include <vtkRenderer.h>
+#include <vtkScalarBarActor.h>
 #include <vtkSphereSource.h>
 #include <vtkStaticCellLocator.h>
-#include <vtkStringArray.h>
 #include <vtkTextProperty.h>
 #include <vtkUnsignedCharArray.h>
 
@@ -72,15 +71,28 @@ MeshScene::MeshScene() {
     markerActor_->PickableOff();
     renderer_->AddActor(markerActor_);
 
-    labelMapper_->SetInputData(markers_);
-    labelMapper_->SetLabelModeToLabelFieldData();
-    labelMapper_->SetFieldDataName("label");
-    labelMapper_->GetLabelTextProperty()->SetFontSize(13);
-    labelMapper_->GetLabelTextProperty()->SetColor(1.0, 1.0, 0.85);
-    labelMapper_->GetLabelTextProperty()->ShadowOn();
-    labelActor_->SetMapper(labelMapper_);
-    labelActor_->VisibilityOff();
-    renderer_->AddActor2D(labelActor_);
+    renderer_->AddActor2D(labels_.actor());
+    renderer_->AddActor(floor_.actor());
+
+    legend_->SetNumberOfLabels(5);
+    legend_->SetPosition(0.86, 0.2);
+    legend_->SetWidth(0.12);
+    legend_->SetHeight(0.65);
+    legend_->SetBarRatio(0.3);
+    legend_->SetLabelFormat("%.3g");
+    legend_->SetTextPositionToPrecedeScalarBar();
+    legend_->UnconstrainedFontSizeOn();
+    legend_->GetTitleTextProperty()->SetFontSize(13);
+    legend_->GetLabelTextProperty()->SetFontSize(12);
+    for (vtkTextProperty* text :
+         {legend_->GetTitleTextProperty(), legend_->GetLabelTextProperty()}) {
+        text->SetBold(false);
+        text->SetItalic(false);
+        text->SetShadow(false);
+        text->SetColor(0.92, 0.92, 0.92);
+    }
+    legend_->VisibilityOff();
+    renderer_->AddActor2D(legend_);
 
     trailMapper_->SetInputData(trails_);
     trailActor_->SetMapper(trailMapper_);
@@ -124,7 +136,7 @@ void MeshScene::setMesh(const TriMesh& mesh) {
     mesh_->SetPoints(points);
     mesh_->SetPolys(triangles);
     updateNormals();
-    setHeatMap({});
+    setHeatMap({}, {});
     meshActor_->SetVisibility(V_.rows() > 0);
     const double r = markerRadius();
     sphere_->SetRadius(1.0);
@@ -138,6 +150,7 @@ void MeshScene::clearMesh() {
     setMesh(TriMesh{});
     setMarkers(Positions(0, 3), {}, {});
     setTrails({});
+    setFloor({});
 }
 
 void MeshScene::setPositions(const Positions& V) {
@@ -185,8 +198,9 @@ void MeshScene::setMarkers(const Positions& markers, const std::vector<MarkerSta
     vtkNew<vtkUnsignedCharArray> colour;
     colour->SetName("colour");
     colour->SetNumberOfComponents(3);
-    vtkNew<vtkStringArray> label;
-    label->SetName("label");
+    Positions shown(markers.rows(), 3);
+    std::vector<std::string> texts;
+    std::vector<int> priorities;
     const double r = markerRadius();
     for (Eigen::Index k = 0; k < markers.rows(); ++k) {
         // A missing marker has no position this frame; drawing it anywhere would mislead.
@@ -204,21 +218,20 @@ void MeshScene::setMarkers(const Positions& markers, const std::vector<MarkerSta
         }
         radius->InsertNextValue(static_cast<float>(scale));
         colour->InsertNextTypedTuple(rgb);
-        label->InsertNextValue(k < labels.size() ? labels[k].toStdString() : std::to_string(k));
+        shown.row(Eigen::Index(texts.size())) = markers.row(k);
+        texts.push_back(k < labels.size() ? labels[k].toStdString() : std::to_string(k));
+        // The selected marker's name always shows; then the ones still to map.
+        priorities.push_back(state == MarkerState::Selected   ? 0
+                             : state == MarkerState::Unmapped ? 1
+                                                              : 2);
     }
     markers_->Initialize();
     markers_->SetPoints(points);
     markers_->GetPointData()->AddArray(radius);
     markers_->GetPointData()->AddArray(colour);
-    markers_->GetPointData()->AddArray(label);
     markers_->Modified();
     markerActor_->SetVisibility(points->GetNumberOfPoints() > 0);
-    labelActor_->SetVisibility(labelsVisible_ && points->GetNumberOfPoints() > 0);
-}
-
-void MeshScene::setLabelsVisible(bool visible) {
-    labelsVisible_ = visible;
-    labelActor_->SetVisibility(visible && markers_->GetNumberOfPoints() > 0);
+    labels_.set(shown.topRows(Eigen::Index(texts.size())), texts, priorities);
 }
 
 void MeshScene::setTrails(const std::vector<Positions>& trails) {
@@ -247,14 +260,15 @@ void MeshScene::setTrails(const std::vector<Positions>& trails) {
     trailActor_->SetVisibility(lines->GetNumberOfCells() > 0);
 }
 
-void MeshScene::setHeatMap(const std::vector<float>& values) {
+void MeshScene::setHeatMap(const std::vector<float>& values, const QString& title) {
     if (values.empty() || static_cast<Eigen::Index>(values.size()) != V_.rows()) {
         mesh_->GetPointData()->SetScalars(nullptr);
         meshMapper_->ScalarVisibilityOff();
+        legend_->VisibilityOff();
         return;
     }
     vtkNew<vtkFloatArray> scalars;
-    scalars->SetName("shape error");
+    scalars->SetName(title.toStdString().c_str());
     scalars->SetNumberOfValues(static_cast<vtkIdType>(values.size()));
     std::copy(values.begin(), values.end(), scalars->GetPointer(0));
     mesh_->GetPointData()->SetScalars(scalars);
@@ -271,6 +285,18 @@ void MeshScene::setHeatMap(const std::vector<float>& values) {
     meshMapper_->SetScalarRange(0.0, top);
     meshMapper_->SetScalarModeToUsePointData();
     meshMapper_->ScalarVisibilityOn();
+    // The legend reads the same table, so its colours are the mesh's.
+    legend_->SetLookupTable(table);
+    legend_->SetTitle(title.toStdString().c_str());
+    legend_->VisibilityOn();
+}
+
+bool MeshScene::legendVisible() const {
+    return legend_->GetVisibility() && legend_->GetLookupTable();
+}
+
+QString MeshScene::legendTitle() const {
+    return legend_->GetTitle() ? QString::fromStdString(legend_->GetTitle()) : QString();
 }
 
 void MeshScene::setHighlightedVertex(int vertex) {

@@ -6,6 +6,8 @@
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>
 
+#include "FloorGrid.h"
+#include "MarkerLabels.h"
 #include "boneless/TriMesh.h"
 #include "boneless/ui/MeshView.h"
 
@@ -13,17 +15,18 @@ class vtkActor;
 class vtkActor2D;
 class vtkCellPicker;
 class vtkGlyph3DMapper;
-class vtkLabeledDataMapper;
 class vtkPolyData;
 class vtkPolyDataMapper;
 class vtkRenderer;
+class vtkScalarBarActor;
 class vtkSphereSource;
 class vtkStaticCellLocator;
 
 namespace boneless::ui {
 
-// The VTK scene of a MeshView: mesh, marker spheres, labels, trails, the highlighted vertex and
-// vertex picking. Knows nothing of Qt's OpenGL; the widget owns the context and the renders.
+// The VTK scene of a MeshView: mesh, marker spheres, labels, trails, the highlighted vertex, the
+// floor grid, the heat map's legend and vertex picking. Knows nothing of Qt's OpenGL; the widget
+// owns the context and the renders.
 class MeshScene {
   public:
     MeshScene();
@@ -39,10 +42,18 @@ class MeshScene {
 
     void setMarkers(const Positions& markers, const std::vector<MarkerState>& states,
                     const QStringList& labels);
-    void setLabelsVisible(bool visible);
-    bool labelsVisible() const { return labelsVisible_; }
+    void setLabelsVisible(bool visible) { labels_.setVisible(visible); }
+    bool labelsVisible() const { return labels_.visible(); }
+    // Before each render: which labels fit (see MarkerLabels).
+    void layoutLabels() { labels_.layout(renderer_); }
+    const MarkerLabels& labels() const { return labels_; }
     void setTrails(const std::vector<Positions>& trails);
-    void setHeatMap(const std::vector<float>& values);
+    // `title` names the quantity and its units, for the legend.
+    void setHeatMap(const std::vector<float>& values, const QString& title);
+    bool legendVisible() const;
+    QString legendTitle() const;
+    void setFloor(const Floor& floor) { floor_.set(floor); }
+    const FloorGrid& floorGrid() const { return floor_; }
     void setHighlightedVertex(int vertex);
 
     // Fits the camera to the mesh, looking at its front with `up` pointing up on screen.
@@ -59,7 +70,6 @@ class MeshScene {
 
     Positions V_;
     Faces F_;
-    bool labelsVisible_ = false;
     bool locatorStale_ = true;
     int highlighted_ = -1;
 
@@ -71,8 +81,9 @@ class MeshScene {
     vtkNew<vtkSphereSource> sphere_;
     vtkNew<vtkGlyph3DMapper> markerMapper_;
     vtkNew<vtkActor> markerActor_;
-    vtkNew<vtkLabeledDataMapper> labelMapper_;
-    vtkNew<vtkActor2D> labelActor_;
+    MarkerLabels labels_;
+    FloorGrid floor_;
+    vtkNew<vtkScalarBarActor> legend_;
     vtkNew<vtkPolyData> trails_;
     vtkNew<vtkPolyDataMapper> trailMapper_;
     vtkNew<vtkActor> trailActor_;

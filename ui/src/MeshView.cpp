@@ -9,16 +9,22 @@
 #include <QOpenGLFunctions>
 #include <QWheelEvent>
 
+#include <vtkAxesActor.h>
 #include <vtkCamera.h>
+#include <vtkCaptionActor2D.h>
 #include <vtkCommand.h>
 #include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkGenericRenderWindowInteractor.h>
 #include <vtkInteractorStyleTrackballCamera.h>
 #include <vtkOpenGLState.h>
+#include <vtkOrientationMarkerWidget.h>
+#include <vtkProperty.h>
 #include <vtkRenderer.h>
+#include <vtkTextProperty.h>
 
 #include <cmath>
 
+#include "CameraFollow.h"
 #include "MeshScene.h"
 
 namespace boneless::ui {
@@ -29,6 +35,9 @@ struct MeshView::Impl {
     vtkNew<vtkGenericOpenGLRenderWindow> window;
     vtkNew<vtkGenericRenderWindowInteractor> interactor;
     vtkNew<vtkInteractorStyleTrackballCamera> style;
+    vtkNew<vtkAxesActor> axes;
+    vtkNew<vtkOrientationMarkerWidget> gizmo;
+    CameraFollow follow;
     Eigen::Vector3d up = Eigen::Vector3d::UnitY();
     bool initialized = false;
     bool painting = false;
@@ -50,6 +59,35 @@ struct MeshView::Impl {
         // The style asks for renders; they become update() so all GL work happens in paintGL.
         interactor->EnableRenderOff();
         interactor->AddObserver(vtkCommand::RenderEvent, this, &Impl::onRenderRequest);
+        setUpGizmo();
+    }
+
+    // The widget draws the axes in its own renderer in a corner, turned with the main camera.
+    void setUpGizmo() {
+        const double colours[3][3] = {{0.9, 0.2, 0.2}, {0.3, 0.85, 0.3}, {0.3, 0.45, 1.0}};
+        vtkProperty* shafts[3] = {axes->GetXAxisShaftProperty(), axes->GetYAxisShaftProperty(),
+                                  axes->GetZAxisShaftProperty()};
+        vtkProperty* tips[3] = {axes->GetXAxisTipProperty(), axes->GetYAxisTipProperty(),
+                                axes->GetZAxisTipProperty()};
+        vtkCaptionActor2D* captions[3] = {axes->GetXAxisCaptionActor2D(),
+                                          axes->GetYAxisCaptionActor2D(),
+                                          axes->GetZAxisCaptionActor2D()};
+        for (int k = 0; k < 3; ++k) {
+            shafts[k]->SetColor(colours[k][0], colours[k][1], colours[k][2]);
+            tips[k]->SetColor(colours[k][0], colours[k][1], colours[k][2]);
+            vtkTextProperty* text = captions[k]->GetCaptionTextProperty();
+            text->SetColor(colours[k][0], colours[k][1], colours[k][2]);
+            text->ShadowOff();
+            text->ItalicOff();
+        }
+        gizmo->SetOrientationMarker(axes);
+        gizmo->SetInteractor(interactor);
+        gizmo->SetDefaultRenderer(scene.renderer());
+        gizmo->SetViewport(0.0, 0.0, 0.16, 0.2);
+        gizmo->SetZoom(1.5);
+        gizmo->SetEnabled(1);
+        // A gizmo that can be dragged about would take the clicks that map markers.
+        gizmo->InteractiveOff();
     }
 
     void onMakeCurrent(vtkObject*, unsigned long, void*) {
@@ -150,6 +188,7 @@ void MeshView::paintGL() {
     d_->syncSize();
     d_->painting = true;
     d_->scene.renderer()->ResetCameraClippingRange();
+    d_->scene.layoutLabels();
     vtkOpenGLState* state = d_->window->GetState();
     // Qt changed GL state since the last frame; VTK's cache must not trust its old values.
     state->Reset();
@@ -169,6 +208,7 @@ void MeshView::setMesh(const TriMesh& mesh, const Eigen::Vector3d& up) {
     d_->up = up.norm() > 0 ? up.normalized() : Eigen::Vector3d::UnitY();
     d_->scene.setMesh(mesh);
     d_->scene.resetCamera(d_->up);
+    d_->follow.restart(mesh.V);
     // The first real size arrives with resizeGL; fit again then.
     d_->cameraPending = !d_->initialized;
     update();
@@ -185,6 +225,11 @@ bool MeshView::hasMesh() const {
 
 void MeshView::setPositions(const Positions& V) {
     d_->scene.setPositions(V);
+    // Before the first paint the widget has no real size to keep the mesh inside.
+    if (d_->initialized && V.rows() == d_->scene.positions().rows() && hasMesh()) {
+        d_->syncSize();
+        d_->follow.follow(d_->scene.renderer(), V, d_->up);
+    }
     update();
 }
 
@@ -218,9 +263,44 @@ void MeshView::setTrails(const std::vector<Positions>& trails) {
     update();
 }
 
-void MeshView::setHeatMap(const std::vector<float>& values) {
-    d_->scene.setHeatMap(values);
+void MeshView::setHeatMap(const std::vector<float>& values, const QString& title) {
+    d_->scene.setHeatMap(values, title);
     update();
+}
+
+bool MeshView::legendVisible() const {
+    return d_->scene.legendVisible();
+}
+
+QString MeshView::legendTitle() const {
+    return d_->scene.legendTitle();
+}
+
+void MeshView::setFloor(const Floor& floor) {
+    d_->scene.setFloor(floor);
+    update();
+}
+
+double MeshView::floorHeight() const {
+    return d_->scene.floorGrid().drawnHeight();
+}
+
+bool MeshView::axesVisible() const {
+    return d_->gizmo->GetEnabled() && d_->axes->GetVisibility();
+}
+
+QList<QRect> MeshView::labelBoxes() const {
+    QList<QRect> boxes;
+    const double ratio = devicePixelRatioF();
+    const int height = d_->deviceSize().y();
+    for (const LabelBox& b : d_->scene.labels().drawnBoxes())
+        boxes << QRect(QPoint(int(b.x0 / ratio), int((height - b.y1) / ratio)),
+                       QPoint(int((b.x1 - 1) / ratio), int((height - 1 - b.y0) / ratio)));
+    return boxes;
+}
+
+int MeshView::hiddenLabelCount() const {
+    return d_->scene.labels().hiddenCount();
 }
 
 void MeshView::setHighlightedVertex(int vertex) {
@@ -235,7 +315,48 @@ void MeshView::setMultiSampling(int samples) {
 
 void MeshView::resetCamera() {
     d_->scene.resetCamera(d_->up);
+    d_->follow.restart(d_->scene.positions());
     update();
+}
+
+void MeshView::setCameraFollow(bool on) {
+    d_->follow.setEnabled(on);
+    d_->follow.restart(d_->scene.positions());
+}
+
+bool MeshView::cameraFollow() const {
+    return d_->follow.enabled();
+}
+
+void MeshView::setPlaying(bool playing) {
+    d_->follow.setPlaying(playing);
+}
+
+void MeshView::frame(const Eigen::Vector3d& point) {
+    if (!point.allFinite()) return;
+    vtkCamera* camera = d_->scene.renderer()->GetActiveCamera();
+    double p[3], f[3];
+    camera->GetPosition(p);
+    camera->GetFocalPoint(f);
+    Eigen::Vector3d direction =
+        Eigen::Vector3d(f[0], f[1], f[2]) - Eigen::Vector3d(p[0], p[1], p[2]);
+    const double current = direction.norm();
+    if (current <= 0) return;
+    direction /= current;
+    // Close enough that a tenth of the mesh around the point fills the view, never farther.
+    const double radius = 0.1 * std::max(boundingBoxDiagonal(d_->scene.positions()), 1e-9);
+    const double fit = radius / std::tan(0.5 * camera->GetViewAngle() * M_PI / 180.0);
+    const double distance = std::min(current, fit);
+    const Eigen::Vector3d eye = point - distance * direction;
+    camera->SetFocalPoint(point.data());
+    camera->SetPosition(eye.data());
+    update();
+}
+
+Eigen::Vector3d MeshView::focalPoint() const {
+    double f[3];
+    d_->scene.renderer()->GetActiveCamera()->GetFocalPoint(f);
+    return {f[0], f[1], f[2]};
 }
 
 QImage MeshView::grabImage() {

@@ -139,6 +139,7 @@ class MainWindow : public QMainWindow {
     QAction* trailsAction_ = nullptr;
     QAction* heatMapAction_ = nullptr;
     QAction* mappingAction_ = nullptr;
+    QAction* followAction_ = nullptr;
 
     QString projectPath_;
     bool demo_ = false;

@@ -1,8 +1,10 @@
 #pragma once
 
 #include <QImage>
+#include <QList>
 #include <QOpenGLWidget>
 #include <QPoint>
+#include <QRect>
 #include <QString>
 #include <QStringList>
 #include <QVariantMap>
@@ -15,6 +17,14 @@ namespace boneless::ui {
 
 // How a marker sphere is drawn. Missing markers (NaN rows) are not drawn at all.
 enum class MarkerState { Unmapped, Mapped, Selected };
+
+// Where the floor is and how much of it to draw, in mesh coordinates.
+struct Floor {
+    Eigen::Vector3d up = Eigen::Vector3d::UnitY();
+    double height = 0;  // along up
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    double size = 0;  // side of the square grid; 0 = no floor
+};
 
 // The 3D view: a vtkGenericOpenGLRenderWindow hosted in a Qt6 QOpenGLWidget (Debian's VTK Qt
 // widget is Qt5-only). All VTK work happens on the GUI thread; renders only in paintGL.
@@ -40,13 +50,34 @@ class MeshView : public QOpenGLWidget {
     bool labelsVisible() const;
     // One polyline per marker (NaN rows break it); empty = no trails.
     void setTrails(const std::vector<Positions>& trails);
-    // Per-vertex scalars coloured from blue (0) to red (max); empty = plain shading.
-    void setHeatMap(const std::vector<float>& values);
+    // Per-vertex scalars coloured from blue (0) to red (max), with a colour legend titled with
+    // the quantity and its units ("Shape error (mm)"); empty = plain shading, no legend.
+    void setHeatMap(const std::vector<float>& values, const QString& title = {});
+    bool legendVisible() const;
+    QString legendTitle() const;
+    // A grid on the floor; a Floor of size 0 hides it.
+    void setFloor(const Floor& floor);
+    // The height along the floor's up of the grid drawn, NaN when there is none.
+    double floorHeight() const;
+    // The corner gizmo showing the mesh axes (x red, y green, z blue) as the camera turns.
+    bool axesVisible() const;
+    // Labels that would overlap one of higher priority are not drawn; these are the boxes of
+    // those drawn at the last render (logical pixels, top-left origin), and how many were not.
+    QList<QRect> labelBoxes() const;
+    int hiddenLabelCount() const;
     // The mesh vertex drawn as a small dot (the selected marker's vertex), -1 for none.
     void setHighlightedVertex(int vertex);
 
     void setMultiSampling(int samples);  // 0 = off (tests, software GL)
     void resetCamera();
+    // Camera follow (see CameraFollow), on by default: while playing, the camera tracks the mesh
+    // smoothly; paused, it moves only to keep the mesh from leaving the screen.
+    void setCameraFollow(bool on);
+    bool cameraFollow() const;
+    void setPlaying(bool playing);
+    // Turns the camera to look at `point` from closer, keeping its direction.
+    void frame(const Eigen::Vector3d& point);
+    Eigen::Vector3d focalPoint() const;
     QImage grabImage();
 
     // Nearest vertex of the triangle under the widget position (logical pixels, top-left

@@ -1,0 +1,182 @@
+// What the view draws besides the mesh: the floor grid at the take's floor, the axes gizmo, the
+// heat map's legend and marker labels that do not pile up.
+#include <QAction>
+#include <QtTest>
+#include <limits>
+
+#include "ViewTestSupport.h"
+#include "boneless/MeshReader.h"
+#include "boneless/ui/Document.h"
+#include "boneless/ui/MainWindow.h"
+#include "boneless/ui/MeshView.h"
+
+using namespace boneless;
+using namespace boneless::ui;
+
+namespace {
+
+QAction* actionNamed(MainWindow& window, const QString& text) {
+    for (QAction* action : window.findChildren<QAction*>())
+        if (action->text() == text) return action;
+    return nullptr;
+}
+
+// How many pixels of `image` inside `area` are strongly of one hue: red, green or blue.
+struct Hues {
+    int red = 0, green = 0, blue = 0;
+};
+Hues huesIn(const QImage& image, const QRect& area) {
+    Hues h;
+    for (int y = area.top(); y <= area.bottom(); ++y)
+        for (int x = area.left(); x <= area.right(); ++x) {
+            const QColor c = image.pixelColor(x, y);
+            const int r = c.red(), g = c.green(), b = c.blue();
+            h.red += r > 150 && r > 2 * g && r > 2 * b;
+            h.green += g > 150 && g > 1.6 * r && g > 1.6 * b;
+            h.blue += b > 150 && b > 1.6 * r && b > 1.3 * g;
+        }
+    return h;
+}
+
+}  // namespace
+
+class ViewOverlayTest : public QObject {
+    Q_OBJECT
+  public:
+    static void initMain() { setDefaultSurfaceFormat(); }
+
+  private slots:
+    void initTestCase() { project_ = test::demoProjectFor("ViewOverlayTest", &folder_); }
+
+    void theFloorGridLiesAtTheLowestMarkerOfTheTake() {
+        const auto shown = test::openShown(project_);
+        QVERIFY(shown);
+        MainWindow& window = *shown;
+        const Document* document = window.document();
+        // The walker stands on z = 0 with z up; its markers sit on the skin, so the floor is the
+        // lowest foot marker of the whole take, not of this frame.
+        double lowest = std::numeric_limits<double>::infinity(), lowestAtFrame0 = lowest;
+        for (int f = 0; f < document->frameCount(); ++f) {
+            const Positions P = document->markerPositions(f);
+            for (Eigen::Index k = 0; k < P.rows(); ++k)
+                if (P.row(k).allFinite()) {
+                    lowest = std::min(lowest, P(k, 2));
+                    if (f == 0) lowestAtFrame0 = std::min(lowestAtFrame0, P(k, 2));
+                }
+        }
+        QVERIFY(std::isfinite(lowest));
+        QVERIFY2(lowest < lowestAtFrame0, "the take's floor must not be one frame's");
+        const double height = window.meshView()->floorHeight();
+        QVERIFY2(std::abs(height - lowest) < 1e-9,
+                 qPrintable(QString("grid at %1, floor at %2").arg(height).arg(lowest)));
+    }
+
+    void withoutATakeTheFloorIsTheRestMeshsLowestPoint() {
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        QVERIFY(window.openFile(folder_ + "/demo/walker.obj"));
+        QVERIFY(test::showAndWait(window));
+        const Positions& V = window.document()->mesh().V;
+        // Without a take nothing says which way is up: the view's default, y.
+        QCOMPARE(window.meshView()->floorHeight(), V.col(1).minCoeff());
+        window.document()->reset();
+        QVERIFY(std::isnan(window.meshView()->floorHeight()));
+    }
+
+    void theAxesGizmoSitsInACornerAndTurnsWithTheCamera() {
+        MeshView view;
+        QVERIFY(test::showMesh(view, readMesh((folder_ + "/demo/walker.obj").toStdString()).mesh));
+        QVERIFY(view.axesVisible());
+        const QRect corner(0, view.height() - view.height() / 5, view.width() / 6,
+                           view.height() / 5);
+        const QImage before = view.grabImage();
+        const Hues h = huesIn(before, corner);
+        QVERIFY2(h.red > 10 && h.green > 10 && h.blue > 10,
+                 qPrintable(QString("red %1, green %2, blue %3 pixels in the corner")
+                                .arg(h.red)
+                                .arg(h.green)
+                                .arg(h.blue)));
+        const Hues elsewhere =
+            huesIn(before, QRect(view.width() / 2, 0, view.width() / 6, view.height() / 5));
+        QCOMPARE(elsewhere.red + elsewhere.green + elsewhere.blue, 0);
+
+        // Turn the camera by a drag: the gizmo's picture changes with it.
+        const QPoint start = view.rect().center();
+        QTest::mousePress(&view, Qt::LeftButton, {}, start);
+        for (int step = 1; step <= 5; ++step) QTest::mouseMove(&view, start + QPoint(20 * step, 0));
+        QTest::mouseRelease(&view, Qt::LeftButton, {}, start + QPoint(100, 0));
+        const QImage after = view.grabImage();
+        QVERIFY(before.copy(corner) != after.copy(corner));
+    }
+
+    void theHeatMapHasALegendWithItsQuantityAndUnits() {
+        const auto shown = test::openShown(project_);
+        QVERIFY(shown);
+        MainWindow& window = *shown;
+        MeshView* view = window.meshView();
+        const QRect strip(int(view->width() * 0.88), 0, view->width() - int(view->width() * 0.88),
+                          view->height());
+        QVERIFY(!view->legendVisible());
+        const Hues plain = huesIn(view->grabImage(), strip);
+        QCOMPARE(plain.red + plain.blue, 0);
+
+        QAction* heatMap = actionNamed(window, "Shape Error &Heat Map");
+        QVERIFY(heatMap);
+        heatMap->setChecked(true);
+        QVERIFY(QTest::qWaitFor([&] { return window.frameUpToDate() && view->legendVisible(); },
+                                60000));
+        QCOMPARE(view->legendTitle(), QString("Shape error (mm)"));
+        // The legend's colour bar is drawn: blue at its low end, red at its high end.
+        const Hues legend = huesIn(view->grabImage(), strip);
+        QVERIFY2(legend.red > 50 && legend.blue > 50,
+                 qPrintable(QString("red %1, blue %2").arg(legend.red).arg(legend.blue)));
+
+        heatMap->setChecked(false);
+        QVERIFY(!view->legendVisible());
+        const Hues off = huesIn(view->grabImage(), strip);
+        QCOMPARE(off.red + off.blue, 0);
+    }
+
+    void markerLabelsDoNotOverlap() {
+        const auto shown = test::openShown(project_);
+        QVERIFY(shown);
+        MainWindow& window = *shown;
+        MeshView* view = window.meshView();
+        QAction* labels = actionNamed(window, "Marker &Labels");
+        QVERIFY(labels);
+        labels->setChecked(true);
+        // Zoomed out, 39 labels cannot all fit: some must give way.
+        QWheelEvent wheel(QPointF(view->rect().center()), view->mapToGlobal(view->rect().center()),
+                          {}, QPoint(0, -120), Qt::NoButton, {}, Qt::NoScrollPhase, false);
+        for (int k = 0; k < 3; ++k) QCoreApplication::sendEvent(view, &wheel);
+        const QImage image = view->grabImage();
+        const QList<QRect> boxes = view->labelBoxes();
+        QVERIFY2(boxes.size() >= 5, qPrintable(QString("%1 labels drawn").arg(boxes.size())));
+        QVERIFY2(view->hiddenLabelCount() > 0, "nothing was crowded: the test shows nothing");
+        for (int i = 0; i < boxes.size(); ++i)
+            for (int j = i + 1; j < boxes.size(); ++j)
+                QVERIFY2(!boxes[i].intersects(boxes[j]),
+                         qPrintable(QString("labels %1 and %2 overlap").arg(i).arg(j)));
+        // The boxes are where the text is: no label-coloured pixel lies outside them.
+        int inside = 0, outside = 0;
+        for (int y = 0; y < image.height(); ++y)
+            for (int x = 0; x < image.width(); ++x) {
+                const QColor c = image.pixelColor(x, y);
+                if (c.red() < 245 || c.green() < 245 || c.blue() < 190 || c.blue() > 235) continue;
+                const bool in = std::any_of(boxes.begin(), boxes.end(), [&](const QRect& b) {
+                    return b.adjusted(-2, -2, 2, 2).contains(x, y);
+                });
+                ++(in ? inside : outside);
+            }
+        QVERIFY2(
+            inside > 20 && outside == 0,
+            qPrintable(
+                QString("%1 label pixels inside the boxes, %2 outside").arg(inside).arg(outside)));
+    }
+
+  private:
+    QString folder_, project_;
+};
+
+QTEST_MAIN(ViewOverlayTest)
+#include "ViewOverlayTest.moc"

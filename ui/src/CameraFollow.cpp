@@ -1,0 +1,89 @@
+#include "CameraFollow.h"
+
+#include <vtkCamera.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+
+#include <algorithm>
+
+namespace boneless::ui {
+namespace {
+
+// Per frame, the share of the way to the centroid the camera moves while smoothing: enough to
+// keep up with a run at 30 Hz, little enough to iron out a stride's sway.
+constexpr double kSmoothing = 0.3;
+
+void translateCamera(vtkRenderer* renderer, const Eigen::Vector3d& d) {
+    vtkCamera* camera = renderer->GetActiveCamera();
+    double p[3], f[3];
+    camera->GetPosition(p);
+    camera->GetFocalPoint(f);
+    camera->SetPosition(p[0] + d.x(), p[1] + d.y(), p[2] + d.z());
+    camera->SetFocalPoint(f[0] + d.x(), f[1] + d.y(), f[2] + d.z());
+}
+
+Eigen::Vector3d displayOf(vtkRenderer* renderer, const Eigen::Vector3d& p) {
+    renderer->SetWorldPoint(p.x(), p.y(), p.z(), 1.0);
+    renderer->WorldToDisplay();
+    double d[3];
+    renderer->GetDisplayPoint(d);
+    return {d[0], d[1], d[2]};
+}
+
+Eigen::Vector3d worldOf(vtkRenderer* renderer, const Eigen::Vector3d& d) {
+    renderer->SetDisplayPoint(d.x(), d.y(), d.z());
+    renderer->DisplayToWorld();
+    double w[4];
+    renderer->GetWorldPoint(w);
+    return Eigen::Vector3d(w[0], w[1], w[2]) / (w[3] != 0 ? w[3] : 1.0);
+}
+
+}  // namespace
+
+Eigen::Vector3d centroid(const Positions& V) {
+    if (V.rows() == 0) return Eigen::Vector3d::Zero();
+    return V.colwise().mean().transpose();
+}
+
+void CameraFollow::setEnabled(bool enabled) {
+    enabled_ = enabled;
+    tracked_.reset();
+}
+
+void CameraFollow::restart(const Positions& V) {
+    tracked_ = V.rows() > 0 ? std::optional(centroid(V)) : std::nullopt;
+}
+
+void CameraFollow::follow(vtkRenderer* renderer, const Positions& V, const Eigen::Vector3d& up) {
+    if (!enabled_ || V.rows() == 0 || !V.allFinite()) return;
+    const Eigen::Vector3d c = centroid(V);
+    if (!tracked_) {
+        tracked_ = c;
+        return;
+    }
+    const Eigen::Vector3d u = up.normalized();
+    // Paused, a new frame is looked at from where the camera is: scrubbing, reopening a project
+    // or mapping keeps the user's view.
+    Eigen::Vector3d step = (playing_ ? kSmoothing : 0.0) * (c - *tracked_);
+    step -= step.dot(u) * u;  // across the floor only
+    *tracked_ = playing_ ? Eigen::Vector3d(*tracked_ + step) : c;
+    translateCamera(renderer, step);
+
+    // Energetic frames: whatever the smoothing, the centroid stays in the inner box.
+    const int* size =
+        renderer->GetRenderWindow() ? renderer->GetRenderWindow()->GetSize() : nullptr;
+    if (!size || size[0] <= 1 || size[1] <= 1) return;
+    renderer->ResetCameraClippingRange();
+    const Eigen::Vector3d d = displayOf(renderer, c);
+    if (!(d.z() > 0 && d.z() < 1)) return;  // behind the camera: nothing sensible to do
+    const double hx = 0.5 * size[0], hy = 0.5 * size[1];
+    const Eigen::Vector3d inside(std::clamp(d.x(), hx - kInnerBox * hx, hx + kInnerBox * hx),
+                                 std::clamp(d.y(), hy - kInnerBox * hy, hy + kInnerBox * hy),
+                                 d.z());
+    if (inside.isApprox(d)) return;
+    const Eigen::Vector3d shift = worldOf(renderer, d) - worldOf(renderer, inside);
+    translateCamera(renderer, shift);
+    *tracked_ += shift - shift.dot(u) * u;
+}
+
+}  // namespace boneless::ui
