@@ -101,7 +101,7 @@ json checkConverged(const TriMesh& mesh, const bench::BendWorkload& work,
     const MeshTopology topology(mesh);
     const ShapeEncoding encoding(mesh, topology);
     LocalGlobalSolver::Settings settings =
-        LocalGlobalMethod::inputSettings(true, SolverOptions{}.softWeight);
+        LocalGlobalMethod::inputSettings(true, SolverOptions{}.markerWeight);
     settings.iterations = 1;
     settings.repairFolds = false;
     LocalGlobalSolver solver(mesh, topology, encoding, vertexPatches(mesh, encoding, work.markers),

@@ -54,8 +54,8 @@ class ProjectTest : public QObject {
         settings.markerWeight = 42;
         settings.lowPassHz = 6;
         settings.solver.method = SolverOptions::Method::Exact;
-        settings.solver.rigidityWeight = 0.02;
-        settings.solver.orientationWeight = 50;
+        settings.solver.foldGuard = 0.02;
+        settings.solver.orientationGuard = 50;
         settings.calibrate = CalibrateMode::None;
         d.setSettings(settings);
         d.setViewSetting("labels", true);
@@ -81,8 +81,8 @@ class ProjectTest : public QObject {
         QCOMPARE(readJson(path)["settings"].toObject()["solver"].toString(), QString("exact"));
         QCOMPARE(e.settings().calibrate, CalibrateMode::None);
         QCOMPARE(readJson(path)["settings"].toObject()["calibrate"].toString(), QString("none"));
-        QCOMPARE(e.settings().solver.rigidityWeight, 0.02);
-        QCOMPARE(e.settings().solver.orientationWeight, 50.0);
+        QCOMPARE(e.settings().solver.foldGuard, 0.02);
+        QCOMPARE(e.settings().solver.orientationGuard, 50.0);
         QCOMPARE(e.viewSettings().value("trailFrames").toInt(), 8);
         QCOMPARE(e.undoStack()->count(), 0);
         QCOMPARE(e.meshPath(), QFileInfo(demo_ + "/walker.obj").absoluteFilePath());
@@ -126,9 +126,19 @@ class ProjectTest : public QObject {
             {"direct", SolverOptions::Method::LocalGlobal},
             {"iterative", SolverOptions::Method::LocalGlobal},
             {"exact", SolverOptions::Method::Exact}};
-        for (const auto& [name, method] : cases) {
+        // The demo project with these settings, loaded into d (false also when it cannot be
+        // written, which the messages checked below then show).
+        auto load = [&](const QJsonObject& settings, Document& d, QString& error) {
             QJsonObject root = original;
-            QJsonObject settings = root["settings"].toObject();
+            root["settings"] = settings;
+            QFile f(path);
+            if (!f.open(QIODevice::WriteOnly | QIODevice::Truncate)) return false;
+            f.write(QJsonDocument(root).toJson());
+            f.close();
+            return Project::load(d, path, &error);
+        };
+        for (const auto& [name, method] : cases) {
+            QJsonObject settings = original["settings"].toObject();
             settings.remove("solver");
             settings.remove("fold_guard");
             settings["method"] = name;
@@ -137,17 +147,12 @@ class ProjectTest : public QObject {
             settings["continuation_steps"] = 3;
             settings["marker_weight"] = 77.0;
             settings.remove("calibrate");  // from before calibration
-            root["settings"] = settings;
-            QFile f(path);
-            QVERIFY(f.open(QIODevice::WriteOnly | QIODevice::Truncate));
-            f.write(QJsonDocument(root).toJson());
-            f.close();
             Document d;
             QString error;
-            QVERIFY2(Project::load(d, path, &error), qPrintable(error));
+            QVERIFY2(load(settings, d, error), qPrintable(error));
             QCOMPARE(d.settings().solver.method, method);
             QCOMPARE(d.settings().markerWeight, 77.0);  // the keys around it still read
-            QCOMPARE(d.settings().solver.rigidityWeight, 0.04);
+            QCOMPARE(d.settings().solver.foldGuard, 0.04);
             QCOMPARE(d.settings().calibrate, CalibrateMode::Shape);
             // Saved again, it names its method the new way.
             QVERIFY(Project::save(d, path));
@@ -156,17 +161,11 @@ class ProjectTest : public QObject {
             QVERIFY(!saved.contains("method"));
             QCOMPARE(saved["fold_guard"].toDouble(), 0.04);
         }
-        QJsonObject root = original;
-        QJsonObject settings = root["settings"].toObject();
+        QJsonObject settings = original["settings"].toObject();
         settings["solver"] = "no-such-method";
-        root["settings"] = settings;
-        QFile f(path);
-        QVERIFY(f.open(QIODevice::WriteOnly | QIODevice::Truncate));
-        f.write(QJsonDocument(root).toJson());
-        f.close();
         Document d;
         QString error;
-        QVERIFY(!Project::load(d, path, &error));
+        QVERIFY(!load(settings, d, error));
         QVERIFY2(error.contains("\"solver\" must be one of local-global, exact"),
                  qPrintable(error));
     }

@@ -52,7 +52,7 @@ double Reconstruction::Impl::markerEnergy(const Positions& V, const Positions& t
     if (softMarkers())
         for (size_t k = 0; k < markers.size(); ++k)
             if (rowIsFinite(targets, static_cast<int>(k)))
-                e += options.softWeight *
+                e += options.markerWeight *
                      (markerPoint(k, V) - targets.row(k).transpose()).squaredNorm();
     return e;
 }
@@ -60,7 +60,7 @@ double Reconstruction::Impl::markerEnergy(const Positions& V, const Positions& t
 double Reconstruction::Impl::rigidityEnergy(const Positions& V, std::vector<Mat3>& R,
                                             std::vector<Mat3>* curvature) const {
     rigidity->fitRotations(V, R, false, curvature);
-    return options.rigidityWeight * rigidity->energy(V, R);
+    return options.foldGuard * rigidity->energy(V, R);
 }
 
 double Reconstruction::Impl::energy(const Positions& V, const Positions& targets) const {
@@ -77,8 +77,8 @@ double Reconstruction::Impl::energy(const Positions& V, const Positions& targets
 
 void Reconstruction::Impl::updateOrientationGuard() {
     orientation.reset();
-    if (options.orientationWeight <= 0) return;
-    orientation = std::make_unique<OrientationGuard>(rest, options.orientationWeight, 0.2);
+    if (options.orientationGuard <= 0) return;
+    orientation = std::make_unique<OrientationGuard>(rest, options.orientationGuard, 0.2);
 }
 
 double Reconstruction::Impl::linearise(const Positions& V, const Positions& targets) {
@@ -129,7 +129,7 @@ void Reconstruction::Impl::assemble(const Positions& V, const Positions& targets
     }
     if (rigid()) {
         // For the rotations fitted at V: Hessian 6αL ⊗ I, gradient α(6 L V − 2 b).
-        const double a = options.rigidityWeight;
+        const double a = options.foldGuard;
         const int firstFaceStencil = static_cast<int>(residualOf.size());
         for (int f = 0; f < rest.faceCount(); ++f)
             for (int c = 0; c < 3; ++c) {
@@ -160,7 +160,7 @@ void Reconstruction::Impl::assemble(const Positions& V, const Positions& targets
         for (size_t k = 0; k < markers.size(); ++k) {
             if (!rowIsFinite(targets, static_cast<int>(k))) continue;
             const int v = markers[k];
-            const double lambda = options.softWeight;
+            const double lambda = options.markerWeight;
             std::vector<Mat3> dn;
             const Vec3 miss = markerPoint(k, V, &dn) - targets.row(k).transpose();
             if (gradient) gradient->segment<3>(3 * v) += lambda * miss;
@@ -190,7 +190,7 @@ void Reconstruction::Impl::addRotationCoupling() {
     // Placed in the stencil of v's own residual: G_v only touches v and its ring.
     std::vector<std::pair<int, Mat3>> blocks;
     std::vector<Mat3> G, CG;
-    const double scale = -2.0 * options.rigidityWeight;
+    const double scale = -2.0 * options.foldGuard;
     for (int v = 0; v < rest.vertexCount(); ++v) {
         const int r = residualIndex[v];
         const Mat3& C = rotationCurvature[v];
@@ -301,7 +301,7 @@ void Reconstruction::prepare(const TriMesh& rest, std::vector<SurfacePoint> poin
             impl->patches.push_back(makeMarkerPatch(impl->rest, *impl->encoding, p));
         impl->localGlobal = std::make_unique<LocalGlobalMethod>(
             impl->rest, *impl->topology, *impl->encoding, impl->patches,
-            options.constraints == SolverOptions::Constraints::Hard, options.softWeight);
+            options.constraints == SolverOptions::Constraints::Hard, options.markerWeight);
     } else {
         impl->residualIndex.assign(n, -1);
         for (int v = 0; v < n; ++v) {
@@ -562,11 +562,11 @@ void Reconstruction::setOptions(const SolverOptions& options) {
     // The method, and what the local/global factorisation holds, need preparing again.
     if (options.method != old.method || options.constraints != old.constraints ||
         (options.method == SolverOptions::Method::LocalGlobal &&
-         options.softWeight != old.softWeight)) {
+         options.markerWeight != old.markerWeight)) {
         prepare(TriMesh(impl_->rest), std::vector<SurfacePoint>(impl_->points), options);
         return;
     }
-    const bool guardChanged = options.orientationWeight != old.orientationWeight;
+    const bool guardChanged = options.orientationGuard != old.orientationGuard;
     impl_->options = options;
     impl_->restMarkers = markerPositions(impl_->rest.V);  // the offsets may have changed
     if (guardChanged && impl_->system) impl_->updateOrientationGuard();

@@ -41,7 +41,7 @@ struct Reconstruction::Impl {
     // Method::Exact:
     std::unique_ptr<BlockSystem> system;
     std::unique_ptr<ArapEnergy> rigidity;
-    std::unique_ptr<OrientationGuard> orientation;  // when options.orientationWeight > 0
+    std::unique_ptr<OrientationGuard> orientation;  // when options.orientationGuard > 0
 
     // Per-iteration scratch, kept to avoid reallocations per frame.
     std::vector<Vec3> residual;
@@ -50,7 +50,7 @@ struct Reconstruction::Impl {
     std::vector<Mat3> rotationCurvature;  // C_v of each fitted rotation (ArapEnergy::fitRotations)
     std::vector<OrientationGuard::Term> orientationTerms;
 
-    bool rigid() const { return options.rigidityWeight > 0; }
+    bool rigid() const { return options.foldGuard > 0; }
     bool softMarkers() const { return options.constraints == SolverOptions::Constraints::Soft; }
     double offset(size_t k) const {
         return k < options.markerOffsets.size() ? options.markerOffsets[k] : 0.0;

@@ -98,14 +98,14 @@ const std::vector<Entry>& entries() {
                 "exact only: weight of the as-rigid-as-possible term that keeps flat and thin "
                 "parts from folding; 0 = the paper's energy alone",
                 {"rigidity_weight", "rigidity"}, true),
-         [](const TakeSolveOptions& o) { return json(o.solver.rigidityWeight); },
-         [](TakeSolveOptions& o, const json& v) { o.solver.rigidityWeight = v.get<double>(); }},
+         [](const TakeSolveOptions& o) { return json(o.solver.foldGuard); },
+         [](TakeSolveOptions& o, const json& v) { o.solver.foldGuard = v.get<double>(); }},
         {number("orientation_guard", 0, 1e9, "",
                 "exact only: weight of the penalty on faces that shrink below a fifth of their "
                 "rest area or turn over; 0 = off",
                 {"orientation_weight"}, true),
-         [](const TakeSolveOptions& o) { return json(o.solver.orientationWeight); },
-         [](TakeSolveOptions& o, const json& v) { o.solver.orientationWeight = v.get<double>(); }},
+         [](const TakeSolveOptions& o) { return json(o.solver.orientationGuard); },
+         [](TakeSolveOptions& o, const json& v) { o.solver.orientationGuard = v.get<double>(); }},
         {integer("max_iterations", 1, 1e4, "exact only: Gauss-Newton steps per frame, at most",
                  true),
          [](const TakeSolveOptions& o) { return json(o.solver.maxIterations); },

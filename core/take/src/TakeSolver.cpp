@@ -69,7 +69,7 @@ void TakeSolver::prepare(const Correspondence& map) {
     SolverOptions solverOptions = options_.solver;
     solverOptions.method = SolverOptions::Method::LocalGlobal;
     solverOptions.constraints = SolverOptions::Constraints::Soft;
-    solverOptions.softWeight = options_.markerWeight;
+    solverOptions.markerWeight = options_.markerWeight;
     solverOptions.markerOffsets.clear();
     const std::vector<SurfacePoint> points = surfacePoints(map);
     topology_ = std::make_unique<MeshTopology>(rest_);

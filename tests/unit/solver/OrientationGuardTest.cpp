@@ -23,7 +23,7 @@ SolverOptions guarded(double weight = 100) {
     SolverOptions o;
     o.method = SolverOptions::Method::Exact;
     o.constraints = SolverOptions::Constraints::Soft;
-    o.orientationWeight = weight;
+    o.orientationGuard = weight;
     o.maxIterations = 30;
     return o;
 }
@@ -77,7 +77,7 @@ TEST(OrientationGuard, ChargesAFaceTurnedOverAndNothingWhileItKeepsItsSide) {
     Reconstruction solver;
     solver.prepare(mesh, markers, guarded());
     SolverOptions off = solver.options();
-    off.orientationWeight = 0;
+    off.orientationGuard = 0;
     Reconstruction plain;
     plain.prepare(mesh, markers, off);
     const Positions targets = rows(mesh.V, markers);

@@ -134,7 +134,7 @@ TEST(ExactReconstruction, TheFoldGuardsExactHessianConvergesOnABend) {
     SolverOptions options = exactOptions();
     options.relativeTolerance = 0;  // until no step can be seen
     options.maxIterations = 40;
-    options.orientationWeight = 100;  // as for takes; no face comes near its threshold here
+    options.orientationGuard = 100;  // as for takes; no face comes near its threshold here
     solver.prepare(mesh, markers, options);
     const Positions pose = bent(mesh.V, 0.6);
     const SolveResult r = solver.solve(rows(pose, markers), &mesh.V);
@@ -145,7 +145,7 @@ TEST(ExactReconstruction, TheFoldGuardsExactHessianConvergesOnABend) {
     // The control: without the orientation guard the exact method keeps the fixed-rotation
     // matrix (converged further there, it flips more faces), and the same bend is not done
     // after 40 steps.
-    options.orientationWeight = 0;
+    options.orientationGuard = 0;
     solver.setOptions(options);
     const SolveResult fixed = solver.solve(rows(pose, markers), &mesh.V);
     EXPECT_FALSE(fixed.report.converged) << fixed.report.iterations << " steps";
@@ -226,7 +226,7 @@ TEST_P(EveryMethod, SoftConstraintsApproachTheTargetsAsTheWeightGrows) {
     for (double weight : {1.0, 100.0, 1e4}) {
         SolverOptions o = options();
         o.constraints = SolverOptions::Constraints::Soft;
-        o.softWeight = weight;
+        o.markerWeight = weight;
         Reconstruction solver;
         solver.prepare(mesh, markers, o);
         const SolveResult r = solver.solve(rows(pose, markers));

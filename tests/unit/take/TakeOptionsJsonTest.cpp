@@ -24,8 +24,8 @@ TakeSolveOptions unusual(SolverOptions::Method method, CalibrateMode calibrate) 
     o.markerWeight = 42.5;
     o.fillGapSeconds = 0.35;
     o.lowPassHz = 6.25;
-    o.solver.rigidityWeight = 0.03;
-    o.solver.orientationWeight = 55;
+    o.solver.foldGuard = 0.03;
+    o.solver.orientationGuard = 55;
     o.solver.maxIterations = 7;
     return o;
 }
@@ -37,8 +37,8 @@ void expectSame(const TakeSolveOptions& a, const TakeSolveOptions& b) {
     EXPECT_EQ(a.markerWeight, b.markerWeight);
     EXPECT_EQ(a.fillGapSeconds, b.fillGapSeconds);
     EXPECT_EQ(a.lowPassHz, b.lowPassHz);
-    EXPECT_EQ(a.solver.rigidityWeight, b.solver.rigidityWeight);
-    EXPECT_EQ(a.solver.orientationWeight, b.solver.orientationWeight);
+    EXPECT_EQ(a.solver.foldGuard, b.solver.foldGuard);
+    EXPECT_EQ(a.solver.orientationGuard, b.solver.orientationGuard);
     EXPECT_EQ(a.solver.maxIterations, b.solver.maxIterations);
 }
 
@@ -77,8 +77,8 @@ TEST(TakeOptionsJson, TheSolverOptionsAloneSurviveARoundTrip) {
     SolverOptions read;
     fromJson(json::parse(toJson(written).dump()), read, "eval");
     EXPECT_EQ(read.method, written.method);
-    EXPECT_EQ(read.rigidityWeight, written.rigidityWeight);
-    EXPECT_EQ(read.orientationWeight, written.orientationWeight);
+    EXPECT_EQ(read.foldGuard, written.foldGuard);
+    EXPECT_EQ(read.orientationGuard, written.orientationGuard);
     EXPECT_EQ(read.maxIterations, written.maxIterations);
     EXPECT_FALSE(toJson(written).contains("marker_weight"));  // a take's option, not the solver's
 }
@@ -102,8 +102,8 @@ TEST(TakeOptionsJson, OldKeysAndOldMethodNamesReadAsTodays) {
         EXPECT_EQ(o.solver.method, SolverOptions::Method::LocalGlobal) << gone;
         EXPECT_EQ(o.markerWeight, 50);
         EXPECT_EQ(o.lowPassHz, 6);
-        EXPECT_EQ(o.solver.rigidityWeight, 0.05);
-        EXPECT_EQ(o.solver.orientationWeight, 20);
+        EXPECT_EQ(o.solver.foldGuard, 0.05);
+        EXPECT_EQ(o.solver.orientationGuard, 20);
         EXPECT_EQ(o.solver.maxIterations, 7);
         EXPECT_EQ(o.calibrate, CalibrateMode::Shape);  // from before calibration: calibrate
     }
@@ -117,12 +117,12 @@ TEST(TakeOptionsJson, OldKeysAndOldMethodNamesReadAsTodays) {
     EXPECT_EQ(manifest.markerWeight, 20);
     EXPECT_EQ(manifest.lowPassHz, 4);
     EXPECT_EQ(manifest.fillGapSeconds, 0.1);
-    EXPECT_EQ(manifest.solver.rigidityWeight, 0.3);
+    EXPECT_EQ(manifest.solver.foldGuard, 0.3);
 
     // Today's key wins over an old one beside it.
     TakeSolveOptions both;
     fromJson({{"fold_guard", 0.2}, {"rigidity_weight", 0.7}}, both, "p");
-    EXPECT_EQ(both.solver.rigidityWeight, 0.2);
+    EXPECT_EQ(both.solver.foldGuard, 0.2);
     EXPECT_EQ(findTakeOption("rigidity_weight")->key, "fold_guard");
     EXPECT_EQ(findTakeOption("method")->key, "solver");
     EXPECT_EQ(findTakeOption("no_such_option"), nullptr);

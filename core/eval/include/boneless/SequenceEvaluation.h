@@ -25,7 +25,7 @@ struct EvaluationOptions {
     // the orientation guard on for the exact method.
     SolverOptions solver = [] {
         SolverOptions s;
-        s.orientationWeight = 100.0;
+        s.orientationGuard = 100.0;
         return s;
     }();
     int arapIterations = 10;

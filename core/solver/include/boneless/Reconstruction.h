@@ -29,36 +29,32 @@ Vec3 surfaceNormal(const TriMesh& mesh, const ShapeEncoding& encoding, const Sur
 std::vector<int> surfaceDisk(const TriMesh& mesh, const MeshTopology& topology,
                              const SurfacePoint& p, double radius);
 
+// What a caller chooses, one line each with its units. Users meet these under one name (core's
+// TakeOptionsJson: the JSON key and CLI flag in brackets); docs/solver.md says why each exists.
 struct SolverOptions {
-    // How a frame is found.
-    //  LocalGlobal: from the frame's markers alone (a coarse level from the rest pose moved
-    //    rigidly onto them, then local/global iterations on one factorisation), so that no frame
-    //    depends on the frames solved before it; faces left folded are repaired locally. Fast.
-    //  Exact: Gauss–Newton on the seed energy with the fold and orientation guards, from a guess
-    //    (a take solves LocalGlobal first and refines its answer): the energy's minimum, slower.
+    // [solver] LocalGlobal: each frame from its own markers (coarse level from the rest pose moved
+    // rigidly onto them, local/global iterations on one factorisation, folds repaired locally;
+    // fast). Exact: Gauss–Newton on the seed energy with both guards, from a guess (a take's is
+    // its LocalGlobal answer): the energy's minimum, slower.
     enum class Method { LocalGlobal, Exact };
     Method method = Method::LocalGlobal;
-    // Hard: marker vertices are placed on their targets. Soft: pulled there with softWeight
-    // (dimensionless: the shape terms and the pull are both squared lengths).
+    // Hard: marker vertices are placed on their targets (eval). Soft: pulled there (takes).
     enum class Constraints { Hard, Soft };
     Constraints constraints = Constraints::Hard;
-    double softWeight = 100.0;
-    // Soft only: how far each marker sits off the skin (mesh units, one per marker; empty = on
-    // the skin), along its point's rest normal turned with the surface around it.
+    double markerWeight = 100.0;  // [marker_weight] soft only: the pull (dimensionless)
+    // Soft only: each marker's distance off the skin, along its rest normal (mesh units).
     std::vector<double> markerOffsets;
 
     // Exact only.
-    int maxIterations = 10;           // Gauss–Newton steps per frame, at most
-    double relativeTolerance = 1e-3;  // stop once a step lowers the energy by less than this
-    // The fold guard: a weak as-rigid-as-possible term, since the seed energy is blind to
-    // in-plane maps of flat and thin parts, mirror images included (0 = the seed energy alone).
-    double rigidityWeight = 0.01;
-    // The orientation guard: a one-sided penalty on faces that shrink below a fifth of their
-    // rest area or turn over (dimensionless; 0 = off; takes use 100).
-    double orientationWeight = 0;
+    int maxIterations = 10;           // [max_iterations] Gauss–Newton steps per frame, at most
+    double relativeTolerance = 1e-3;  // stop when a step lowers the energy by less (fraction)
+    // [fold_guard] weight of an ARAP term that keeps flat, thin parts from folding (0 = off).
+    double foldGuard = 0.01;
+    // [orientation_guard] weight of a penalty on faces below 1/5 of their rest area or turned.
+    double orientationGuard = 0;
 };
 
-// The method's name everywhere a user meets it (CLI flags, sidecar, project): "local-global",
+// The method's name everywhere a user meets it (--solver, the "solver" key): "local-global",
 // "exact"; parseMethod() takes those back (false for anything else).
 const char* methodName(SolverOptions::Method method);
 bool parseMethod(const std::string& name, SolverOptions::Method& method);

@@ -38,7 +38,7 @@ struct TakeSolveOptions {
     // parts a marker pulls (fingers, toes) fold under the fold guard alone.
     SolverOptions solver = [] {
         SolverOptions s;
-        s.orientationWeight = 100.0;
+        s.orientationGuard = 100.0;
         return s;
     }();
 };
