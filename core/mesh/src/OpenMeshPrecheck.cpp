@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <vector>
 
@@ -129,7 +130,9 @@ Precheck checkOff(const std::string& path) {
     if (lines.empty()) throw MeshError(path, "empty OFF file");
     auto head = tokens(lines[0].second);
     const std::string keyword = head[0];
-    if (keyword.size() < 3 || keyword.compare(keyword.size() - 3, 3, "OFF") != 0)
+    // [ST][C][N][4][n]OFF, the form OpenMesh parses (found by fuzzing: it read "OFF4OFF" as OFF).
+    static const std::regex form("(ST)?C?N?4?n?OFF");
+    if (!std::regex_match(keyword, form))
         throw MeshError(path, "not an OFF file: first word is '" + keyword + "'",
                         at(lines[0].first));
     // OpenMesh refuses the dimension-prefixed variants by itself.

@@ -379,6 +379,8 @@ TEST(MeshReaderErrors, MalformedTextThatOpenMeshWouldAccept) {
     std::string off = offText(tentV(), tentP);
     off.replace(off.rfind("4 3 0"), 5, "4 3 x");
     EXPECT_CONTAINS(errorOf(writeFile("token.off", off)), "'x' is not a vertex index");
+    EXPECT_CONTAINS(errorOf(writeFile("keyword.off", "OFF4OFF\n3 1513333333\n")),
+                    "not an OFF file: first word is 'OFF4OFF'");
     EXPECT_CONTAINS(errorOf(writeFile("short.off", "OFF\n5 4 0\n1 0 0\n0 1 0\n")),
                     "file ends after 2 of 5 vertices");
     EXPECT_CONTAINS(
