@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <vector>
 
@@ -129,7 +130,9 @@ Precheck checkOff(const std::string& path) {
     if (lines.empty()) throw MeshError(path, "empty OFF file");
     auto head = tokens(lines[0].second);
     const std::string keyword = head[0];
-    if (keyword.size() < 3 || keyword.compare(keyword.size() - 3, 3, "OFF") != 0)
+    // [ST][C][N][4][n]OFF, the form OpenMesh parses (found by fuzzing: it read "OFF4OFF" as OFF).
+    static const std::regex form("(ST)?C?N?4?n?OFF");
+    if (!std::regex_match(keyword, form))
         throw MeshError(path, "not an OFF file: first word is '" + keyword + "'",
                         at(lines[0].first));
     // OpenMesh refuses the dimension-prefixed variants by itself.
@@ -207,6 +210,7 @@ int plyTypeBytes(const std::string& type) {
 struct PlyProperty {
     int countBytes = 0;  // 0: a single value; else a list whose length takes this many bytes
     int valueBytes = 0;
+    bool integer = false;  // ascii: OpenMesh reads the value with >> into an integer
 };
 struct PlyElement {
     std::string name;
@@ -257,7 +261,10 @@ PlyHeader readPlyHeader(const std::string& path, const std::string& text) {
             if (type == "list") property.countBytes = bytesOf(word()), type = word();
             // OpenMesh takes "name type" as well as "type name" for a single value.
             const std::string name = word();
-            property.valueBytes = plyTypeBytes(type) ? plyTypeBytes(type) : bytesOf(name);
+            const std::string& valueType = plyTypeBytes(type) ? type : name;
+            property.valueBytes = bytesOf(valueType);
+            property.integer =
+                valueType.find("float") == std::string::npos && valueType != "double";
             elements.back().properties.push_back(property);
         }
     }
@@ -273,52 +280,63 @@ uint64_t plyListLength(const std::string& data, size_t at, int bytes, bool bigEn
     return n;
 }
 
-// OpenMesh reads a list length the file cannot hold as that many stale values (billions for a
-// 32-bit length), so each element is walked here first.
-void checkPlyBody(const std::string& path, const std::string& text, size_t bodyStart,
-                  const std::vector<PlyElement>& elements, bool ascii, bool bigEndian) {
-    int lineNumber = static_cast<int>(std::count(text.begin(), text.begin() + bodyStart, '\n'));
-    std::istringstream body(text.substr(bodyStart));
-    size_t pos = bodyStart;
-    std::string line;
-    for (const PlyElement& e : elements) {
+// Ascii PLY as OpenMesh reads it: word after word with >>, whatever the lines. A word that does
+// not parse leaves its stream failed and its loops running on stale counts.
+void checkPlyAscii(const std::string& path, const std::string& text, size_t bodyStart,
+                   const std::vector<PlyElement>& elements) {
+    std::vector<std::pair<std::string, int>> words;  // with their line numbers
+    int line = static_cast<int>(std::count(text.begin(), text.begin() + bodyStart, '\n'));
+    for (const auto& [n, content] : contentLines(text.substr(bodyStart), 0))
+        for (const std::string& w : tokens(content)) words.emplace_back(w, line + n);
+    size_t k = 0;
+    const auto next = [&](const std::string& what, bool integer) {
+        if (k >= words.size()) throw MeshError(path, "file ends in " + what);
+        const auto& [w, n] = words[k++];
+        requireNumbers(path, {w}, n, what);
+        if (integer && !isInteger(w))
+            throw MeshError(path, what + ": '" + w + "' is not an integer", at(n));
+        return w;
+    };
+    for (const PlyElement& e : elements)
         for (long long i = 0; i < e.count; ++i) {
             const std::string what = e.name + " " + std::to_string(i);
-            if (!ascii) {
-                for (const PlyProperty& p : e.properties) {
-                    uint64_t values = 1;
-                    if (p.countBytes) {
-                        if (text.size() - pos < size_t(p.countBytes))
-                            throw MeshError(path, "file ends in " + what);
-                        values = plyListLength(text, pos, p.countBytes, bigEndian);
-                        pos += p.countBytes;
-                    }
-                    if (values > (text.size() - pos) / p.valueBytes)
-                        throw MeshError(path, what + " lists more values than the file holds");
-                    pos += values * p.valueBytes;
-                }
-                continue;
-            }
-            do {
-                if (!std::getline(body, line))
-                    throw MeshError(path, "file ends after " + std::to_string(i) + " of " +
-                                              std::to_string(e.count) + " " + e.name + " lines");
-                ++lineNumber;
-            } while (line.find_first_not_of(" \t\r") == std::string::npos);
-            const auto t = tokens(line);
-            requireNumbers(path, t, lineNumber, what);
-            size_t k = 0;
             for (const PlyProperty& p : e.properties) {
-                if (k >= t.size())
-                    throw MeshError(path, what + " has too few values", at(lineNumber));
-                if (p.countBytes && (!isCount(t[k]) || std::stoull(t[k]) > t.size() - k - 1))
-                    throw MeshError(
-                        path, what + ": list length '" + t[k] + "' is more than the line holds",
-                        at(lineNumber));
-                k += p.countBytes ? 1 + std::stoull(t[k]) : 1;
+                long long values = 1;
+                if (p.countBytes) {
+                    const std::string length = next(what, true);
+                    values = std::stoll(length);
+                    if (values < 0 || uint64_t(values) > words.size() - k)
+                        throw MeshError(
+                            path,
+                            what + ": list length '" + length + "' is more than the file holds",
+                            at(words[k - 1].second));
+                }
+                for (long long v = 0; v < values; ++v) next(what, p.integer);
             }
         }
-    }
+}
+
+// Binary PLY: OpenMesh reads a list length the file cannot hold as that many stale values
+// (billions for a 32-bit length), so each element is walked here first.
+void checkPlyBinary(const std::string& path, const std::string& text, size_t bodyStart,
+                    const std::vector<PlyElement>& elements, bool bigEndian) {
+    size_t pos = bodyStart;
+    for (const PlyElement& e : elements)
+        for (long long i = 0; i < e.count; ++i) {
+            const std::string what = e.name + " " + std::to_string(i);
+            for (const PlyProperty& p : e.properties) {
+                uint64_t values = 1;
+                if (p.countBytes) {
+                    if (text.size() - pos < size_t(p.countBytes))
+                        throw MeshError(path, "file ends in " + what);
+                    values = plyListLength(text, pos, p.countBytes, bigEndian);
+                    pos += p.countBytes;
+                }
+                if (values > (text.size() - pos) / p.valueBytes)
+                    throw MeshError(path, what + " lists more values than the file holds");
+                pos += values * p.valueBytes;
+            }
+        }
 }
 
 Precheck checkPly(const std::string& path) {
@@ -342,8 +360,10 @@ Precheck checkPly(const std::string& path) {
                                       " elements, more than the file holds");
     const size_t newline = text.find('\n', headerEnd);
     const size_t bodyStart = newline == std::string::npos ? text.size() : newline + 1;
-    checkPlyBody(path, text, bodyStart, elements, header.format == "ascii",
-                 header.format == "binary_big_endian");
+    if (header.format == "ascii")
+        checkPlyAscii(path, text, bodyStart, elements);
+    else
+        checkPlyBinary(path, text, bodyStart, elements, header.format == "binary_big_endian");
     return p;
 }
 
