@@ -1,4 +1,4 @@
-// boneless-cli map suggest: complete a partial marker-to-vertex map from an aligned take.
+// boneless-cli map suggest: complete a partial marker-to-vertex map from the take.
 #include <cstdio>
 #include <memory>
 
@@ -7,23 +7,33 @@
 #include "boneless/Error.h"
 #include "boneless/MarkerSuggestion.h"
 #include "boneless/MeshReader.h"
+#include "boneless/SuggestionCheck.h"
 
 using namespace boneless;
 
 void registerMapCommand(CLI::App& app) {
     struct Args {
-        std::string mesh, group, c3d, map, out;
+        std::string mesh, group, c3d, map, out, check;
+        double toleranceMm = 30;
     };
     auto args = std::make_shared<Args>();
     CLI::App* map = app.add_subcommand("map", "Author marker-to-vertex correspondence files");
     map->require_subcommand(1);
     CLI::App* suggest = map->add_subcommand(
-        "suggest", "Propose the nearest vertex for every marker the partial map does not map");
+        "suggest",
+        "Fit the mesh to the take from the mapped markers and propose a vertex for every other "
+        "marker, flagging the ones to review");
     suggest->add_option("--mesh", args->mesh, "Rest mesh (OBJ, PLY, OFF, STL)")->required();
     suggest->add_option("--group", args->group, "OBJ group to use as the mesh");
     suggest->add_option("--c3d", args->c3d, "The take")->required();
     suggest->add_option("--map", args->map, "Partial map with at least 4 markers")->required();
     suggest->add_option("--out", args->out, "Where to write the completed map")->required();
+    suggest->add_option("--check", args->check,
+                        "A map known to be right: print how near the proposals land to it");
+    suggest
+        ->add_option("--tolerance-mm", args->toleranceMm,
+                     "With --check: how near counts as landing (default 30)")
+        ->check(CLI::PositiveNumber);
     suggest->callback([args] {
         MeshReadOptions options;
         options.group = args->group;
@@ -33,9 +43,22 @@ void registerMapCommand(CLI::App& app) {
         const Suggestion s = suggestMappings(mesh, take, partial);
         s.map.write(args->out);
         std::printf(
-            "%s: %zu markers (%d suggested), aligned at frame %d (%d markers visible), "
-            "RMS residual %.4g mesh units, scale %.6g\n",
-            args->out.c_str(), s.map.markers.size(), s.suggested, s.calibration.frame,
-            s.calibration.visibleMarkers, s.calibration.residual, s.calibration.takeToMesh.scale);
+            "%s: %zu markers (%d suggested, %d to review), aligned at frame %d (%d markers "
+            "visible), RMS residual %.4g mesh units, scale %.6g, fitted best at frame %d\n",
+            args->out.c_str(), s.map.markers.size(), s.suggested, s.needsReview,
+            s.calibration.frame, s.calibration.visibleMarkers, s.calibration.residual,
+            s.calibration.takeToMesh.scale, s.fittedFrame);
+        for (const Proposal& p : s.proposals)
+            if (p.needsReview)
+                std::printf("  review %s (vertex %d): %s\n", p.label.c_str(), p.vertex,
+                            p.reviewReason.c_str());
+        if (args->check.empty()) return;
+        const SuggestionCheck c =
+            checkSuggestion(mesh, take, s, Correspondence::read(args->check), args->toleranceMm);
+        for (const auto& [label, mm] : c.distancesMm)
+            std::printf("  %-8s %7.1f mm%s\n", label.c_str(), mm,
+                        mm > args->toleranceMm ? "  off" : "");
+        std::printf("%d of %d within %g mm, median %.1f mm\n", c.within, c.compared,
+                    args->toleranceMm, c.medianMm);
     });
 }

@@ -235,6 +235,36 @@ class DocumentTest : public QObject {
         QCOMPARE(d.markerByLabel(d.markerLabel(4).toLower()), 4);
     }
 
+    void aSuggestionToReviewIsMarkedInTheMarkerList() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        MarkerListModel model(&d);
+        // A map whose entry for marker 3 came from "suggest" with a reason to check it.
+        Correspondence map = d.correspondence();
+        const QString label = d.markerLabel(3);
+        MarkerMapping* entry = nullptr;
+        for (auto& m : map.markers)
+            if (label.endsWith(QString::fromStdString(m.label))) entry = &m;
+        QVERIFY(entry);
+        entry->extraJson =
+            "{\"suggested\": true, \"needs_review\": true, "
+            "\"review_reason\": \"named left, but lands on the right\"}";
+        const QString path = demo_ + "/review.map.json";
+        map.write(path.toStdString());
+        QVERIFY2(d.loadCorrespondence(path), qPrintable(d.lastError()));
+        const QModelIndex vertex = model.index(3, MarkerListModel::VertexColumn);
+        QVERIFY(vertex.data().toString().contains("check"));
+        QVERIFY(
+            vertex.data(Qt::ToolTipRole).toString().contains("named left, but lands on the right"));
+        QVERIFY(!model.index(4, MarkerListModel::VertexColumn).data().toString().contains("check"));
+        // Mapping it by hand makes it the user's: no mark left.
+        int free = 0;
+        while (d.markerForVertex(free) >= 0) ++free;
+        QVERIFY(d.assign(3, free));
+        QVERIFY(d.markerReviewReason(3).isEmpty());
+        QVERIFY(!model.index(3, MarkerListModel::VertexColumn).data().toString().contains("check"));
+    }
+
     void markerListAndFilter() {
         Document d;
         QVERIFY(test::loadDemo(d, demo_));

@@ -304,6 +304,14 @@ bool Document::markerSuggested(int marker) const {
     return extra.is_object() && extra.value("suggested", false) == true;
 }
 
+QString Document::markerReviewReason(int marker) const {
+    if (!markerSuggested(marker)) return {};
+    const auto extra =
+        nlohmann::json::parse(map_.markers[markers_[marker].mapping].extraJson, nullptr, false);
+    if (extra.value("needs_review", false) != true) return {};
+    return QString::fromStdString(extra.value("review_reason", std::string("needs review")));
+}
+
 int Document::markerForVertex(int vertex) const {
     return vertex >= 0 && vertex < int(markerOfVertex_.size()) ? markerOfVertex_[vertex] : -1;
 }

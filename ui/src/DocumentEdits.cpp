@@ -17,7 +17,7 @@ std::string withoutSuggested(const std::string& extraJson) {
     nlohmann::json extra =
         nlohmann::json::parse(extraJson.empty() ? "{}" : extraJson, nullptr, false);
     if (!extra.is_object()) return "{}";
-    extra.erase("suggested");
+    for (const char* key : {"suggested", "needs_review", "review_reason"}) extra.erase(key);
     return extra.dump();
 }
 

@@ -85,6 +85,8 @@ QVariant MarkerListModel::data(const QModelIndex& index, int role) const {
                 return document_->markerLabel(m);
             case VertexColumn:
                 if (vertex < 0) return tr("—");
+                if (!document_->markerReviewReason(m).isEmpty())
+                    return tr("%1 (check) \u26a0").arg(vertex);
                 return document_->markerSuggested(m) ? tr("%1 (suggested)").arg(vertex)
                                                      : QString::number(vertex);
             case VisibleColumn:
@@ -93,8 +95,12 @@ QVariant MarkerListModel::data(const QModelIndex& index, int role) const {
                 return std::isfinite(residual) ? QString::number(residual, 'f', 2) : QString();
         }
     }
-    if (role == Qt::ToolTipRole && index.column() == VertexColumn && vertex >= 0)
-        return tr("Offset off the skin: %1 mm").arg(document_->markerOffsetMm(m), 0, 'f', 1);
+    if (role == Qt::ToolTipRole && index.column() == VertexColumn && vertex >= 0) {
+        const QString offset =
+            tr("Offset off the skin: %1 mm").arg(document_->markerOffsetMm(m), 0, 'f', 1);
+        const QString review = document_->markerReviewReason(m);
+        return review.isEmpty() ? offset : tr("Suggested, check it: %1.\n%2").arg(review, offset);
+    }
     if (role == Qt::ToolTipRole && index.column() == ResidualColumn && std::isfinite(residual))
         return tr("Marker to the posed mesh at frame %1").arg(residualFrame_);
     if (role == Qt::ForegroundRole && document_->hasTake() && !visible)

@@ -1,12 +1,191 @@
 #include "boneless/MarkerSuggestion.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <set>
 
+#include "SuggestionSides.h"
 #include "boneless/C3dTake.h"
 #include "boneless/Error.h"
+#include "boneless/TakeSolver.h"
 
 namespace boneless {
+
+namespace {
+
+// Frames scanned for the fits that explain the unmapped markers best. Measured on CMU 85_02
+// from 6 picks (docs/markers.md): the rigid alignment's frame alone 11 of 35 within 30 mm.
+constexpr int kScannedFrames = 40;
+// Fits kept: the best, and those whose median marker distance is at most kKeptQuality times its
+// (CMU from the second pick set of docs/markers.md: 10 of 35 at 1.3, 13 at 1.5, 11 at 1.7).
+constexpr int kKeptFrames = 8;
+constexpr double kKeptQuality = 1.5;
+// Markers sit about this far off the skin: each vertex is scored lifted along its normal.
+constexpr double kLiftMm = 10.0;
+// When a proposal needs review: its marker is farther than farMm from it on the best fit, or
+// another part of the body (farther than otherPartMm on the rest mesh) costs at most
+// ambiguity times its cost plus ambiguityMm.
+struct ReviewThresholds {
+    double farMm = 45.0;
+    double otherPartMm = 150.0;
+    double ambiguity = 1.5;
+    double ambiguityMm = 10.0;
+};
+constexpr ReviewThresholds kReview;
+
+Positions vertexNormals(const Faces& F, const Positions& V) {
+    Positions N = Positions::Zero(V.rows(), 3);
+    for (int f = 0; f < F.rows(); ++f) {
+        const Vec3 a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
+        const Vec3 n = (b - a).cross(c - a);
+        for (int k = 0; k < 3; ++k) N.row(F(f, k)) += n.transpose();
+    }
+    for (int v = 0; v < V.rows(); ++v)
+        if (N.row(v).norm() > 0) N.row(v).normalize();
+    return N;
+}
+
+std::string markerName(const C3dPoint& p) {
+    return p.name.empty() ? p.label : p.name;
+}
+
+// One fitted frame: the mesh posed by the picks, each vertex lifted off the skin.
+struct Fit {
+    int frame = -1;
+    double quality = 0;  // median distance of the unmapped markers to the fit, mesh units
+    Positions posed, lifted;
+};
+
+// The median distance from the frame's unmapped markers to the posed mesh (infinite if none).
+double fitQuality(const C3dTake& take, const Similarity& s, const std::vector<std::size_t>& wanted,
+                  int frame, const Positions& V) {
+    std::vector<double> nearest;
+    for (std::size_t p : wanted)
+        if (const auto x = take.samples.position(frame, p))
+            nearest.push_back((V.rowwise() - s.apply(*x).transpose()).rowwise().norm().minCoeff());
+    if (nearest.empty()) return std::numeric_limits<double>::infinity();
+    std::nth_element(nearest.begin(), nearest.begin() + nearest.size() / 2, nearest.end());
+    return nearest[nearest.size() / 2];
+}
+
+// One unmapped marker's proposal.
+struct Draft {
+    std::size_t point = 0;
+    int vertex = -1;
+    double cost = 0;      // RMS distance to the lifted vertex over the kept fits, mesh units
+    double other = 0;     // the least such cost on another part of the body
+    double offsetMm = 0;  // marker to the vertex on the best fit
+    bool seen = true;     // the marker is seen on the best fit's frame
+};
+
+// Poses the mesh by the `known` markers at frames spread over the take (a rigid alignment cannot
+// bring a T-posed mesh onto an actor whose arms are down), keeps the fits that come nearest the
+// `wanted` markers, and gives each of those the free vertex that follows it best over the kept
+// fits (the right vertex stays near its marker however the actor moves, where one fit's nearest
+// may be a neighbour): surest first, so that a vertex two markers want goes to the nearer one.
+std::vector<Draft> draft(const TriMesh& rest, const C3dTake& take, const Correspondence& known,
+                         const std::vector<std::size_t>& wanted, Calibration& calibration,
+                         int& fittedFrame) {
+    TakeSolveOptions options;
+    options.calibrate = CalibrateMode::None;
+    TakeSolver solver(rest, take, known, options);
+    calibration = solver.calibration();
+    const Similarity& s = calibration.takeToMesh;
+    const double unitsPerMm = s.scale / take.unitToMm;
+    const int n = static_cast<int>(take.frameCount());
+    std::vector<int> frames{calibration.frame};
+    for (int i = 0; i < kScannedFrames && i < n; ++i)
+        frames.push_back(static_cast<int>((i + 0.5) * n / std::min(n, kScannedFrames)));
+    std::sort(frames.begin(), frames.end());
+    frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
+    std::vector<std::pair<double, int>> ranked;
+    FrameReport report;
+    for (int f : frames)
+        ranked.push_back({fitQuality(take, s, wanted, f, solver.solve(f, report)), f});
+    std::sort(ranked.begin(), ranked.end());
+    std::vector<Fit> fits;
+    for (const auto& [quality, f] : ranked) {
+        if (fits.size() == kKeptFrames || !std::isfinite(quality) ||
+            quality > kKeptQuality * ranked.front().first)
+            break;
+        const Positions V = solver.solve(f, report);
+        fits.push_back({f, quality, V, V + kLiftMm * unitsPerMm * vertexNormals(rest.F, V)});
+    }
+    if (fits.empty()) throw Error(take.file + ": the mapped markers give no fit of the mesh");
+    fittedFrame = fits.front().frame;
+
+    std::vector<Eigen::VectorXd> cost;
+    for (std::size_t p : wanted) {
+        Eigen::VectorXd sum = Eigen::VectorXd::Zero(rest.vertexCount());
+        int seen = 0;
+        for (const Fit& fit : fits)
+            if (const auto x = take.samples.position(fit.frame, p)) {
+                sum += (fit.lifted.rowwise() - s.apply(*x).transpose())
+                           .rowwise()
+                           .squaredNorm()
+                           .transpose();
+                ++seen;
+            }
+        cost.push_back(seen ? Eigen::VectorXd((sum / seen).cwiseSqrt())
+                            : Eigen::VectorXd::Constant(rest.vertexCount(),
+                                                        std::numeric_limits<double>::infinity()));
+    }
+    std::vector<std::size_t> order;
+    for (std::size_t w = 0; w < wanted.size(); ++w)
+        if (std::isfinite(cost[w].minCoeff())) order.push_back(w);  // never seen: no proposal
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return cost[a].minCoeff() < cost[b].minCoeff();
+    });
+    std::set<int> taken;
+    for (const auto& m : known.markers) taken.insert(m.vertex);
+    std::vector<Draft> drafts;
+    for (std::size_t w : order) {
+        Draft d;
+        d.point = wanted[w];
+        for (int v = 0; v < rest.vertexCount(); ++v)
+            if (!taken.count(v) && (d.vertex < 0 || cost[w][v] < cost[w][d.vertex])) d.vertex = v;
+        if (d.vertex < 0) break;
+        taken.insert(d.vertex);
+        d.cost = cost[w][d.vertex] / unitsPerMm;
+        d.other = std::numeric_limits<double>::infinity();
+        const Vec3 home = rest.V.row(d.vertex).transpose();
+        for (int v = 0; v < rest.vertexCount(); ++v)
+            if (cost[w][v] < d.other &&
+                (rest.V.row(v).transpose() - home).norm() > kReview.otherPartMm * unitsPerMm)
+                d.other = cost[w][v];
+        d.other /= unitsPerMm;
+        const auto x = take.samples.position(fits.front().frame, d.point);
+        d.seen = x.has_value();
+        if (x)
+            d.offsetMm =
+                (fits.front().posed.row(d.vertex).transpose() - s.apply(*x)).norm() / unitsPerMm;
+        drafts.push_back(d);
+    }
+    return drafts;
+}
+
+// Why a draft needs a person's eye, or empty.
+std::string reviewReason(const Draft& d, const std::string& label, const SideCheck& sides,
+                         const TriMesh& rest) {
+    char reason[160];
+    if (!d.seen) return "not seen in the frame the mesh was fitted best";
+    if (d.offsetMm > kReview.farMm) {
+        std::snprintf(reason, sizeof reason, "%.0f mm from the fitted mesh", d.offsetMm);
+        return reason;
+    }
+    if (d.other <= kReview.ambiguity * d.cost + kReview.ambiguityMm) {
+        std::snprintf(reason, sizeof reason,
+                      "another part of the body fits it about as well (%.0f mm against %.0f)",
+                      d.other, d.cost);
+        return reason;
+    }
+    return sides.mismatch(label, rest.V.row(d.vertex).transpose());
+}
+
+}  // namespace
 
 Suggestion suggestMappings(const TriMesh& rest, const C3dTake& take,
                            const Correspondence& partial) {
@@ -15,46 +194,33 @@ Suggestion suggestMappings(const TriMesh& rest, const C3dTake& take,
             "suggesting correspondences needs at least 4 mapped markers to align the "
             "take, the map has " +
             std::to_string(partial.markers.size()));
-    partial.checkMesh(rest.vertexCount(), "the mesh");
+    partial.checkMesh(rest.vertexCount(), "the mesh", &rest);
     const std::vector<std::size_t> mapped = partial.resolve(take);
-    Positions restPositions(mapped.size(), 3);
-    for (size_t k = 0; k < mapped.size(); ++k)
-        restPositions.row(k) = rest.V.row(partial.markers[k].vertex);
+    const std::set<std::size_t> mappedPoints(mapped.begin(), mapped.end());
+    std::vector<std::size_t> wanted;
+    for (std::size_t p : take.markerIndices())
+        if (!mappedPoints.count(p)) wanted.push_back(p);
+    const SideCheck sides(rest, partial);
 
     Suggestion out;
-    out.calibration = calibrate(take, mapped, restPositions);
     out.map = partial;
-    const Similarity& s = out.calibration.takeToMesh;
-    std::set<int> taken;
-    for (const auto& m : partial.markers) taken.insert(m.vertex);
-    std::set<std::size_t> mappedPoints(mapped.begin(), mapped.end());
-
-    // Markers occluded at the calibration frame are placed from the first frame that shows them.
-    for (std::size_t p : take.markerIndices()) {
-        if (mappedPoints.count(p)) continue;
-        std::optional<Eigen::Vector3d> seen = take.samples.position(out.calibration.frame, p);
-        for (std::size_t f = 0; !seen && f < take.frameCount(); ++f)
-            seen = take.samples.position(f, p);
-        if (!seen) continue;  // never visible: nothing to suggest
-        const Vec3 x = s.apply(*seen);
-        int best = -1;
-        double bestDistance = std::numeric_limits<double>::infinity();
-        for (int v = 0; v < rest.vertexCount(); ++v) {
-            if (taken.count(v)) continue;
-            const double d = (rest.V.row(v).transpose() - x).squaredNorm();
-            if (d < bestDistance) best = v, bestDistance = d;
-        }
-        if (best < 0) break;
-        taken.insert(best);
+    for (const Draft& d : draft(rest, take, partial, wanted, out.calibration, out.fittedFrame)) {
+        Proposal p{markerName(take.points[d.point]), d.vertex};
+        p.reviewReason = reviewReason(d, p.label, sides, rest);
+        p.needsReview = !p.reviewReason.empty();
         MarkerMapping m;
-        m.label = take.points[p].name.empty() ? take.points[p].label : take.points[p].name;
-        m.vertex = best;
-        // Mesh units back to the take's, then to millimetres.
-        m.offsetMm = std::sqrt(bestDistance) / s.scale * take.unitToMm;
-        m.extraJson = R"({"suggested": true})";
+        m.label = p.label;
+        m.vertex = d.vertex;
+        m.offsetMm = d.offsetMm;
+        m.extraJson = p.needsReview
+                          ? R"({"suggested": true, "needs_review": true, "review_reason": )" +
+                                nlohmann::json(p.reviewReason).dump() + "}"
+                          : std::string(R"({"suggested": true})");
+        out.needsReview += p.needsReview ? 1 : 0;
         out.map.markers.push_back(m);
-        ++out.suggested;
+        out.proposals.push_back(p);
     }
+    out.suggested = static_cast<int>(out.proposals.size());
     return out;
 }
 

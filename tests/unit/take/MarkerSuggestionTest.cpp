@@ -1,11 +1,17 @@
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <nlohmann/json.hpp>
 #include <random>
 
 #include "TestMeshes.h"
+#include "boneless/C3dReader.h"
 #include "boneless/C3dTake.h"
+#include "boneless/DemoWalker.h"
 #include "boneless/Error.h"
 #include "boneless/MarkerSuggestion.h"
+#include "boneless/MeshReader.h"
+#include "boneless/SuggestionCheck.h"
 
 using namespace boneless;
 using namespace boneless::testing;
@@ -15,7 +21,7 @@ namespace {
 // A take whose markers sit on the given vertices of `mesh` (from the `liftFrom`-th marker on,
 // `lift` off the skin), seen in millimetres from another orientation and origin.
 C3dTake takeOnVertices(const TriMesh& mesh, const std::vector<int>& ids, double lift,
-                       size_t liftFrom) {
+                       size_t liftFrom, const std::vector<std::string>& labels = {}) {
     std::mt19937 rng(9);
     const Mat3 R = randomRotation(rng);
     C3dTake take;
@@ -23,7 +29,7 @@ C3dTake takeOnVertices(const TriMesh& mesh, const std::vector<int>& ids, double 
     take.samples = C3dSamples(3, ids.size());
     for (size_t k = 0; k < ids.size(); ++k) {
         C3dPoint p;
-        p.label = "actor:M" + std::to_string(k);
+        p.label = "actor:" + (k < labels.size() ? labels[k] : "M" + std::to_string(k));
         splitC3dLabel(p.label, p.subject, p.name);
         take.points.push_back(p);
         const Vec3 onSkin = mesh.V.row(ids[k]).transpose();
@@ -63,4 +69,113 @@ TEST(MarkerSuggestion, NeedsFourMappedMarkers) {
     Correspondence partial;
     for (int k = 0; k < 3; ++k) partial.markers.push_back({"M" + std::to_string(k), k, 0, "{}"});
     EXPECT_THROW(suggestMappings(mesh, take, partial), Error);
+}
+
+namespace {
+
+// The first vertex of the icosphere whose x is past `x` on the given side (+1 or −1).
+int vertexAt(const TriMesh& mesh, double x, double z) {
+    int best = 0;
+    for (int v = 0; v < mesh.vertexCount(); ++v)
+        if ((mesh.V.row(v) - Eigen::RowVector3d(x, 0, z)).norm() <
+            (mesh.V.row(best) - Eigen::RowVector3d(x, 0, z)).norm())
+            best = v;
+    return best;
+}
+
+const Proposal& proposalFor(const Suggestion& s, const std::string& label) {
+    for (const Proposal& p : s.proposals)
+        if (p.label == label) return p;
+    throw std::runtime_error("no proposal for " + label);
+}
+
+}  // namespace
+
+TEST(MarkerSuggestion, FlagsAMarkerNamedLeftThatLandsOnTheMeshsRight) {
+    const TriMesh mesh = icosphere(2);
+    // Two pairs of picks say that +x is the left; LKNE sits on the right, RKNE where it belongs.
+    const std::vector<std::string> labels{"LSHO", "RSHO", "LHIP", "RHIP", "LKNE", "RKNE"};
+    const std::vector<int> ids{vertexAt(mesh, 0.7, 0.7),  vertexAt(mesh, -0.7, 0.7),
+                               vertexAt(mesh, 0.7, -0.7), vertexAt(mesh, -0.7, -0.7),
+                               vertexAt(mesh, -1, 0),     vertexAt(mesh, -0.7, 0.3)};
+    const C3dTake take = takeOnVertices(mesh, ids, 0.01, 4, labels);
+    Correspondence partial;
+    partial.meshVertices = mesh.vertexCount();
+    for (int k = 0; k < 4; ++k) partial.markers.push_back({labels[k], ids[k], 10, "{}"});
+    const Suggestion s = suggestMappings(mesh, take, partial);
+    ASSERT_EQ(s.suggested, 2);
+    const Proposal& wrong = proposalFor(s, "LKNE");
+    EXPECT_EQ(wrong.vertex, ids[4]);
+    EXPECT_TRUE(wrong.needsReview);
+    EXPECT_NE(wrong.reviewReason.find("left"), std::string::npos) << wrong.reviewReason;
+    EXPECT_FALSE(proposalFor(s, "RKNE").needsReview) << proposalFor(s, "RKNE").reviewReason;
+    EXPECT_EQ(s.needsReview, 1);
+    // The written map carries the flag and the reason with the entry.
+    const auto entry = nlohmann::json::parse(s.map.find("LKNE")->extraJson);
+    EXPECT_EQ(entry.value("needs_review", false), true);
+    EXPECT_EQ(entry.value("review_reason", std::string()), wrong.reviewReason);
+    const auto written = nlohmann::json::parse(s.map.toJson());
+    for (const auto& m : written["markers"])
+        EXPECT_EQ(m.value("needs_review", false), m["label"] == "LKNE") << m.dump();
+}
+
+TEST(MarkerSuggestion, FlagsAMarkerFarOffTheSkin) {
+    const TriMesh mesh = icosphere(2);
+    const std::vector<int> ids{0, 7, 19, 33, 48, 77};
+    // The last marker stands 150 mm off a 1 m sphere, like a marker on a stick or another actor's.
+    C3dTake take = takeOnVertices(mesh, ids, 0.15, 5);
+    Correspondence partial;
+    partial.meshVertices = mesh.vertexCount();
+    for (int k = 0; k < 4; ++k)
+        partial.markers.push_back({"M" + std::to_string(k), ids[k], 0, "{}"});
+    const Suggestion s = suggestMappings(mesh, take, partial);
+    EXPECT_FALSE(proposalFor(s, "M4").needsReview) << proposalFor(s, "M4").reviewReason;
+    const Proposal& far = proposalFor(s, "M5");
+    EXPECT_EQ(far.vertex, ids[5]);
+    EXPECT_TRUE(far.needsReview);
+    EXPECT_NE(far.reviewReason.find("mm from the fitted mesh"), std::string::npos)
+        << far.reviewReason;
+}
+
+TEST(MarkerSuggestion, TheDemoWalkersSuggestionsLandOnTheirOwnVertices) {
+    const DemoWalker walker = makeDemoWalker();
+    const DemoTake demo = makeDemoWalkerTake(walker);
+    // Six picks an animator clicks first: head, pelvis, both wrists, both ankles.
+    Correspondence partial = demo.map;
+    partial.markers.clear();
+    for (const char* label : {"LFHD", "LASI", "LWRA", "RWRA", "LANK", "RANK"})
+        partial.markers.push_back(*demo.map.find(label));
+    const Suggestion s = suggestMappings(walker.rest, demo.take, partial);
+    const SuggestionCheck c = checkSuggestion(walker.rest, demo.take, s, demo.map, 30.0);
+    EXPECT_EQ(c.compared, 33);
+    EXPECT_EQ(c.within, 33);
+    int exact = 0;
+    for (const auto& [label, mm] : c.distancesMm) exact += mm == 0.0;
+    EXPECT_GE(exact, 32);
+    EXPECT_EQ(s.needsReview, 0);
+}
+
+// The target (80 % within 30 mm from 6 picks) is not reached yet; this holds the ground
+// gained (docs/markers.md): the rigid alignment alone put 3 of these 35 within 30 mm.
+TEST(MarkerSuggestion, LandsNearTheReferenceMapOnTheCmuTakeFromSixPicks) {
+    namespace fs = std::filesystem;
+    const fs::path data = BONELESS_SHARED_DATA;
+    const fs::path mesh = data / "meshes" / "makehuman" / "makehuman_base.obj";
+    const fs::path takeFile = data / "c3d" / "cmu" / "85_02.c3d";
+    if (!fs::exists(mesh) || !fs::exists(takeFile)) GTEST_SKIP() << "no " << data;
+    MeshReadOptions options;
+    options.group = "body";
+    const TriMesh rest = readMesh(mesh.string(), options).mesh;
+    const C3dTake take = readC3d(takeFile.string());
+    const Correspondence reference = Correspondence::read(
+        (fs::path(BONELESS_SOURCE_DIR) / "tests" / "data" / "cmu-85_02-makehuman-body.map.json")
+            .string());
+    Correspondence partial = reference;
+    partial.markers.clear();
+    for (const char* label : {"LFHD", "LFWT", "LWRA", "RWRA", "LANK", "RANK"})
+        partial.markers.push_back(*reference.find(label));
+    const Suggestion s = suggestMappings(rest, take, partial);
+    const SuggestionCheck c = checkSuggestion(rest, take, s, reference, 30.0);
+    EXPECT_EQ(c.compared, 35);
+    EXPECT_GE(c.within, 16) << "median " << c.medianMm << " mm";
 }

@@ -9,18 +9,34 @@ namespace boneless {
 
 struct C3dTake;
 
+// One suggested marker: where it goes, and whether the user should look at it before trusting it.
+struct Proposal {
+    std::string label;
+    int vertex = -1;
+    bool needsReview = false;
+    std::string reviewReason;  // why, for a person: "62 mm from the fitted mesh", ...
+};
+
 struct Suggestion {
     Correspondence map;       // the partial map plus one entry per suggested marker
     Calibration calibration;  // the alignment the suggestions were made in
+    int fittedFrame = -1;     // the frame whose fit by the picks came nearest the other markers
+    std::vector<Proposal> proposals;  // one per suggested entry, in the map's order
     int suggested = 0;
+    int needsReview = 0;
 };
 
-// Proposes a vertex for every marker of the take that `partial` does not map: the take is aligned
-// onto the rest mesh from the mapped markers (at least 4, so that the similarity is
-// over-determined and a wrong one shows in the residual), and each unmapped marker gets the
-// nearest vertex not already carrying a marker. Its offset_mm is its distance to that vertex,
-// so markers on sticks or thick suits are recorded as such. Only points classified as markers
-// are considered. Throws Error naming what is missing.
+// Proposes a vertex for every marker of the take that `partial` does not map. The take is
+// aligned onto the rest mesh from the mapped markers (at least 4, so that the similarity is
+// over-determined and a wrong one shows in the residual); the engine then poses the mesh by the
+// mapped markers at frames spread over the take, keeps the fits that come nearest the other
+// markers, and gives each unmapped marker the free vertex that follows it best over those fits
+// (docs/markers.md). An entry's offset_mm is its distance to that vertex on the best fit; it is
+// marked "suggested": true, and "needs_review": true with a "review_reason" when it lies far from
+// the fitted mesh, when another part of the body fits it about as well, when it is named for
+// one side (L…/R…, as the mapped pairs show the sides) and lands on the other, or when it is
+// not seen on the best fit's frame. Only points classified as markers are considered. Throws
+// Error naming what is missing.
 Suggestion suggestMappings(const TriMesh& rest, const C3dTake& take, const Correspondence& partial);
 
 }  // namespace boneless

@@ -68,7 +68,9 @@ class Document : public QObject {
     int mappedVertex(int marker) const;  // -1 when unmapped
     double markerOffsetMm(int marker) const;
     bool markerSuggested(int marker) const;  // the entry came from "suggest" and was not edited
-    int markerForVertex(int vertex) const;   // -1 when no marker sits on that vertex
+    // Why a suggested entry should be checked before it is trusted (empty: nothing to check).
+    QString markerReviewReason(int marker) const;
+    int markerForVertex(int vertex) const;            // -1 when no marker sits on that vertex
     int markerByLabel(const QString& label) const;    // -1 when none
     bool markerVisible(int marker, int frame) const;  // false without a take or when missing
     int mappedCount() const;

@@ -1,0 +1,42 @@
+#include "boneless/SuggestionCheck.h"
+
+#include <algorithm>
+
+#include "boneless/C3dTake.h"
+
+namespace boneless {
+
+namespace {
+
+Vec3 restPoint(const TriMesh& rest, const MarkerMapping& m) {
+    if (m.face < 0 || m.face >= rest.faceCount()) return rest.V.row(m.vertex).transpose();
+    Vec3 x = Vec3::Zero();
+    for (int c = 0; c < 3; ++c) x += m.barycentric[c] * rest.V.row(rest.F(m.face, c)).transpose();
+    return x;
+}
+
+}  // namespace
+
+SuggestionCheck checkSuggestion(const TriMesh& rest, const C3dTake& take,
+                                const Suggestion& suggestion, const Correspondence& reference,
+                                double toleranceMm) {
+    const double mmPerMeshUnit = take.unitToMm / suggestion.calibration.takeToMesh.scale;
+    SuggestionCheck check;
+    std::vector<double> mm;
+    for (const auto& proposal : suggestion.proposals) {
+        const MarkerMapping* truth = reference.find(proposal.label);
+        const MarkerMapping* mine = suggestion.map.find(proposal.label);
+        if (!truth || !mine || truth->vertex < 0 || truth->vertex >= rest.vertexCount()) continue;
+        mm.push_back((restPoint(rest, *mine) - restPoint(rest, *truth)).norm() * mmPerMeshUnit);
+        check.distancesMm.push_back({proposal.label, mm.back()});
+        check.within += mm.back() <= toleranceMm ? 1 : 0;
+    }
+    check.compared = static_cast<int>(mm.size());
+    if (!mm.empty()) {
+        std::sort(mm.begin(), mm.end());
+        check.medianMm = mm[mm.size() / 2];
+    }
+    return check;
+}
+
+}  // namespace boneless
