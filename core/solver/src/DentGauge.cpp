@@ -1,6 +1,7 @@
 #include "boneless/DentGauge.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace boneless {
 
@@ -14,12 +15,19 @@ DentGauge::DentGauge(const TriMesh& rest, const MeshTopology& topology,
             if (encoding.encoded(v)) region.push_back(v);
         regions_.push_back(std::move(region));
         const int k = static_cast<int>(regions_.size()) - 1;
-        double edge = 0;
-        int edges = 0;
-        for (int v : regions_[k])
-            for (int j = 0; j < topology.valence(v); ++j, ++edges)
-                edge += (rest.V.row(v) - rest.V.row(topology.ring(v)[j])).norm();
-        const double floor = edges ? kFlat * edge / edges : 0.0;
+        // On a sphere of radius R a vertex lies Σ w_j e_j²/(2R) off its ring's centre, at least
+        // e²/(2R) for its shortest ring edge e: the region's floor is that for R = kFlatRadii ×
+        // radius, averaged like the gauge. The shortest edge keeps it below a thin part's own
+        // curvature where the rings are long along the part.
+        double floor = 0;
+        for (int v : regions_[k]) {
+            double shortest = std::numeric_limits<double>::infinity();
+            for (int j = 0; j < topology.valence(v); ++j)
+                shortest = std::min(
+                    shortest, (rest.V.row(v) - rest.V.row(topology.ring(v)[j])).squaredNorm());
+            if (topology.valence(v) > 0) floor += shortest / (2 * kFlatRadii * radius);
+        }
+        if (!regions_[k].empty()) floor /= static_cast<double>(regions_[k].size());
         restMean_.push_back(std::max(meanCurvature(k, rest.V), floor));
     }
 }

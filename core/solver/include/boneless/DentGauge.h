@@ -11,8 +11,11 @@ namespace boneless {
 // point, within a radius, each encoded vertex's offset from its ring's weighted centre,
 // (L V)_i with the encoding's projected mean-value weights, is a discrete mean curvature
 // (at rest it lies along the normal). A marker's ratio is the region's mean of it posed over
-// its mean at rest, each taken along the vertex's ring normal; a region flatter at rest than kFlat
-// of its edge length counts as that flat, so that a flat patch gently bent is not a dent.
+// its mean at rest, each taken along the vertex's ring normal. A region flatter at rest than a
+// sphere kFlatRadii times the radius (judged by each ring's shortest edge) counts as that curved:
+// a dent has the marker's size, and a flat patch bent gently (a flank or a hip front as the trunk
+// bends) is not one, however flat it was. The floor is a curvature, so a finer mesh of the same
+// body gets the same ratios.
 class DentGauge {
   public:
     // rest, topology and encoding must outlive it; radius in mesh units.
@@ -23,7 +26,7 @@ class DentGauge {
     // Each marker's ratio in V.
     std::vector<double> ratios(const Positions& V) const;
 
-    static constexpr double kFlat = 0.02;
+    static constexpr double kFlatRadii = 6.0;
 
   private:
     double meanCurvature(int marker, const Positions& V) const;
