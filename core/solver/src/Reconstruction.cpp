@@ -2,13 +2,11 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <optional>
 #include <string>
 
-#include "LineSearch.h"
 #include "ReconstructionImpl.h"
 #include "boneless/Error.h"
 #include "boneless/Metrics.h"
@@ -27,14 +25,6 @@ bool parseMethod(const std::string& name, SolverOptions::Method& method) {
         }
     return false;
 }
-
-namespace {
-
-// A step solved with an earlier factor is as good as a factorised one once conjugate gradients
-// reach this relative residual.
-constexpr double kReusedFactorTolerance = 1e-6;
-
-}  // namespace
 
 Reconstruction::Impl::Impl() = default;
 Reconstruction::Impl::~Impl() = default;
@@ -406,138 +396,6 @@ Stencils Reconstruction::Impl::stencils() const {
         stencils.close();
     }
     return stencils;
-}
-
-SolveResult Reconstruction::Impl::solveExact(const Positions& targets, const Positions* guess,
-                                             const std::atomic<bool>* stop) {
-    Impl& s = *this;
-    const int n = s.rest.vertexCount();
-    const int K = static_cast<int>(s.markers.size());
-    const auto start = std::chrono::steady_clock::now();
-    SolveResult result;
-    result.V = startingPose(targets, guess);
-    Positions& V = result.V;
-    const bool hard = !s.softMarkers();
-    // The last factor is reused as a preconditioner by the steps after it, in this solve only:
-    // one from another frame would make the answer depend on which frame came before.
-    bool factorisedThisSolve = false;
-
-    Eigen::VectorXd gradient;
-    const double still = 1e-10 * boundingBoxDiagonal(s.rest.V);
-    double E = s.linearise(V, targets);
-    result.report.energyBefore = E;
-    result.report.energies.push_back(E);
-    // With the orientation guard on, the fold guard's exact Hessian (its rotations' derivative
-    // added) once a step is accepted whole, gains less than 30 % and leaves no face at the
-    // guard's threshold: near a minimum. The Gauss–Newton matrix otherwise, which converges only
-    // linearly where a bend turns the rings. Far from a minimum the exact matrix can lead into
-    // another basin. Without the
-    // orientation guard it is not used: converging further there flips more faces (samba at 40
-    // markers, the Gauss–Newton matrix run to 1e-6: 654 faces flipped in the worst frame
-    // against 436 at the default 1e-3), and nothing else holds them. Measured with it, each frame
-    // of a take: a koala frame 3 steps instead of 10; the demo at twice its resolution, 30
-    // frames, 221 steps instead of 243 and a worst energy of 0.020 instead of 0.035.
-    bool exact = false;
-    for (int it = 0; it < s.options.maxIterations && E > 0; ++it) {
-        if (stop && stop->load()) {
-            result.report.stopped = true;
-            return result;
-        }
-        using Kind = GuardHessian;
-        auto forEachPinned = [&](auto&& f) {
-            for (int v = 0; v < n; ++v)
-                if (s.topology->isIsolated(v)) f(v);
-            if (hard)
-                for (int k = 0; k < K; ++k)
-                    if (rowIsFinite(targets, k)) f(s.markers[k]);
-        };
-        auto buildSystem = [&](Kind kind) {
-            s.assemble(V, targets, gradient);
-            if (kind == Kind::Exact) s.addRotationCoupling();
-            forEachPinned([&](int v) {
-                s.system->pin(v);
-                gradient.segment<3>(3 * v).setZero();
-            });
-        };
-        Eigen::VectorXd step;
-        std::optional<Kind> solvedWith;
-        // The last factor, made earlier in this solve, preconditions conjugate gradients on this
-        // step's matrix (of either kind: a koala take's frame alternates them, and went from
-        // 8.6 to 7.0 s when a factor of the other kind could serve); three quarters of a
-        // factorisation's cost at most, so that a failed try costs less than the factorisation
-        // after it. Not while the orientation guard has terms (then or now): they are stiff, and
-        // come and go between steps. On the demo ×2's take (30 frames) the full mesh's tries
-        // with them failed 181 times out of 196, and the take took 112 s instead of 98 s;
-        // without them, 95 s.
-        const int reuseIterations = s.system->reuseAllowance();
-        const Kind kind = exact ? Kind::Exact : Kind::GaussNewton;
-        if (factorisedThisSolve && s.factorWithoutOrientationTerms && s.orientationTerms.empty() &&
-            reuseIterations >= BlockSystem::kMinimumReuseIterations) {
-            buildSystem(kind);
-            s.system->addToDiagonal(s.tikhonov());
-            int its = 0;
-            const bool solved = s.system->solveByLastFactor(gradient, step, reuseIterations,
-                                                            kReusedFactorTolerance, &its);
-            result.report.linearIterations += its;
-            if (solved) {
-                solvedWith = kind;
-                // An earlier factor may lack this frame's pins (a marker back from a gap):
-                // conjugate gradients leave their rows near zero, a factorisation exactly zero.
-                forEachPinned([&](int v) { step.segment<3>(3 * v).setZero(); });
-            }
-        }
-        if (!solvedWith) {
-            // Indefinite with the coupling: this step goes without it.
-            solvedWith = exact ? s.factorizeFirstOf({Kind::Exact, Kind::GaussNewton}, buildSystem)
-                               : s.factorizeFirstOf({Kind::GaussNewton}, buildSystem);
-            if (!solvedWith) break;
-            s.factorWithoutOrientationTerms = s.orientationTerms.empty();
-            factorisedThisSolve = true;
-            ++result.report.directSteps;
-            step = s.system->solve(gradient);
-        }
-        step = -step;
-        exact = *solvedWith == Kind::Exact;
-        if (!step.allFinite()) break;
-        // A step no vertex would visibly take: the energy is at round-off (a rest or rigid
-        // pose), where every step still halves it and the relative test never stops.
-        if (step.cwiseAbs().maxCoeff() < still) {
-            result.report.converged = true;
-            break;
-        }
-
-        const bool exactStep = exact;
-        double Enew = E, alpha = 0;
-        Positions trial;
-        const bool accepted = armijoBacktrack(
-            V, step, E, gradient.dot(step),
-            [&](const Positions& X) { return s.energy(X, targets); }, trial, Enew, &alpha);
-        exact = false;
-        if (!accepted) {
-            // The exact matrix can point where the guards' terms rise at once (the orientation
-            // guard is one-sided): such a step is taken again with the Gauss–Newton matrix.
-            if (exactStep) continue;
-            result.report.converged = true;  // no descent left along the Gauss–Newton direction
-            break;
-        }
-        V.swap(trial);
-        const double decrease = (E - Enew) / E;
-        result.report.iterations = it + 1;
-        E = s.linearise(V, targets);
-        result.report.energies.push_back(E);
-        exact = s.orientation && s.rigid() && alpha == 1.0 && decrease < 0.3 &&
-                s.orientationTerms.empty();
-        // One face turning over barely changes the total: the relative decrease alone would
-        // stop with the fold in place.
-        if (decrease < s.options.relativeTolerance && !s.anyTurnedOver()) {
-            result.report.converged = true;
-            break;
-        }
-    }
-    result.report.energyAfter = E;
-    result.report.milliseconds =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    return result;
 }
 
 double Reconstruction::energy(const Positions& V, const Positions& targets) const {

@@ -1,7 +1,8 @@
 #pragma once
 
 // The state behind boneless::Reconstruction: its local/global method (LocalGlobalMethod) and its
-// exact Gauss–Newton method (Reconstruction.cpp).
+// exact Gauss–Newton method (the problem in Reconstruction.cpp, its iteration and direct solver in
+// ExactMethod.cpp).
 
 #include <functional>
 #include <initializer_list>
@@ -96,6 +97,23 @@ struct Reconstruction::Impl {
     // The starting pose of a frame: the guess (or the rest pose moved rigidly onto the markers),
     // isolated vertices moved rigidly, hard markers on their targets.
     Positions startingPose(const Positions& targets, const Positions* guess) const;
+    // Vertices a step leaves where they are: the isolated ones and, with hard constraints, those
+    // on a visible marker.
+    std::vector<int> pinnedVertices(const Positions& targets) const;
+    // The system of the Gauss–Newton step at V, of the kind of fold-guard Hessian asked, with the
+    // pinned vertices' rows made the identity's and their gradient entries cleared.
+    void buildSystem(GuardHessian kind, const Positions& V, const Positions& targets,
+                     const std::vector<int>& pinned, Eigen::VectorXd& gradient);
+    // The direct solver of one step: solves the system that build(kind) makes (and the gradient
+    // it fills) by the last factor made in this solve when that serves, else factorises it (the
+    // kind wanted first, then the Gauss–Newton one). Returns the kind solved with, nothing when
+    // no factorisation succeeded.
+    std::optional<GuardHessian> solveStep(GuardHessian wanted,
+                                          const std::function<void(GuardHessian)>& build,
+                                          const std::vector<int>& pinned, bool& factorisedThisSolve,
+                                          Eigen::VectorXd& gradient, Eigen::VectorXd& step,
+                                          SolveReport& report);
+    // The exact method's Gauss–Newton iteration from the starting pose.
     SolveResult solveExact(const Positions& targets, const Positions* guess,
                            const std::atomic<bool>* stop);
 };
