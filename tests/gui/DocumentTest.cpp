@@ -28,10 +28,10 @@ class DocumentTest : public QObject {
 
   private slots:
     void initTestCase() {
-        test::isolateSettings("DocumentTest");
-        work_ = test::scratchFolder("DocumentTest");
+        test::isolate("DocumentTest");
+        work_ = test::freshFolder("DocumentTest");
         demo_ = work_ + "/demo";
-        test::demoProject(demo_);
+        test::writeDemoProject(demo_);
     }
 
     void loadsTheDemo() {

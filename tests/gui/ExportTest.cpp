@@ -96,10 +96,10 @@ class ExportTest : public QObject {
 
   private slots:
     void initTestCase() {
-        test::isolateSettings("ExportTest");
-        work_ = test::scratchFolder("ExportTest");
+        test::isolate("ExportTest");
+        work_ = test::freshFolder("ExportTest");
         demo_ = work_ + "/demo";
-        test::demoProject(demo_);
+        test::writeDemoProject(demo_);
     }
 
     void objFramesMatchTheCli() { exportAndCompare(ExportFormat::Obj, "obj", 11); }

@@ -29,9 +29,9 @@ class FrameSolverTest : public QObject {
 
   private slots:
     void initTestCase() {
-        test::isolateSettings("FrameSolverTest");
-        demo_ = test::scratchFolder("FrameSolverTest", "demo");
-        test::demoProject(demo_);
+        test::isolate("FrameSolverTest");
+        demo_ = test::freshFolder("FrameSolverTest/demo");
+        test::writeDemoProject(demo_);
     }
 
     void solvesAFrameThenServesItFromTheCache() {
@@ -314,7 +314,7 @@ class FrameSolverTest : public QObject {
         QVERIFY(test::loadDemo(d, demo_));
         Correspondence map = d.correspondence();
         map.markers[0].label = "NOT_IN_TAKE";
-        const QString path = test::scratchFolder("FrameSolverTest", "bad") + "/bad.map.json";
+        const QString path = test::freshFolder("FrameSolverTest/bad") + "/bad.map.json";
         map.write(path.toStdString());
         QVERIFY(d.loadCorrespondence(path));
         FrameSolver solver;

@@ -1,6 +1,7 @@
 #pragma once
-// Scratch folders and the generated demo for the model tests (Document, Project, FrameSolver,
-// Export). Each test executable gets its own folder: ctest runs them as parallel processes.
+// Scratch folders, isolated settings and the generated demo for the GUI tests (the model tests use
+// these alone; the window tests add ViewTestSupport.h). Each test executable gets its own folder:
+// ctest runs them as parallel processes.
 
 #include <QCoreApplication>
 #include <QDir>
@@ -14,24 +15,25 @@
 
 namespace boneless::ui::test {
 
-// A fresh folder BONELESS_TEST_WORK_BASE/<name>/<sub>.
-inline QString scratchFolder(const QString& name, const QString& sub = {}) {
-    QDir dir(QStringLiteral(BONELESS_TEST_WORK_BASE) + "/" + name +
-             (sub.isEmpty() ? "" : "/" + sub));
+// A fresh folder BONELESS_TEST_WORK_BASE/<name> (name may hold a sub-folder: "Test/demo").
+inline QString freshFolder(const QString& name) {
+    QDir dir(QStringLiteral(BONELESS_TEST_WORK_BASE) + "/" + name);
     dir.removeRecursively();
     QDir().mkpath(dir.absolutePath());
     return dir.absolutePath();
 }
 
-// Settings and per-user folders of tests stay away from the user's (and from each other's).
-inline void isolateSettings(const QString& name) {
+// Test mode keeps QSettings (recent files, cache size) and per-user folders out of the user's
+// (and of the other tests').
+inline void isolate(const QString& name) {
     QStandardPaths::setTestModeEnabled(true);
     QCoreApplication::setOrganizationName("BonelessTest");
     QCoreApplication::setApplicationName(name);
 }
 
-// The demo project (the walker, 60 frames, 39 markers all mapped) written into `folder`.
-inline QString demoProject(const QString& folder) {
+// The generated demo (the walker, 60 frames, 39 markers all mapped) as a project in `folder`:
+// never the user's demo, which may carry their autosaved edits.
+inline QString writeDemoProject(const QString& folder) {
     QString error;
     const QString path = DemoProject::write(folder, &error);
     if (path.isEmpty()) qFatal("cannot write the demo: %s", qPrintable(error));
@@ -40,7 +42,7 @@ inline QString demoProject(const QString& folder) {
 
 inline bool loadDemo(Document& document, const QString& folder) {
     QString error;
-    if (Project::load(document, demoProject(folder), &error)) return true;
+    if (Project::load(document, writeDemoProject(folder), &error)) return true;
     qWarning("%s", qPrintable(error));
     return false;
 }

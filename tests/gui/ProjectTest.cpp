@@ -35,10 +35,10 @@ class ProjectTest : public QObject {
 
   private slots:
     void initTestCase() {
-        test::isolateSettings("ProjectTest");
-        work_ = test::scratchFolder("ProjectTest");
+        test::isolate("ProjectTest");
+        work_ = test::freshFolder("ProjectTest");
         demo_ = work_ + "/demo";
-        test::demoProject(demo_);
+        test::writeDemoProject(demo_);
     }
 
     void saveReloadCompare() {

@@ -1,44 +1,16 @@
 #pragma once
-// Shared set-up of the window tests (MeshView, MainWindow, Screenshot): a scratch folder with its
-// own demo project, settings kept away from the user's, and a window showing a frame.
+// Shared set-up of the window tests (MeshView, MainWindow, Screenshot, ...): those of
+// ModelTestFixtures.h, and a window showing a solved frame.
 
-#include <QCoreApplication>
-#include <QDir>
-#include <QStandardPaths>
-#include <QString>
 #include <QtTest>
 #include <memory>
 
-#include "boneless/ui/DemoProject.h"
+#include "ModelTestFixtures.h"
 #include "boneless/ui/MainWindow.h"
 #include "boneless/ui/MeshView.h"
 #include "boneless/ui/SurfaceFormat.h"
 
 namespace boneless::ui::test {
-
-// A fresh folder BONELESS_TEST_WORK_BASE/<name>.
-inline QString freshFolder(const QString& name) {
-    QDir dir(QStringLiteral(BONELESS_TEST_WORK_BASE) + "/" + name);
-    dir.removeRecursively();
-    QDir().mkpath(dir.absolutePath());
-    return dir.absolutePath();
-}
-
-// Test mode keeps QSettings (recent files, cache size) and per-user folders out of the user's.
-inline void isolate(const QString& name) {
-    QStandardPaths::setTestModeEnabled(true);
-    QCoreApplication::setOrganizationName("BonelessTest");
-    QCoreApplication::setApplicationName(name);
-}
-
-// The generated demo (the walker, 60 frames, 39 markers all mapped) as a project in `folder`:
-// never the user's demo, which may carry their autosaved edits.
-inline QString writeDemoProject(const QString& folder) {
-    QString error;
-    const QString path = DemoProject::write(folder, &error);
-    if (path.isEmpty()) qFatal("cannot write the demo: %s", qPrintable(error));
-    return path;
-}
 
 // Shows the window and waits until the timeline's frame is solved and rendered.
 inline bool showAndWait(MainWindow& window, int timeoutMs = 60000) {

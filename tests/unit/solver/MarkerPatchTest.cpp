@@ -2,11 +2,10 @@
 // parts, dents, and the solver's invariants with face points.
 #include <gtest/gtest.h>
 
-#include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "MarkerPatch.h"  // core/solver/src
+#include "TestFiles.h"
 #include "TestMeshes.h"
 #include "TestWorkDir.h"
 #include "boneless/C3dReader.h"
@@ -20,25 +19,8 @@
 
 using namespace boneless;
 using namespace boneless::testing;
-namespace fs = std::filesystem;
 
 namespace {
-
-std::string writeText(const std::string& name, const std::string& text) {
-    const fs::path dir = fs::path(freshTestDir("marker-patch-" + name));
-    const std::string path = (dir / name).string();
-    std::ofstream(path) << text;
-    return path;
-}
-
-std::string errorOf(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
-}
 
 // A closed finger: the unit sphere stretched to 12 long along z (radius 1, so that 1.25 is a
 // 10 mm offset on an 8 mm finger).
@@ -102,7 +84,7 @@ Reconstruction softSolver(const TriMesh& m, const std::vector<SurfacePoint>& poi
 }  // namespace
 
 TEST(Correspondence, AVersion2EntryNamesAPointOfAFaceAndIsWrittenBackAsVersion2) {
-    const std::string path = writeText("v2.json", R"({"format": "boneless-correspondence",
+    const std::string path = writeTestFile("v2.json", R"({"format": "boneless-correspondence",
       "version": 2, "mesh": {"file": "finger.obj", "vertices": 642},
       "markers": [{"label": "TIP", "vertex": 7, "face": 30, "barycentric": [0.5, 0.3, 0.2],
                    "offset_mm": 10, "note": "kept"},
@@ -123,7 +105,7 @@ TEST(Correspondence, AVersion2EntryNamesAPointOfAFaceAndIsWrittenBackAsVersion2)
 // Older readers keep reading what this one rewrites, as long as no marker names a face point;
 // and a version 1 file's own "face" key is a key of its own, not a point.
 TEST(Correspondence, AMapWithoutFacePointsIsStillWrittenAsVersion1) {
-    const std::string path = writeText("v1.json", R"({"format": "boneless-correspondence",
+    const std::string path = writeTestFile("v1.json", R"({"format": "boneless-correspondence",
       "version": 1, "markers": [{"label": "A", "vertex": 3, "face": "left"}]})");
     const Correspondence c = Correspondence::read(path);
     EXPECT_EQ(c.markers[0].face, -1);
@@ -139,7 +121,7 @@ TEST(Correspondence, ABadFacePointIsAnErrorNamingTheFileAndTheEntry) {
                entry + "]}";
     };
     const std::string negative =
-        writeText("neg.json", v2(R"({"label": "TIP", "vertex": 0, "face": 2,
+        writeTestFile("neg.json", v2(R"({"label": "TIP", "vertex": 0, "face": 2,
                                     "barycentric": [1.2, -0.2, 0]})"));
     std::string e = errorOf([&] { Correspondence::read(negative); });
     EXPECT_NE(e.find("neg.json"), std::string::npos) << e;
@@ -148,7 +130,7 @@ TEST(Correspondence, ABadFacePointIsAnErrorNamingTheFileAndTheEntry) {
 
     const TriMesh mesh = finger();
     const std::string farFace =
-        writeText("far.json", v2(R"({"label": "TIP", "vertex": 0, "face": 100000,
+        writeTestFile("far.json", v2(R"({"label": "TIP", "vertex": 0, "face": 100000,
                                     "barycentric": [1, 0, 0]})"));
     const Correspondence far = Correspondence::read(farFace);
     e = errorOf([&] { far.checkMesh(mesh.vertexCount(), "finger.obj", &mesh); });
@@ -156,9 +138,9 @@ TEST(Correspondence, ABadFacePointIsAnErrorNamingTheFileAndTheEntry) {
     EXPECT_NE(e.find("TIP: face 100000 is out of range"), std::string::npos) << e;
 
     const int notCorner = mesh.F(5, 0) == 0 || mesh.F(5, 1) == 0 || mesh.F(5, 2) == 0 ? 6 : 5;
-    const std::string wrong =
-        writeText("corner.json", v2(R"({"label": "TIP", "vertex": 0, "face": )" +
-                                    std::to_string(notCorner) + R"(, "barycentric": [1, 0, 0]})"));
+    const std::string wrong = writeTestFile(
+        "corner.json", v2(R"({"label": "TIP", "vertex": 0, "face": )" + std::to_string(notCorner) +
+                          R"(, "barycentric": [1, 0, 0]})"));
     const Correspondence c = Correspondence::read(wrong);
     e = errorOf([&] { c.checkMesh(mesh.vertexCount(), "finger.obj", &mesh); });
     EXPECT_NE(e.find("corner.json"), std::string::npos) << e;

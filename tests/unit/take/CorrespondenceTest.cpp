@@ -1,34 +1,17 @@
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "TestFiles.h"
 #include "boneless/C3dTake.h"
 #include "boneless/Correspondence.h"
 #include "boneless/Error.h"
 
 using namespace boneless;
-namespace fs = std::filesystem;
+using namespace boneless::testing;
 
 namespace {
-
-std::string writeText(const std::string& name, const std::string& text) {
-    const fs::path dir = fs::path(BONELESS_TEST_WORK_DIR) / "correspondence";
-    fs::create_directories(dir);
-    const std::string path = (dir / name).string();
-    std::ofstream(path) << text;
-    return path;
-}
-
-std::string errorOf(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
-}
 
 const char* kValid = R"({"format": "boneless-correspondence", "version": 1,
   "mesh": {"file": "body.obj", "vertices": 100, "units": "dm"},
@@ -39,7 +22,7 @@ const char* kValid = R"({"format": "boneless-correspondence", "version": 1,
 }  // namespace
 
 TEST(Correspondence, ReadsTheDocumentedFormat) {
-    const Correspondence c = Correspondence::read(writeText("valid.json", kValid));
+    const Correspondence c = Correspondence::read(writeTestFile("valid.json", kValid));
     EXPECT_EQ(c.meshFile, "body.obj");
     EXPECT_EQ(c.meshVertices, 100);
     ASSERT_EQ(c.markers.size(), 2u);
@@ -50,9 +33,9 @@ TEST(Correspondence, ReadsTheDocumentedFormat) {
 }
 
 TEST(Correspondence, KeepsUnknownKeysOnRewrite) {
-    Correspondence c = Correspondence::read(writeText("extra.json", kValid));
+    Correspondence c = Correspondence::read(writeTestFile("extra.json", kValid));
     c.markers[1].vertex = 41;
-    const std::string out = writeText("rewritten.json", "");
+    const std::string out = writeTestFile("rewritten.json", "");
     c.write(out);
     const auto j = nlohmann::json::parse(std::ifstream(out));
     EXPECT_EQ(j["author"], "test");
@@ -65,32 +48,32 @@ TEST(Correspondence, KeepsUnknownKeysOnRewrite) {
 }
 
 TEST(Correspondence, RejectsBadFilesNamingFileAndEntry) {
-    std::string e = errorOf([] { Correspondence::read(writeText("bad.json", "{not json")); });
+    std::string e = errorOf([] { Correspondence::read(writeTestFile("bad.json", "{not json")); });
     EXPECT_NE(e.find("bad.json"), std::string::npos);
     EXPECT_NE(e.find("not valid JSON"), std::string::npos) << e;
 
     e = errorOf([] {
-        Correspondence::read(writeText("dup.json", R"({"format": "boneless-correspondence",
+        Correspondence::read(writeTestFile("dup.json", R"({"format": "boneless-correspondence",
           "version": 1, "markers": [{"label": "A", "vertex": 3}, {"label": "B", "vertex": 3}]})"));
     });
     EXPECT_NE(e.find("marker 1 (B): vertex 3 already carries another marker"), std::string::npos)
         << e;
 
     e = errorOf([] {
-        Correspondence::read(writeText("v3.json", R"({"format": "boneless-correspondence",
+        Correspondence::read(writeTestFile("v3.json", R"({"format": "boneless-correspondence",
           "version": 3, "markers": []})"));
     });
     EXPECT_NE(e.find("version 3"), std::string::npos) << e;
 
     e = errorOf([] {
-        Correspondence::read(writeText("nolabel.json", R"({"format": "boneless-correspondence",
+        Correspondence::read(writeTestFile("nolabel.json", R"({"format": "boneless-correspondence",
           "version": 1, "markers": [{"vertex": 3}]})"));
     });
     EXPECT_NE(e.find("marker 0 has no \"label\""), std::string::npos) << e;
 }
 
 TEST(Correspondence, ChecksTheMeshAndTheTake) {
-    const Correspondence c = Correspondence::read(writeText("valid2.json", kValid));
+    const Correspondence c = Correspondence::read(writeTestFile("valid2.json", kValid));
     EXPECT_NO_THROW(c.checkMesh(100, "body.obj"));
     EXPECT_NE(errorOf([&] { c.checkMesh(99, "other.obj"); }).find("99"), std::string::npos);
 

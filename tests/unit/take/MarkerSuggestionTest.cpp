@@ -7,7 +7,7 @@
 #include "TestMeshes.h"
 #include "boneless/C3dReader.h"
 #include "boneless/C3dTake.h"
-#include "boneless/DemoWalker.h"
+#include "DemoWalker.h"
 #include "boneless/Error.h"
 #include "boneless/MarkerSuggestion.h"
 #include "boneless/MeshReader.h"
