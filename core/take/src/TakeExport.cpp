@@ -17,6 +17,7 @@
 #include <thread>
 
 #include "FrameOutput.h"
+#include "SolveMemory.h"
 #include "boneless/ActorCalibration.h"
 #include "boneless/C3dFrameReader.h"
 #include "boneless/Error.h"
@@ -176,13 +177,14 @@ json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibr
 using FrameSink = std::function<bool(int frame, const Positions& V, const FrameReport& report,
                                      double distortion, double strainP95)>;
 void solveInOrder(TakeSolver& first, const TriMesh& mesh, const Correspondence& map,
-                  const TakeSolveOptions& options, int begin, int end, const FrameSink& write) {
+                  const TakeSolveOptions& options, int begin, int end, int maxWorkers,
+                  const FrameSink& write) {
     struct Solved {
         Positions V;
         FrameReport report;
         double distortion = 0, strainP95 = 0;
     };
-    const int workers = std::max(1, std::min(solverThreadCount(), end - begin));
+    const int workers = std::max(1, std::min({solverThreadCount(), end - begin, maxWorkers}));
     const int window = 4 * workers;
     std::mutex mutex;
     std::condition_variable changed;
@@ -271,6 +273,10 @@ void solveInOrder(TakeSolver& first, const TriMesh& mesh, const Correspondence& 
     if (error) std::rethrow_exception(error);
 }
 
+SolveMemory solveMemory(const TriMesh& mesh, const ExportRequest& request) {
+    return estimateSolveMemory(mesh.vertexCount(), mesh.faceCount(), request.options.solver.method);
+}
+
 // take: what the sidecar says of the take (its samples are not read).
 ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake& take,
                           const Correspondence& map, const ExportRequest& request,
@@ -309,6 +315,7 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
     result.first = request.first;
     PerFrameFigures perFrame;
     solveInOrder(solver, mesh, map, request.options, request.first, end,
+                 solversThatFit(solveMemory(mesh, request), solverThreadCount()),
                  [&](int f, const Positions& V, const FrameReport& report, double distortion,
                      double strainP95) {
                      output.append(f, V);
@@ -345,6 +352,8 @@ ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspo
                         const ExportRequest& request, const ExportProgress& progress,
                         const ExportCalibrated& calibrated) {
     validate(request.options);
+    const SolveMemory memory = solveMemory(mesh, request);
+    checkSolveFits(memory, request.meshPath, mesh.vertexCount(), mesh.faceCount());
     TakeSolver solver(mesh, take, map, request.options);
     return exportSolved(solver, mesh, take, map, request, progress, calibrated);
 }
@@ -353,6 +362,8 @@ ExportResult exportTake(const TriMesh& mesh, const C3dFrameReader& take, const C
                         const ExportRequest& request, const ExportProgress& progress,
                         const ExportCalibrated& calibrated) {
     validate(request.options);
+    const SolveMemory memory = solveMemory(mesh, request);
+    checkSolveFits(memory, request.meshPath, mesh.vertexCount(), mesh.faceCount());
     TakeSolver solver(mesh, take, map, request.options);
     return exportSolved(solver, mesh, take.take(), map, request, progress, calibrated);
 }

@@ -1,0 +1,82 @@
+#include "SolveMemory.h"
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+
+#include "boneless/Error.h"
+
+namespace boneless {
+
+namespace {
+
+// Peak bytes a solver adds per face, measured with boneless-bench-large on the demo creature
+// (docs/benchmarks.md) and rounded up; the exact method's 2-ring block system and its factor
+// need several times more than the local/global method's levels.
+constexpr double kLocalGlobalBytesPerFace = 4.0 * 1024;
+constexpr double kExactBytesPerFace = 16.0 * 1024;
+// One solver may take at most this share of the budget.
+constexpr double kLargestShare = 0.8;
+
+std::string megabytes(std::uint64_t bytes) {
+    char text[32];
+    const double mb = double(bytes) / (1024.0 * 1024);
+    if (mb >= 1024)
+        std::snprintf(text, sizeof text, "%.1f GB", mb / 1024);
+    else
+        std::snprintf(text, sizeof text, "%.0f MB", mb);
+    return text;
+}
+
+std::string thousands(int n) {
+    std::string s = std::to_string(n);
+    for (int i = static_cast<int>(s.size()) - 3; i > 0; i -= 3) s.insert(i, ",");
+    return s;
+}
+
+}  // namespace
+
+SolveMemory estimateSolveMemory(int vertices, int faces, SolverOptions::Method method) {
+    (void)vertices;  // a closed mesh has twice as many faces as vertices: faces say it all
+    SolveMemory m;
+    const double perFace =
+        method == SolverOptions::Method::Exact ? kExactBytesPerFace : kLocalGlobalBytesPerFace;
+    m.perSolver = static_cast<std::uint64_t>(perFace * std::max(faces, 0));
+    const long pages = ::sysconf(_SC_PHYS_PAGES), pageSize = ::sysconf(_SC_PAGESIZE);
+    m.budget = pages > 0 && pageSize > 0 ? std::uint64_t(pages) * std::uint64_t(pageSize) : 0;
+    m.budgetFrom = "this machine's physical memory";
+    rlimit limit{};
+    if (::getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY &&
+        (m.budget == 0 || limit.rlim_cur < m.budget)) {
+        m.budget = limit.rlim_cur;
+        m.budgetFrom = "the process's address-space limit (ulimit -v)";
+    }
+    std::uint64_t cgroup = 0;
+    if (std::ifstream("/sys/fs/cgroup/memory.max") >> cgroup && cgroup > 0 &&
+        (m.budget == 0 || cgroup < m.budget)) {
+        m.budget = cgroup;
+        m.budgetFrom = "the cgroup's memory.max";
+    }
+    return m;
+}
+
+void checkSolveFits(const SolveMemory& memory, const std::string& meshPath, int vertices,
+                    int faces) {
+    if (memory.budget == 0 || double(memory.perSolver) <= kLargestShare * double(memory.budget))
+        return;
+    throw Error(meshPath + ": " + thousands(faces) + " faces (" + thousands(vertices) +
+                " vertices) would need about " + megabytes(memory.perSolver) + " to solve, and " +
+                memory.budgetFrom + " is " + megabytes(memory.budget) +
+                "; decimate the mesh (Blender's Decimate modifier, for one) and solve again");
+}
+
+int solversThatFit(const SolveMemory& memory, int wanted) {
+    if (memory.budget == 0 || memory.perSolver == 0) return std::max(1, wanted);
+    const auto fit = static_cast<int>(memory.budget / 2 / memory.perSolver);
+    return std::clamp(fit, 1, std::max(1, wanted));
+}
+
+}  // namespace boneless

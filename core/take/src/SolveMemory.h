@@ -1,0 +1,34 @@
+#pragma once
+
+// What solving a take needs in memory, estimated up front from the mesh's size, against what the
+// process may use: a mesh too large is refused before any work, and no more frames are solved at
+// once than fit (each worker holds a solver of its own). Figures: docs/benchmarks.md, "Large
+// meshes".
+
+#include <cstdint>
+#include <string>
+
+#include "boneless/Reconstruction.h"
+
+namespace boneless {
+
+struct SolveMemory {
+    std::uint64_t perSolver = 0;  // bytes one solver of the take holds (method, calibration)
+    std::uint64_t budget = 0;     // bytes the process may use
+    std::string budgetFrom;       // what sets the budget, for messages ("physical memory", ...)
+};
+
+// The estimate for a mesh of this size and method, and the budget from the machine: physical
+// memory, or less under an address-space limit (ulimit -v) or a cgroup's memory.max.
+SolveMemory estimateSolveMemory(int vertices, int faces, SolverOptions::Method method);
+
+// Throws Error naming the mesh file, its faces and vertices, the estimate and the budget when one
+// solver alone would take more than the budget allows.
+void checkSolveFits(const SolveMemory& memory, const std::string& meshPath, int vertices,
+                    int faces);
+
+// How many solvers may run at once: at most `wanted`, at least one, all of them within half the
+// budget (the rest is the user's other work, and the outputs' buffers).
+int solversThatFit(const SolveMemory& memory, int wanted);
+
+}  // namespace boneless
