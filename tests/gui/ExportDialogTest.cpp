@@ -64,8 +64,8 @@ class ExportDialogTest : public QObject {
 
   private slots:
     void initTestCase() {
-        test::isolateSettings("ExportDialogTest");
-        work_ = test::scratchFolder("ExportDialogTest");
+        test::isolate("ExportDialogTest");
+        work_ = test::freshFolder("ExportDialogTest");
         QVERIFY(test::loadDemo(document_, work_ + "/demo"));
         QVERIFY(solver_.setProblem(document_));
         timeline_.setFrameCount(document_.frameCount());

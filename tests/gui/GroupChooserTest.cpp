@@ -31,8 +31,8 @@ class GroupChooserTest : public QObject {
 
   private slots:
     void initTestCase() {
-        test::isolateSettings("GroupChooserTest");
-        path_ = test::scratchFolder("GroupChooserTest") + "/groups.obj";
+        test::isolate("GroupChooserTest");
+        path_ = test::freshFolder("GroupChooserTest") + "/groups.obj";
         QFile file(path_);
         QVERIFY(file.open(QIODevice::WriteOnly));
         // Sizes 6, 14 and 4 vertices: the largest is neither first nor last in the file.

@@ -30,8 +30,8 @@ class TimelineStripTest : public QObject {
 
   private slots:
     void initTestCase() {
-        test::isolateSettings("TimelineStripTest");
-        work_ = test::scratchFolder("TimelineStripTest");
+        test::isolate("TimelineStripTest");
+        work_ = test::freshFolder("TimelineStripTest");
         QVERIFY(test::loadDemo(document_, work_ + "/demo"));
     }
 
