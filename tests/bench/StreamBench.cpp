@@ -103,7 +103,7 @@ int main(int argc, char** argv) {
     app.add_option("--work", work, "Folder for the takes and outputs (emptied)");
     app.add_option("--cli", cli, "The boneless-cli to measure");
     app.add_option("--format", format, "solve's --format");
-    app.add_option("--lowpass", lowPass, "solve's --lowpass (Hz; 0 = off)");
+    app.add_option("--low-pass-hz", lowPass, "solve's --low-pass-hz (Hz; 0 = off)");
     CLI11_PARSE(app, argc, argv);
 
     fs::remove_all(work);
@@ -129,9 +129,9 @@ int main(int argc, char** argv) {
                     repeated.samples.set(f, k, p->x(), p->y(), p->z());
         writeC3d(repeated, longTake);
     }
-    std::printf("creature: %d vertices, %d markers; --format %s --lowpass %g; %s\n", demo.vertices,
+    std::printf("creature: %d vertices, %d markers; --format %s --low-pass-hz %g; %s\n", demo.vertices,
                 demo.markers, format.c_str(), lowPass, cli.c_str());
-    const std::vector<std::string> extra = {"--format", format, "--lowpass",
+    const std::vector<std::string> extra = {"--format", format, "--low-pass-hz",
                                             std::to_string(lowPass)};
     const Run base =
         solve(cli, demo, demo.take, small, (fs::path(work) / "out-small").string(), extra);
