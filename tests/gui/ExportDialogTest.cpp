@@ -95,6 +95,9 @@ class ExportDialogTest : public QObject {
         dialog.setInOut(5, 9);
         QCOMPARE(dialog.range(), ExportDialog::Range::InOut);
         QCOMPARE(dialog.frameCountToWrite(), 5);
+        // Before the run the bar counts the range's frames.
+        QCOMPARE(part<QProgressBar>(dialog, "exportProgress")->maximum(), 5);
+        QCOMPARE(part<QProgressBar>(dialog, "exportProgress")->value(), 0);
         const QString inOut = work_ + "/in-out";
         QVERIFY(exportInto(dialog, inOut));
         QCOMPARE(objFiles(inOut),

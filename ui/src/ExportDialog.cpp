@@ -233,6 +233,11 @@ void ExportDialog::syncFromDocument() {
 void ExportDialog::updateEstimate() {
     current_->setText(tr("Current frame (%1)").arg(timeline_->frame()));
     const int frames = frameCountToWrite();
+    // Before a run, the bar counts the frames the chosen range would write (not Qt's 0 / 100).
+    if (!runner_->isRunning()) {
+        progress_->setRange(0, std::max(1, frames));
+        progress_->setValue(0);
+    }
     const double ms = measuredMsPerFrame();
     if (ms <= 0) {
         estimate_->setText(tr("%1; measuring the time a frame takes…").arg(frameCount(frames)));
