@@ -1,11 +1,14 @@
 // The group chooser of Open Mesh: each OBJ group with its vertex count, the largest preselected.
+#include <QApplication>
 #include <QFile>
 #include <QListWidget>
+#include <QTimer>
 #include <QtTest>
 
 #include "ModelTestFixtures.h"
 #include "boneless/ui/Document.h"
 #include "boneless/ui/GroupChooser.h"
+#include "boneless/ui/MainWindow.h"
 
 using namespace boneless;
 using namespace boneless::ui;
@@ -63,6 +66,20 @@ class GroupChooserTest : public QObject {
             QVERIFY(d.loadMesh(path_, QString::fromStdString(g.name)));
             QCOMPARE(d.mesh().vertexCount(), g.vertices);
         }
+    }
+
+    // Files given on the command line or dropped go through openFile, as File → Open Mesh does.
+    void openingAFileByNameAlsoAsksAndOpensTheLargestGroup() {
+        MainWindow window;
+        bool asked = false;
+        QTimer::singleShot(0, [&] {
+            auto* chooser = qobject_cast<GroupChooser*>(QApplication::activeModalWidget());
+            asked = chooser != nullptr;
+            if (chooser) chooser->accept();
+        });
+        QVERIFY(window.openFile(path_));
+        QVERIFY(asked);
+        QCOMPARE(window.document()->mesh().vertexCount(), 14);
     }
 };
 

@@ -75,9 +75,7 @@ bool MainWindow::openFile(const QString& path) {
         case FileKind::Project:
             return openProject(path);
         case FileKind::Mesh:
-            ok = document_->loadMesh(path);
-            if (ok) startUntitled();  // never into the project (or demo) open before
-            break;
+            return openMesh(path);
         case FileKind::Take:
             ok = document_->loadTake(path);
             if (ok) startUntitled();
@@ -243,25 +241,30 @@ void MainWindow::showExportDialog() {
 void MainWindow::chooseMesh() {
     const QString path = QFileDialog::getOpenFileName(
         this, tr("Open Mesh"), {}, tr("Meshes (*.obj *.ply *.off *.stl);;All files (*)"));
-    if (path.isEmpty()) return;
+    if (!path.isEmpty()) openMesh(path);
+}
+
+// An OBJ with groups asks which to open (the largest preselected), however it was opened.
+bool MainWindow::openMesh(const QString& path) {
     QString group;
     try {
         const std::vector<ObjGroup> groups = objGroups(path.toStdString());
         if (groups.size() > 1) {
             GroupChooser chooser(QFileInfo(path).fileName(), groups, this);
-            if (chooser.exec() != QDialog::Accepted) return;
+            if (chooser.exec() != QDialog::Accepted) return false;
             group = chooser.group();
         }
     } catch (const Error& e) {
         showError(plainError(path), QString::fromStdString(e.what()));
-        return;
+        return false;
     }
     opening_ = path;
     const auto done = qScopeGuard([this] { opening_.clear(); });
-    if (document_->loadMesh(path, group)) {
-        startUntitled();
-        RecentFiles::add(path);
-    }
+    if (!document_->loadMesh(path, group)) return false;
+    startUntitled();  // never into the project (or demo) open before
+    RecentFiles::add(QFileInfo(path).absoluteFilePath());
+    statusBar()->showMessage(tr("Opened %1").arg(QFileInfo(path).fileName()), 5000);
+    return true;
 }
 
 void MainWindow::chooseTake() {

@@ -45,6 +45,8 @@ class MainWindow : public QMainWindow {
 
     // Opens by extension: .boneless project; .obj/.ply/.off/.stl mesh; .c3d take; .json map.
     bool openFile(const QString& path);
+    // A mesh file; an OBJ with groups first asks which group (GroupChooser).
+    bool openMesh(const QString& path);
     // A project that will not open leaves the window as it was and the file untouched, and the
     // message offers the recovery autosave (openRecovery()).
     bool openProject(const QString& path);
