@@ -20,9 +20,9 @@
 #include <thread>
 #include <vector>
 
-#include "boneless/C3dWriter.h"
 #include "DemoCreature.h"
 #include "DemoTake.h"
+#include "boneless/C3dWriter.h"
 #include "boneless/ObjWriter.h"
 
 using namespace boneless;
@@ -129,8 +129,8 @@ int main(int argc, char** argv) {
                     repeated.samples.set(f, k, p->x(), p->y(), p->z());
         writeC3d(repeated, longTake);
     }
-    std::printf("creature: %d vertices, %d markers; --format %s --low-pass-hz %g; %s\n", demo.vertices,
-                demo.markers, format.c_str(), lowPass, cli.c_str());
+    std::printf("creature: %d vertices, %d markers; --format %s --low-pass-hz %g; %s\n",
+                demo.vertices, demo.markers, format.c_str(), lowPass, cli.c_str());
     const std::vector<std::string> extra = {"--format", format, "--low-pass-hz",
                                             std::to_string(lowPass)};
     const Run base =

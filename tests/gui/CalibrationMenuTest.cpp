@@ -44,17 +44,11 @@ class CalibrationMenuTest : public QObject {
     static void initMain() { setDefaultSurfaceFormat(); }
 
   private slots:
-    void initTestCase() {
-        test::isolate("CalibrationMenuTest");
-        folder_ = test::freshFolder("CalibrationMenuTest");
-        project_ = test::writeDemoProject(folder_ + "/demo");
-    }
+    void initTestCase() { project_ = test::demoProjectFor("CalibrationMenuTest", &folder_); }
 
     void init() {
-        window_ = std::make_unique<MainWindow>();
-        window_->setMessageBoxesEnabled(false);
-        QVERIFY(window_->openProject(project_));
-        QVERIFY(test::showAndWait(*window_));
+        window_ = test::openShown(project_);
+        QVERIFY(window_);
     }
     void cleanup() { window_.reset(); }
 

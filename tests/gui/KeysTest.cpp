@@ -18,16 +18,11 @@ class KeysTest : public QObject {
     static void initMain() { setDefaultSurfaceFormat(); }
 
   private slots:
-    void initTestCase() {
-        test::isolate("KeysTest");
-        project_ = test::writeDemoProject(test::freshFolder("KeysTest") + "/demo");
-    }
+    void initTestCase() { project_ = test::demoProjectFor("KeysTest"); }
 
     void init() {
-        window_ = std::make_unique<MainWindow>();
-        window_->setMessageBoxesEnabled(false);
-        QVERIFY(window_->openProject(project_));
-        QVERIFY(test::showAndWait(*window_));
+        window_ = test::openShown(project_);
+        QVERIFY(window_);
     }
     void cleanup() { window_.reset(); }
 

@@ -39,17 +39,11 @@ class MainWindowTest : public QObject {
     static void initMain() { setDefaultSurfaceFormat(); }
 
   private slots:
-    void initTestCase() {
-        test::isolate("MainWindowTest");
-        folder_ = test::freshFolder("MainWindowTest");
-        project_ = test::writeDemoProject(folder_ + "/demo");
-    }
+    void initTestCase() { project_ = test::demoProjectFor("MainWindowTest", &folder_); }
 
     void init() {
-        window_ = std::make_unique<MainWindow>();
-        window_->setMessageBoxesEnabled(false);
-        QVERIFY(window_->openProject(project_));
-        QVERIFY(test::showAndWait(*window_));
+        window_ = test::openShown(project_);
+        QVERIFY(window_);
     }
     void cleanup() { window_.reset(); }
 

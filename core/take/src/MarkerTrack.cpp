@@ -8,9 +8,9 @@
 #include <limits>
 #include <stdexcept>
 
+#include "TrajectoryFilter.h"
 #include "boneless/C3dFrameReader.h"
 #include "boneless/Error.h"
-#include "TrajectoryFilter.h"
 
 namespace boneless {
 

@@ -277,6 +277,13 @@ SolveMemory solveMemory(const TriMesh& mesh, const ExportRequest& request) {
     return estimateSolveMemory(mesh.vertexCount(), mesh.faceCount(), request.options.solver.method);
 }
 
+// What both sources check before a solver is built: the options, and that the mesh fits memory.
+void checkRequest(const TriMesh& mesh, const ExportRequest& request) {
+    validate(request.options);
+    checkSolveFits(solveMemory(mesh, request), request.meshPath, mesh.vertexCount(),
+                   mesh.faceCount());
+}
+
 // take: what the sidecar says of the take (its samples are not read).
 ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake& take,
                           const Correspondence& map, const ExportRequest& request,
@@ -351,9 +358,7 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
 ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspondence& map,
                         const ExportRequest& request, const ExportProgress& progress,
                         const ExportCalibrated& calibrated) {
-    validate(request.options);
-    const SolveMemory memory = solveMemory(mesh, request);
-    checkSolveFits(memory, request.meshPath, mesh.vertexCount(), mesh.faceCount());
+    checkRequest(mesh, request);
     TakeSolver solver(mesh, take, map, request.options);
     return exportSolved(solver, mesh, take, map, request, progress, calibrated);
 }
@@ -361,9 +366,7 @@ ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspo
 ExportResult exportTake(const TriMesh& mesh, const C3dFrameReader& take, const Correspondence& map,
                         const ExportRequest& request, const ExportProgress& progress,
                         const ExportCalibrated& calibrated) {
-    validate(request.options);
-    const SolveMemory memory = solveMemory(mesh, request);
-    checkSolveFits(memory, request.meshPath, mesh.vertexCount(), mesh.faceCount());
+    checkRequest(mesh, request);
     TakeSolver solver(mesh, take, map, request.options);
     return exportSolved(solver, mesh, take.take(), map, request, progress, calibrated);
 }

@@ -4,10 +4,10 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
+#include "DemoWalker.h"
 #include "TestMeshes.h"
 #include "boneless/C3dReader.h"
 #include "boneless/C3dTake.h"
-#include "DemoWalker.h"
 #include "boneless/Error.h"
 #include "boneless/MarkerSuggestion.h"
 #include "boneless/MeshReader.h"

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "TrajectoryFilter.h"
 #include "boneless/C3dFrameReader.h"
 #include "boneless/C3dReader.h"
 #include "boneless/C3dWriter.h"
@@ -15,7 +16,6 @@
 #include "boneless/MeshReader.h"
 #include "boneless/TakeExport.h"
 #include "boneless/TakeSolver.h"
-#include "TrajectoryFilter.h"
 
 using namespace boneless;
 
