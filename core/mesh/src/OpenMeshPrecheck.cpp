@@ -81,7 +81,8 @@ std::vector<std::pair<int, std::string>> contentLines(const std::string& text, c
     for (std::string line; std::getline(in, line);) {
         ++n;
         if (comment) line = line.substr(0, line.find(comment));
-        if (line.find_first_not_of(" \t\r") != std::string::npos) out.emplace_back(n, line);
+        // The whitespace tokens() splits on: a line of these alone has no word.
+        if (line.find_first_not_of(" \t\r\v\f") != std::string::npos) out.emplace_back(n, line);
     }
     return out;
 }
@@ -238,10 +239,15 @@ PlyHeader readPlyHeader(const std::string& path, const std::string& text) {
         return bytes;
     };
     PlyHeader header;
-    word();  // "format"
+    if (word() != "format") throw MeshError(path, "PLY header: no format line after 'ply'");
     header.format = word();
+    // OpenMesh reads the version with >> into a float; one that fails (".", or out of a float's
+    // range) leaves its stream failed and loops it for ever. Read it the same way.
     const std::string version = word();
-    if (version.find_first_not_of("0123456789.") != std::string::npos)
+    std::istringstream versionStream(version);
+    float versionNumber = 0;
+    if (version.find_first_not_of("0123456789.") != std::string::npos ||
+        !(versionStream >> versionNumber) || versionStream.peek() != EOF)
         throw MeshError(path, "PLY header: version '" + version + "' is not a number");
     std::vector<PlyElement>& elements = header.elements;
     for (std::string w = word(); w != "end_header"; w = word()) {

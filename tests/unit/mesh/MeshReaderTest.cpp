@@ -395,6 +395,10 @@ TEST(MeshReaderErrors, MalformedTextThatOpenMeshWouldAccept) {
     EXPECT_CONTAINS(
         errorOf(writeFile("nope.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0\n")),
         "expected 'vertex x y z'");
+    // Found by fuzzing: a line holding only a vertical tab or a form feed has no first word.
+    const std::string tabbed = "solid x\n\v\n" + stlAscii(tentV(), toFaces(tentP)).substr(11);
+    EXPECT_EQ(readMesh(writeFile("vtab.stl", tabbed)).mesh.F.rows(), toFaces(tentP).rows());
+    EXPECT_CONTAINS(errorOf(writeFile("formfeed.off", "\f\n\f\nfil")), "fil");
 }
 
 // Found by fuzzing: OpenMesh read a corner count of 2^32-1 as that many stale indices.
@@ -424,6 +428,16 @@ TEST(MeshReaderErrors, PlyHeaderThatOpenMeshWouldNeverFinish) {
     std::string version = good;
     version.replace(version.find("1.0"), 3, "x");
     EXPECT_CONTAINS(errorOf(writeFile("version.ply", version)), "version 'x' is not a number");
+    // Found by fuzzing in CI: a version of dots alone, and a line that is not "format".
+    std::string dot = good;
+    dot.replace(dot.find("1.0"), 3, ".");
+    EXPECT_CONTAINS(errorOf(writeFile("dot.ply", dot)), "version '.' is not a number");
+    std::string huge = good;
+    huge.replace(huge.find("1.0"), 3, std::string(50, '7'));
+    EXPECT_CONTAINS(errorOf(writeFile("huge.ply", huge)), "is not a number");
+    std::string formatLine = good;
+    formatLine.replace(formatLine.find("format"), 6, "t");
+    EXPECT_CONTAINS(errorOf(writeFile("t.ply", formatLine)), "no format line after 'ply'");
     std::string end = good;
     end.replace(end.find("end_header"), 10, "xend_header");
     EXPECT_CONTAINS(errorOf(writeFile("end.ply", end)), "PLY header has no end_header");
