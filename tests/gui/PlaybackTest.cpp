@@ -154,7 +154,6 @@ class PlaybackTest : public QObject {
         QCOMPARE(window.timeline()->frame(), window.timeline()->frameCount() - 1);
         QVERIFY(test::waitForFrame(window));
         QCOMPARE(window.displayedFrame(), window.timeline()->frame());
-        QVERIFY(!pass.shown.empty());
     }
 
   private:
