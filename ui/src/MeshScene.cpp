@@ -305,7 +305,7 @@ void MeshScene::placeLegend() {
     if (legend_->GetVisibility() && legend_->GetTitle() && size[0] > 0 && measure && window &&
         measure->GetBoundingBox(legend_->GetTitleTextProperty(), legend_->GetTitle(), box,
                                 window->GetDPI()))
-        width = std::max(kMinWidth, double(box[1] - box[0] + 1) / size[0]);
+        width = std::clamp(double(box[1] - box[0] + 1) / size[0], kMinWidth, kRightEdge);
     legend_->SetWidth(width);
     legend_->SetPosition(kRightEdge - width, 0.2);
 }
