@@ -190,13 +190,39 @@ class MappingTest : public QObject {
             if (model->index(row, 0).data(Qt::BackgroundRole).isValid())
                 highlighted << model->index(row, 0).data(MarkerListModel::MarkerRole).toInt();
         QCOMPARE(highlighted, QList<int>{far});
+        // And the table paints it so: its row, and only its row, in the highlight's colour.
+        QVERIFY(test::showAndWait(window));
+        QVERIFY2(highlightedPixels(window, far) > 0.5, "the doubtful row is not highlighted");
+        QCOMPARE(highlightedPixels(window, far == 0 ? 1 : 0), 0.0);
         // Unmapping it clears the doubt.
         QVERIFY(d->clearMapping(far));
         for (int row = 0; row < model->rowCount(); ++row)
             QVERIFY(!model->index(row, 0).data(Qt::BackgroundRole).isValid());
+        QCOMPARE(highlightedPixels(window, far), 0.0);
     }
 
   private:
+    // The share of the marker's row, as the table draws it, in the doubtful suggestion's colour.
+    static double highlightedPixels(MainWindow& window, int marker) {
+        QTableView* table = window.markerTable();
+        QAbstractItemModel* model = table->model();
+        for (int row = 0; row < model->rowCount(); ++row) {
+            const QModelIndex index = model->index(row, 0);
+            if (index.data(MarkerListModel::MarkerRole).toInt() != marker) continue;
+            table->scrollTo(index);
+            const QImage image = table->viewport()->grab().toImage();
+            QRect rect = table->visualRect(index);
+            rect.setRight(table->visualRect(model->index(row, model->columnCount() - 1)).right());
+            rect &= image.rect();
+            int coloured = 0;
+            for (int y = rect.top(); y <= rect.bottom(); ++y)
+                for (int x = rect.left(); x <= rect.right(); ++x)
+                    coloured += QColor(image.pixel(x, y)) == QColor(255, 200, 120);
+            return rect.isEmpty() ? 0.0 : double(coloured) / (rect.width() * rect.height());
+        }
+        return 0.0;
+    }
+
     // A demo project of its own: autosave writes each test's edits into its project.
     QString freshProject() {
         return test::writeDemoProject(folder_ + QString("/demo%1").arg(++projects_));

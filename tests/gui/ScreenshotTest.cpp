@@ -1,6 +1,5 @@
 // `boneless --project P --frame N --screenshot OUT.png` against a committed baseline picture.
-// Software GL (Mesa llvmpipe, forced by run-with-display.sh) draws the same picture on every
-// machine up to edge pixels, so a per-pixel tolerance and a small mismatch fraction suffice.
+// The view's own elements have baselines of their own in ViewBaselineTest.
 #include <QDir>
 #include <QFileInfo>
 #include <QImage>
@@ -8,15 +7,14 @@
 #include <QSet>
 #include <QtTest>
 
+#include "BaselineImage.h"
 #include "ViewTestSupport.h"
 
 namespace {
 
-constexpr int kChannelTolerance = 32;       // per colour channel, 0..255
-constexpr double kMaxMismatchShare = 0.01;  // of all pixels
+namespace test = boneless::ui::test;
 
-const QString kBaseline =
-    QStringLiteral(BONELESS_SOURCE_DIR "/tests/gui/baselines/demo-frame10.png");
+constexpr double kMaxMismatchShare = 0.01;  // of all pixels
 
 struct Run {
     int exitCode = -1;
@@ -43,11 +41,6 @@ Run runBoneless(const QStringList& arguments, const QString& home) {
     run.output += QString::fromLocal8Bit(process.readAll());
     run.exitCode = process.exitStatus() == QProcess::NormalExit ? process.exitCode() : -1;
     return run;
-}
-
-int channelDistance(QRgb a, QRgb b) {
-    return std::max({std::abs(qRed(a) - qRed(b)), std::abs(qGreen(a) - qGreen(b)),
-                     std::abs(qBlue(a) - qBlue(b))});
 }
 
 }  // namespace
@@ -79,7 +72,7 @@ class ScreenshotTest : public QObject {
             for (int x = 0; x < actual.width(); ++x) {
                 const QRgb p = actual.pixel(x, y);
                 colours.insert(p);
-                if (channelDistance(p, background) > kChannelTolerance) ++covered;
+                if (test::channelDistance(p, background) > test::kChannelTolerance) ++covered;
             }
         const double coveredShare = double(covered) / (actual.width() * actual.height());
         QVERIFY2(coveredShare > 0.05, qPrintable(QString("only %1 % of the picture differs from "
@@ -87,40 +80,9 @@ class ScreenshotTest : public QObject {
                                                      .arg(100 * coveredShare)));
         QVERIFY2(colours.size() > 200, qPrintable(QString("%1 colours").arg(colours.size())));
 
-        if (!QFileInfo::exists(kBaseline)) {
-            QDir().mkpath(QFileInfo(kBaseline).absolutePath());
-            QVERIFY(actual.save(kBaseline));
-            QFAIL(qPrintable(QString("No baseline yet: wrote %1 from this run. Look at it; if it "
-                                     "is right, commit it (git add %1) and run the test again.")
-                                 .arg(kBaseline)));
-        }
-        const QImage expected = QImage(kBaseline).convertToFormat(QImage::Format_RGB32);
-        QCOMPARE(expected.size(), actual.size());
-
-        QImage diff(actual.size(), QImage::Format_RGB32);
-        int mismatched = 0;
-        for (int y = 0; y < actual.height(); ++y)
-            for (int x = 0; x < actual.width(); ++x) {
-                const QRgb a = actual.pixel(x, y), e = expected.pixel(x, y);
-                const bool bad = channelDistance(a, e) > kChannelTolerance;
-                mismatched += bad;
-                const int grey = qGray(a) / 3;
-                diff.setPixel(x, y, bad ? qRgb(255, 0, 0) : qRgb(grey, grey, grey));
-            }
-        const double share = double(mismatched) / (actual.width() * actual.height());
-        if (share > kMaxMismatchShare) {
-            const QString diffPath = folder_ + "/demo-frame10-diff.png";
-            diff.save(diffPath);
-            QFAIL(qPrintable(QString("%1 % of the pixels differ from the baseline %2 (allowed "
-                                     "%3 %).\n  actual: %4\n  diff (red = differs): %5\nIf the "
-                                     "change is intended, copy the actual picture over the "
-                                     "baseline and commit it.")
-                                 .arg(100 * share, 0, 'f', 2)
-                                 .arg(kBaseline)
-                                 .arg(100 * kMaxMismatchShare)
-                                 .arg(out, diffPath)));
-        }
-        qInfo("%.3f %% of the pixels differ from the baseline", 100 * share);
+        const QString failure =
+            test::differenceFromBaseline(actual, "demo-frame10", folder_, kMaxMismatchShare);
+        QVERIFY2(failure.isEmpty(), qPrintable(failure));
     }
 
     void badProjectFailsWithMessage() {

@@ -1,5 +1,5 @@
 // The strip over the timeline: each marker's gaps are the take's missing frames, solved frames
-// are marked as they come, and a click there scrubs.
+// are marked as they come, both are painted at their frames, and a click there scrubs.
 #include <QSignalSpy>
 #include <QtTest>
 #include <set>
@@ -72,6 +72,60 @@ class TimelineStripTest : public QObject {
         solver.requestFrame(41);
         QVERIFY(ready.wait(60000));
         QCOMPARE(marked(strip.cachedFrames()), (std::set<int>{3, 41}));
+    }
+
+    void itPaintsTheSolvedFramesAndTheSelectedMarkersGapsAtTheirFrames() {
+        FrameSolver solver;
+        Timeline timeline;
+        timeline.setFrameCount(document_.frameCount());
+        TimelineStrip strip(&document_, &solver, &timeline);
+        // The marker missing the most frames, so both its gaps and its visible frames are drawn.
+        int selected = 0;
+        for (int k = 0; k < document_.markerCount(); ++k)
+            if (strip.gaps()[k].size() > strip.gaps()[selected].size()) selected = k;
+        QVERIFY(!strip.gaps()[selected].empty());
+        document_.setSelectedMarker(selected);
+        QVERIFY(solver.setProblem(document_));
+        QSignalSpy ready(&solver, &FrameSolver::frameReady);
+        for (int frame : {3, 41}) {
+            solver.requestFrame(frame);
+            QVERIFY(ready.wait(60000));
+        }
+        strip.resize(600, strip.sizeHint().height());
+        strip.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&strip));
+        const QImage image = strip.grab().toImage();
+        const QRgb background = strip.palette().color(QPalette::Window).rgb();
+        const QRgb cached = strip.palette().color(QPalette::Highlight).rgb();
+        const QRgb gap = qRgb(200, 40, 40);
+        const int cacheY = 1, gapY = strip.height() - 3;
+        int faint = 0;
+        for (int f = 0; f < document_.frameCount(); ++f) {
+            const int x = strip.xOfFrame(f);
+            if (std::abs(x - strip.xOfFrame(timeline.frame())) <= 1) continue;  // the playhead
+            const QString at = QString("frame %1 at x %2: cache row %3, gap row %4")
+                                   .arg(f)
+                                   .arg(x)
+                                   .arg(image.pixel(x, cacheY), 0, 16)
+                                   .arg(image.pixel(x, gapY), 0, 16);
+            QVERIFY2(image.pixel(x, cacheY) == (f == 3 || f == 41 ? cached : background),
+                     qPrintable(at));
+            bool anyMissing = false;
+            for (int k = 0; k < document_.markerCount(); ++k)
+                anyMissing |= !document_.markerVisible(k, f);
+            const QRgb g = image.pixel(x, gapY);
+            if (!document_.markerVisible(selected, f)) {
+                QVERIFY2(g == gap, qPrintable(at));
+            } else if (anyMissing) {
+                // Another marker's gap, faintly: reddish, not the selected marker's red.
+                QVERIFY2(g != gap && qGreen(g) < qGreen(background) - 10, qPrintable(at));
+                ++faint;
+            } else {
+                QVERIFY2(g == background, qPrintable(at));
+            }
+        }
+        QVERIFY2(faint > 0, "no frame where only other markers are missing");
+        document_.setSelectedMarker(-1);
     }
 
     void aClickOnTheStripScrubsThere() {

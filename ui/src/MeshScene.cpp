@@ -14,11 +14,13 @@
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
+#include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkScalarBarActor.h>
 #include <vtkSphereSource.h>
 #include <vtkStaticCellLocator.h>
 #include <vtkTextProperty.h>
+#include <vtkTextRenderer.h>
 #include <vtkUnsignedCharArray.h>
 
 #include <algorithm>
@@ -289,6 +291,23 @@ void MeshScene::setHeatMap(const std::vector<float>& values, const QString& titl
     legend_->SetLookupTable(table);
     legend_->SetTitle(title.toStdString().c_str());
     legend_->VisibilityOn();
+}
+
+void MeshScene::placeLegend() {
+    // The title is centred over the legend at its own font size, so in a view under about 800
+    // pixels wide a fixed 12 % ran it past the right edge ("Shape error (mm").
+    constexpr double kMinWidth = 0.12, kRightEdge = 0.98;
+    const int* size = renderer_->GetSize();
+    vtkTextRenderer* measure = vtkTextRenderer::GetInstance();
+    vtkRenderWindow* window = renderer_->GetRenderWindow();
+    int box[4];
+    double width = kMinWidth;
+    if (legend_->GetVisibility() && legend_->GetTitle() && size[0] > 0 && measure && window &&
+        measure->GetBoundingBox(legend_->GetTitleTextProperty(), legend_->GetTitle(), box,
+                                window->GetDPI()))
+        width = std::clamp(double(box[1] - box[0] + 1) / size[0], kMinWidth, kRightEdge);
+    legend_->SetWidth(width);
+    legend_->SetPosition(kRightEdge - width, 0.2);
 }
 
 bool MeshScene::legendVisible() const {

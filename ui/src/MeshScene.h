@@ -52,6 +52,8 @@ class MeshScene {
     void setHeatMap(const std::vector<float>& values, const QString& title);
     bool legendVisible() const;
     QString legendTitle() const;
+    // Before each render: the legend made as wide as its title, at the view's right edge.
+    void placeLegend();
     void setFloor(const Floor& floor) { floor_.set(floor); }
     const FloorGrid& floorGrid() const { return floor_; }
     void setHighlightedVertex(int vertex);

@@ -189,6 +189,7 @@ void MeshView::paintGL() {
     d_->painting = true;
     d_->scene.renderer()->ResetCameraClippingRange();
     d_->scene.layoutLabels();
+    d_->scene.placeLegend();
     vtkOpenGLState* state = d_->window->GetState();
     // Qt changed GL state since the last frame; VTK's cache must not trust its old values.
     state->Reset();
