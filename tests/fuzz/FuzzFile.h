@@ -1,7 +1,9 @@
 #pragma once
 
 // The mesh readers take a path: each input goes to a file of its own in a per-process folder
-// (fuzzing jobs run side by side), named with the extension that selects the reader.
+// (fuzzing jobs run side by side), named with the extension that selects the reader. The folder
+// goes when the process exits normally (the end of -max_total_time or -runs), so that CI runs and
+// campaigns leave nothing in /tmp; a crash keeps it, with the input that crashed.
 
 #include <unistd.h>
 
@@ -10,15 +12,21 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <system_error>
+
+struct FuzzFolder {
+    std::filesystem::path path =
+        std::filesystem::temp_directory_path() / ("boneless-fuzz-" + std::to_string(::getpid()));
+    FuzzFolder() { std::filesystem::create_directories(path); }
+    ~FuzzFolder() {
+        std::error_code ignored;  // nothing to report to at exit
+        std::filesystem::remove_all(path, ignored);
+    }
+};
 
 inline std::string fuzzInputFile(const std::uint8_t* data, std::size_t size, const char* ext) {
-    static const std::filesystem::path dir = [] {
-        std::filesystem::path d = std::filesystem::temp_directory_path() /
-                                  ("boneless-fuzz-" + std::to_string(::getpid()));
-        std::filesystem::create_directories(d);
-        return d;
-    }();
-    const std::string path = (dir / (std::string("input.") + ext)).string();
+    static const FuzzFolder dir;  // destroyed by exit()
+    const std::string path = (dir.path / (std::string("input.") + ext)).string();
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
     out.write(reinterpret_cast<const char*>(data), std::streamsize(size));
     out.close();

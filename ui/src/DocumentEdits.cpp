@@ -7,6 +7,7 @@
 #include "MapEditCommand.h"
 #include "boneless/Error.h"
 #include "boneless/MarkerSuggestion.h"
+#include "boneless/SolveFits.h"
 #include "boneless/ui/Document.h"
 
 namespace boneless::ui {
@@ -238,6 +239,8 @@ bool Document::canSolve(QString* why) const {
         return false;
     };
     if (!hasMesh_) return no(tr("No mesh is loaded."));
+    // Before the take: loading one would not help.
+    if (const QString refusal = memoryRefusal(); !refusal.isEmpty()) return no(refusal);
     if (!hasTake_) return no(tr("No take is loaded."));
     QStringList unknown;
     int resolved = 0;
@@ -251,6 +254,16 @@ bool Document::canSolve(QString* why) const {
         return no(tr("The map names markers the take does not have: %1.").arg(unknown.join(", ")));
     if (resolved < 3) return no(tr("Map at least 3 markers to solve (%1 mapped).").arg(resolved));
     return true;
+}
+
+QString Document::memoryRefusal() const {
+    if (!hasMesh_) return {};
+    try {
+        checkSolveFits(mesh_, meshPath_.toStdString(), settings_.solver.method);
+    } catch (const Error& e) {
+        return QString::fromStdString(e.what());
+    }
+    return {};
 }
 
 bool Document::correspondenceModified() const {

@@ -118,6 +118,9 @@ void FrameDisplay::rebuildProblem() {
     QString why;
     solving_ = document_->hasMesh() && solver_->setProblem(*document_, &why);
     notSolvingReason_ = solving_ ? QString() : why;
+    const QString refusal = document_->memoryRefusal();
+    if (!refusal.isEmpty() && refusal != refusalShown_) emit solveRefused(refusal);
+    refusalShown_ = refusal;
     result_.reset();
     if (!solving_) solver_->clearProblem();
     updateFloor();

@@ -65,6 +65,9 @@ class FrameDisplay : public QObject {
     // From the frame request to the end of the render that shows it.
     void latencyMeasured(int frame, double milliseconds, bool fromCache);
     void solverFailed(const QString& message);
+    // The mesh is too large to solve in the memory the process may use (Document::memoryRefusal):
+    // once per mesh and method, not at each edit. The mesh is still shown, unsolved.
+    void solveRefused(const QString& message);
 
   private:
     void onMeshChanged();
@@ -90,6 +93,7 @@ class FrameDisplay : public QObject {
 
     bool solving_ = false;
     QString notSolvingReason_;
+    QString refusalShown_;  // the last solveRefused() message, while it still holds
     bool trails_ = false, heatMap_ = false;
     Shown shown_ = Shown::Frame;
     bool frozen_ = false;

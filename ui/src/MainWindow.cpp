@@ -3,6 +3,7 @@
 #include <QAction>
 #include <QComboBox>
 #include <QDockWidget>
+#include <QFileInfo>
 #include <QHBoxLayout>
 #include <QHeaderView>
 #include <QItemSelectionModel>
@@ -357,6 +358,11 @@ void MainWindow::connectDocument() {
     });
     connect(display_, &FrameDisplay::solverFailed, this, [this](const QString& message) {
         showError(tr("This frame could not be solved."), message);
+    });
+    connect(display_, &FrameDisplay::solveRefused, this, [this](const QString& message) {
+        showError(tr("%1 is too large to solve in the memory available: it is shown, unsolved.")
+                      .arg(QFileInfo(document_->meshPath()).fileName()),
+                  message);
     });
     connect(autosave_, &ProjectAutosave::failed, this,
             [this](const QString& message) { showError(message); });

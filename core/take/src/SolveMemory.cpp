@@ -4,10 +4,12 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdio>
 #include <fstream>
 
 #include "boneless/Error.h"
+#include "boneless/SolveFits.h"
 
 namespace boneless {
 
@@ -20,6 +22,8 @@ constexpr double kLocalGlobalBytesPerFace = 4.0 * 1024;
 constexpr double kExactBytesPerFace = 16.0 * 1024;
 // One solver may take at most this share of the budget.
 constexpr double kLargestShare = 0.8;
+// limitSolveMemoryForTests(): 0, none. Atomic: the app's and the export's threads read it.
+std::atomic<std::uint64_t> testLimit{0};
 
 std::string megabytes(std::uint64_t bytes) {
     char text[32];
@@ -60,11 +64,21 @@ SolveMemory estimateSolveMemory(int vertices, int faces, SolverOptions::Method m
         m.budget = cgroup;
         m.budgetFrom = "the cgroup's memory.max";
     }
+    if (const std::uint64_t test = testLimit; test > 0 && (m.budget == 0 || test < m.budget)) {
+        m.budget = test;
+        m.budgetFrom = "the limit set for tests";
+    }
     return m;
 }
 
-void checkSolveFits(const SolveMemory& memory, const std::string& meshPath, int vertices,
-                    int faces) {
+void limitSolveMemoryForTests(std::uint64_t bytes) {
+    testLimit = bytes;
+}
+
+void checkSolveFits(const TriMesh& mesh, const std::string& meshPath,
+                    SolverOptions::Method method) {
+    const int vertices = mesh.vertexCount(), faces = mesh.faceCount();
+    const SolveMemory memory = estimateSolveMemory(vertices, faces, method);
     if (memory.budget == 0 || double(memory.perSolver) <= kLargestShare * double(memory.budget))
         return;
     throw Error(meshPath + ": " + thousands(faces) + " faces (" + thousands(vertices) +

@@ -19,13 +19,14 @@ struct SolveMemory {
 };
 
 // The estimate for a mesh of this size and method, and the budget from the machine: physical
-// memory, or less under an address-space limit (ulimit -v) or a cgroup's memory.max.
+// memory, or less under an address-space limit (ulimit -v) or a cgroup's memory.max (the
+// lowest wins; checkSolveFits() in boneless/SolveFits.h refuses what does not fit).
 SolveMemory estimateSolveMemory(int vertices, int faces, SolverOptions::Method method);
 
-// Throws Error naming the mesh file, its faces and vertices, the estimate and the budget when one
-// solver alone would take more than the budget allows.
-void checkSolveFits(const SolveMemory& memory, const std::string& meshPath, int vertices,
-                    int faces);
+// Tests only: a budget below the machine's, as a small ulimit -v would set, for a process that
+// cannot run under one (the app's window needs far more address space than a small mesh's
+// solve). 0 gives the machine's budget back.
+void limitSolveMemoryForTests(std::uint64_t bytes);
 
 // How many solvers may run at once: at most `wanted`, at least one, all of them within half the
 // budget (the rest is the user's other work, and the outputs' buffers).

@@ -24,6 +24,7 @@
 #include "boneless/Metrics.h"
 #include "boneless/ObjWriter.h"
 #include "boneless/Parallel.h"
+#include "boneless/SolveFits.h"
 #include "boneless/SpoolFile.h"
 #include "boneless/TakeOptionsJson.h"
 
@@ -280,8 +281,7 @@ SolveMemory solveMemory(const TriMesh& mesh, const ExportRequest& request) {
 // What both sources check before a solver is built: the options, and that the mesh fits memory.
 void checkRequest(const TriMesh& mesh, const ExportRequest& request) {
     validate(request.options);
-    checkSolveFits(solveMemory(mesh, request), request.meshPath, mesh.vertexCount(),
-                   mesh.faceCount());
+    checkSolveFits(mesh, request.meshPath, request.options.solver.method);
 }
 
 // take: what the sidecar says of the take (its samples are not read).

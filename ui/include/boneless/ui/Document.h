@@ -117,9 +117,12 @@ class Document : public QObject {
     QUndoStack* undoStack() const { return undoStack_; }
 
     // --- solving and export ----------------------------------------------------------------
-    // True when a frame can be solved: mesh, take, at least 3 mapped markers. Else *why says
-    // what is missing.
+    // True when a frame can be solved: mesh, take, at least 3 mapped markers, and memory for
+    // the mesh's solve. Else *why says what is missing.
     bool canSolve(QString* why = nullptr) const;
+    // Empty when solving the mesh fits the memory this process may use; else the refusal, naming
+    // the file, its size, the memory its solve would need and the limit (checkSolveFits).
+    QString memoryRefusal() const;
     // The request `boneless-cli solve` would make for the same inputs. mapPath is the
     // correspondence file when the map is unchanged since it was read or saved, else `mapLabel`.
     ExportRequest exportRequest(const QString& outDir, ExportFormat format,

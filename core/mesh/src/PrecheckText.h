@@ -1,0 +1,26 @@
+#pragma once
+
+// What the format checks of precheckForOpenMesh() share: reading the file, splitting it into
+// lines and words, and refusing words that are not the numbers a format wants (with the line).
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "OpenMeshPrecheck.h"
+
+namespace boneless::detail::precheck {
+
+std::string readAll(const std::string& path);
+std::vector<std::string> tokens(const std::string& line);
+bool isInteger(const std::string& t);
+std::string at(int line);  // "line 12", for messages
+// Checks the tokens of a line that must all be numbers; `what` names the element for messages.
+void requireNumbers(const std::string& path, const std::vector<std::string>& toks, int line,
+                    const std::string& what);
+// Content lines (comments and blank lines removed) with their 1-based line numbers.
+std::vector<std::pair<int, std::string>> contentLines(const std::string& text, char comment);
+
+Precheck checkPly(const std::string& path);  // PlyPrecheck.cpp
+
+}  // namespace boneless::detail::precheck
