@@ -145,8 +145,8 @@ SolveResult Reconstruction::Impl::solveExact(const Positions& targets, const Pos
         result.report.iterations = it + 1;
         E = linearise(V, targets);
         result.report.energies.push_back(E);
-        exact =
-            orientation && rigid() && alpha == 1.0 && decrease < 0.3 && orientationTerms.empty();
+        exact = orientation && foldGuardOn() && alpha == 1.0 && decrease < 0.3 &&
+                orientationTerms.empty();
         // One face turning over barely changes the total: the relative decrease alone would
         // stop with the fold in place.
         if (decrease < options.relativeTolerance && !anyTurnedOver()) {
