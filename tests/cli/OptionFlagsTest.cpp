@@ -78,7 +78,8 @@ TEST(OptionFlags, TheSidecarRecordsTheOptionsUnderTheFlagsNames) {
                (demo / "walker.c3d").string() + " --map " + (demo / "walker.map.json").string() +
                " --out " + out.string() +
                " --format pc2 --marker-weight 40 --fill-gaps-s 0.1 --low-pass-hz 8 "
-               "--calibrate none --calibration-frame 1 --fold-guard 0.02 --max-iterations 4");
+               "--calibrate none --calibration-frame 1 --fold-guard 0.02 --max-iterations 4 "
+               "--relative-tolerance 0.01");
     ASSERT_EQ(r.exitCode, 0) << r.out;
     const auto sidecar = nlohmann::json::parse(std::ifstream(out / "walker.json"));
     const nlohmann::json& o = sidecar.at("options");
@@ -90,6 +91,7 @@ TEST(OptionFlags, TheSidecarRecordsTheOptionsUnderTheFlagsNames) {
     EXPECT_EQ(o["calibration_frame"], 1);
     EXPECT_EQ(o["fold_guard"], 0.02);
     EXPECT_EQ(o["max_iterations"], 4);
+    EXPECT_EQ(o["relative_tolerance"], 0.01);
     EXPECT_EQ(o["solver"], "local-global");
     EXPECT_EQ(sidecar["alignment"]["calibration_frame"], 1);
 }

@@ -43,12 +43,10 @@ std::optional<Reconstruction::Impl::GuardHessian> Reconstruction::Impl::solveSte
     const std::vector<int>& pinned, bool& factorisedThisSolve, Eigen::VectorXd& gradient,
     Eigen::VectorXd& step, SolveReport& report) {
     // The last factor, made earlier in this solve, preconditions conjugate gradients on this
-    // step's matrix (of either kind: a koala take's frame alternates them, and went from 8.6 to
-    // 7.0 s when a factor of the other kind could serve); three quarters of a factorisation's
-    // cost at most, so that a failed try costs less than the factorisation after it. Not while
-    // the orientation guard has terms (then or now): they are stiff, and come and go between
-    // steps. On the demo ×2's take (30 frames) the full mesh's tries with them failed 181 times
-    // out of 196, and the take took 112 s instead of 98 s; without them, 95 s.
+    // step's matrix (of either kind: a frame alternates them); three quarters of a
+    // factorisation's cost at most, so that a failed try costs less than the factorisation after
+    // it. Not while the orientation guard has terms (then or now): they are stiff, and come and
+    // go between steps, so the tries mostly fail (docs/benchmarks.md).
     const int reuseIterations = system->reuseAllowance();
     if (factorisedThisSolve && factorWithoutOrientationTerms && orientationTerms.empty() &&
         reuseIterations >= BlockSystem::kMinimumReuseIterations) {
@@ -100,11 +98,8 @@ SolveResult Reconstruction::Impl::solveExact(const Positions& targets, const Pos
     // guard's threshold: near a minimum. The Gauss–Newton matrix otherwise, which converges only
     // linearly where a bend turns the rings. Far from a minimum the exact matrix can lead into
     // another basin. Without the orientation guard it is not used: converging further there
-    // flips more faces (samba at 40 markers, the Gauss–Newton matrix run to 1e-6: 654 faces
-    // flipped in the worst frame against 436 at the default 1e-3), and nothing else holds them.
-    // Measured with it, each frame of a take: a koala frame 3 steps instead of 10; the demo at
-    // twice its resolution, 30 frames, 221 steps instead of 243 and a worst energy of 0.020
-    // instead of 0.035.
+    // flips more faces, and nothing else holds them (figures: docs/benchmarks.md, "The exact
+    // method's step choices").
     bool exact = false;
     for (int it = 0; it < options.maxIterations && E > 0; ++it) {
         if (stop && stop->load()) {
@@ -145,8 +140,8 @@ SolveResult Reconstruction::Impl::solveExact(const Positions& targets, const Pos
         result.report.iterations = it + 1;
         E = linearise(V, targets);
         result.report.energies.push_back(E);
-        exact =
-            orientation && rigid() && alpha == 1.0 && decrease < 0.3 && orientationTerms.empty();
+        exact = orientation && foldGuardOn() && alpha == 1.0 && decrease < 0.3 &&
+                orientationTerms.empty();
         // One face turning over barely changes the total: the relative decrease alone would
         // stop with the fold in place.
         if (decrease < options.relativeTolerance && !anyTurnedOver()) {

@@ -40,7 +40,7 @@ LocalGlobalMethod::LocalGlobalMethod(const TriMesh& rest, const MeshTopology& to
                                      const std::vector<MarkerPatch>& markers, bool hard,
                                      double softWeight) {
     const int n = rest.vertexCount();
-    const LocalGlobalSolver::Settings fine = inputSettings(hard, softWeight);
+    const LocalGlobalSolver::Settings input = inputSettings(hard, softWeight);
     const LocalGlobalSolver::Settings coarse{hard, softWeight, kCoarseRigidity, kCoarseIterations,
                                              false};
     const int coarsest =
@@ -79,21 +79,21 @@ LocalGlobalMethod::LocalGlobalMethod(const TriMesh& rest, const MeshTopology& to
         // (with its normal), so that rest markers still give the rest and a rigid motion stays
         // rigid on the coarse level.
         std::vector<MarkerPatch> coarseMarkers = vertexPatches(c.mesh, *c.encoding, {});
-        for (const MarkerPatch& fine : markers) {
+        for (const MarkerPatch& m : markers) {
             SurfacePoint point;
-            point.vertex = coarseOf_[fine.vertex];
+            point.vertex = coarseOf_[m.vertex];
             MarkerPatch p = makeMarkerPatch(c.mesh, *c.encoding, point);
-            p.sag = fine.restCentroid + fine.sag - c.mesh.V.row(point.vertex).transpose();
-            p.restNormal = fine.restNormal;
+            p.sag = m.restCentroid + m.sag - c.mesh.V.row(point.vertex).transpose();
+            p.restNormal = m.restNormal;
             coarseMarkers.push_back(std::move(p));
         }
         c.solver = std::make_unique<LocalGlobalSolver>(c.mesh, *c.topology, *c.encoding,
                                                        coarseMarkers, coarse);
     };
-    auto prepareFine = [&] {
-        fine_ = std::make_unique<LocalGlobalSolver>(rest, topology, encoding, markers, fine);
+    auto prepareInputLevel = [&] {
+        inputLevel_ = std::make_unique<LocalGlobalSolver>(rest, topology, encoding, markers, input);
     };
-    runOnWorkers(2, [&](int task) { task == 0 ? prepareFine() : prepareCoarse(); });
+    runOnWorkers(2, [&](int task) { task == 0 ? prepareInputLevel() : prepareCoarse(); });
 }
 
 LocalGlobalMethod::~LocalGlobalMethod() = default;
@@ -122,7 +122,8 @@ SolveResult LocalGlobalMethod::solve(const Positions& targets, const std::vector
         rotation_[v] = c.solver->rotations()[coarseOf_[v]];
         arapRotation_[v] = c.solver->arapRotations()[coarseOf_[v]];
     }
-    SolveResult result = fine_->solve(targets, offsets, start, {&rotation_, &arapRotation_}, stop);
+    SolveResult result =
+        inputLevel_->solve(targets, offsets, start, {&rotation_, &arapRotation_}, stop);
     result.report.milliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return result;

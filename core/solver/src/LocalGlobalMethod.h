@@ -28,7 +28,7 @@ class LocalGlobalMethod {
                       const std::atomic<bool>* stop = nullptr);
     double energy(const Positions& V, const Positions& targets,
                   const std::vector<double>& offsets) const {
-        return fine_->energy(V, targets, offsets);
+        return inputLevel_->energy(V, targets, offsets);
     }
     // The input level's settings (what a benchmark's converged reference iterates further).
     static LocalGlobalSolver::Settings inputSettings(bool hard, double softWeight);
@@ -41,7 +41,7 @@ class LocalGlobalMethod {
         std::unique_ptr<LocalGlobalSolver> solver;
         std::vector<int> original;  // coarse vertex -> input vertex
     };
-    std::unique_ptr<LocalGlobalSolver> fine_;
+    std::unique_ptr<LocalGlobalSolver> inputLevel_;
     std::unique_ptr<Coarse> coarse_;
     std::vector<int> coarseOf_;  // input vertex -> the coarse vertex whose rotation it starts with
     std::vector<Mat3> rotation_, arapRotation_;  // prolonged, scratch

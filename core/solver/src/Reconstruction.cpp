@@ -47,19 +47,19 @@ double Reconstruction::Impl::markerEnergy(const Positions& V, const Positions& t
     return e;
 }
 
-double Reconstruction::Impl::rigidityEnergy(const Positions& V, std::vector<Mat3>& R,
-                                            std::vector<Mat3>* curvature) const {
-    rigidity->fitRotations(V, R, false, curvature);
-    return options.foldGuard * rigidity->energy(V, R);
+double Reconstruction::Impl::foldGuardEnergy(const Positions& V, std::vector<Mat3>& R,
+                                             std::vector<Mat3>* curvature) const {
+    foldGuardTerm->fitRotations(V, R, false, curvature);
+    return options.foldGuard * foldGuardTerm->energy(V, R);
 }
 
 double Reconstruction::Impl::energy(const Positions& V, const Positions& targets) const {
     double e = markerEnergy(V, targets);
     for (int v : residualOf) e += (V.row(v).transpose() - encoding->decode(v, V)).squaredNorm();
     e *= 0.5;
-    if (rigid()) {
+    if (foldGuardOn()) {
         std::vector<Mat3> R;
-        e += rigidityEnergy(V, R);
+        e += foldGuardEnergy(V, R);
     }
     if (orientation) e += orientation->energy(V);
     return e;
@@ -87,7 +87,7 @@ double Reconstruction::Impl::linearise(const Positions& V, const Positions& targ
     }
     e += markerEnergy(V, targets);
     e *= 0.5;
-    if (rigid()) e += rigidityEnergy(V, rotations, &rotationCurvature);
+    if (foldGuardOn()) e += foldGuardEnergy(V, rotations, &rotationCurvature);
     if (orientation) e += orientation->linearise(V, orientationTerms);
     return e;
 }
@@ -117,13 +117,13 @@ void Reconstruction::Impl::assemble(const Positions& V, const Positions& targets
             for (int l = 0; l < m; ++l) system.addGram(r, k + 1, l + 1, J[k], J[l]);
         }
     }
-    if (rigid()) {
+    if (foldGuardOn()) {
         // For the rotations fitted at V: Hessian 6αL ⊗ I, gradient α(6 L V − 2 b).
         const double a = options.foldGuard;
         const int firstFaceStencil = static_cast<int>(residualOf.size());
         for (int f = 0; f < rest.faceCount(); ++f)
             for (int c = 0; c < 3; ++c) {
-                const Mat3 W = 6.0 * a * rigidity->cotangent(f, c) * Mat3::Identity();
+                const Mat3 W = 6.0 * a * foldGuardTerm->cotangent(f, c) * Mat3::Identity();
                 const int j = (c + 1) % 3, k = (c + 2) % 3;
                 system.add(firstFaceStencil + f, j, j, W);
                 system.add(firstFaceStencil + f, k, k, W);
@@ -131,8 +131,8 @@ void Reconstruction::Impl::assemble(const Positions& V, const Positions& targets
                 system.add(firstFaceStencil + f, k, j, -W);
             }
         if (gradient) {
-            const Eigen::MatrixXd b = rigidity->rotatedRestEdges(rotations);
-            const Eigen::MatrixXd LV = rigidity->laplacian() * V;
+            const Eigen::MatrixXd b = foldGuardTerm->rotatedRestEdges(rotations);
+            const Eigen::MatrixXd LV = foldGuardTerm->laplacian() * V;
             for (int v = 0; v < n; ++v)
                 gradient->segment<3>(3 * v) += a * (6.0 * LV.row(v) - 2.0 * b.row(v)).transpose();
         }
@@ -187,7 +187,7 @@ void Reconstruction::Impl::addRotationCoupling() {
         // A vertex without a residual has no stencil to hold G_v, and a zero C_v (the rotation's
         // fit not at a maximum) couples nothing: the fixed-rotation matrix stands for both.
         if (r < 0 || C.isZero(0)) continue;
-        rigidity->couplingBlocks(v, rotations[v], blocks);
+        foldGuardTerm->couplingBlocks(v, rotations[v], blocks);
         const int m = topology->valence(v);
         const int* ring = topology->ring(v);
         auto slotOf = [&](int u) {
@@ -299,7 +299,7 @@ void Reconstruction::prepare(const TriMesh& rest, std::vector<SurfacePoint> poin
             impl->residualIndex[v] = static_cast<int>(impl->residualOf.size());
             impl->residualOf.push_back(v);
         }
-        impl->rigidity = std::make_unique<ArapEnergy>(impl->rest);
+        impl->foldGuardTerm = std::make_unique<ArapEnergy>(impl->rest);
         impl->updateOrientationGuard();
         impl->system = std::make_unique<BlockSystem>(n, impl->stencils());
     }

@@ -41,7 +41,7 @@ struct Reconstruction::Impl {
     std::unique_ptr<LocalGlobalMethod> localGlobal;  // Method::LocalGlobal
     // Method::Exact:
     std::unique_ptr<BlockSystem> system;
-    std::unique_ptr<ArapEnergy> rigidity;
+    std::unique_ptr<ArapEnergy> foldGuardTerm;      // its ARAP term, when options.foldGuard > 0
     std::unique_ptr<OrientationGuard> orientation;  // when options.orientationGuard > 0
 
     // Per-iteration scratch, kept to avoid reallocations per frame.
@@ -51,7 +51,7 @@ struct Reconstruction::Impl {
     std::vector<Mat3> rotationCurvature;  // C_v of each fitted rotation (ArapEnergy::fitRotations)
     std::vector<OrientationGuard::Term> orientationTerms;
 
-    bool rigid() const { return options.foldGuard > 0; }
+    bool foldGuardOn() const { return options.foldGuard > 0; }
     bool softMarkers() const { return options.constraints == SolverOptions::Constraints::Soft; }
     double offset(size_t k) const {
         return k < options.markerOffsets.size() ? options.markerOffsets[k] : 0.0;
@@ -59,8 +59,8 @@ struct Reconstruction::Impl {
     // Where marker k sits for the pose V: its vertex, plus its offset along the ring's normal.
     Vec3 markerPoint(size_t k, const Positions& V, std::vector<Mat3>* dn = nullptr) const;
     double markerEnergy(const Positions& V, const Positions& targets) const;
-    double rigidityEnergy(const Positions& V, std::vector<Mat3>& R,
-                          std::vector<Mat3>* curvature = nullptr) const;
+    double foldGuardEnergy(const Positions& V, std::vector<Mat3>& R,
+                           std::vector<Mat3>* curvature = nullptr) const;
     // (Re)builds or drops the orientation guard for the current options.
     void updateOrientationGuard();
     // At the last linearisation, whether the orientation guard has a face turned over.

@@ -7,8 +7,7 @@ namespace boneless {
 
 // A symmetric positive definite sparse matrix factorised once, then solved many times. CHOLMOD
 // factorises it simplicially (LL'): only its LGPL modules, and the simplicial triangular solves
-// are the faster ones for a few right-hand sides (samba, 10K vertices, three columns: 0.9 ms
-// against 1.8 ms supernodal).
+// are the faster ones for a few right-hand sides (docs/benchmarks.md).
 class SparseCholesky {
   public:
     SparseCholesky();

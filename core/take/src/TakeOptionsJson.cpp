@@ -112,6 +112,12 @@ const std::vector<Entry>& entries() {
          [](TakeSolveOptions& o, const json& v) {
              o.solver.maxIterations = static_cast<int>(v.get<double>());
          }},
+        {number("relative_tolerance", 0, 1, "",
+                "exact only: a frame stops once a step lowers its energy by less than this "
+                "fraction of it; 0 = only max_iterations, or a step too small to see, stops it",
+                {}, true),
+         [](const TakeSolveOptions& o) { return json(o.solver.relativeTolerance); },
+         [](TakeSolveOptions& o, const json& v) { o.solver.relativeTolerance = v.get<double>(); }},
     };
     return table;
 }

@@ -27,6 +27,7 @@ TakeSolveOptions unusual(SolverOptions::Method method, CalibrateMode calibrate) 
     o.solver.foldGuard = 0.03;
     o.solver.orientationGuard = 55;
     o.solver.maxIterations = 7;
+    o.solver.relativeTolerance = 2.5e-4;
     return o;
 }
 
@@ -40,6 +41,7 @@ void expectSame(const TakeSolveOptions& a, const TakeSolveOptions& b) {
     EXPECT_EQ(a.solver.foldGuard, b.solver.foldGuard);
     EXPECT_EQ(a.solver.orientationGuard, b.solver.orientationGuard);
     EXPECT_EQ(a.solver.maxIterations, b.solver.maxIterations);
+    EXPECT_EQ(a.solver.relativeTolerance, b.solver.relativeTolerance);
 }
 
 // The message fromJson throws for `settings`, or "" when it reads them.
@@ -80,6 +82,7 @@ TEST(TakeOptionsJson, TheSolverOptionsAloneSurviveARoundTrip) {
     EXPECT_EQ(read.foldGuard, written.foldGuard);
     EXPECT_EQ(read.orientationGuard, written.orientationGuard);
     EXPECT_EQ(read.maxIterations, written.maxIterations);
+    EXPECT_EQ(read.relativeTolerance, written.relativeTolerance);
     EXPECT_FALSE(toJson(written).contains("marker_weight"));  // a take's option, not the solver's
 }
 

@@ -46,8 +46,10 @@ struct SolverOptions {
     std::vector<double> markerOffsets;
 
     // Exact only.
-    int maxIterations = 10;           // [max_iterations] Gauss–Newton steps per frame, at most
-    double relativeTolerance = 1e-3;  // stop when a step lowers the energy by less (fraction)
+    int maxIterations = 10;  // [max_iterations] Gauss–Newton steps per frame, at most
+    // [relative_tolerance] a frame stops once a step lowers its energy by less than this fraction
+    // of it (0: only max_iterations, or a step too small to see, stops it).
+    double relativeTolerance = 1e-3;
     // [fold_guard] weight of an ARAP term that keeps flat, thin parts from folding (0 = off).
     double foldGuard = 0.01;
     // [orientation_guard] weight of a penalty on faces below 1/5 of their rest area or turned.
