@@ -89,7 +89,7 @@ LocalGlobalSolver::LocalGlobalSolver(const TriMesh& rest, const MeshTopology& to
     const Eigen::SparseMatrix<double> LtL = Eigen::SparseMatrix<double>(Lc.transpose()) * Lc;
     const Eigen::SparseMatrix<double>& cot = arap_.laplacian();
     const double cotTrace = trace(cot);
-    arapWeight_ = cotTrace > 0 ? settings_.rigidity * trace(LtL) / cotTrace : 0.0;
+    arapWeight_ = cotTrace > 0 ? settings_.arapShare * trace(LtL) / cotTrace : 0.0;
     A_ = LtL + arapWeight_ * cot;
     // A tiny pull towards the start pose keeps what no marker pins down (a component without
     // markers, an isolated vertex) from making the matrix singular.

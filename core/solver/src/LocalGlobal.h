@@ -31,7 +31,7 @@ class LocalGlobalSolver {
     struct Settings {
         bool hard = true;
         double softWeight = 100;  // λ
-        double rigidity = 0.01;   // α, the ARAP term's share: a = α tr(LᵀL) / tr(L_cot)
+        double arapShare = 0.01;  // α, the ARAP term's share: a = α tr(LᵀL) / tr(L_cot)
         int iterations = 3;
         bool repairFolds = false;  // FoldRepair on the answer
     };

@@ -15,7 +15,7 @@ namespace {
 // with a stiffer ARAP term (thin parts are thinner there, and twisted more often).
 constexpr int kCoarsestVertices = 1000;
 constexpr int kCoarsestPerMarker = 10;
-constexpr double kCoarseRigidity = 0.1;
+constexpr double kCoarseArapShare = 0.1;
 constexpr int kCoarseIterations = 20;
 // Hard markers sit on a mesh that is the actor (eval's sequences): the shape term leads, and one
 // iteration on the input does it (a second changed no eval row's error by more than 0.01
@@ -23,15 +23,15 @@ constexpr int kCoarseIterations = 20;
 // term keeps the mismatch from stretching the mesh, and the pull needs a second iteration to
 // settle (CMU 85_02: marker residual 0.62 mm RMS, 1.95 mm with one; edge distortion 0.158,
 // 0.229 with the hard markers' share).
-constexpr double kHardRigidity = 0.01;
-constexpr double kSoftRigidity = 0.1;
+constexpr double kHardArapShare = 0.01;
+constexpr double kSoftArapShare = 0.1;
 constexpr int kHardIterations = 1;
 constexpr int kSoftIterations = 2;
 
 }  // namespace
 
 LocalGlobalSolver::Settings LocalGlobalMethod::inputSettings(bool hard, double softWeight) {
-    return {hard, softWeight, hard ? kHardRigidity : kSoftRigidity,
+    return {hard, softWeight, hard ? kHardArapShare : kSoftArapShare,
             hard ? kHardIterations : kSoftIterations, true};
 }
 
@@ -41,7 +41,7 @@ LocalGlobalMethod::LocalGlobalMethod(const TriMesh& rest, const MeshTopology& to
                                      double softWeight) {
     const int n = rest.vertexCount();
     const LocalGlobalSolver::Settings input = inputSettings(hard, softWeight);
-    const LocalGlobalSolver::Settings coarse{hard, softWeight, kCoarseRigidity, kCoarseIterations,
+    const LocalGlobalSolver::Settings coarse{hard, softWeight, kCoarseArapShare, kCoarseIterations,
                                              false};
     const int coarsest =
         std::max(kCoarsestVertices, kCoarsestPerMarker * static_cast<int>(markers.size()));

@@ -205,7 +205,9 @@ Suggestion suggestMappings(const TriMesh& rest, const C3dTake& take,
     Suggestion out;
     out.map = partial;
     for (const Draft& d : draft(rest, take, partial, wanted, out.calibration, out.fittedFrame)) {
-        Proposal p{markerName(take.points[d.point]), d.vertex};
+        Proposal p;
+        p.label = markerName(take.points[d.point]);
+        p.vertex = d.vertex;
         p.reviewReason = reviewReason(d, p.label, sides, rest);
         p.needsReview = !p.reviewReason.empty();
         MarkerMapping m;

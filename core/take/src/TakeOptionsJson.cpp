@@ -114,7 +114,8 @@ const std::vector<Entry>& entries() {
          }},
         {number("relative_tolerance", 0, 1, "",
                 "exact only: a frame stops once a step lowers its energy by less than this "
-                "fraction of it; 0 = only max_iterations, or a step too small to see, stops it",
+                "fraction of it; 0 = it runs until max_iterations, or until no step lowers the "
+                "energy",
                 {}, true),
          [](const TakeSolveOptions& o) { return json(o.solver.relativeTolerance); },
          [](TakeSolveOptions& o, const json& v) { o.solver.relativeTolerance = v.get<double>(); }},

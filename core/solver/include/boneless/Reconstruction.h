@@ -48,11 +48,13 @@ struct SolverOptions {
     // Exact only.
     int maxIterations = 10;  // [max_iterations] Gauss–Newton steps per frame, at most
     // [relative_tolerance] a frame stops once a step lowers its energy by less than this fraction
-    // of it (0: only max_iterations, or a step too small to see, stops it).
+    // of it (0: it runs until max_iterations, or until no step lowers the energy).
     double relativeTolerance = 1e-3;
-    // [fold_guard] weight of an ARAP term that keeps flat, thin parts from folding (0 = off).
+    // [fold_guard] weight of an ARAP term that keeps flat, thin parts from folding, relative to
+    // the shape term (dimensionless; 0 = off).
     double foldGuard = 0.01;
-    // [orientation_guard] weight of a penalty on faces below 1/5 of their rest area or turned.
+    // [orientation_guard] weight of a penalty on faces below 1/5 of their rest area or turned,
+    // relative to the shape term (dimensionless; 0 = off).
     double orientationGuard = 0;
 };
 
