@@ -53,7 +53,8 @@ struct FrameSolver::Shared {
     std::optional<int> inFlight;         // the frame being solved, requested or read ahead
     std::atomic<bool> stopSolve{false};  // raised when a request elsewhere supersedes it
     std::chrono::steady_clock::time_point inFlightSince;
-    double lastSolveMs = 0;  // how long the last frame took, for how far along this one is
+    double lastSolveMs = 0;       // how long the last frame took, for how far along this one is
+    bool lastSuperseded = false;  // the last solve was stopped by a request: this one finishes
     bool shapeError = false;
     std::optional<int> lastRequest;  // where read-ahead starts
     int readAhead = 0;
@@ -83,12 +84,17 @@ struct FrameSolver::Shared {
     // A request for `frame` arrived: the frame being solved is no longer wanted first. It is
     // stopped if less than half done (by the last frame's time), so that a scrub that stops
     // waits for one iteration of it at most, while one over a fast mesh still shows the frames
-    // it passes (as previews: see FrameSolver::deliver).
+    // it passes (as previews: see FrameSolver::deliver). Never two in a row: requests that come
+    // faster than half a solve (playback on a slow machine) would otherwise stop every solve,
+    // and the view would stay on one frame for as long as they come.
     void supersede(int frame) {
         const double elapsedMs = std::chrono::duration<double, std::milli>(
                                      std::chrono::steady_clock::now() - inFlightSince)
                                      .count();
-        if (inFlight && *inFlight != frame && elapsedMs < 0.5 * lastSolveMs) stopSolve = true;
+        if (inFlight && *inFlight != frame && !lastSuperseded && elapsedMs < 0.5 * lastSolveMs) {
+            stopSolve = true;
+            lastSuperseded = true;
+        }
     }
 };
 
@@ -222,6 +228,7 @@ void FrameSolver::run(Shared* sh, FrameSolver* self) {
             continue;
         }
         sh->lastSolveMs = result->solveMs;
+        sh->lastSuperseded = false;
         result->request = request;
         if (generation == sh->generation) sh->cache.insert(result);
         if (requested)  // read-ahead frames only go to the cache
