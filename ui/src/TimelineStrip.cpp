@@ -118,8 +118,9 @@ void TimelineStrip::paintEvent(QPaintEvent*) {
     const QColor cached = palette().color(QPalette::Highlight);
     const QColor gap(200, 40, 40);
     // Each frame spans half-way to its neighbours, so runs of frames draw as one bar.
-    const auto [x0, x1] = span();
-    const double step = frames > 1 ? double(x1 - x0) / (frames - 1) : double(x1 - x0);
+    const auto [left, right] = span();
+    const double x0 = left;  // a plain variable: clang before C++20 cannot capture a binding
+    const double step = frames > 1 ? double(right - left) / (frames - 1) : double(right - left);
     auto frameRect = [&](int first, int last, int top, int height) {
         return QRectF(x0 + (first - 0.5) * step, top, std::max(1.0, (last - first + 1) * step),
                       height);

@@ -147,7 +147,13 @@ Precheck checkOff(const std::string& path) {
                         at(lines[0].first));
     // OpenMesh refuses the dimension-prefixed variants by itself.
     if (keyword.find_first_of("4n") != std::string::npos) return {};
-    if (head.size() > 1 && head[1] == "BINARY") return checkBinaryOff(path, data, keyword);
+    // OpenMesh reads binary only when "BINARY" follows the keyword after one character on the
+    // file's first line, and parses anything else as text; decided its way, or a file this pass
+    // took for binary would reach OpenMesh's unchecked text parser (found by fuzzing).
+    const size_t k = keyword.size();
+    if (data.compare(0, k, keyword) == 0 && data.size() >= k + 7 && data[k] != '\n' &&
+        data.compare(k + 1, 6, "BINARY") == 0)
+        return checkBinaryOff(path, data, keyword);
     size_t next = 1;
     std::vector<std::string> counts(head.begin() + 1, head.end());
     if (counts.empty()) {

@@ -419,6 +419,18 @@ TEST(MeshReaderErrors, BinaryOffCountsTheFileCannotHold) {
                     "binary OFF file ends in face 3");
 }
 
+// Found by fuzzing: "BINARY" further along the first line is text OFF to OpenMesh, whose text
+// parser took a binary corner count as a face of billions of corners.
+TEST(MeshReaderErrors, BinaryWordOpenMeshDoesNotSeeIsReadAsText) {
+    std::string spaced = offBinary(tentV(), tentP);
+    spaced.replace(0, 10, "OFF \f\fBINARY");
+    EXPECT_CONTAINS(errorOf(writeFile("spaced.off", spaced)),
+                    "OFF header lacks the vertex and face counts");
+    std::string tab = offBinary(tentV(), tentP);
+    tab[3] = '\t';  // one character of any kind: still binary
+    EXPECT_EQ(readMesh(writeFile("tab.off", tab)).mesh.faceCount(), 4);
+}
+
 // Found by fuzzing: OpenMesh's PLY header parser loops for ever on a count it cannot read.
 TEST(MeshReaderErrors, PlyHeaderThatOpenMeshWouldNeverFinish) {
     const std::string good = plyAscii(tentV(), tentP);
