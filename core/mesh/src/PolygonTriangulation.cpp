@@ -6,13 +6,13 @@
 #include <limits>
 
 #include "PolygonSoup.h"
+#include "boneless/TriMesh.h"
 
 namespace boneless::detail {
 
 namespace {
 
 using Vec2 = Eigen::Vector2d;
-using Vec3 = Eigen::Vector3d;
 
 double cross2(const Vec2& a, const Vec2& b, const Vec2& c) {
     return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();

@@ -11,12 +11,11 @@
 
 #include "boneless/Error.h"
 #include "boneless/MeshTopology.h"
+#include "boneless/TriMesh.h"
 
 namespace boneless {
 
 namespace {
-
-using Vec3 = Eigen::Vector3d;
 
 // A new face may turn at most 60° away from the face it replaces. 90° (a flip) is the hard limit;
 // the margin keeps folds from building up over several levels, each of which may turn a region.
