@@ -185,6 +185,14 @@ void MainWindow::buildMarkerDock() {
 }
 
 void MainWindow::buildMenus() {
+    buildFileMenu();
+    QMenu* edit = buildEditMenu();
+    QMenu* view = buildViewMenu();
+    addCalibrationActions(edit, view, document_, timeline_, display_);
+    buildHelpMenu();
+}
+
+void MainWindow::buildFileMenu() {
     QMenu* file = menuBar()->addMenu(tr("&File"));
     file->addAction(tr("Open &Project…"), QKeySequence::Open, this, &MainWindow::chooseProject);
     file->addAction(tr("Open &Mesh…"), QKeySequence(Qt::CTRL | Qt::Key_M), this,
@@ -208,7 +216,9 @@ void MainWindow::buildMenus() {
         ->setObjectName("actionExport");
     file->addSeparator();
     file->addAction(tr("&Quit"), QKeySequence::Quit, this, &QWidget::close);
+}
 
+QMenu* MainWindow::buildEditMenu() {
     QMenu* edit = menuBar()->addMenu(tr("&Edit"));
     QAction* undo = document_->undoStack()->createUndoAction(this, tr("&Undo"));
     undo->setObjectName("actionUndo");
@@ -226,7 +236,10 @@ void MainWindow::buildMenus() {
         if (document_->selectedMarker() >= 0) document_->clearMapping(document_->selectedMarker());
     });
     edit->addAction(tr("Clear &All Mappings"), document_, &Document::clearAllMappings);
+    return edit;
+}
 
+QMenu* MainWindow::buildViewMenu() {
     QMenu* view = menuBar()->addMenu(tr("&View"));
     view->addAction(tr("&Reset Camera"), QKeySequence(Qt::CTRL | Qt::Key_R), view_,
                     &MeshView::resetCamera);
@@ -255,9 +268,10 @@ void MainWindow::buildMenus() {
     }
     const QSignalBlocker quiet(followAction_);  // on by default, not an edit of the session
     followAction_->setChecked(true);
+    return view;
+}
 
-    addCalibrationActions(edit, view, document_, timeline_, display_);
-
+void MainWindow::buildHelpMenu() {
     QMenu* help = menuBar()->addMenu(tr("&Help"));
     help->addAction(
             tr("&Getting Started"), QKeySequence::HelpContents, this,

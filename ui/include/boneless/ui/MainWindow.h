@@ -91,6 +91,10 @@ class MainWindow : public QMainWindow {
 
   private:
     void buildMenus();
+    void buildFileMenu();
+    QMenu* buildEditMenu();  // returned for the calibration actions
+    QMenu* buildViewMenu();
+    void buildHelpMenu();
     void buildMarkerDock();
     void buildStatusBar();
     void buildShortcuts();
