@@ -158,58 +158,70 @@ std::vector<std::uint8_t> encodeParameters(const C3dParameters& ps) {
     return std::move(o.bytes);
 }
 
-}  // namespace
+// Every value a float field is given must fit a float (converting one that does not is undefined).
+bool fitsFloat(double v) {
+    return !(std::fabs(v) > double(std::numeric_limits<float>::max()));
+}
 
-std::vector<std::uint8_t> encodeC3d(const C3dTake& take, const C3dWriteOptions& options) {
-    const std::size_t frames = take.samples.frames();
-    const std::size_t points = take.samples.points();
-    if (take.points.size() != points)
-        throw std::invalid_argument("C3D writer: " + std::to_string(take.points.size()) +
-                                    " point descriptions for " + std::to_string(points) +
-                                    " sample columns");
-    if (points > 65535) throw std::invalid_argument("C3D writer: more than 65535 points");
-    if (frames > 2147483647u) throw std::invalid_argument("C3D writer: too many frames");
-    // Float storage: every value must fit a float (converting one that does not is undefined).
-    const auto fitsFloat = [](double v) {
-        return !(std::fabs(v) > double(std::numeric_limits<float>::max()));
-    };
-    if (!fitsFloat(take.rate) || !fitsFloat(take.pointScale))
-        throw std::invalid_argument("C3D writer: rate or scale outside the float range");
-    const float scale = (std::isfinite(take.pointScale) && take.pointScale != 0.0)
-                            ? -static_cast<float>(std::fabs(take.pointScale))
-                            : -1.0f;
-    const float rate = static_cast<float>(take.rate);
-    const std::int64_t first = take.firstFrame >= 1 ? take.firstFrame : 1;
-    const std::int64_t last = first + std::int64_t(frames) - 1;
-    if (last > 4294967295LL)
-        throw std::invalid_argument("C3D writer: frame numbers beyond 32 bits");
+// The frame numbering and scaling that the header and the parameters both state.
+struct Layout {
+    std::size_t frames = 0, points = 0;
+    float scale = -1.0f;  // negative: float storage
+    float rate = 0.0f;
+    std::int64_t first = 1, last = 0;
     // Two separate limits of 16-bit fields: the frame count (POINT:FRAMES) and the frame numbers
     // (header words 4 and 5; a first frame beyond them survives only in TRIAL).
-    const bool longCount = frames > 65535;
-    const bool headerRange = last <= 65535;
+    bool longCount = false, headerRange = true;
+};
 
-    C3dParameters ps = take.parameters;
+Layout layoutOf(const C3dTake& take) {
+    Layout l;
+    l.frames = take.samples.frames();
+    l.points = take.samples.points();
+    if (take.points.size() != l.points)
+        throw std::invalid_argument("C3D writer: " + std::to_string(take.points.size()) +
+                                    " point descriptions for " + std::to_string(l.points) +
+                                    " sample columns");
+    if (l.points > 65535) throw std::invalid_argument("C3D writer: more than 65535 points");
+    if (l.frames > 2147483647u) throw std::invalid_argument("C3D writer: too many frames");
+    if (!fitsFloat(take.rate) || !fitsFloat(take.pointScale))
+        throw std::invalid_argument("C3D writer: rate or scale outside the float range");
+    if (std::isfinite(take.pointScale) && take.pointScale != 0.0)
+        l.scale = -static_cast<float>(std::fabs(take.pointScale));
+    l.rate = static_cast<float>(take.rate);
+    l.first = take.firstFrame >= 1 ? take.firstFrame : 1;
+    l.last = l.first + std::int64_t(l.frames) - 1;
+    if (l.last > 4294967295LL)
+        throw std::invalid_argument("C3D writer: frame numbers beyond 32 bits");
+    l.longCount = l.frames > 65535;
+    l.headerRange = l.last <= 65535;
+    return l;
+}
+
+// POINT as this file's samples and points state it; lists named by a previous TYPE_GROUPS would
+// go stale, so the standard names replace them.
+void setPointGroup(C3dParameters& ps, const C3dTake& take, const C3dWriteOptions& options,
+                   const Layout& l) {
     C3dGroup& pt = ps.addGroup("POINT", "3-D point parameters");
-    // Lists named by a previous TYPE_GROUPS would go stale; the standard names replace them.
     if (const C3dParameter* tg = pt.find("TYPE_GROUPS")) {
         const auto s = tg->strings();
         for (std::size_t i = 0; i < s.size(); i += 2) removeList(pt, s[i].c_str());
         pt.remove("TYPE_GROUPS");
     }
-    pt.set(C3dParameter::int16s("USED", {asWord(points)}, {}));
-    pt.set(C3dParameter::floats("SCALE", {scale}, {}));
-    pt.set(C3dParameter::floats("RATE", {rate}, {}));
+    pt.set(C3dParameter::int16s("USED", {asWord(l.points)}, {}));
+    pt.set(C3dParameter::floats("SCALE", {l.scale}, {}));
+    pt.set(C3dParameter::floats("RATE", {l.rate}, {}));
     pt.set(C3dParameter::chars(
         "UNITS", {take.units.empty() ? std::string("mm")
                                      : c3d_detail::textToC3d(take.units, take.textEncoding)}));
     pt.remove("LONG_FRAMES");
-    if (!longCount) {
-        pt.set(C3dParameter::int16s("FRAMES", {asWord(frames)}, {}));
+    if (!l.longCount) {
+        pt.set(C3dParameter::int16s("FRAMES", {asWord(l.frames)}, {}));
     } else if (options.trialFrameRange || options.longFrames) {
         pt.set(C3dParameter::int16s("FRAMES", {asWord(65535)}, {}));
-        if (options.longFrames) pt.set(C3dParameter::floats("LONG_FRAMES", {float(frames)}, {}));
+        if (options.longFrames) pt.set(C3dParameter::floats("LONG_FRAMES", {float(l.frames)}, {}));
     } else {
-        pt.set(C3dParameter::floats("FRAMES", {float(frames)}, {}));
+        pt.set(C3dParameter::floats("FRAMES", {float(l.frames)}, {}));
     }
     std::vector<std::string> labels, descriptions;
     std::vector<std::string> byKind[7];
@@ -229,62 +241,51 @@ std::vector<std::uint8_t> encodeC3d(const C3dTake& take, const C3dWriteOptions& 
     setList(pt, "POWERS", byKind[int(C3dPointKind::Power)]);
     setList(pt, "SCALARS", byKind[int(C3dPointKind::Scalar)]);
     removeList(pt, "REACTIONS");
+}
 
-    ps.addGroup("ANALOG", "analog data parameters");
-    ps.set("ANALOG", C3dParameter::int16s("USED", {0}, {}));
-    ps.set("ANALOG", C3dParameter::floats("RATE", {rate}, {}));
-
+// TRIAL's 32-bit frame range, for counts and frame numbers the 16-bit fields cannot hold.
+void setTrialRange(C3dParameters& ps, const C3dWriteOptions& options, const Layout& l) {
     const C3dGroup* trial = ps.group("TRIAL");
-    if ((longCount && options.trialFrameRange) || first > 65535 ||
-        (trial && trial->find("ACTUAL_START_FIELD"))) {
-        C3dGroup& tr = ps.addGroup("TRIAL");
-        auto words = [](std::int64_t v) {
-            return std::vector<std::int16_t>{asWord(std::size_t(v) & 0xFFFF),
-                                             asWord((std::size_t(v) >> 16) & 0xFFFF)};
-        };
-        tr.set(C3dParameter::int16s("ACTUAL_START_FIELD", words(first), {2}));
-        // Without frames the range is empty; end = start keeps it well-formed, and POINT:FRAMES
-        // (0, not 65535) is what readers take the count from.
-        tr.set(C3dParameter::int16s("ACTUAL_END_FIELD", words(frames ? last : first), {2}));
-    }
+    if (!(l.longCount && options.trialFrameRange) && l.first <= 65535 &&
+        !(trial && trial->find("ACTUAL_START_FIELD")))
+        return;
+    C3dGroup& tr = ps.addGroup("TRIAL");
+    auto words = [](std::int64_t v) {
+        return std::vector<std::int16_t>{asWord(std::size_t(v) & 0xFFFF),
+                                         asWord((std::size_t(v) >> 16) & 0xFFFF)};
+    };
+    tr.set(C3dParameter::int16s("ACTUAL_START_FIELD", words(l.first), {2}));
+    // Without frames the range is empty; end = start keeps it well-formed, and POINT:FRAMES
+    // (0, not 65535) is what readers take the count from.
+    tr.set(C3dParameter::int16s("ACTUAL_END_FIELD", words(l.frames ? l.last : l.first), {2}));
+}
 
-    // DATA_START depends on the section's size, which DATA_START itself is part of: write a
-    // placeholder of the same size first. (Adding groups above may have moved POINT, so no
-    // reference to it is kept across them.)
-    ps.set("POINT", C3dParameter::int16s("DATA_START", {0}, {}));
-    std::vector<std::uint8_t> params = encodeParameters(ps);
-    const std::size_t dataBlock = 2 + params.size() / kBlock;
-    if (dataBlock > 32767) throw std::invalid_argument("C3D writer: parameter section too large");
-    ps.set("POINT", C3dParameter::int16s("DATA_START", {asWord(dataBlock)}, {}));
-    params = encodeParameters(ps);
-
-    // One allocation for the whole file: header, parameters, then the frames.
-    const std::size_t dataAt = kBlock + params.size();
-    std::vector<std::uint8_t> out(dataAt + frames * points * 16, 0);
-    std::memcpy(out.data() + kBlock, params.data(), params.size());
+void putHeader(std::uint8_t* out, const Layout& l, std::size_t dataBlock) {
     out[0] = 2;
     out[1] = 0x50;
-    c3d::putU16(&out[2], static_cast<std::uint16_t>(points));
+    c3d::putU16(&out[2], static_cast<std::uint16_t>(l.points));
     c3d::putU16(&out[4], 0);
-    const std::uint16_t firstWord = headerRange ? static_cast<std::uint16_t>(first) : 1;
+    const std::uint16_t firstWord = l.headerRange ? static_cast<std::uint16_t>(l.first) : 1;
     const std::uint16_t lastWord =
-        frames == 0 ? 0
-                    : static_cast<std::uint16_t>(
-                          headerRange ? last : std::min<std::int64_t>(std::int64_t(frames), 65535));
+        l.frames == 0 ? 0
+                      : static_cast<std::uint16_t>(
+                            l.headerRange ? l.last : std::min<std::int64_t>(l.frames, 65535));
     c3d::putU16(&out[6], firstWord);
     c3d::putU16(&out[8], lastWord);
     c3d::putU16(&out[10], 10);
-    c3d::putF32(&out[12], scale);
+    c3d::putF32(&out[12], l.scale);
     c3d::putU16(&out[16], static_cast<std::uint16_t>(dataBlock));
     c3d::putU16(&out[18], 0);
-    c3d::putF32(&out[20], rate);
+    c3d::putF32(&out[20], l.rate);
     c3d::putU16(&out[298], 0x3039);  // word 150: event labels are 4 characters
+}
 
-    const float residualStep = std::fabs(scale);
-    std::uint8_t* w = out.data() + dataAt;
+// Float samples: x, y, z, then the residual in scale units (-1: not seen).
+void putFrames(std::uint8_t* w, const C3dTake& take, const Layout& l) {
+    const float residualStep = std::fabs(l.scale);
     const double* xyz = take.samples.xyzData();
-    for (std::size_t f = 0; f < frames && points > 0; ++f) {
-        for (std::size_t k = 0; k < points; ++k, w += 16, xyz += 3) {
+    for (std::size_t f = 0; f < l.frames && l.points > 0; ++f) {
+        for (std::size_t k = 0; k < l.points; ++k, w += 16, xyz += 3) {
             if (!take.samples.valid(f, k)) {
                 c3d::putF32(w, 0.0f);
                 c3d::putF32(w + 4, 0.0f);
@@ -302,6 +303,34 @@ std::vector<std::uint8_t> encodeC3d(const C3dTake& take, const C3dWriteOptions& 
             c3d::putF32(w + 12, static_cast<float>(std::clamp(r, 0.0, 255.0)));
         }
     }
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> encodeC3d(const C3dTake& take, const C3dWriteOptions& options) {
+    const Layout l = layoutOf(take);
+    C3dParameters ps = take.parameters;
+    setPointGroup(ps, take, options, l);
+    ps.addGroup("ANALOG", "analog data parameters");
+    ps.set("ANALOG", C3dParameter::int16s("USED", {0}, {}));
+    ps.set("ANALOG", C3dParameter::floats("RATE", {l.rate}, {}));
+    setTrialRange(ps, options, l);
+
+    // DATA_START depends on the section's size, which DATA_START itself is part of: write a
+    // placeholder of the same size first.
+    ps.set("POINT", C3dParameter::int16s("DATA_START", {0}, {}));
+    std::vector<std::uint8_t> params = encodeParameters(ps);
+    const std::size_t dataBlock = 2 + params.size() / kBlock;
+    if (dataBlock > 32767) throw std::invalid_argument("C3D writer: parameter section too large");
+    ps.set("POINT", C3dParameter::int16s("DATA_START", {asWord(dataBlock)}, {}));
+    params = encodeParameters(ps);
+
+    // One allocation for the whole file: header, parameters, then the frames.
+    const std::size_t dataAt = kBlock + params.size();
+    std::vector<std::uint8_t> out(dataAt + l.frames * l.points * 16, 0);
+    std::memcpy(out.data() + kBlock, params.data(), params.size());
+    putHeader(out.data(), l, dataBlock);
+    putFrames(out.data() + dataAt, take, l);
     return out;
 }
 
