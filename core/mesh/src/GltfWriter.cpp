@@ -51,6 +51,56 @@ void appendU32(std::string& out, std::uint32_t v) {  // GLB is little-endian, as
     out.append(reinterpret_cast<const char*>(&v), 4);
 }
 
+// The scene: one node with the mesh, its morph targets named, and an animation that steps
+// through them (none without frames).
+void addAnimatedMesh(tinygltf::Model& m, const std::string& name,
+                     const tinygltf::Primitive& primitive, std::vector<tinygltf::Value> targetNames,
+                     int timeAccessor, int weightAccessor) {
+    const size_t frames = targetNames.size();
+    tinygltf::Mesh mesh;
+    mesh.name = name;
+    mesh.primitives.push_back(primitive);
+    mesh.weights.assign(frames, 0.0);
+    mesh.extras = tinygltf::Value(
+        tinygltf::Value::Object{{"targetNames", tinygltf::Value(std::move(targetNames))}});
+    m.meshes.push_back(mesh);
+    tinygltf::Node node;
+    node.name = name;
+    node.mesh = 0;
+    m.nodes.push_back(node);
+    m.scenes.emplace_back();
+    m.scenes[0].nodes = {0};
+    m.defaultScene = 0;
+    if (frames > 0) {
+        tinygltf::Animation animation;
+        animation.name = name;
+        tinygltf::AnimationSampler sampler;
+        sampler.input = timeAccessor;
+        sampler.output = weightAccessor;
+        sampler.interpolation = "LINEAR";
+        animation.samplers.push_back(sampler);
+        tinygltf::AnimationChannel channel;
+        channel.sampler = 0;
+        channel.target_node = 0;
+        channel.target_path = "weights";
+        animation.channels.push_back(channel);
+        m.animations.push_back(animation);
+    }
+}
+
+// tinygltf writes the document; the buffer's bytes are streamed from the spool, so its entry
+// is replaced by one that names the BIN chunk's length. Padded to 4 bytes, as GLB chunks are.
+std::string glbJson(const tinygltf::Model& m, size_t binLength) {
+    std::ostringstream text;
+    tinygltf::TinyGLTF gltf;
+    gltf.WriteGltfSceneToStream(&m, text, false, false);
+    nlohmann::json document = nlohmann::json::parse(text.str());
+    document["buffers"] = nlohmann::json::array({{{"byteLength", binLength}}});
+    std::string json = document.dump();
+    json.append((4 - json.size() % 4) % 4, ' ');
+    return json;
+}
+
 }  // namespace
 
 GltfWriter::GltfWriter(std::string path, const TriMesh& rest, std::string name)
@@ -163,45 +213,8 @@ void GltfWriter::finish() {
     sparse.indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
     sparse.values.bufferView = place(frames * 4);
 
-    tinygltf::Mesh mesh;
-    mesh.name = name_;
-    mesh.primitives.push_back(primitive);
-    mesh.weights.assign(frames, 0.0);
-    mesh.extras =
-        tinygltf::Value(tinygltf::Value::Object{{"targetNames", tinygltf::Value(targetNames)}});
-    m.meshes.push_back(mesh);
-    tinygltf::Node node;
-    node.name = name_;
-    node.mesh = 0;
-    m.nodes.push_back(node);
-    m.scenes.emplace_back();
-    m.scenes[0].nodes = {0};
-    m.defaultScene = 0;
-    if (frames > 0) {
-        tinygltf::Animation animation;
-        animation.name = name_;
-        tinygltf::AnimationSampler sampler;
-        sampler.input = timeAccessor;
-        sampler.output = weightAccessor;
-        sampler.interpolation = "LINEAR";
-        animation.samplers.push_back(sampler);
-        tinygltf::AnimationChannel channel;
-        channel.sampler = 0;
-        channel.target_node = 0;
-        channel.target_path = "weights";
-        animation.channels.push_back(channel);
-        m.animations.push_back(animation);
-    }
-
-    // tinygltf writes the document; the buffer's bytes are streamed from the spool, so its entry
-    // is replaced by one that names the BIN chunk's length.
-    std::ostringstream text;
-    tinygltf::TinyGLTF gltf;
-    gltf.WriteGltfSceneToStream(&m, text, false, false);
-    nlohmann::json document = nlohmann::json::parse(text.str());
-    document["buffers"] = nlohmann::json::array({{{"byteLength", offset}}});
-    std::string json = document.dump();
-    json.append((4 - json.size() % 4) % 4, ' ');
+    addAnimatedMesh(m, name_, primitive, std::move(targetNames), timeAccessor, weightAccessor);
+    const std::string json = glbJson(m, offset);
 
     std::string tail;
     appendBytes(tail, times_);
