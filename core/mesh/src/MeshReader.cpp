@@ -30,6 +30,47 @@ bool hasRepeatedCorner(const int* c, int n) {
     return false;
 }
 
+// Every face's corners must be vertices of the file; a face that repeats one is dropped.
+void checkFaces(const std::string& path, const PolygonSoup& soup, std::vector<int>& kept,
+                std::vector<int>& dropped) {
+    const int nv = soup.vertexCount();
+    for (int f = 0; f < soup.faceCount(); ++f) {
+        const int* c = soup.faceIndex.data() + soup.faceStart[f];
+        const int n = soup.faceStart[f + 1] - soup.faceStart[f];
+        if (n < 3) throw MeshError(path, "face with " + plural(n, "corner"), faceWhere(soup, f));
+        for (int i = 0; i < n; ++i) {
+            if (c[i] < 0 || c[i] >= nv)
+                throw MeshError(path,
+                                "face uses vertex " + std::to_string(c[i]) + " but the file has " +
+                                    plural(nv, "vertex", "vertices") + " (0-based)",
+                                faceWhere(soup, f));
+        }
+        (hasRepeatedCorner(c, n) ? dropped : kept).push_back(f);
+    }
+}
+
+void addWarnings(MeshReadResult& r, const PolygonSoup& soup, const std::vector<int>& dropped,
+                 const std::vector<int>& zeroArea, const TopologySummary& topo) {
+    auto& w = r.warnings;
+    if (!dropped.empty())
+        w.push_back("dropped " + plural(r.droppedFaces, "face") +
+                    " with a repeated vertex: " + faceList(soup, dropped));
+    if (r.boundaryEdges > 0)
+        w.push_back("open surface: " + plural(r.boundaryEdges, "boundary edge") + " in " +
+                    plural(r.boundaryLoops, "loop"));
+    if (r.components > 1) w.push_back(plural(r.components, "connected component"));
+    if (r.isolatedVertices > 0) {
+        std::string list;
+        for (size_t i = 0; i < topo.isolated.size(); ++i)
+            list += (i ? ", " : "") + std::to_string(topo.isolated[i]);
+        w.push_back(plural(r.isolatedVertices, "isolated vertex", "isolated vertices") +
+                    " (kept, used by no face): " + list + (r.isolatedVertices > 5 ? ", ..." : ""));
+    }
+    if (r.zeroAreaFaces > 0)
+        w.push_back(plural(r.zeroAreaFaces, "zero-area triangle") + ", from " +
+                    faceList(soup, zeroArea));
+}
+
 }  // namespace
 
 MeshReadResult readMesh(const std::string& path, const MeshReadOptions& options) {
@@ -45,19 +86,7 @@ MeshReadResult readMesh(const std::string& path, const MeshReadOptions& options)
     const int nv = soup.vertexCount();
 
     std::vector<int> kept, dropped;
-    for (int f = 0; f < soup.faceCount(); ++f) {
-        const int* c = soup.faceIndex.data() + soup.faceStart[f];
-        const int n = soup.faceStart[f + 1] - soup.faceStart[f];
-        if (n < 3) throw MeshError(path, "face with " + plural(n, "corner"), faceWhere(soup, f));
-        for (int i = 0; i < n; ++i) {
-            if (c[i] < 0 || c[i] >= nv)
-                throw MeshError(path,
-                                "face uses vertex " + std::to_string(c[i]) + " but the file has " +
-                                    plural(nv, "vertex", "vertices") + " (0-based)",
-                                faceWhere(soup, f));
-        }
-        (hasRepeatedCorner(c, n) ? dropped : kept).push_back(f);
-    }
+    checkFaces(path, soup, kept, dropped);
 
     // Whole file: every vertex, so that vertex i stays file vertex i. Group: the vertices its
     // faces use, in file order.
@@ -122,24 +151,7 @@ MeshReadResult readMesh(const std::string& path, const MeshReadOptions& options)
         }
     }
 
-    auto& w = r.warnings;
-    if (!dropped.empty())
-        w.push_back("dropped " + plural(r.droppedFaces, "face") +
-                    " with a repeated vertex: " + faceList(soup, dropped));
-    if (r.boundaryEdges > 0)
-        w.push_back("open surface: " + plural(r.boundaryEdges, "boundary edge") + " in " +
-                    plural(r.boundaryLoops, "loop"));
-    if (r.components > 1) w.push_back(plural(r.components, "connected component"));
-    if (r.isolatedVertices > 0) {
-        std::string list;
-        for (size_t i = 0; i < topo.isolated.size(); ++i)
-            list += (i ? ", " : "") + std::to_string(topo.isolated[i]);
-        w.push_back(plural(r.isolatedVertices, "isolated vertex", "isolated vertices") +
-                    " (kept, used by no face): " + list + (r.isolatedVertices > 5 ? ", ..." : ""));
-    }
-    if (r.zeroAreaFaces > 0)
-        w.push_back(plural(r.zeroAreaFaces, "zero-area triangle") + ", from " +
-                    faceList(soup, zeroArea));
+    addWarnings(r, soup, dropped, zeroArea, topo);
     return r;
 }
 
