@@ -2,6 +2,8 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 #include "boneless/RigidFit.h"
@@ -73,6 +75,37 @@ double edgeLengthDistortion(const Faces& F, const Positions& V, const Positions&
             ++count;
         }
     return count ? std::sqrt(sum / count) : 0.0;
+}
+
+namespace {
+// The signed angle between the normals of faces f and g across their edge a→b (as f walks it).
+// Signed, so that a ridge pushed through into a valley counts its whole swing.
+double dihedral(const Faces& F, const Positions& P, int f, int g, int a, int b) {
+    const Eigen::Vector3d n = faceNormal(F, P, f), m = faceNormal(F, P, g);
+    const Eigen::Vector3d e = (P.row(b) - P.row(a)).transpose();
+    return std::atan2(n.cross(m).dot(e.normalized()), n.dot(m));
+}
+}  // namespace
+
+double bentEdgeShare(const Faces& F, const Positions& V, const Positions& rest, double degrees) {
+    std::unordered_map<std::uint64_t, int> firstFace;  // undirected edge -> the face seen first
+    firstFace.reserve(static_cast<size_t>(F.rows()) * 2);
+    const double limit = degrees * M_PI / 180.0;
+    long interior = 0, bent = 0;
+    for (int f = 0; f < F.rows(); ++f)
+        for (int c = 0; c < 3; ++c) {
+            const int a = F(f, c), b = F(f, (c + 1) % 3);
+            const auto key = (std::uint64_t(std::min(a, b)) << 32) | std::uint32_t(std::max(a, b));
+            const auto [it, first] = firstFace.try_emplace(key, f);
+            if (first) continue;
+            ++interior;
+            // The face seen first walks the edge the other way round on an oriented surface.
+            const int g = it->second;
+            double change = dihedral(F, V, g, f, b, a) - dihedral(F, rest, g, f, b, a);
+            change = std::remainder(change, 2 * M_PI);
+            bent += std::abs(change) > limit;
+        }
+    return interior ? static_cast<double>(bent) / static_cast<double>(interior) : 0.0;
 }
 
 }  // namespace boneless

@@ -70,3 +70,30 @@ TEST(Metrics, ATurnedMeshFoldsNothingAPinchedVertexFolds) {
     EXPECT_GE(folded, 1);
     EXPECT_LE(folded, 12);
 }
+
+TEST(Metrics, OnlyTheEdgesAlongAFoldAreBent) {
+    const int n = 9;
+    const TriMesh mesh = grid(n);
+    const Eigen::Matrix3d R =
+        Eigen::AngleAxisd(1.2, Eigen::Vector3d(2, -1, 0.5).normalized()).matrix();
+    EXPECT_EQ(bentEdgeShare(mesh.F, (mesh.V * R.transpose()).eval(), mesh.V, 1.0), 0.0);
+
+    // Fold the half x > 4 up about the line x = 4 by 30 degrees: the n − 1 edges on that line bend.
+    Positions folded = mesh.V;
+    const double angle = 30 * M_PI / 180;
+    for (int v = 0; v < folded.rows(); ++v)
+        if (mesh.V(v, 0) > 4) {
+            const double d = mesh.V(v, 0) - 4;
+            folded(v, 0) = 4 + d * std::cos(angle);
+            folded(v, 2) = d * std::sin(angle);
+        }
+    const int interior = 3 * (n - 1) * (n - 1) - 2 * (n - 1);  // edges shared by two faces
+    EXPECT_NEAR(bentEdgeShare(mesh.F, folded, mesh.V, 20), double(n - 1) / interior, 1e-12);
+    EXPECT_EQ(bentEdgeShare(mesh.F, folded, mesh.V, 40), 0.0);
+    // Folded the other way, the same edges bend by the same angle.
+    Positions down = folded;
+    down.col(2) *= -1;
+    EXPECT_NEAR(bentEdgeShare(mesh.F, down, mesh.V, 20), double(n - 1) / interior, 1e-12);
+    // A fold pushed through from +30 to −30 degrees bends its edges by 60 against the first.
+    EXPECT_NEAR(bentEdgeShare(mesh.F, down, folded, 50), double(n - 1) / interior, 1e-12);
+}

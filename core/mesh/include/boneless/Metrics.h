@@ -25,5 +25,9 @@ inline int foldedFaceCount(const Faces& F, const Positions& V, const Positions& 
 }
 // RMS over edges of |len/restLen − 1|: how much a pose stretches or squashes the mesh.
 double edgeLengthDistortion(const Faces& F, const Positions& V, const Positions& rest);
+// Share (0..1) of interior edges whose signed dihedral angle differs from its rest value by more
+// than `degrees`: a kink gauge, which neither the strain nor the fold count sees. A rigid motion
+// bends nothing; a sheet folded along one line bends that line's edges only.
+double bentEdgeShare(const Faces& F, const Positions& V, const Positions& rest, double degrees);
 
 }  // namespace boneless
