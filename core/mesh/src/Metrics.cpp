@@ -1,6 +1,7 @@
 #include "boneless/Metrics.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <unordered_map>
