@@ -89,9 +89,9 @@ struct Draft {
 std::vector<Draft> draft(const TriMesh& rest, const C3dTake& take, const Correspondence& known,
                          const std::vector<std::size_t>& wanted, Calibration& calibration,
                          int& fittedFrame) {
-    TakeSolveOptions options;
-    options.calibrate = CalibrateMode::None;
-    TakeSolver solver(rest, take, known, options);
+    // The rest is first fitted to the actor at the alignment's frame, as solve does: the limbs
+    // between the picks then take the actor's lengths (CMU 85_02, six picks: 17 to 20 of 35).
+    TakeSolver solver(rest, take, known, TakeSolveOptions{});
     calibration = solver.calibration();
     const Similarity& s = calibration.takeToMesh;
     const double unitsPerMm = s.scale / take.unitToMm;
