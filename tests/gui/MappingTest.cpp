@@ -1,7 +1,7 @@
 // Mapping as a user does it: a click beside the mesh says so, opening a correspondence file over
 // mappings already made asks first (replace, merge or cancel), the picture holds still while
 // mapping (each mapping re-solves the frame, which would move the surface under the cursor) and
-// leaving shows the playhead's frame, and suggestions far off the surface stand out.
+// leaving shows the playhead's frame, and suggestions to review stand out.
 #include <QAction>
 #include <QFile>
 #include <QFileInfo>
@@ -152,8 +152,8 @@ class MappingTest : public QObject {
         QVERIFY(test::waitForFrame(window));
     }
 
-    void suggestionsFarOffTheSurfaceAreHighlighted() {
-        // A map as `boneless-cli map suggest` writes it, one suggestion 80 mm off the skin.
+    void suggestionsToReviewAreHighlighted() {
+        // A map as `boneless-cli map suggest` writes it, one suggestion marked for review.
         const QString project = freshProject();
         QFile in(QFileInfo(project).absolutePath() + "/walker.map.json");
         QVERIFY(in.open(QIODevice::ReadOnly));
@@ -165,7 +165,8 @@ class MappingTest : public QObject {
             QJsonObject entry = markers[i].toObject();
             entry["suggested"] = true;
             if (i == 11) {
-                entry["offset_mm"] = 80.0;
+                entry["needs_review"] = true;
+                entry["review_reason"] = "80 mm from the fitted mesh";
                 farLabel = entry["label"].toString();
             }
             markers[i] = entry;

@@ -7,9 +7,9 @@ namespace boneless::ui {
 
 class Document;
 
-// The marker list with doubtful suggestions highlighted: a suggested mapping whose marker sits
-// much further off the surface than the other suggestions' markers (its residual, recorded as
-// offset_mm) most likely took the wrong vertex, e.g. one on the far side of a limb.
+// The marker list with the suggestions to review painted: `suggest` marks an entry
+// "needs_review" when its marker lies far from the fitted mesh, fits another part of the body
+// about as well, or lands on the wrong side (the list's tooltip gives the reason).
 class SuggestionHighlight : public QIdentityProxyModel {
     Q_OBJECT
   public:
@@ -23,7 +23,6 @@ class SuggestionHighlight : public QIdentityProxyModel {
 
     Document* document_;
     std::vector<bool> doubtful_;
-    double limitMm_ = 0;
 };
 
 }  // namespace boneless::ui
