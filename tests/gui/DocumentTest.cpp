@@ -5,6 +5,7 @@
 #include <QtTest>
 
 #include "ModelTestFixtures.h"
+#include "boneless/C3dWriter.h"
 #include "boneless/ui/FrameSolver.h"
 #include "boneless/ui/MarkerListModel.h"
 
@@ -233,6 +234,39 @@ class DocumentTest : public QObject {
         d.setSelectedMarker(999);
         QCOMPARE(d.selectedMarker(), -1);
         QCOMPARE(d.markerByLabel(d.markerLabel(4).toLower()), 4);
+    }
+
+    void markersShowByTheirNameWithoutTheSubject() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        for (int m = 0; m < d.markerCount(); ++m) {
+            const C3dPoint& point = d.take().points[d.markerPoint(m)];
+            QVERIFY(!point.subject.empty());
+            QCOMPARE(d.markerLabel(m), QString::fromStdString(point.name));
+            QCOMPARE(d.markerByLabel(QString::fromStdString(point.label)), m);
+        }
+        // A second actor wearing one of the same markers: that name alone would not tell them
+        // apart, so both show their full labels; the others keep their bare names.
+        C3dTake two = d.take();
+        const std::size_t shared = d.markerPoint(0), alone = d.markerPoint(1);
+        C3dPoint second = two.points[shared];
+        second.subject = "second";
+        second.label = "second:" + second.name;
+        two.points.push_back(second);
+        C3dSamples samples(two.samples.frames(), two.points.size());
+        for (std::size_t f = 0; f < samples.frames(); ++f)
+            for (std::size_t p = 0; p < two.points.size(); ++p)
+                if (const auto x = two.samples.position(f, p + 1 < two.points.size() ? p : shared))
+                    samples.set(f, p, x->x(), x->y(), x->z());
+        two.samples = samples;
+        const QString path = work_ + "/two-actors.c3d";
+        writeC3d(two, path.toStdString());
+        QVERIFY(d.loadTake(path));
+        QStringList labels;
+        for (int m = 0; m < d.markerCount(); ++m) labels << d.markerLabel(m);
+        for (const std::string& label :
+             {two.points[shared].label, second.label, two.points[alone].name})
+            QVERIFY2(labels.contains(QString::fromStdString(label)), qPrintable(labels.join(' ')));
     }
 
     void aSuggestionToReviewIsMarkedInTheMarkerList() {

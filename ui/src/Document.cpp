@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "MapEditCommand.h"
@@ -257,8 +258,16 @@ void Document::rebuildMarkers() {
     autoAlignment_.reset();
     markers_.clear();
     if (hasTake_) {
-        for (std::size_t p : take_.markerIndices())
-            markers_.push_back({QString::fromStdString(take_.points[p].label), int(p), -1});
+        // A marker shows by its name without the subject ("LFWT" for "Male:LFWT"), as maps name
+        // it, unless two subjects share that name; the list's narrow column then tells L from R.
+        std::map<std::string, int> names;
+        for (std::size_t p : take_.markerIndices()) ++names[take_.points[p].name];
+        for (std::size_t p : take_.markerIndices()) {
+            const C3dPoint& point = take_.points[p];
+            const bool unique = !point.name.empty() && names[point.name] == 1;
+            markers_.push_back(
+                {QString::fromStdString(unique ? point.name : point.label), int(p), -1});
+        }
     }
     for (int i = 0; i < static_cast<int>(map_.markers.size()); ++i) {
         const MarkerMapping& m = map_.markers[i];
