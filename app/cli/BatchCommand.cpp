@@ -8,7 +8,9 @@
 #include <nlohmann/json.hpp>
 
 #include "Commands.h"
+#include "FrameRange.h"
 #include "TakeJob.h"
+#include "boneless/C3dFrameReader.h"
 #include "boneless/Error.h"
 #include "boneless/TakeOptionsJson.h"
 
@@ -134,18 +136,36 @@ std::pair<int, int> parseShard(const std::string& text) {
     return {i, n};
 }
 
-// A take is done when its sidecar says it completed from the same sources into the same format.
-bool finished(const TakeJob& job) {
+enum class Sidecar { Missing, Complete, OtherSettings };
+
+// A take is done when its sidecar says it completed from the same sources into the same format,
+// over the frames and with the options the manifest asks for now. A complete sidecar from other
+// frames or options means the manifest changed: the take is solved again.
+Sidecar sidecarState(const TakeJob& job) {
     std::ifstream in(takeJobSidecar(job));
-    if (!in) return false;
+    if (!in) return Sidecar::Missing;
     try {
         const json s = json::parse(in);
         const json& src = s.at("source");
-        return s.at("complete").get<bool>() && s.at("output") == job.format &&
-               src.at("mesh") == job.mesh && src.at("group") == job.group &&
-               src.at("c3d") == job.c3d && src.at("map") == job.map;
+        if (!s.at("complete").get<bool>() || s.at("output") != job.format ||
+            src.at("mesh") != job.mesh || src.at("group") != job.group ||
+            src.at("c3d") != job.c3d || src.at("map") != job.map)
+            return Sidecar::Missing;
+        TakeSolveOptions options;
+        fromJson(job.options, options, "options");
+        const FrameRange range = parseFrameRange(job.frames);
+        const int frames = static_cast<int>(C3dFrameReader(job.c3d).frameCount());
+        const int end = range.end < 0 ? frames : std::min(range.end, frames);
+        const bool sameFrames = s.at("frame_range") == json::array({range.first, end});
+        const bool sameRest =
+            !job.writeCalibratedRest || s.at("calibration").contains("calibrated_rest");
+        return sameFrames && sameRest && s.at("options") == toJson(options)
+                   ? Sidecar::Complete
+                   : Sidecar::OtherSettings;
     } catch (const json::exception&) {
-        return false;  // unreadable or from an older version: solve it again
+        return Sidecar::Missing;  // unreadable or from an older version: solve it again
+    } catch (const Error&) {
+        return Sidecar::Missing;  // the take is unreadable now: solving says why
     }
 }
 
@@ -160,11 +180,14 @@ void run(const BatchArgs& args) {
         if (static_cast<int>(k % shards) != shard - 1) continue;
         const TakeJob& job = jobs[k];
         std::printf("[%d/%d] %s -> %s: ", ++done, mine, job.c3d.c_str(), job.out.c_str());
-        if (finished(job)) {
+        const Sidecar sidecar = sidecarState(job);
+        if (sidecar == Sidecar::Complete) {
             std::printf("skipped (its sidecar says it is complete)\n");
             ++skipped;
             continue;
         }
+        if (sidecar == Sidecar::OtherSettings)
+            std::printf("its sidecar is from other frames or options, solving again: ");
         std::fflush(stdout);
         const auto start = std::chrono::steady_clock::now();
         try {

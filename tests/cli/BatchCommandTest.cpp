@@ -116,6 +116,37 @@ TEST(Batch, ARunAgainSkipsTheTakesItFinished) {
     EXPECT_TRUE(json::parse(std::ifstream(sidecar))["complete"]);
 }
 
+TEST(Batch, ATakeAskedForOtherFramesOrOptionsIsSolvedAgain) {
+    const fs::path dir = makeLibrary();
+    json manifest = {{"defaults", {{"format", "pc2"}}},
+                     {"takes",
+                      {{{"mesh", "walker.obj"},
+                        {"map", "walker.map.json"},
+                        {"c3d", "takes/walk_c.c3d"},
+                        {"out", "one"},
+                        {"frames", "0:3"}}}}};
+    const fs::path path = writeManifest(dir, "m.json", manifest);
+    ASSERT_EQ(runCli("batch " + path.string()).exitCode, 0);
+    const fs::path sidecar = dir / "one" / "walker.json";
+    auto range = [&] { return json::parse(std::ifstream(sidecar))["frame_range"]; };
+    EXPECT_EQ(range(), json::array({0, 3}));
+    // The manifest now asks for the whole take (6 frames): the 3 written are not the take.
+    manifest["takes"][0].erase("frames");
+    writeManifest(dir, "m.json", manifest);
+    CliResult r = runCli("batch " + path.string());
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("other frames or options, solving again"), std::string::npos) << r.out;
+    EXPECT_EQ(range(), json::array({0, 6}));
+    // The same again is done; another marker weight is not.
+    r = runCli("batch " + path.string());
+    EXPECT_NE(r.out.find("0 solved, 1 skipped"), std::string::npos) << r.out;
+    manifest["defaults"]["marker_weight"] = 5;
+    writeManifest(dir, "m.json", manifest);
+    r = runCli("batch " + path.string());
+    EXPECT_NE(r.out.find("1 solved, 0 skipped"), std::string::npos) << r.out;
+    EXPECT_EQ(json::parse(std::ifstream(sidecar))["options"]["marker_weight"], 5.0);
+}
+
 TEST(Batch, AFailingTakeDoesNotStopTheOthersButFailsTheRun) {
     const fs::path dir = makeLibrary();
     std::ofstream(dir / "takes" / "broken.c3d") << "not a c3d file";
