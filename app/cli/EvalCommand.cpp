@@ -1,4 +1,5 @@
 // boneless-cli eval: reconstruct a ground-truth sequence from K of its vertices and measure it.
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -83,10 +84,20 @@ void printSummary(const char* name, const EvaluationSummary& s) {
 
 void run(const EvalArgs& args) {
     const MeshSequence sequence = readMeshSequence(args.sequence);
+    const int vertices = sequence.rest.vertexCount();
+    if (args.markersFile.empty() && args.markers >= vertices)
+        throw Error("--markers " + std::to_string(args.markers) +
+                    " leaves no vertex to reconstruct: " + args.sequence + " has " +
+                    std::to_string(vertices) + " vertices");
     EvaluationOptions options;
     options.markers = args.markersFile.empty()
                           ? geodesicFarthestPoints(sequence.rest, args.markers, 0)
-                          : readMarkerFile(args.markersFile, sequence.rest.vertexCount());
+                          : readMarkerFile(args.markersFile, vertices);
+    std::vector<int> distinct = options.markers;
+    std::sort(distinct.begin(), distinct.end());
+    if (std::unique(distinct.begin(), distinct.end()) - distinct.begin() >= vertices)
+        throw Error(args.markersFile + " makes every one of the " + std::to_string(vertices) +
+                    " vertices a marker: none is left to reconstruct");
     const FrameRange range = parseFrameRange(args.frames);
     options.firstFrame = range.first;
     options.endFrame = range.end;

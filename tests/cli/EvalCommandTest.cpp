@@ -183,4 +183,11 @@ TEST(EvalCommand, BadInputIsOneClearLineAndANonZeroExit) {
     r = runCli("eval --sequence " + demoFolder());
     EXPECT_NE(r.exitCode, 0);
     EXPECT_NE(r.out.find("--markers"), std::string::npos) << r.out;
+
+    // As many markers as vertices leave nothing to reconstruct (it reached the factorisation).
+    r = runCli("eval --sequence " + demoFolder() + " --markers 1000000");
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.out.find("--markers 1000000 leaves no vertex to reconstruct"), std::string::npos)
+        << r.out;
+    EXPECT_EQ(r.out.find("CHOLMOD"), std::string::npos) << r.out;
 }
