@@ -21,12 +21,14 @@ inline FrameRange parseFrameRange(const std::string& text) {
             std::size_t used = 0;
             const int value = std::stoi(part, &used);
             if (used != part.size()) throw std::invalid_argument("trailing characters");
+            if (value < 0) throw std::invalid_argument("negative");
             return value;
         };
         if (colon > 0) range.first = number(text.substr(0, colon));
         if (colon + 1 < text.size()) range.end = number(text.substr(colon + 1));
     } catch (const std::exception&) {
-        throw boneless::Error("--frames expects A:B (0-based, B excluded), got '" + text + "'");
+        throw boneless::Error("--frames expects A:B (0-based, not negative, B excluded), got '" +
+                              text + "'");
     }
     return range;
 }

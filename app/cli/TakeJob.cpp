@@ -1,6 +1,7 @@
 #include "TakeJob.h"
 
 #include <unistd.h>
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -85,6 +86,36 @@ std::string takeJobSidecar(const TakeJob& job) {
     return (std::filesystem::path(job.out) / (exportStem(request) + ".json")).string();
 }
 
+namespace {
+
+// OBJ frames of an earlier run that this one did not write would play as part of this take in a
+// tool that reads the folder by pattern (Houdini's <stem>_$F4.obj); they are the user's to remove.
+void warnOfOtherFrames(const std::string& out, const std::string& stem, const ExportResult& r) {
+    namespace fs = std::filesystem;
+    int count = 0, lowest = 0, highest = 0;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(out, ec)) {
+        const std::string name = entry.path().filename().string();
+        if (name.size() < stem.size() + 9 || name.compare(0, stem.size() + 1, stem + "_") != 0 ||
+            entry.path().extension() != ".obj")
+            continue;
+        const std::string digits = name.substr(stem.size() + 1, name.size() - stem.size() - 5);
+        if (digits.find_first_not_of("0123456789") != std::string::npos) continue;
+        const int frame = std::stoi(digits);
+        if (frame >= r.first && frame < r.first + r.framesWritten) continue;
+        lowest = count ? std::min(lowest, frame) : frame;
+        highest = count ? std::max(highest, frame) : frame;
+        ++count;
+    }
+    if (count)
+        std::fprintf(stderr,
+                     "note: %s also holds %d OBJ frame(s) this run did not write (frames %d to "
+                     "%d of %s_*.obj, from an earlier run)\n",
+                     out.c_str(), count, lowest, highest, stem.c_str());
+}
+
+}  // namespace
+
 ExportResult runTakeJob(const TakeJob& job, bool quiet) {
     ExportRequest request;
     const auto format = findExportFormat(job.format);
@@ -107,6 +138,10 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet) {
     // Streamed: a take of any length solves in the memory of a short one.
     const C3dFrameReader take(job.c3d);
     const Correspondence map = Correspondence::read(job.map);
+    if (range.end > static_cast<int>(take.frameCount()))
+        std::fprintf(
+            stderr, "note: --frames %s runs past the end of %s (%zu frames): solving %d:%zu\n",
+            job.frames.c_str(), job.c3d.c_str(), take.frameCount(), range.first, take.frameCount());
 
     auto announce = [&](const Calibration& c) {
         if (quiet) return;
@@ -141,6 +176,8 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet) {
         throw TakeJobInterrupted("interrupted after " + std::to_string(result.framesWritten) +
                                  " frames; " + "the frames written and " + exportStem(request) +
                                  ".json are complete");
+    if (request.format == ExportFormat::Obj)
+        warnOfOtherFrames(job.out, exportStem(request), result);
     if (!quiet) {
         namespace fs = std::filesystem;
         const std::string stem = exportStem(request);

@@ -161,6 +161,32 @@ TEST(SolveCommand, AFrameRangeWithTrailingCharactersIsRefused) {
     EXPECT_FALSE(fs::exists(demo / "x" / "walker_0000.obj"));
 }
 
+TEST(SolveCommand, ANegativeFrameIsRefusedAsSuch) {
+    const fs::path demo = makeDemo(3);
+    const CliResult r = runCli(solveArgs(demo, demo / "x") + " --frames -1:2");
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.out.find("not negative"), std::string::npos) << r.out;
+}
+
+TEST(SolveCommand, SaysWhenTheRangeRunsPastTheTakeOrOldFramesStayBeside) {
+    const fs::path demo = makeDemo(6);
+    const fs::path out = demo / "x";
+    CliResult r = runCli(solveArgs(demo, out) + " --quiet --frames 2:100");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("runs past the end"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("solving 2:6"), std::string::npos) << r.out;
+    EXPECT_EQ(sidecar(out)["frame_range"], nlohmann::json::array({2, 6}));
+    // Solving fewer frames into the same folder leaves the earlier run's others: say so.
+    r = runCli(solveArgs(demo, out) + " --quiet --frames 2:4");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("also holds 2 OBJ frame(s) this run did not write (frames 4 to 5"),
+              std::string::npos)
+        << r.out;
+    EXPECT_TRUE(fs::exists(out / "walker_0005.obj"));  // the user's to remove, not ours
+    r = runCli(solveArgs(demo, out) + " --quiet --frames 2:6");
+    EXPECT_EQ(r.out.find("also holds"), std::string::npos) << r.out;
+}
+
 TEST(DemoCommand, DetailRefinesTheSameWalker) {
     const fs::path dir = freshTestDir("demo-detail");
     const CliResult r = runCli("demo --out " + dir.string() + " --frames 2 --detail 2");
