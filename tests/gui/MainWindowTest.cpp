@@ -65,6 +65,18 @@ class MainWindowTest : public QObject {
         QVERIFY2(moved > 0.02 * size, qPrintable(QString("moved %1 of %2").arg(moved).arg(size)));
     }
 
+    void looseFilesOpenedOneByOneStandTheMeshUp() {
+        // The demo's mesh is Z-up; the take and its map say so once both are open, whichever
+        // comes last (a map after the take used to leave the view Y-up, the body on the floor).
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        QVERIFY(window.openFile(folder_ + "/demo/walker.obj"));
+        QVERIFY(window.meshView()->upAxis().isApprox(Eigen::Vector3d::UnitY()));
+        QVERIFY(window.openFile(folder_ + "/demo/walker.c3d"));
+        QVERIFY(window.openFile(folder_ + "/demo/walker.map.json"));
+        QVERIFY(window.meshView()->upAxis().isApprox(Eigen::Vector3d::UnitZ()));
+    }
+
     void scrubbingShowsEachFrame() {
         TimelineWidget* widget = window_->timelineWidget();
         std::map<int, Positions> shown;

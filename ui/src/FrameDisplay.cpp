@@ -34,6 +34,7 @@ FrameDisplay::FrameDisplay(Document* document, FrameSolver* solver, Timeline* ti
     connect(document_, &Document::takeChanged, this, &FrameDisplay::onTakeChanged);
     connect(document_, &Document::correspondenceChanged, this, [this] {
         updateMarkers();
+        updateUpAxis(false);  // a map opened after the take is what first says which way is up
         scheduleProblem();
     });
     connect(document_, &Document::alignmentChanged, this, [this] {

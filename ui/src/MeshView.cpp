@@ -244,6 +244,10 @@ void MeshView::setUpAxis(const Eigen::Vector3d& up) {
     resetCamera();
 }
 
+Eigen::Vector3d MeshView::upAxis() const {
+    return d_->up;
+}
+
 void MeshView::setMarkers(const Positions& markers, const std::vector<MarkerState>& states,
                           const QStringList& labels) {
     d_->scene.setMarkers(markers, states, labels);

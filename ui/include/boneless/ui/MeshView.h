@@ -42,6 +42,7 @@ class MeshView : public QOpenGLWidget {
     void setPositions(const Positions& V);
     const Positions& positions() const;
     void setUpAxis(const Eigen::Vector3d& up);
+    Eigen::Vector3d upAxis() const;
 
     // K by 3 in mesh coordinates, NaN rows = missing; states and labels have K entries.
     void setMarkers(const Positions& markers, const std::vector<MarkerState>& states,
