@@ -1,8 +1,24 @@
+#include <cstdio>
+#include <cstdlib>
 #include <iostream>
+#include <new>
 #include <string>
+#include <system_error>
 
 #include "Commands.h"
 #include "boneless/Error.h"
+
+namespace {
+
+// A failed run exits at once: its files were closed as the error unwound, and under a tight
+// ulimit -v a BLAS thread that could not get its buffer would hold up a normal exit for ever.
+[[noreturn]] void fail(int code, const std::string& message) {
+    std::cerr << "boneless-cli: " << message << std::endl;
+    std::fflush(nullptr);
+    std::_Exit(code);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"boneless-cli: skeleton-free mesh animation from motion-capture markers"};
@@ -27,11 +43,14 @@ int main(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         return app.exit(e);
     } catch (const boneless::Error& e) {
-        std::cerr << "boneless-cli: " << e.what() << "\n";
-        return 1;
+        fail(1, e.what());
+    } catch (const std::bad_alloc&) {
+        fail(3, "out of memory (the machine's, a cgroup's, or ulimit -v)");
+    } catch (const std::system_error& e) {
+        fail(3, std::string("the system refused: ") + e.what() +
+                    " (starting a thread or opening a file; is ulimit -v or -u low?)");
     } catch (const std::exception& e) {
-        std::cerr << "boneless-cli: internal error: " << e.what() << "\n";
-        return 2;
+        fail(2, std::string("internal error: ") + e.what());
     }
     return 0;
 }

@@ -187,6 +187,20 @@ TEST(SolveCommand, SaysWhenTheRangeRunsPastTheTakeOrOldFramesStayBeside) {
     EXPECT_EQ(r.out.find("also holds"), std::string::npos) << r.out;
 }
 
+TEST(SolveCommand, RunningOutOfAddressSpaceEndsWithAMessageNotAHang) {
+    // 120 MB of address space is less than the program and its BLAS threads take. Before, the run
+    // printed "internal error: std::bad_alloc" and then waited for ever on a BLAS thread.
+    const fs::path demo = makeDemo(3);
+    const CliResult r = runShell("ulimit -v 120000; timeout 60 " + std::string(BONELESS_CLI) + " " +
+                                 solveArgs(demo, demo / "x") + " --quiet 2>&1");
+    ASSERT_NE(r.exitCode, 124) << r.out;  // the timeout
+    EXPECT_EQ(r.exitCode, 3) << r.out;
+    EXPECT_TRUE(r.out.find("out of memory") != std::string::npos ||
+                r.out.find("the system refused") != std::string::npos)
+        << r.out;
+    EXPECT_EQ(r.out.find("internal error"), std::string::npos) << r.out;
+}
+
 TEST(DemoCommand, DetailRefinesTheSameWalker) {
     const fs::path dir = freshTestDir("demo-detail");
     const CliResult r = runCli("demo --out " + dir.string() + " --frames 2 --detail 2");
