@@ -40,3 +40,29 @@ TEST(MapSuggestCommand, CompletesAPartialMapAndChecksItAgainstTheTrueOne) {
     for (const auto& m : full["markers"]) suggested += m.value("suggested", false) ? 1 : 0;
     EXPECT_EQ(suggested, total - 6);
 }
+
+TEST(MapSuggestCommand, MistakesNameTheFileAndTheReason) {
+    const fs::path dir = freshTestDir("map-suggest-mistakes");
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frames 5").exitCode, 0);
+    nlohmann::json map;
+    std::ifstream(dir / "walker.map.json") >> map;
+    map["markers"] =
+        nlohmann::json::array({map["markers"][0], map["markers"][1], map["markers"][2]});
+    std::ofstream(dir / "three.json") << map.dump();
+    auto suggest = [&](const std::string& partial) {
+        return runCli("map suggest --mesh " + (dir / "walker.obj").string() + " --c3d " +
+                      (dir / "walker.c3d").string() + " --map " + partial + " --out " +
+                      (dir / "full.json").string());
+    };
+    CliResult r = suggest((dir / "three.json").string());
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("three.json: suggesting correspondences needs at least 4"),
+              std::string::npos)
+        << r.out;
+    r = suggest((dir / "absent.json").string());
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("absent.json: cannot open the correspondence file (No such file"),
+              std::string::npos)
+        << r.out;
+    EXPECT_FALSE(fs::exists(dir / "full.json"));
+}

@@ -1,7 +1,9 @@
 #include "boneless/Correspondence.h"
 
+#include <cerrno>
 #include <climits>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -51,7 +53,9 @@ json withoutKeys(json object, std::initializer_list<const char*> keys) {
 
 Correspondence Correspondence::read(const std::string& path) {
     std::ifstream in(path);
-    if (!in) fail(path, "cannot open the correspondence file");
+    if (!in)
+        fail(path,
+             std::string("cannot open the correspondence file (") + std::strerror(errno) + ")");
     std::stringstream text;
     text << in.rdbuf();
     return fromJson(text.str(), path);

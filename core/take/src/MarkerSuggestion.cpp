@@ -190,10 +190,10 @@ std::string reviewReason(const Draft& d, const std::string& label, const SideChe
 Suggestion suggestMappings(const TriMesh& rest, const C3dTake& take,
                            const Correspondence& partial) {
     if (partial.markers.size() < 4)
-        throw Error(
-            "suggesting correspondences needs at least 4 mapped markers to align the "
-            "take, the map has " +
-            std::to_string(partial.markers.size()));
+        throw Error((partial.source().empty() ? "" : partial.source() + ": ") +
+                    "suggesting correspondences needs at least 4 mapped markers to align the "
+                    "take, the map has " +
+                    std::to_string(partial.markers.size()));
     partial.checkMesh(rest.vertexCount(), "the mesh", &rest);
     const std::vector<std::size_t> mapped = partial.resolve(take);
     const std::set<std::size_t> mappedPoints(mapped.begin(), mapped.end());

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "boneless/C3dTake.h"
@@ -22,10 +23,14 @@ struct Biquad {
 
 Biquad butterworth(double rate, double cutoffHz) {
     const double corrected = cutoffHz / kTwoPassCorrection;
-    if (!(cutoffHz > 0) || !(corrected < 0.5 * rate))
-        throw Error("low-pass cutoff " + std::to_string(cutoffHz) + " Hz must be positive and " +
-                    "below " + std::to_string(0.5 * rate * kTwoPassCorrection) +
-                    " Hz at a frame rate of " + std::to_string(rate) + " Hz");
+    if (!(cutoffHz > 0) || !(corrected < 0.5 * rate)) {
+        char why[160];
+        std::snprintf(why, sizeof why,
+                      "low-pass cutoff %g Hz must be positive and below %.3g Hz at a frame rate "
+                      "of %g Hz",
+                      cutoffHz, 0.5 * rate * kTwoPassCorrection, rate);
+        throw Error(why);
+    }
     const double K = std::tan(kPi * corrected / rate);
     const double norm = 1.0 / (1.0 + std::sqrt(2.0) * K + K * K);
     Biquad f;

@@ -53,6 +53,7 @@ class Correspondence {
     std::vector<std::size_t> resolve(const C3dTake& take) const;
 
     const MarkerMapping* find(const std::string& label) const;
+    const std::string& source() const { return source_; }  // the file read, or "" if none
 
   private:
     std::string extraJson_ = "{}";  // top-level and "mesh" keys this version does not know
