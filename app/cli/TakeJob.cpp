@@ -100,7 +100,8 @@ void warnOfOtherFrames(const std::string& out, const std::string& stem, const Ex
             entry.path().extension() != ".obj")
             continue;
         const std::string digits = name.substr(stem.size() + 1, name.size() - stem.size() - 5);
-        if (digits.find_first_not_of("0123456789") != std::string::npos) continue;
+        if (digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos)
+            continue;
         const int frame = std::stoi(digits);
         if (frame >= r.first && frame < r.first + r.framesWritten) continue;
         lowest = count ? std::min(lowest, frame) : frame;
