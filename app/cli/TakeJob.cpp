@@ -91,28 +91,15 @@ namespace {
 // OBJ frames of an earlier run that this one did not write would play as part of this take in a
 // tool that reads the folder by pattern (Houdini's <stem>_$F4.obj); they are the user's to remove.
 void warnOfOtherFrames(const std::string& out, const std::string& stem, const ExportResult& r) {
-    namespace fs = std::filesystem;
-    int count = 0, lowest = 0, highest = 0;
-    std::error_code ec;
-    for (const auto& entry : fs::directory_iterator(out, ec)) {
-        const std::string name = entry.path().filename().string();
-        if (name.size() < stem.size() + 9 || name.compare(0, stem.size() + 1, stem + "_") != 0 ||
-            entry.path().extension() != ".obj")
-            continue;
-        const std::string digits = name.substr(stem.size() + 1, name.size() - stem.size() - 5);
-        if (digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos)
-            continue;
-        const int frame = std::stoi(digits);
-        if (frame >= r.first && frame < r.first + r.framesWritten) continue;
-        lowest = count ? std::min(lowest, frame) : frame;
-        highest = count ? std::max(highest, frame) : frame;
-        ++count;
-    }
-    if (count)
-        std::fprintf(stderr,
-                     "note: %s also holds %d OBJ frame(s) this run did not write (frames %d to "
-                     "%d of %s_*.obj, from an earlier run)\n",
-                     out.c_str(), count, lowest, highest, stem.c_str());
+    std::vector<int> others;
+    for (int frame : objFramesIn(out, stem))
+        if (frame < r.first || frame >= r.first + r.framesWritten) others.push_back(frame);
+    if (others.empty()) return;
+    const auto [lowest, highest] = std::minmax_element(others.begin(), others.end());
+    std::fprintf(stderr,
+                 "note: %s also holds %zu OBJ frame(s) this run did not write (frames %d to %d "
+                 "of %s_*.obj, from an earlier run)\n",
+                 out.c_str(), others.size(), *lowest, *highest, stem.c_str());
 }
 
 }  // namespace
@@ -185,11 +172,8 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet) {
         std::uintmax_t bytes = 0;
         std::string written;
         if (request.format == ExportFormat::Obj) {
-            for (int f = result.first; f < result.first + result.framesWritten; ++f) {
-                char name[16];
-                std::snprintf(name, sizeof name, "_%04d.obj", f);
-                bytes += fs::file_size(fs::path(job.out) / (stem + name));
-            }
+            for (int f = result.first; f < result.first + result.framesWritten; ++f)
+                bytes += fs::file_size(fs::path(job.out) / objFrameFile(stem, f));
             written = (fs::path(job.out) / (stem + "_*.obj")).string();
         } else {
             written =

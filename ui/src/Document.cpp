@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <nlohmann/json.hpp>
 
 #include "MapEditCommand.h"
@@ -258,15 +257,13 @@ void Document::rebuildMarkers() {
     autoAlignment_.reset();
     markers_.clear();
     if (hasTake_) {
-        // A marker shows by its name without the subject ("LFWT" for "Male:LFWT"), as maps name
-        // it, unless two subjects share that name; the list's narrow column then tells L from R.
-        std::map<std::string, int> names;
-        for (std::size_t p : take_.markerIndices()) ++names[take_.points[p].name];
+        // A marker is named as a map names it: without the subject ("LFWT" for "Male:LFWT") while
+        // that bare name still finds this point, so the list's narrow column tells L from R.
         for (std::size_t p : take_.markerIndices()) {
             const C3dPoint& point = take_.points[p];
-            const bool unique = !point.name.empty() && names[point.name] == 1;
+            const bool bare = !point.name.empty() && take_.findPoint(point.name) == p;
             markers_.push_back(
-                {QString::fromStdString(unique ? point.name : point.label), int(p), -1});
+                {QString::fromStdString(bare ? point.name : point.label), int(p), -1});
         }
     }
     for (int i = 0; i < static_cast<int>(map_.markers.size()); ++i) {

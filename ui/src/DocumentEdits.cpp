@@ -74,14 +74,9 @@ bool Document::assign(int marker, int vertex) {
             withoutSuggested(after.map.markers[mapping].extraJson);
     } else {
         MarkerMapping m;
-        // The bare name ("LFHD" of "actor:LFHD") keeps the map usable for other actors' takes,
-        // as long as it still names this point.
+        // The row's name is already the bare one ("LFHD" of "actor:LFHD") where that still names
+        // this point, which keeps the map usable for other actors' takes.
         m.label = markers_[marker].label.toStdString();
-        if (hasTake_) {
-            const C3dPoint& point = take_.points[markers_[marker].point];
-            if (take_.findPoint(point.name) == std::size_t(markers_[marker].point))
-                m.label = point.name;
-        }
         m.vertex = vertex;
         m.extraJson = "{}";
         after.map.markers.push_back(std::move(m));

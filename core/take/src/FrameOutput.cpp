@@ -7,6 +7,7 @@
 #include "boneless/MddWriter.h"
 #include "boneless/ObjWriter.h"
 #include "boneless/PointCacheWriter.h"
+#include "boneless/TakeExport.h"
 
 namespace boneless {
 
@@ -21,9 +22,7 @@ FrameOutput openFrameOutput(ExportFormat format, const std::string& outDir, cons
     switch (format) {
         case ExportFormat::Obj:
             o.append = [out, stem, &mesh, objComment](int f, const Positions& V) {
-                char name[16];
-                std::snprintf(name, sizeof name, "_%04d.obj", f);
-                writeObj((out / (stem + name)).string(), V, mesh.F,
+                writeObj((out / objFrameFile(stem, f)).string(), V, mesh.F,
                          objComment + " frame " + std::to_string(f));
             };
             o.finish = [] {};

@@ -203,7 +203,7 @@ Suggestion suggestMappings(const TriMesh& rest, const C3dTake& take,
     const SideCheck sides(rest, partial);
     // A proposal sits off the skin as the user's picks do: the distance to a fit is no offset,
     // since a fit from a few picks misses the body between them by centimetres (CMU 85_02: the
-    // median proposal was 35 mm off, and solving with those offsets left 33 mm of residual).
+    // median proposal was 40 mm off, and solving with those offsets left 40 mm of residual).
     std::vector<double> picked;
     for (const auto& m : partial.markers) picked.push_back(m.offsetMm);
     std::nth_element(picked.begin(), picked.begin() + picked.size() / 2, picked.end());

@@ -58,6 +58,29 @@ std::string exportStem(const ExportRequest& request) {
     return fs::path(request.group.empty() ? request.meshPath : request.group).stem().string();
 }
 
+std::string objFrameFile(const std::string& stem, int frame) {
+    char number[16];
+    std::snprintf(number, sizeof number, "_%04d.obj", frame);
+    return stem + number;
+}
+
+std::vector<int> objFramesIn(const std::string& outDir, const std::string& stem) {
+    std::vector<int> frames;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(outDir, ec)) {
+        const std::string name = entry.path().filename().string();
+        if (name.size() < stem.size() + 9 || name.compare(0, stem.size() + 1, stem + "_") != 0 ||
+            entry.path().extension() != ".obj")
+            continue;
+        const std::string digits = name.substr(stem.size() + 1, name.size() - stem.size() - 5);
+        // At least the four digits objFrameFile writes; more than an int holds is no frame.
+        if (digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos)
+            continue;
+        frames.push_back(std::stoi(digits));
+    }
+    return frames;
+}
+
 namespace {
 
 // The sidecar's per-frame figures, written out as they come (a long take's would not fit in

@@ -2,6 +2,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "boneless/C3dTake.h"
 #include "boneless/Correspondence.h"
@@ -44,6 +45,10 @@ using ExportProgress = std::function<bool(int done, int total, const FrameReport
 
 // The file stem outputs are named after: the group if one is given, else the mesh file's stem.
 std::string exportStem(const ExportRequest& request);
+// An OBJ sequence's file for take frame `frame`: "<stem>_0042.obj".
+std::string objFrameFile(const std::string& stem, int frame);
+// The frames of `stem`'s OBJ sequence that `outDir` holds, in no particular order.
+std::vector<int> objFramesIn(const std::string& outDir, const std::string& stem);
 
 // Told the alignment once it is found, before the first frame is solved.
 using ExportCalibrated = std::function<void(const Calibration&)>;
