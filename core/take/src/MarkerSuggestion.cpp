@@ -71,6 +71,29 @@ double fitQuality(const C3dTake& take, const Similarity& s, const std::vector<st
     return nearest[nearest.size() / 2];
 }
 
+// Marker sets are mirrored (LFWT and RFWT), and so are most bodies: on a mirrored rest mesh, an
+// unmapped marker whose partner is picked costs more the farther it lands from the mirror image
+// of the partner's vertex, a metre of asymmetry as much as a metre of distance to its marker over
+// the fits (CMU 85_02, the two pick sets of docs/markers.md: 20 to 21 and 15 to 16 of 35). Pairs
+// that are both unmapped are left to the take: tied together they lost as many as they gained,
+// since actors wear limb markers unevenly and the fit does not know which side is right.
+std::vector<Eigen::VectorXd> withMirror(const TriMesh& rest, const C3dTake& take,
+                                        const Correspondence& known,
+                                        const std::vector<std::size_t>& wanted,
+                                        const MirrorPlane& mirror,
+                                        const std::vector<Eigen::VectorXd>& cost) {
+    std::vector<Eigen::VectorXd> out = cost;
+    if (!mirror.known()) return out;
+    for (std::size_t w = 0; w < wanted.size(); ++w) {
+        const MarkerMapping* m = known.find(SideCheck::partner(markerName(take.points[wanted[w]])));
+        if (!m || !SideCheck::side(m->label)) continue;
+        const Vec3 target = mirror.reflect(rest.V.row(m->vertex).transpose());
+        const Eigen::VectorXd d2 = (rest.V.rowwise() - target.transpose()).rowwise().squaredNorm();
+        out[w] = (cost[w].cwiseAbs2() + d2).cwiseSqrt();
+    }
+    return out;
+}
+
 // One unmapped marker's proposal.
 struct Draft {
     std::size_t point = 0;
@@ -87,8 +110,8 @@ struct Draft {
 // fits (the right vertex stays near its marker however the actor moves, where one fit's nearest
 // may be a neighbour): surest first, so that a vertex two markers want goes to the nearer one.
 std::vector<Draft> draft(const TriMesh& rest, const C3dTake& take, const Correspondence& known,
-                         const std::vector<std::size_t>& wanted, Calibration& calibration,
-                         int& fittedFrame) {
+                         const std::vector<std::size_t>& wanted, const MirrorPlane& mirror,
+                         Calibration& calibration, int& fittedFrame) {
     // The rest is first fitted to the actor at the alignment's frame, as solve does: the limbs
     // between the picks then take the actor's lengths (CMU 85_02, six picks: 17 to 20 of 35).
     TakeSolver solver(rest, take, known, TakeSolveOptions{});
@@ -133,11 +156,12 @@ std::vector<Draft> draft(const TriMesh& rest, const C3dTake& take, const Corresp
                             : Eigen::VectorXd::Constant(rest.vertexCount(),
                                                         std::numeric_limits<double>::infinity()));
     }
+    const std::vector<Eigen::VectorXd> choice = withMirror(rest, take, known, wanted, mirror, cost);
     std::vector<std::size_t> order;
     for (std::size_t w = 0; w < wanted.size(); ++w)
         if (std::isfinite(cost[w].minCoeff())) order.push_back(w);  // never seen: no proposal
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-        return cost[a].minCoeff() < cost[b].minCoeff();
+        return choice[a].minCoeff() < choice[b].minCoeff();
     });
     std::set<int> taken;
     for (const auto& m : known.markers) taken.insert(m.vertex);
@@ -146,7 +170,8 @@ std::vector<Draft> draft(const TriMesh& rest, const C3dTake& take, const Corresp
         Draft d;
         d.point = wanted[w];
         for (int v = 0; v < rest.vertexCount(); ++v)
-            if (!taken.count(v) && (d.vertex < 0 || cost[w][v] < cost[w][d.vertex])) d.vertex = v;
+            if (!taken.count(v) && (d.vertex < 0 || choice[w][v] < choice[w][d.vertex]))
+                d.vertex = v;
         if (d.vertex < 0) break;
         taken.insert(d.vertex);
         d.cost = cost[w][d.vertex] / unitsPerMm;
@@ -211,7 +236,9 @@ Suggestion suggestMappings(const TriMesh& rest, const C3dTake& take,
 
     Suggestion out;
     out.map = partial;
-    for (const Draft& d : draft(rest, take, partial, wanted, out.calibration, out.fittedFrame)) {
+    const MirrorPlane mirror(rest, sides);
+    for (const Draft& d :
+         draft(rest, take, partial, wanted, mirror, out.calibration, out.fittedFrame)) {
         Proposal p;
         p.label = markerName(take.points[d.point]);
         p.vertex = d.vertex;

@@ -26,6 +26,24 @@ class SideCheck {
     Vec3 left_ = Vec3::Zero();  // unit, from the mid-plane towards the left
     double mid_ = 0;            // the mid-plane's offset along left_
     double margin_ = 0;         // mesh units
+
+    friend class MirrorPlane;
+};
+
+// The rest mesh's plane of left-right symmetry, when it has one: started from the picks' pairs
+// (as SideCheck) and fitted to the mesh, so that a marker's partner can be looked for at the
+// mirror image of its vertex. A mesh whose reflection does not land on itself (a scan in an
+// uneven pose) has none.
+class MirrorPlane {
+  public:
+    MirrorPlane(const TriMesh& rest, const SideCheck& sides);
+    bool known() const { return known_; }
+    Vec3 reflect(const Vec3& p) const { return p - 2 * (normal_.dot(p) - offset_) * normal_; }
+
+  private:
+    bool known_ = false;
+    Vec3 normal_ = Vec3::Zero();
+    double offset_ = 0;
 };
 
 }  // namespace boneless
