@@ -3,6 +3,7 @@
 // pull the mesh anywhere.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -32,35 +33,44 @@ bool haveData(const fs::path& take) {
     return fs::exists(makeHuman) && fs::exists(take);
 }
 
-// What Blender's OBJ importer relies on: `v x y z` lines, then `f a b c` lines with 1-based
-// indices in range; and what a cache needs: the input's vertex count and the same faces.
+// What Blender's OBJ importer relies on: `v x y z` and `vt u v` lines, then `f` lines whose
+// 1-based `v/vt` references are in range; and what a cache needs: the input's vertex count, and
+// its own polygons (MakeHuman's quads) with their texture coordinates.
 void expectImportableObj(const fs::path& file, const TriMesh& rest) {
+    ASSERT_NE(rest.sourceFaces, nullptr);
+    const SourceFaces& input = *rest.sourceFaces;
     std::ifstream in(file);
     std::string line;
-    int vertices = 0, faces = 0;
+    int vertices = 0, uvs = 0, polygons = 0;
     bool faceMismatch = false;
     while (std::getline(in, line)) {
         std::istringstream s(line);
         std::string tag;
         s >> tag;
-        if (tag == "v") {
-            double x, y, z;
-            ASSERT_TRUE(static_cast<bool>(s >> x >> y >> z)) << file << ": " << line;
+        if (tag == "v" || tag == "vt") {
+            double x = 0, y = 0, z = 0;
+            ASSERT_TRUE(static_cast<bool>(tag == "v" ? s >> x >> y >> z : s >> x >> y))
+                << file << ": " << line;
             ASSERT_TRUE(std::isfinite(x) && std::isfinite(y) && std::isfinite(z)) << line;
-            ++vertices;
+            ++(tag == "v" ? vertices : uvs);
         } else if (tag == "f") {
-            int a, b, c;
-            ASSERT_TRUE(static_cast<bool>(s >> a >> b >> c)) << file << ": " << line;
-            ASSERT_LT(faces, rest.faceCount());
-            faceMismatch |=
-                a - 1 != rest.F(faces, 0) || b - 1 != rest.F(faces, 1) || c - 1 != rest.F(faces, 2);
-            ++faces;
+            ASSERT_LT(polygons, input.polygonCount());
+            int c = input.start[polygons];
+            for (std::string corner; s >> corner; ++c) {
+                int v = 0, t = 0;
+                ASSERT_EQ(std::sscanf(corner.c_str(), "%d/%d", &v, &t), 2) << file << ": " << line;
+                ASSERT_TRUE(v >= 1 && v <= vertices && t >= 1 && t <= uvs) << line;
+                faceMismatch |= c >= input.start[polygons + 1] || v - 1 != input.corners[c];
+            }
+            faceMismatch |= c != input.start[polygons + 1];
+            ++polygons;
         } else {
             ASSERT_TRUE(tag.empty() || tag[0] == '#') << file << ": unexpected line " << line;
         }
     }
     EXPECT_EQ(vertices, rest.vertexCount()) << file;
-    EXPECT_EQ(faces, rest.faceCount()) << file;
+    EXPECT_EQ(uvs, static_cast<int>(input.uv.size() / 2)) << file;
+    EXPECT_EQ(polygons, input.polygonCount()) << file;
     EXPECT_FALSE(faceMismatch) << file << ": faces differ from the input group's";
 }
 

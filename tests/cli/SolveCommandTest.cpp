@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "CliRunner.h"
 #include "boneless/MeshReader.h"
@@ -117,6 +118,47 @@ TEST(SolveCommand, ObjAndPointCacheHoldTheSamePositions) {
     }
     EXPECT_FALSE(fs::exists(demo / "obj" / "walker_0001.obj"));
     EXPECT_FALSE(fs::exists(demo / "obj" / "walker_0006.obj"));
+}
+
+TEST(SolveCommand, ObjFramesKeepTheInputsTextureCoordinatesAndMaterials) {
+    const fs::path demo = makeDemo(3);
+    // The demo walker as an artist's file: a texture coordinate per corner and a material.
+    std::ifstream in(demo / "walker.obj");
+    std::string text = "mtllib walker.mtl\n", line, faces = "usemtl skin\n";
+    int corners = 0;
+    while (std::getline(in, line)) {
+        if (line.rfind("f ", 0) != 0) {
+            text += line + "\n";
+            continue;
+        }
+        std::istringstream corner(line.substr(2));
+        faces += "f";
+        for (std::string v; corner >> v;) {
+            text += "vt " + std::to_string(++corners % 97 / 97.0) + " 0.5\n";
+            faces += " " + v + "/" + std::to_string(corners);
+        }
+        faces += "\n";
+    }
+    std::ofstream(demo / "walker.obj") << text << faces;
+    std::ofstream(demo / "walker.mtl") << "newmtl skin\nKd 0.8 0.6 0.5\n";
+    const TriMesh input = readMesh((demo / "walker.obj").string()).mesh;
+    ASSERT_NE(input.sourceFaces, nullptr);
+
+    const fs::path out = demo / "solved";
+    const CliResult r =
+        runCli(solveArgs(demo, out) + " --quiet --frames 1:2 --write-calibrated-rest");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    for (const char* name : {"walker_0001.obj", "walker_calibrated_rest.obj"}) {
+        const TriMesh frame = readMesh((out / name).string()).mesh;
+        ASSERT_NE(frame.sourceFaces, nullptr) << name;
+        EXPECT_EQ(frame.sourceFaces->corners, input.sourceFaces->corners) << name;
+        EXPECT_EQ(frame.sourceFaces->uvOf, input.sourceFaces->uvOf) << name;
+        EXPECT_EQ(frame.sourceFaces->uv, input.sourceFaces->uv) << name;
+        EXPECT_EQ(frame.sourceFaces->materials, input.sourceFaces->materials) << name;
+        ASSERT_EQ(frame.sourceFaces->materialLibraries.size(), 1u);  // ../walker.mtl, found
+        EXPECT_EQ(fs::path(frame.sourceFaces->materialLibraries[0]),
+                  fs::absolute(demo / "walker.mtl"));
+    }
 }
 
 TEST(SolveCommand, CtrlCStopsCleanlyWithCompleteFilesOnly) {

@@ -1,6 +1,7 @@
 #include "boneless/MeshReader.h"
 
 #include <cmath>
+#include <filesystem>
 
 #include "OpenMeshPrecheck.h"
 #include "PolygonSoup.h"
@@ -69,6 +70,49 @@ void addWarnings(MeshReadResult& r, const PolygonSoup& soup, const std::vector<i
     if (r.zeroAreaFaces > 0)
         w.push_back(plural(r.zeroAreaFaces, "zero-area triangle") + ", from " +
                     faceList(soup, zeroArea));
+}
+
+// The kept faces as the file has them, with their texture coordinates (only those they use) and
+// materials, when that is more than the triangles say; null otherwise.
+std::shared_ptr<const SourceFaces> sourceFaces(const std::string& path, const PolygonSoup& soup,
+                                               const std::vector<int>& kept,
+                                               const std::vector<int>& meshIndex) {
+    const bool uvs = !soup.faceUv.empty() && !soup.uv.empty();
+    bool polygons = false, anyUv = false, anyMaterial = false;
+    for (int f : kept) {
+        polygons |= soup.faceStart[f + 1] - soup.faceStart[f] > 3;
+        anyMaterial |= !soup.faceMaterial.empty() && soup.faceMaterial[f] >= 0;
+        if (uvs)
+            for (int c = soup.faceStart[f]; c < soup.faceStart[f + 1]; ++c)
+                anyUv |= soup.faceUv[c] >= 0;
+    }
+    if (!polygons && !anyUv && !anyMaterial) return nullptr;
+    auto out = std::make_shared<SourceFaces>();
+    std::vector<int> uvIndex(soup.uv.size() / 2, -1);
+    for (int f : kept) {
+        if (anyMaterial && soup.faceMaterial[f] >= 0) {
+            const std::string& name = soup.materials[soup.faceMaterial[f]];
+            if (out->materials.empty() || out->materials.back().second != name)
+                out->materials.push_back({out->polygonCount(), name});
+        }
+        for (int c = soup.faceStart[f]; c < soup.faceStart[f + 1]; ++c) {
+            out->corners.push_back(meshIndex[soup.faceIndex[c]]);
+            if (!anyUv) continue;
+            const int t = soup.faceUv[c];
+            if (t >= 0 && uvIndex[t] < 0) {
+                uvIndex[t] = static_cast<int>(out->uv.size() / 2);
+                out->uv.insert(out->uv.end(), {soup.uv[2 * t], soup.uv[2 * t + 1]});
+            }
+            out->uvOf.push_back(t >= 0 ? uvIndex[t] : -1);
+        }
+        out->start.push_back(static_cast<int>(out->corners.size()));
+    }
+    if (anyMaterial) {
+        const std::filesystem::path folder = std::filesystem::absolute(path).parent_path();
+        for (const std::string& lib : soup.materialLibraries)
+            out->materialLibraries.push_back((folder / lib).lexically_normal().string());
+    }
+    return out;
 }
 
 }  // namespace
@@ -152,6 +196,7 @@ MeshReadResult readMesh(const std::string& path, const MeshReadOptions& options)
     }
 
     addWarnings(r, soup, dropped, zeroArea, topo);
+    r.mesh.sourceFaces = sourceFaces(path, soup, kept, meshIndex);
     return r;
 }
 

@@ -116,6 +116,14 @@ class ObjParser {
             if (key == "v") {
                 if (!namesOnly) vertex(rest);
                 ++vertexCount_;
+            } else if (key == "vt") {
+                if (!namesOnly) textureCoordinate(rest);
+                ++uvCount_;
+            } else if (key == "usemtl") {
+                material_ = useMaterial(rest);
+            } else if (key == "mtllib") {
+                for (auto t = nextToken(rest); !t.empty(); t = nextToken(rest))
+                    soup_.materialLibraries.emplace_back(t);
             } else if (key == "f") {
                 if (namesOnly)
                     countGroupFace(rest);
@@ -136,6 +144,13 @@ class ObjParser {
             } else if (!key.empty() && !isKnownIgnored(key)) {
                 ++unknown_[std::string(key)];
             }
+        }
+        if (uvBroken_) {
+            soup_.uv.clear();
+            soup_.faceUv.clear();
+            soup_.warnings.push_back(
+                "texture coordinates ignored: a \"vt\" line or a face's reference to one is "
+                "unusable");
         }
         for (const auto& [key, count] : unknown_)
             soup_.warnings.push_back("ignored " + std::to_string(count) +
@@ -161,8 +176,8 @@ class ObjParser {
 
   private:
     static bool isKnownIgnored(std::string_view key) {
-        return key[0] == '#' || key == "vt" || key == "vn" || key == "vp" || key == "s" ||
-               key == "usemtl" || key == "mtllib" || key == "l" || key == "p";
+        return key[0] == '#' || key == "vn" || key == "vp" || key == "s" || key == "l" ||
+               key == "p";
     }
 
     [[noreturn]] void fail(const std::string& what) const {
@@ -181,15 +196,48 @@ class ObjParser {
         soup_.vertexLine.push_back(line_);
     }
 
+    // "u v [w]": u and v are kept; one that does not parse keeps no texture coordinates at all
+    // (they are only carried to the output, so a bad one must not stop a solve).
+    void textureCoordinate(std::string_view rest) {
+        for (int k = 0; k < 2; ++k) {
+            double value = 0;
+            if (!parseDouble(nextToken(rest), value)) uvBroken_ = true;
+            soup_.uv.push_back(value);
+        }
+    }
+
+    int useMaterial(std::string_view rest) {
+        const std::string name(nextToken(rest));
+        if (name.empty()) return -1;
+        const auto it = std::find(soup_.materials.begin(), soup_.materials.end(), name);
+        if (it != soup_.materials.end()) return static_cast<int>(it - soup_.materials.begin());
+        soup_.materials.push_back(name);
+        return static_cast<int>(soup_.materials.size()) - 1;
+    }
+
+    // The "vt" index after the first '/' of "7/1", "7/1/3" (-1 for "7" and "7//3"), resolved
+    // like a position; an unusable one drops the file's texture coordinates.
+    int uvReference(const char* from, const char* end) {
+        if (from == end || *from != '/' || from + 1 == end || from[1] == '/') return -1;
+        int index = 0;
+        const auto [stop, ec] = std::from_chars(from + 1, end, index);
+        const int resolved = index > 0 ? index - 1 : uvCount_ + index;
+        if (ec != std::errc() || (stop != end && *stop != '/') || index == 0 || resolved < 0 ||
+            resolved >= uvCount_)
+            uvBroken_ = true;
+        return resolved;
+    }
+
     void face(std::string_view rest) {
         const size_t first = soup_.faceIndex.size();
         for (auto t = nextToken(rest); !t.empty(); t = nextToken(rest)) {
-            // Only the position index matters: "7", "7/1", "7//3", "7/1/3".
+            // The position index, then the texture coordinate's: "7", "7/1", "7//3", "7/1/3".
             int index = 0;
             const char* end = t.data() + t.size();
             const auto [stop, ec] = std::from_chars(t.data(), end, index);
             if (ec != std::errc() || (stop != end && *stop != '/'))
                 fail("invalid vertex reference '" + std::string(t) + "'");
+            soup_.faceUv.push_back(uvReference(stop, end));
             if (index == 0) fail("vertex index 0 (OBJ indices start at 1)");
             // Relative indices count back from the vertices read so far.
             const int resolved = index > 0 ? index - 1 : vertexCount_ + index;
@@ -201,6 +249,7 @@ class ObjParser {
             fail("face with " + std::to_string(soup_.faceIndex.size() - first) +
                  " corner(s); a face needs at least 3");
         soup_.endFace();
+        soup_.faceMaterial.push_back(material_);
         soup_.faceLine.push_back(line_);
         if (!group_.empty()) soup_.fileFace.push_back(fileFaces_);
     }
@@ -243,6 +292,9 @@ class ObjParser {
     PolygonSoup soup_;
     int line_ = 0;
     int vertexCount_ = 0;
+    int uvCount_ = 0;
+    bool uvBroken_ = false;
+    int material_ = -1;
     int fileFaces_ = 0;
     bool selected_ = group_.empty();
     std::vector<std::string> currentG_, names_;

@@ -1,6 +1,7 @@
 #include "boneless/ObjWriter.h"
 
 #include <unistd.h>
+#include <algorithm>
 #include <charconv>
 #include <cstdio>
 #include <filesystem>
@@ -31,30 +32,73 @@ void writeFileAtomically(const std::string& path, const std::string& contents) {
     }
 }
 
+namespace {
+
+// Shortest representation that reads back to the same double.
+void appendNumber(std::string& text, double value) {
+    char buffer[32];
+    auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
+    text.append(buffer, end);
+}
+
+void appendPolygons(std::string& text, const SourceFaces& source, const std::string& path) {
+    const std::filesystem::path folder = std::filesystem::absolute(path).parent_path();
+    for (const std::string& lib : source.materialLibraries) {
+        const std::filesystem::path relative =
+            std::filesystem::path(lib).lexically_relative(folder);
+        text += "mtllib " + (relative.empty() ? lib : relative.string()) + "\n";
+    }
+    for (size_t t = 0; t < source.uv.size(); t += 2) {
+        text += "vt ";
+        appendNumber(text, source.uv[t]);
+        text += ' ';
+        appendNumber(text, source.uv[t + 1]);
+        text += '\n';
+    }
+    size_t material = 0;
+    for (int p = 0; p < source.polygonCount(); ++p) {
+        if (material < source.materials.size() && source.materials[material].first == p)
+            text += "usemtl " + source.materials[material++].second + "\n";
+        text += 'f';
+        for (int c = source.start[p]; c < source.start[p + 1]; ++c) {
+            text += ' ';
+            text += std::to_string(source.corners[c] + 1);
+            if (!source.uvOf.empty() && source.uvOf[c] >= 0)
+                text += '/' + std::to_string(source.uvOf[c] + 1);
+        }
+        text += '\n';
+    }
+}
+
+}  // namespace
+
 void writeObj(const std::string& path, const Positions& positions, const Faces& faces,
-              const std::string& comment) {
+              const std::string& comment, const SourceFaces* source) {
     std::string text;
     text.reserve(static_cast<size_t>(positions.rows()) * 60 +
                  static_cast<size_t>(faces.rows()) * 24);
     if (!comment.empty()) text += "# " + comment + "\n";
-    char buffer[32];
     for (int v = 0; v < positions.rows(); ++v) {
         text += 'v';
         for (int c = 0; c < 3; ++c) {
             text += ' ';
-            // Shortest representation that reads back to the same double.
-            auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, positions(v, c));
-            text.append(buffer, end);
+            appendNumber(text, positions(v, c));
         }
         text += '\n';
     }
-    for (int f = 0; f < faces.rows(); ++f) {
-        text += 'f';
-        for (int c = 0; c < 3; ++c) {
-            text += ' ';
-            text += std::to_string(faces(f, c) + 1);
+    // A source from another mesh (more vertices) would write faces that point past the end.
+    if (source && std::all_of(source->corners.begin(), source->corners.end(),
+                              [&](int c) { return c < positions.rows(); })) {
+        appendPolygons(text, *source, path);
+    } else {
+        for (int f = 0; f < faces.rows(); ++f) {
+            text += 'f';
+            for (int c = 0; c < 3; ++c) {
+                text += ' ';
+                text += std::to_string(faces(f, c) + 1);
+            }
+            text += '\n';
         }
-        text += '\n';
     }
     writeFileAtomically(path, text);
 }

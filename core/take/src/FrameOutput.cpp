@@ -23,7 +23,7 @@ FrameOutput openFrameOutput(ExportFormat format, const std::string& outDir, cons
         case ExportFormat::Obj:
             o.append = [out, stem, &mesh, objComment](int f, const Positions& V) {
                 writeObj((out / objFrameFile(stem, f)).string(), V, mesh.F,
-                         objComment + " frame " + std::to_string(f));
+                         objComment + " frame " + std::to_string(f), mesh.sourceFaces.get());
             };
             o.finish = [] {};
             break;

@@ -339,7 +339,8 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
         restFile = stem + "_calibrated_rest.obj";
         writeObj((out / restFile).string(), solver.rest().V, mesh.F,
                  "Boneless: " + request.meshPath + " fitted to " + request.c3dPath + " at frame " +
-                     std::to_string(solver.calibration().frame));
+                     std::to_string(solver.calibration().frame),
+                 mesh.sourceFaces.get());
     }
     if (calibrated) calibrated(solver.calibration());
     result.first = request.first;

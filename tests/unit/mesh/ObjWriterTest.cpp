@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <random>
 
 #include "TestMeshes.h"
@@ -34,4 +35,97 @@ TEST(ObjWriter, NamesTheFileItCannotWrite) {
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("/nonexistent-folder/x.obj"), std::string::npos);
     }
+}
+
+namespace {
+
+// A unit cube as modellers write it: six quads, four texture coordinates each, two materials.
+std::string cubeObj() {
+    std::string s = "mtllib looks/cube.mtl\n";
+    for (int v = 0; v < 8; ++v)
+        s += "v " + std::to_string(v & 1) + " " + std::to_string((v >> 1) & 1) + " " +
+             std::to_string((v >> 2) & 1) + "\n";
+    for (int t = 0; t < 24; ++t)
+        s += "vt " + std::to_string(0.25 * (t % 4)) + " " + std::to_string(t / 4 / 8.0) + "\n";
+    const int quads[6][4] = {{1, 3, 4, 2}, {5, 6, 8, 7}, {1, 2, 6, 5},
+                             {3, 7, 8, 4}, {1, 5, 7, 3}, {2, 4, 8, 6}};
+    for (int f = 0; f < 6; ++f) {
+        if (f == 0) s += "usemtl red\n";
+        if (f == 3) s += "usemtl blue\n";
+        s += "f";
+        for (int c = 0; c < 4; ++c)
+            s += " " + std::to_string(quads[f][c]) + "/" + std::to_string(4 * f + c + 1);
+        s += "\n";
+    }
+    return s;
+}
+
+}  // namespace
+
+TEST(ObjWriter, KeepsTheInputsQuadsTextureCoordinatesAndMaterials) {
+    const fs::path dir = freshTestDir("obj-writer-quads");
+    std::ofstream(dir / "cube.obj") << cubeObj();
+    const TriMesh cube = readMesh((dir / "cube.obj").string()).mesh;
+    ASSERT_NE(cube.sourceFaces, nullptr);
+    const SourceFaces& in = *cube.sourceFaces;
+    EXPECT_EQ(cube.faceCount(), 12);  // what the solver sees
+    EXPECT_EQ(in.polygonCount(), 6);
+    EXPECT_EQ(in.uv.size(), 48u);
+    EXPECT_EQ(in.materials, (std::vector<std::pair<int, std::string>>{{0, "red"}, {3, "blue"}}));
+    ASSERT_EQ(in.materialLibraries.size(), 1u);
+    EXPECT_EQ(fs::path(in.materialLibraries[0]), fs::absolute(dir / "looks" / "cube.mtl"));
+
+    // A posed frame in another folder: the same polygons, corners, UVs and materials.
+    fs::create_directories(dir / "frames");
+    const Positions posed = 2.0 * cube.V;
+    writeObj((dir / "frames" / "cube_0001.obj").string(), posed, cube.F, "frame", &in);
+    const TriMesh back = readMesh((dir / "frames" / "cube_0001.obj").string()).mesh;
+    EXPECT_EQ(back.V, posed);
+    EXPECT_EQ(back.F, cube.F);
+    ASSERT_NE(back.sourceFaces, nullptr);
+    EXPECT_EQ(back.sourceFaces->start, in.start);
+    EXPECT_EQ(back.sourceFaces->corners, in.corners);
+    EXPECT_EQ(back.sourceFaces->uvOf, in.uvOf);
+    EXPECT_EQ(back.sourceFaces->uv, in.uv);
+    EXPECT_EQ(back.sourceFaces->materials, in.materials);
+    EXPECT_EQ(back.sourceFaces->materialLibraries, in.materialLibraries);  // ../looks/cube.mtl
+}
+
+TEST(ObjWriter, AGroupKeepsItsOwnPolygonsAndTextureCoordinates) {
+    const fs::path dir = freshTestDir("obj-writer-group");
+    // Group "lid" is the cube's second quad alone, on the file's vertices 5 to 8.
+    std::string s = cubeObj();
+    s.insert(s.find("f 5/"), "g lid\n");
+    s.insert(s.find("f 1/9"), "g box\n");
+    std::ofstream(dir / "cube.obj") << s;
+    MeshReadOptions options;
+    options.group = "lid";
+    const TriMesh lid = readMesh((dir / "cube.obj").string(), options).mesh;
+    ASSERT_NE(lid.sourceFaces, nullptr);
+    EXPECT_EQ(lid.vertexCount(), 4);
+    EXPECT_EQ(lid.sourceFaces->polygonCount(), 1);
+    EXPECT_EQ(lid.sourceFaces->corners, (std::vector<int>{0, 1, 3, 2}));
+    EXPECT_EQ(lid.sourceFaces->uv,
+              (std::vector<double>{0, 0.125, 0.25, 0.125, 0.5, 0.125, 0.75, 0.125}));
+}
+
+TEST(ObjWriter, AnUnusableTextureCoordinateIsDroppedWithAWarningAndTheMeshStillReads) {
+    const fs::path dir = freshTestDir("obj-writer-bad-vt");
+    std::string s = cubeObj();
+    s.replace(s.rfind("/24"), 3, "/99");
+    std::ofstream(dir / "cube.obj") << s;
+    const MeshReadResult r = readMesh((dir / "cube.obj").string());
+    ASSERT_NE(r.mesh.sourceFaces, nullptr);  // still quads
+    EXPECT_TRUE(r.mesh.sourceFaces->uv.empty());
+    EXPECT_TRUE(r.mesh.sourceFaces->uvOf.empty());
+    bool warned = false;
+    for (const std::string& w : r.warnings) warned |= w.find("texture coordinates") != w.npos;
+    EXPECT_TRUE(warned);
+}
+
+TEST(ObjWriter, ATriangleMeshWithoutTextureCoordinatesNeedsNoSourceFaces) {
+    const fs::path dir = freshTestDir("obj-writer-plain");
+    const TriMesh sphere = icosphere(1);
+    writeObj((dir / "sphere.obj").string(), sphere.V, sphere.F);
+    EXPECT_EQ(readMesh((dir / "sphere.obj").string()).mesh.sourceFaces, nullptr);
 }

@@ -2,6 +2,9 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>  // cross products everywhere
+#include <memory>
+#include <string>
+#include <vector>
 
 namespace boneless {
 
@@ -10,11 +13,27 @@ using Mat3 = Eigen::Matrix3d;
 using Positions = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;  // #V by 3
 using Faces = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;         // #F by 3
 
+// The input file's own faces, for writers that give them back (OBJ frames): its polygons, their
+// texture coordinates and materials, where the solver sees only triangles.
+struct SourceFaces {
+    std::vector<int> start{0};  // polygon p's corners are corners[start[p] .. start[p + 1])
+    std::vector<int> corners;   // mesh vertex indices
+    std::vector<int> uvOf;      // per corner, an index into uv or -1; empty when the file has none
+    std::vector<double> uv;     // 2 per texture coordinate (OBJ "vt"), those the polygons use
+    std::vector<std::string> materialLibraries;          // absolute paths (OBJ "mtllib")
+    std::vector<std::pair<int, std::string>> materials;  // (first polygon, OBJ "usemtl" name)
+
+    int polygonCount() const { return static_cast<int>(start.size()) - 1; }
+};
+
 // A triangle mesh as the rest of the core sees it: plain arrays, vertex i is the input file's
 // vertex i, faces oriented as in the file.
 struct TriMesh {
     Positions V;
     Faces F;
+    // The file's polygons and texture coordinates when they are more than F (quads, UVs,
+    // materials); shared, since a posed copy of the mesh has the same ones.
+    std::shared_ptr<const SourceFaces> sourceFaces;
 
     int vertexCount() const { return static_cast<int>(V.rows()); }
     int faceCount() const { return static_cast<int>(F.rows()); }
