@@ -24,10 +24,10 @@ void checkInBlender(const std::string& format) {
     const fs::path dir = freshTestDir("blender-" + format);
     ASSERT_EQ(runCli("demo --out " + dir.string() + " --frames 12").exitCode, 0);
     auto solve = [&](const std::string& f) {
-        const CliResult r = runCli(
-            "solve --quiet --frames 2:12 --format " + f + " --mesh " +
-            (dir / "walker.obj").string() + " --c3d " + (dir / "walker.c3d").string() +
-            " --map " + (dir / "walker.map.json").string() + " --out " + (dir / f).string());
+        const CliResult r =
+            runCli("solve --quiet --frames 2:12 --format " + f + " --mesh " +
+                   (dir / "walker.obj").string() + " --c3d " + (dir / "walker.c3d").string() +
+                   " --map " + (dir / "walker.map.json").string() + " --out " + (dir / f).string());
         ASSERT_EQ(r.exitCode, 0) << r.out;
     };
     solve("obj");
@@ -62,4 +62,28 @@ TEST(BlenderReads, TheMddCacheThroughItsMeshCacheModifier) {
 
 TEST(BlenderReads, TheGlbAnimationThroughItsGltfImporter) {
     checkInBlender("glb");
+}
+
+// MakeHuman's body as an artist's file: its OBJ frames come into Blender as the input's quads,
+// with their texture coordinates, on the input's vertices. Skipped without the shared data.
+TEST(BlenderReads, ObjFramesAsTheInputsQuadsWithTheirUvs) {
+    if (!haveBlender()) GTEST_SKIP() << "blender is not installed (scripts/install-deps.sh)";
+    const fs::path data = BONELESS_SHARED_DATA;
+    const fs::path mesh = data / "meshes" / "makehuman" / "makehuman_base.obj";
+    const fs::path take = data / "c3d" / "cmu" / "85_02.c3d";
+    if (!fs::exists(mesh) || !fs::exists(take)) GTEST_SKIP() << "no shared data (" << data << ")";
+    const fs::path out = freshTestDir("blender-quads");
+    const CliResult solved = runCli("solve --quiet --frames 300:301 --mesh " + mesh.string() +
+                                    " --group body --c3d " + take.string() +
+                                    " --map " BONELESS_SOURCE_DIR
+                                    "/tests/data/cmu-85_02-makehuman-body.map.json --out " +
+                                    out.string());
+    ASSERT_EQ(solved.exitCode, 0) << solved.out;
+    const CliResult r = runShell("blender -b --factory-startup --python " BONELESS_SOURCE_DIR
+                                 "/tests/blender/read_obj_faces.py -- " +
+                                 (out / "body_0300.obj").string() + " 2>&1");
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("faces: 13380 vertices, 13378 polygons, 13378 quads, 1 uv layers"),
+              std::string::npos)
+        << r.out;
 }
