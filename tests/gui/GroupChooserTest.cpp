@@ -7,6 +7,7 @@
 
 #include "ModelTestFixtures.h"
 #include "boneless/ui/Document.h"
+#include "boneless/Correspondence.h"
 #include "boneless/ui/GroupChooser.h"
 #include "boneless/ui/MainWindow.h"
 
@@ -66,6 +67,17 @@ class GroupChooserTest : public QObject {
             QVERIFY(d.loadMesh(path_, QString::fromStdString(g.name)));
             QCOMPARE(d.mesh().vertexCount(), g.vertices);
         }
+    }
+
+    // So that a solve of the whole file can say which group the map needs.
+    void aSavedMapNamesTheGroupItWasMadeOn() {
+        Document d;
+        QVERIFY(d.loadMesh(path_, "body"));
+        const QString map = test::freshFolder("GroupChooserTest-map") + "/body.map.json";
+        QVERIFY(d.saveCorrespondence(map));
+        const Correspondence back = Correspondence::read(map.toStdString());
+        QCOMPARE(QString::fromStdString(back.meshGroup), QString("body"));
+        QCOMPARE(back.meshVertices, 14);
     }
 
     // Files given on the command line or dropped go through openFile, as File → Open Mesh does.

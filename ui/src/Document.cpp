@@ -40,6 +40,7 @@ Correspondence Document::emptyMap() const {
     Correspondence map;
     if (hasMesh_) {
         map.meshFile = std8(QFileInfo(meshPath_).fileName());
+        map.meshGroup = std8(meshGroup_);
         map.meshVertices = mesh_.vertexCount();
     }
     return map;
@@ -161,6 +162,7 @@ bool Document::saveCorrespondence(const QString& path) {
     Correspondence map = map_;
     if (hasMesh_) {
         map.meshFile = std8(QFileInfo(meshPath_).fileName());
+        map.meshGroup = std8(meshGroup_);
         map.meshVertices = mesh_.vertexCount();
     }
     try {

@@ -47,8 +47,10 @@ void Document::applyMapState(const MapState& state) {
 void Document::pushMapEdit(const QString& text, MapState after) {
     if (hasMesh_) {
         after.map.meshVertices = mesh_.vertexCount();
-        if (after.map.meshFile.empty())
+        if (after.map.meshFile.empty()) {
             after.map.meshFile = QFileInfo(meshPath_).fileName().toStdString();
+            after.map.meshGroup = meshGroup_.toStdString();
+        }
     }
     undoStack_->push(new MapEditCommand(this, text, mapState(), std::move(after)));
 }

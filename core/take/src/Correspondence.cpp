@@ -82,6 +82,7 @@ Correspondence Correspondence::fromJson(const std::string& text, const std::stri
     if (!mesh.is_object()) fail(path, "\"mesh\" must be an object");
     c.meshFile = mesh.contains("file") ? get<std::string>(mesh, "file", path, "\"mesh\"") : "";
     c.meshVertices = mesh.contains("vertices") ? get<int>(mesh, "vertices", path, "\"mesh\"") : 0;
+    c.meshGroup = mesh.contains("group") ? get<std::string>(mesh, "group", path, "\"mesh\"") : "";
     if (!doc.contains("markers") || !doc["markers"].is_array())
         fail(path, "has no \"markers\" list");
     std::set<std::string> labels;
@@ -122,7 +123,8 @@ Correspondence Correspondence::fromJson(const std::string& text, const std::stri
         c.markers.push_back(std::move(mapping));
     }
     json extra = withoutKeys(doc, {"format", "version", "markers"});
-    if (extra.contains("mesh")) extra["mesh"] = withoutKeys(extra["mesh"], {"file", "vertices"});
+    if (extra.contains("mesh"))
+        extra["mesh"] = withoutKeys(extra["mesh"], {"file", "group", "vertices"});
     c.extraJson_ = extra.dump();
     return c;
 }
@@ -135,6 +137,7 @@ std::string Correspondence::toJson() const {
     doc["version"] = facePoints ? 2 : 1;
     json mesh = doc.contains("mesh") ? doc["mesh"] : json::object();
     mesh["file"] = meshFile;
+    if (!meshGroup.empty()) mesh["group"] = meshGroup;
     mesh["vertices"] = meshVertices;
     doc["mesh"] = mesh;
     json list = json::array();
@@ -160,9 +163,12 @@ void Correspondence::write(const std::string& path) const {
 void Correspondence::checkMesh(int vertexCount, const std::string& meshPath,
                                const TriMesh* mesh) const {
     const std::string file = source_.empty() ? "correspondence" : source_;
+    // A whole OBJ read where the map was made on one of its groups is the likely slip.
     if (meshVertices != 0 && meshVertices != vertexCount)
-        fail(file, "was made for a mesh of " + std::to_string(meshVertices) + " vertices, but " +
-                       meshPath + " has " + std::to_string(vertexCount));
+        fail(file, "was made for a mesh of " + std::to_string(meshVertices) + " vertices" +
+                       (meshGroup.empty() ? "" : " (group '" + meshGroup + "' of its OBJ)") +
+                       ", but " + meshPath + " has " + std::to_string(vertexCount) +
+                       (meshGroup.empty() ? "" : "; read that group (--group " + meshGroup + ")"));
     for (const auto& m : markers)
         if (m.vertex >= vertexCount)
             fail(file, "marker " + m.label + ": vertex " + std::to_string(m.vertex) +

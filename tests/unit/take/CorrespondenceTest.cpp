@@ -93,6 +93,24 @@ TEST(Correspondence, ChecksTheMeshAndTheTake) {
     EXPECT_NE(e.find("take.c3d"), std::string::npos) << e;
 }
 
+TEST(Correspondence, AMapMadeOnAGroupSaysSoWhenTheWholeFileIsGiven) {
+    std::string text = kValid;
+    text.replace(text.find("\"vertices\""), 0, "\"group\": \"body\", ");
+    const Correspondence c = Correspondence::read(writeTestFile("group.json", text));
+    EXPECT_EQ(c.meshGroup, "body");
+    const std::string e = errorOf([&] { c.checkMesh(19158, "makehuman_base.obj"); });
+    EXPECT_NE(e.find("group 'body'"), std::string::npos) << e;
+    EXPECT_NE(e.find("--group body"), std::string::npos) << e;
+    // The group is written back, and not twice.
+    const auto j = nlohmann::json::parse(c.toJson());
+    EXPECT_EQ(j["mesh"]["group"], "body");
+    EXPECT_EQ(Correspondence::fromJson(c.toJson(), "again").meshGroup, "body");
+    EXPECT_EQ(nlohmann::json::parse(
+                  Correspondence::read(writeTestFile("valid3.json", kValid)).toJson())["mesh"]
+                  .count("group"),
+              0u);
+}
+
 TEST(Correspondence, FromJsonTextMatchesTheFileAndNamesItsSource) {
     Correspondence c;
     c.meshFile = "body.obj";

@@ -24,7 +24,7 @@ struct MarkerMapping {
 
 // The user's marker-to-vertex map, stored as a versioned JSON file:
 //   {"format": "boneless-correspondence", "version": 1,
-//    "mesh": {"file": "body.obj", "vertices": 13380},
+//    "mesh": {"file": "body.obj", "group": "body", "vertices": 13380},
 //    "markers": [{"label": "LFHD", "vertex": 1234, "offset_mm": 9.5}, ...]}
 // Version 2 lets an entry name a point of a face: "face": 2310, "barycentric": [0.6, 0.3, 0.1]
 // ("vertex" stays, the corner nearest the point). A map without such a point is written as
@@ -33,6 +33,7 @@ struct MarkerMapping {
 class Correspondence {
   public:
     std::string meshFile;
+    std::string meshGroup;  // the OBJ group it was made on; "" = the whole file
     int meshVertices = 0;
     std::vector<MarkerMapping> markers;
 
