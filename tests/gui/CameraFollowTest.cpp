@@ -147,6 +147,45 @@ class CameraFollowTest : public QObject {
         QVERIFY((view.focalPoint() - paused).norm() < 8.0);
     }
 
+    // Paused, as when scrubbing to the deepest pose: the centroid stays near the middle, but a leg
+    // swung out sideways leaves the view unless the camera makes room for it.
+    void aLegSwungOutComesOnScreenWhileTheBodyFits() {
+        const TriMesh walker = readMesh((folder_ + "/demo/walker.obj").toStdString()).mesh;
+        for (const bool follow : {false, true}) {
+            MeshView view;
+            QVERIFY(test::showMesh(view, walker, Eigen::Vector3d::UnitZ()));
+            view.setCameraFollow(follow);
+            const QVariantList l = view.cameraState().value("view_up").toList();
+            const Eigen::Vector3d up(l[0].toDouble(), l[1].toDouble(), l[2].toDouble());
+            const Eigen::Vector3d forward =
+                (view.focalPoint() -
+                 [&] {
+                     const QVariantList p = view.cameraState().value("position").toList();
+                     return Eigen::Vector3d(p[0].toDouble(), p[1].toDouble(), p[2].toDouble());
+                 }())
+                    .normalized();
+            const Eigen::Vector3d right = forward.cross(up).normalized();
+            const Eigen::Vector3d c = centroidOf(walker.V);
+            const double height = walker.V.col(2).maxCoeff() - walker.V.col(2).minCoeff();
+            Positions V = walker.V;
+            int swung = 0;
+            for (int v = 0; v < V.rows(); ++v)
+                if (V(v, 2) < walker.V.col(2).minCoeff() + 0.35 * height &&
+                    (V.row(v).transpose() - c).dot(right) > 0) {
+                    V.row(v) += 1.1 * height * right.transpose();
+                    ++swung;
+                }
+            QVERIFY(swung > 0);
+            view.setPositions(V);
+            int outside = 0;
+            for (int v = 0; v < V.rows(); ++v) outside += !insideView(view, V.row(v).transpose());
+            if (follow)
+                QCOMPARE(outside, 0);
+            else
+                QVERIFY2(outside > 0, "the leg did not leave the view: swing it farther");
+        }
+    }
+
   private:
     QString folder_, project_;
 };

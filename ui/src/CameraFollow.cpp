@@ -1,10 +1,12 @@
 #include "CameraFollow.h"
 
 #include <vtkCamera.h>
+#include <vtkMatrix4x4.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 
 #include <algorithm>
+#include <utility>
 
 namespace boneless::ui {
 namespace {
@@ -12,6 +14,8 @@ namespace {
 // Per frame, the share of the way to the centroid the camera moves while smoothing: enough to
 // keep up with a run at 30 Hz, little enough to iron out a stride's sway.
 constexpr double kSmoothing = 0.3;
+// The share of the viewport's width and height kept clear at each edge when the whole mesh fits.
+constexpr double kEdge = 0.03;
 
 void translateCamera(vtkRenderer* renderer, const Eigen::Vector3d& d) {
     vtkCamera* camera = renderer->GetActiveCamera();
@@ -36,6 +40,29 @@ Eigen::Vector3d worldOf(vtkRenderer* renderer, const Eigen::Vector3d& d) {
     double w[4];
     renderer->GetWorldPoint(w);
     return Eigen::Vector3d(w[0], w[1], w[2]) / (w[3] != 0 ? w[3] : 1.0);
+}
+
+// The mesh's extent on screen, in display pixels: lowest and highest x and y over its vertices in
+// front of the camera (none: lo > hi).
+std::pair<Eigen::Vector2d, Eigen::Vector2d> screenExtent(vtkRenderer* renderer,
+                                                         const Positions& V) {
+    vtkMatrix4x4* m = renderer->GetActiveCamera()->GetCompositeProjectionTransformMatrix(
+        renderer->GetTiledAspectRatio(), -1, 1);
+    Eigen::Matrix4d P;
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) P(r, c) = m->GetElement(r, c);
+    const int* size = renderer->GetSize();
+    const int* origin = renderer->GetOrigin();
+    Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
+    for (int v = 0; v < V.rows(); ++v) {
+        const Eigen::Vector4d q = P * Eigen::Vector4d(V(v, 0), V(v, 1), V(v, 2), 1.0);
+        if (q.w() <= 0) continue;
+        const Eigen::Vector2d d(origin[0] + 0.5 * (q.x() / q.w() + 1) * size[0],
+                                origin[1] + 0.5 * (q.y() / q.w() + 1) * size[1]);
+        lo = lo.cwiseMin(d);
+        hi = hi.cwiseMax(d);
+    }
+    return {lo, hi};
 }
 
 }  // namespace
@@ -80,8 +107,27 @@ void CameraFollow::follow(vtkRenderer* renderer, const Positions& V, const Eigen
     const Eigen::Vector3d inside(std::clamp(d.x(), hx - kInnerBox * hx, hx + kInnerBox * hx),
                                  std::clamp(d.y(), hy - kInnerBox * hy, hy + kInnerBox * hy),
                                  d.z());
-    if (inside.isApprox(d)) return;
-    const Eigen::Vector3d shift = worldOf(renderer, d) - worldOf(renderer, inside);
+    if (!inside.isApprox(d)) {
+        const Eigen::Vector3d shift = worldOf(renderer, d) - worldOf(renderer, inside);
+        translateCamera(renderer, shift);
+        *tracked_ += shift - shift.dot(u) * u;
+    }
+
+    // A raised leg or a reach: the whole mesh comes on screen, where it fits, along each axis.
+    const auto [lo, hi] = screenExtent(renderer, V);
+    const int* view = renderer->GetSize();
+    const int* origin = renderer->GetOrigin();
+    Eigen::Vector2d over = Eigen::Vector2d::Zero();
+    for (int a = 0; a < 2; ++a) {
+        const double first = origin[a] + kEdge * view[a], last = origin[a] + (1 - kEdge) * view[a];
+        if (lo[a] > hi[a] || hi[a] - lo[a] > last - first) continue;
+        over[a] = lo[a] < first ? lo[a] - first : hi[a] > last ? hi[a] - last : 0.0;
+    }
+    if (over.isZero()) return;
+    const Eigen::Vector3d at = displayOf(renderer, c);
+    Eigen::Vector3d shift =
+        worldOf(renderer, at + Eigen::Vector3d(over.x(), over.y(), 0)) - worldOf(renderer, at);
+    if (playing_) shift -= shift.dot(u) * u;  // a leap does not bob the picture
     translateCamera(renderer, shift);
     *tracked_ += shift - shift.dot(u) * u;
 }

@@ -11,7 +11,8 @@ namespace boneless::ui {
 // Keeps a moving mesh on screen. While playing, the camera tracks the mesh's centroid across the
 // floor (not up and down, so a walk does not bob the picture), smoothed over frames; paused, it
 // stays where the user put it. Either way it moves whenever the centroid would come near the
-// viewport's edge. The camera only translates: the user's angle and zoom are kept.
+// viewport's edge, or a part of the mesh would leave the screen while the whole mesh fits on it
+// (a raised leg). The camera only translates: the user's angle and zoom are kept.
 class CameraFollow {
   public:
     void setEnabled(bool enabled);
