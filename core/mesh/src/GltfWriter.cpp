@@ -2,11 +2,13 @@
 
 #include <tiny_gltf.h>
 #include <unistd.h>
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <unordered_map>
 
 #include "boneless/Error.h"
 #include "boneless/SpoolFile.h"
@@ -101,6 +103,42 @@ std::string glbJson(const tinygltf::Model& m, size_t binLength) {
     return json;
 }
 
+// glTF has one texture coordinate per vertex: each (mesh vertex, coordinate) pair the triangles'
+// corners use becomes a glTF vertex. The triangles are the source polygons' in order, n - 2 each
+// (readMesh); false when they are not, or there are no coordinates.
+bool splitAtUvSeams(const TriMesh& mesh, std::vector<int>& meshVertexOf, std::vector<float>& uv,
+                    std::vector<std::uint32_t>& triangles) {
+    const SourceFaces* source = mesh.sourceFaces.get();
+    if (!source || source->uvOf.empty()) return false;
+    std::unordered_map<std::int64_t, std::uint32_t> index;
+    int t = 0;
+    for (int p = 0; p < source->polygonCount(); ++p) {
+        const int first = source->start[p], n = source->start[p + 1] - first;
+        for (int k = 0; k < n - 2; ++k, ++t) {
+            if (t >= mesh.F.rows()) return false;
+            for (int c = 0; c < 3; ++c) {
+                const int v = mesh.F(t, c);
+                const int* corner =
+                    std::find(&source->corners[first], &source->corners[first] + n, v);
+                if (corner == &source->corners[first] + n) return false;
+                const int coordinate = source->uvOf[corner - source->corners.data()];
+                const auto [it, added] =
+                    index.emplace(std::int64_t(v) << 32 | std::uint32_t(coordinate),
+                                  static_cast<std::uint32_t>(meshVertexOf.size()));
+                if (added) {
+                    meshVertexOf.push_back(v);
+                    const bool has = coordinate >= 0;
+                    uv.push_back(has ? static_cast<float>(source->uv[2 * coordinate]) : 0.0f);
+                    uv.push_back(has ? static_cast<float>(1.0 - source->uv[2 * coordinate + 1])
+                                     : 0.0f);
+                }
+                triangles.push_back(it->second);
+            }
+        }
+    }
+    return t == mesh.F.rows();
+}
+
 }  // namespace
 
 GltfWriter::GltfWriter(std::string path, const TriMesh& rest, std::string name)
@@ -108,6 +146,12 @@ GltfWriter::GltfWriter(std::string path, const TriMesh& rest, std::string name)
       spool_(path_ + ".frames.tmp" + std::to_string(::getpid())),
       name_(std::move(name)),
       rest_(rest) {
+    if (!splitAtUvSeams(rest_, meshVertexOf_, uv_, triangles_)) {
+        meshVertexOf_.resize(static_cast<size_t>(rest_.vertexCount()));
+        for (int v = 0; v < rest_.vertexCount(); ++v) meshVertexOf_[v] = v;
+        uv_.clear();
+        triangles_.assign(rest_.F.data(), rest_.F.data() + rest_.F.size());
+    }
     file_ = std::fopen(spool_.c_str(), "wb+");
     if (!file_) throw Error(path_ + ": cannot be written (cannot create " + spool_ + ")");
 }
@@ -125,16 +169,18 @@ void GltfWriter::append(double seconds, const Positions& positions) {
     if (positions.rows() != n)
         throw Error(path_ + ": frame with " + std::to_string(positions.rows()) +
                     " vertices, the mesh has " + std::to_string(n));
-    const std::uint64_t bytes = 12ull * n * (times_.size() + 2) + 12ull * rest_.F.rows();
+    const std::uint64_t m = meshVertexOf_.size();
+    const std::uint64_t bytes = 12ull * m * (times_.size() + 2) + 8ull * m + 12ull * rest_.F.rows();
     if (static_cast<int>(times_.size()) >= kMaxFrames || bytes > kMaxGlbBytes)
         throw Error(path_ + ": a .glb holds at most " + std::to_string(kMaxFrames) +
                     " frames and 4 GB; export fewer frames (--frames) or a point cache");
-    std::vector<float> offsets(3 * static_cast<size_t>(n));
+    std::vector<float> offsets(3 * m);
     std::array<double, 6> b = {1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
-    for (int v = 0; v < n; ++v)
+    for (size_t i = 0; i < m; ++i)
         for (int c = 0; c < 3; ++c) {
+            const int v = meshVertexOf_[i];
             const float d = static_cast<float>(positions(v, c) - rest_.V(v, c));
-            offsets[3 * v + c] = d;
+            offsets[3 * i + c] = d;
             b[c] = std::min(b[c], double(d));
             b[3 + c] = std::max(b[3 + c], double(d));
         }
@@ -146,7 +192,7 @@ void GltfWriter::append(double seconds, const Positions& positions) {
 
 void GltfWriter::finish() {
     if (!file_) return;
-    const int n = rest_.vertexCount();
+    const int n = static_cast<int>(meshVertexOf_.size());  // glTF vertices
     const size_t frames = times_.size();
     tinygltf::Model m;
     m.asset.version = "2.0";
@@ -159,14 +205,11 @@ void GltfWriter::finish() {
     std::vector<double> lo(3, 1e300), hi(3, -1e300);
     for (int v = 0; v < n; ++v)
         for (int c = 0; c < 3; ++c) {
-            rest[3 * v + c] = static_cast<float>(rest_.V(v, c));
+            rest[3 * v + c] = static_cast<float>(rest_.V(meshVertexOf_[v], c));
             lo[c] = std::min(lo[c], double(rest[3 * v + c]));
             hi[c] = std::max(hi[c], double(rest[3 * v + c]));
         }
-    std::vector<std::uint32_t> triangles(3 * static_cast<size_t>(rest_.F.rows()));
-    for (int f = 0; f < rest_.F.rows(); ++f)
-        for (int c = 0; c < 3; ++c)
-            triangles[3 * f + c] = static_cast<std::uint32_t>(rest_.F(f, c));
+    const std::vector<std::uint32_t>& triangles = triangles_;
     size_t offset = 0;
     auto place = [&](size_t length, int target = 0) {
         const int view = addView(m, offset, length, target);
@@ -181,6 +224,10 @@ void GltfWriter::finish() {
                     TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, triangles.size());
     tinygltf::Primitive primitive;
     primitive.attributes["POSITION"] = restAccessor;
+    if (!uv_.empty())
+        primitive.attributes["TEXCOORD_0"] =
+            addAccessor(m, place(uv_.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
+                        TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, uv_.size() / 2);
     primitive.indices = triangleAccessor;
     primitive.mode = TINYGLTF_MODE_TRIANGLES;
     std::vector<tinygltf::Value> targetNames;
@@ -220,7 +267,7 @@ void GltfWriter::finish() {
     appendBytes(tail, times_);
     appendBytes(tail, keyIndices);
     appendBytes(tail, ones);
-    head.reserve(28 + json.size() + rest.size() * 4 + triangles.size() * 4);
+    head.reserve(28 + json.size() + rest.size() * 4 + triangles.size() * 4 + uv_.size() * 4);
     head.append("glTF");
     appendU32(head, 2);
     appendU32(head, static_cast<std::uint32_t>(12 + 8 + json.size() + 8 + offset));
@@ -231,6 +278,7 @@ void GltfWriter::finish() {
     head.append("BIN", 4);  // with its NUL: the chunk type is 0x004E4942
     appendBytes(head, rest);
     appendBytes(head, triangles);
+    appendBytes(head, uv_);
     std::FILE* spool = file_;
     file_ = nullptr;
     writeSpooled(path_, head, spool, spool_, tail);

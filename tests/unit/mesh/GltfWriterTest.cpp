@@ -3,10 +3,12 @@
 
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 
 #include "TestMeshes.h"
 #include "boneless/Error.h"
 #include "boneless/GltfWriter.h"
+#include "boneless/MeshReader.h"
 
 using namespace boneless;
 using namespace boneless::testing;
@@ -18,7 +20,7 @@ namespace {
 std::vector<float> floats(const tinygltf::Model& m, int accessor) {
     const tinygltf::Accessor& a = m.accessors[accessor];
     const tinygltf::BufferView& v = m.bufferViews[a.bufferView];
-    const int components = a.type == TINYGLTF_TYPE_VEC3 ? 3 : 1;
+    const int components = a.type == TINYGLTF_TYPE_VEC3 ? 3 : a.type == TINYGLTF_TYPE_VEC2 ? 2 : 1;
     std::vector<float> out(a.count * components);
     std::memcpy(out.data(), m.buffers[v.buffer].data.data() + v.byteOffset + a.byteOffset,
                 out.size() * 4);
@@ -81,6 +83,44 @@ TEST(GltfExport, EachFrameIsTheRestMeshPlusItsMorphTargetKeyedAtItsTime) {
     EXPECT_TRUE(weights.sparse.isSparse);
     EXPECT_EQ(weights.sparse.count, 3);
     EXPECT_EQ(weights.bufferView, -1);  // everything else is zero
+}
+
+TEST(GltfExport, TextureCoordinatesGoWithTheMeshSplitAtTheirSeams) {
+    const fs::path dir = freshTestDir("glb-uv");
+    // Two quads side by side; the middle edge is a UV seam: each quad has its own island.
+    std::ofstream(dir / "strip.obj") << "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0\nv 2 1 0\n"
+                                        "vt 0 0\nvt 0.4 0\nvt 0.4 1\nvt 0 1\n"
+                                        "vt 0.6 0\nvt 1 0\nvt 1 1\nvt 0.6 1\n"
+                                        "f 1/1 2/2 5/3 4/4\nf 2/5 3/6 6/7 5/8\n";
+    const TriMesh strip = readMesh((dir / "strip.obj").string()).mesh;
+    ASSERT_NE(strip.sourceFaces, nullptr);
+    Positions posed = strip.V;
+    posed.col(2) = posed.col(0).cwiseAbs2();  // bent along x: every vertex moves differently
+    const std::string path = (dir / "strip.glb").string();
+    {
+        GltfWriter writer(path, strip, "strip");
+        writer.append(0.0, posed);
+        writer.finish();
+    }
+    const tinygltf::Model m = load(path);
+    const tinygltf::Primitive& p = m.meshes[0].primitives[0];
+    ASSERT_TRUE(p.attributes.count("TEXCOORD_0"));
+    const std::vector<float> rest = floats(m, p.attributes.at("POSITION"));
+    const std::vector<float> uv = floats(m, p.attributes.at("TEXCOORD_0"));
+    const std::vector<float> offset = floats(m, p.targets[0].at("POSITION"));
+    ASSERT_EQ(rest.size(), 3u * 8);  // the seam's two vertices, once on each side
+    ASSERT_EQ(uv.size(), 2u * 8);
+    for (int g = 0; g < 8; ++g) {
+        const double x = rest[3 * g], y = rest[3 * g + 1];
+        // The vertex's island: left of the seam u <= 0.4, right u >= 0.6; glTF's v runs down.
+        const double u = uv[2 * g], v = 1.0 - uv[2 * g + 1];
+        EXPECT_FLOAT_EQ(v, y) << g;
+        if (x == 0 || (x == 1 && u < 0.5))
+            EXPECT_FLOAT_EQ(u, 0.4 * x) << g;
+        else
+            EXPECT_FLOAT_EQ(u, 0.6 + 0.4 * (x - 1)) << g;
+        EXPECT_FLOAT_EQ(rest[3 * g + 2] + offset[3 * g + 2], x * x) << g;  // its vertex's motion
+    }
 }
 
 TEST(GltfExport, AnAbandonedFileLeavesNothingBehind) {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -9,13 +10,15 @@
 
 namespace boneless {
 
-// Streams frames into a glTF 2.0 binary (.glb): the rest mesh (positions and triangles only, one
-// glTF vertex per mesh vertex in the mesh's order, so importers keep the vertex count and order),
-// one morph target per frame holding that frame's offsets from the rest pose, and an animation on
-// the morph weights keyed at each frame's time in the take (LINEAR: frame k has weight 1 at its
-// time, and playback between two frames blends them). The weight keys are a sparse accessor, so
-// they grow with the frame count rather than its square. Coordinates and units are the mesh's own.
-// Frames are spooled to a file; finish() writes the .glb under a temporary name and renames it.
+// Streams frames into a glTF 2.0 binary (.glb): the rest mesh (positions and triangles; one glTF
+// vertex per mesh vertex in the mesh's order, so importers keep the vertex count and order, unless
+// the mesh's sourceFaces carry texture coordinates: then TEXCOORD_0 too, and a vertex on a UV seam
+// is one glTF vertex per side of it, as glTF has one coordinate per vertex), one morph target per
+// frame holding that frame's offsets from the rest pose, and an animation on the morph weights
+// keyed at each frame's time in the take (LINEAR: frame k has weight 1 at its time, and playback
+// between two frames blends them). The weight keys are a sparse accessor, so they grow with the
+// frame count rather than its square. Coordinates and units are the mesh's own. Frames are spooled
+// to a file; finish() writes the .glb under a temporary name and renames it.
 class GltfWriter {
   public:
     GltfWriter(std::string path, const TriMesh& rest, std::string name);
@@ -29,6 +32,9 @@ class GltfWriter {
   private:
     std::string path_, spool_, name_;
     const TriMesh& rest_;
+    std::vector<int> meshVertexOf_;         // per glTF vertex, the mesh vertex it is
+    std::vector<float> uv_;                 // 2 per glTF vertex (glTF's v runs down), or empty
+    std::vector<std::uint32_t> triangles_;  // glTF vertex indices, 3 per mesh triangle
     std::FILE* file_ = nullptr;
     std::vector<float> times_;
     std::vector<std::array<double, 6>> bounds_;  // per frame: min xyz, max xyz of the offsets
