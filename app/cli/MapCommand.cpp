@@ -1,5 +1,6 @@
 // boneless-cli map suggest: complete a partial marker-to-vertex map from the take.
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 
 #include "Commands.h"
@@ -40,7 +41,12 @@ void registerMapCommand(CLI::App& app) {
         const TriMesh mesh = readMesh(args->mesh, options).mesh;
         const C3dTake take = readC3d(args->c3d);
         const Correspondence partial = Correspondence::read(args->map);
-        const Suggestion s = suggestMappings(mesh, take, partial);
+        Suggestion s = suggestMappings(mesh, take, partial);
+        // The map records the mesh it was made on, as the app's maps do.
+        if (s.map.meshFile.empty())
+            s.map.meshFile = std::filesystem::path(args->mesh).filename().string();
+        if (s.map.meshGroup.empty()) s.map.meshGroup = args->group;
+        if (s.map.meshVertices == 0) s.map.meshVertices = mesh.vertexCount();
         s.map.write(args->out);
         std::printf(
             "%s: %zu markers (%d suggested, %d to review), aligned at frame %d (%d markers "

@@ -3,7 +3,7 @@
 # Reads a Boneless export the way a user would (OBJ importer, Mesh Cache modifier, glTF importer),
 # and compares the vertex positions Blender shows at each of FRAMES (take frames, comma-separated,
 # the first of them the first frame exported) with the OBJ frames Boneless wrote into
-# REFERENCE_DIR (17 significant digits). Prints the worst difference as a fraction of the
+# REFERENCE_DIR (exact digits). Prints the worst difference as a fraction of the
 # bounding-box diagonal and exits 1 if it exceeds float precision.
 import sys
 

@@ -17,7 +17,7 @@ bool haveBlender() {
     return runShell("command -v blender >/dev/null 2>&1").exitCode == 0;
 }
 
-// Solves take frames 2..11 of a 12-frame demo into OBJ (the reference, 17 digits) and `format`,
+// Solves take frames 2..11 of a 12-frame demo into OBJ (the reference, exact digits) and `format`,
 // then has Blender read the export at frames 2, 7 and 11.
 void checkInBlender(const std::string& format) {
     if (!haveBlender()) GTEST_SKIP() << "blender is not installed (scripts/install-deps.sh)";

@@ -1,5 +1,6 @@
 #include "boneless/MeshReader.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -77,28 +78,30 @@ void addWarnings(MeshReadResult& r, const PolygonSoup& soup, const std::vector<i
 std::shared_ptr<const SourceFaces> sourceFaces(const std::string& path, const PolygonSoup& soup,
                                                const std::vector<int>& kept,
                                                const std::vector<int>& meshIndex) {
-    const bool uvs = !soup.faceUv.empty() && !soup.uv.empty();
+    const bool uvs = !soup.uvOf.empty() && !soup.uv.empty();
     bool polygons = false, anyUv = false, anyMaterial = false;
     for (int f : kept) {
         polygons |= soup.faceStart[f + 1] - soup.faceStart[f] > 3;
         anyMaterial |= !soup.faceMaterial.empty() && soup.faceMaterial[f] >= 0;
         if (uvs)
             for (int c = soup.faceStart[f]; c < soup.faceStart[f + 1]; ++c)
-                anyUv |= soup.faceUv[c] >= 0;
+                anyUv |= soup.uvOf[c] >= 0;
     }
     if (!polygons && !anyUv && !anyMaterial) return nullptr;
     auto out = std::make_shared<SourceFaces>();
+    out->vertexCount = static_cast<int>(
+        std::count_if(meshIndex.begin(), meshIndex.end(), [](int i) { return i >= 0; }));
     std::vector<int> uvIndex(soup.uv.size() / 2, -1);
     for (int f : kept) {
         if (anyMaterial && soup.faceMaterial[f] >= 0) {
-            const std::string& name = soup.materials[soup.faceMaterial[f]];
+            const std::string& name = soup.materialNames[soup.faceMaterial[f]];
             if (out->materials.empty() || out->materials.back().second != name)
                 out->materials.push_back({out->polygonCount(), name});
         }
         for (int c = soup.faceStart[f]; c < soup.faceStart[f + 1]; ++c) {
             out->corners.push_back(meshIndex[soup.faceIndex[c]]);
             if (!anyUv) continue;
-            const int t = soup.faceUv[c];
+            const int t = soup.uvOf[c];
             if (t >= 0 && uvIndex[t] < 0) {
                 uvIndex[t] = static_cast<int>(out->uv.size() / 2);
                 out->uv.insert(out->uv.end(), {soup.uv[2 * t], soup.uv[2 * t + 1]});

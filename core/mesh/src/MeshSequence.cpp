@@ -8,6 +8,19 @@
 
 namespace boneless {
 
+namespace {
+
+// Polygons are triangulated by their posed shape, so frames of one quad mesh may split a quad
+// differently: the file's own faces are what must match.
+bool sameFaces(const TriMesh& a, const TriMesh& b) {
+    if (a.sourceFaces && b.sourceFaces)
+        return a.sourceFaces->start == b.sourceFaces->start &&
+               a.sourceFaces->corners == b.sourceFaces->corners;
+    return !a.sourceFaces && !b.sourceFaces && a.F == b.F;
+}
+
+}  // namespace
+
 MeshSequence readMeshSequence(const std::string& directory) {
     namespace fs = std::filesystem;
     std::error_code ec;
@@ -30,7 +43,7 @@ MeshSequence readMeshSequence(const std::string& directory) {
             throw MeshError(file, "has " + std::to_string(mesh.vertexCount()) +
                                       " vertices, the first frame " +
                                       std::to_string(sequence.rest.vertexCount()));
-        } else if (mesh.F != sequence.rest.F) {
+        } else if (!sameFaces(mesh, sequence.rest)) {
             throw MeshError(file,
                             "has other faces than the first frame (" + sequence.files[0] + ")");
         }

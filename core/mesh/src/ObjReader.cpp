@@ -145,9 +145,11 @@ class ObjParser {
                 ++unknown_[std::string(key)];
             }
         }
+        uvBroken_ = uvBroken_ || std::any_of(soup_.uvOf.begin(), soup_.uvOf.end(),
+                                             [&](int t) { return t >= uvCount_; });
         if (uvBroken_) {
             soup_.uv.clear();
-            soup_.faceUv.clear();
+            soup_.uvOf.clear();
             soup_.warnings.push_back(
                 "texture coordinates ignored: a \"vt\" line or a face's reference to one is "
                 "unusable");
@@ -196,34 +198,39 @@ class ObjParser {
         soup_.vertexLine.push_back(line_);
     }
 
-    // "u v [w]": u and v are kept; one that does not parse keeps no texture coordinates at all
-    // (they are only carried to the output, so a bad one must not stop a solve).
+    // "u [v] [w]": u and v (0 if absent) are kept; one that does not parse keeps no texture
+    // coordinates at all (they are only carried to the output, so a bad one must not stop a solve).
     void textureCoordinate(std::string_view rest) {
         for (int k = 0; k < 2; ++k) {
+            const std::string_view t = nextToken(rest);
             double value = 0;
-            if (!parseDouble(nextToken(rest), value)) uvBroken_ = true;
+            if ((k == 0 || !t.empty()) && !parseDouble(t, value)) uvBroken_ = true;
             soup_.uv.push_back(value);
         }
     }
 
+    // The name is the rest of the line: "usemtl Material 1" is one material.
     int useMaterial(std::string_view rest) {
-        const std::string name(nextToken(rest));
+        while (!rest.empty() && isBlank(rest.front())) rest.remove_prefix(1);
+        while (!rest.empty() && isBlank(rest.back())) rest.remove_suffix(1);
+        const std::string name(rest);
         if (name.empty()) return -1;
-        const auto it = std::find(soup_.materials.begin(), soup_.materials.end(), name);
-        if (it != soup_.materials.end()) return static_cast<int>(it - soup_.materials.begin());
-        soup_.materials.push_back(name);
-        return static_cast<int>(soup_.materials.size()) - 1;
+        const auto it = std::find(soup_.materialNames.begin(), soup_.materialNames.end(), name);
+        if (it != soup_.materialNames.end())
+            return static_cast<int>(it - soup_.materialNames.begin());
+        soup_.materialNames.push_back(name);
+        return static_cast<int>(soup_.materialNames.size()) - 1;
     }
 
     // The "vt" index after the first '/' of "7/1", "7/1/3" (-1 for "7" and "7//3"), resolved
-    // like a position; an unusable one drops the file's texture coordinates.
+    // like a position (a forward one is checked at the end); an unusable one drops the file's
+    // texture coordinates.
     int uvReference(const char* from, const char* end) {
         if (from == end || *from != '/' || from + 1 == end || from[1] == '/') return -1;
         int index = 0;
         const auto [stop, ec] = std::from_chars(from + 1, end, index);
         const int resolved = index > 0 ? index - 1 : uvCount_ + index;
-        if (ec != std::errc() || (stop != end && *stop != '/') || index == 0 || resolved < 0 ||
-            resolved >= uvCount_)
+        if (ec != std::errc() || (stop != end && *stop != '/') || index == 0 || resolved < 0)
             uvBroken_ = true;
         return resolved;
     }
@@ -237,7 +244,7 @@ class ObjParser {
             const auto [stop, ec] = std::from_chars(t.data(), end, index);
             if (ec != std::errc() || (stop != end && *stop != '/'))
                 fail("invalid vertex reference '" + std::string(t) + "'");
-            soup_.faceUv.push_back(uvReference(stop, end));
+            soup_.uvOf.push_back(uvReference(stop, end));
             if (index == 0) fail("vertex index 0 (OBJ indices start at 1)");
             // Relative indices count back from the vertices read so far.
             const int resolved = index > 0 ? index - 1 : vertexCount_ + index;

@@ -1,7 +1,6 @@
 #include "boneless/ObjWriter.h"
 
 #include <unistd.h>
-#include <algorithm>
 #include <charconv>
 #include <cstdio>
 #include <filesystem>
@@ -42,7 +41,9 @@ void appendNumber(std::string& text, double value) {
 }
 
 void appendPolygons(std::string& text, const SourceFaces& source, const std::string& path) {
-    const std::filesystem::path folder = std::filesystem::absolute(path).parent_path();
+    // Normalised first: lexically_relative does not resolve "out/../x" in the base.
+    const std::filesystem::path folder =
+        std::filesystem::absolute(path).lexically_normal().parent_path();
     for (const std::string& lib : source.materialLibraries) {
         const std::filesystem::path relative =
             std::filesystem::path(lib).lexically_relative(folder);
@@ -86,9 +87,8 @@ void writeObj(const std::string& path, const Positions& positions, const Faces& 
         }
         text += '\n';
     }
-    // A source from another mesh (more vertices) would write faces that point past the end.
-    if (source && std::all_of(source->corners.begin(), source->corners.end(),
-                              [&](int c) { return c < positions.rows(); })) {
+    // A source from another mesh would write faces that point at the wrong vertices.
+    if (source && source->vertexCount == positions.rows()) {
         appendPolygons(text, *source, path);
     } else {
         for (int f = 0; f < faces.rows(); ++f) {

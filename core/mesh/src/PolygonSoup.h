@@ -20,11 +20,11 @@ struct PolygonSoup {
     std::vector<int> faceLine;  // per face, or empty
     std::vector<int> fileFace;  // per face its number among all the file's faces; empty = same
     // OBJ only: per entry of faceIndex its "vt" index (-1 none); every "vt" of the file; per face
-    // its "usemtl" (-1 none) into materials; the "mtllib" files, as written.
-    std::vector<int> faceUv;
+    // its "usemtl" (-1 none) into materialNames; the "mtllib" files, as written.
+    std::vector<int> uvOf;
     std::vector<double> uv;
     std::vector<int> faceMaterial;
-    std::vector<std::string> materials, materialLibraries;
+    std::vector<std::string> materialNames, materialLibraries;
     std::vector<std::string> warnings;
 
     int vertexCount() const { return static_cast<int>(xyz.size() / 3); }

@@ -165,10 +165,10 @@ void Correspondence::checkMesh(int vertexCount, const std::string& meshPath,
     const std::string file = source_.empty() ? "correspondence" : source_;
     // A whole OBJ read where the map was made on one of its groups is the likely slip.
     if (meshVertices != 0 && meshVertices != vertexCount)
-        fail(file, "was made for a mesh of " + std::to_string(meshVertices) + " vertices" +
-                       (meshGroup.empty() ? "" : " (group '" + meshGroup + "' of its OBJ)") +
-                       ", but " + meshPath + " has " + std::to_string(vertexCount) +
-                       (meshGroup.empty() ? "" : "; read that group (--group " + meshGroup + ")"));
+        fail(file, "was made for " +
+                       (meshGroup.empty() ? "a mesh" : "group '" + meshGroup + "' of its OBJ") +
+                       " with " + std::to_string(meshVertices) + " vertices, but " + meshPath +
+                       " has " + std::to_string(vertexCount));
     for (const auto& m : markers)
         if (m.vertex >= vertexCount)
             fail(file, "marker " + m.label + ": vertex " + std::to_string(m.vertex) +

@@ -51,7 +51,8 @@ std::string SideCheck::mismatch(const std::string& label, const Vec3& restPoint)
 // Vertices sampled to fit and test the plane: enough to see a limb that is not mirrored.
 constexpr int kMirrorSamples = 400;
 // The mesh is symmetric when this share of the samples reflects to within kMirrorEdges mean edge
-// lengths of a vertex (MakeHuman and the demo reflect onto their own vertices exactly).
+// lengths of a vertex (MakeHuman and the demo reflect onto their own vertices exactly). Every (n /
+// 400)-th vertex is a sample.
 constexpr double kMirrorShare = 0.9;
 constexpr double kMirrorEdges = 0.5;
 
@@ -65,19 +66,15 @@ MirrorPlane::MirrorPlane(const TriMesh& rest, const SideCheck& sides) {
     edge /= static_cast<double>(rest.F.rows());
     const int n = rest.vertexCount();
     const int step = std::max(1, n / kMirrorSamples);
-    std::vector<double> miss;
     // A few rounds of: match each sample's reflection to its nearest vertex, fit the plane that
     // maps the pairs onto each other (the picks' vertices are a user's clicks, not exact mirrors).
     for (int round = 0; round < 4; ++round) {
         Vec3 across = Vec3::Zero(), middle = Vec3::Zero();
         double weight = 0;
-        miss.clear();
         for (int v = 0; v < n; v += step) {
             const Vec3 a = rest.V.row(v).transpose();
             Eigen::Index b = 0;
-            const double d =
-                (rest.V.rowwise() - reflect(a).transpose()).rowwise().norm().minCoeff(&b);
-            miss.push_back(d);
+            (rest.V.rowwise() - reflect(a).transpose()).rowwise().norm().minCoeff(&b);
             const Vec3 w = a - rest.V.row(b).transpose();
             across += normal_.dot(w) >= 0 ? w : Vec3(-w);
             middle += w.norm() * 0.5 * (a + rest.V.row(b).transpose());
@@ -87,9 +84,14 @@ MirrorPlane::MirrorPlane(const TriMesh& rest, const SideCheck& sides) {
         normal_ = across.normalized();
         offset_ = normal_.dot(middle / weight);
     }
-    const auto share =
-        std::count_if(miss.begin(), miss.end(), [&](double d) { return d <= kMirrorEdges * edge; });
-    known_ = static_cast<double>(share) >= kMirrorShare * static_cast<double>(miss.size());
+    // The plane as fitted: how many samples it reflects onto the mesh.
+    int samples = 0, onMesh = 0;
+    for (int v = 0; v < n; v += step, ++samples)
+        onMesh += (rest.V.rowwise() - reflect(rest.V.row(v).transpose()).transpose())
+                      .rowwise()
+                      .norm()
+                      .minCoeff() <= kMirrorEdges * edge;
+    known_ = onMesh >= kMirrorShare * samples;
 }
 
 }  // namespace boneless

@@ -7,6 +7,7 @@
 #include "TestMeshes.h"
 #include "boneless/Error.h"
 #include "boneless/MeshReader.h"
+#include "boneless/MeshSequence.h"
 #include "boneless/ObjWriter.h"
 
 using namespace boneless;
@@ -128,4 +129,50 @@ TEST(ObjWriter, ATriangleMeshWithoutTextureCoordinatesNeedsNoSourceFaces) {
     const TriMesh sphere = icosphere(1);
     writeObj((dir / "sphere.obj").string(), sphere.V, sphere.F);
     EXPECT_EQ(readMesh((dir / "sphere.obj").string()).mesh.sourceFaces, nullptr);
+}
+
+TEST(ObjWriter, TheMaterialLibraryIsFoundFromAFolderNamedWithDotDot) {
+    const fs::path dir = freshTestDir("obj-writer-dotdot");
+    std::ofstream(dir / "cube.obj") << cubeObj();
+    const TriMesh cube = readMesh((dir / "cube.obj").string()).mesh;
+    fs::create_directories(dir / "a");
+    fs::create_directories(dir / "frames");
+    const fs::path frame = dir / "a" / ".." / "frames" / "cube_0001.obj";
+    writeObj(frame.string(), cube.V, cube.F, "frame", cube.sourceFaces.get());
+    const TriMesh back = readMesh(frame.string()).mesh;
+    ASSERT_NE(back.sourceFaces, nullptr);
+    EXPECT_EQ(back.sourceFaces->materialLibraries, cube.sourceFaces->materialLibraries);
+}
+
+TEST(ObjWriter, OddButLegalTextureLinesKeepTheirCoordinates) {
+    const fs::path dir = freshTestDir("obj-writer-odd");
+    // A one-value vt (v is 0), texture coordinates listed after the face, a material name with a
+    // space in it.
+    std::ofstream(dir / "tri.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl Material 1\n"
+                                      "f 1/1 2/2 3/3\nvt 0.5\nvt 1 0\nvt 0 1\n";
+    const MeshReadResult r = readMesh((dir / "tri.obj").string());
+    ASSERT_NE(r.mesh.sourceFaces, nullptr);
+    EXPECT_EQ(r.mesh.sourceFaces->uv, (std::vector<double>{0.5, 0, 1, 0, 0, 1}));
+    EXPECT_EQ(r.mesh.sourceFaces->materials,
+              (std::vector<std::pair<int, std::string>>{{0, "Material 1"}}));
+    for (const std::string& w : r.warnings) EXPECT_EQ(w.find("texture"), w.npos) << w;
+}
+
+TEST(ObjWriter, FramesOfAQuadMeshReadBackAsOneSequenceHoweverTheirQuadsSplit) {
+    const fs::path dir = freshTestDir("obj-writer-sequence");
+    std::ofstream(dir / "cube.obj") << cubeObj();
+    const TriMesh cube = readMesh((dir / "cube.obj").string()).mesh;
+    fs::create_directories(dir / "frames");
+    Positions pulled = cube.V;
+    pulled.row(3) << 1.8, 1.8, 0;  // one corner out: the bottom quad's diagonals differ
+    writeObj((dir / "frames" / "cube_0000.obj").string(), cube.V, cube.F, "",
+             cube.sourceFaces.get());
+    writeObj((dir / "frames" / "cube_0001.obj").string(), pulled, cube.F, "",
+             cube.sourceFaces.get());
+    // The premise: read on its own, the pulled frame splits a quad along the other diagonal.
+    ASSERT_NE(readMesh((dir / "frames" / "cube_0001.obj").string()).mesh.F, cube.F);
+    const MeshSequence sequence = readMeshSequence((dir / "frames").string());
+    ASSERT_EQ(sequence.frames.size(), 2u);
+    EXPECT_EQ(sequence.frames[1], pulled);
+    EXPECT_EQ(sequence.rest.F, cube.F);
 }

@@ -139,9 +139,10 @@ TEST(MarkerSuggestion, AMarkerWhosePartnerIsPickedLandsAtItsMirrorImage) {
     // RKNE stands between the mirror image of LKNE's vertex and a neighbour, a little nearer the
     // neighbour: the take alone would choose the neighbour.
     const Vec3 mirrorPoint(-mesh.V(lkne, 0), mesh.V(lkne, 1), mesh.V(lkne, 2));
-    int mirror = 0;
+    int mirror = -1;
     for (int v = 0; v < mesh.vertexCount(); ++v)
         if ((mesh.V.row(v).transpose() - mirrorPoint).norm() < 1e-9) mirror = v;
+    ASSERT_GE(mirror, 0);
     int neighbour = -1;
     for (int f = 0; f < mesh.F.rows(); ++f)
         for (int k = 0; k < 3; ++k)
@@ -150,6 +151,8 @@ TEST(MarkerSuggestion, AMarkerWhosePartnerIsPickedLandsAtItsMirrorImage) {
     const Vec3 between =
         0.45 * mesh.V.row(mirror).transpose() + 0.55 * mesh.V.row(neighbour).transpose();
     points.push_back(1.01 * between.normalized());
+    ASSERT_LT((points.back() - 1.01 * mesh.V.row(neighbour).transpose()).norm(),
+              (points.back() - 1.01 * mesh.V.row(mirror).transpose()).norm());
     const C3dTake take = takeAt(points, labels);
     Correspondence partial;
     partial.meshVertices = mesh.vertexCount();
@@ -219,5 +222,6 @@ TEST(MarkerSuggestion, LandsNearTheReferenceMapOnTheCmuTakeFromSixPicks) {
     EXPECT_EQ(c.compared, 35);
     EXPECT_GE(c.within, 20) << "median " << c.medianMm << " mm";
     // RFWT lands where LFWT's vertex mirrors to, as the reference puts it (the fit alone: 37 mm).
+    ASSERT_NE(s.map.find("RFWT"), nullptr);
     EXPECT_EQ(s.map.find("RFWT")->vertex, reference.find("RFWT")->vertex);
 }

@@ -16,6 +16,7 @@ using Faces = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;         //
 // The input file's own faces, for writers that give them back (OBJ frames): its polygons, their
 // texture coordinates and materials, where the solver sees only triangles.
 struct SourceFaces {
+    int vertexCount = 0;        // of the mesh they belong to
     std::vector<int> start{0};  // polygon p's corners are corners[start[p] .. start[p + 1])
     std::vector<int> corners;   // mesh vertex indices
     std::vector<int> uvOf;      // per corner, an index into uv or -1; empty when the file has none

@@ -33,7 +33,7 @@ struct MarkerMapping {
 class Correspondence {
   public:
     std::string meshFile;
-    std::string meshGroup;  // the OBJ group it was made on; "" = the whole file
+    std::string meshGroup;  // the OBJ group it was made on; "" = the whole file, or not recorded
     int meshVertices = 0;
     std::vector<MarkerMapping> markers;
 
