@@ -6,8 +6,8 @@
 #include <QtTest>
 
 #include "ModelTestFixtures.h"
-#include "boneless/ui/Document.h"
 #include "boneless/Correspondence.h"
+#include "boneless/ui/Document.h"
 #include "boneless/ui/GroupChooser.h"
 #include "boneless/ui/MainWindow.h"
 

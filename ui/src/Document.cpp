@@ -38,12 +38,15 @@ bool Document::fail(const QString& message) {
 
 Correspondence Document::emptyMap() const {
     Correspondence map;
-    if (hasMesh_) {
-        map.meshFile = std8(QFileInfo(meshPath_).fileName());
-        map.meshGroup = std8(meshGroup_);
-        map.meshVertices = mesh_.vertexCount();
-    }
+    stampMesh(map);
     return map;
+}
+
+void Document::stampMesh(Correspondence& map) const {
+    if (!hasMesh_) return;
+    map.meshFile = std8(QFileInfo(meshPath_).fileName());
+    map.meshGroup = std8(meshGroup_);
+    map.meshVertices = mesh_.vertexCount();
 }
 
 bool Document::readMeshFile(const QString& path, const QString& group, State& state,
@@ -160,11 +163,7 @@ bool Document::loadCorrespondence(const QString& path, MapLoad mode) {
 
 bool Document::saveCorrespondence(const QString& path) {
     Correspondence map = map_;
-    if (hasMesh_) {
-        map.meshFile = std8(QFileInfo(meshPath_).fileName());
-        map.meshGroup = std8(meshGroup_);
-        map.meshVertices = mesh_.vertexCount();
-    }
+    stampMesh(map);
     try {
         map.write(std8(path));
     } catch (const std::exception& e) {

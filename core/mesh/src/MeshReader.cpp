@@ -1,6 +1,5 @@
 #include "boneless/MeshReader.h"
 
-#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -77,7 +76,7 @@ void addWarnings(MeshReadResult& r, const PolygonSoup& soup, const std::vector<i
 // materials, when that is more than the triangles say; null otherwise.
 std::shared_ptr<const SourceFaces> sourceFaces(const std::string& path, const PolygonSoup& soup,
                                                const std::vector<int>& kept,
-                                               const std::vector<int>& meshIndex) {
+                                               const std::vector<int>& meshIndex, int vertexCount) {
     const bool uvs = !soup.uvOf.empty() && !soup.uv.empty();
     bool polygons = false, anyUv = false, anyMaterial = false;
     for (int f : kept) {
@@ -89,8 +88,7 @@ std::shared_ptr<const SourceFaces> sourceFaces(const std::string& path, const Po
     }
     if (!polygons && !anyUv && !anyMaterial) return nullptr;
     auto out = std::make_shared<SourceFaces>();
-    out->vertexCount = static_cast<int>(
-        std::count_if(meshIndex.begin(), meshIndex.end(), [](int i) { return i >= 0; }));
+    out->vertexCount = vertexCount;
     std::vector<int> uvIndex(soup.uv.size() / 2, -1);
     for (int f : kept) {
         if (anyMaterial && soup.faceMaterial[f] >= 0) {
@@ -199,7 +197,7 @@ MeshReadResult readMesh(const std::string& path, const MeshReadOptions& options)
     }
 
     addWarnings(r, soup, dropped, zeroArea, topo);
-    r.mesh.sourceFaces = sourceFaces(path, soup, kept, meshIndex);
+    r.mesh.sourceFaces = sourceFaces(path, soup, kept, meshIndex, r.mesh.vertexCount());
     return r;
 }
 

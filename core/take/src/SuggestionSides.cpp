@@ -48,11 +48,11 @@ std::string SideCheck::mismatch(const std::string& label, const Vec3& restPoint)
     return {};
 }
 
-// Vertices sampled to fit and test the plane: enough to see a limb that is not mirrored.
+// Vertices sampled to fit and test the plane, every (n / kMirrorSamples)-th: enough to see a limb
+// that is not mirrored.
 constexpr int kMirrorSamples = 400;
 // The mesh is symmetric when this share of the samples reflects to within kMirrorEdges mean edge
-// lengths of a vertex (MakeHuman and the demo reflect onto their own vertices exactly). Every (n /
-// 400)-th vertex is a sample.
+// lengths of a vertex (MakeHuman and the demo reflect onto their own vertices exactly).
 constexpr double kMirrorShare = 0.9;
 constexpr double kMirrorEdges = 0.5;
 

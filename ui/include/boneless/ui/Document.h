@@ -182,6 +182,8 @@ class Document : public QObject {
     void startAfresh();
     bool fail(const QString& message);
     Correspondence emptyMap() const;
+    // The map names this mesh: its file, group and vertex count.
+    void stampMesh(Correspondence& map) const;
 
     bool hasMesh_ = false, hasTake_ = false;
     TriMesh mesh_;
