@@ -122,7 +122,11 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet) {
 
     MeshReadOptions meshOptions;
     meshOptions.group = job.group;
-    const TriMesh mesh = readMesh(job.mesh, meshOptions).mesh;
+    const MeshReadResult read = readMesh(job.mesh, meshOptions);
+    const TriMesh& mesh = read.mesh;
+    if (!quiet)
+        for (const std::string& w : read.warnings)
+            std::fprintf(stderr, "note: %s: %s\n", job.mesh.c_str(), w.c_str());
     // Streamed: a take of any length solves in the memory of a short one.
     const C3dFrameReader take(job.c3d);
     const Correspondence map = Correspondence::read(job.map);

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "CliRunner.h"
+#include "TestFiles.h"
 
 using namespace boneless::testing;
 namespace fs = std::filesystem;
@@ -86,4 +87,24 @@ TEST(BlenderReads, ObjFramesAsTheInputsQuadsWithTheirUvs) {
     EXPECT_NE(r.out.find("faces: 13380 vertices, 13378 polygons, 13378 quads, 1 uv layers"),
               std::string::npos)
         << r.out;
+}
+
+// A textured character for Unity or the web: the OBJ's material and its PNG come with the .glb.
+TEST(BlenderReads, TheGlbWithTheObjsMaterialAndItsTexture) {
+    if (!haveBlender()) GTEST_SKIP() << "blender is not installed (scripts/install-deps.sh)";
+    const fs::path dir = freshTestDir("blender-glb-material");
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frames 3").exitCode, 0);
+    addTextureCoordinatesAndMaterial((dir / "walker.obj").string(), "walker.mtl", "skin");
+    std::ofstream(dir / "walker.mtl") << "newmtl skin\nKd 0.8 0.6 0.5\nmap_Kd skin.png\n";
+    std::ofstream(dir / "skin.png", std::ios::binary) << twoByTwoPng();
+    const CliResult solved =
+        runCli("solve --quiet --frames 1:3 --format glb --mesh " + (dir / "walker.obj").string() +
+               " --c3d " + (dir / "walker.c3d").string() + " --map " +
+               (dir / "walker.map.json").string() + " --out " + (dir / "glb").string());
+    ASSERT_EQ(solved.exitCode, 0) << solved.out;
+    const CliResult r = runShell("blender -b --factory-startup --python " BONELESS_SOURCE_DIR
+                                 "/tests/blender/read_glb_material.py -- " +
+                                 (dir / "glb" / "walker.glb").string() + " 2>&1");
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("material skin: image 2x2 packed True"), std::string::npos) << r.out;
 }

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "CliRunner.h"
+#include "TestFiles.h"
 #include "boneless/MeshReader.h"
 #include "boneless/Metrics.h"
 #include "boneless/PointCacheWriter.h"
@@ -123,23 +124,7 @@ TEST(SolveCommand, ObjAndPointCacheHoldTheSamePositions) {
 TEST(SolveCommand, ObjFramesKeepTheInputsTextureCoordinatesAndMaterials) {
     const fs::path demo = makeDemo(3);
     // The demo walker as an artist's file: a texture coordinate per corner and a material.
-    std::ifstream in(demo / "walker.obj");
-    std::string text = "mtllib walker.mtl\n", line, faces = "usemtl skin\n";
-    int corners = 0;
-    while (std::getline(in, line)) {
-        if (line.rfind("f ", 0) != 0) {
-            text += line + "\n";
-            continue;
-        }
-        std::istringstream corner(line.substr(2));
-        faces += "f";
-        for (std::string v; corner >> v;) {
-            text += "vt " + std::to_string(++corners % 97 / 97.0) + " 0.5\n";
-            faces += " " + v + "/" + std::to_string(corners);
-        }
-        faces += "\n";
-    }
-    std::ofstream(demo / "walker.obj") << text << faces;
+    addTextureCoordinatesAndMaterial((demo / "walker.obj").string(), "walker.mtl", "skin");
     std::ofstream(demo / "walker.mtl") << "newmtl skin\nKd 0.8 0.6 0.5\n";
     const TriMesh input = readMesh((demo / "walker.obj").string()).mesh;
     ASSERT_NE(input.sourceFaces, nullptr);
@@ -159,6 +144,22 @@ TEST(SolveCommand, ObjFramesKeepTheInputsTextureCoordinatesAndMaterials) {
         EXPECT_EQ(fs::path(frame.sourceFaces->materialLibraries[0]),
                   fs::absolute(demo / "walker.mtl"));
     }
+}
+
+TEST(SolveCommand, SaysWhatTheMeshsMaterialLibraryLacksAndSolvesAnyway) {
+    const fs::path demo = makeDemo(3);
+    addTextureCoordinatesAndMaterial((demo / "walker.obj").string(), "walker.mtl", "skin");
+    std::ofstream(demo / "walker.mtl") << "newmtl skin\nmap_Kd textures/skin.png\n";
+    const fs::path out = demo / "solved";
+    const CliResult r = runCli(solveArgs(demo, out) + " --frames 1:2 --format glb");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("note: " + (demo / "walker.obj").string() + ": " +
+                         (demo / "walker.mtl").string() + " line 2: texture " +
+                         (demo / "textures" / "skin.png").string() + " not found"),
+              std::string::npos)
+        << r.out;
+    EXPECT_TRUE(fs::exists(out / "walker.glb"));
+    EXPECT_EQ(runCli(solveArgs(demo, demo / "quiet") + " --frames 1:2 --quiet").out, "");
 }
 
 TEST(SolveCommand, CtrlCStopsCleanlyWithCompleteFilesOnly) {

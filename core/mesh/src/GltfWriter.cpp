@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -56,12 +58,13 @@ void appendU32(std::string& out, std::uint32_t v) {  // GLB is little-endian, as
 // The scene: one node with the mesh, its morph targets named, and an animation that steps
 // through them (none without frames).
 void addAnimatedMesh(tinygltf::Model& m, const std::string& name,
-                     const tinygltf::Primitive& primitive, std::vector<tinygltf::Value> targetNames,
-                     int timeAccessor, int weightAccessor) {
+                     std::vector<tinygltf::Primitive> primitives,
+                     std::vector<tinygltf::Value> targetNames, int timeAccessor,
+                     int weightAccessor) {
     const size_t frames = targetNames.size();
     tinygltf::Mesh mesh;
     mesh.name = name;
-    mesh.primitives.push_back(primitive);
+    mesh.primitives = std::move(primitives);
     mesh.weights.assign(frames, 0.0);
     mesh.extras = tinygltf::Value(
         tinygltf::Value::Object{{"targetNames", tinygltf::Value(std::move(targetNames))}});
@@ -139,6 +142,62 @@ bool splitAtUvSeams(const TriMesh& mesh, std::vector<int>& meshVertexOf, std::ve
     return t == mesh.F.rows();
 }
 
+// The material of each triangle, as an index into `used` (−1: none), from the source polygons'
+// "usemtl" runs; triangles follow the polygons, n − 2 each (readMesh). Empty when the mesh has no
+// materials or its triangles do not follow its polygons.
+std::vector<int> triangleMaterials(const TriMesh& mesh, std::vector<ObjMaterial>& used) {
+    const SourceFaces* source = mesh.sourceFaces.get();
+    if (!source || source->materials.empty()) return {};
+    std::vector<int> out;
+    out.reserve(static_cast<size_t>(mesh.faceCount()));
+    size_t run = 0;
+    int material = -1;
+    for (int p = 0; p < source->polygonCount(); ++p) {
+        if (run < source->materials.size() && source->materials[run].first == p) {
+            const std::string& name = source->materials[run++].second;
+            auto same = [&](const ObjMaterial& m) { return m.name == name; };
+            auto it = std::find_if(used.begin(), used.end(), same);
+            if (it == used.end()) {
+                const auto& defined = source->materialDefinitions;
+                const auto d = std::find_if(defined.begin(), defined.end(), same);
+                ObjMaterial named;
+                named.name = name;
+                used.push_back(d != defined.end() ? *d : named);
+                it = used.end() - 1;
+            }
+            material = static_cast<int>(it - used.begin());
+        }
+        out.insert(out.end(), source->start[p + 1] - source->start[p] - 2, material);
+    }
+    if (out.size() != static_cast<size_t>(mesh.faceCount())) return {};
+    return out;
+}
+
+// An OBJ material as glTF's metallic-roughness one: diffuse and not metallic. With a texture the
+// colour is the texture's (OBJ importers show map_Kd in place of Kd).
+tinygltf::Material gltfMaterial(const ObjMaterial& obj, int texture) {
+    tinygltf::Material m;
+    m.name = obj.name;
+    auto& pbr = m.pbrMetallicRoughness;
+    pbr.baseColorFactor = {obj.color[0], obj.color[1], obj.color[2], obj.opacity};
+    if (texture >= 0) {
+        pbr.baseColorFactor = {1.0, 1.0, 1.0, obj.opacity};
+        pbr.baseColorTexture.index = texture;
+    }
+    pbr.metallicFactor = 0;
+    pbr.roughnessFactor = 1;
+    if (obj.opacity < 1) m.alphaMode = "BLEND";
+    return m;
+}
+
+// A texture's bytes, or empty if it can no longer be read (the export goes on without it).
+std::string readImage(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    return in ? bytes.str() : std::string();
+}
+
 }  // namespace
 
 GltfWriter::GltfWriter(std::string path, const TriMesh& rest, std::string name)
@@ -151,6 +210,26 @@ GltfWriter::GltfWriter(std::string path, const TriMesh& rest, std::string name)
         for (int v = 0; v < rest_.vertexCount(); ++v) meshVertexOf_[v] = v;
         uv_.clear();
         triangles_.assign(rest_.F.data(), rest_.F.data() + rest_.F.size());
+    }
+    // One glTF primitive per material: the triangles grouped by it, in their order within.
+    const std::vector<int> material = triangleMaterials(rest_, materials_);
+    if (!material.empty()) {
+        std::vector<std::uint32_t> grouped;
+        grouped.reserve(triangles_.size());
+        for (int g = -1; g < static_cast<int>(materials_.size()); ++g) {
+            const size_t before = grouped.size();
+            for (size_t t = 0; t < material.size(); ++t)
+                if (material[t] == g)
+                    grouped.insert(grouped.end(), &triangles_[3 * t], &triangles_[3 * t] + 3);
+            if (grouped.size() > before) groups_.push_back({g, (grouped.size() - before) / 3});
+        }
+        triangles_ = std::move(grouped);
+    }
+    for (const ObjMaterial& obj : materials_) {
+        std::error_code error;
+        const std::uintmax_t size =
+            obj.texture.empty() ? 0 : std::filesystem::file_size(obj.texture, error);
+        if (!error) textureBytes_ += size + 3;
     }
     file_ = std::fopen(spool_.c_str(), "wb+");
     if (!file_) throw Error(path_ + ": cannot be written (cannot create " + spool_ + ")");
@@ -170,7 +249,8 @@ void GltfWriter::append(double seconds, const Positions& positions) {
         throw Error(path_ + ": frame with " + std::to_string(positions.rows()) +
                     " vertices, the mesh has " + std::to_string(n));
     const std::uint64_t m = meshVertexOf_.size();
-    const std::uint64_t bytes = 12ull * m * (times_.size() + 2) + 8ull * m + 12ull * rest_.F.rows();
+    const std::uint64_t bytes =
+        12ull * m * (times_.size() + 2) + 8ull * m + 12ull * rest_.F.rows() + textureBytes_;
     if (static_cast<int>(times_.size()) >= kMaxFrames || bytes > kMaxGlbBytes)
         throw Error(path_ + ": a .glb holds at most " + std::to_string(kMaxFrames) +
                     " frames and 4 GB; export fewer frames (--frames) or a point cache");
@@ -219,17 +299,40 @@ void GltfWriter::finish() {
     const int restAccessor =
         addAccessor(m, place(rest.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
                     TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n, lo, hi);
-    const int triangleAccessor =
-        addAccessor(m, place(triangles.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
-                    TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, triangles.size());
+    const int triangleView = place(triangles.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
     tinygltf::Primitive primitive;
     primitive.attributes["POSITION"] = restAccessor;
     if (!uv_.empty())
         primitive.attributes["TEXCOORD_0"] =
             addAccessor(m, place(uv_.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
                         TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, uv_.size() / 2);
-    primitive.indices = triangleAccessor;
     primitive.mode = TINYGLTF_MODE_TRIANGLES;
+    // The materials, their textures in the BIN chunk after the coordinates (a texture needs
+    // them), each padded to 4 bytes so that the views after it stay aligned.
+    std::string images;
+    for (const ObjMaterial& obj : materials_) {
+        int texture = -1;
+        const std::string bytes = uv_.empty() || obj.texture.empty() ? "" : readImage(obj.texture);
+        if (!bytes.empty()) {
+            tinygltf::Image image;
+            image.name = std::filesystem::path(obj.texture).filename().string();
+            image.mimeType =
+                static_cast<unsigned char>(bytes[0]) == 0x89 ? "image/png" : "image/jpeg";
+            image.bufferView = place(bytes.size());
+            images += bytes;
+            const size_t pad = (4 - bytes.size() % 4) % 4;
+            images.append(pad, '\0');
+            offset += pad;
+            m.images.push_back(image);
+            if (m.samplers.empty()) m.samplers.emplace_back();  // repeat, the viewer's filters
+            tinygltf::Texture t;
+            t.sampler = 0;
+            t.source = static_cast<int>(m.images.size()) - 1;
+            m.textures.push_back(t);
+            texture = static_cast<int>(m.textures.size()) - 1;
+        }
+        m.materials.push_back(gltfMaterial(obj, texture));
+    }
     std::vector<tinygltf::Value> targetNames;
     for (size_t k = 0; k < frames; ++k) {
         const auto& b = bounds_[k];
@@ -260,14 +363,29 @@ void GltfWriter::finish() {
     sparse.indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
     sparse.values.bufferView = place(frames * 4);
 
-    addAnimatedMesh(m, name_, primitive, std::move(targetNames), timeAccessor, weightAccessor);
+    std::vector<tinygltf::Primitive> primitives;
+    size_t first = 0;
+    for (const auto& [material, count] :
+         groups_.empty() ? std::vector<std::pair<int, size_t>>{{-1, triangles.size() / 3}}
+                         : groups_) {
+        tinygltf::Primitive p = primitive;
+        p.indices = addAccessor(m, triangleView, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
+                                TINYGLTF_TYPE_SCALAR, 3 * count);
+        m.accessors[p.indices].byteOffset = 12 * first;
+        p.material = material;
+        primitives.push_back(std::move(p));
+        first += count;
+    }
+    addAnimatedMesh(m, name_, std::move(primitives), std::move(targetNames), timeAccessor,
+                    weightAccessor);
     const std::string json = glbJson(m, offset);
 
     std::string tail;
     appendBytes(tail, times_);
     appendBytes(tail, keyIndices);
     appendBytes(tail, ones);
-    head.reserve(28 + json.size() + rest.size() * 4 + triangles.size() * 4 + uv_.size() * 4);
+    head.reserve(28 + json.size() + rest.size() * 4 + triangles.size() * 4 + uv_.size() * 4 +
+                 images.size());
     head.append("glTF");
     appendU32(head, 2);
     appendU32(head, static_cast<std::uint32_t>(12 + 8 + json.size() + 8 + offset));
@@ -279,6 +397,7 @@ void GltfWriter::finish() {
     appendBytes(head, rest);
     appendBytes(head, triangles);
     appendBytes(head, uv_);
+    head += images;
     std::FILE* spool = file_;
     file_ = nullptr;
     writeSpooled(path_, head, spool, spool_, tail);

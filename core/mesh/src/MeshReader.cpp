@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "MtlReader.h"
 #include "OpenMeshPrecheck.h"
 #include "PolygonSoup.h"
 #include "boneless/Error.h"
@@ -76,7 +77,8 @@ void addWarnings(MeshReadResult& r, const PolygonSoup& soup, const std::vector<i
 // materials, when that is more than the triangles say; null otherwise.
 std::shared_ptr<const SourceFaces> sourceFaces(const std::string& path, const PolygonSoup& soup,
                                                const std::vector<int>& kept,
-                                               const std::vector<int>& meshIndex, int vertexCount) {
+                                               const std::vector<int>& meshIndex, int vertexCount,
+                                               std::vector<std::string>& warnings) {
     const bool uvs = !soup.uvOf.empty() && !soup.uv.empty();
     bool polygons = false, anyUv = false, anyMaterial = false;
     for (int f : kept) {
@@ -112,6 +114,7 @@ std::shared_ptr<const SourceFaces> sourceFaces(const std::string& path, const Po
         const std::filesystem::path folder = std::filesystem::absolute(path).parent_path();
         for (const std::string& lib : soup.materialLibraries)
             out->materialLibraries.push_back((folder / lib).lexically_normal().string());
+        out->materialDefinitions = detail::readMaterialLibraries(out->materialLibraries, warnings);
     }
     return out;
 }
@@ -197,7 +200,7 @@ MeshReadResult readMesh(const std::string& path, const MeshReadOptions& options)
     }
 
     addWarnings(r, soup, dropped, zeroArea, topo);
-    r.mesh.sourceFaces = sourceFaces(path, soup, kept, meshIndex, r.mesh.vertexCount());
+    r.mesh.sourceFaces = sourceFaces(path, soup, kept, meshIndex, r.mesh.vertexCount(), r.warnings);
     return r;
 }
 

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "TestFiles.h"
 #include "TestMeshes.h"
 #include "boneless/Error.h"
 #include "boneless/GltfWriter.h"
@@ -120,6 +121,69 @@ TEST(GltfExport, TextureCoordinatesGoWithTheMeshSplitAtTheirSeams) {
         else
             EXPECT_FLOAT_EQ(u, 0.6 + 0.4 * (x - 1)) << g;
         EXPECT_FLOAT_EQ(rest[3 * g + 2] + offset[3 * g + 2], x * x) << g;  // its vertex's motion
+    }
+}
+
+TEST(GltfExport, MaterialsBecomePrimitivesWithTheirColourAndEmbeddedTexture) {
+    const fs::path dir = freshTestDir("glb-materials");
+    std::ofstream(dir / "paint.png", std::ios::binary) << twoByTwoPng();
+    std::ofstream(dir / "strip.mtl") << "newmtl painted\nKd 0.3 0.3 0.3\nmap_Kd paint.png\n"
+                                        "newmtl tinted\nKd 0.2 0.4 0.6\nd 0.5\n";
+    // Three quads in a row: the first without a material, then one of each; "tinted" is used
+    // again after "painted", so its triangles are not contiguous in the file.
+    std::ofstream(dir / "strip.obj") << "mtllib strip.mtl\n"
+                                        "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 3 0 0\n"
+                                        "v 0 1 0\nv 1 1 0\nv 2 1 0\nv 3 1 0\n"
+                                        "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                                        "f 1/1 2/2 6/3 5/4\nusemtl tinted\nf 2/1 3/2 7/3 6/4\n"
+                                        "usemtl painted\nf 3/1 4/2 8/3 7/4\n";
+    const TriMesh strip = readMesh((dir / "strip.obj").string()).mesh;
+    const std::string path = (dir / "strip.glb").string();
+    {
+        GltfWriter writer(path, strip, "strip");
+        writer.append(0.0, strip.V);
+        writer.append(0.1, 2.0 * strip.V);
+        writer.finish();
+    }
+    const tinygltf::Model m = load(path);
+    ASSERT_EQ(m.materials.size(), 2u);  // in order of first use
+    EXPECT_EQ(m.materials[0].name, "tinted");
+    EXPECT_EQ(m.materials[0].pbrMetallicRoughness.baseColorFactor,
+              (std::vector<double>{0.2, 0.4, 0.6, 0.5}));
+    EXPECT_EQ(m.materials[0].alphaMode, "BLEND");
+    EXPECT_EQ(m.materials[0].pbrMetallicRoughness.baseColorTexture.index, -1);
+    EXPECT_EQ(m.materials[1].name, "painted");
+    EXPECT_EQ(m.materials[1].alphaMode, "OPAQUE");
+    EXPECT_EQ(m.materials[1].pbrMetallicRoughness.metallicFactor, 0.0);
+    const int texture = m.materials[1].pbrMetallicRoughness.baseColorTexture.index;
+    ASSERT_GE(texture, 0);
+    const tinygltf::Image& image = m.images[m.textures[texture].source];
+    EXPECT_EQ(image.mimeType, "image/png");
+    EXPECT_EQ(image.width, 2);  // tinygltf decoded it
+    const tinygltf::BufferView& view = m.bufferViews[image.bufferView];
+    EXPECT_EQ(std::string(reinterpret_cast<const char*>(m.buffers[0].data.data()) + view.byteOffset,
+                          view.byteLength),
+              twoByTwoPng());
+
+    // One primitive per material (none first), sharing the vertices and the morph targets.
+    const std::vector<tinygltf::Primitive>& p = m.meshes[0].primitives;
+    ASSERT_EQ(p.size(), 3u);
+    const int material[3] = {-1, 0, 1};
+    const float quadX[3] = {0.5f, 1.5f, 2.5f};  // the quad each primitive holds, by its centre
+    for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(p[k].material, material[k]);
+        EXPECT_EQ(p[k].attributes.at("POSITION"), p[0].attributes.at("POSITION"));
+        ASSERT_EQ(p[k].targets.size(), 2u);
+        EXPECT_EQ(p[k].targets[1].at("POSITION"), p[0].targets[1].at("POSITION"));
+        const tinygltf::Accessor& a = m.accessors[p[k].indices];
+        ASSERT_EQ(a.count, 6u);
+        const std::vector<float> rest = floats(m, p[k].attributes.at("POSITION"));
+        const tinygltf::BufferView& v = m.bufferViews[a.bufferView];
+        const auto* index = reinterpret_cast<const std::uint32_t*>(m.buffers[0].data.data() +
+                                                                   v.byteOffset + a.byteOffset);
+        float x = 0;
+        for (int c = 0; c < 6; ++c) x += rest[3 * index[c]] / 6;
+        EXPECT_NEAR(x, quadX[k], 0.25) << "primitive " << k;
     }
 }
 

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "boneless/TriMesh.h"
@@ -17,8 +18,9 @@ namespace boneless {
 // frame holding that frame's offsets from the rest pose, and an animation on the morph weights
 // keyed at each frame's time in the take (LINEAR: frame k has weight 1 at its time, and playback
 // between two frames blends them). The weight keys are a sparse accessor, so they grow with the
-// frame count rather than its square. Coordinates and units are the mesh's own. Frames are spooled
-// to a file; finish() writes the .glb under a temporary name and renames it.
+// frame count rather than its square. An OBJ's materials become one primitive each, with their
+// colour, opacity and PNG or JPEG texture (embedded). Coordinates and units are the mesh's own.
+// Frames are spooled to a file; finish() writes the .glb under a temporary name and renames it.
 class GltfWriter {
   public:
     GltfWriter(std::string path, const TriMesh& rest, std::string name);
@@ -35,6 +37,10 @@ class GltfWriter {
     std::vector<int> meshVertexOf_;         // per glTF vertex, the mesh vertex it is
     std::vector<float> uv_;                 // 2 per glTF vertex (glTF's v runs down), or empty
     std::vector<std::uint32_t> triangles_;  // glTF vertex indices, 3 per mesh triangle
+    std::vector<ObjMaterial> materials_;    // those the triangles use, in order of first use
+    // (material, triangles) in triangles_'s order, a material's triangles together; −1: none.
+    std::vector<std::pair<int, size_t>> groups_;
+    std::uint64_t textureBytes_ = 0;  // the textures' files, padded, as the BIN chunk holds them
     std::FILE* file_ = nullptr;
     std::vector<float> times_;
     std::vector<std::array<double, 6>> bounds_;  // per frame: min xyz, max xyz of the offsets

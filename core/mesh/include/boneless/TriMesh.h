@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>  // cross products everywhere
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -13,6 +14,14 @@ using Mat3 = Eigen::Matrix3d;
 using Positions = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;  // #V by 3
 using Faces = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;         // #F by 3
 
+// A material as an OBJ library (.mtl) defines it, as far as a glTF material carries it.
+struct ObjMaterial {
+    std::string name;                            // "newmtl"
+    std::array<double, 3> color{0.8, 0.8, 0.8};  // "Kd", the diffuse colour
+    double opacity = 1;                          // "d", or 1 − "Tr"
+    std::string texture;  // "map_Kd": absolute path of a PNG or JPEG file, or empty
+};
+
 // The input file's own faces, for writers that give them back (OBJ frames): its polygons, their
 // texture coordinates and materials, where the solver sees only triangles.
 struct SourceFaces {
@@ -23,6 +32,7 @@ struct SourceFaces {
     std::vector<double> uv;     // 2 per texture coordinate (OBJ "vt"), those the polygons use
     std::vector<std::string> materialLibraries;          // absolute paths (OBJ "mtllib")
     std::vector<std::pair<int, std::string>> materials;  // (first polygon, OBJ "usemtl" name)
+    std::vector<ObjMaterial> materialDefinitions;        // what the libraries define
 
     int polygonCount() const { return static_cast<int>(start.size()) - 1; }
 };

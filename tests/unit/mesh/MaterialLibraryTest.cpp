@@ -1,0 +1,72 @@
+// An OBJ's material libraries as readMesh reads them for the glb: colour, opacity, texture.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "TestFiles.h"
+#include "boneless/MeshReader.h"
+
+using namespace boneless;
+using namespace boneless::testing;
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* kTriangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n";
+
+bool anyWarningHas(const MeshReadResult& r, const std::string& a, const std::string& b) {
+    for (const std::string& w : r.warnings)
+        if (w.find(a) != w.npos && w.find(b) != w.npos) return true;
+    return false;
+}
+
+}  // namespace
+
+TEST(MaterialLibrary, GivesEachMaterialItsColourOpacityAndTexture) {
+    const fs::path dir = freshTestDir("mtl-read");
+    fs::create_directories(dir / "looks" / "maps");
+    std::ofstream(dir / "looks" / "maps" / "skin tone.png", std::ios::binary) << twoByTwoPng();
+    // Options before the file name, a name with a space, "Tr" as the inverse of "d".
+    std::ofstream(dir / "looks" / "body.mtl")
+        << "# exported\nnewmtl skin\nKd 0.9 0.7 0.6\nmap_Kd -s 1 1 1 -clamp on maps/skin tone.png\n"
+           "newmtl glass pane\nKd 0.1 0.2 0.3\nTr 0.25\n";
+    std::ofstream(dir / "body.obj") << "mtllib looks/body.mtl\n"
+                                    << kTriangle << "v 1 1 0\nusemtl skin\nf 1/1 2/2 3/3\n"
+                                    << "usemtl glass pane\nf 2/2 4/1 3/3\n";
+    const MeshReadResult r = readMesh((dir / "body.obj").string());
+    ASSERT_NE(r.mesh.sourceFaces, nullptr);
+    const std::vector<ObjMaterial>& m = r.mesh.sourceFaces->materialDefinitions;
+    ASSERT_EQ(m.size(), 2u);
+    EXPECT_EQ(m[0].name, "skin");
+    EXPECT_EQ(m[0].color, (std::array<double, 3>{0.9, 0.7, 0.6}));
+    EXPECT_EQ(m[0].opacity, 1.0);
+    EXPECT_EQ(fs::path(m[0].texture), fs::absolute(dir / "looks" / "maps" / "skin tone.png"));
+    EXPECT_EQ(m[1].name, "glass pane");
+    EXPECT_DOUBLE_EQ(m[1].opacity, 0.75);
+    EXPECT_TRUE(m[1].texture.empty());
+    EXPECT_FALSE(anyWarningHas(r, "body.mtl", ""));  // only the open strip's boundary
+}
+
+TEST(MaterialLibrary, WhatItCannotUseIsAWarningNamingTheFileAndTheMeshStillReads) {
+    const fs::path dir = freshTestDir("mtl-warn");
+    std::ofstream(dir / "a.tga", std::ios::binary) << "not a png at all";
+    std::ofstream(dir / "m.mtl") << "Kd 1 1 1\nnewmtl a\nKd 0.5 x\nmap_Kd a.tga\n"
+                                    "newmtl b\nmap_Kd gone.png\n";
+    std::ofstream(dir / "t.obj") << "mtllib m.mtl missing.mtl\n"
+                                 << kTriangle << "usemtl a\nf 1/1 2/2 3/3\n";
+    const MeshReadResult r = readMesh((dir / "t.obj").string());
+    ASSERT_NE(r.mesh.sourceFaces, nullptr);
+    EXPECT_EQ(r.mesh.faceCount(), 1);
+    const std::string lib = (dir / "m.mtl").string();
+    EXPECT_TRUE(anyWarningHas(r, lib + " line 1", "before any newmtl"));
+    EXPECT_TRUE(anyWarningHas(r, lib + " line 3", "Kd needs three numbers"));
+    EXPECT_TRUE(anyWarningHas(r, lib + " line 4", "neither PNG nor JPEG"));
+    EXPECT_TRUE(anyWarningHas(r, lib + " line 6", "gone.png not found"));
+    EXPECT_TRUE(anyWarningHas(r, "missing.mtl", "cannot be read"));
+    const std::vector<ObjMaterial>& m = r.mesh.sourceFaces->materialDefinitions;
+    ASSERT_EQ(m.size(), 2u);
+    EXPECT_EQ(m[0].color, (std::array<double, 3>{0.8, 0.8, 0.8}));  // the bad Kd left as default
+    EXPECT_TRUE(m[0].texture.empty());
+    EXPECT_TRUE(m[1].texture.empty());
+}
