@@ -12,6 +12,7 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "MtlReader.h"
 #include "boneless/Error.h"
 #include "boneless/SpoolFile.h"
 
@@ -179,7 +180,7 @@ tinygltf::Material gltfMaterial(const ObjMaterial& obj, int texture) {
     tinygltf::Material m;
     m.name = obj.name;
     auto& pbr = m.pbrMetallicRoughness;
-    pbr.baseColorFactor = {obj.color[0], obj.color[1], obj.color[2], obj.opacity};
+    pbr.baseColorFactor = {obj.colour[0], obj.colour[1], obj.colour[2], obj.opacity};
     if (texture >= 0) {
         pbr.baseColorFactor = {1.0, 1.0, 1.0, obj.opacity};
         pbr.baseColorTexture.index = texture;
@@ -212,11 +213,11 @@ GltfWriter::GltfWriter(std::string path, const TriMesh& rest, std::string name)
         triangles_.assign(rest_.F.data(), rest_.F.data() + rest_.F.size());
     }
     // One glTF primitive per material: the triangles grouped by it, in their order within.
-    const std::vector<int> material = triangleMaterials(rest_, materials_);
+    const std::vector<int> material = triangleMaterials(rest_, usedMaterials_);
     if (!material.empty()) {
         std::vector<std::uint32_t> grouped;
         grouped.reserve(triangles_.size());
-        for (int g = -1; g < static_cast<int>(materials_.size()); ++g) {
+        for (int g = -1; g < static_cast<int>(usedMaterials_.size()); ++g) {
             const size_t before = grouped.size();
             for (size_t t = 0; t < material.size(); ++t)
                 if (material[t] == g)
@@ -225,10 +226,14 @@ GltfWriter::GltfWriter(std::string path, const TriMesh& rest, std::string name)
         }
         triangles_ = std::move(grouped);
     }
-    for (const ObjMaterial& obj : materials_) {
+    std::vector<std::string> textures;
+    for (const ObjMaterial& obj : usedMaterials_) {
+        if (obj.texture.empty() ||
+            std::find(textures.begin(), textures.end(), obj.texture) != textures.end())
+            continue;
+        textures.push_back(obj.texture);
         std::error_code error;
-        const std::uintmax_t size =
-            obj.texture.empty() ? 0 : std::filesystem::file_size(obj.texture, error);
+        const std::uintmax_t size = std::filesystem::file_size(obj.texture, error);
         if (!error) textureBytes_ += size + 3;
     }
     file_ = std::fopen(spool_.c_str(), "wb+");
@@ -279,7 +284,8 @@ void GltfWriter::finish() {
     m.asset.generator = "Boneless";
     m.buffers.emplace_back();
 
-    // BIN chunk: rest positions, triangles, the spooled offsets, times, sparse weight keys.
+    // BIN chunk: rest positions, triangles, texture coordinates, textures, the spooled offsets,
+    // times, sparse weight keys.
     std::string head;
     std::vector<float> rest(3 * static_cast<size_t>(n));
     std::vector<double> lo(3, 1e300), hi(3, -1e300);
@@ -310,14 +316,17 @@ void GltfWriter::finish() {
     // The materials, their textures in the BIN chunk after the coordinates (a texture needs
     // them), each padded to 4 bytes so that the views after it stay aligned.
     std::string images;
-    for (const ObjMaterial& obj : materials_) {
-        int texture = -1;
-        const std::string bytes = uv_.empty() || obj.texture.empty() ? "" : readImage(obj.texture);
-        if (!bytes.empty()) {
+    std::unordered_map<std::string, int> textureOf;  // a texture that two materials share: once
+    for (const ObjMaterial& obj : usedMaterials_) {
+        const auto known = textureOf.find(obj.texture);
+        int texture = known != textureOf.end() ? known->second : -1;
+        const std::string bytes =
+            uv_.empty() || obj.texture.empty() || texture >= 0 ? "" : readImage(obj.texture);
+        const std::string mimeType = detail::imageMimeType(bytes.substr(0, 8));
+        if (!mimeType.empty()) {
             tinygltf::Image image;
             image.name = std::filesystem::path(obj.texture).filename().string();
-            image.mimeType =
-                static_cast<unsigned char>(bytes[0]) == 0x89 ? "image/png" : "image/jpeg";
+            image.mimeType = mimeType;
             image.bufferView = place(bytes.size());
             images += bytes;
             const size_t pad = (4 - bytes.size() % 4) % 4;
@@ -330,6 +339,7 @@ void GltfWriter::finish() {
             t.source = static_cast<int>(m.images.size()) - 1;
             m.textures.push_back(t);
             texture = static_cast<int>(m.textures.size()) - 1;
+            textureOf[obj.texture] = texture;
         }
         m.materials.push_back(gltfMaterial(obj, texture));
     }
@@ -379,6 +389,11 @@ void GltfWriter::finish() {
     addAnimatedMesh(m, name_, std::move(primitives), std::move(targetNames), timeAccessor,
                     weightAccessor);
     const std::string json = glbJson(m, offset);
+    // append() kept the frames under the limit; a texture that grew since may not be.
+    if (28 + json.size() + offset > kMaxGlbBytes)
+        throw Error(path_ +
+                    ": a .glb holds at most 4 GB; export fewer frames (--frames) or a "
+                    "point cache");
 
     std::string tail;
     appendBytes(tail, times_);

@@ -1,5 +1,6 @@
 #include "boneless/MeshReader.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -115,6 +116,20 @@ std::shared_ptr<const SourceFaces> sourceFaces(const std::string& path, const Po
         for (const std::string& lib : soup.materialLibraries)
             out->materialLibraries.push_back((folder / lib).lexically_normal().string());
         out->materialDefinitions = detail::readMaterialLibraries(out->materialLibraries, warnings);
+        std::vector<std::string> named;
+        for (const auto& [polygon, name] : out->materials) {
+            if (std::find(named.begin(), named.end(), name) != named.end()) continue;
+            named.push_back(name);
+            const auto& defined = out->materialDefinitions;
+            const auto d = std::find_if(defined.begin(), defined.end(),
+                                        [&](const ObjMaterial& m) { return m.name == name; });
+            if (d == defined.end() && !out->materialLibraries.empty())
+                warnings.push_back("material '" + name + "' is used but no mtllib defines it");
+            else if (d != defined.end() && !d->texture.empty() && !anyUv)
+                warnings.push_back("material '" + name +
+                                   "' has a texture, but the faces have no texture coordinates "
+                                   "(vt) to place it");
+        }
     }
     return out;
 }

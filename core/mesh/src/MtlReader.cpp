@@ -52,16 +52,16 @@ std::string mapFile(std::string rest) {
     }
 }
 
-// PNG and JPEG by their signatures, not their names.
 bool glTFImage(const std::filesystem::path& file) {
     std::ifstream in(file, std::ios::binary);
-    unsigned char head[8] = {};
-    in.read(reinterpret_cast<char*>(head), sizeof head);
-    const bool png =
-        in.gcount() == 8 && head[0] == 0x89 && head[1] == 'P' && head[2] == 'N' && head[3] == 'G';
-    const bool jpeg = in.gcount() >= 3 && head[0] == 0xFF && head[1] == 0xD8 && head[2] == 0xFF;
-    return png || jpeg;
+    std::string head(8, '\0');
+    in.read(head.data(), 8);
+    head.resize(static_cast<size_t>(in.gcount()));
+    return !imageMimeType(head).empty();
 }
+
+// At most this many notes a library, then how many more: a broken file is one problem.
+constexpr int kNotesPerLibrary = 5;
 
 void readLibrary(const std::string& path, std::vector<ObjMaterial>& materials,
                  std::vector<std::string>& warnings) {
@@ -76,12 +76,16 @@ void readLibrary(const std::string& path, std::vector<ObjMaterial>& materials,
         return;
     }
     const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+    int notes = 0;
     std::string line;
     for (int number = 1; std::getline(in, line); ++number) {
         std::istringstream words(line);
         std::string key;
         words >> key;
         const std::string where = path + " line " + std::to_string(number) + ": ";
+        auto note = [&](const std::string& what) {
+            if (notes++ < kNotesPerLibrary) warnings.push_back(where + what);
+        };
         if (key == "newmtl") {
             std::string rest;
             std::getline(words, rest);
@@ -89,16 +93,22 @@ void readLibrary(const std::string& path, std::vector<ObjMaterial>& materials,
             materials.back().name = trimmed(rest);
         } else if (key == "Kd" || key == "d" || key == "Tr" || key == "map_Kd") {
             if (materials.empty()) {
-                warnings.push_back(where + key + " before any newmtl, ignored");
+                note(key + " before any newmtl, ignored");
                 continue;
             }
             ObjMaterial& m = materials.back();
             if (key == "Kd") {
-                std::array<double, 3> c{};
-                if (words >> c[0] >> c[1] >> c[2])
-                    m.color = c;
-                else
-                    warnings.push_back(where + "Kd needs three numbers");
+                // "Kd r [g b]": one number is a grey.
+                double r = 0, g = 0, b = 0;
+                if (!(words >> r)) {
+                    note("Kd needs a number");
+                    continue;
+                }
+                if (!(words >> g))
+                    g = b = r;
+                else if (!(words >> b))
+                    b = g;
+                m.colour = {r, g, b};
             } else if (key == "map_Kd") {
                 std::string rest;
                 std::getline(words, rest);
@@ -106,24 +116,29 @@ void readLibrary(const std::string& path, std::vector<ObjMaterial>& materials,
                 std::replace(name.begin(), name.end(), '\\', '/');
                 const std::filesystem::path file = (folder / name).lexically_normal();
                 if (name.empty())
-                    warnings.push_back(where + "map_Kd names no file");
+                    note("map_Kd names no file");
                 else if (std::error_code e; !std::filesystem::is_regular_file(file, e))
-                    warnings.push_back(where + "texture " + file.string() + " not found");
+                    note("texture " + file.string() + " not found");
                 else if (!glTFImage(file))
-                    warnings.push_back(where + "texture " + file.string() +
-                                       " is neither PNG nor JPEG, the formats glTF carries; the "
-                                       ".glb leaves it out");
+                    note("texture " + file.string() +
+                         " is neither PNG nor JPEG, the image formats glTF carries");
                 else
                     m.texture = file.string();
             } else {
+                std::string word;
+                words >> word;
+                if (key == "d" && word == "-halo") words >> word;  // halo: ignored
                 double x = 0;
-                if (!(words >> x))
-                    warnings.push_back(where + key + " needs a number");
+                if (!isNumber(word) || !(std::istringstream(word) >> x))
+                    note(key + " needs a number");
                 else
                     m.opacity = std::clamp(key == "d" ? x : 1 - x, 0.0, 1.0);
             }
         }
     }
+    if (notes > kNotesPerLibrary)
+        warnings.push_back(path + ": " + std::to_string(notes - kNotesPerLibrary) +
+                           " more lines like these");
 }
 
 }  // namespace
@@ -131,8 +146,18 @@ void readLibrary(const std::string& path, std::vector<ObjMaterial>& materials,
 std::vector<ObjMaterial> readMaterialLibraries(const std::vector<std::string>& paths,
                                                std::vector<std::string>& warnings) {
     std::vector<ObjMaterial> materials;
-    for (const std::string& path : paths) readLibrary(path, materials, warnings);
+    for (size_t k = 0; k < paths.size(); ++k)
+        if (std::find(paths.begin(), paths.begin() + k, paths[k]) == paths.begin() + k)
+            readLibrary(paths[k], materials, warnings);
     return materials;
+}
+
+std::string imageMimeType(const std::string& head) {
+    const auto byte = [&](size_t i) { return static_cast<unsigned char>(head[i]); };
+    if (head.size() >= 8 && head.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0) return "image/png";
+    if (head.size() >= 3 && byte(0) == 0xFF && byte(1) == 0xD8 && byte(2) == 0xFF)
+        return "image/jpeg";
+    return {};
 }
 
 }  // namespace boneless::detail

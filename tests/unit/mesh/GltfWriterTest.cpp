@@ -4,6 +4,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <set>
 
 #include "TestFiles.h"
 #include "TestMeshes.h"
@@ -128,15 +129,21 @@ TEST(GltfExport, MaterialsBecomePrimitivesWithTheirColourAndEmbeddedTexture) {
     const fs::path dir = freshTestDir("glb-materials");
     std::ofstream(dir / "paint.png", std::ios::binary) << twoByTwoPng();
     std::ofstream(dir / "strip.mtl") << "newmtl painted\nKd 0.3 0.3 0.3\nmap_Kd paint.png\n"
-                                        "newmtl tinted\nKd 0.2 0.4 0.6\nd 0.5\n";
-    // Three quads in a row: the first without a material, then one of each; "tinted" is used
-    // again after "painted", so its triangles are not contiguous in the file.
-    std::ofstream(dir / "strip.obj") << "mtllib strip.mtl\n"
-                                        "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 3 0 0\n"
-                                        "v 0 1 0\nv 1 1 0\nv 2 1 0\nv 3 1 0\n"
-                                        "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
-                                        "f 1/1 2/2 6/3 5/4\nusemtl tinted\nf 2/1 3/2 7/3 6/4\n"
-                                        "usemtl painted\nf 3/1 4/2 8/3 7/4\n";
+                                        "newmtl tinted\nKd 0.2 0.4 0.6\nd 0.5\n"
+                                        "newmtl repainted\nmap_Kd ./paint.png\n";
+    // Five quads in a row: the first without a material; "tinted" on the second and again on
+    // the fourth, so its triangles are not together in the file; two materials share a texture.
+    std::string obj = "mtllib strip.mtl\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n";
+    for (int x = 0; x <= 5; ++x)
+        obj += "v " + std::to_string(x) + " 0 0\nv " + std::to_string(x) + " 1 0\n";
+    const char* material[5] = {"", "tinted", "painted", "tinted", "repainted"};
+    for (int q = 0; q < 5; ++q) {
+        if (*material[q]) obj += std::string("usemtl ") + material[q] + "\n";
+        const int a = 2 * q + 1;  // bottom-left; top-left is a + 1
+        obj += "f " + std::to_string(a) + "/1 " + std::to_string(a + 2) + "/2 " +
+               std::to_string(a + 3) + "/3 " + std::to_string(a + 1) + "/4\n";
+    }
+    std::ofstream(dir / "strip.obj") << obj;
     const TriMesh strip = readMesh((dir / "strip.obj").string()).mesh;
     const std::string path = (dir / "strip.glb").string();
     {
@@ -146,7 +153,7 @@ TEST(GltfExport, MaterialsBecomePrimitivesWithTheirColourAndEmbeddedTexture) {
         writer.finish();
     }
     const tinygltf::Model m = load(path);
-    ASSERT_EQ(m.materials.size(), 2u);  // in order of first use
+    ASSERT_EQ(m.materials.size(), 3u);  // in order of first use
     EXPECT_EQ(m.materials[0].name, "tinted");
     EXPECT_EQ(m.materials[0].pbrMetallicRoughness.baseColorFactor,
               (std::vector<double>{0.2, 0.4, 0.6, 0.5}));
@@ -157,6 +164,8 @@ TEST(GltfExport, MaterialsBecomePrimitivesWithTheirColourAndEmbeddedTexture) {
     EXPECT_EQ(m.materials[1].pbrMetallicRoughness.metallicFactor, 0.0);
     const int texture = m.materials[1].pbrMetallicRoughness.baseColorTexture.index;
     ASSERT_GE(texture, 0);
+    EXPECT_EQ(m.materials[2].pbrMetallicRoughness.baseColorTexture.index, texture);
+    ASSERT_EQ(m.images.size(), 1u);  // the shared texture, once
     const tinygltf::Image& image = m.images[m.textures[texture].source];
     EXPECT_EQ(image.mimeType, "image/png");
     EXPECT_EQ(image.width, 2);  // tinygltf decoded it
@@ -167,23 +176,26 @@ TEST(GltfExport, MaterialsBecomePrimitivesWithTheirColourAndEmbeddedTexture) {
 
     // One primitive per material (none first), sharing the vertices and the morph targets.
     const std::vector<tinygltf::Primitive>& p = m.meshes[0].primitives;
-    ASSERT_EQ(p.size(), 3u);
-    const int material[3] = {-1, 0, 1};
-    const float quadX[3] = {0.5f, 1.5f, 2.5f};  // the quad each primitive holds, by its centre
-    for (int k = 0; k < 3; ++k) {
-        EXPECT_EQ(p[k].material, material[k]);
+    ASSERT_EQ(p.size(), 4u);
+    const int expectedMaterial[4] = {-1, 0, 1, 2};
+    const std::set<int> expectedQuads[4] = {{0}, {1, 3}, {2}, {4}};
+    for (int k = 0; k < 4; ++k) {
+        EXPECT_EQ(p[k].material, expectedMaterial[k]);
         EXPECT_EQ(p[k].attributes.at("POSITION"), p[0].attributes.at("POSITION"));
         ASSERT_EQ(p[k].targets.size(), 2u);
         EXPECT_EQ(p[k].targets[1].at("POSITION"), p[0].targets[1].at("POSITION"));
         const tinygltf::Accessor& a = m.accessors[p[k].indices];
-        ASSERT_EQ(a.count, 6u);
         const std::vector<float> rest = floats(m, p[k].attributes.at("POSITION"));
         const tinygltf::BufferView& v = m.bufferViews[a.bufferView];
         const auto* index = reinterpret_cast<const std::uint32_t*>(m.buffers[0].data.data() +
                                                                    v.byteOffset + a.byteOffset);
-        float x = 0;
-        for (int c = 0; c < 6; ++c) x += rest[3 * index[c]] / 6;
-        EXPECT_NEAR(x, quadX[k], 0.25) << "primitive " << k;
+        std::set<int> quads;  // by each triangle's centre
+        for (size_t t = 0; t < a.count / 3; ++t)
+            quads.insert(static_cast<int>(
+                (rest[3 * index[3 * t]] + rest[3 * index[3 * t + 1]] + rest[3 * index[3 * t + 2]]) /
+                3));
+        EXPECT_EQ(quads, expectedQuads[k]) << "primitive " << k;
+        EXPECT_EQ(a.count, 6 * expectedQuads[k].size()) << "primitive " << k;
     }
 }
 

@@ -39,7 +39,7 @@ TEST(MaterialLibrary, GivesEachMaterialItsColourOpacityAndTexture) {
     const std::vector<ObjMaterial>& m = r.mesh.sourceFaces->materialDefinitions;
     ASSERT_EQ(m.size(), 2u);
     EXPECT_EQ(m[0].name, "skin");
-    EXPECT_EQ(m[0].color, (std::array<double, 3>{0.9, 0.7, 0.6}));
+    EXPECT_EQ(m[0].colour, (std::array<double, 3>{0.9, 0.7, 0.6}));
     EXPECT_EQ(m[0].opacity, 1.0);
     EXPECT_EQ(fs::path(m[0].texture), fs::absolute(dir / "looks" / "maps" / "skin tone.png"));
     EXPECT_EQ(m[1].name, "glass pane");
@@ -51,22 +51,49 @@ TEST(MaterialLibrary, GivesEachMaterialItsColourOpacityAndTexture) {
 TEST(MaterialLibrary, WhatItCannotUseIsAWarningNamingTheFileAndTheMeshStillReads) {
     const fs::path dir = freshTestDir("mtl-warn");
     std::ofstream(dir / "a.tga", std::ios::binary) << "not a png at all";
-    std::ofstream(dir / "m.mtl") << "Kd 1 1 1\nnewmtl a\nKd 0.5 x\nmap_Kd a.tga\n"
+    std::ofstream(dir / "m.mtl") << "Kd 1 1 1\nnewmtl a\nKd x\nmap_Kd a.tga\n"
                                     "newmtl b\nmap_Kd gone.png\n";
-    std::ofstream(dir / "t.obj") << "mtllib m.mtl missing.mtl\n"
-                                 << kTriangle << "usemtl a\nf 1/1 2/2 3/3\n";
+    // m.mtl twice: read once. "c" is used but defined nowhere.
+    std::ofstream(dir / "t.obj") << "mtllib m.mtl missing.mtl m.mtl\n"
+                                 << kTriangle << "v 1 1 0\nusemtl a\nf 1/1 2/2 3/3\n"
+                                 << "usemtl c\nf 2/2 4/1 3/3\n";
     const MeshReadResult r = readMesh((dir / "t.obj").string());
     ASSERT_NE(r.mesh.sourceFaces, nullptr);
-    EXPECT_EQ(r.mesh.faceCount(), 1);
+    EXPECT_EQ(r.mesh.faceCount(), 2);
     const std::string lib = (dir / "m.mtl").string();
     EXPECT_TRUE(anyWarningHas(r, lib + " line 1", "before any newmtl"));
-    EXPECT_TRUE(anyWarningHas(r, lib + " line 3", "Kd needs three numbers"));
+    EXPECT_TRUE(anyWarningHas(r, lib + " line 3", "Kd needs a number"));
     EXPECT_TRUE(anyWarningHas(r, lib + " line 4", "neither PNG nor JPEG"));
     EXPECT_TRUE(anyWarningHas(r, lib + " line 6", "gone.png not found"));
     EXPECT_TRUE(anyWarningHas(r, "missing.mtl", "cannot be read"));
+    EXPECT_TRUE(anyWarningHas(r, "material 'c'", "no mtllib defines it"));
+    int fromLibrary = 0;
+    for (const std::string& w : r.warnings) fromLibrary += w.rfind(lib, 0) == 0;
+    EXPECT_EQ(fromLibrary, 4);  // not twice
     const std::vector<ObjMaterial>& m = r.mesh.sourceFaces->materialDefinitions;
     ASSERT_EQ(m.size(), 2u);
-    EXPECT_EQ(m[0].color, (std::array<double, 3>{0.8, 0.8, 0.8}));  // the bad Kd left as default
+    EXPECT_EQ(m[0].colour, (std::array<double, 3>{0.8, 0.8, 0.8}));  // the bad Kd left as default
     EXPECT_TRUE(m[0].texture.empty());
     EXPECT_TRUE(m[1].texture.empty());
+}
+
+TEST(MaterialLibrary, ShortFormsAreReadAndABrokenLibraryGivesAFewNotesNotOneALine) {
+    const fs::path dir = freshTestDir("mtl-short");
+    std::ofstream(dir / "tex.png", std::ios::binary) << twoByTwoPng();
+    std::string mtl = "newmtl grey\nKd 0.25\nd -halo 0.5\nmap_Kd tex.png\n";
+    for (int k = 0; k < 20; ++k) mtl += "Kd ?\n";
+    std::ofstream(dir / "m.mtl") << mtl;
+    // No vt: the texture has nothing to place it.
+    std::ofstream(dir / "t.obj")
+        << "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl grey\nf 1 2 3\n";
+    const MeshReadResult r = readMesh((dir / "t.obj").string());
+    ASSERT_NE(r.mesh.sourceFaces, nullptr);
+    const ObjMaterial& grey = r.mesh.sourceFaces->materialDefinitions.at(0);
+    EXPECT_EQ(grey.colour, (std::array<double, 3>{0.25, 0.25, 0.25}));
+    EXPECT_DOUBLE_EQ(grey.opacity, 0.5);
+    EXPECT_TRUE(anyWarningHas(r, "material 'grey' has a texture", "no texture coordinates"));
+    int kd = 0;
+    for (const std::string& w : r.warnings) kd += w.find("Kd needs a number") != w.npos;
+    EXPECT_EQ(kd, 5);
+    EXPECT_TRUE(anyWarningHas(r, "m.mtl: 15 more lines", ""));
 }

@@ -34,10 +34,10 @@ class GltfWriter {
   private:
     std::string path_, spool_, name_;
     const TriMesh& rest_;
-    std::vector<int> meshVertexOf_;         // per glTF vertex, the mesh vertex it is
-    std::vector<float> uv_;                 // 2 per glTF vertex (glTF's v runs down), or empty
-    std::vector<std::uint32_t> triangles_;  // glTF vertex indices, 3 per mesh triangle
-    std::vector<ObjMaterial> materials_;    // those the triangles use, in order of first use
+    std::vector<int> meshVertexOf_;           // per glTF vertex, the mesh vertex it is
+    std::vector<float> uv_;                   // 2 per glTF vertex (glTF's v runs down), or empty
+    std::vector<std::uint32_t> triangles_;    // glTF vertex indices, 3 per mesh triangle
+    std::vector<ObjMaterial> usedMaterials_;  // those the triangles use, in order of first use
     // (material, triangles) in triangles_'s order, a material's triangles together; −1: none.
     std::vector<std::pair<int, size_t>> groups_;
     std::uint64_t textureBytes_ = 0;  // the textures' files, padded, as the BIN chunk holds them

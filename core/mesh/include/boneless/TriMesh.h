@@ -16,9 +16,9 @@ using Faces = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;         //
 
 // A material as an OBJ library (.mtl) defines it, as far as a glTF material carries it.
 struct ObjMaterial {
-    std::string name;                            // "newmtl"
-    std::array<double, 3> color{0.8, 0.8, 0.8};  // "Kd", the diffuse colour
-    double opacity = 1;                          // "d", or 1 − "Tr"
+    std::string name;                             // "newmtl"
+    std::array<double, 3> colour{0.8, 0.8, 0.8};  // "Kd", the diffuse colour
+    double opacity = 1;                           // "d", or 1 − "Tr"
     std::string texture;  // "map_Kd": absolute path of a PNG or JPEG file, or empty
 };
 
