@@ -180,7 +180,10 @@ tinygltf::Material gltfMaterial(const ObjMaterial& obj, int texture) {
     tinygltf::Material m;
     m.name = obj.name;
     auto& pbr = m.pbrMetallicRoughness;
-    pbr.baseColorFactor = {obj.colour[0], obj.colour[1], obj.colour[2], obj.opacity};
+    // glTF's factors lie in [0, 1]; an OBJ's Kd may not.
+    const auto unit = [](double x) { return std::clamp(x, 0.0, 1.0); };
+    pbr.baseColorFactor = {unit(obj.colour[0]), unit(obj.colour[1]), unit(obj.colour[2]),
+                           obj.opacity};
     if (texture >= 0) {
         pbr.baseColorFactor = {1.0, 1.0, 1.0, obj.opacity};
         pbr.baseColorTexture.index = texture;
@@ -228,7 +231,7 @@ GltfWriter::GltfWriter(std::string path, const TriMesh& rest, std::string name)
     }
     std::vector<std::string> textures;
     for (const ObjMaterial& obj : usedMaterials_) {
-        if (obj.texture.empty() ||
+        if (uv_.empty() || obj.texture.empty() ||
             std::find(textures.begin(), textures.end(), obj.texture) != textures.end())
             continue;
         textures.push_back(obj.texture);
@@ -254,8 +257,11 @@ void GltfWriter::append(double seconds, const Positions& positions) {
         throw Error(path_ + ": frame with " + std::to_string(positions.rows()) +
                     " vertices, the mesh has " + std::to_string(n));
     const std::uint64_t m = meshVertexOf_.size();
-    const std::uint64_t bytes =
-        12ull * m * (times_.size() + 2) + 8ull * m + 12ull * rest_.F.rows() + textureBytes_;
+    // Each frame also adds an accessor, a view, a name and a target per primitive to the JSON.
+    const std::uint64_t frames = times_.size() + 1;
+    const std::uint64_t primitives = std::max<std::uint64_t>(groups_.size(), 1);
+    const std::uint64_t bytes = 12ull * m * (frames + 1) + 8ull * m + 12ull * rest_.F.rows() +
+                                textureBytes_ + frames * (300 + 40 * primitives);
     if (static_cast<int>(times_.size()) >= kMaxFrames || bytes > kMaxGlbBytes)
         throw Error(path_ + ": a .glb holds at most " + std::to_string(kMaxFrames) +
                     " frames and 4 GB; export fewer frames (--frames) or a point cache");
@@ -389,7 +395,7 @@ void GltfWriter::finish() {
     addAnimatedMesh(m, name_, std::move(primitives), std::move(targetNames), timeAccessor,
                     weightAccessor);
     const std::string json = glbJson(m, offset);
-    // append() kept the frames under the limit; a texture that grew since may not be.
+    // append() estimated the JSON; this is the file's length as written, checked before it is.
     if (28 + json.size() + offset > kMaxGlbBytes)
         throw Error(path_ +
                     ": a .glb holds at most 4 GB; export fewer frames (--frames) or a "

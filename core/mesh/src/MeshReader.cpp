@@ -116,18 +116,33 @@ std::shared_ptr<const SourceFaces> sourceFaces(const std::string& path, const Po
         for (const std::string& lib : soup.materialLibraries)
             out->materialLibraries.push_back((folder / lib).lexically_normal().string());
         out->materialDefinitions = detail::readMaterialLibraries(out->materialLibraries, warnings);
-        std::vector<std::string> named;
-        for (const auto& [polygon, name] : out->materials) {
-            if (std::find(named.begin(), named.end(), name) != named.end()) continue;
-            named.push_back(name);
-            const auto& defined = out->materialDefinitions;
+        if (out->materialLibraries.empty())
+            warnings.push_back("uses materials (usemtl) but names no material library (mtllib)");
+        // Per material name: whether any of its faces' corners has a texture coordinate.
+        std::vector<std::pair<std::string, bool>> used;
+        for (size_t run = 0; run < out->materials.size(); ++run) {
+            const auto& [first, name] = out->materials[run];
+            const int end = run + 1 < out->materials.size() ? out->materials[run + 1].first
+                                                            : out->polygonCount();
+            bool placed = false;
+            for (int c = out->start[first]; c < out->start[end] && !out->uvOf.empty(); ++c)
+                placed |= out->uvOf[c] >= 0;
+            auto it = std::find_if(used.begin(), used.end(),
+                                   [&](const auto& u) { return u.first == name; });
+            if (it == used.end())
+                used.push_back({name, placed});
+            else
+                it->second |= placed;
+        }
+        const auto& defined = out->materialDefinitions;
+        for (const auto& [name, placed] : used) {
             const auto d = std::find_if(defined.begin(), defined.end(),
                                         [&](const ObjMaterial& m) { return m.name == name; });
             if (d == defined.end() && !out->materialLibraries.empty())
                 warnings.push_back("material '" + name + "' is used but no mtllib defines it");
-            else if (d != defined.end() && !d->texture.empty() && !anyUv)
+            else if (d != defined.end() && !d->texture.empty() && !placed)
                 warnings.push_back("material '" + name +
-                                   "' has a texture, but the faces have no texture coordinates "
+                                   "' has a texture, but its faces have no texture coordinates "
                                    "(vt) to place it");
         }
     }

@@ -98,17 +98,21 @@ void readLibrary(const std::string& path, std::vector<ObjMaterial>& materials,
             }
             ObjMaterial& m = materials.back();
             if (key == "Kd") {
-                // "Kd r [g b]": one number is a grey.
-                double r = 0, g = 0, b = 0;
-                if (!(words >> r)) {
-                    note("Kd needs a number");
-                    continue;
+                // "Kd r g b", or "Kd r" for a grey.
+                std::vector<double> c;
+                for (std::string word; words >> word;) {
+                    double x = 0;
+                    if (!isNumber(word) || !(std::istringstream(word) >> x)) {
+                        c.clear();
+                        break;
+                    }
+                    c.push_back(x);
                 }
-                if (!(words >> g))
-                    g = b = r;
-                else if (!(words >> b))
-                    b = g;
-                m.colour = {r, g, b};
+                if (c.size() == 1) c.assign(3, c[0]);
+                if (c.size() == 3)
+                    m.colour = {c[0], c[1], c[2]};
+                else
+                    note("Kd needs one or three numbers");
             } else if (key == "map_Kd") {
                 std::string rest;
                 std::getline(words, rest);
@@ -137,8 +141,8 @@ void readLibrary(const std::string& path, std::vector<ObjMaterial>& materials,
         }
     }
     if (notes > kNotesPerLibrary)
-        warnings.push_back(path + ": " + std::to_string(notes - kNotesPerLibrary) +
-                           " more lines like these");
+        warnings.push_back(path + ": " + std::to_string(notes - kNotesPerLibrary) + " more " +
+                           (notes - kNotesPerLibrary == 1 ? "line" : "lines") + " like these");
 }
 
 }  // namespace

@@ -10,7 +10,8 @@ namespace boneless::detail {
 // The materials that OBJ material libraries (.mtl files, absolute paths) define: name, diffuse
 // colour, opacity and diffuse texture. Nothing here stops a mesh from loading: a library that
 // cannot be read, a line that does not parse, and a texture that is missing or neither PNG nor
-// JPEG (all that glTF carries) are warnings, each naming the file and line.
+// JPEG (all that glTF carries) are warnings, each naming the file and line (a library that
+// cannot be read: the file).
 std::vector<ObjMaterial> readMaterialLibraries(const std::vector<std::string>& paths,
                                                std::vector<std::string>& warnings);
 

@@ -51,8 +51,8 @@ TEST(MaterialLibrary, GivesEachMaterialItsColourOpacityAndTexture) {
 TEST(MaterialLibrary, WhatItCannotUseIsAWarningNamingTheFileAndTheMeshStillReads) {
     const fs::path dir = freshTestDir("mtl-warn");
     std::ofstream(dir / "a.tga", std::ios::binary) << "not a png at all";
-    std::ofstream(dir / "m.mtl") << "Kd 1 1 1\nnewmtl a\nKd x\nmap_Kd a.tga\n"
-                                    "newmtl b\nmap_Kd gone.png\n";
+    std::ofstream(dir / "m.mtl") << "Kd 1 1 1\nnewmtl a\nKd 0.5 x\nmap_Kd a.tga\n"
+                                    "newmtl b\nmap_Kd gone.png\nKd 0.2 0.4\n";
     // m.mtl twice: read once. "c" is used but defined nowhere.
     std::ofstream(dir / "t.obj") << "mtllib m.mtl missing.mtl m.mtl\n"
                                  << kTriangle << "v 1 1 0\nusemtl a\nf 1/1 2/2 3/3\n"
@@ -62,19 +62,28 @@ TEST(MaterialLibrary, WhatItCannotUseIsAWarningNamingTheFileAndTheMeshStillReads
     EXPECT_EQ(r.mesh.faceCount(), 2);
     const std::string lib = (dir / "m.mtl").string();
     EXPECT_TRUE(anyWarningHas(r, lib + " line 1", "before any newmtl"));
-    EXPECT_TRUE(anyWarningHas(r, lib + " line 3", "Kd needs a number"));
+    EXPECT_TRUE(anyWarningHas(r, lib + " line 3", "Kd needs one or three numbers"));
+    EXPECT_TRUE(anyWarningHas(r, lib + " line 7", "Kd needs one or three numbers"));
     EXPECT_TRUE(anyWarningHas(r, lib + " line 4", "neither PNG nor JPEG"));
     EXPECT_TRUE(anyWarningHas(r, lib + " line 6", "gone.png not found"));
     EXPECT_TRUE(anyWarningHas(r, "missing.mtl", "cannot be read"));
     EXPECT_TRUE(anyWarningHas(r, "material 'c'", "no mtllib defines it"));
     int fromLibrary = 0;
     for (const std::string& w : r.warnings) fromLibrary += w.rfind(lib, 0) == 0;
-    EXPECT_EQ(fromLibrary, 4);  // not twice
+    EXPECT_EQ(fromLibrary, 5);  // not twice
     const std::vector<ObjMaterial>& m = r.mesh.sourceFaces->materialDefinitions;
     ASSERT_EQ(m.size(), 2u);
     EXPECT_EQ(m[0].colour, (std::array<double, 3>{0.8, 0.8, 0.8}));  // the bad Kd left as default
     EXPECT_TRUE(m[0].texture.empty());
     EXPECT_TRUE(m[1].texture.empty());
+    EXPECT_EQ(m[1].colour, (std::array<double, 3>{0.8, 0.8, 0.8}));  // two numbers: not a colour
+}
+
+TEST(MaterialLibrary, MaterialsWithoutAnyLibraryAreNoted) {
+    const fs::path dir = freshTestDir("mtl-none");
+    std::ofstream(dir / "t.obj") << kTriangle << "usemtl skin\nf 1/1 2/2 3/3\n";
+    const MeshReadResult r = readMesh((dir / "t.obj").string());
+    EXPECT_TRUE(anyWarningHas(r, "usemtl", "names no material library"));
 }
 
 TEST(MaterialLibrary, ShortFormsAreReadAndABrokenLibraryGivesAFewNotesNotOneALine) {
@@ -93,7 +102,7 @@ TEST(MaterialLibrary, ShortFormsAreReadAndABrokenLibraryGivesAFewNotesNotOneALin
     EXPECT_DOUBLE_EQ(grey.opacity, 0.5);
     EXPECT_TRUE(anyWarningHas(r, "material 'grey' has a texture", "no texture coordinates"));
     int kd = 0;
-    for (const std::string& w : r.warnings) kd += w.find("Kd needs a number") != w.npos;
+    for (const std::string& w : r.warnings) kd += w.find("Kd needs one or three") != w.npos;
     EXPECT_EQ(kd, 5);
     EXPECT_TRUE(anyWarningHas(r, "m.mtl: 15 more lines", ""));
 }
