@@ -121,7 +121,8 @@ std::shared_ptr<const SourceFaces> sourceFaces(const std::string& path, const Po
         // Per material name: whether any of its faces' corners has a texture coordinate.
         std::vector<std::pair<std::string, bool>> used;
         for (size_t run = 0; run < out->materials.size(); ++run) {
-            const auto& [first, name] = out->materials[run];
+            const int first = out->materials[run].first;
+            const std::string& name = out->materials[run].second;
             const int end = run + 1 < out->materials.size() ? out->materials[run + 1].first
                                                             : out->polygonCount();
             bool placed = false;
@@ -135,7 +136,9 @@ std::shared_ptr<const SourceFaces> sourceFaces(const std::string& path, const Po
                 it->second |= placed;
         }
         const auto& defined = out->materialDefinitions;
-        for (const auto& [name, placed] : used) {
+        for (const auto& u : used) {
+            const std::string& name = u.first;
+            const bool placed = u.second;
             const auto d = std::find_if(defined.begin(), defined.end(),
                                         [&](const ObjMaterial& m) { return m.name == name; });
             if (d == defined.end() && !out->materialLibraries.empty())
