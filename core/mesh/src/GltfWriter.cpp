@@ -151,22 +151,17 @@ std::vector<int> triangleMaterials(const TriMesh& mesh, std::vector<ObjMaterial>
     if (!source || source->materials.empty()) return {};
     std::vector<int> out;
     out.reserve(static_cast<size_t>(mesh.faceCount()));
+    std::vector<int> usedIndex(source->materialDefinitions.size(), -1);
     size_t run = 0;
     int material = -1;
     for (int p = 0; p < source->polygonCount(); ++p) {
         if (run < source->materials.size() && source->materials[run].first == p) {
-            const std::string& name = source->materials[run++].second;
-            auto same = [&](const ObjMaterial& m) { return m.name == name; };
-            auto it = std::find_if(used.begin(), used.end(), same);
-            if (it == used.end()) {
-                const auto& defined = source->materialDefinitions;
-                const auto d = std::find_if(defined.begin(), defined.end(), same);
-                ObjMaterial named;
-                named.name = name;
-                used.push_back(d != defined.end() ? *d : named);
-                it = used.end() - 1;
+            const int d = source->materials[run++].second;
+            if (d >= 0 && usedIndex[d] < 0) {
+                usedIndex[d] = static_cast<int>(used.size());
+                used.push_back(source->materialDefinitions[d]);
             }
-            material = static_cast<int>(it - used.begin());
+            material = d < 0 ? -1 : usedIndex[d];
         }
         out.insert(out.end(), source->start[p + 1] - source->start[p] - 2, material);
     }

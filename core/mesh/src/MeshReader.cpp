@@ -74,6 +74,51 @@ void addWarnings(MeshReadResult& r, const PolygonSoup& soup, const std::vector<i
                     faceList(soup, zeroArea));
 }
 
+// Reads the material libraries the OBJ names and turns each run's name into the index of its
+// definition (a default one for a name no library defines), with a warning for what is missing.
+void resolveMaterials(const std::string& path, const PolygonSoup& soup, SourceFaces& out,
+                      std::vector<std::string>& warnings) {
+    const std::filesystem::path folder = std::filesystem::absolute(path).parent_path();
+    for (const std::string& lib : soup.materialLibraries)
+        out.materialLibraries.push_back((folder / lib).lexically_normal().string());
+    out.materialDefinitions = detail::readMaterialLibraries(out.materialLibraries, warnings);
+    if (out.materialLibraries.empty())
+        warnings.push_back("uses materials (usemtl) but names no material library (mtllib)");
+    auto& defined = out.materialDefinitions;
+    std::vector<int> definitionOf(soup.materialNames.size(), -1);
+    std::vector<int> placed;  // per definition: -1 unused, else whether a corner of it has a "vt"
+    for (size_t run = 0; run < out.materials.size(); ++run) {
+        int& material = out.materials[run].second;
+        if (material < 0) continue;
+        int& d = definitionOf[material];
+        if (d < 0) {
+            const std::string& name = soup.materialNames[material];
+            const auto it = std::find_if(defined.begin(), defined.end(),
+                                         [&](const ObjMaterial& m) { return m.name == name; });
+            d = static_cast<int>(it - defined.begin());
+            if (it == defined.end()) {
+                if (!out.materialLibraries.empty())
+                    warnings.push_back("material '" + name + "' is used but no mtllib defines it");
+                defined.push_back(ObjMaterial{});
+                defined.back().name = name;
+            }
+        }
+        material = d;
+        placed.resize(defined.size(), -1);
+        placed[d] = std::max(placed[d], 0);
+        const int end =
+            run + 1 < out.materials.size() ? out.materials[run + 1].first : out.polygonCount();
+        for (int c = out.start[out.materials[run].first]; c < out.start[end] && !out.uvOf.empty();
+             ++c)
+            if (out.uvOf[c] >= 0) placed[d] = 1;
+    }
+    for (size_t d = 0; d < placed.size(); ++d)
+        if (placed[d] == 0 && !defined[d].texture.empty())
+            warnings.push_back("material '" + defined[d].name +
+                               "' has a texture, but its faces have no texture coordinates (vt) "
+                               "to place it");
+}
+
 // The kept faces as the file has them, with their texture coordinates (only those they use) and
 // materials, when that is more than the triangles say; null otherwise.
 std::shared_ptr<const SourceFaces> sourceFaces(const std::string& path, const PolygonSoup& soup,
@@ -93,11 +138,11 @@ std::shared_ptr<const SourceFaces> sourceFaces(const std::string& path, const Po
     auto out = std::make_shared<SourceFaces>();
     out->vertexCount = vertexCount;
     std::vector<int> uvIndex(soup.uv.size() / 2, -1);
+    int material = -1;  // the previous polygon's, into soup.materialNames until resolved below
     for (int f : kept) {
-        if (anyMaterial && soup.faceMaterial[f] >= 0) {
-            const std::string& name = soup.materialNames[soup.faceMaterial[f]];
-            if (out->materials.empty() || out->materials.back().second != name)
-                out->materials.push_back({out->polygonCount(), name});
+        if (anyMaterial && soup.faceMaterial[f] != material) {
+            material = soup.faceMaterial[f];
+            out->materials.push_back({out->polygonCount(), material});
         }
         for (int c = soup.faceStart[f]; c < soup.faceStart[f + 1]; ++c) {
             out->corners.push_back(meshIndex[soup.faceIndex[c]]);
@@ -111,44 +156,7 @@ std::shared_ptr<const SourceFaces> sourceFaces(const std::string& path, const Po
         }
         out->start.push_back(static_cast<int>(out->corners.size()));
     }
-    if (anyMaterial) {
-        const std::filesystem::path folder = std::filesystem::absolute(path).parent_path();
-        for (const std::string& lib : soup.materialLibraries)
-            out->materialLibraries.push_back((folder / lib).lexically_normal().string());
-        out->materialDefinitions = detail::readMaterialLibraries(out->materialLibraries, warnings);
-        if (out->materialLibraries.empty())
-            warnings.push_back("uses materials (usemtl) but names no material library (mtllib)");
-        // Per material name: whether any of its faces' corners has a texture coordinate.
-        std::vector<std::pair<std::string, bool>> used;
-        for (size_t run = 0; run < out->materials.size(); ++run) {
-            const int first = out->materials[run].first;
-            const std::string& name = out->materials[run].second;
-            const int end = run + 1 < out->materials.size() ? out->materials[run + 1].first
-                                                            : out->polygonCount();
-            bool placed = false;
-            for (int c = out->start[first]; c < out->start[end] && !out->uvOf.empty(); ++c)
-                placed |= out->uvOf[c] >= 0;
-            auto it = std::find_if(used.begin(), used.end(),
-                                   [&](const auto& u) { return u.first == name; });
-            if (it == used.end())
-                used.push_back({name, placed});
-            else
-                it->second |= placed;
-        }
-        const auto& defined = out->materialDefinitions;
-        for (const auto& u : used) {
-            const std::string& name = u.first;
-            const bool placed = u.second;
-            const auto d = std::find_if(defined.begin(), defined.end(),
-                                        [&](const ObjMaterial& m) { return m.name == name; });
-            if (d == defined.end() && !out->materialLibraries.empty())
-                warnings.push_back("material '" + name + "' is used but no mtllib defines it");
-            else if (d != defined.end() && !d->texture.empty() && !placed)
-                warnings.push_back("material '" + name +
-                                   "' has a texture, but its faces have no texture coordinates "
-                                   "(vt) to place it");
-        }
-    }
+    if (anyMaterial) resolveMaterials(path, soup, *out, warnings);
     return out;
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 namespace boneless::detail {
@@ -22,10 +23,12 @@ int optionArguments(const std::string& option) {
     return 0;
 }
 
-bool isNumber(const std::string& s) {
-    std::istringstream in(s);
-    double x;
-    return static_cast<bool>(in >> x) && in.peek() == EOF;
+// The word as a number, if all of it is one.
+std::optional<double> asNumber(const std::string& word) {
+    std::istringstream in(word);
+    double x = 0;
+    if (in >> x && in.peek() == EOF) return x;
+    return std::nullopt;
 }
 
 std::string trimmed(const std::string& s) {
@@ -46,7 +49,7 @@ std::string mapFile(std::string rest) {
         for (int k = 0; k < std::abs(arguments); ++k) {
             std::istringstream in(rest);
             std::string word;
-            if (!(in >> word) || (arguments < 0 && k > 0 && !isNumber(word))) break;
+            if (!(in >> word) || (arguments < 0 && k > 0 && !asNumber(word))) break;
             rest = rest.substr(rest.find(word) + word.size());
         }
     }
@@ -101,12 +104,12 @@ void readLibrary(const std::string& path, std::vector<ObjMaterial>& materials,
                 // "Kd r g b", or "Kd r" for a grey.
                 std::vector<double> c;
                 for (std::string word; words >> word;) {
-                    double x = 0;
-                    if (!isNumber(word) || !(std::istringstream(word) >> x)) {
+                    const std::optional<double> x = asNumber(word);
+                    if (!x) {
                         c.clear();
                         break;
                     }
-                    c.push_back(x);
+                    c.push_back(*x);
                 }
                 if (c.size() == 1) c.assign(3, c[0]);
                 if (c.size() == 3)
@@ -132,11 +135,10 @@ void readLibrary(const std::string& path, std::vector<ObjMaterial>& materials,
                 std::string word;
                 words >> word;
                 if (key == "d" && word == "-halo") words >> word;  // halo: ignored
-                double x = 0;
-                if (!isNumber(word) || !(std::istringstream(word) >> x))
-                    note(key + " needs a number");
+                if (const std::optional<double> x = asNumber(word))
+                    m.opacity = std::clamp(key == "d" ? *x : 1 - *x, 0.0, 1.0);
                 else
-                    m.opacity = std::clamp(key == "d" ? x : 1 - x, 0.0, 1.0);
+                    note(key + " needs a number");
             }
         }
     }

@@ -131,14 +131,15 @@ TEST(GltfExport, MaterialsBecomePrimitivesWithTheirColourAndEmbeddedTexture) {
     std::ofstream(dir / "strip.mtl") << "newmtl painted\nKd 0.3 0.3 0.3\nmap_Kd paint.png\n"
                                         "newmtl tinted\nKd 0.2 0.4 0.6\nd 0.5\n"
                                         "newmtl repainted\nmap_Kd ./paint.png\n";
-    // Five quads in a row: the first without a material; "tinted" on the second and again on
-    // the fourth, so its triangles are not together in the file; two materials share a texture.
+    // Six quads in a row: the first without a material; "tinted" on the second and again on
+    // the fourth, so its triangles are not together in the file; two materials share a texture;
+    // a bare "usemtl" leaves the last without a material again.
     std::string obj = "mtllib strip.mtl\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n";
-    for (int x = 0; x <= 5; ++x)
+    for (int x = 0; x <= 6; ++x)
         obj += "v " + std::to_string(x) + " 0 0\nv " + std::to_string(x) + " 1 0\n";
-    const char* material[5] = {"", "tinted", "painted", "tinted", "repainted"};
-    for (int q = 0; q < 5; ++q) {
-        if (*material[q]) obj += std::string("usemtl ") + material[q] + "\n";
+    const char* material[6] = {nullptr, "tinted", "painted", "tinted", "repainted", ""};
+    for (int q = 0; q < 6; ++q) {
+        if (material[q]) obj += std::string("usemtl ") + material[q] + "\n";
         const int a = 2 * q + 1;  // bottom-left; top-left is a + 1
         obj += "f " + std::to_string(a) + "/1 " + std::to_string(a + 2) + "/2 " +
                std::to_string(a + 3) + "/3 " + std::to_string(a + 1) + "/4\n";
@@ -178,7 +179,7 @@ TEST(GltfExport, MaterialsBecomePrimitivesWithTheirColourAndEmbeddedTexture) {
     const std::vector<tinygltf::Primitive>& p = m.meshes[0].primitives;
     ASSERT_EQ(p.size(), 4u);
     const int expectedMaterial[4] = {-1, 0, 1, 2};
-    const std::set<int> expectedQuads[4] = {{0}, {1, 3}, {2}, {4}};
+    const std::set<int> expectedQuads[4] = {{0, 5}, {1, 3}, {2}, {4}};
     for (int k = 0; k < 4; ++k) {
         EXPECT_EQ(p[k].material, expectedMaterial[k]);
         EXPECT_EQ(p[k].attributes.at("POSITION"), p[0].attributes.at("POSITION"));

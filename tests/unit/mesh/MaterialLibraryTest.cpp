@@ -72,11 +72,13 @@ TEST(MaterialLibrary, WhatItCannotUseIsAWarningNamingTheFileAndTheMeshStillReads
     for (const std::string& w : r.warnings) fromLibrary += w.rfind(lib, 0) == 0;
     EXPECT_EQ(fromLibrary, 5);  // not twice
     const std::vector<ObjMaterial>& m = r.mesh.sourceFaces->materialDefinitions;
-    ASSERT_EQ(m.size(), 2u);
+    ASSERT_EQ(m.size(), 3u);  // a and b, then a default for c
     EXPECT_EQ(m[0].colour, (std::array<double, 3>{0.8, 0.8, 0.8}));  // the bad Kd left as default
     EXPECT_TRUE(m[0].texture.empty());
     EXPECT_TRUE(m[1].texture.empty());
     EXPECT_EQ(m[1].colour, (std::array<double, 3>{0.8, 0.8, 0.8}));  // two numbers: not a colour
+    EXPECT_EQ(m[2].name, "c");
+    EXPECT_EQ(r.mesh.sourceFaces->materials, (std::vector<std::pair<int, int>>{{0, 0}, {1, 2}}));
 }
 
 TEST(MaterialLibrary, MaterialsWithoutAnyLibraryAreNoted) {

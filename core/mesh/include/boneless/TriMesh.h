@@ -30,9 +30,11 @@ struct SourceFaces {
     std::vector<int> corners;   // mesh vertex indices
     std::vector<int> uvOf;      // per corner, an index into uv or -1; empty when the file has none
     std::vector<double> uv;     // 2 per texture coordinate (OBJ "vt"), those the polygons use
-    std::vector<std::string> materialLibraries;          // absolute paths (OBJ "mtllib")
-    std::vector<std::pair<int, std::string>> materials;  // (first polygon, OBJ "usemtl" name)
-    std::vector<ObjMaterial> materialDefinitions;        // what the libraries define
+    std::vector<std::string> materialLibraries;  // absolute paths (OBJ "mtllib")
+    // Runs of polygons by material: (first polygon, index into materialDefinitions, −1 none).
+    std::vector<std::pair<int, int>> materials;
+    // What the libraries define, then a default one for each name used that none defines.
+    std::vector<ObjMaterial> materialDefinitions;
 
     int polygonCount() const { return static_cast<int>(start.size()) - 1; }
 };
