@@ -6,6 +6,7 @@
 #include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "Commands.h"
 #include "FrameRange.h"
@@ -176,6 +177,7 @@ void run(const BatchArgs& args) {
     for (std::size_t k = 0; k < jobs.size(); ++k)
         if (static_cast<int>(k % shards) == shard - 1) ++mine;
     int done = 0;
+    std::set<std::string> notedMeshes;  // mesh and group
     for (std::size_t k = 0; k < jobs.size(); ++k) {
         if (static_cast<int>(k % shards) != shard - 1) continue;
         const TakeJob& job = jobs[k];
@@ -191,10 +193,15 @@ void run(const BatchArgs& args) {
         std::fflush(stdout);
         const auto start = std::chrono::steady_clock::now();
         try {
-            const ExportResult r = runTakeJob(job, true);
+            std::vector<std::string> meshWarnings;
+            const ExportResult r = runTakeJob(job, true, &meshWarnings);
             std::printf(
                 "%d frames in %.1f s\n", r.framesWritten,
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+            // A library of takes shares a few meshes: what one lacks is said once.
+            if (notedMeshes.insert(job.mesh + "\n" + job.group).second)
+                for (const std::string& w : meshWarnings)
+                    std::printf("  note: %s: %s\n", job.mesh.c_str(), w.c_str());
             ++solved;
         } catch (const TakeJobInterrupted& e) {
             std::printf("interrupted\n");

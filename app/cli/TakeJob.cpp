@@ -104,7 +104,7 @@ void warnOfOtherFrames(const std::string& out, const std::string& stem, const Ex
 
 }  // namespace
 
-ExportResult runTakeJob(const TakeJob& job, bool quiet) {
+ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>* meshWarnings) {
     ExportRequest request;
     const auto format = findExportFormat(job.format);
     if (!format) throw Error("unknown output format '" + job.format + "'");
@@ -124,7 +124,9 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet) {
     meshOptions.group = job.group;
     const MeshReadResult read = readMesh(job.mesh, meshOptions);
     const TriMesh& mesh = read.mesh;
-    if (!quiet)
+    if (meshWarnings)
+        *meshWarnings = read.warnings;
+    else if (!quiet)
         for (const std::string& w : read.warnings)
             std::fprintf(stderr, "note: %s: %s\n", job.mesh.c_str(), w.c_str());
     // Streamed: a take of any length solves in the memory of a short one.

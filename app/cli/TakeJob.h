@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "boneless/Error.h"
 #include "boneless/TakeExport.h"
@@ -29,7 +30,9 @@ void addTakeJobOptions(CLI::App* command, TakeJob& job);
 // Where the job's sidecar goes: OUT/<stem>.json.
 std::string takeJobSidecar(const TakeJob& job);
 
-// Reads the inputs, solves and writes. Progress goes to stderr unless `quiet`. Ctrl-C stops after
-// the frames being solved and throws Error (the files written and the sidecar are complete).
-// Throws Error naming the file or option for bad input.
-boneless::ExportResult runTakeJob(const TakeJob& job, bool quiet);
+// Reads the inputs, solves and writes. Progress and the mesh's warnings go to stderr unless
+// `quiet`; with `meshWarnings`, the warnings go there instead. Ctrl-C stops after the frames being
+// solved and throws Error (the files written and the sidecar are complete). Throws Error naming
+// the file or option for bad input.
+boneless::ExportResult runTakeJob(const TakeJob& job, bool quiet,
+                                  std::vector<std::string>* meshWarnings = nullptr);

@@ -207,3 +207,18 @@ TEST(Batch, TheOldDashedKeysOfAManifestStillRead) {
     EXPECT_EQ(options["calibration_frame"], 2);
     EXPECT_TRUE(fs::exists(dir / "old" / "walker_calibrated_rest.obj"));
 }
+
+TEST(Batch, SaysOnceWhatTheTakesSharedMeshLacks) {
+    const fs::path dir = makeLibrary();
+    std::ostringstream obj;
+    obj << std::ifstream(dir / "walker.obj").rdbuf();
+    std::ofstream(dir / "walker.obj") << "mtllib gone.mtl\nusemtl skin\n" << obj.str();
+    const fs::path manifest = writeManifest(dir, "m.json", folderManifest("out"));
+    const CliResult r = runCli("batch " + manifest.string());
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    const std::string note = "gone.mtl: material library cannot be read";
+    const size_t first = r.out.find(note);
+    EXPECT_NE(first, std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find(note, first + 1), std::string::npos) << r.out;  // three takes, one note
+    EXPECT_NE(r.out.find("3 solved"), std::string::npos) << r.out;
+}
