@@ -192,16 +192,12 @@ void run(const BatchArgs& args) {
             std::printf("its sidecar is from other frames or options, solving again: ");
         std::fflush(stdout);
         const auto start = std::chrono::steady_clock::now();
+        std::vector<std::string> meshWarnings;  // filled once the mesh is read
         try {
-            std::vector<std::string> meshWarnings;
             const ExportResult r = runTakeJob(job, true, &meshWarnings);
             std::printf(
                 "%d frames in %.1f s\n", r.framesWritten,
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-            // A library of takes shares a few meshes: what one lacks is said once.
-            if (notedMeshes.insert(job.mesh + "\n" + job.group).second)
-                for (const std::string& w : meshWarnings)
-                    std::printf("  note: %s: %s\n", job.mesh.c_str(), w.c_str());
             ++solved;
         } catch (const TakeJobInterrupted& e) {
             std::printf("interrupted\n");
@@ -210,6 +206,10 @@ void run(const BatchArgs& args) {
             std::printf("FAILED: %s\n", e.what());
             ++failed;
         }
+        // A library of takes shares a few meshes: what one lacks is said once, solved or not.
+        if (!meshWarnings.empty() && notedMeshes.insert(job.mesh + "\n" + job.group).second)
+            for (const std::string& w : meshWarnings)
+                std::printf("  note: %s: %s\n", job.mesh.c_str(), w.c_str());
         std::fflush(stdout);
     }
     std::printf("batch: %d of %zu entries in shard %d/%d: %d solved, %d skipped, %d failed\n", mine,

@@ -140,6 +140,11 @@ TEST(SolveCommand, ObjFramesKeepTheInputsTextureCoordinatesAndMaterials) {
         EXPECT_EQ(frame.sourceFaces->uvOf, input.sourceFaces->uvOf) << name;
         EXPECT_EQ(frame.sourceFaces->uv, input.sourceFaces->uv) << name;
         EXPECT_EQ(frame.sourceFaces->materials, input.sourceFaces->materials) << name;
+        ASSERT_EQ(frame.sourceFaces->materialDefinitions.size(),
+                  input.sourceFaces->materialDefinitions.size());
+        for (size_t d = 0; d < input.sourceFaces->materialDefinitions.size(); ++d)
+            EXPECT_EQ(frame.sourceFaces->materialDefinitions[d].name,
+                      input.sourceFaces->materialDefinitions[d].name);
         ASSERT_EQ(frame.sourceFaces->materialLibraries.size(), 1u);  // ../walker.mtl, found
         EXPECT_EQ(fs::path(frame.sourceFaces->materialLibraries[0]),
                   fs::absolute(demo / "walker.mtl"));

@@ -146,9 +146,10 @@ bool splitAtUvSeams(const TriMesh& mesh, std::vector<int>& meshVertexOf, std::ve
 // The material of each triangle, as an index into `used` (−1: none), from the source polygons'
 // "usemtl" runs; triangles follow the polygons, n − 2 each (readMesh). Empty when the mesh has no
 // materials or its triangles do not follow its polygons.
-std::vector<int> triangleMaterials(const TriMesh& mesh, std::vector<ObjMaterial>& used) {
+std::vector<int> triangleMaterials(const TriMesh& mesh, std::vector<ObjMaterial>& usedOut) {
     const SourceFaces* source = mesh.sourceFaces.get();
     if (!source || source->materials.empty()) return {};
+    std::vector<ObjMaterial> used;  // given back only if the triangles follow the polygons
     std::vector<int> out;
     out.reserve(static_cast<size_t>(mesh.faceCount()));
     std::vector<int> usedIndex(source->materialDefinitions.size(), -1);
@@ -166,6 +167,7 @@ std::vector<int> triangleMaterials(const TriMesh& mesh, std::vector<ObjMaterial>
         out.insert(out.end(), source->start[p + 1] - source->start[p] - 2, material);
     }
     if (out.size() != static_cast<size_t>(mesh.faceCount())) return {};
+    usedOut = std::move(used);
     return out;
 }
 
