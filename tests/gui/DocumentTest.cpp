@@ -291,12 +291,19 @@ class DocumentTest : public QObject {
         QVERIFY(
             vertex.data(Qt::ToolTipRole).toString().contains("named left, but lands on the right"));
         QVERIFY(!model.index(4, MarkerListModel::VertexColumn).data().toString().contains("check"));
+        // The list's "To check" shows it alone.
+        MarkerFilterProxy toCheck;
+        toCheck.setSourceModel(&model);
+        toCheck.setState(MarkerFilterProxy::State::ToCheck);
+        QCOMPARE(toCheck.rowCount(), 1);
+        QCOMPARE(toCheck.markerAt(0), 3);
         // Mapping it by hand makes it the user's: no mark left.
         int free = 0;
         while (d.markerForVertex(free) >= 0) ++free;
         QVERIFY(d.assign(3, free));
         QVERIFY(d.markerReviewReason(3).isEmpty());
         QVERIFY(!model.index(3, MarkerListModel::VertexColumn).data().toString().contains("check"));
+        QCOMPARE(toCheck.rowCount(), 0);
     }
 
     void markerListAndFilter() {

@@ -65,6 +65,30 @@ class MappingTest : public QObject {
         QCOMPARE(d->mappedVertex(0), before);
     }
 
+    void suggestRestSaysHowManyItSuggested() {
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        QVERIFY(window.openProject(freshProject()));
+        Document* d = window.document();
+        // Four picks spread over the body, as DocumentTest's suggestion test makes them.
+        for (int m = 0; m < d->markerCount(); ++m) {
+            bool kept = false;
+            for (const char* label : {"RFHD", "LWRA", "RANK", "LASI"})
+                kept |= d->markerLabel(m).endsWith(label);
+            if (!kept) QVERIFY(d->clearMapping(m));
+        }
+        QCOMPARE(d->mappedCount(), 4);
+        QPushButton* suggest = nullptr;
+        for (QPushButton* b : window.findChildren<QPushButton*>())
+            if (b->text() == "Suggest rest") suggest = b;
+        QVERIFY(suggest);
+        suggest->click();
+        QCOMPARE(d->mappedCount(), d->markerCount());
+        const QString said = window.statusBar()->currentMessage();
+        QVERIFY2(said.startsWith(QString("%1 marker(s) suggested").arg(d->markerCount() - 4)),
+                 qPrintable(said));
+    }
+
     void openingAMapOverMappingsAsksReplaceMergeOrCancel() {
         MainWindow window;
         QVERIFY(window.openProject(project_));

@@ -110,6 +110,7 @@ void MainWindow::buildMarkerDock() {
     stateFilter_->addItem(tr("Unmapped"), int(MarkerFilterProxy::State::Unmapped));
     stateFilter_->addItem(tr("Visible"), int(MarkerFilterProxy::State::Visible));
     stateFilter_->addItem(tr("Missing"), int(MarkerFilterProxy::State::Missing));
+    stateFilter_->addItem(tr("To check"), int(MarkerFilterProxy::State::ToCheck));
     filterRow->addWidget(filterEdit_, 1);
     filterRow->addWidget(stateFilter_);
     layout->addLayout(filterRow);
@@ -149,7 +150,8 @@ void MainWindow::buildMarkerDock() {
     clear->setToolTip(tr("Unmap the selected marker"));
     auto* suggest = new QPushButton(tr("Suggest rest"));
     suggest->setToolTip(
-        tr("Map every unmapped marker to the nearest free vertex (needs 4 mapped)"));
+        tr("Map every unmapped marker where the mesh, fitted to the mapped ones, "
+           "meets it (needs 4 mapped); doubtful ones are marked to check"));
     auto* align = new QPushButton(tr("Align"));
     align->setToolTip(tr("Fix the take's alignment onto the mesh from the mapped markers"));
     // Mapping holds the picture still, so that each mapping's re-solve does not move the
@@ -174,7 +176,7 @@ void MainWindow::buildMarkerDock() {
     connect(clear, &QPushButton::clicked, this, [this] {
         if (document_->selectedMarker() >= 0) document_->clearMapping(document_->selectedMarker());
     });
-    connect(suggest, &QPushButton::clicked, document_, &Document::suggestMappings);
+    connect(suggest, &QPushButton::clicked, this, &MainWindow::suggestMappings);
     connect(align, &QPushButton::clicked, this, [this] { document_->align(); });
 
     auto* dock = new QDockWidget(tr("Markers"), this);
@@ -230,7 +232,7 @@ QMenu* MainWindow::buildEditMenu() {
     edit->addAction(redo);
     edit->addSeparator();
     edit->addAction(mappingAction_);
-    edit->addAction(tr("&Suggest Rest"), document_, &Document::suggestMappings);
+    edit->addAction(tr("&Suggest Rest"), this, &MainWindow::suggestMappings);
     edit->addAction(tr("&Align Take to Mesh"), this, [this] { document_->align(); });
     edit->addAction(tr("&Clear Mapping"), this, [this] {
         if (document_->selectedMarker() >= 0) document_->clearMapping(document_->selectedMarker());
@@ -487,6 +489,24 @@ void MainWindow::onVertexPicked(int vertex) {
     statusBar()->showMessage(
         tr("Vertex %1 — select a marker in the list, then click the mesh to map it").arg(vertex),
         8000);
+}
+
+bool MainWindow::suggestMappings() {
+    if (!document_->suggestMappings()) return false;
+    int suggested = 0, toCheck = 0;
+    for (int m = 0; m < document_->markerCount(); ++m) {
+        suggested += document_->markerSuggested(m) ? 1 : 0;
+        toCheck += document_->markerReviewReason(m).isEmpty() ? 0 : 1;
+    }
+    if (toCheck == 0)
+        statusBar()->showMessage(tr("%n marker(s) suggested", nullptr, suggested), 10000);
+    else
+        statusBar()->showMessage(
+            tr("%n marker(s) suggested, %1 to check: the list's \"To check\" shows them", nullptr,
+               suggested)
+                .arg(toCheck),
+            15000);
+    return true;
 }
 
 int MainWindow::displayedFrame() const {

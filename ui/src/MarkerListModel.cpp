@@ -76,6 +76,8 @@ QVariant MarkerListModel::data(const QModelIndex& index, int role) const {
             return visible;
         case ResidualRole:
             return residual;
+        case ToCheckRole:
+            return !document_->markerReviewReason(m).isEmpty();
         default:
             break;
     }
@@ -169,6 +171,8 @@ bool MarkerFilterProxy::filterAcceptsRow(int sourceRow, const QModelIndex& sourc
             return i.data(MarkerListModel::VisibleRole).toBool();
         case State::Missing:
             return !i.data(MarkerListModel::VisibleRole).toBool();
+        case State::ToCheck:
+            return i.data(MarkerListModel::ToCheckRole).toBool();
     }
     return true;
 }

@@ -63,6 +63,8 @@ class MainWindow : public QMainWindow {
     // File → Export: range, format, folder, estimate, progress.
     ExportDialog* exportDialog() const { return exportDialog_; }
     void showExportDialog();
+    // Edit → Suggest Rest, and the status bar says how many suggestions to check.
+    bool suggestMappings();
 
     // The frame the timeline moves to once the next take is loaded (for --frame).
     void setStartFrame(int frame) { startFrame_ = frame; }

@@ -20,6 +20,7 @@ class MarkerListModel : public QAbstractTableModel {
         MappedRole,                     // bool
         VisibleRole,                    // bool, at the current frame
         ResidualRole,                   // double mm, NaN when unknown
+        ToCheckRole,                    // bool: a suggestion marked for the user's review
     };
 
     explicit MarkerListModel(Document* document, QObject* parent = nullptr);
@@ -53,7 +54,7 @@ class MarkerListModel : public QAbstractTableModel {
 class MarkerFilterProxy : public QSortFilterProxyModel {
     Q_OBJECT
   public:
-    enum class State { All, Mapped, Unmapped, Visible, Missing };
+    enum class State { All, Mapped, Unmapped, Visible, Missing, ToCheck };
     Q_ENUM(State)
 
     explicit MarkerFilterProxy(QObject* parent = nullptr);
