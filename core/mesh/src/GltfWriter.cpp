@@ -158,11 +158,11 @@ std::vector<int> triangleMaterials(const TriMesh& mesh, std::vector<ObjMaterial>
     for (int p = 0; p < source->polygonCount(); ++p) {
         if (run < source->materials.size() && source->materials[run].first == p) {
             const int d = source->materials[run++].second;
-            if (d >= 0 && usedIndex[d] < 0) {
+            if (usedIndex[d] < 0) {
                 usedIndex[d] = static_cast<int>(used.size());
                 used.push_back(source->materialDefinitions[d]);
             }
-            material = d < 0 ? -1 : usedIndex[d];
+            material = usedIndex[d];
         }
         out.insert(out.end(), source->start[p + 1] - source->start[p] - 2, material);
     }

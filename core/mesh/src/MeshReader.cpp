@@ -89,7 +89,6 @@ void resolveMaterials(const std::string& path, const PolygonSoup& soup, SourceFa
     std::vector<int> placed;  // per definition: -1 unused, else whether a corner of it has a "vt"
     for (size_t run = 0; run < out.materials.size(); ++run) {
         int& material = out.materials[run].second;
-        if (material < 0) continue;
         int& d = definitionOf[material];
         if (d < 0) {
             const std::string& name = soup.materialNames[material];
@@ -138,9 +137,11 @@ std::shared_ptr<const SourceFaces> sourceFaces(const std::string& path, const Po
     auto out = std::make_shared<SourceFaces>();
     out->vertexCount = vertexCount;
     std::vector<int> uvIndex(soup.uv.size() / 2, -1);
-    int material = -1;  // the previous polygon's, into soup.materialNames until resolved below
+    // The previous polygon's, into soup.materialNames until resolved below. A bare "usemtl" keeps
+    // the material before it, as Blender's importer does (the format does not say).
+    int material = -1;
     for (int f : kept) {
-        if (anyMaterial && soup.faceMaterial[f] != material) {
+        if (anyMaterial && soup.faceMaterial[f] >= 0 && soup.faceMaterial[f] != material) {
             material = soup.faceMaterial[f];
             out->materials.push_back({out->polygonCount(), material});
         }

@@ -58,11 +58,9 @@ void appendPolygons(std::string& text, const SourceFaces& source, const std::str
     }
     size_t material = 0;
     for (int p = 0; p < source.polygonCount(); ++p) {
-        if (material < source.materials.size() && source.materials[material].first == p) {
-            const int d = source.materials[material++].second;  // a bare usemtl ends a material
-            text += d < 0 ? std::string("usemtl\n")
-                          : "usemtl " + source.materialDefinitions[d].name + "\n";
-        }
+        if (material < source.materials.size() && source.materials[material].first == p)
+            text += "usemtl " +
+                    source.materialDefinitions[source.materials[material++].second].name + "\n";
         text += 'f';
         for (int c = source.start[p]; c < source.start[p + 1]; ++c) {
             text += ' ';

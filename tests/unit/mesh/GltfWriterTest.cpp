@@ -133,7 +133,7 @@ TEST(GltfExport, MaterialsBecomePrimitivesWithTheirColourAndEmbeddedTexture) {
                                         "newmtl repainted\nmap_Kd ./paint.png\n";
     // Six quads in a row: the first without a material; "tinted" on the second and again on
     // the fourth, so its triangles are not together in the file; two materials share a texture;
-    // a bare "usemtl" leaves the last without a material again.
+    // a bare "usemtl" before the last keeps "repainted" on it, as Blender's OBJ importer does.
     std::string obj = "mtllib strip.mtl\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n";
     for (int x = 0; x <= 6; ++x)
         obj += "v " + std::to_string(x) + " 0 0\nv " + std::to_string(x) + " 1 0\n";
@@ -179,7 +179,7 @@ TEST(GltfExport, MaterialsBecomePrimitivesWithTheirColourAndEmbeddedTexture) {
     const std::vector<tinygltf::Primitive>& p = m.meshes[0].primitives;
     ASSERT_EQ(p.size(), 4u);
     const int expectedMaterial[4] = {-1, 0, 1, 2};
-    const std::set<int> expectedQuads[4] = {{0, 5}, {1, 3}, {2}, {4}};
+    const std::set<int> expectedQuads[4] = {{0}, {1, 3}, {2}, {4, 5}};
     for (int k = 0; k < 4; ++k) {
         EXPECT_EQ(p[k].material, expectedMaterial[k]);
         EXPECT_EQ(p[k].attributes.at("POSITION"), p[0].attributes.at("POSITION"));

@@ -31,7 +31,8 @@ struct SourceFaces {
     std::vector<int> uvOf;      // per corner, an index into uv or -1; empty when the file has none
     std::vector<double> uv;     // 2 per texture coordinate (OBJ "vt"), those the polygons use
     std::vector<std::string> materialLibraries;  // absolute paths (OBJ "mtllib")
-    // Runs of polygons by material: (first polygon, index into materialDefinitions, −1 none).
+    // Runs of polygons by material: (first polygon, index into materialDefinitions); the
+    // polygons before the first run have none.
     std::vector<std::pair<int, int>> materials;
     // What the libraries define, then a default one for each name used that none defines.
     std::vector<ObjMaterial> materialDefinitions;
