@@ -105,19 +105,20 @@ bool Document::clearAllMappings() {
     return true;
 }
 
-bool Document::suggestMappings() {
+bool Document::suggestMappings(int* suggested, int* toCheck) {
     if (!hasMesh_ || !hasTake_) return fail(tr("Suggesting needs a mesh and a take."));
     MapState after = mapState();
-    int suggested = 0;
+    Suggestion s;
     try {
-        Suggestion s = boneless::suggestMappings(mesh_, take_, map_);
+        s = boneless::suggestMappings(mesh_, take_, map_);
         after.map = std::move(s.map);
-        suggested = s.suggested;
     } catch (const std::exception& e) {
         return fail(QString::fromStdString(e.what()));
     }
-    if (suggested == 0) return true;
-    pushMapEdit(tr("Suggest %n marker(s)", nullptr, suggested), std::move(after));
+    if (suggested) *suggested = s.suggested;
+    if (toCheck) *toCheck = s.needsReview;
+    if (s.suggested == 0) return true;
+    pushMapEdit(tr("Suggest %n marker(s)", nullptr, s.suggested), std::move(after));
     return true;
 }
 

@@ -492,13 +492,13 @@ void MainWindow::onVertexPicked(int vertex) {
 }
 
 bool MainWindow::suggestMappings() {
-    if (!document_->suggestMappings()) return false;
     int suggested = 0, toCheck = 0;
-    for (int m = 0; m < document_->markerCount(); ++m) {
-        suggested += document_->markerSuggested(m) ? 1 : 0;
-        toCheck += document_->markerReviewReason(m).isEmpty() ? 0 : 1;
-    }
-    if (toCheck == 0)
+    if (!document_->suggestMappings(&suggested, &toCheck)) return false;
+    // What this click added: markers suggested by an earlier click are the user's map by now.
+    if (suggested == 0)
+        statusBar()->showMessage(tr("Nothing to suggest: every marker seen in the take is mapped"),
+                                 10000);
+    else if (toCheck == 0)
         statusBar()->showMessage(tr("%n marker(s) suggested", nullptr, suggested), 10000);
     else
         statusBar()->showMessage(

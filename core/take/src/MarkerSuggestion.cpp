@@ -236,6 +236,7 @@ Suggestion suggestMappings(const TriMesh& rest, const C3dTake& take,
 
     Suggestion out;
     out.map = partial;
+    if (wanted.empty()) return out;  // every marker is mapped: nothing to fit the mesh for
     const MirrorPlane mirror(rest, sides);
     for (const Draft& d :
          draft(rest, take, partial, wanted, mirror, out.calibration, out.fittedFrame)) {

@@ -72,6 +72,21 @@ TEST(MarkerSuggestion, FindsTheVerticesUnderTheUnmappedMarkers) {
     EXPECT_NEAR(s.calibration.takeToMesh.scale, 1e-3, 1e-5);  // millimetres to metres
 }
 
+TEST(MarkerSuggestion, AMapThatHoldsEveryMarkerGetsNothingSuggested) {
+    const TriMesh mesh = icosphere(2);
+    const std::vector<int> ids{0, 7, 19, 33, 48};
+    const C3dTake take = takeOnVertices(mesh, ids, 0.01, 0);
+    Correspondence full;
+    full.meshVertices = mesh.vertexCount();
+    for (size_t k = 0; k < ids.size(); ++k)
+        full.markers.push_back({"M" + std::to_string(k), ids[k], 10.0, "{}"});
+    const Suggestion s = suggestMappings(mesh, take, full);
+    EXPECT_EQ(s.suggested, 0);
+    EXPECT_TRUE(s.proposals.empty());
+    ASSERT_EQ(s.map.markers.size(), ids.size());
+    EXPECT_EQ(s.map.markers[3].vertex, ids[3]);
+}
+
 TEST(MarkerSuggestion, NeedsFourMappedMarkers) {
     const TriMesh mesh = icosphere(1);
     const C3dTake take = takeOnVertices(mesh, {0, 1, 2, 3, 4}, 0.0, 0);

@@ -109,8 +109,10 @@ class Document : public QObject {
     bool clearMapping(int marker);
     bool clearAllMappings();
     // Proposes a vertex for every unmapped marker (needs at least 4 mapped). The alignment is
-    // left as it is: the proposals' own alignment is only used to place them.
-    bool suggestMappings();
+    // left as it is: the proposals' own alignment is only used to place them. `suggested` and
+    // `toCheck`, when given, receive how many markers this call proposed and how many of those
+    // are marked for review.
+    bool suggestMappings(int* suggested = nullptr, int* toCheck = nullptr);
     // Fixes the alignment from the mapped markers (at least 3); calibrationFrame -1 = automatic.
     bool align(int calibrationFrame = -1);
     bool clearAlignment();
