@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -26,12 +25,6 @@ constexpr int kKeptFrames = 8;
 constexpr double kKeptQuality = 1.5;
 // Markers sit about this far off the skin: each vertex is scored lifted along its normal.
 constexpr double kLiftMm = 10.0;
-// Two markers form a rigid pair when their distance over the take varies by at most
-// kRigidSpreadMm between its 10th and 90th percentiles and is at most kRigidLengthMm (the head's
-// four, a foot's three, the pelvis' four). CMU 85_02, the two pick sets of docs/markers.md: 21
-// and 16 of 35 without pairs, 21 and 19 with them (a spread of 10 mm: 20 and 18).
-constexpr double kRigidSpreadMm = 25.0;
-constexpr double kRigidLengthMm = 400.0;
 // When a proposal needs review: its marker is farther than farMm from it on the best fit, or
 // another part of the body (farther than otherPartMm on the rest mesh) costs at most
 // ambiguity times its cost plus ambiguityMm.
@@ -101,38 +94,6 @@ std::vector<Eigen::VectorXd> withMirror(const TriMesh& rest, const C3dTake& take
     return out;
 }
 
-// A marker that keeps its distance to an `other` one over the take, `length` in mesh units.
-struct RigidPair {
-    std::size_t other = 0;
-    double length = 0;
-};
-
-// For each wanted marker, the markers it forms a rigid pair with (see kRigidSpreadMm).
-std::vector<std::vector<RigidPair>> rigidPairs(const C3dTake& take,
-                                               const std::vector<std::size_t>& wanted,
-                                               double unitsPerMm) {
-    const std::vector<std::size_t> markers = take.markerIndices();
-    std::vector<std::vector<RigidPair>> out(wanted.size());
-    std::vector<double> d;
-    for (std::size_t w = 0; w < wanted.size(); ++w)
-        for (std::size_t q : markers) {
-            if (q == wanted[w]) continue;
-            d.clear();
-            for (std::size_t f = 0; f < take.frameCount(); ++f) {
-                const auto a = take.samples.position(f, wanted[w]);
-                const auto b = take.samples.position(f, q);
-                if (a && b) d.push_back((*a - *b).norm() * take.unitToMm);
-            }
-            if (d.size() < 10) continue;  // too few frames to call it rigid
-            std::sort(d.begin(), d.end());
-            const double length = d[d.size() / 2];
-            if (d[d.size() * 9 / 10] - d[d.size() / 10] <= kRigidSpreadMm &&
-                length <= kRigidLengthMm)
-                out[w].push_back({q, length * unitsPerMm});
-        }
-    return out;
-}
-
 // One unmapped marker's proposal.
 struct Draft {
     std::size_t point = 0;
@@ -196,65 +157,23 @@ std::vector<Draft> draft(const TriMesh& rest, const C3dTake& take, const Corresp
                                                         std::numeric_limits<double>::infinity()));
     }
     const std::vector<Eigen::VectorXd> choice = withMirror(rest, take, known, wanted, mirror, cost);
-    // A marker of a rigid pair whose partner is placed (picked or proposed) also costs the
-    // difference between the take's distance and its vertex's on the rest fitted to the actor:
-    // where the fits leave a foot or the head loosely placed, the other markers of the foot or
-    // the head still say where it sits, as labelling systems' sticks do.
-    const std::vector<std::vector<RigidPair>> pairs = rigidPairs(take, wanted, unitsPerMm);
-    const Positions& actor = solver.rest().V;
-    const Positions actorLifted = actor + kLiftMm * unitsPerMm * vertexNormals(rest.F, actor);
-    std::map<std::size_t, int> placed;  // take point -> vertex
-    const std::vector<std::size_t> mapped = known.resolve(take);
-    for (std::size_t i = 0; i < mapped.size(); ++i) placed[mapped[i]] = known.markers[i].vertex;
-    std::vector<bool> taken(rest.vertexCount(), false);
-    for (const auto& m : known.markers) taken[m.vertex] = true;
-    const auto total = [&](std::size_t w) {
-        Eigen::VectorXd t = choice[w].cwiseAbs2();
-        Eigen::VectorXd misfit = Eigen::VectorXd::Zero(rest.vertexCount());
-        int counted = 0;
-        for (const RigidPair& pair : pairs[w])
-            if (const auto it = placed.find(pair.other); it != placed.end()) {
-                misfit += ((actorLifted.rowwise() - actorLifted.row(it->second))
-                               .rowwise()
-                               .norm()
-                               .array() -
-                           pair.length)
-                              .square()
-                              .matrix();
-                ++counted;
-            }
-        if (counted) t += misfit / counted;
-        for (int v = 0; v < rest.vertexCount(); ++v)
-            if (taken[v]) t[v] = std::numeric_limits<double>::infinity();
-        return t;
-    };
-    std::vector<std::size_t> left;
+    std::vector<std::size_t> order;
     for (std::size_t w = 0; w < wanted.size(); ++w)
-        if (std::isfinite(cost[w].minCoeff())) left.push_back(w);  // never seen: no proposal
+        if (std::isfinite(cost[w].minCoeff())) order.push_back(w);  // never seen: no proposal
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return choice[a].minCoeff() < choice[b].minCoeff();
+    });
+    std::set<int> taken;
+    for (const auto& m : known.markers) taken.insert(m.vertex);
     std::vector<Draft> drafts;
-    // Surest first, each round again, so that a vertex two markers want goes to the nearer one
-    // and a proposal's rigid partners count for the markers after it.
-    while (!left.empty()) {
-        std::size_t best = 0;
-        int vertex = -1;
-        double least = std::numeric_limits<double>::infinity();
-        for (std::size_t i = 0; i < left.size(); ++i) {
-            int v = -1;
-            const double c = total(left[i]).minCoeff(&v);
-            if (c < least) {
-                least = c;
-                vertex = v;
-                best = i;
-            }
-        }
-        if (vertex < 0) break;  // every vertex is taken
-        const std::size_t w = left[best];
-        left.erase(left.begin() + static_cast<std::ptrdiff_t>(best));
-        taken[vertex] = true;
-        placed[wanted[w]] = vertex;
+    for (std::size_t w : order) {
         Draft d;
         d.point = wanted[w];
-        d.vertex = vertex;
+        for (int v = 0; v < rest.vertexCount(); ++v)
+            if (!taken.count(v) && (d.vertex < 0 || choice[w][v] < choice[w][d.vertex]))
+                d.vertex = v;
+        if (d.vertex < 0) break;
+        taken.insert(d.vertex);
         d.cost = cost[w][d.vertex] / unitsPerMm;
         d.other = std::numeric_limits<double>::infinity();
         const Vec3 home = rest.V.row(d.vertex).transpose();

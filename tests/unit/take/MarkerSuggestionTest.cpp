@@ -239,13 +239,4 @@ TEST(MarkerSuggestion, LandsNearTheReferenceMapOnTheCmuTakeFromSixPicks) {
     // RFWT lands where LFWT's vertex mirrors to, as the reference puts it (the fit alone: 37 mm).
     ASSERT_NE(s.map.find("RFWT"), nullptr);
     EXPECT_EQ(s.map.find("RFWT")->vertex, reference.find("RFWT")->vertex);
-
-    // Picks at the body's ends leave the feet and the head loosely fitted; the markers' rigid
-    // pairs place them (16 of 35 without the pairs, 19 with them).
-    partial.markers.clear();
-    for (const char* label : {"C7", "RBWT", "LFIN", "RFIN", "LTOE", "RTOE"})
-        partial.markers.push_back(*reference.find(label));
-    const SuggestionCheck ends =
-        checkSuggestion(rest, take, suggestMappings(rest, take, partial), reference, 30.0);
-    EXPECT_GE(ends.within, 18) << "median " << ends.medianMm << " mm";
 }

@@ -32,8 +32,7 @@ struct Suggestion {
 // (solve's shape calibration), and the engine poses it by the mapped markers at frames spread
 // over the take, keeps the fits that come nearest the other markers, and gives each unmapped
 // marker the free vertex that follows it best over those fits, near the mirror image of its
-// picked partner (RFWT of LFWT) when the mesh is mirrored, and as far from the markers already
-// placed as the take keeps it from those it moves rigidly with (docs/markers.md). An entry's
+// picked partner (RFWT of LFWT) when the mesh is mirrored (docs/markers.md). An entry's
 // offset_mm is the picks' median offset; it is marked "suggested": true, and
 // "needs_review": true with a "review_reason" when it lies far from the fitted mesh, when another
 // part of the body fits it about as well, when it is named for one side (L…/R…, as the mapped pairs
