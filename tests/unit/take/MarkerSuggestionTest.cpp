@@ -214,7 +214,8 @@ TEST(MarkerSuggestion, TheDemoWalkersSuggestionsLandOnTheirOwnVertices) {
 }
 
 // The target (80 % within 30 mm from 6 picks) is not reached yet; this holds the ground
-// gained (docs/markers.md): the rigid alignment alone put 3 of these 35 within 30 mm.
+// gained (docs/markers.md): the rigid alignment alone put 3 of these 35 within 30 mm, and since
+// the reference's toes were corrected 23 land.
 TEST(MarkerSuggestion, LandsNearTheReferenceMapOnTheCmuTakeFromSixPicks) {
     namespace fs = std::filesystem;
     const fs::path data = BONELESS_SHARED_DATA;
@@ -235,7 +236,7 @@ TEST(MarkerSuggestion, LandsNearTheReferenceMapOnTheCmuTakeFromSixPicks) {
     const Suggestion s = suggestMappings(rest, take, partial);
     const SuggestionCheck c = checkSuggestion(rest, take, s, reference, 30.0);
     EXPECT_EQ(c.compared, 35);
-    EXPECT_GE(c.within, 20) << "median " << c.medianMm << " mm";
+    EXPECT_GE(c.within, 22) << "median " << c.medianMm << " mm";
     // RFWT lands where LFWT's vertex mirrors to, as the reference puts it (the fit alone: 37 mm).
     ASSERT_NE(s.map.find("RFWT"), nullptr);
     EXPECT_EQ(s.map.find("RFWT")->vertex, reference.find("RFWT")->vertex);
