@@ -317,13 +317,14 @@ void GltfWriter::finish() {
                         TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, uv_.size() / 2);
     primitive.mode = TINYGLTF_MODE_TRIANGLES;
     // The materials, their textures in the BIN chunk after the coordinates (a texture needs
-    // them), each padded to 4 bytes so that the views after it stay aligned.
-    std::string images;
+    // them), each padded to 4 bytes so that the views after it stay aligned. Each texture's
+    // bytes are held once, until they are copied into the chunk.
+    std::vector<std::string> images;
     std::unordered_map<std::string, int> textureOf;  // a texture that two materials share: once
     for (const ObjMaterial& obj : usedMaterials_) {
         const auto known = textureOf.find(obj.texture);
         int texture = known != textureOf.end() ? known->second : -1;
-        const std::string bytes =
+        std::string bytes =
             uv_.empty() || obj.texture.empty() || texture >= 0 ? "" : readImage(obj.texture);
         const std::string mimeType = detail::imageMimeType(bytes.substr(0, 8));
         if (!mimeType.empty()) {
@@ -331,10 +332,10 @@ void GltfWriter::finish() {
             image.name = std::filesystem::path(obj.texture).filename().string();
             image.mimeType = mimeType;
             image.bufferView = place(bytes.size());
-            images += bytes;
             const size_t pad = (4 - bytes.size() % 4) % 4;
-            images.append(pad, '\0');
+            bytes.append(pad, '\0');
             offset += pad;
+            images.push_back(std::move(bytes));
             m.images.push_back(image);
             if (m.samplers.empty()) m.samplers.emplace_back();  // repeat, the viewer's filters
             tinygltf::Texture t;
@@ -402,8 +403,10 @@ void GltfWriter::finish() {
     appendBytes(tail, times_);
     appendBytes(tail, keyIndices);
     appendBytes(tail, ones);
+    size_t imageBytes = 0;
+    for (const std::string& image : images) imageBytes += image.size();
     head.reserve(28 + json.size() + rest.size() * 4 + triangles.size() * 4 + uv_.size() * 4 +
-                 images.size());
+                 imageBytes);
     head.append("glTF");
     appendU32(head, 2);
     appendU32(head, static_cast<std::uint32_t>(12 + 8 + json.size() + 8 + offset));
@@ -415,7 +418,10 @@ void GltfWriter::finish() {
     appendBytes(head, rest);
     appendBytes(head, triangles);
     appendBytes(head, uv_);
-    head += images;
+    for (std::string& image : images) {
+        head += image;
+        std::string().swap(image);  // freed as it is copied, so the textures are held once
+    }
     std::FILE* spool = file_;
     file_ = nullptr;
     writeSpooled(path_, head, spool, spool_, tail);

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 
 #include "TestFiles.h"
@@ -198,6 +199,38 @@ TEST(GltfExport, MaterialsBecomePrimitivesWithTheirColourAndEmbeddedTexture) {
         EXPECT_EQ(quads, expectedQuads[k]) << "primitive " << k;
         EXPECT_EQ(a.count, 6 * expectedQuads[k].size()) << "primitive " << k;
     }
+}
+
+TEST(GltfExport, EachTextureLandsWholeInItsOwnAlignedView) {
+    const fs::path dir = freshTestDir("glb-two-textures");
+    // 75 and 79 bytes (a decoder reads up to IEND), so each is padded and they differ.
+    const std::map<std::string, std::string> bytes{{"one.png", twoByTwoPng()},
+                                                   {"two.png", twoByTwoPng() + "tail"}};
+    for (const auto& [name, content] : bytes)
+        std::ofstream(dir / name, std::ios::binary) << content;
+    std::ofstream(dir / "pair.mtl") << "newmtl a\nmap_Kd one.png\nnewmtl b\nmap_Kd two.png\n";
+    std::ofstream(dir / "pair.obj") << "mtllib pair.mtl\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                                       "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                                       "usemtl a\nf 1/1 2/2 3/3\nusemtl b\nf 1/1 3/3 4/4\n";
+    const TriMesh pair = readMesh((dir / "pair.obj").string()).mesh;
+    const std::string path = (dir / "pair.glb").string();
+    {
+        GltfWriter writer(path, pair, "pair");
+        writer.append(0.0, pair.V);
+        writer.finish();
+    }
+    const tinygltf::Model m = load(path);
+    ASSERT_EQ(m.images.size(), 2u);
+    for (const tinygltf::Image& image : m.images) {
+        const tinygltf::BufferView& view = m.bufferViews[image.bufferView];
+        EXPECT_EQ(view.byteOffset % 4, 0u) << image.name;
+        EXPECT_EQ(
+            std::string(reinterpret_cast<const char*>(m.buffers[0].data.data()) + view.byteOffset,
+                        view.byteLength),
+            bytes.at(image.name))
+            << image.name;
+    }
+    EXPECT_EQ(m.meshes[0].primitives.size(), 2u);
 }
 
 TEST(GltfExport, AnAbandonedFileLeavesNothingBehind) {
