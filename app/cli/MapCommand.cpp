@@ -48,19 +48,18 @@ void registerMapCommand(CLI::App& app) {
         if (s.map.meshGroup.empty()) s.map.meshGroup = args->group;
         if (s.map.meshVertices == 0) s.map.meshVertices = mesh.vertexCount();
         s.map.write(args->out);
-        if (s.proposals.empty()) {
+        if (s.proposals.empty())
             std::printf(
                 "%s: %zu markers, nothing to suggest: every marker seen in the take is "
                 "mapped\n",
                 args->out.c_str(), s.map.markers.size());
-            return;
-        }
-        std::printf(
-            "%s: %zu markers (%d suggested, %d to review), aligned at frame %d (%d markers "
-            "visible), RMS residual %.4g mesh units, scale %.6g, fitted best at frame %d\n",
-            args->out.c_str(), s.map.markers.size(), s.suggested, s.needsReview,
-            s.calibration.frame, s.calibration.visibleMarkers, s.calibration.residual,
-            s.calibration.takeToMesh.scale, s.fittedFrame);
+        else
+            std::printf(
+                "%s: %zu markers (%d suggested, %d to review), aligned at frame %d (%d markers "
+                "visible), RMS residual %.4g mesh units, scale %.6g, fitted best at frame %d\n",
+                args->out.c_str(), s.map.markers.size(), s.suggested, s.needsReview,
+                s.calibration.frame, s.calibration.visibleMarkers, s.calibration.residual,
+                s.calibration.takeToMesh.scale, s.fittedFrame);
         for (const Proposal& p : s.proposals)
             if (p.needsReview)
                 std::printf("  review %s (vertex %d): %s\n", p.label.c_str(), p.vertex,

@@ -502,8 +502,8 @@ bool MainWindow::suggestMappings() {
         statusBar()->showMessage(tr("%n marker(s) suggested", nullptr, suggested), 10000);
     else
         statusBar()->showMessage(
-            tr("%n marker(s) suggested, %1 to check: the list's \"To check\" shows them", nullptr,
-               suggested)
+            tr("%n marker(s) suggested, %1 of them to check: the list's \"To check\" shows them",
+               nullptr, suggested)
                 .arg(toCheck),
             15000);
     return true;

@@ -137,7 +137,7 @@ std::vector<Draft> draft(const TriMesh& rest, const C3dTake& take, const Corresp
         const Positions V = solver.solve(f, report);
         fits.push_back({f, quality, V, V + kLiftMm * unitsPerMm * vertexNormals(rest.F, V)});
     }
-    if (fits.empty()) throw Error(take.file + ": the mapped markers give no fit of the mesh");
+    if (fits.empty()) return {};  // no scanned frame shows an unmapped marker: nothing to place
     fittedFrame = fits.front().frame;
 
     std::vector<Eigen::VectorXd> cost;
@@ -222,9 +222,10 @@ Suggestion suggestMappings(const TriMesh& rest, const C3dTake& take,
     partial.checkMesh(rest.vertexCount(), "the mesh", &rest);
     const std::vector<std::size_t> mapped = partial.resolve(take);
     const std::set<std::size_t> mappedPoints(mapped.begin(), mapped.end());
-    std::vector<std::size_t> wanted;
+    std::vector<std::size_t> wanted;  // unmapped markers the take shows at least once
     for (std::size_t p : take.markerIndices())
-        if (!mappedPoints.count(p)) wanted.push_back(p);
+        if (!mappedPoints.count(p) && take.samples.missingFrames(p) < take.frameCount())
+            wanted.push_back(p);
     const SideCheck sides(rest, partial);
     // A proposal sits off the skin as the user's picks do: the distance to a fit is no offset,
     // since a fit from a few picks misses the body between them by centimetres (CMU 85_02: the
@@ -236,7 +237,7 @@ Suggestion suggestMappings(const TriMesh& rest, const C3dTake& take,
 
     Suggestion out;
     out.map = partial;
-    if (wanted.empty()) return out;  // every marker is mapped: nothing to fit the mesh for
+    if (wanted.empty()) return out;  // every marker seen is mapped: nothing to fit the mesh for
     const MirrorPlane mirror(rest, sides);
     for (const Draft& d :
          draft(rest, take, partial, wanted, mirror, out.calibration, out.fittedFrame)) {

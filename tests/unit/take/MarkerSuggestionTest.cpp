@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <random>
@@ -72,18 +73,21 @@ TEST(MarkerSuggestion, FindsTheVerticesUnderTheUnmappedMarkers) {
     EXPECT_NEAR(s.calibration.takeToMesh.scale, 1e-3, 1e-5);  // millimetres to metres
 }
 
-TEST(MarkerSuggestion, AMapThatHoldsEveryMarkerGetsNothingSuggested) {
+TEST(MarkerSuggestion, AMapThatHoldsEveryMarkerSeenGetsNothingSuggested) {
     const TriMesh mesh = icosphere(2);
-    const std::vector<int> ids{0, 7, 19, 33, 48};
-    const C3dTake take = takeOnVertices(mesh, ids, 0.01, 0);
+    const std::vector<int> ids{0, 7, 19, 33, 48, 77};
+    C3dTake take = takeOnVertices(mesh, ids, 0.01, 0);
+    for (std::size_t f = 0; f < take.frameCount(); ++f)  // M5 is never seen
+        take.samples.set(f, 5, NAN, NAN, NAN);
     Correspondence full;
     full.meshVertices = mesh.vertexCount();
-    for (size_t k = 0; k < ids.size(); ++k)
+    for (size_t k = 0; k < 5; ++k)
         full.markers.push_back({"M" + std::to_string(k), ids[k], 10.0, "{}"});
     const Suggestion s = suggestMappings(mesh, take, full);
     EXPECT_EQ(s.suggested, 0);
     EXPECT_TRUE(s.proposals.empty());
-    ASSERT_EQ(s.map.markers.size(), ids.size());
+    EXPECT_EQ(s.fittedFrame, -1);
+    ASSERT_EQ(s.map.markers.size(), 5u);
     EXPECT_EQ(s.map.markers[3].vertex, ids[3]);
 }
 

@@ -21,6 +21,7 @@ struct Suggestion {
     Correspondence map;       // the partial map plus one entry per suggested marker
     Calibration calibration;  // the alignment the suggestions were made in
     int fittedFrame = -1;     // the frame whose fit by the picks came nearest the other markers
+                              // (-1, and a default calibration, when nothing was suggested)
     std::vector<Proposal> proposals;  // one per suggested entry, in the map's order
     int suggested = 0;
     int needsReview = 0;
