@@ -1,5 +1,7 @@
-# Blender 3.4, headless: imports a .glb and prints each material with the image its base colour
-# comes from. blender -b --factory-startup --python read_glb_material.py -- FILE.glb
+# Blender 3.4, headless: imports a .glb (or an .obj, to compare with Blender's own reading of its
+# materials) and prints each material: the image its base colour comes from, its roughness and
+# its normal map's strength.
+# blender -b --factory-startup --python read_glb_material.py -- FILE.glb|FILE.obj
 import sys
 
 import bpy
@@ -9,12 +11,21 @@ numpy.bool = bool  # Blender 3.4's glTF importer still uses the alias numpy 1.24
 
 path = sys.argv[sys.argv.index("--") + 1]
 bpy.ops.wm.read_factory_settings(use_empty=True)
-bpy.ops.import_scene.gltf(filepath=path)
+if path.endswith(".obj"):
+    bpy.ops.wm.obj_import(filepath=path)
+else:
+    bpy.ops.import_scene.gltf(filepath=path)
 for material in bpy.data.materials:
-    images = [n.image for n in material.node_tree.nodes if n.type == 'TEX_IMAGE' and n.image]
-    if images:
-        image = images[0]
+    nodes = material.node_tree.nodes
+    colour = [n.image for n in nodes if n.type == 'TEX_IMAGE' and n.image and
+              any(link.to_socket.name == 'Base Color' for link in n.outputs['Color'].links)]
+    if colour:
+        image = colour[0]
         texture = f"image {image.size[0]}x{image.size[1]} packed {image.packed_file is not None}"
     else:
         texture = "no image"
-    print(f"material {material.name}: {texture}")
+    bsdf = [n for n in nodes if n.type == 'BSDF_PRINCIPLED'][0]
+    normal = [n.inputs['Strength'].default_value for n in nodes if n.type == 'NORMAL_MAP']
+    print(f"material {material.name}: {texture}, "
+          f"roughness {bsdf.inputs['Roughness'].default_value:.2f}, "
+          f"normal map {f'{normal[0]:.2f}' if normal else 'none'}")

@@ -89,22 +89,31 @@ TEST(BlenderReads, ObjFramesAsTheInputsQuadsWithTheirUvs) {
         << r.out;
 }
 
-// A textured character for Unity or the web: the OBJ's material and its PNG come with the .glb.
+// A textured character for Unity or the web: the OBJ's material and its PNG come with the .glb,
+// as rough and with the same normal map as Blender reads the OBJ itself.
 TEST(BlenderReads, TheGlbWithTheObjsMaterialAndItsTexture) {
     if (!haveBlender()) GTEST_SKIP() << "blender is not installed (scripts/install-deps.sh)";
     const fs::path dir = freshTestDir("blender-glb-material");
     ASSERT_EQ(runCli("demo --out " + dir.string() + " --frames 3").exitCode, 0);
     addTextureCoordinatesAndMaterial((dir / "walker.obj").string(), "walker.mtl", "skin");
-    std::ofstream(dir / "walker.mtl") << "newmtl skin\nKd 0.8 0.6 0.5\nmap_Kd skin.png\n";
+    std::ofstream(dir / "walker.mtl")
+        << "newmtl skin\nKd 0.8 0.6 0.5\nmap_Kd skin.png\nNs 250\nmap_Bump -bm 0.5 skin.png\n";
     std::ofstream(dir / "skin.png", std::ios::binary) << twoByTwoPng();
     const CliResult solved =
         runCli("solve --quiet --frames 1:3 --format glb --mesh " + (dir / "walker.obj").string() +
                " --c3d " + (dir / "walker.c3d").string() + " --map " +
                (dir / "walker.map.json").string() + " --out " + (dir / "glb").string());
     ASSERT_EQ(solved.exitCode, 0) << solved.out;
-    const CliResult r = runShell("blender -b --factory-startup --python " BONELESS_SOURCE_DIR
-                                 "/tests/blender/read_glb_material.py -- " +
-                                 (dir / "glb" / "walker.glb").string() + " 2>&1");
+    const auto read = [](const fs::path& file) {
+        return runShell("blender -b --factory-startup --python " BONELESS_SOURCE_DIR
+                        "/tests/blender/read_glb_material.py -- " +
+                        file.string() + " 2>&1");
+    };
+    const CliResult r = read(dir / "glb" / "walker.glb");
     EXPECT_EQ(r.exitCode, 0) << r.out;
-    EXPECT_NE(r.out.find("material skin: image 2x2 packed True"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("material skin: image 2x2 packed True, roughness 0.50, normal map 0.50"),
+              std::string::npos)
+        << r.out;
+    const CliResult obj = read(dir / "walker.obj");
+    EXPECT_NE(obj.out.find("roughness 0.50, normal map 0.50"), std::string::npos) << obj.out;
 }

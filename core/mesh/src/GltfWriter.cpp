@@ -171,9 +171,9 @@ std::vector<int> triangleMaterials(const TriMesh& mesh, std::vector<ObjMaterial>
     return out;
 }
 
-// An OBJ material as glTF's metallic-roughness one: diffuse and not metallic. With a texture the
-// colour is the texture's (OBJ importers show map_Kd in place of Kd).
-tinygltf::Material gltfMaterial(const ObjMaterial& obj, int texture) {
+// An OBJ material as glTF's metallic-roughness one: not metallic, as rough as Blender reads its
+// Ns. With a texture the colour is the texture's (OBJ importers show map_Kd in place of Kd).
+tinygltf::Material gltfMaterial(const ObjMaterial& obj, int texture, int normalTexture) {
     tinygltf::Material m;
     m.name = obj.name;
     auto& pbr = m.pbrMetallicRoughness;
@@ -186,7 +186,11 @@ tinygltf::Material gltfMaterial(const ObjMaterial& obj, int texture) {
         pbr.baseColorTexture.index = texture;
     }
     pbr.metallicFactor = 0;
-    pbr.roughnessFactor = 1;
+    pbr.roughnessFactor = obj.roughness;
+    if (normalTexture >= 0) {
+        m.normalTexture.index = normalTexture;
+        m.normalTexture.scale = obj.normalScale;
+    }
     if (obj.opacity < 1) m.alphaMode = "BLEND";
     return m;
 }
@@ -227,15 +231,16 @@ GltfWriter::GltfWriter(std::string path, const TriMesh& rest, std::string name)
         triangles_ = std::move(grouped);
     }
     std::vector<std::string> textures;
-    for (const ObjMaterial& obj : usedMaterials_) {
-        if (uv_.empty() || obj.texture.empty() ||
-            std::find(textures.begin(), textures.end(), obj.texture) != textures.end())
-            continue;
-        textures.push_back(obj.texture);
-        std::error_code error;
-        const std::uintmax_t size = std::filesystem::file_size(obj.texture, error);
-        if (!error) textureBytes_ += size + 3;
-    }
+    for (const ObjMaterial& obj : usedMaterials_)
+        for (const std::string& texture : {obj.texture, obj.normalTexture}) {
+            if (uv_.empty() || texture.empty() ||
+                std::find(textures.begin(), textures.end(), texture) != textures.end())
+                continue;
+            textures.push_back(texture);
+            std::error_code error;
+            const std::uintmax_t size = std::filesystem::file_size(texture, error);
+            if (!error) textureBytes_ += size + 3;
+        }
     file_ = std::fopen(spool_.c_str(), "wb+");
     if (!file_) throw Error(path_ + ": cannot be written (cannot create " + spool_ + ")");
 }
@@ -321,31 +326,31 @@ void GltfWriter::finish() {
     // bytes are held once, until they are copied into the chunk.
     std::vector<std::string> images;
     std::unordered_map<std::string, int> textureOf;  // a texture that two materials share: once
-    for (const ObjMaterial& obj : usedMaterials_) {
-        const auto known = textureOf.find(obj.texture);
-        int texture = known != textureOf.end() ? known->second : -1;
-        std::string bytes =
-            uv_.empty() || obj.texture.empty() || texture >= 0 ? "" : readImage(obj.texture);
+    const auto textureFor = [&](const std::string& path) {
+        if (uv_.empty() || path.empty()) return -1;
+        if (const auto known = textureOf.find(path); known != textureOf.end()) return known->second;
+        std::string bytes = readImage(path);
         const std::string mimeType = detail::imageMimeType(bytes.substr(0, 8));
-        if (!mimeType.empty()) {
-            tinygltf::Image image;
-            image.name = std::filesystem::path(obj.texture).filename().string();
-            image.mimeType = mimeType;
-            image.bufferView = place(bytes.size());
-            const size_t pad = (4 - bytes.size() % 4) % 4;
-            bytes.append(pad, '\0');
-            offset += pad;
-            images.push_back(std::move(bytes));
-            m.images.push_back(image);
-            if (m.samplers.empty()) m.samplers.emplace_back();  // repeat, the viewer's filters
-            tinygltf::Texture t;
-            t.sampler = 0;
-            t.source = static_cast<int>(m.images.size()) - 1;
-            m.textures.push_back(t);
-            texture = static_cast<int>(m.textures.size()) - 1;
-            textureOf[obj.texture] = texture;
-        }
-        m.materials.push_back(gltfMaterial(obj, texture));
+        if (mimeType.empty()) return textureOf[path] = -1;
+        tinygltf::Image image;
+        image.name = std::filesystem::path(path).filename().string();
+        image.mimeType = mimeType;
+        image.bufferView = place(bytes.size());
+        const size_t pad = (4 - bytes.size() % 4) % 4;
+        bytes.append(pad, '\0');
+        offset += pad;
+        images.push_back(std::move(bytes));
+        m.images.push_back(image);
+        if (m.samplers.empty()) m.samplers.emplace_back();  // repeat, the viewer's filters
+        tinygltf::Texture t;
+        t.sampler = 0;
+        t.source = static_cast<int>(m.images.size()) - 1;
+        m.textures.push_back(t);
+        return textureOf[path] = static_cast<int>(m.textures.size()) - 1;
+    };
+    for (const ObjMaterial& obj : usedMaterials_) {
+        const int colour = textureFor(obj.texture);
+        m.materials.push_back(gltfMaterial(obj, colour, textureFor(obj.normalTexture)));
     }
     std::vector<tinygltf::Value> targetNames;
     for (size_t k = 0; k < frames; ++k) {

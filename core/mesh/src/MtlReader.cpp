@@ -55,6 +55,17 @@ std::string mapFile(std::string rest) {
     }
 }
 
+// The number after `option` among a map statement's options, if it is there.
+std::optional<double> mapOption(const std::string& rest, const std::string& option) {
+    std::istringstream in(rest);
+    for (std::string word; in >> word;)
+        if (word == option) {
+            in >> word;
+            return asNumber(word);
+        }
+    return std::nullopt;
+}
+
 bool glTFImage(const std::filesystem::path& file) {
     std::ifstream in(file, std::ios::binary);
     std::string head(8, '\0');
@@ -94,7 +105,8 @@ void readLibrary(const std::string& path, std::vector<ObjMaterial>& materials,
             std::getline(words, rest);
             materials.emplace_back();
             materials.back().name = trimmed(rest);
-        } else if (key == "Kd" || key == "d" || key == "Tr" || key == "map_Kd") {
+        } else if (key == "Kd" || key == "d" || key == "Tr" || key == "Ns" || key == "map_Kd" ||
+                   key == "map_Bump" || key == "bump") {
             if (materials.empty()) {
                 note(key + " before any newmtl, ignored");
                 continue;
@@ -116,21 +128,32 @@ void readLibrary(const std::string& path, std::vector<ObjMaterial>& materials,
                     m.colour = {c[0], c[1], c[2]};
                 else
                     note("Kd needs one or three numbers");
-            } else if (key == "map_Kd") {
+            } else if (key == "map_Kd" || key == "map_Bump" || key == "bump") {
                 std::string rest;
                 std::getline(words, rest);
                 std::string name = mapFile(rest);
                 std::replace(name.begin(), name.end(), '\\', '/');
                 const std::filesystem::path file = (folder / name).lexically_normal();
                 if (name.empty())
-                    note("map_Kd names no file");
+                    note(key + " names no file");
                 else if (std::error_code e; !std::filesystem::is_regular_file(file, e))
                     note("texture " + file.string() + " not found");
                 else if (!glTFImage(file))
                     note("texture " + file.string() +
                          " is neither PNG nor JPEG, the image formats glTF carries");
-                else
+                else if (key == "map_Kd")
                     m.texture = file.string();
+                else {
+                    m.normalTexture = file.string();
+                    m.normalScale = mapOption(rest, "-bm").value_or(1.0);
+                }
+            } else if (key == "Ns") {
+                std::string word;
+                words >> word;
+                if (const std::optional<double> x = asNumber(word))
+                    m.roughness = 1 - std::sqrt(std::clamp(*x, 0.0, 1000.0) / 1000);
+                else
+                    note("Ns needs a number");
             } else {
                 std::string word;
                 words >> word;

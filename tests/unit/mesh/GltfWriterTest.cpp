@@ -130,6 +130,7 @@ TEST(GltfExport, MaterialsBecomePrimitivesWithTheirColourAndEmbeddedTexture) {
     const fs::path dir = freshTestDir("glb-materials");
     std::ofstream(dir / "paint.png", std::ios::binary) << twoByTwoPng();
     std::ofstream(dir / "strip.mtl") << "newmtl painted\nKd 0.3 0.3 0.3\nmap_Kd paint.png\n"
+                                        "Ns 250\nmap_Bump -bm 0.5 paint.png\n"
                                         "newmtl tinted\nKd 0.2 0.4 0.6\nd 0.5\n"
                                         "newmtl repainted\nmap_Kd ./paint.png\n";
     // Six quads in a row: the first without a material; "tinted" on the second and again on
@@ -164,10 +165,15 @@ TEST(GltfExport, MaterialsBecomePrimitivesWithTheirColourAndEmbeddedTexture) {
     EXPECT_EQ(m.materials[1].name, "painted");
     EXPECT_EQ(m.materials[1].alphaMode, "OPAQUE");
     EXPECT_EQ(m.materials[1].pbrMetallicRoughness.metallicFactor, 0.0);
+    EXPECT_DOUBLE_EQ(m.materials[1].pbrMetallicRoughness.roughnessFactor, 0.5);
+    EXPECT_EQ(m.materials[0].pbrMetallicRoughness.roughnessFactor, 1.0);  // no Ns
+    EXPECT_EQ(m.materials[1].normalTexture.scale, 0.5);
+    EXPECT_EQ(m.materials[0].normalTexture.index, -1);
     const int texture = m.materials[1].pbrMetallicRoughness.baseColorTexture.index;
     ASSERT_GE(texture, 0);
     EXPECT_EQ(m.materials[2].pbrMetallicRoughness.baseColorTexture.index, texture);
-    ASSERT_EQ(m.images.size(), 1u);  // the shared texture, once
+    EXPECT_EQ(m.materials[1].normalTexture.index, texture);  // the same file as a normal map
+    ASSERT_EQ(m.images.size(), 1u);                          // the shared texture, once
     const tinygltf::Image& image = m.images[m.textures[texture].source];
     EXPECT_EQ(image.mimeType, "image/png");
     EXPECT_EQ(image.width, 2);  // tinygltf decoded it

@@ -28,9 +28,12 @@ TEST(MaterialLibrary, GivesEachMaterialItsColourOpacityAndTexture) {
     fs::create_directories(dir / "looks" / "maps");
     std::ofstream(dir / "looks" / "maps" / "skin tone.png", std::ios::binary) << twoByTwoPng();
     // Options before the file name, a name with a space, "Tr" as the inverse of "d".
+    // Ns as Blender's OBJ importer reads it (roughness 1 − √(Ns / 1000)); map_Bump and bump as
+    // normal maps, with -bm as their strength.
     std::ofstream(dir / "looks" / "body.mtl")
         << "# exported\nnewmtl skin\nKd 0.9 0.7 0.6\nmap_Kd -s 1 1 1 -clamp on maps/skin tone.png\n"
-           "newmtl glass pane\nKd 0.1 0.2 0.3\nTr 0.25\n";
+           "Ns 250\nmap_Bump -o 0 0 0 -bm 0.5 maps/skin tone.png\n"
+           "newmtl glass pane\nKd 0.1 0.2 0.3\nTr 0.25\nNs 4000\nbump maps/skin tone.png\n";
     std::ofstream(dir / "body.obj") << "mtllib looks/body.mtl\n"
                                     << kTriangle << "v 1 1 0\nusemtl skin\nf 1/1 2/2 3/3\n"
                                     << "usemtl glass pane\nf 2/2 4/1 3/3\n";
@@ -42,9 +45,15 @@ TEST(MaterialLibrary, GivesEachMaterialItsColourOpacityAndTexture) {
     EXPECT_EQ(m[0].colour, (std::array<double, 3>{0.9, 0.7, 0.6}));
     EXPECT_EQ(m[0].opacity, 1.0);
     EXPECT_EQ(fs::path(m[0].texture), fs::absolute(dir / "looks" / "maps" / "skin tone.png"));
+    EXPECT_DOUBLE_EQ(m[0].roughness, 0.5);
+    EXPECT_EQ(m[0].normalTexture, m[0].texture);
+    EXPECT_DOUBLE_EQ(m[0].normalScale, 0.5);
     EXPECT_EQ(m[1].name, "glass pane");
     EXPECT_DOUBLE_EQ(m[1].opacity, 0.75);
     EXPECT_TRUE(m[1].texture.empty());
+    EXPECT_DOUBLE_EQ(m[1].roughness, 0.0);  // Ns beyond 1000 is as smooth as 1000
+    EXPECT_EQ(m[1].normalTexture, m[0].texture);
+    EXPECT_DOUBLE_EQ(m[1].normalScale, 1.0);
     EXPECT_FALSE(anyWarningHas(r, "body.mtl", ""));  // only the open strip's boundary
 }
 

@@ -19,7 +19,10 @@ struct ObjMaterial {
     std::string name;                             // "newmtl"
     std::array<double, 3> colour{0.8, 0.8, 0.8};  // "Kd", the diffuse colour
     double opacity = 1;                           // "d", or 1 − "Tr"
-    std::string texture;  // "map_Kd": absolute path of a PNG or JPEG file, or empty
+    double roughness = 1;       // from "Ns" as Blender reads it: 1 − √(Ns / 1000), in [0, 1]
+    std::string texture;        // "map_Kd": absolute path of a PNG or JPEG file, or empty
+    std::string normalTexture;  // "map_Bump" or "bump", read as a normal map (as Blender does)
+    double normalScale = 1;     // its "-bm" strength
 };
 
 // The input file's own faces, for writers that give them back (OBJ frames): its polygons, their
