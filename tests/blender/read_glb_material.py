@@ -24,8 +24,8 @@ for material in bpy.data.materials:
         texture = f"image {image.size[0]}x{image.size[1]} packed {image.packed_file is not None}"
     else:
         texture = "no image"
-    bsdf = [n for n in nodes if n.type == 'BSDF_PRINCIPLED'][0]
+    bsdf = next((n for n in nodes if n.type == 'BSDF_PRINCIPLED'), None)
+    roughness = f"{bsdf.inputs['Roughness'].default_value:.2f}" if bsdf else "no bsdf"
     normal = [n.inputs['Strength'].default_value for n in nodes if n.type == 'NORMAL_MAP']
-    print(f"material {material.name}: {texture}, "
-          f"roughness {bsdf.inputs['Roughness'].default_value:.2f}, "
+    print(f"material {material.name}: {texture}, roughness {roughness}, "
           f"normal map {f'{normal[0]:.2f}' if normal else 'none'}")

@@ -115,5 +115,6 @@ TEST(BlenderReads, TheGlbWithTheObjsMaterialAndItsTexture) {
               std::string::npos)
         << r.out;
     const CliResult obj = read(dir / "walker.obj");
+    EXPECT_EQ(obj.exitCode, 0) << obj.out;
     EXPECT_NE(obj.out.find("roughness 0.50, normal map 0.50"), std::string::npos) << obj.out;
 }

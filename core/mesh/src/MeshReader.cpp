@@ -112,7 +112,7 @@ void resolveMaterials(const std::string& path, const PolygonSoup& soup, SourceFa
             if (out.uvOf[c] >= 0) placed[d] = 1;
     }
     for (size_t d = 0; d < placed.size(); ++d)
-        if (placed[d] == 0 && !defined[d].texture.empty())
+        if (placed[d] == 0 && !(defined[d].texture.empty() && defined[d].normalTexture.empty()))
             warnings.push_back("material '" + defined[d].name +
                                "' has a texture, but its faces have no texture coordinates (vt) "
                                "to place it");

@@ -91,6 +91,7 @@ void readLibrary(const std::string& path, std::vector<ObjMaterial>& materials,
     }
     const std::filesystem::path folder = std::filesystem::path(path).parent_path();
     int notes = 0;
+    bool roughnessGiven = false;  // the current material's Ns
     std::string line;
     for (int number = 1; std::getline(in, line); ++number) {
         std::istringstream words(line);
@@ -105,8 +106,9 @@ void readLibrary(const std::string& path, std::vector<ObjMaterial>& materials,
             std::getline(words, rest);
             materials.emplace_back();
             materials.back().name = trimmed(rest);
-        } else if (key == "Kd" || key == "d" || key == "Tr" || key == "Ns" || key == "map_Kd" ||
-                   key == "map_Bump" || key == "bump") {
+            roughnessGiven = false;
+        } else if (key == "Kd" || key == "d" || key == "Tr" || key == "Ns" || key == "illum" ||
+                   key == "map_Kd" || key == "map_Bump" || key == "map_bump" || key == "bump") {
             if (materials.empty()) {
                 note(key + " before any newmtl, ignored");
                 continue;
@@ -128,7 +130,7 @@ void readLibrary(const std::string& path, std::vector<ObjMaterial>& materials,
                     m.colour = {c[0], c[1], c[2]};
                 else
                     note("Kd needs one or three numbers");
-            } else if (key == "map_Kd" || key == "map_Bump" || key == "bump") {
+            } else if (key == "map_Kd" || key == "map_Bump" || key == "map_bump" || key == "bump") {
                 std::string rest;
                 std::getline(words, rest);
                 std::string name = mapFile(rest);
@@ -147,13 +149,17 @@ void readLibrary(const std::string& path, std::vector<ObjMaterial>& materials,
                     m.normalTexture = file.string();
                     m.normalScale = mapOption(rest, "-bm").value_or(1.0);
                 }
-            } else if (key == "Ns") {
+            } else if (key == "Ns" || key == "illum") {
                 std::string word;
                 words >> word;
-                if (const std::optional<double> x = asNumber(word))
+                const std::optional<double> x = asNumber(word);
+                if (!x)
+                    note(key + " needs a number");
+                else if (key == "Ns") {
                     m.roughness = 1 - std::sqrt(std::clamp(*x, 0.0, 1000.0) / 1000);
-                else
-                    note("Ns needs a number");
+                    roughnessGiven = true;
+                } else if (*x == 2 && !roughnessGiven)
+                    m.roughness = 0;  // Blender 3.4 reads "illum 2" without Ns as smooth
             } else {
                 std::string word;
                 words >> word;

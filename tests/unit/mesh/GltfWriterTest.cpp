@@ -129,8 +129,9 @@ TEST(GltfExport, TextureCoordinatesGoWithTheMeshSplitAtTheirSeams) {
 TEST(GltfExport, MaterialsBecomePrimitivesWithTheirColourAndEmbeddedTexture) {
     const fs::path dir = freshTestDir("glb-materials");
     std::ofstream(dir / "paint.png", std::ios::binary) << twoByTwoPng();
+    std::ofstream(dir / "bumps.png", std::ios::binary) << twoByTwoPng() + "tail";
     std::ofstream(dir / "strip.mtl") << "newmtl painted\nKd 0.3 0.3 0.3\nmap_Kd paint.png\n"
-                                        "Ns 250\nmap_Bump -bm 0.5 paint.png\n"
+                                        "Ns 250\nmap_Bump -bm 0.5 bumps.png\n"
                                         "newmtl tinted\nKd 0.2 0.4 0.6\nd 0.5\n"
                                         "newmtl repainted\nmap_Kd ./paint.png\n";
     // Six quads in a row: the first without a material; "tinted" on the second and again on
@@ -172,8 +173,12 @@ TEST(GltfExport, MaterialsBecomePrimitivesWithTheirColourAndEmbeddedTexture) {
     const int texture = m.materials[1].pbrMetallicRoughness.baseColorTexture.index;
     ASSERT_GE(texture, 0);
     EXPECT_EQ(m.materials[2].pbrMetallicRoughness.baseColorTexture.index, texture);
-    EXPECT_EQ(m.materials[1].normalTexture.index, texture);  // the same file as a normal map
-    ASSERT_EQ(m.images.size(), 1u);                          // the shared texture, once
+    const int bumps = m.materials[1].normalTexture.index;
+    ASSERT_GE(bumps, 0);
+    EXPECT_NE(bumps, texture);
+    EXPECT_EQ(m.materials[2].normalTexture.index, -1);
+    EXPECT_EQ(m.images[m.textures[bumps].source].name, "bumps.png");
+    ASSERT_EQ(m.images.size(), 2u);  // the shared colour texture once, and the normal map
     const tinygltf::Image& image = m.images[m.textures[texture].source];
     EXPECT_EQ(image.mimeType, "image/png");
     EXPECT_EQ(image.width, 2);  // tinygltf decoded it

@@ -33,14 +33,16 @@ TEST(MaterialLibrary, GivesEachMaterialItsColourOpacityAndTexture) {
     std::ofstream(dir / "looks" / "body.mtl")
         << "# exported\nnewmtl skin\nKd 0.9 0.7 0.6\nmap_Kd -s 1 1 1 -clamp on maps/skin tone.png\n"
            "Ns 250\nmap_Bump -o 0 0 0 -bm 0.5 maps/skin tone.png\n"
-           "newmtl glass pane\nKd 0.1 0.2 0.3\nTr 0.25\nNs 4000\nbump maps/skin tone.png\n";
+           "newmtl glass pane\nKd 0.1 0.2 0.3\nTr 0.25\nNs 4000\nbump maps/skin tone.png\n"
+           "newmtl lacquer\nillum 2\nmap_bump -bm 2 maps/skin tone.png\n"
+           "newmtl satin\nNs 90\nillum 2\n";
     std::ofstream(dir / "body.obj") << "mtllib looks/body.mtl\n"
                                     << kTriangle << "v 1 1 0\nusemtl skin\nf 1/1 2/2 3/3\n"
                                     << "usemtl glass pane\nf 2/2 4/1 3/3\n";
     const MeshReadResult r = readMesh((dir / "body.obj").string());
     ASSERT_NE(r.mesh.sourceFaces, nullptr);
     const std::vector<ObjMaterial>& m = r.mesh.sourceFaces->materialDefinitions;
-    ASSERT_EQ(m.size(), 2u);
+    ASSERT_EQ(m.size(), 4u);
     EXPECT_EQ(m[0].name, "skin");
     EXPECT_EQ(m[0].colour, (std::array<double, 3>{0.9, 0.7, 0.6}));
     EXPECT_EQ(m[0].opacity, 1.0);
@@ -54,6 +56,11 @@ TEST(MaterialLibrary, GivesEachMaterialItsColourOpacityAndTexture) {
     EXPECT_DOUBLE_EQ(m[1].roughness, 0.0);  // Ns beyond 1000 is as smooth as 1000
     EXPECT_EQ(m[1].normalTexture, m[0].texture);
     EXPECT_DOUBLE_EQ(m[1].normalScale, 1.0);
+    // "illum 2" without Ns is smooth to Blender; with Ns, Ns decides (checked headless).
+    EXPECT_EQ(m[2].roughness, 0.0);
+    EXPECT_EQ(m[2].normalTexture, m[0].texture);
+    EXPECT_DOUBLE_EQ(m[2].normalScale, 2.0);
+    EXPECT_DOUBLE_EQ(m[3].roughness, 0.7);
     EXPECT_FALSE(anyWarningHas(r, "body.mtl", ""));  // only the open strip's boundary
 }
 
