@@ -19,9 +19,9 @@ struct ObjMaterial {
     std::string name;                             // "newmtl"
     std::array<double, 3> colour{0.8, 0.8, 0.8};  // "Kd", the diffuse colour
     double opacity = 1;                           // "d", or 1 − "Tr"
-    double roughness = 1;       // from "Ns" as Blender reads it: 1 − √(Ns / 1000), in [0, 1]
+    double roughness = 1;       // as Blender reads "Ns": 1 − √(Ns / 1000); "illum 2" alone: 0
     std::string texture;        // "map_Kd": absolute path of a PNG or JPEG file, or empty
-    std::string normalTexture;  // "map_Bump" or "bump", read as a normal map (as Blender does)
+    std::string normalTexture;  // "map_Bump", "map_bump" or "bump", a normal map (as Blender)
     double normalScale = 1;     // its "-bm" strength
 };
 
