@@ -1,5 +1,7 @@
-// File → Export's dialog: the frames chosen are the frames written, the time is estimated before
-// starting and counted down while writing, and Cancel leaves an export that says it is incomplete.
+// File → Export's dialog: the frames chosen are the frames written, the calibrated rest is written
+// beside them when asked, the time is estimated before starting and counted down while writing,
+// and Cancel leaves an export that says it is incomplete.
+#include <QCheckBox>
 #include <QDir>
 #include <QFile>
 #include <QJsonArray>
@@ -8,6 +10,7 @@
 #include <QLabel>
 #include <QProgressBar>
 #include <QPushButton>
+#include <QSettings>
 #include <QSignalSpy>
 #include <QtTest>
 
@@ -65,6 +68,7 @@ class ExportDialogTest : public QObject {
   private slots:
     void initTestCase() {
         test::isolate("ExportDialogTest");
+        QSettings().remove("export/calibratedRest");  // a failed run may have left it checked
         work_ = test::freshFolder("ExportDialogTest");
         QVERIFY(test::loadDemo(document_, work_ + "/demo"));
         QVERIFY(solver_.setProblem(document_));
@@ -116,6 +120,49 @@ class ExportDialogTest : public QObject {
         QCOMPARE(objFiles(current), QStringList{"walker_0012.obj"});
         sidecar = readJson(current + "/walker.json");
         QCOMPARE(sidecar["frame_range"].toArray(), (QJsonArray{12, 13}));
+    }
+
+    void theCalibratedRestIsWrittenBesideTheFramesWhenAsked() {
+        {
+            ExportDialog dialog(&document_, &solver_, &timeline_);
+            dialog.show();
+            auto* box = part<QCheckBox>(dialog, "exportCalibratedRest");
+            QVERIFY(box->isEnabled());
+            QVERIFY(!dialog.request().writeCalibratedRest);
+            box->setChecked(true);
+            QVERIFY(dialog.request().writeCalibratedRest);
+            dialog.setFormat(ExportFormat::Pc2);
+            timeline_.setFrame(3);
+            dialog.setRange(ExportDialog::Range::Current);
+            const QString out = work_ + "/with-rest";
+            QVERIFY(exportInto(dialog, out));
+            const QJsonObject sidecar = readJson(out + "/walker.json");
+            QCOMPARE(sidecar["calibration"].toObject()["calibrated_rest"].toString(),
+                     QString("walker_calibrated_rest.obj"));
+            QFile rest(out + "/walker_calibrated_rest.obj");
+            QVERIFY(rest.open(QIODevice::ReadOnly));
+            int vertices = 0;
+            while (!rest.atEnd())
+                if (rest.readLine().startsWith("v ")) ++vertices;
+            QCOMPARE(vertices, document_.mesh().vertexCount());
+        }
+        // The choice is remembered; without calibration there is no calibrated rest to write.
+        ExportDialog dialog(&document_, &solver_, &timeline_);
+        const TakeSolveOptions calibrating = document_.settings();
+        TakeSolveOptions none = calibrating;
+        none.calibrate = CalibrateMode::None;
+        document_.setSettings(none);
+        dialog.show();
+        auto* box = part<QCheckBox>(dialog, "exportCalibratedRest");
+        QVERIFY(box->isChecked());
+        QVERIFY(!box->isEnabled());
+        QVERIFY(!dialog.request().writeCalibratedRest);
+        document_.setSettings(calibrating);
+        dialog.hide();
+        dialog.show();
+        QVERIFY(box->isEnabled());
+        QVERIFY(dialog.request().writeCalibratedRest);
+        QSettings().remove("export/calibratedRest");  // the other tests export frames alone
     }
 
     void cancelLeavesAnExportThatSaysItIsIncomplete() {

@@ -1,6 +1,7 @@
 #include "boneless/ui/ExportDialog.h"
 
 #include <QButtonGroup>
+#include <QCheckBox>
 #include <QComboBox>
 #include <QDialogButtonBox>
 #include <QFileDialog>
@@ -90,6 +91,13 @@ ExportDialog::ExportDialog(Document* document, FrameSolver* solver, Timeline* ti
     folderRow->addWidget(folder_, 1);
     folderRow->addWidget(browse);
 
+    // The rest the frames were solved against: what a user needs to rebuild the rig elsewhere,
+    // in the input's vertex order, beside the frames (as solve --write-calibrated-rest).
+    calibratedRest_ =
+        new QCheckBox(tr("Also write the calibrated rest (the mesh fitted to the actor)"));
+    calibratedRest_->setObjectName("exportCalibratedRest");
+    calibratedRest_->setChecked(QSettings().value("export/calibratedRest", false).toBool());
+
     estimate_ = new QLabel;
     estimate_->setObjectName("exportEstimate");
     progress_ = new QProgressBar;
@@ -103,6 +111,7 @@ ExportDialog::ExportDialog(Document* document, FrameSolver* solver, Timeline* ti
     form->addRow(tr("Range:"), rangeBox);
     form->addRow(tr("Format:"), format_);
     form->addRow(tr("Folder:"), folderRow);
+    form->addRow(QString(), calibratedRest_);
     form->addRow(tr("Time:"), estimate_);
 
     auto* buttons = new QDialogButtonBox;
@@ -180,6 +189,8 @@ void ExportDialog::setFormat(ExportFormat format) {
 ExportRequest ExportDialog::request() const {
     ExportRequest r =
         document_->exportRequest(folder(), ExportFormat(format_->currentData().toInt()));
+    r.writeCalibratedRest =
+        calibratedRest_->isChecked() && r.options.calibrate != CalibrateMode::None;
     switch (range()) {
         case Range::All:
             break;
@@ -226,6 +237,7 @@ void ExportDialog::syncFromDocument() {
         out_->setValue(last);
     }
     current_->setText(tr("Current frame (%1)").arg(timeline_->frame()));
+    setRunning(runner_->isRunning());  // the calibrated rest's box follows the settings
     if (folder_->text().isEmpty() && document_->hasMesh())
         folder_->setText(QFileInfo(document_->meshPath()).absolutePath() + "/export");
 }
@@ -268,6 +280,7 @@ bool ExportDialog::startExport() {
         return false;
     }
     QSettings().setValue("export/folder", folder());
+    QSettings().setValue("export/calibratedRest", calibratedRest_->isChecked());
     progress_->setRange(0, std::max(1, frameCountToWrite()));
     progress_->setValue(0);
     progressText_->setText(tr("Preparing the solver…"));
@@ -307,6 +320,12 @@ void ExportDialog::setRunning(bool running) {
     for (QWidget* w :
          std::initializer_list<QWidget*>{all_, inOut_, current_, in_, out_, format_, folder_})
         w->setEnabled(!running);
+    // Without calibration the rest is the input mesh: nothing to write.
+    const bool calibrates = document_->settings().calibrate != CalibrateMode::None;
+    calibratedRest_->setEnabled(!running && calibrates);
+    calibratedRest_->setToolTip(calibrates ? tr("<stem>_calibrated_rest.obj: the input's vertices "
+                                                "and faces, in the actor's proportions")
+                                           : tr("Calibration is off: the rest is the input mesh"));
 }
 
 }  // namespace boneless::ui

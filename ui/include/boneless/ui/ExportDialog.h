@@ -7,6 +7,7 @@
 #include "boneless/TakeExport.h"
 
 class QButtonGroup;
+class QCheckBox;
 class QComboBox;
 class QLabel;
 class QLineEdit;
@@ -23,10 +24,11 @@ class FrameSolver;
 class Timeline;
 
 // File → Export: which frames (all, in–out, the current one), the format (core's table), the
-// folder, an estimate of the time before starting, then a progress bar with the time left and
-// Cancel. The estimate comes from the solve times of the frames the window solved (the dialog
-// listens from the start); with none yet, showing the dialog asks the solver for the current
-// frame, a quick measurement. A cancelled export's sidecar says "complete": false.
+// folder, whether to write the calibrated rest beside the frames, an estimate of the time before
+// starting, then a progress bar with the time left and Cancel. The estimate comes from the solve
+// times of the frames the window solved (the dialog listens from the start); with none yet, showing
+// the dialog asks the solver for the current frame, a quick measurement. A cancelled export's
+// sidecar says "complete": false.
 class ExportDialog : public QDialog {
     Q_OBJECT
   public:
@@ -50,8 +52,8 @@ class ExportDialog : public QDialog {
     // The estimate for the chosen frames in milliseconds; 0 when nothing is measured yet.
     double estimatedMs() const;
 
-    // The widgets have object names for tests: exportFormat, exportEstimate, exportProgress,
-    // exportProgressText, exportStart, exportCancel.
+    // The widgets have object names for tests: exportFormat, exportCalibratedRest, exportEstimate,
+    // exportProgress, exportProgressText, exportStart, exportCancel.
     ExportRunner* runner() const { return runner_; }
 
   public slots:
@@ -85,6 +87,7 @@ class ExportDialog : public QDialog {
     QSpinBox *in_, *out_;
     QComboBox* format_;
     QLineEdit* folder_;
+    QCheckBox* calibratedRest_;
     QLabel* estimate_;
     QProgressBar* progress_;
     QLabel* progressText_;
