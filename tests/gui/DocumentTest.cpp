@@ -68,6 +68,27 @@ class DocumentTest : public QObject {
         QVERIFY2(near >= 25, qPrintable(QString::number(near)));
     }
 
+    void beforeThreeAreMappedTheTakeStandsUpOnTheMesh() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        for (int m = 0; m < d.markerCount(); ++m) d.clearMapping(m);
+        const Calibration c = d.displayAlignment();
+        const Positions P = d.markerPositions(c.frame);
+        const Correspondence demoMap =
+            Correspondence::read((demo_ + "/walker.map.json").toStdString());
+        const double height =
+            (d.mesh().V.colwise().maxCoeff() - d.mesh().V.colwise().minCoeff()).maxCoeff();
+        // The demo's actor is its mesh walking: upright, its size and facing its way, each
+        // marker lands near the vertex it belongs to.
+        int near = 0;
+        for (int m = 0; m < d.markerCount(); ++m) {
+            const int v = vertexInMap(d, demoMap, m);
+            if (v < 0 || !P.row(m).allFinite()) continue;
+            near += (P.row(m) - d.mesh().V.row(v)).norm() < 0.15 * height;
+        }
+        QVERIFY2(near >= 35, qPrintable(QString::number(near)));  // 39 of 39; 0 before
+    }
+
     void missingFilesAndCorruptTakesAreMessages() {
         Document d;
         QVERIFY(test::loadDemo(d, demo_));

@@ -173,22 +173,11 @@ Calibration Document::displayAlignment() const {
         }
     }
     if (!found) {
-        // Scale and centre the take's extent onto the mesh's, without rotation: enough to see
-        // the markers next to the mesh before anything is mapped.
-        Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
-        for (std::size_t f = 0; f < take_.frameCount(); ++f)
-            for (const auto& m : markers_)
-                if (const auto x = take_.samples.position(f, m.point)) {
-                    lo = lo.cwiseMin(*x);
-                    hi = hi.cwiseMax(*x);
-                }
-        if (lo.x() <= hi.x() && mesh_.vertexCount() > 0) {
-            const Eigen::Vector3d mlo = mesh_.V.colwise().minCoeff().transpose();
-            const Eigen::Vector3d mhi = mesh_.V.colwise().maxCoeff().transpose();
-            const double takeDiag = (hi - lo).norm();
-            c.takeToMesh.scale = takeDiag > 0 ? (mhi - mlo).norm() / takeDiag : 1.0;
-            c.takeToMesh.t = 0.5 * (mlo + mhi) - c.takeToMesh.scale * 0.5 * (lo + hi);
-        }
+        // Upright and the mesh's size, from conventions: enough to see the markers on the mesh
+        // before three are mapped.
+        std::vector<std::size_t> all;
+        for (const auto& m : markers_) all.push_back(m.point);
+        c = roughAlignment(take_, all, mesh_);
     }
     autoAlignment_ = c;
     return c;

@@ -62,3 +62,91 @@ TEST(Alignment, CalibrationPicksTheFrameClosestToTheRestPose) {
     EXPECT_LT(c.residual, 1e-9);
     EXPECT_EQ(c.visibleMarkers, 6);
 }
+
+namespace {
+
+// An actor 1.6 m tall in millimetres, Z up, facing +X (left is +Y), standing away from the
+// origin; frame 1 lacks a marker, so frame 0 shows the most.
+C3dTake standingActor() {
+    struct Marker {
+        const char* name;
+        Vec3 at;  // front, left, height
+    };
+    const std::vector<Marker> markers{{"LFHD", {80, 70, 1650}},  {"RFHD", {80, -70, 1650}},
+                                      {"LBHD", {-80, 70, 1630}}, {"STRN", {100, 0, 1300}},
+                                      {"LANK", {0, 100, 80}},    {"RANK", {0, -100, 60}}};
+    C3dTake take;
+    take.file = "standing.c3d";
+    for (const Marker& m : markers) take.points.push_back({m.name, "", m.name, "", {}});
+    take.samples = C3dSamples(2, markers.size());
+    const Vec3 origin(3000, 2000, 0);
+    for (std::size_t f = 0; f < 2; ++f)
+        for (std::size_t k = 0; k < markers.size(); ++k) {
+            const Vec3 x = origin + markers[k].at;
+            take.samples.set(f, k, x.x(), x.y(), x.z());
+        }
+    take.samples.setMissing(1, 3);
+    return take;
+}
+
+// An icosphere stretched to a body's box: `extent` along x, y, z.
+TriMesh bodyBox(const Vec3& extent) {
+    TriMesh mesh = icosphere(2);
+    for (int v = 0; v < mesh.vertexCount(); ++v)
+        mesh.V.row(v) = mesh.V.row(v).cwiseProduct(0.5 * extent.transpose());
+    return mesh;
+}
+
+Vec3 placed(const C3dTake& take, const Calibration& c, const char* name) {
+    return c.takeToMesh.apply(*take.samples.position(c.frame, *take.findPoint(name)));
+}
+
+std::vector<std::size_t> allPoints(const C3dTake& take) {
+    std::vector<std::size_t> points(take.points.size());
+    for (std::size_t k = 0; k < points.size(); ++k) points[k] = k;
+    return points;
+}
+
+}  // namespace
+
+TEST(RoughAlignment, StandsTheActorUpOnAYUpMeshWithItsLeftOnTheMeshsLeft) {
+    const C3dTake take = standingActor();
+    const TriMesh mesh = bodyBox({16, 17, 3});  // a T-pose: nearly as wide as tall, still Y up
+    const Calibration c = roughAlignment(take, allPoints(take), mesh);
+    EXPECT_EQ(c.frame, 0);
+    EXPECT_EQ(c.visibleMarkers, 6);
+    EXPECT_NEAR(c.takeToMesh.scale, 17.0 / 1590, 1e-12);  // median height over the frames
+    const Vec3 lfhd = placed(take, c, "LFHD"), rfhd = placed(take, c, "RFHD");
+    const Vec3 rank = placed(take, c, "RANK"), strn = placed(take, c, "STRN");
+    EXPECT_GT(lfhd.y(), 8.0);           // the head at the top of the mesh, which spans -8.5 to 8.5
+    EXPECT_NEAR(rank.y(), -8.5, 1e-9);  // the lowest marker on the mesh's lowest point
+    EXPECT_GT(lfhd.x(), 0.5);           // left on +X
+    EXPECT_LT(rfhd.x(), -0.5);
+    EXPECT_GT(strn.z(), 0.5);  // the front on +Z
+    EXPECT_GT(lfhd.z(), placed(take, c, "LBHD").z());
+    EXPECT_NEAR(c.takeToMesh.R.determinant(), 1.0, 1e-12);
+}
+
+TEST(RoughAlignment, FacesAZUpMeshTowardsMinusY) {
+    const C3dTake take = standingActor();
+    const TriMesh mesh = bodyBox({5, 3, 17});
+    const Calibration c = roughAlignment(take, allPoints(take), mesh);
+    const Vec3 lfhd = placed(take, c, "LFHD");
+    EXPECT_GT(lfhd.z(), 8.0);
+    EXPECT_GT(lfhd.x(), 0.5);
+    EXPECT_LT(placed(take, c, "STRN").y(), -0.5);
+}
+
+TEST(RoughAlignment, WithoutSidedNamesTheActorStillStandsUp) {
+    C3dTake take = standingActor();
+    for (std::size_t k = 0; k < take.points.size(); ++k)
+        take.points[k].name = take.points[k].label = "M" + std::to_string(k);
+    const TriMesh mesh = bodyBox({5, 17, 3});
+    const Calibration c = roughAlignment(take, allPoints(take), mesh);
+    EXPECT_GT(c.takeToMesh.apply(*take.samples.position(0, 0)).y(), 8.0);
+    EXPECT_NEAR(c.takeToMesh.apply(*take.samples.position(0, 5)).y(), -8.5, 1e-9);
+    // Nothing seen: no frame, no placement.
+    const Calibration none = roughAlignment(take, {}, mesh);
+    EXPECT_EQ(none.frame, -1);
+    EXPECT_EQ(none.takeToMesh.scale, 1.0);
+}
