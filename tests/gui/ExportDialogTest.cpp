@@ -55,6 +55,7 @@ class ExportDialogTest : public QObject {
     Q_OBJECT
     QString work_;
     Document document_;
+    TakeSolveOptions settings_;  // the demo's, restored after each test
     FrameSolver solver_;
     Timeline timeline_;
 
@@ -72,7 +73,13 @@ class ExportDialogTest : public QObject {
         work_ = test::freshFolder("ExportDialogTest");
         QVERIFY(test::loadDemo(document_, work_ + "/demo"));
         QVERIFY(solver_.setProblem(document_));
+        settings_ = document_.settings();
         timeline_.setFrameCount(document_.frameCount());
+    }
+
+    void cleanup() {
+        document_.setSettings(settings_);
+        QSettings().remove("export/calibratedRest");  // the other tests export frames alone
     }
 
     void theEstimateIsMeasuredAndShownBeforeExporting() {
@@ -146,23 +153,21 @@ class ExportDialogTest : public QObject {
                 if (rest.readLine().startsWith("v ")) ++vertices;
             QCOMPARE(vertices, document_.mesh().vertexCount());
         }
-        // The choice is remembered; without calibration there is no calibrated rest to write.
+        // The choice is remembered; without calibration there is no calibrated rest to write,
+        // and the box follows calibration turned off and on while the dialog is open.
         ExportDialog dialog(&document_, &solver_, &timeline_);
-        const TakeSolveOptions calibrating = document_.settings();
-        TakeSolveOptions none = calibrating;
-        none.calibrate = CalibrateMode::None;
-        document_.setSettings(none);
         dialog.show();
         auto* box = part<QCheckBox>(dialog, "exportCalibratedRest");
         QVERIFY(box->isChecked());
+        QVERIFY(box->isEnabled());
+        TakeSolveOptions none = settings_;
+        none.calibrate = CalibrateMode::None;
+        document_.setSettings(none);
         QVERIFY(!box->isEnabled());
         QVERIFY(!dialog.request().writeCalibratedRest);
-        document_.setSettings(calibrating);
-        dialog.hide();
-        dialog.show();
+        document_.setSettings(settings_);
         QVERIFY(box->isEnabled());
         QVERIFY(dialog.request().writeCalibratedRest);
-        QSettings().remove("export/calibratedRest");  // the other tests export frames alone
     }
 
     void cancelLeavesAnExportThatSaysItIsIncomplete() {

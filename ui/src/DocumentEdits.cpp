@@ -169,7 +169,7 @@ Calibration Document::displayAlignment() const {
             c = calibrate(take_, points, rest);
             found = true;
         } catch (const std::exception&) {
-            // Collinear or hidden markers: fall back to the rough placement below.
+            // Collinear or hidden markers: fall back to roughAlignment below.
         }
     }
     if (!found) {

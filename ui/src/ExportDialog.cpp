@@ -155,6 +155,9 @@ ExportDialog::ExportDialog(Document* document, FrameSolver* solver, Timeline* ti
     connect(runner_, &ExportRunner::progress, this,
             [this](int done, int total, double) { onProgress(done, total); });
     connect(runner_, &ExportRunner::finished, this, &ExportDialog::onFinished);
+    // The calibrated rest's box follows calibration being turned on or off.
+    connect(document_, &Document::settingsChanged, this,
+            [this] { setRunning(runner_->isRunning()); });
     updateEstimate();
 }
 
@@ -237,7 +240,6 @@ void ExportDialog::syncFromDocument() {
         out_->setValue(last);
     }
     current_->setText(tr("Current frame (%1)").arg(timeline_->frame()));
-    setRunning(runner_->isRunning());  // the calibrated rest's box follows the settings
     if (folder_->text().isEmpty() && document_->hasMesh())
         folder_->setText(QFileInfo(document_->meshPath()).absolutePath() + "/export");
 }

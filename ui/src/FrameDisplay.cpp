@@ -106,8 +106,9 @@ void FrameDisplay::onTakeChanged() {
 
 void FrameDisplay::updateUpAxis(bool force) {
     Eigen::Vector3d up = Eigen::Vector3d::UnitY();
-    // The rough fit used before three markers are mapped says nothing about which way is up.
-    if (document_->hasTake() && (document_->alignment() || document_->mappedCount() >= 3))
+    // Whichever alignment places the markers (roughAlignment's before three are mapped) says
+    // which way the take's vertical points on the mesh.
+    if (document_->hasTake() && document_->hasMesh())
         up = upAxisVector(
             QString::fromStdString(guessUpAxis(document_->displayAlignment().takeToMesh)));
     if (!force && up.isApprox(up_)) return;

@@ -48,10 +48,6 @@ Positions vertexNormals(const Faces& F, const Positions& V) {
     return N;
 }
 
-std::string markerName(const C3dPoint& p) {
-    return p.name.empty() ? p.label : p.name;
-}
-
 // One fitted frame: the mesh posed by the picks, each vertex lifted off the skin.
 struct Fit {
     int frame = -1;

@@ -10,14 +10,19 @@ namespace boneless {
 
 namespace {
 
-// An axis within this share of the mesh's longest is taken for up when it is +Y: a T-posed
+// Up is +Y, else +Z, when that axis is at least this share of the mesh's longest: a T-posed
 // body is about as wide as it is tall.
 constexpr double kUpShare = 0.6;
+// The L…/R… offsets give the actor's facing only when they are mostly level (not an actor
+// lying on its side).
+constexpr double kLevelShare = 0.3;
 // Frames sampled for the actor's height: enough for a median, cheap on a long take.
 constexpr std::size_t kHeightSamples = 200;
 
-std::string nameOf(const C3dPoint& p) {
-    return p.name.empty() ? p.label : p.name;
+double median(std::vector<double> values) {
+    if (values.empty()) return 0;
+    std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+    return values[values.size() / 2];
 }
 
 }  // namespace
@@ -28,22 +33,25 @@ Calibration roughAlignment(const C3dTake& take, const std::vector<std::size_t>& 
     const std::size_t frames = take.frameCount();
     if (frames == 0 || points.empty() || mesh.vertexCount() == 0) return c;
     int best = 0;
-    std::vector<double> heights;
+    std::vector<double> heights, spans;
     const std::size_t step = std::max<std::size_t>(1, frames / kHeightSamples);
     for (std::size_t f = 0; f < frames; ++f) {
         int seen = 0;
-        double lo = HUGE_VAL, hi = -HUGE_VAL;
+        Vec3 lo = Vec3::Constant(HUGE_VAL), hi = -lo;
         for (std::size_t p : points)
             if (const auto x = take.samples.position(f, p)) {
                 ++seen;
-                lo = std::min(lo, x->z());
-                hi = std::max(hi, x->z());
+                lo = lo.cwiseMin(*x);
+                hi = hi.cwiseMax(*x);
             }
         if (seen > best) {
             best = seen;
             c.frame = int(f);
         }
-        if (seen > 1 && f % step == 0) heights.push_back(hi - lo);
+        if (seen > 1 && f % step == 0) {
+            heights.push_back(hi.z() - lo.z());
+            spans.push_back((hi - lo).norm());
+        }
     }
     if (c.frame < 0) return c;
     c.visibleMarkers = best;
@@ -51,8 +59,11 @@ Calibration roughAlignment(const C3dTake& take, const std::vector<std::size_t>& 
     const Vec3 mlo = mesh.V.colwise().minCoeff().transpose();
     const Vec3 mhi = mesh.V.colwise().maxCoeff().transpose();
     const Vec3 extent = mhi - mlo;
-    int up = 1;
-    if (extent.y() < kUpShare * extent.maxCoeff()) extent.maxCoeff(&up);
+    int up = 0;
+    if (extent.y() >= kUpShare * extent.maxCoeff())
+        up = 1;
+    else if (extent.z() >= kUpShare * extent.maxCoeff())
+        up = 2;
     // A body's left is +X whether its mesh is Y-up (facing +Z) or Z-up (facing -Y, Blender's way).
     const Vec3 meshUp = Vec3::Unit(up), meshLeft = up == 0 ? Vec3::UnitY() : Vec3::UnitX();
 
@@ -67,15 +78,16 @@ Calibration roughAlignment(const C3dTake& take, const std::vector<std::size_t>& 
         centre += *x;
         floor = std::min(floor, x->z());
         ++counted;
-        const std::string name = nameOf(take.points[p]);
+        const std::string name = markerName(take.points[p]);
         if (SideCheck::side(name) != 'L') continue;
         const auto partner = take.findPoint(SideCheck::partner(name));
         if (!partner) continue;
         if (const auto y = take.samples.position(c.frame, *partner)) left += *x - *y;
     }
     centre /= counted;
+    const double offset = left.norm();
     left.z() = 0;
-    if (left.norm() < 1e-9 * (1 + centre.norm())) left = Vec3::UnitX();
+    if (offset == 0 || left.norm() < kLevelShare * offset) left = Vec3::UnitX();
     left.normalize();
     const Vec3 takeUp = Vec3::UnitZ();
     Mat3 from, to;
@@ -83,12 +95,10 @@ Calibration roughAlignment(const C3dTake& take, const std::vector<std::size_t>& 
     to << meshLeft, meshUp, meshLeft.cross(meshUp);
     c.takeToMesh.R = to * from.transpose();
 
-    double height = 0;
-    if (!heights.empty()) {
-        std::nth_element(heights.begin(), heights.begin() + heights.size() / 2, heights.end());
-        height = heights[heights.size() / 2];
-    }
-    c.takeToMesh.scale = height > 0 ? extent[up] / height : 1.0;
+    // The actor's height to the mesh's; markers all at one height give their span to the mesh's
+    // size instead, and a take that never shows two markers at once scale 1.
+    const double height = median(heights), span = median(spans);
+    c.takeToMesh.scale = height > 0 ? extent[up] / height : span > 0 ? extent.norm() / span : 1.0;
     const double s = c.takeToMesh.scale;
     const Vec3 middle = 0.5 * (mlo + mhi);
     c.takeToMesh.t = middle - s * (c.takeToMesh.R * centre) +

@@ -2,10 +2,16 @@
 
 #include <string>
 
+#include "boneless/C3dTake.h"
 #include "boneless/Correspondence.h"
 #include "boneless/TriMesh.h"
 
 namespace boneless {
+
+// A take's marker as labels and sides name it: without its subject prefix, or as stored.
+inline std::string markerName(const C3dPoint& p) {
+    return p.name.empty() ? p.label : p.name;
+}
 
 // Left and right as the picks name them: a marker named L… whose partner R… exists is on the
 // left. The picks that come in such pairs (LWRA and RWRA) give the mesh's left direction and

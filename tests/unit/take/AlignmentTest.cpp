@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "TestMeshes.h"
@@ -111,15 +112,15 @@ std::vector<std::size_t> allPoints(const C3dTake& take) {
 
 TEST(RoughAlignment, StandsTheActorUpOnAYUpMeshWithItsLeftOnTheMeshsLeft) {
     const C3dTake take = standingActor();
-    const TriMesh mesh = bodyBox({16, 17, 3});  // a T-pose: nearly as wide as tall, still Y up
+    const TriMesh mesh = bodyBox({17, 16, 3});  // a T-pose: wider than tall, still Y up
     const Calibration c = roughAlignment(take, allPoints(take), mesh);
     EXPECT_EQ(c.frame, 0);
     EXPECT_EQ(c.visibleMarkers, 6);
-    EXPECT_NEAR(c.takeToMesh.scale, 17.0 / 1590, 1e-12);  // median height over the frames
+    EXPECT_NEAR(c.takeToMesh.scale, 16.0 / 1590, 1e-12);  // median height over the frames
     const Vec3 lfhd = placed(take, c, "LFHD"), rfhd = placed(take, c, "RFHD");
     const Vec3 rank = placed(take, c, "RANK"), strn = placed(take, c, "STRN");
-    EXPECT_GT(lfhd.y(), 8.0);           // the head at the top of the mesh, which spans -8.5 to 8.5
-    EXPECT_NEAR(rank.y(), -8.5, 1e-9);  // the lowest marker on the mesh's lowest point
+    EXPECT_GT(lfhd.y(), 7.5);           // the head at the top of the mesh, which spans -8 to 8
+    EXPECT_NEAR(rank.y(), -8.0, 1e-9);  // the lowest marker on the mesh's lowest point
     EXPECT_GT(lfhd.x(), 0.5);           // left on +X
     EXPECT_LT(rfhd.x(), -0.5);
     EXPECT_GT(strn.z(), 0.5);  // the front on +Z
@@ -129,7 +130,7 @@ TEST(RoughAlignment, StandsTheActorUpOnAYUpMeshWithItsLeftOnTheMeshsLeft) {
 
 TEST(RoughAlignment, FacesAZUpMeshTowardsMinusY) {
     const C3dTake take = standingActor();
-    const TriMesh mesh = bodyBox({5, 3, 17});
+    const TriMesh mesh = bodyBox({18, 3, 17});  // T-posed, Z up (Blender's way)
     const Calibration c = roughAlignment(take, allPoints(take), mesh);
     const Vec3 lfhd = placed(take, c, "LFHD");
     EXPECT_GT(lfhd.z(), 8.0);
@@ -149,4 +150,20 @@ TEST(RoughAlignment, WithoutSidedNamesTheActorStillStandsUp) {
     const Calibration none = roughAlignment(take, {}, mesh);
     EXPECT_EQ(none.frame, -1);
     EXPECT_EQ(none.takeToMesh.scale, 1.0);
+}
+
+TEST(RoughAlignment, ATakeWithNoHeightStillGetsAFiniteScale) {
+    C3dTake take = standingActor();
+    for (std::size_t k = 0; k < take.points.size(); ++k)
+        for (std::size_t f = 0; f < 2; ++f)
+            if (const auto x = take.samples.position(f, k))
+                take.samples.set(f, k, x->x(), x->y(), 0.0);  // every marker on the floor
+    const TriMesh mesh = bodyBox({5, 17, 3});
+    const Calibration flat = roughAlignment(take, allPoints(take), mesh);
+    EXPECT_TRUE(std::isfinite(flat.takeToMesh.scale));
+    EXPECT_GT(flat.takeToMesh.scale, 0.001);  // the markers' span onto the mesh's, not 1
+    EXPECT_LT(flat.takeToMesh.scale, 0.1);
+    const Calibration one = roughAlignment(take, {0}, mesh);  // one marker: nothing to measure
+    EXPECT_EQ(one.takeToMesh.scale, 1.0);
+    EXPECT_TRUE(one.takeToMesh.apply(*take.samples.position(0, 0)).allFinite());
 }

@@ -31,12 +31,13 @@ Calibration calibrate(const C3dTake& take, const std::vector<std::size_t>& point
 Calibration calibrate(int frames, const std::function<Positions(int)>& frameAt,
                       const std::string& file, const Positions& restPositions);
 
-// Where the view draws the take before three markers are mapped: upright beside nothing but
-// conventions. The take's +Z (C3D's vertical) goes to the mesh's up (+Y, unless another axis is
-// much longer), the actor's left (the markers named L… minus their R… partners) to the mesh's
-// left (+X when up is +Y: a mesh facing +Z), the actor's height to the mesh's, and the frame's
-// lowest marker to the mesh's lowest point, centred on it. `frame` of the result is the frame
-// that shows the most of `points`. Identity when no frame shows any.
+// Where the view draws the take before three markers are mapped, from conventions alone. The
+// take's +Z (C3D's vertical) goes to the mesh's up: +Y, else +Z, when that axis is at least 0.6
+// of the mesh's longest (a T-posed body is about as wide as tall), else +X. The actor's left (each
+// L… marker's offset from its R… partner, when mostly level) goes to the mesh's left: +X (a mesh
+// facing +Z with Y up, or -Y with Z up), +Y for an X-up mesh. The actor's median height goes to
+// the mesh's, and the lowest marker of the frame that shows the most of `points` (`frame` of the
+// result) to the mesh's lowest point, centred on it. Identity when no frame shows any.
 Calibration roughAlignment(const C3dTake& take, const std::vector<std::size_t>& points,
                            const TriMesh& mesh);
 
