@@ -86,7 +86,7 @@ class DocumentTest : public QObject {
             if (v < 0 || !P.row(m).allFinite()) continue;
             near += (P.row(m) - d.mesh().V.row(v)).norm() < 0.15 * height;
         }
-        QVERIFY2(near >= 35, qPrintable(QString::number(near)));  // 39 of 39; 0 before
+        QVERIFY2(near >= 35, qPrintable(QString::number(near)));  // all 39 do
     }
 
     void missingFilesAndCorruptTakesAreMessages() {
