@@ -37,11 +37,20 @@ std::string trimmed(const std::string& s) {
     return s.substr(first, s.find_last_not_of(" \t\r") - first + 1);
 }
 
-// The file a map statement names: what follows its options, spaces and all.
-std::string mapFile(std::string rest) {
+// A map statement's file (what follows its options, spaces and all) and its -bm strength.
+struct MapStatement {
+    std::string file;
+    double bumpScale = 1;
+};
+
+MapStatement mapStatement(std::string rest) {
+    MapStatement out;
     for (;;) {
         rest = trimmed(rest);
-        if (rest.empty() || rest[0] != '-') return rest;
+        if (rest.empty() || rest[0] != '-') {
+            out.file = rest;
+            return out;
+        }
         const size_t end = rest.find_first_of(" \t");
         const std::string option = rest.substr(0, end);
         rest = end == std::string::npos ? "" : rest.substr(end);
@@ -50,20 +59,11 @@ std::string mapFile(std::string rest) {
             std::istringstream in(rest);
             std::string word;
             if (!(in >> word) || (arguments < 0 && k > 0 && !asNumber(word))) break;
+            if (option == "-bm")
+                if (const auto x = asNumber(word)) out.bumpScale = *x;
             rest = rest.substr(rest.find(word) + word.size());
         }
     }
-}
-
-// The number after `option` among a map statement's options, if it is there.
-std::optional<double> mapOption(const std::string& rest, const std::string& option) {
-    std::istringstream in(rest);
-    for (std::string word; in >> word;)
-        if (word == option) {
-            in >> word;
-            return asNumber(word);
-        }
-    return std::nullopt;
 }
 
 bool glTFImage(const std::filesystem::path& file) {
@@ -133,7 +133,8 @@ void readLibrary(const std::string& path, std::vector<ObjMaterial>& materials,
             } else if (key == "map_Kd" || key == "map_Bump" || key == "map_bump" || key == "bump") {
                 std::string rest;
                 std::getline(words, rest);
-                std::string name = mapFile(rest);
+                const MapStatement map = mapStatement(rest);
+                std::string name = map.file;
                 std::replace(name.begin(), name.end(), '\\', '/');
                 const std::filesystem::path file = (folder / name).lexically_normal();
                 if (name.empty())
@@ -147,7 +148,7 @@ void readLibrary(const std::string& path, std::vector<ObjMaterial>& materials,
                     m.texture = file.string();
                 else {
                     m.normalTexture = file.string();
-                    m.normalScale = mapOption(rest, "-bm").value_or(1.0);
+                    m.normalScale = map.bumpScale;
                 }
             } else if (key == "Ns" || key == "illum") {
                 std::string word;

@@ -27,6 +27,7 @@ TEST(MaterialLibrary, GivesEachMaterialItsColourOpacityAndTexture) {
     const fs::path dir = freshTestDir("mtl-read");
     fs::create_directories(dir / "looks" / "maps");
     std::ofstream(dir / "looks" / "maps" / "skin tone.png", std::ios::binary) << twoByTwoPng();
+    std::ofstream(dir / "looks" / "maps" / "worn -bm 3", std::ios::binary) << twoByTwoPng();
     // Options before the file name, a name with a space, "Tr" as the inverse of "d".
     // Ns as Blender's OBJ importer reads it (roughness 1 − √(Ns / 1000)); map_Bump and bump as
     // normal maps, with -bm as their strength.
@@ -35,14 +36,15 @@ TEST(MaterialLibrary, GivesEachMaterialItsColourOpacityAndTexture) {
            "Ns 250\nmap_Bump -o 0 0 0 -bm 0.5 maps/skin tone.png\n"
            "newmtl glass pane\nKd 0.1 0.2 0.3\nTr 0.25\nNs 4000\nbump maps/skin tone.png\n"
            "newmtl lacquer\nillum 2\nmap_bump -bm 2 maps/skin tone.png\n"
-           "newmtl satin\nNs 90\nillum 2\n";
+           "newmtl satin\nNs 90\nillum 2\n"
+           "newmtl worn\nbump maps/worn -bm 3\n";  // "-bm 3" is part of the file's name
     std::ofstream(dir / "body.obj") << "mtllib looks/body.mtl\n"
                                     << kTriangle << "v 1 1 0\nusemtl skin\nf 1/1 2/2 3/3\n"
                                     << "usemtl glass pane\nf 2/2 4/1 3/3\n";
     const MeshReadResult r = readMesh((dir / "body.obj").string());
     ASSERT_NE(r.mesh.sourceFaces, nullptr);
     const std::vector<ObjMaterial>& m = r.mesh.sourceFaces->materialDefinitions;
-    ASSERT_EQ(m.size(), 4u);
+    ASSERT_EQ(m.size(), 5u);
     EXPECT_EQ(m[0].name, "skin");
     EXPECT_EQ(m[0].colour, (std::array<double, 3>{0.9, 0.7, 0.6}));
     EXPECT_EQ(m[0].opacity, 1.0);
@@ -61,6 +63,8 @@ TEST(MaterialLibrary, GivesEachMaterialItsColourOpacityAndTexture) {
     EXPECT_EQ(m[2].normalTexture, m[0].texture);
     EXPECT_DOUBLE_EQ(m[2].normalScale, 2.0);
     EXPECT_DOUBLE_EQ(m[3].roughness, 0.7);
+    EXPECT_EQ(fs::path(m[4].normalTexture), fs::absolute(dir / "looks" / "maps" / "worn -bm 3"));
+    EXPECT_DOUBLE_EQ(m[4].normalScale, 1.0);
     EXPECT_FALSE(anyWarningHas(r, "body.mtl", ""));  // only the open strip's boundary
 }
 
