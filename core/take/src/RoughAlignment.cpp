@@ -1,3 +1,4 @@
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -18,11 +19,49 @@ constexpr double kUpShare = 0.6;
 constexpr double kLevelShare = 0.3;
 // Frames sampled for the actor's height: enough for a median, cheap on a long take.
 constexpr std::size_t kHeightSamples = 200;
+// A body's widest level axis runs left to right (shoulders and hips are wider than it is
+// deep) when its variance is at least this multiple of the other's; MakeHuman's A-pose gives
+// 7.7, a scanned dancer with her arms down 3.5.
+constexpr double kWideShare = 1.5;
+// The soles (the lowest 3 % of the height) reach further forward than the ankles (5-12 %) by
+// at least this share of the height when the mesh has feet (4-8 % on human meshes).
+constexpr double kToeShare = 0.01;
 
 double median(std::vector<double> values) {
     if (values.empty()) return 0;
     std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
     return values[values.size() / 2];
+}
+
+// The mesh's left, level: along its widest level axis, towards the side that puts the toes in
+// front. `convention` when the mesh is about as deep as it is wide; its sign when no feet show.
+Vec3 meshLeft(const TriMesh& mesh, int up, const Vec3& convention) {
+    const int a = (up + 1) % 3, b = (up + 2) % 3;
+    Eigen::MatrixX2d level(mesh.vertexCount(), 2);
+    level << mesh.V.col(a), mesh.V.col(b);
+    level.rowwise() -= level.colwise().mean();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> spread(level.transpose() * level);
+    const Eigen::Vector2d variance = spread.eigenvalues();
+    if (variance(1) <= 0 || variance(1) < kWideShare * variance(0)) return convention;
+    Vec3 left = Vec3::Zero();
+    left[a] = spread.eigenvectors()(0, 1);
+    left[b] = spread.eigenvectors()(1, 1);
+    // The front is left x up: +Z for left +X and up +Y.
+    const Vec3 front = left.cross(Vec3::Unit(up)), lowest = mesh.V.colwise().minCoeff().transpose();
+    const double height = mesh.V.col(up).maxCoeff() - lowest[up];
+    double sole = 0, ankle = 0;
+    int soles = 0, ankles = 0;
+    for (int v = 0; v < mesh.vertexCount(); ++v) {
+        const Vec3 x = mesh.V.row(v).transpose();
+        const double h = (x[up] - lowest[up]) / height;
+        if (h < 0.03)
+            sole += front.dot(x), ++soles;
+        else if (h >= 0.05 && h < 0.12)
+            ankle += front.dot(x), ++ankles;
+    }
+    const double toes = soles && ankles ? (sole / soles - ankle / ankles) / height : 0;
+    if (std::abs(toes) >= kToeShare) return toes > 0 ? left : Vec3(-left);
+    return left.dot(convention) >= 0 ? left : Vec3(-left);
 }
 
 }  // namespace
@@ -64,8 +103,10 @@ Calibration roughAlignment(const C3dTake& take, const std::vector<std::size_t>& 
         up = 1;
     else if (extent.z() >= kUpShare * extent.maxCoeff())
         up = 2;
-    // A body's left is +X whether its mesh is Y-up (facing +Z) or Z-up (facing -Y, Blender's way).
-    const Vec3 meshUp = Vec3::Unit(up), meshLeft = up == 0 ? Vec3::UnitY() : Vec3::UnitX();
+    // By convention a body's left is +X, whether its mesh is Y-up (facing +Z) or Z-up (facing
+    // -Y, Blender's way); a scan may face anywhere, and its shape says where.
+    const Vec3 meshUp = Vec3::Unit(up);
+    const Vec3 meshLeftAxis = meshLeft(mesh, up, up == 0 ? Vec3::UnitY() : Vec3::UnitX());
 
     // The actor's left at the frame, level: each L… marker's offset from its R… partner, summed.
     Vec3 left = Vec3::Zero();
@@ -92,7 +133,7 @@ Calibration roughAlignment(const C3dTake& take, const std::vector<std::size_t>& 
     const Vec3 takeUp = Vec3::UnitZ();
     Mat3 from, to;
     from << left, takeUp, left.cross(takeUp);
-    to << meshLeft, meshUp, meshLeft.cross(meshUp);
+    to << meshLeftAxis, meshUp, meshLeftAxis.cross(meshUp);
     c.takeToMesh.R = to * from.transpose();
 
     // The actor's height to the mesh's; markers all at one height give their span to the mesh's

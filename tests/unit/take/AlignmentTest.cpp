@@ -138,6 +138,25 @@ TEST(RoughAlignment, FacesAZUpMeshTowardsMinusY) {
     EXPECT_LT(placed(take, c, "STRN").y(), -0.5);
 }
 
+TEST(RoughAlignment, FacesAMeshTheWayItsToesPointWhenItIsWiderAcrossThanDeep) {
+    const C3dTake take = standingActor();
+    // Y up, wide along Z, the soles reaching towards +X: a scan facing +X, whose left is -Z.
+    TriMesh mesh = bodyBox({3, 17, 5});
+    for (int v = 0; v < mesh.vertexCount(); ++v)
+        if (mesh.V(v, 1) < -7.9) mesh.V(v, 0) += 1.0;
+    const Calibration c = roughAlignment(take, allPoints(take), mesh);
+    EXPECT_LT(placed(take, c, "LFHD").z(), -0.5);
+    EXPECT_GT(placed(take, c, "RFHD").z(), 0.5);
+    EXPECT_GT(placed(take, c, "STRN").x(), 0.5);
+    EXPECT_NEAR(c.takeToMesh.R.determinant(), 1.0, 1e-12);
+    // The toes turned round: the scan faces -X, its left is +Z.
+    for (int v = 0; v < mesh.vertexCount(); ++v)
+        if (mesh.V(v, 1) < -7.9) mesh.V(v, 0) -= 2.0;
+    const Calibration back = roughAlignment(take, allPoints(take), mesh);
+    EXPECT_GT(placed(take, back, "LFHD").z(), 0.5);
+    EXPECT_LT(placed(take, back, "STRN").x(), -0.5);
+}
+
 TEST(RoughAlignment, WithoutSidedNamesTheActorStillStandsUp) {
     C3dTake take = standingActor();
     for (std::size_t k = 0; k < take.points.size(); ++k)

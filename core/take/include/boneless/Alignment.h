@@ -34,7 +34,8 @@ Calibration calibrate(int frames, const std::function<Positions(int)>& frameAt,
 // Where the view draws the take before three markers are mapped, from conventions alone. The
 // take's +Z (C3D's vertical) goes to the mesh's up: +Y, else +Z, when that axis is at least 0.6
 // of the mesh's longest (a T-posed body is about as wide as tall), else +X. The actor's left (each
-// L… marker's offset from its R… partner, when mostly level) goes to the mesh's left: +X (a mesh
+// L… marker's offset from its R… partner, when mostly level) goes to the mesh's left: its widest
+// level axis, towards the side that puts its soles' front in front, or by convention +X (a mesh
 // facing +Z with Y up, or -Y with Z up), +Y for an X-up mesh. The actor's median height goes to
 // the mesh's, and the lowest marker of the frame that shows the most of `points` (`frame` of the
 // result) to the mesh's lowest point, centred on it. Identity when no frame shows any.
