@@ -1,4 +1,7 @@
 // The .boneless project: save, reload, compare; relative paths; autosave; recent files; demo.
+#include <sys/resource.h>
+#include <csignal>
+
 #include <QDir>
 #include <QFile>
 #include <QFileInfo>
@@ -19,6 +22,11 @@ QJsonObject readJson(const QString& path) {
     QFile f(path);
     if (!f.open(QIODevice::ReadOnly)) return {};
     return QJsonDocument::fromJson(f.readAll()).object();
+}
+
+QByteArray readAll(const QString& path) {
+    QFile f(path);
+    return f.open(QIODevice::ReadOnly) ? f.readAll() : QByteArray();
 }
 
 void copyFolder(const QString& from, const QString& to) {
@@ -198,6 +206,31 @@ class ProjectTest : public QObject {
         QCOMPARE(d.takePath(), QFileInfo(demo_ + "/walker.c3d").absoluteFilePath());
         QCOMPARE(d.frameCount(), 60);
         QVERIFY(d.canSolve());
+    }
+
+    void aSaveThatCannotBeWrittenLeavesTheProjectAsItWasAndSaysSo() {
+        const QString folder = work_ + "/full";
+        copyFolder(demo_, folder);
+        const QString path = folder + "/demo.boneless";
+        const QByteArray before = readAll(path);
+        QVERIFY(!before.isEmpty());
+        Document d;
+        QVERIFY(Project::load(d, path));
+        QVERIFY(d.clearMapping(0));
+        // A full disk as this process sees it: a file cannot grow past 64 bytes (EFBIG).
+        std::signal(SIGXFSZ, SIG_IGN);
+        rlimit normal{};
+        QCOMPARE(getrlimit(RLIMIT_FSIZE, &normal), 0);
+        rlimit small = normal;
+        small.rlim_cur = 64;
+        QCOMPARE(setrlimit(RLIMIT_FSIZE, &small), 0);
+        QString error;
+        const bool saved = Project::save(d, path, &error);
+        QCOMPARE(setrlimit(RLIMIT_FSIZE, &normal), 0);
+        QVERIFY(!saved);
+        QVERIFY2(error.contains("demo.boneless"), qPrintable(error));
+        QCOMPARE(readAll(path), before);
+        QCOMPARE(QDir(folder).entryList({"demo.boneless*"}), QStringList{"demo.boneless"});
     }
 
     void autosaveKeepsTheProjectCurrent() {

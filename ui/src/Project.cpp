@@ -121,8 +121,11 @@ QByteArray toJson(const Document& document, const QString& path) {
 }
 
 bool save(const Document& document, const QString& path, QString* error) {
+    const QByteArray json = toJson(document, path);
     QSaveFile file(path);
-    if (!file.open(QIODevice::WriteOnly) || file.write(toJson(document, path)) < 0 ||
+    // Flushed before commit(): Qt 6.4's commit() renames over the project even when flushing
+    // its buffer failed (a full disk), which left an empty project and reported success.
+    if (!file.open(QIODevice::WriteOnly) || file.write(json) != json.size() || !file.flush() ||
         !file.commit()) {
         if (error)
             *error = QObject::tr("%1: cannot save the project (%2)").arg(path, file.errorString());
