@@ -1,4 +1,6 @@
 // Document: loading, undoable map edits, alignment, and failures that become messages.
+#include <cctype>
+
 #include <QFile>
 #include <QSignalSpy>
 #include <QUndoStack>
@@ -162,6 +164,31 @@ class DocumentTest : public QObject {
         QCOMPARE(d.undoStack()->count(), 0);
         QVERIFY(!d.assign(0, d.mesh().vertexCount()));  // out of range
         QVERIFY(!d.assign(-1, 0));                      // no marker
+    }
+
+    void mergingAMapWhoseLabelsDifferOnlyInCaseKeepsTheMarkersMappedAlready() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        const int all = d.mappedCount();
+        // The same map with its labels lower-cased, which the take still resolves.
+        Correspondence lower = d.correspondence();
+        for (auto& m : lower.markers)
+            for (char& c : m.label) c = char(std::tolower(static_cast<unsigned char>(c)));
+        const QString path = demo_ + "/lower.map.json";
+        lower.write(path.toStdString());
+        // Marker 0 unmapped, marker 1 mapped by hand where the file does not put it.
+        int mine = 0;
+        while (d.markerForVertex(mine) >= 0) ++mine;
+        const int fileVertex = d.mappedVertex(1);
+        QVERIFY(d.clearMapping(0));
+        QVERIFY(d.clearMapping(1));
+        QVERIFY(d.assign(1, mine));
+        QVERIFY2(d.loadCorrespondence(path, Document::MapLoad::Merge), qPrintable(d.lastError()));
+        QCOMPARE(d.mappedVertex(1), mine);  // not overridden by "its" entry in the file
+        QVERIFY(d.mappedVertex(0) >= 0);    // the unmapped one taken from the file
+        QCOMPARE(d.mappedCount(), all);
+        QCOMPARE(int(d.correspondence().markers.size()), all);
+        QVERIFY(fileVertex != mine);
     }
 
     void suggestCompletesTheMapInOneStep() {

@@ -151,10 +151,15 @@ bool Document::loadCorrespondence(const QString& path, MapLoad mode) {
         return true;
     }
     for (const MarkerMapping& m : file.markers) {
-        const bool vertexTaken =
-            std::any_of(after.map.markers.begin(), after.map.markers.end(),
-                        [&](const MarkerMapping& mine) { return mine.vertex == m.vertex; });
-        if (!after.map.find(m.label) && !vertexTaken) after.map.markers.push_back(m);
+        // A label the take resolves to a marker mapped already ("lfhd", "actor:LFHD" for
+        // "LFHD") is that marker: adding it would map it twice, and the file's would win.
+        const auto point = hasTake_ ? take_.findPoint(m.label) : std::nullopt;
+        const bool taken = std::any_of(
+            after.map.markers.begin(), after.map.markers.end(), [&](const MarkerMapping& mine) {
+                return mine.vertex == m.vertex || mine.label == m.label ||
+                       (point && take_.findPoint(mine.label) == point);
+            });
+        if (!taken) after.map.markers.push_back(m);
     }
     if (after.mapPath.isEmpty()) after.mapPath = path;
     pushMapEdit(tr("Merge correspondence"), std::move(after));
