@@ -1,9 +1,11 @@
 // The window and its project files as a user meets them: the demo is never written over, a new
 // mesh or take starts an untitled project, the frame, speed and camera come back with the
-// project, and a damaged or hostile project file gives a message, offers the last autosave and
-// is itself left alone.
+// project, a damaged or hostile project file gives a message, offers the last autosave and
+// is itself left alone, and closing asks before edits that no project file holds are left behind.
 #include <QFile>
+#include <QFileDialog>
 #include <QLabel>
+#include <QLineEdit>
 #include <QMessageBox>
 #include <QPushButton>
 #include <QUndoStack>
@@ -30,6 +32,34 @@ void writeAll(const QString& path, const QByteArray& bytes) {
     QFile f(path);
     QVERIFY(f.open(QIODevice::WriteOnly));
     f.write(bytes);
+}
+
+// Answers the question closing asks with `button`, after `first` (e.g. scheduling the next
+// dialog's answer).
+void answerClose(const char* button, std::function<void()> first = {}) {
+    QTimer::singleShot(300, [button, first] {
+        auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+        QVERIFY(box);
+        QCOMPARE(box->objectName(), QString("closeQuestion"));
+        if (first) first();
+        box->findChild<QPushButton*>(button)->click();
+    });
+}
+
+// Types `path` into the file dialog once it is up (it takes a moment to appear) and accepts it.
+void answerFileDialog(const QString& path, int tries = 50) {
+    QTimer::singleShot(100, [path, tries] {
+        auto* dialog = qobject_cast<QFileDialog*>(QApplication::activeModalWidget());
+        if (!dialog) {
+            if (tries > 0) answerFileDialog(path, tries - 1);
+            return;
+        }
+        // Typed, as a user would: selectFile() alone leaves a save dialog in the folder it opened.
+        auto* name = dialog->findChild<QLineEdit*>("fileNameEdit");
+        QVERIFY(name);
+        name->setText(path);
+        QMetaObject::invokeMethod(dialog, "accept");
+    });
 }
 
 }  // namespace
@@ -188,6 +218,85 @@ class ProjectSessionTest : public QObject {
             QVERIFY(test::waitForFrame(window));
         }
         QCOMPARE(readAll(project_).size() > 0, true);
+    }
+
+    void closingAsksBeforeUntitledEditsAreLeftToTheAutosave() {
+        MainWindow window;
+        QVERIFY(window.openFile(folder_ + "/mine/walker.obj"));
+        QVERIFY(window.openFile(folder_ + "/mine/walker.c3d"));
+        QVERIFY(test::showAndWait(window));
+        window.close();  // files opened, nothing edited: no question
+        QVERIFY(!window.isVisible());
+
+        window.show();
+        QVERIFY(window.openFile(folder_ + "/mine/walker.map.json"));
+        QVERIFY(window.document()->clearMapping(0));
+        answerClose("cancelButton");
+        window.close();
+        QVERIFY(window.isVisible());
+        answerClose("discardButton");
+        window.close();
+        QVERIFY(!window.isVisible());
+
+        // Save As names a project, and the edits are in it.
+        window.show();
+        const QString path = folder_ + "/kept.boneless";
+        answerClose("saveAsButton", [path] { answerFileDialog(path); });
+        window.close();
+        QVERIFY(!window.isVisible());
+        QCOMPARE(window.projectPath(), path);
+        Document kept;
+        QVERIFY(Project::load(kept, path));
+        QCOMPARE(kept.mappedCount(), window.document()->markerCount() - 1);
+    }
+
+    void anEditJustMadeReachesItsProjectWhenAnotherFileIsOpened() {
+        const QString a = folder_ + "/mine/a.boneless", b = folder_ + "/mine/b.boneless";
+        for (const QString& path : {a, b}) {
+            QFile::remove(path);
+            QVERIFY(QFile::copy(project_, path));
+        }
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        window.autosave()->setDelay(60000);  // the edit is still pending when the next opens
+        QVERIFY(window.openProject(a));
+        QVERIFY(window.document()->clearMapping(0));
+        const int mapped = window.document()->mappedCount();
+        QVERIFY(window.openProject(b));
+        QVERIFY(window.document()->clearMapping(0));
+        QVERIFY(window.openFile(folder_ + "/mine/walker.obj"));
+        for (const QString& path : {a, b}) {
+            Document reopened;
+            QVERIFY(Project::load(reopened, path));
+            QCOMPARE(reopened.mappedCount(), mapped);
+        }
+    }
+
+    void aProjectThatCannotBeSavedStillReachesTheAutosaveAndClosingAsks() {
+        const QString path = folder_ + "/mine/vanishing.boneless";
+        QVERIFY(QFile::copy(project_, path));
+        MainWindow window;
+        QVERIFY(window.openProject(path));
+        QVERIFY(test::showAndWait(window));
+        // The project's name taken by a folder: its saves fail, whoever the user is.
+        QVERIFY(QFile::remove(path));
+        QVERIFY(QDir().mkdir(path));
+        QSignalSpy failed(window.autosave(), &ProjectAutosave::failed);
+        QVERIFY(window.document()->clearMapping(4));
+        QVERIFY(!window.autosave()->saveNow());
+        QCOMPARE(failed.count(), 1);
+        QVERIFY2(failed.last().at(0).toString().contains(ProjectAutosave::recoveryPath()),
+                 qPrintable(failed.last().at(0).toString()));
+        Document recovered;
+        QVERIFY(Project::load(recovered, ProjectAutosave::recoveryPath()));
+        QCOMPARE(recovered.mappedCount(), window.document()->mappedCount());
+        for (auto* box : window.findChildren<QMessageBox*>("errorMessage")) box->close();
+        answerClose("cancelButton");
+        window.close();
+        QVERIFY(window.isVisible());
+        answerClose("discardButton");
+        window.close();
+        QVERIFY(!window.isVisible());
     }
 
   private:

@@ -12,6 +12,7 @@
 #include <QPushButton>
 #include <QScopeGuard>
 #include <QStatusBar>
+#include <QUndoStack>
 #include <QUrl>
 
 #include "FrameDisplay.h"
@@ -77,6 +78,8 @@ bool MainWindow::openFile(const QString& path) {
         case FileKind::Mesh:
             return openMesh(path);
         case FileKind::Take:
+            autosave_
+                ->saveNow();  // the edits of the last second go to the project they were made in
             ok = document_->loadTake(path);
             if (ok) startUntitled();
             break;
@@ -102,6 +105,7 @@ bool MainWindow::openFile(const QString& path) {
 }
 
 bool MainWindow::openProject(const QString& path) {
+    autosave_->saveNow();  // the edits of the last second go to the project they were made in
     QString error;
     if (!Project::load(*document_, path, &error)) {
         const QString message =
@@ -260,6 +264,7 @@ bool MainWindow::openMesh(const QString& path) {
     }
     opening_ = path;
     const auto done = qScopeGuard([this] { opening_.clear(); });
+    autosave_->saveNow();  // the edits of the last second go to the project they were made in
     if (!document_->loadMesh(path, group)) return false;
     startUntitled();  // never into the project (or demo) open before
     RecentFiles::add(QFileInfo(path).absoluteFilePath());
@@ -349,8 +354,42 @@ void MainWindow::closeEvent(QCloseEvent* event) {
     exportDialog_->cancelExport();
     // The frame and camera only count as a change at the end; the demo's never do.
     if (!demo_) storeSession();
-    autosave_->saveNow();
+    const bool saved = autosave_->saveNow();
+    // Edits made untitled or on the demo live only in the recovery file, which the next
+    // session's first change overwrites; a project that could not be saved lacks them.
+    const bool unkept = (projectPath_.isEmpty() || demo_) && !document_->undoStack()->isClean();
+    if (messageBoxes_ && (!saved || unkept) && !keepWorkBeforeClosing(saved)) {
+        event->ignore();
+        return;
+    }
     event->accept();
+}
+
+bool MainWindow::keepWorkBeforeClosing(bool saved) {
+    const QString question =
+        !saved ? tr("%1 could not be saved. Save the project elsewhere before closing?")
+                     .arg(QFileInfo(projectPath_).fileName())
+        : demo_ ? tr("Save your changes to the demo as a project before closing?")
+                : tr("Save this untitled project before closing?");
+    QMessageBox box(QMessageBox::Question, tr("Close Boneless"), question, QMessageBox::NoButton,
+                    this);
+    box.setObjectName("closeQuestion");
+    box.setInformativeText(
+        tr("Otherwise the changes stay only in the last autosave, which the "
+           "next session replaces."));
+    QPushButton* saveAs = box.addButton(tr("Save As…"), QMessageBox::AcceptRole);
+    QPushButton* discard = box.addButton(tr("Close Without Saving"), QMessageBox::DestructiveRole);
+    QPushButton* cancel = box.addButton(QMessageBox::Cancel);
+    saveAs->setObjectName("saveAsButton");
+    discard->setObjectName("discardButton");
+    cancel->setObjectName("cancelButton");
+    box.setDefaultButton(saveAs);
+    box.exec();  // the window must not close before this is answered
+    if (box.clickedButton() == discard) return true;
+    if (box.clickedButton() != saveAs) return false;
+    const QString before = projectPath_;
+    chooseSaveProjectAs();
+    return !projectPath_.isEmpty() && !demo_ && (projectPath_ != before || saved);
 }
 
 }  // namespace boneless::ui

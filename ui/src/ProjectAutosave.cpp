@@ -56,16 +56,26 @@ bool ProjectAutosave::saveNow() {
     pending_ = false;
     // The recovery file always holds the last session saved, titled or not: it is what the
     // window offers when a project file will not open.
+    // Every target is tried: a project that cannot be written (a read-only folder, a full
+    // disk) must not keep the edits out of the recovery file too.
     QStringList targets{recoveryPath()};
     if (!path_.isEmpty()) targets.prepend(path_);
+    QStringList errors;
+    bool recovered = false;
     for (const QString& target : targets) {
         QDir().mkpath(QFileInfo(target).absolutePath());
         QString error;
-        if (!Project::save(*document_, target, &error)) {
-            pending_ = true;  // try again after the next change
-            emit failed(error);
-            return false;
-        }
+        if (Project::save(*document_, target, &error))
+            recovered = target == recoveryPath();
+        else
+            errors << error;
+    }
+    if (!errors.isEmpty()) {
+        pending_ = true;  // try again after the next change
+        if (recovered)
+            errors << tr("The changes are kept in the last autosave, %1.").arg(recoveryPath());
+        emit failed(errors.join("\n"));
+        return false;
     }
     emit saved(targets.front());
     return true;

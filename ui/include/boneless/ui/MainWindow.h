@@ -113,6 +113,9 @@ class MainWindow : public QMainWindow {
     // Over existing mappings, asks replace, merge or cancel (false); without message boxes,
     // replace.
     bool askMapLoad(const QString& path, Document::MapLoad& mode);
+    // On close, when the project could not be `saved` or edits were made untitled or on the
+    // demo: offers Save As; true when the window may close (saved, or the user said discard).
+    bool keepWorkBeforeClosing(bool saved);
     void showHelp(const QString& title, const QString& html);
     void storeSession();
     void restoreSession();

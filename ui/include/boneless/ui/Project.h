@@ -35,7 +35,8 @@ QByteArray toJson(const Document& document, const QString& path);
 // Keeps a project file up to date: after each change of the document (Document::changed) it
 // saves the project within a short delay, so a crash loses at most that delay's edits. Each save
 // also goes to recoveryPath() (the only place it goes without a project path), which the window
-// offers to reopen when a project file will not open.
+// offers to reopen when a project file will not open; a project that cannot be written does not
+// keep the change from it.
 class ProjectAutosave : public QObject {
     Q_OBJECT
   public:
