@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "Commands.h"
+#include "OptionFlags.h"
 #include "boneless/C3dReader.h"
 #include "boneless/Error.h"
 #include "boneless/MarkerSuggestion.h"
@@ -33,8 +34,8 @@ void registerMapCommand(CLI::App& app) {
                         "A map known to be right: print how near the proposals land to it");
     suggest
         ->add_option("--tolerance-mm", args->toleranceMm,
-                     "With --check: how near counts as landing (default 30)")
-        ->check(CLI::PositiveNumber);
+                     "With --check: how near counts as landing (0.1 to 1000, default 30)")
+        ->check(numberFrom(0.1, 1000));
     suggest->callback([args] {
         MeshReadOptions options;
         options.group = args->group;

@@ -274,3 +274,21 @@ TEST(DemoCommand, DetailRefinesTheSameWalker) {
     EXPECT_NE(bad.exitCode, 0);
     EXPECT_NE(bad.out.find("--detail"), std::string::npos) << bad.out;
 }
+
+// Before, nan and inf wrote a take with every sample missing and a map of null offsets, and 1e308
+// ended in an internal error of the C3D writer.
+TEST(DemoCommand, AnOffsetThatIsNoSensibleDistanceIsRefusedNamingTheFlag) {
+    const fs::path dir = freshTestDir("demo-offset");
+    for (const char* offset : {"nan", "inf", "1e308", "-5", "101"}) {
+        const CliResult r =
+            runCli("demo --out " + (dir / "x").string() + " --frames 2 --offset-mm " + offset);
+        EXPECT_NE(r.exitCode, 0) << offset;
+        EXPECT_NE(
+            r.out.find("--offset-mm: must be a number from 0 to 100, got " + std::string(offset)),
+            std::string::npos)
+            << r.out;
+        EXPECT_FALSE(fs::exists(dir / "x")) << offset;
+    }
+    EXPECT_EQ(runCli("demo --out " + (dir / "x").string() + " --frames 2 --offset-mm 100").exitCode,
+              0);
+}
