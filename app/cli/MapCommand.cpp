@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "Commands.h"
 #include "OptionFlags.h"
@@ -42,6 +43,10 @@ void registerMapCommand(CLI::App& app) {
         const TriMesh mesh = readMesh(args->mesh, options).mesh;
         const C3dTake take = readC3d(args->c3d);
         const Correspondence partial = Correspondence::read(args->map);
+        // Read before the map is written, so that a run that fails leaves nothing behind.
+        const std::optional<Correspondence> truth =
+            args->check.empty() ? std::nullopt
+                                : std::optional<Correspondence>(Correspondence::read(args->check));
         Suggestion s = suggestMappings(mesh, take, partial);
         // The map records the mesh it was made on, as the app's maps do.
         if (s.map.meshFile.empty())
@@ -65,9 +70,8 @@ void registerMapCommand(CLI::App& app) {
             if (p.needsReview)
                 std::printf("  review %s (vertex %d): %s\n", p.label.c_str(), p.vertex,
                             p.reviewReason.c_str());
-        if (args->check.empty()) return;
-        const SuggestionCheck c =
-            checkSuggestion(mesh, take, s, Correspondence::read(args->check), args->toleranceMm);
+        if (!truth) return;
+        const SuggestionCheck c = checkSuggestion(mesh, take, s, *truth, args->toleranceMm);
         for (const auto& [label, mm] : c.distancesMm)
             std::printf("  %-8s %7.1f mm%s\n", label.c_str(), mm,
                         mm > args->toleranceMm ? "  off" : "");

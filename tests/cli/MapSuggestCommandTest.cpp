@@ -79,6 +79,16 @@ std::string suggestOnDemo(const fs::path& dir) {
 
 }  // namespace
 
+// --check's map is read before the completed map is written: a run that fails leaves nothing.
+TEST(MapSuggestCommand, AMissingCheckMapFailsBeforeTheMapIsWritten) {
+    const fs::path dir = freshTestDir("map-suggest-check");
+    const CliResult r = runCli(suggestOnDemo(dir) + " --check " + (dir / "nosuch.json").string());
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("nosuch.json: cannot open the correspondence file"), std::string::npos)
+        << r.out;
+    EXPECT_FALSE(fs::exists(dir / "full.json"));
+}
+
 // Before, a NaN tolerance printed "0 of 33 within nan mm".
 TEST(MapSuggestCommand, AToleranceThatIsNoSensibleDistanceIsRefusedNamingTheFlag) {
     const fs::path dir = freshTestDir("map-suggest-tolerance");
