@@ -132,7 +132,12 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
     // Streamed: a take of any length solves in the memory of a short one.
     const C3dFrameReader take(job.c3d);
     const Correspondence map = Correspondence::read(job.map);
-    if (range.end > static_cast<int>(take.frameCount()))
+    // Refused here, as exportTake would, so that the note below never says it solves "900:810".
+    const int frames = static_cast<int>(take.frameCount());
+    if (range.first >= (range.end < 0 ? frames : std::min(range.end, frames)))
+        throw Error("frames " + job.frames + " select no frame of " + job.c3d + " (" +
+                    std::to_string(frames) + " frames)");
+    if (range.end > frames)
         std::fprintf(
             stderr, "note: --frames %s runs past the end of %s (%zu frames): solving %d:%zu\n",
             job.frames.c_str(), job.c3d.c_str(), take.frameCount(), range.first, take.frameCount());

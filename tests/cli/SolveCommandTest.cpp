@@ -244,6 +244,20 @@ TEST(SolveCommand, SaysWhenTheRangeRunsPastTheTakeOrOldFramesStayBeside) {
     EXPECT_EQ(r.out.find("also holds"), std::string::npos) << r.out;
 }
 
+// A range wholly past the take's end is refused; the note that the range was cut to the take must
+// not come first, saying it would solve "9:6".
+TEST(SolveCommand, ARangeStartingPastTheTakesEndIsRefusedWithoutANoteOfSolvingIt) {
+    const fs::path demo = makeDemo(6);
+    const CliResult r = runCli(solveArgs(demo, demo / "x") + " --quiet --frames 9:20");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("frames 9:20 select no frame of " + (demo / "walker.c3d").string() +
+                         " (6 frames)"),
+              std::string::npos)
+        << r.out;
+    EXPECT_EQ(r.out.find("runs past the end"), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(demo / "x" / "walker.json"));
+}
+
 TEST(SolveCommand, RunningOutOfAddressSpaceEndsWithAMessageNotAHang) {
     // 120 MB of address space is less than the program and its BLAS threads take. Before, the run
     // printed "internal error: std::bad_alloc" and then waited for ever on a BLAS thread.
