@@ -193,8 +193,9 @@ void run(const BatchArgs& args) {
         std::fflush(stdout);
         const auto start = std::chrono::steady_clock::now();
         std::vector<std::string> meshWarnings;  // filled once the mesh is read
+        std::vector<std::string> takeWarnings;  // and the take's once it is opened
         try {
-            const ExportResult r = runTakeJob(job, true, &meshWarnings);
+            const ExportResult r = runTakeJob(job, true, &meshWarnings, &takeWarnings);
             std::printf(
                 "%d frames in %.1f s\n", r.framesWritten,
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
@@ -206,6 +207,10 @@ void run(const BatchArgs& args) {
             std::printf("FAILED: %s\n", e.what());
             ++failed;
         }
+        // Under the take's line, solved or not: a truncated take solves the frames it holds.
+        std::fflush(stdout);
+        for (const std::string& w : takeWarnings)
+            std::fprintf(stderr, "  warning: %s: %s\n", job.c3d.c_str(), w.c_str());
         // A library of takes shares a few meshes: what one lacks is said once, solved or not.
         if (!meshWarnings.empty() && notedMeshes.insert(job.mesh + "\n" + job.group).second)
             for (const std::string& w : meshWarnings)

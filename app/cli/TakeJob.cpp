@@ -104,7 +104,8 @@ void warnOfOtherFrames(const std::string& out, const std::string& stem, const Ex
 
 }  // namespace
 
-ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>* meshWarnings) {
+ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>* meshWarnings,
+                        std::vector<std::string>* takeWarnings) {
     ExportRequest request;
     const auto format = findExportFormat(job.format);
     if (!format) throw Error("unknown output format '" + job.format + "'");
@@ -131,6 +132,13 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
             std::fprintf(stderr, "note: %s: %s\n", job.mesh.c_str(), w.c_str());
     // Streamed: a take of any length solves in the memory of a short one.
     const C3dFrameReader take(job.c3d);
+    // Said even when quiet: a truncated take solves the frames it holds, and without this only
+    // `inspect` would tell.
+    if (takeWarnings)
+        *takeWarnings = take.take().warnings;
+    else
+        for (const std::string& w : take.take().warnings)
+            std::fprintf(stderr, "warning: %s: %s\n", job.c3d.c_str(), w.c_str());
     const Correspondence map = Correspondence::read(job.map);
     // Refused here, as exportTake would, so that the note below never says it solves "900:810".
     const int frames = static_cast<int>(take.frameCount());

@@ -225,3 +225,18 @@ TEST(Batch, SaysOnceWhatTheTakesSharedMeshLacks) {
     EXPECT_LT(first, r.out.find("walk_b")) << r.out;  // under the take that failed
     EXPECT_EQ(r.out.find(note, first + 1), std::string::npos) << r.out;  // three takes, one note
 }
+
+// A take cut short solves the frames it holds, but the log says so under its entry, naming the
+// file: before, the run reported success and only `inspect` told.
+TEST(Batch, SaysUnderItsEntryThatATakeIsTruncated) {
+    const fs::path dir = makeLibrary();
+    const fs::path take = dir / "takes" / "walk_c.c3d";
+    fs::resize_file(take, fs::file_size(take) * 2 / 3);
+    const CliResult r =
+        runCli("batch " + writeManifest(dir, "m.json", folderManifest("out")).string());
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    const size_t warning = r.out.find("warning: " + take.string() + ": file is truncated");
+    ASSERT_NE(warning, std::string::npos) << r.out;
+    EXPECT_GT(warning, r.out.find("walk_c.c3d -> ")) << r.out;
+    EXPECT_EQ(r.out.find("walk_a.c3d: file is truncated"), std::string::npos) << r.out;
+}

@@ -258,6 +258,28 @@ TEST(SolveCommand, ARangeStartingPastTheTakesEndIsRefusedWithoutANoteOfSolvingIt
     EXPECT_FALSE(fs::exists(demo / "x" / "walker.json"));
 }
 
+// A take cut short (a copy interrupted) solves the frames it holds; the run says so, naming the
+// file, and the sidecar keeps it. Before, only `inspect` told.
+TEST(SolveCommand, SaysATakeIsTruncatedAndItsSidecarRecordsIt) {
+    const fs::path demo = makeDemo(10);
+    const fs::path take = demo / "walker.c3d";
+    fs::resize_file(take, fs::file_size(take) * 2 / 3);
+    const CliResult r = runCli(solveArgs(demo, demo / "x") + " --quiet");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("warning: " + take.string() + ": file is truncated: 10 frames declared"),
+              std::string::npos)
+        << r.out;
+    const nlohmann::json warnings = sidecar(demo / "x")["take_warnings"];
+    ASSERT_EQ(warnings.size(), 1u) << warnings;
+    EXPECT_NE(warnings[0].get<std::string>().find("file is truncated"), std::string::npos);
+    // An intact take has none to say, and an empty list in its sidecar.
+    const fs::path whole = makeDemo(3);
+    const CliResult clean = runCli(solveArgs(whole, whole / "x"));
+    ASSERT_EQ(clean.exitCode, 0) << clean.out;
+    EXPECT_EQ(clean.out.find("warning"), std::string::npos) << clean.out;
+    EXPECT_EQ(sidecar(whole / "x")["take_warnings"], nlohmann::json::array());
+}
+
 TEST(SolveCommand, RunningOutOfAddressSpaceEndsWithAMessageNotAHang) {
     // 120 MB of address space is less than the program and its BLAS threads take. Before, the run
     // printed "internal error: std::bad_alloc" and then waited for ever on a BLAS thread.
