@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <tiny_gltf.h>
 
 #include <filesystem>
 #include <fstream>
@@ -278,6 +279,25 @@ TEST(SolveCommand, SaysATakeIsTruncatedAndItsSidecarRecordsIt) {
     ASSERT_EQ(clean.exitCode, 0) << clean.out;
     EXPECT_EQ(clean.out.find("warning"), std::string::npos) << clean.out;
     EXPECT_EQ(sidecar(whole / "x")["take_warnings"], nlohmann::json::array());
+}
+
+// The glb's morph targets carry the take's frame numbers, as the OBJ files of the same range do:
+// before, frames 2:4 were frame_0000 and frame_0001.
+TEST(SolveCommand, GlbMorphTargetsAreNamedByTheTakesFrameNumbersAsObjFramesAre) {
+    const fs::path demo = makeDemo(6);
+    const CliResult r = runCli(solveArgs(demo, demo / "x") + " --quiet --format glb --frames 2:4");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    tinygltf::Model m;
+    tinygltf::TinyGLTF loader;
+    std::string error, warning;
+    ASSERT_TRUE(
+        loader.LoadBinaryFromFile(&m, &error, &warning, (demo / "x" / "walker.glb").string()))
+        << error;
+    ASSERT_EQ(m.meshes.size(), 1u);
+    const tinygltf::Value& names = m.meshes[0].extras.Get("targetNames");
+    ASSERT_EQ(names.ArrayLen(), 2u);
+    EXPECT_EQ(names.Get(0).Get<std::string>(), "frame_0002");
+    EXPECT_EQ(names.Get(1).Get<std::string>(), "frame_0003");
 }
 
 TEST(SolveCommand, RunningOutOfAddressSpaceEndsWithAMessageNotAHang) {
