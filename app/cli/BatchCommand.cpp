@@ -158,8 +158,11 @@ Sidecar sidecarState(const TakeJob& job) {
         const int frames = static_cast<int>(C3dFrameReader(job.c3d).frameCount());
         const int end = range.end < 0 ? frames : std::min(range.end, frames);
         const bool sameFrames = s.at("frame_range") == json::array({range.first, end});
+        // Every sidecar of a calibrated take has "calibrated_rest", null when none was written.
+        const json rest = s.at("calibration").value("calibrated_rest", json());
         const bool sameRest =
-            !job.writeCalibratedRest || s.at("calibration").contains("calibrated_rest");
+            !job.writeCalibratedRest ||
+            (rest.is_string() && fs::exists(fs::path(job.out) / rest.get<std::string>()));
         return sameFrames && sameRest && s.at("options") == toJson(options)
                    ? Sidecar::Complete
                    : Sidecar::OtherSettings;

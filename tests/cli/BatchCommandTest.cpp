@@ -240,3 +240,30 @@ TEST(Batch, SaysUnderItsEntryThatATakeIsTruncated) {
     EXPECT_GT(warning, r.out.find("walk_c.c3d -> ")) << r.out;
     EXPECT_EQ(r.out.find("walk_a.c3d: file is truncated"), std::string::npos) << r.out;
 }
+
+// Every sidecar has "calibrated_rest" (null when none was written): its presence is not the rest.
+TEST(Batch, ACalibratedRestAskedForAfterTheTakeWasSolvedIsWritten) {
+    const fs::path dir = makeLibrary();
+    json manifest = {{"takes",
+                      {{{"mesh", "walker.obj"},
+                        {"map", "walker.map.json"},
+                        {"c3d", "takes/walk_a.c3d"},
+                        {"out", "one"},
+                        {"format", "pc2"}}}}};
+    const fs::path path = writeManifest(dir, "m.json", manifest);
+    ASSERT_EQ(runCli("batch " + path.string()).exitCode, 0);
+    manifest["takes"][0]["write_calibrated_rest"] = true;
+    writeManifest(dir, "m.json", manifest);
+    const fs::path rest = dir / "one" / "walker_calibrated_rest.obj";
+    CliResult r = runCli("batch " + path.string());
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("1 solved, 0 skipped"), std::string::npos) << r.out;
+    EXPECT_TRUE(fs::exists(rest));
+    r = runCli("batch " + path.string());
+    EXPECT_NE(r.out.find("0 solved, 1 skipped"), std::string::npos) << r.out;
+    // A rest its sidecar names but that is gone is written again.
+    fs::remove(rest);
+    r = runCli("batch " + path.string());
+    EXPECT_NE(r.out.find("1 solved, 0 skipped"), std::string::npos) << r.out;
+    EXPECT_TRUE(fs::exists(rest));
+}
