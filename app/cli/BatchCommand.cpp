@@ -87,7 +87,9 @@ std::vector<TakeJob> readManifest(const std::string& file) {
         throw Error(file + ": not valid JSON (" + e.what() + ")");
     }
     if (!m.is_object()) throw Error(file + ": a batch manifest is a JSON object");
-    const fs::path base = fs::path(file).parent_path();
+    // Absolute, so that the sidecars name the same files however the manifest was named and from
+    // whichever folder: `batch m.json` in its folder and `batch /lib/m.json` skip the same takes.
+    const fs::path base = fs::absolute(file).parent_path();
     TakeJob defaults;
     for (const auto& [key, value] : m.items())
         if (key != "defaults" && key != "takes" && key != "folders")
@@ -139,6 +141,16 @@ std::pair<int, int> parseShard(const std::string& text) {
 
 enum class Sidecar { Missing, Complete, OtherSettings };
 
+// One file however it is spelled (relative to the working folder, through "..", a symbolic link):
+// sidecars written before the manifest's paths were made absolute name them relative.
+bool sameFile(const json& recorded, const std::string& path) {
+    if (!recorded.is_string()) return false;
+    std::error_code a, b;
+    const fs::path x = fs::weakly_canonical(recorded.get<std::string>(), a);
+    const fs::path y = fs::weakly_canonical(path, b);
+    return !a && !b && x == y;
+}
+
 // A take is done when its sidecar says it completed from the same sources into the same format,
 // over the frames and with the options the manifest asks for now. A complete sidecar from other
 // frames or options means the manifest changed: the take is solved again.
@@ -149,8 +161,8 @@ Sidecar sidecarState(const TakeJob& job) {
         const json s = json::parse(in);
         const json& src = s.at("source");
         if (!s.at("complete").get<bool>() || s.at("output") != job.format ||
-            src.at("mesh") != job.mesh || src.at("group") != job.group ||
-            src.at("c3d") != job.c3d || src.at("map") != job.map)
+            !sameFile(src.at("mesh"), job.mesh) || src.at("group") != job.group ||
+            !sameFile(src.at("c3d"), job.c3d) || !sameFile(src.at("map"), job.map))
             return Sidecar::Missing;
         TakeSolveOptions options;
         fromJson(job.options, options, "options");

@@ -267,3 +267,23 @@ TEST(Batch, ACalibratedRestAskedForAfterTheTakeWasSolvedIsWritten) {
     EXPECT_NE(r.out.find("1 solved, 0 skipped"), std::string::npos) << r.out;
     EXPECT_TRUE(fs::exists(rest));
 }
+
+// docs/batch.md: resubmitting the same manifest only solves what is missing, however the
+// manifest is named and from whichever folder.
+TEST(Batch, TheSameManifestNamedByAnotherPathSkipsTheTakesItFinished) {
+    const fs::path dir = makeLibrary();
+    const fs::path manifest = writeManifest(dir, "m.json", folderManifest("out"));
+    const std::string cli = BONELESS_CLI;
+    CliResult r = runShell("cd " + dir.string() + " && " + cli + " batch m.json 2>&1");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("3 solved, 0 skipped"), std::string::npos) << r.out;
+    for (const std::string& named :
+         {manifest.string(), (dir / "takes" / ".." / "m.json").string()}) {
+        r = runCli("batch " + named);
+        ASSERT_EQ(r.exitCode, 0) << r.out;
+        EXPECT_NE(r.out.find("0 solved, 3 skipped"), std::string::npos) << named << "\n" << r.out;
+    }
+    r = runShell("cd " + dir.parent_path().string() + " && " + cli + " batch " +
+                 (dir.filename() / "m.json").string() + " 2>&1");
+    EXPECT_NE(r.out.find("0 solved, 3 skipped"), std::string::npos) << r.out;
+}
