@@ -94,6 +94,16 @@ std::vector<TakeJob> readManifest(const std::string& file) {
     for (const auto& [key, value] : m.items())
         if (key != "defaults" && key != "takes" && key != "folders")
             throw Error(file + ": unknown key '" + key + "' (expected defaults, takes, folders)");
+    // Checked before they are indexed: json's own type_error would be an "internal error".
+    for (const char* key : {"takes", "folders"})
+        if (m.contains(key) && !m[key].is_array()) {
+            const std::string type = m[key].type_name();
+            throw Error(file + ": '" + key + "' is an array of entries, not " +
+                        (type == "null"     ? ""
+                         : type == "object" ? "an "
+                                            : "a ") +
+                        type);
+        }
     if (m.contains("defaults")) applyKeys(m["defaults"], base, file + ": defaults", defaults);
     std::vector<TakeJob> jobs;
     const json takes = m.value("takes", json::array()), folders = m.value("folders", json::array());

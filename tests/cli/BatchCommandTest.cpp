@@ -287,3 +287,20 @@ TEST(Batch, TheSameManifestNamedByAnotherPathSkipsTheTakesItFinished) {
                  (dir.filename() / "m.json").string() + " 2>&1");
     EXPECT_NE(r.out.find("0 solved, 3 skipped"), std::string::npos) << r.out;
 }
+
+// Before, {"takes": {...}} ended in "internal error: [json.exception.type_error.305]".
+TEST(Batch, AManifestOfTheWrongShapeNamesTheFileAndTheKey) {
+    const fs::path dir = freshTestDir("shape");
+    const std::pair<json, std::string> cases[] = {
+        {{{"takes", {{"c3d", "a"}}}}, "m.json: 'takes' is an array of entries, not an object"},
+        {{{"folders", "takes"}}, "m.json: 'folders' is an array of entries, not a string"},
+        {{{"takes", {1}}}, "m.json: takes[0]: an entry is a JSON object"},
+        {{{"defaults", json::array()}, {"takes", {{{"c3d", "a"}}}}},
+         "m.json: defaults: an entry is a JSON object"}};
+    for (const auto& [manifest, message] : cases) {
+        const CliResult r = runCli("batch " + writeManifest(dir, "m.json", manifest).string());
+        EXPECT_EQ(r.exitCode, 1) << r.out;
+        EXPECT_NE(r.out.find(message), std::string::npos) << r.out;
+        EXPECT_EQ(r.out.find("internal error"), std::string::npos) << r.out;
+    }
+}
