@@ -13,6 +13,7 @@
 #include "TakeJob.h"
 #include "boneless/C3dFrameReader.h"
 #include "boneless/Error.h"
+#include "boneless/ExportFormat.h"
 #include "boneless/TakeOptionsJson.h"
 
 using namespace boneless;
@@ -49,11 +50,20 @@ void applyKeys(const json& object, const fs::path& base, const std::string& wher
                 job.out = path(value);
             else if (key == "group")
                 job.group = value.get<std::string>();
-            else if (key == "format")
+            else if (key == "format") {
+                // Checked as solve's flag is, here rather than when the entry's turn comes.
                 job.format = value.get<std::string>();
-            else if (key == "frames")
+                if (!findExportFormat(job.format)) {
+                    std::string names;
+                    for (const ExportFormatInfo& f : exportFormats())
+                        names += std::string(names.empty() ? "" : ", ") + f.name;
+                    throw Error(where + ": unknown format '" + job.format + "' (expected " + names +
+                                ")");
+                }
+            } else if (key == "frames") {
                 job.frames = value.get<std::string>();
-            else if (key == "write_calibrated_rest")
+                parseFrameRange(job.frames, where + ": '" + written + "'");
+            } else if (key == "write_calibrated_rest")
                 job.writeCalibratedRest = value.get<bool>();
             else if (const TakeOption* option = findTakeOption(key)) {
                 TakeSolveOptions check;  // names the key and what is wrong, before any solve

@@ -304,3 +304,23 @@ TEST(Batch, AManifestOfTheWrongShapeNamesTheFileAndTheKey) {
         EXPECT_EQ(r.out.find("internal error"), std::string::npos) << r.out;
     }
 }
+
+// docs/batch.md: a bad value is refused naming the manifest and the entry before anything is
+// solved. Before, an unknown format or a bad range failed its own entry after the others ran.
+TEST(Batch, ABadFormatOrFrameRangeIsNamedBeforeAnythingIsSolved) {
+    const fs::path dir = makeLibrary();
+    const json good = {{"c3d", "takes/walk_a.c3d"}, {"out", "a"}};
+    const std::pair<json, std::string> cases[] = {
+        {{{"c3d", "takes/walk_b.c3d"}, {"out", "b"}, {"format", "fbx"}},
+         "m.json: takes[1]: unknown format 'fbx' (expected obj, pc2, mdd, glb)"},
+        {{{"c3d", "takes/walk_b.c3d"}, {"out", "b"}, {"frames", "2-4"}},
+         "m.json: takes[1]: 'frames' expects A:B (0-based, not negative, B excluded), got '2-4'"}};
+    for (const auto& [bad, message] : cases) {
+        const json manifest = {{"defaults", {{"mesh", "walker.obj"}, {"map", "walker.map.json"}}},
+                               {"takes", {good, bad}}};
+        const CliResult r = runCli("batch " + writeManifest(dir, "m.json", manifest).string());
+        EXPECT_EQ(r.exitCode, 1) << r.out;
+        EXPECT_NE(r.out.find(message), std::string::npos) << r.out;
+        EXPECT_FALSE(fs::exists(dir / "a")) << r.out;
+    }
+}
