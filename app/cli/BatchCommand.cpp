@@ -13,6 +13,7 @@
 #include "TakeJob.h"
 #include "boneless/C3dFrameReader.h"
 #include "boneless/Error.h"
+#include "boneless/ExportFormat.h"
 #include "boneless/TakeOptionsJson.h"
 
 using namespace boneless;
@@ -49,11 +50,20 @@ void applyKeys(const json& object, const fs::path& base, const std::string& wher
                 job.out = path(value);
             else if (key == "group")
                 job.group = value.get<std::string>();
-            else if (key == "format")
+            else if (key == "format") {
+                // Checked as solve's flag is, here rather than when the entry's turn comes.
                 job.format = value.get<std::string>();
-            else if (key == "frames")
+                if (!findExportFormat(job.format)) {
+                    std::string names;
+                    for (const ExportFormatInfo& f : exportFormats())
+                        names += std::string(names.empty() ? "" : ", ") + f.name;
+                    throw Error(where + ": unknown format '" + job.format + "' (expected " + names +
+                                ")");
+                }
+            } else if (key == "frames") {
                 job.frames = value.get<std::string>();
-            else if (key == "write_calibrated_rest")
+                parseFrameRange(job.frames, where + ": '" + written + "'");
+            } else if (key == "write_calibrated_rest")
                 job.writeCalibratedRest = value.get<bool>();
             else if (const TakeOption* option = findTakeOption(key)) {
                 TakeSolveOptions check;  // names the key and what is wrong, before any solve
@@ -87,11 +97,23 @@ std::vector<TakeJob> readManifest(const std::string& file) {
         throw Error(file + ": not valid JSON (" + e.what() + ")");
     }
     if (!m.is_object()) throw Error(file + ": a batch manifest is a JSON object");
-    const fs::path base = fs::path(file).parent_path();
+    // Absolute, so that the sidecars name the same files however the manifest was named and from
+    // whichever folder: `batch m.json` in its folder and `batch /lib/m.json` skip the same takes.
+    const fs::path base = fs::absolute(file).parent_path();
     TakeJob defaults;
     for (const auto& [key, value] : m.items())
         if (key != "defaults" && key != "takes" && key != "folders")
             throw Error(file + ": unknown key '" + key + "' (expected defaults, takes, folders)");
+    // Checked before they are indexed: json's own type_error would be an "internal error".
+    for (const char* key : {"takes", "folders"})
+        if (m.contains(key) && !m[key].is_array()) {
+            const std::string type = m[key].type_name();
+            throw Error(file + ": '" + key + "' is an array of entries, not " +
+                        (type == "null"     ? ""
+                         : type == "object" ? "an "
+                                            : "a ") +
+                        type);
+        }
     if (m.contains("defaults")) applyKeys(m["defaults"], base, file + ": defaults", defaults);
     std::vector<TakeJob> jobs;
     const json takes = m.value("takes", json::array()), folders = m.value("folders", json::array());
@@ -139,6 +161,16 @@ std::pair<int, int> parseShard(const std::string& text) {
 
 enum class Sidecar { Missing, Complete, OtherSettings };
 
+// One file however it is spelled (relative to the working folder, through "..", a symbolic link):
+// sidecars written before the manifest's paths were made absolute name them relative.
+bool sameFile(const json& recorded, const std::string& path) {
+    if (!recorded.is_string()) return false;
+    std::error_code a, b;
+    const fs::path x = fs::weakly_canonical(recorded.get<std::string>(), a);
+    const fs::path y = fs::weakly_canonical(path, b);
+    return !a && !b && x == y;
+}
+
 // A take is done when its sidecar says it completed from the same sources into the same format,
 // over the frames and with the options the manifest asks for now. A complete sidecar from other
 // frames or options means the manifest changed: the take is solved again.
@@ -149,8 +181,8 @@ Sidecar sidecarState(const TakeJob& job) {
         const json s = json::parse(in);
         const json& src = s.at("source");
         if (!s.at("complete").get<bool>() || s.at("output") != job.format ||
-            src.at("mesh") != job.mesh || src.at("group") != job.group ||
-            src.at("c3d") != job.c3d || src.at("map") != job.map)
+            !sameFile(src.at("mesh"), job.mesh) || src.at("group") != job.group ||
+            !sameFile(src.at("c3d"), job.c3d) || !sameFile(src.at("map"), job.map))
             return Sidecar::Missing;
         TakeSolveOptions options;
         fromJson(job.options, options, "options");
@@ -158,8 +190,11 @@ Sidecar sidecarState(const TakeJob& job) {
         const int frames = static_cast<int>(C3dFrameReader(job.c3d).frameCount());
         const int end = range.end < 0 ? frames : std::min(range.end, frames);
         const bool sameFrames = s.at("frame_range") == json::array({range.first, end});
+        // Every sidecar of a calibrated take has "calibrated_rest", null when none was written.
+        const json rest = s.at("calibration").value("calibrated_rest", json());
         const bool sameRest =
-            !job.writeCalibratedRest || s.at("calibration").contains("calibrated_rest");
+            !job.writeCalibratedRest ||
+            (rest.is_string() && fs::exists(fs::path(job.out) / rest.get<std::string>()));
         return sameFrames && sameRest && s.at("options") == toJson(options)
                    ? Sidecar::Complete
                    : Sidecar::OtherSettings;
@@ -193,8 +228,9 @@ void run(const BatchArgs& args) {
         std::fflush(stdout);
         const auto start = std::chrono::steady_clock::now();
         std::vector<std::string> meshWarnings;  // filled once the mesh is read
+        std::vector<std::string> takeWarnings;  // and the take's once it is opened
         try {
-            const ExportResult r = runTakeJob(job, true, &meshWarnings);
+            const ExportResult r = runTakeJob(job, true, &meshWarnings, &takeWarnings);
             std::printf(
                 "%d frames in %.1f s\n", r.framesWritten,
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
@@ -206,6 +242,10 @@ void run(const BatchArgs& args) {
             std::printf("FAILED: %s\n", e.what());
             ++failed;
         }
+        // Under the take's line, solved or not: a truncated take solves the frames it holds.
+        std::fflush(stdout);
+        for (const std::string& w : takeWarnings)
+            std::fprintf(stderr, "  warning: %s: %s\n", job.c3d.c_str(), w.c_str());
         // A library of takes shares a few meshes: what one lacks is said once, solved or not.
         if (!meshWarnings.empty() && notedMeshes.insert(job.mesh + "\n" + job.group).second)
             for (const std::string& w : meshWarnings)

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "Commands.h"
+#include "OptionFlags.h"
 #include "boneless/DemoFiles.h"
 
 using namespace boneless;
@@ -23,7 +24,11 @@ void registerDemoCommand(CLI::App& app) {
         "truth/ (the true motion, one OBJ per frame)");
     cmd->add_option("--out", args->out, "Output folder (created if missing)")->required();
     cmd->add_option("--frames", args->frames, "Number of frames")->check(CLI::Range(1, 100000));
-    cmd->add_option("--offset-mm", args->offsetMm, "How far the markers sit off the skin");
+    // Markers sit on the skin or a few centimetres off it (a bulky suit); beyond 10 cm a marker
+    // is no longer the body's.
+    cmd->add_option("--offset-mm", args->offsetMm,
+                    "How far the markers sit off the skin (0 to 100)")
+        ->check(numberFrom(0, 100));
     cmd->add_option("--detail", args->detail,
                     "Resolution: each step up has 4 times the faces (1 = 6,848 faces)")
         ->check(CLI::Range(1, 4));

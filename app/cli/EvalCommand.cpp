@@ -186,7 +186,7 @@ void registerEvalCommand(CLI::App& app) {
     cmd->add_option("--method", args->method, "boneless, arap, or both (side by side)")
         ->check(CLI::IsMember({"boneless", "arap", "both"}));
     cmd->add_option("--drop", args->drop, "Percentage of markers missing in each frame (seeded)")
-        ->check(CLI::Range(0.0, 100.0));
+        ->check(numberFrom(0, 100));
     cmd->add_option("--seed", args->seed, "Seed for --drop");
     addOptionFlags(cmd, args->options, toJson(EvaluationOptions{}.solver), true);
     cmd->add_flag("--json", args->json, "Print one JSON object");

@@ -4,13 +4,14 @@
 
 #include "boneless/Error.h"
 
-// "--frames A:B": 0-based, B excluded; "A:" and ":B" leave that end at its default.
+// "--frames A:B": 0-based, B excluded; "A:" and ":B" leave that end at its default. `name` is
+// what the error calls it (a manifest's entry says "m.json: takes[2]: 'frames'").
 struct FrameRange {
     int first = 0;
     int end = -1;  // -1 = to the last frame
 };
 
-inline FrameRange parseFrameRange(const std::string& text) {
+inline FrameRange parseFrameRange(const std::string& text, const std::string& name = "--frames") {
     FrameRange range;
     if (text.empty()) return range;
     const auto colon = text.find(':');
@@ -27,7 +28,7 @@ inline FrameRange parseFrameRange(const std::string& text) {
         if (colon > 0) range.first = number(text.substr(0, colon));
         if (colon + 1 < text.size()) range.end = number(text.substr(colon + 1));
     } catch (const std::exception&) {
-        throw boneless::Error("--frames expects A:B (0-based, not negative, B excluded), got '" +
+        throw boneless::Error(name + " expects A:B (0-based, not negative, B excluded), got '" +
                               text + "'");
     }
     return range;

@@ -2,8 +2,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "Commands.h"
+#include "OptionFlags.h"
 #include "boneless/C3dReader.h"
 #include "boneless/Error.h"
 #include "boneless/MarkerSuggestion.h"
@@ -33,14 +35,18 @@ void registerMapCommand(CLI::App& app) {
                         "A map known to be right: print how near the proposals land to it");
     suggest
         ->add_option("--tolerance-mm", args->toleranceMm,
-                     "With --check: how near counts as landing (default 30)")
-        ->check(CLI::PositiveNumber);
+                     "With --check: how near counts as landing (0.1 to 1000, default 30)")
+        ->check(numberFrom(0.1, 1000));
     suggest->callback([args] {
         MeshReadOptions options;
         options.group = args->group;
         const TriMesh mesh = readMesh(args->mesh, options).mesh;
         const C3dTake take = readC3d(args->c3d);
         const Correspondence partial = Correspondence::read(args->map);
+        // Read before the map is written, so that a run that fails leaves nothing behind.
+        const std::optional<Correspondence> truth =
+            args->check.empty() ? std::nullopt
+                                : std::optional<Correspondence>(Correspondence::read(args->check));
         Suggestion s = suggestMappings(mesh, take, partial);
         // The map records the mesh it was made on, as the app's maps do.
         if (s.map.meshFile.empty())
@@ -64,9 +70,8 @@ void registerMapCommand(CLI::App& app) {
             if (p.needsReview)
                 std::printf("  review %s (vertex %d): %s\n", p.label.c_str(), p.vertex,
                             p.reviewReason.c_str());
-        if (args->check.empty()) return;
-        const SuggestionCheck c =
-            checkSuggestion(mesh, take, s, Correspondence::read(args->check), args->toleranceMm);
+        if (!truth) return;
+        const SuggestionCheck c = checkSuggestion(mesh, take, s, *truth, args->toleranceMm);
         for (const auto& [label, mm] : c.distancesMm)
             std::printf("  %-8s %7.1f mm%s\n", label.c_str(), mm,
                         mm > args->toleranceMm ? "  off" : "");

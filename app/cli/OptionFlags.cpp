@@ -1,6 +1,9 @@
 #include "OptionFlags.h"
 
 #include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "boneless/TakeOptionsJson.h"
 
@@ -28,4 +31,23 @@ void addOptionFlags(CLI::App* command, nlohmann::json& given, const nlohmann::js
         }
         flag->type_name(type);
     }
+}
+
+CLI::Validator numberFrom(double low, double high) {
+    char range[64];
+    std::snprintf(range, sizeof range, "must be a number from %g to %g, got ", low, high);
+    return CLI::Validator(
+        [low, high, range = std::string(range)](std::string& text) -> std::string {
+            std::size_t used = 0;
+            double x = NAN;
+            try {
+                x = std::stod(text, &used);
+            } catch (const std::exception&) {
+                used = 0;
+            }
+            const bool ok =
+                used == text.size() && used > 0 && std::isfinite(x) && x >= low && x <= high;
+            return ok ? std::string() : range + text;
+        },
+        "");
 }

@@ -8,3 +8,8 @@
 // to given[key], checked as the JSON reader checks it. solverOnly: the solver's options alone.
 void addOptionFlags(CLI::App* command, nlohmann::json& given, const nlohmann::json& defaults,
                     bool solverOnly);
+
+// A number from low to high, as the option tables say it: "must be a number from 0 to 100, got
+// nan". CLI11's Range lets NaN through (every comparison with it is false), and inf and 1e308
+// through unbounded checks.
+CLI::Validator numberFrom(double low, double high);

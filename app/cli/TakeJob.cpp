@@ -104,7 +104,8 @@ void warnOfOtherFrames(const std::string& out, const std::string& stem, const Ex
 
 }  // namespace
 
-ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>* meshWarnings) {
+ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>* meshWarnings,
+                        std::vector<std::string>* takeWarnings) {
     ExportRequest request;
     const auto format = findExportFormat(job.format);
     if (!format) throw Error("unknown output format '" + job.format + "'");
@@ -131,8 +132,20 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
             std::fprintf(stderr, "note: %s: %s\n", job.mesh.c_str(), w.c_str());
     // Streamed: a take of any length solves in the memory of a short one.
     const C3dFrameReader take(job.c3d);
+    // Said even when quiet: a truncated take solves the frames it holds, and without this only
+    // `inspect` would tell.
+    if (takeWarnings)
+        *takeWarnings = take.take().warnings;
+    else
+        for (const std::string& w : take.take().warnings)
+            std::fprintf(stderr, "warning: %s: %s\n", job.c3d.c_str(), w.c_str());
     const Correspondence map = Correspondence::read(job.map);
-    if (range.end > static_cast<int>(take.frameCount()))
+    // Refused here, as exportTake would, so that the note below never says it solves "900:810".
+    const int frames = static_cast<int>(take.frameCount());
+    if (range.first >= (range.end < 0 ? frames : std::min(range.end, frames)))
+        throw Error("frames " + job.frames + " select no frame of " + job.c3d + " (" +
+                    std::to_string(frames) + " frames)");
+    if (range.end > frames)
         std::fprintf(
             stderr, "note: --frames %s runs past the end of %s (%zu frames): solving %d:%zu\n",
             job.frames.c_str(), job.c3d.c_str(), take.frameCount(), range.first, take.frameCount());

@@ -71,7 +71,8 @@ int main(int argc, char** argv) {
         {"glb",
          [&](const std::string& p) {
              GltfWriter w(p, mesh, "body");
-             for (size_t f = 0; f < frames.size(); ++f) w.append(f * period, frames[f]);
+             for (size_t f = 0; f < frames.size(); ++f)
+                 w.append(static_cast<int>(f), f * period, frames[f]);
              w.finish();
          }},
     };

@@ -225,3 +225,102 @@ TEST(Batch, SaysOnceWhatTheTakesSharedMeshLacks) {
     EXPECT_LT(first, r.out.find("walk_b")) << r.out;  // under the take that failed
     EXPECT_EQ(r.out.find(note, first + 1), std::string::npos) << r.out;  // three takes, one note
 }
+
+// A take cut short solves the frames it holds, but the log says so under its entry, naming the
+// file: before, the run reported success and only `inspect` told.
+TEST(Batch, SaysUnderItsEntryThatATakeIsTruncated) {
+    const fs::path dir = makeLibrary();
+    const fs::path take = dir / "takes" / "walk_c.c3d";
+    fs::resize_file(take, fs::file_size(take) * 2 / 3);
+    const CliResult r =
+        runCli("batch " + writeManifest(dir, "m.json", folderManifest("out")).string());
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    const size_t warning = r.out.find("warning: " + take.string() + ": file is truncated");
+    ASSERT_NE(warning, std::string::npos) << r.out;
+    EXPECT_GT(warning, r.out.find("walk_c.c3d -> ")) << r.out;
+    EXPECT_EQ(r.out.find("walk_a.c3d: file is truncated"), std::string::npos) << r.out;
+}
+
+// Every sidecar has "calibrated_rest" (null when none was written): its presence is not the rest.
+TEST(Batch, ACalibratedRestAskedForAfterTheTakeWasSolvedIsWritten) {
+    const fs::path dir = makeLibrary();
+    json manifest = {{"takes",
+                      {{{"mesh", "walker.obj"},
+                        {"map", "walker.map.json"},
+                        {"c3d", "takes/walk_a.c3d"},
+                        {"out", "one"},
+                        {"format", "pc2"}}}}};
+    const fs::path path = writeManifest(dir, "m.json", manifest);
+    ASSERT_EQ(runCli("batch " + path.string()).exitCode, 0);
+    manifest["takes"][0]["write_calibrated_rest"] = true;
+    writeManifest(dir, "m.json", manifest);
+    const fs::path rest = dir / "one" / "walker_calibrated_rest.obj";
+    CliResult r = runCli("batch " + path.string());
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("1 solved, 0 skipped"), std::string::npos) << r.out;
+    EXPECT_TRUE(fs::exists(rest));
+    r = runCli("batch " + path.string());
+    EXPECT_NE(r.out.find("0 solved, 1 skipped"), std::string::npos) << r.out;
+    // A rest its sidecar names but that is gone is written again.
+    fs::remove(rest);
+    r = runCli("batch " + path.string());
+    EXPECT_NE(r.out.find("1 solved, 0 skipped"), std::string::npos) << r.out;
+    EXPECT_TRUE(fs::exists(rest));
+}
+
+// docs/batch.md: resubmitting the same manifest only solves what is missing, however the
+// manifest is named and from whichever folder.
+TEST(Batch, TheSameManifestNamedByAnotherPathSkipsTheTakesItFinished) {
+    const fs::path dir = makeLibrary();
+    const fs::path manifest = writeManifest(dir, "m.json", folderManifest("out"));
+    const std::string cli = BONELESS_CLI;
+    CliResult r = runShell("cd " + dir.string() + " && " + cli + " batch m.json 2>&1");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("3 solved, 0 skipped"), std::string::npos) << r.out;
+    for (const std::string& named :
+         {manifest.string(), (dir / "takes" / ".." / "m.json").string()}) {
+        r = runCli("batch " + named);
+        ASSERT_EQ(r.exitCode, 0) << r.out;
+        EXPECT_NE(r.out.find("0 solved, 3 skipped"), std::string::npos) << named << "\n" << r.out;
+    }
+    r = runShell("cd " + dir.parent_path().string() + " && " + cli + " batch " +
+                 (dir.filename() / "m.json").string() + " 2>&1");
+    EXPECT_NE(r.out.find("0 solved, 3 skipped"), std::string::npos) << r.out;
+}
+
+// Before, {"takes": {...}} ended in "internal error: [json.exception.type_error.305]".
+TEST(Batch, AManifestOfTheWrongShapeNamesTheFileAndTheKey) {
+    const fs::path dir = freshTestDir("shape");
+    const std::pair<json, std::string> cases[] = {
+        {{{"takes", {{"c3d", "a"}}}}, "m.json: 'takes' is an array of entries, not an object"},
+        {{{"folders", "takes"}}, "m.json: 'folders' is an array of entries, not a string"},
+        {{{"takes", {1}}}, "m.json: takes[0]: an entry is a JSON object"},
+        {{{"defaults", json::array()}, {"takes", {{{"c3d", "a"}}}}},
+         "m.json: defaults: an entry is a JSON object"}};
+    for (const auto& [manifest, message] : cases) {
+        const CliResult r = runCli("batch " + writeManifest(dir, "m.json", manifest).string());
+        EXPECT_EQ(r.exitCode, 1) << r.out;
+        EXPECT_NE(r.out.find(message), std::string::npos) << r.out;
+        EXPECT_EQ(r.out.find("internal error"), std::string::npos) << r.out;
+    }
+}
+
+// docs/batch.md: a bad value is refused naming the manifest and the entry before anything is
+// solved. Before, an unknown format or a bad range failed its own entry after the others ran.
+TEST(Batch, ABadFormatOrFrameRangeIsNamedBeforeAnythingIsSolved) {
+    const fs::path dir = makeLibrary();
+    const json good = {{"c3d", "takes/walk_a.c3d"}, {"out", "a"}};
+    const std::pair<json, std::string> cases[] = {
+        {{{"c3d", "takes/walk_b.c3d"}, {"out", "b"}, {"format", "fbx"}},
+         "m.json: takes[1]: unknown format 'fbx' (expected obj, pc2, mdd, glb)"},
+        {{{"c3d", "takes/walk_b.c3d"}, {"out", "b"}, {"frames", "2-4"}},
+         "m.json: takes[1]: 'frames' expects A:B (0-based, not negative, B excluded), got '2-4'"}};
+    for (const auto& [bad, message] : cases) {
+        const json manifest = {{"defaults", {{"mesh", "walker.obj"}, {"map", "walker.map.json"}}},
+                               {"takes", {good, bad}}};
+        const CliResult r = runCli("batch " + writeManifest(dir, "m.json", manifest).string());
+        EXPECT_EQ(r.exitCode, 1) << r.out;
+        EXPECT_NE(r.out.find(message), std::string::npos) << r.out;
+        EXPECT_FALSE(fs::exists(dir / "a")) << r.out;
+    }
+}

@@ -191,3 +191,15 @@ TEST(EvalCommand, BadInputIsOneClearLineAndANonZeroExit) {
         << r.out;
     EXPECT_EQ(r.out.find("CHOLMOD"), std::string::npos) << r.out;
 }
+
+// Before, --drop nan ran as if it were 0 (CLI11's range lets NaN through).
+TEST(EvalCommand, ADropThatIsNotAPercentageIsRefusedNamingTheFlag) {
+    for (const char* drop : {"nan", "inf", "-1", "101"}) {
+        const CliResult r =
+            runCli("eval --sequence " + demoFolder() + " --markers 20 --drop " + drop);
+        EXPECT_NE(r.exitCode, 0) << drop;
+        EXPECT_NE(r.out.find("--drop: must be a number from 0 to 100, got " + std::string(drop)),
+                  std::string::npos)
+            << r.out;
+    }
+}

@@ -66,3 +66,41 @@ TEST(MapSuggestCommand, MistakesNameTheFileAndTheReason) {
         << r.out;
     EXPECT_FALSE(fs::exists(dir / "full.json"));
 }
+
+namespace {
+
+// `map suggest` on a fresh demo, completing its own map (the command line without --check).
+std::string suggestOnDemo(const fs::path& dir) {
+    EXPECT_EQ(runCli("demo --out " + dir.string() + " --frames 5").exitCode, 0);
+    return "map suggest --mesh " + (dir / "walker.obj").string() + " --c3d " +
+           (dir / "walker.c3d").string() + " --map " + (dir / "walker.map.json").string() +
+           " --out " + (dir / "full.json").string();
+}
+
+}  // namespace
+
+// --check's map is read before the completed map is written: a run that fails leaves nothing.
+TEST(MapSuggestCommand, AMissingCheckMapFailsBeforeTheMapIsWritten) {
+    const fs::path dir = freshTestDir("map-suggest-check");
+    const CliResult r = runCli(suggestOnDemo(dir) + " --check " + (dir / "nosuch.json").string());
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("nosuch.json: cannot open the correspondence file"), std::string::npos)
+        << r.out;
+    EXPECT_FALSE(fs::exists(dir / "full.json"));
+}
+
+// Before, a NaN tolerance printed "0 of 33 within nan mm".
+TEST(MapSuggestCommand, AToleranceThatIsNoSensibleDistanceIsRefusedNamingTheFlag) {
+    const fs::path dir = freshTestDir("map-suggest-tolerance");
+    const std::string args =
+        suggestOnDemo(dir) + " --check " + (dir / "walker.map.json").string() + " --tolerance-mm ";
+    for (const char* tolerance : {"nan", "inf", "0", "1001"}) {
+        const CliResult r = runCli(args + tolerance);
+        EXPECT_NE(r.exitCode, 0) << tolerance;
+        EXPECT_NE(r.out.find("--tolerance-mm: must be a number from 0.1 to 1000, got " +
+                             std::string(tolerance)),
+                  std::string::npos)
+            << r.out;
+    }
+    EXPECT_EQ(runCli(args + "1000").exitCode, 0);
+}

@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <tiny_gltf.h>
 
 #include <filesystem>
 #include <fstream>
@@ -244,6 +245,61 @@ TEST(SolveCommand, SaysWhenTheRangeRunsPastTheTakeOrOldFramesStayBeside) {
     EXPECT_EQ(r.out.find("also holds"), std::string::npos) << r.out;
 }
 
+// A range wholly past the take's end is refused; the note that the range was cut to the take must
+// not come first, saying it would solve "9:6".
+TEST(SolveCommand, ARangeStartingPastTheTakesEndIsRefusedWithoutANoteOfSolvingIt) {
+    const fs::path demo = makeDemo(6);
+    const CliResult r = runCli(solveArgs(demo, demo / "x") + " --quiet --frames 9:20");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("frames 9:20 select no frame of " + (demo / "walker.c3d").string() +
+                         " (6 frames)"),
+              std::string::npos)
+        << r.out;
+    EXPECT_EQ(r.out.find("runs past the end"), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(demo / "x" / "walker.json"));
+}
+
+// A take cut short (a copy interrupted) solves the frames it holds; the run says so, naming the
+// file, and the sidecar keeps it. Before, only `inspect` told.
+TEST(SolveCommand, SaysATakeIsTruncatedAndItsSidecarRecordsIt) {
+    const fs::path demo = makeDemo(10);
+    const fs::path take = demo / "walker.c3d";
+    fs::resize_file(take, fs::file_size(take) * 2 / 3);
+    const CliResult r = runCli(solveArgs(demo, demo / "x") + " --quiet");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("warning: " + take.string() + ": file is truncated: 10 frames declared"),
+              std::string::npos)
+        << r.out;
+    const nlohmann::json warnings = sidecar(demo / "x")["take_warnings"];
+    ASSERT_EQ(warnings.size(), 1u) << warnings;
+    EXPECT_NE(warnings[0].get<std::string>().find("file is truncated"), std::string::npos);
+    // An intact take has none to say, and an empty list in its sidecar.
+    const fs::path whole = makeDemo(3);
+    const CliResult clean = runCli(solveArgs(whole, whole / "x"));
+    ASSERT_EQ(clean.exitCode, 0) << clean.out;
+    EXPECT_EQ(clean.out.find("warning"), std::string::npos) << clean.out;
+    EXPECT_EQ(sidecar(whole / "x")["take_warnings"], nlohmann::json::array());
+}
+
+// The glb's morph targets carry the take's frame numbers, as the OBJ files of the same range do:
+// before, frames 2:4 were frame_0000 and frame_0001.
+TEST(SolveCommand, GlbMorphTargetsAreNamedByTheTakesFrameNumbersAsObjFramesAre) {
+    const fs::path demo = makeDemo(6);
+    const CliResult r = runCli(solveArgs(demo, demo / "x") + " --quiet --format glb --frames 2:4");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    tinygltf::Model m;
+    tinygltf::TinyGLTF loader;
+    std::string error, warning;
+    ASSERT_TRUE(
+        loader.LoadBinaryFromFile(&m, &error, &warning, (demo / "x" / "walker.glb").string()))
+        << error;
+    ASSERT_EQ(m.meshes.size(), 1u);
+    const tinygltf::Value& names = m.meshes[0].extras.Get("targetNames");
+    ASSERT_EQ(names.ArrayLen(), 2u);
+    EXPECT_EQ(names.Get(0).Get<std::string>(), "frame_0002");
+    EXPECT_EQ(names.Get(1).Get<std::string>(), "frame_0003");
+}
+
 TEST(SolveCommand, RunningOutOfAddressSpaceEndsWithAMessageNotAHang) {
     // 120 MB of address space is less than the program and its BLAS threads take. Before, the run
     // printed "internal error: std::bad_alloc" and then waited for ever on a BLAS thread.
@@ -273,4 +329,22 @@ TEST(DemoCommand, DetailRefinesTheSameWalker) {
     const CliResult bad = runCli("demo --out " + dir.string() + " --detail 0");
     EXPECT_NE(bad.exitCode, 0);
     EXPECT_NE(bad.out.find("--detail"), std::string::npos) << bad.out;
+}
+
+// Before, nan and inf wrote a take with every sample missing and a map of null offsets, and 1e308
+// ended in an internal error of the C3D writer.
+TEST(DemoCommand, AnOffsetThatIsNoSensibleDistanceIsRefusedNamingTheFlag) {
+    const fs::path dir = freshTestDir("demo-offset");
+    for (const char* offset : {"nan", "inf", "1e308", "-5", "101"}) {
+        const CliResult r =
+            runCli("demo --out " + (dir / "x").string() + " --frames 2 --offset-mm " + offset);
+        EXPECT_NE(r.exitCode, 0) << offset;
+        EXPECT_NE(
+            r.out.find("--offset-mm: must be a number from 0 to 100, got " + std::string(offset)),
+            std::string::npos)
+            << r.out;
+        EXPECT_FALSE(fs::exists(dir / "x")) << offset;
+    }
+    EXPECT_EQ(runCli("demo --out " + (dir / "x").string() + " --frames 2 --offset-mm 100").exitCode,
+              0);
 }

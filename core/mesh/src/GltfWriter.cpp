@@ -252,7 +252,7 @@ GltfWriter::~GltfWriter() {
     }
 }
 
-void GltfWriter::append(double seconds, const Positions& positions) {
+void GltfWriter::append(int frame, double seconds, const Positions& positions) {
     if (!file_) throw Error(path_ + ": the glTF file is already finished");
     const int n = rest_.vertexCount();
     if (positions.rows() != n)
@@ -280,6 +280,7 @@ void GltfWriter::append(double seconds, const Positions& positions) {
     if (std::fwrite(offsets.data(), sizeof(float), offsets.size(), file_) != offsets.size())
         throw Error(path_ + ": writing failed (disk full?)");
     times_.push_back(static_cast<float>(seconds));
+    frames_.push_back(frame);
     bounds_.push_back(b);
 }
 
@@ -360,7 +361,7 @@ void GltfWriter::finish() {
                                       TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n,
                                       {b[0], b[1], b[2]}, {b[3], b[4], b[5]})}});
         char label[32];
-        std::snprintf(label, sizeof label, "frame_%04zu", k);
+        std::snprintf(label, sizeof label, "frame_%04d", frames_[k]);
         targetNames.emplace_back(std::string(label));
     }
     const double tMin = frames ? *std::min_element(times_.begin(), times_.end()) : 0.0;

@@ -43,7 +43,7 @@ FrameOutput openFrameOutput(ExportFormat format, const std::string& outDir, cons
         }
         case ExportFormat::Glb: {
             auto w = std::make_shared<GltfWriter>(path, mesh, stem);
-            o.append = [w, period](int f, const Positions& V) { w->append(f * period, V); };
+            o.append = [w, period](int f, const Positions& V) { w->append(f, f * period, V); };
             o.finish = [w] { w->finish(); };
             o.writer = w;
             break;

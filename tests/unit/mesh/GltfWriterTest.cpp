@@ -49,7 +49,8 @@ TEST(GltfExport, EachFrameIsTheRestMeshPlusItsMorphTargetKeyedAtItsTime) {
     const std::vector<Positions> frames = {mesh.V, 1.5 * mesh.V, moved};
     {
         GltfWriter writer(path, mesh, "sphere");
-        for (size_t k = 0; k < frames.size(); ++k) writer.append(0.1 * (k + 4), frames[k]);
+        for (size_t k = 0; k < frames.size(); ++k)
+            writer.append(static_cast<int>(k) + 4, 0.1 * (k + 4), frames[k]);
         EXPECT_FALSE(fs::exists(path));
         writer.finish();
     }
@@ -60,6 +61,11 @@ TEST(GltfExport, EachFrameIsTheRestMeshPlusItsMorphTargetKeyedAtItsTime) {
     const std::vector<float> rest = floats(m, p.attributes.at("POSITION"));
     ASSERT_EQ(rest.size(), 3u * mesh.vertexCount());  // one glTF vertex per mesh vertex
     ASSERT_EQ(p.targets.size(), frames.size());
+    // Named by the frame numbers given (the take's), not by their order in the file.
+    const tinygltf::Value& names = m.meshes[0].extras.Get("targetNames");
+    ASSERT_EQ(names.ArrayLen(), frames.size());
+    for (size_t k = 0; k < frames.size(); ++k)
+        EXPECT_EQ(names.Get(k).Get<std::string>(), "frame_000" + std::to_string(k + 4));
     for (size_t k = 0; k < frames.size(); ++k) {
         const std::vector<float> offset = floats(m, p.targets[k].at("POSITION"));
         double worst = 0;
@@ -102,7 +108,7 @@ TEST(GltfExport, TextureCoordinatesGoWithTheMeshSplitAtTheirSeams) {
     const std::string path = (dir / "strip.glb").string();
     {
         GltfWriter writer(path, strip, "strip");
-        writer.append(0.0, posed);
+        writer.append(0, 0.0, posed);
         writer.finish();
     }
     const tinygltf::Model m = load(path);
@@ -152,8 +158,8 @@ TEST(GltfExport, MaterialsBecomePrimitivesWithTheirColourAndEmbeddedTexture) {
     const std::string path = (dir / "strip.glb").string();
     {
         GltfWriter writer(path, strip, "strip");
-        writer.append(0.0, strip.V);
-        writer.append(0.1, 2.0 * strip.V);
+        writer.append(0, 0.0, strip.V);
+        writer.append(1, 0.1, 2.0 * strip.V);
         writer.finish();
     }
     const tinygltf::Model m = load(path);
@@ -227,7 +233,7 @@ TEST(GltfExport, EachTextureLandsWholeInItsOwnAlignedView) {
     const std::string path = (dir / "pair.glb").string();
     {
         GltfWriter writer(path, pair, "pair");
-        writer.append(0.0, pair.V);
+        writer.append(0, 0.0, pair.V);
         writer.finish();
     }
     const tinygltf::Model m = load(path);
@@ -249,8 +255,8 @@ TEST(GltfExport, AnAbandonedFileLeavesNothingBehind) {
     const TriMesh mesh = icosphere(0);
     {
         GltfWriter writer((dir / "x.glb").string(), mesh, "x");
-        writer.append(0, mesh.V);
-        EXPECT_THROW(writer.append(0.1, mesh.V.topRows(3)), Error);  // wrong vertex count
+        writer.append(0, 0.0, mesh.V);
+        EXPECT_THROW(writer.append(1, 0.1, mesh.V.topRows(3)), Error);  // wrong vertex count
     }
     EXPECT_TRUE(fs::is_empty(dir));
 }

@@ -28,7 +28,9 @@ class GltfWriter {
     GltfWriter(const GltfWriter&) = delete;
     GltfWriter& operator=(const GltfWriter&) = delete;
 
-    void append(double seconds, const Positions& positions);  // #vertices by 3
+    // positions: #vertices by 3. frame: the take's frame number, which names the morph target
+    // (frame_0100), as it names the OBJ files of the same range.
+    void append(int frame, double seconds, const Positions& positions);
     void finish();
 
   private:
@@ -43,6 +45,7 @@ class GltfWriter {
     std::uint64_t textureBytes_ = 0;  // the textures' files, padded, as the BIN chunk holds them
     std::FILE* file_ = nullptr;
     std::vector<float> times_;
+    std::vector<int> frames_;                    // the take's frame numbers, as appended
     std::vector<std::array<double, 6>> bounds_;  // per frame: min xyz, max xyz of the offsets
 };
 
