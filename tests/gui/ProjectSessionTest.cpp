@@ -6,6 +6,7 @@
 #include <QFileDialog>
 #include <QLabel>
 #include <QLineEdit>
+#include <QMenu>
 #include <QMessageBox>
 #include <QPushButton>
 #include <QUndoStack>
@@ -190,7 +191,9 @@ class ProjectSessionTest : public QObject {
         QSignalSpy errors(&window, &MainWindow::errorShown);
 
         for (const auto& [name, bytes] : cases) {
-            const QString path = folder_ + "/" + name + ".boneless";
+            // Beside the project, so that its relative paths resolve and only the damage can fail
+            // it.
+            const QString path = folder_ + "/mine/" + name + ".boneless";
             writeAll(path, bytes);
             QVERIFY2(!window.openProject(path), name);
             QVERIFY2(errors.last().at(0).toString().startsWith(name + QString(".boneless")),
@@ -211,6 +214,9 @@ class ProjectSessionTest : public QObject {
                 QTest::qWait(0);
                 continue;
             }
+            // What is wrong, not only that something is.
+            QVERIFY2(errors.last().at(0).toString().contains("the alignment's scale"),
+                     qPrintable(errors.last().at(0).toString()));
             // Taking the offer: the last autosave, untitled.
             box->findChild<QPushButton*>("openRecoveryButton")->click();
             QVERIFY(window.projectPath().isEmpty());
@@ -248,6 +254,33 @@ class ProjectSessionTest : public QObject {
         Document kept;
         QVERIFY(Project::load(kept, path));
         QCOMPARE(kept.mappedCount(), window.document()->markerCount() - 1);
+    }
+
+    void afterACrashTheLastAutosaveOpensFromTheRecentFilesMenu() {
+        QFile::remove(ProjectAutosave::recoveryPath());
+        int mapped = 0;
+        {
+            MainWindow window;
+            window.setMessageBoxesEnabled(false);
+            QVERIFY(window.openFile(folder_ + "/mine/walker.obj"));
+            QVERIFY(window.openFile(folder_ + "/mine/walker.c3d"));
+            QVERIFY(window.openFile(folder_ + "/mine/walker.map.json"));
+            QVERIFY(window.document()->clearMapping(0));
+            mapped = window.document()->mappedCount();
+            QVERIFY(window.autosave()->saveNow());
+        }  // gone without closing, as in a crash
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        QVERIFY(window.openDemo());
+        auto* menu = window.findChild<QMenu*>("recentMenu");
+        QVERIFY(menu);
+        emit menu->aboutToShow();
+        auto* last = menu->findChild<QAction*>("openLastAutosave");
+        QVERIFY(last && last->isEnabled());
+        last->trigger();
+        QVERIFY(window.projectPath().isEmpty());
+        QVERIFY(!window.isDemoOpen());
+        QCOMPARE(window.document()->mappedCount(), mapped);
     }
 
     void anEditJustMadeReachesItsProjectWhenAnotherFileIsOpened() {

@@ -206,6 +206,7 @@ void MainWindow::buildFileMenu() {
     file->addAction(tr("Open &Correspondence…"), this, &MainWindow::chooseCorrespondence);
     file->addAction(tr("Open &Demo"), this, &MainWindow::openDemo);
     recentMenu_ = file->addMenu(tr("&Recent Files"));
+    recentMenu_->setObjectName("recentMenu");
     connect(recentMenu_, &QMenu::aboutToShow, this, &MainWindow::rebuildRecentMenu);
     file->addSeparator();
     file->addAction(tr("&Save Project"), QKeySequence::Save, this, &MainWindow::saveProject);

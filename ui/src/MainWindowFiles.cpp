@@ -317,6 +317,16 @@ void MainWindow::rebuildRecentMenu() {
             ->setToolTip(path);
     if (files.isEmpty()) recentMenu_->addAction(tr("(none)"))->setEnabled(false);
     recentMenu_->addSeparator();
+    // After a crash the last session, titled or not, is here until the next one changes something.
+    const QFileInfo recovery(ProjectAutosave::recoveryPath());
+    QAction* last = recentMenu_->addAction(tr("Last Autosave"), this, [this] { openRecovery(); });
+    last->setObjectName("openLastAutosave");
+    last->setEnabled(recovery.exists());
+    if (recovery.exists()) {
+        last->setText(tr("Last Autosave (%1)")
+                          .arg(QLocale().toString(recovery.lastModified(), QLocale::ShortFormat)));
+        last->setToolTip(recovery.absoluteFilePath());
+    }
     recentMenu_->addAction(tr("Clear"), this, [] { RecentFiles::clear(); });
 }
 

@@ -43,28 +43,32 @@ bool sane(const QJsonValue& v, double limit = 1e12) {
     return v.isDouble() && std::isfinite(v.toDouble()) && std::abs(v.toDouble()) <= limit;
 }
 
-bool readAlignment(const QJsonObject& o, Calibration& c) {
+// Empty when `o` is a whole, sound alignment (then in `c`); otherwise what is wrong with it.
+QString readAlignment(const QJsonObject& o, Calibration& c) {
     const QJsonArray rotation = o["rotation"].toArray(), t = o["translation"].toArray();
-    if (rotation.size() != 3 || t.size() != 3 || !sane(o["scale"]) || o["scale"].toDouble() <= 0)
-        return false;
+    if (!sane(o["scale"]) || o["scale"].toDouble() <= 0)
+        return QObject::tr("scale is not a positive number up to 1e12");
+    if (t.size() != 3) return QObject::tr("translation is not three numbers");
+    for (int k = 0; k < 3; ++k)
+        if (!sane(t[k])) return QObject::tr("translation is not three numbers up to 1e12");
+    if (rotation.size() != 3) return QObject::tr("rotation is not three rows");
     for (int r = 0; r < 3; ++r) {
         const QJsonArray row = rotation[r].toArray();
-        if (row.size() != 3) return false;
+        if (row.size() != 3) return QObject::tr("rotation is not three rows of three");
         for (int k = 0; k < 3; ++k) {
-            if (!sane(row[k], 2.0)) return false;
+            if (!sane(row[k], 2.0)) return QObject::tr("rotation holds a number out of [-2, 2]");
             c.takeToMesh.R(r, k) = row[k].toDouble();
         }
     }
-    for (int k = 0; k < 3; ++k)
-        if (!sane(t[k])) return false;
     // A rotation, not any matrix: a hostile one would shear the take out of shape.
-    if (!(c.takeToMesh.R * c.takeToMesh.R.transpose()).isIdentity(1e-3)) return false;
+    if (!(c.takeToMesh.R * c.takeToMesh.R.transpose()).isIdentity(1e-3))
+        return QObject::tr("rotation is not orthonormal");
     c.takeToMesh.scale = o["scale"].toDouble();
     c.takeToMesh.t = Vec3(t[0].toDouble(), t[1].toDouble(), t[2].toDouble());
     c.frame = o["calibration_frame"].toInt(-1);
     c.residual = o["residual"].toDouble();
     c.visibleMarkers = o["visible_markers"].toInt();
-    return true;
+    return {};
 }
 
 // Every option is written whatever the method, so that switching back to one finds its options
@@ -177,8 +181,8 @@ bool load(Document& document, const QString& path, QString* error) {
     }
     if (root["alignment"].isObject()) {
         Calibration c;
-        if (!readAlignment(root["alignment"].toObject(), c))
-            return fail(QObject::tr("the alignment is incomplete"));
+        const QString wrong = readAlignment(root["alignment"].toObject(), c);
+        if (!wrong.isEmpty()) return fail(QObject::tr("the alignment's %1").arg(wrong));
         state.alignment = c;
     }
     if (!readSettings(root["settings"].toObject(), state.settings, &why)) return fail(why);
