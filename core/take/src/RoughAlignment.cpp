@@ -26,6 +26,9 @@ constexpr double kWideShare = 1.5;
 // The soles (the lowest 3 % of the height) reach further forward than the ankles (5-12 %) by
 // at least this share of the height when the mesh has feet (4-8 % on human meshes).
 constexpr double kToeShare = 0.01;
+// A standing body is about as tall as its widest level extent (a T-pose's arm span) or taller; a
+// horse is longer than it is tall.
+constexpr double kUprightShare = 0.8;
 
 double median(std::vector<double> values) {
     if (values.empty()) return 0;
@@ -34,9 +37,12 @@ double median(std::vector<double> values) {
 }
 
 // The mesh's left, level: along its widest level axis, towards the side that puts the toes in
-// front. `convention` when the mesh is about as deep as it is wide; its sign when no feet show.
+// front. `convention` unless the mesh stands upright (at least kUprightShare as tall as its
+// widest level extent), is clearly wider than deep and shows feet.
 Vec3 meshLeft(const TriMesh& mesh, int up, const Vec3& convention) {
     const int a = (up + 1) % 3, b = (up + 2) % 3;
+    const Vec3 extent = mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff();
+    if (extent[up] < kUprightShare * std::max(extent[a], extent[b])) return convention;
     Eigen::MatrixX2d level(mesh.vertexCount(), 2);
     level << mesh.V.col(a), mesh.V.col(b);
     level.rowwise() -= level.colwise().mean();
@@ -59,9 +65,11 @@ Vec3 meshLeft(const TriMesh& mesh, int up, const Vec3& convention) {
         else if (h >= 0.05 && h < 0.12)
             ankle += front.dot(x), ++ankles;
     }
+    // Only a body with feet is read this way: a horse is widest along its spine, and a mesh
+    // without feet gives no front to sign the axis by.
     const double toes = soles && ankles ? (sole / soles - ankle / ankles) / height : 0;
-    if (std::abs(toes) >= kToeShare) return toes > 0 ? left : Vec3(-left);
-    return left.dot(convention) >= 0 ? left : Vec3(-left);
+    if (std::abs(toes) < kToeShare) return convention;
+    return toes > 0 ? left : Vec3(-left);
 }
 
 }  // namespace

@@ -174,8 +174,6 @@ json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibr
               {"group", request.group},
               {"c3d", request.c3dPath},
               {"map", request.mapPath}}},
-            // What the C3D reader let through (a truncated file, ...), as `inspect` lists it.
-            {"take_warnings", take.warnings},
             {"units",
              {{"take", take.units},
               {"mesh_guess", guessMeshUnits(meshUnitsPerMm)},

@@ -155,6 +155,12 @@ TEST(RoughAlignment, FacesAMeshTheWayItsToesPointWhenItIsWiderAcrossThanDeep) {
     const Calibration back = roughAlignment(take, allPoints(take), mesh);
     EXPECT_GT(placed(take, back, "LFHD").z(), 0.5);
     EXPECT_LT(placed(take, back, "STRN").x(), -0.5);
+    // Longer than tall, as a horse is along its spine: the convention, left on +X.
+    TriMesh horse = bodyBox({3, 13, 20});
+    for (int v = 0; v < horse.vertexCount(); ++v)
+        if (horse.V(v, 1) < -6.0) horse.V(v, 0) += 1.0;
+    const Calibration onHorse = roughAlignment(take, allPoints(take), horse);
+    EXPECT_GT(placed(take, onHorse, "LFHD").x(), placed(take, onHorse, "RFHD").x() + 0.5);
 }
 
 TEST(RoughAlignment, WithoutSidedNamesTheActorStillStandsUp) {

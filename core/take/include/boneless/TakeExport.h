@@ -17,8 +17,8 @@ class C3dFrameReader;
 // What `boneless-cli solve` and the application's export both write, so that the two produce the
 // same files: DIR/<stem>_<frame:04>.obj (input vertex order, same faces) or one DIR/<stem>.pc2,
 // .mdd or .glb, plus the sidecar DIR/<stem>.json (fps, frame range, whether the run completed,
-// units, up axis, sources, the take's reader warnings, alignment, options (TakeOptionsJson),
-// per-frame residuals). Every file appears atomically, the sidecar last.
+// units, up axis, sources, alignment, options (TakeOptionsJson), per-frame residuals). Every file
+// appears atomically, the sidecar last.
 struct ExportRequest {
     // As the user named them; recorded in the sidecar and the OBJ comments.
     std::string meshPath, group, c3dPath, mapPath;
