@@ -35,13 +35,13 @@ void writeAll(const QString& path, const QByteArray& bytes) {
     f.write(bytes);
 }
 
-// Answers the question closing asks with `button`, after `first` (e.g. scheduling the next
-// dialog's answer).
+// Answers the question closing (or opening another file) asks with `button`, after `first` (e.g.
+// scheduling the next dialog's answer).
 void answerClose(const char* button, std::function<void()> first = {}) {
     QTimer::singleShot(300, [button, first] {
         auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
         QVERIFY(box);
-        QCOMPARE(box->objectName(), QString("closeQuestion"));
+        QCOMPARE(box->objectName(), QString("unsavedQuestion"));
         if (first) first();
         box->findChild<QPushButton*>(button)->click();
     });
@@ -230,16 +230,22 @@ class ProjectSessionTest : public QObject {
         MainWindow window;
         QVERIFY(window.openFile(folder_ + "/mine/walker.obj"));
         QVERIFY(window.openFile(folder_ + "/mine/walker.c3d"));
+        QVERIFY(window.openFile(folder_ + "/mine/walker.map.json"));
         QVERIFY(test::showAndWait(window));
         window.close();  // files opened, nothing edited: no question
         QVERIFY(!window.isVisible());
 
         window.show();
-        QVERIFY(window.openFile(folder_ + "/mine/walker.map.json"));
         QVERIFY(window.document()->clearMapping(0));
         answerClose("cancelButton");
         window.close();
         QVERIFY(window.isVisible());
+        // Opening another take asks too; going on keeps the edit, and closing still asks.
+        answerClose("cancelButton");
+        QVERIFY(!window.openFile(folder_ + "/mine/walker.c3d"));
+        answerClose("discardButton");
+        QVERIFY(window.openFile(folder_ + "/mine/walker.c3d"));
+        QCOMPARE(window.document()->mappedCount(), window.document()->markerCount() - 1);
         answerClose("discardButton");
         window.close();
         QVERIFY(!window.isVisible());

@@ -385,6 +385,15 @@ void MainWindow::connectDocument() {
             [this](const QString& message) { showError(message); });
     connect(autosave_, &ProjectAutosave::aboutToSave, this, &MainWindow::storeSession,
             Qt::DirectConnection);
+    // What closing or opening another file must not drop unasked (keepUnsavedWork).
+    const auto edited = [this] {
+        if (!loading_) unsavedEdits_ = true;
+    };
+    connect(document_->undoStack(), &QUndoStack::indexChanged, this, edited);
+    connect(document_, &Document::settingsChanged, this, edited);
+    connect(autosave_, &ProjectAutosave::saved, this, [this](const QString& path) {
+        if (!demo_ && path == projectPath_) unsavedEdits_ = false;
+    });
     connect(display_, &FrameDisplay::frameDisplayed, this, &MainWindow::frameDisplayed);
     connect(display_, &FrameDisplay::latencyMeasured, this, &MainWindow::latencyMeasured);
     connect(document_, &Document::selectionChanged, this, &MainWindow::syncTableSelection);

@@ -11,8 +11,8 @@
 #include <QMimeData>
 #include <QPushButton>
 #include <QScopeGuard>
+#include <QScopedValueRollback>
 #include <QStatusBar>
-#include <QUndoStack>
 #include <QUrl>
 
 #include "FrameDisplay.h"
@@ -77,15 +77,17 @@ bool MainWindow::openFile(const QString& path) {
             return openProject(path);
         case FileKind::Mesh:
             return openMesh(path);
-        case FileKind::Take:
-            autosave_
-                ->saveNow();  // the edits of the last second go to the project they were made in
+        case FileKind::Take: {
+            if (!keepUnsavedWork(false)) return false;
+            const QScopedValueRollback<int> loading(loading_, loading_ + 1);
             ok = document_->loadTake(path);
             if (ok) startUntitled();
             break;
+        }
         case FileKind::Correspondence: {
             Document::MapLoad mode = Document::MapLoad::Replace;
             if (!askMapLoad(path, mode)) return false;
+            const QScopedValueRollback<int> loading(loading_, loading_ + 1);
             ok = document_->loadCorrespondence(path, mode);
             break;
         }
@@ -105,7 +107,8 @@ bool MainWindow::openFile(const QString& path) {
 }
 
 bool MainWindow::openProject(const QString& path) {
-    autosave_->saveNow();  // the edits of the last second go to the project they were made in
+    if (!keepUnsavedWork(false)) return false;
+    const QScopedValueRollback<int> loading(loading_, loading_ + 1);
     QString error;
     if (!Project::load(*document_, path, &error)) {
         const QString message =
@@ -132,6 +135,7 @@ bool MainWindow::openProject(const QString& path) {
     }
     projectPath_ = QFileInfo(path).absoluteFilePath();
     demo_ = DemoProject::isDemo(projectPath_);
+    unsavedEdits_ = false;
     autosave_->setProjectPath(demo_ ? QString() : projectPath_);
     // The file holds what was just loaded: saving it again now would only overwrite the
     // recovery file with it (or, for the demo, with the demo).
@@ -173,12 +177,14 @@ bool MainWindow::askMapLoad(const QString& path, Document::MapLoad& mode) {
 }
 
 bool MainWindow::openRecovery() {
+    const QScopedValueRollback<int> loading(loading_, loading_ + 1);
     QString error;
     if (!Project::load(*document_, ProjectAutosave::recoveryPath(), &error)) {
         showError(tr("The last autosave could not be opened either."), error);
         return false;
     }
     startUntitled();
+    unsavedEdits_ = true;  // untitled: only the autosave holds it, until Save As
     autosave_->discardPending();
     applyViewSettings();
     restoreSession();
@@ -224,6 +230,7 @@ bool MainWindow::saveProjectAs(const QString& path) {
     }
     projectPath_ = QFileInfo(path).absoluteFilePath();
     demo_ = false;
+    unsavedEdits_ = false;
     autosave_->setProjectPath(projectPath_);
     autosave_->discardPending();
     RecentFiles::add(projectPath_);
@@ -250,6 +257,7 @@ void MainWindow::chooseMesh() {
 
 // An OBJ with groups asks which to open (the largest preselected), however it was opened.
 bool MainWindow::openMesh(const QString& path) {
+    if (!keepUnsavedWork(false)) return false;
     QString group;
     try {
         const std::vector<ObjGroup> groups = objGroups(path.toStdString());
@@ -264,7 +272,7 @@ bool MainWindow::openMesh(const QString& path) {
     }
     opening_ = path;
     const auto done = qScopeGuard([this] { opening_.clear(); });
-    autosave_->saveNow();  // the edits of the last second go to the project they were made in
+    const QScopedValueRollback<int> loading(loading_, loading_ + 1);
     if (!document_->loadMesh(path, group)) return false;
     startUntitled();  // never into the project (or demo) open before
     RecentFiles::add(QFileInfo(path).absoluteFilePath());
@@ -290,13 +298,13 @@ void MainWindow::chooseProject() {
     if (!path.isEmpty()) openProject(path);
 }
 
-void MainWindow::chooseSaveProjectAs() {
+bool MainWindow::chooseSaveProjectAs() {
     QString path =
         QFileDialog::getSaveFileName(this, tr("Save Project As"), demo_ ? QString() : projectPath_,
                                      tr("Boneless projects (*.boneless)"));
-    if (path.isEmpty()) return;
+    if (path.isEmpty()) return false;
     if (QFileInfo(path).suffix().isEmpty()) path += ".boneless";
-    saveProjectAs(path);
+    return saveProjectAs(path);
 }
 
 void MainWindow::chooseSaveCorrespondence() {
@@ -361,45 +369,43 @@ void MainWindow::dropEvent(QDropEvent* event) {
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {
-    exportDialog_->cancelExport();
     // The frame and camera only count as a change at the end; the demo's never do.
     if (!demo_) storeSession();
-    const bool saved = autosave_->saveNow();
-    // Edits made untitled or on the demo live only in the recovery file, which the next
-    // session's first change overwrites; a project that could not be saved lacks them.
-    const bool unkept = (projectPath_.isEmpty() || demo_) && !document_->undoStack()->isClean();
-    if (messageBoxes_ && (!saved || unkept) && !keepWorkBeforeClosing(saved)) {
-        event->ignore();
+    if (!keepUnsavedWork(true)) {
+        event->ignore();  // and an export running goes on
         return;
     }
+    exportDialog_->cancelExport();
     event->accept();
 }
 
-bool MainWindow::keepWorkBeforeClosing(bool saved) {
-    const QString question =
-        !saved ? tr("%1 could not be saved. Save the project elsewhere before closing?")
-                     .arg(QFileInfo(projectPath_).fileName())
-        : demo_ ? tr("Save your changes to the demo as a project before closing?")
-                : tr("Save this untitled project before closing?");
-    QMessageBox box(QMessageBox::Question, tr("Close Boneless"), question, QMessageBox::NoButton,
-                    this);
-    box.setObjectName("closeQuestion");
+bool MainWindow::keepUnsavedWork(bool closing) {
+    // The edits of the last second go to the project (or recovery file) they were made in.
+    const bool kept = autosave_->saveNow();
+    const bool titled = !projectPath_.isEmpty() && !demo_;
+    if (!messageBoxes_ || (titled ? kept : !unsavedEdits_)) return true;
+    const QString question = titled ? tr("%1 could not be saved. Save the project elsewhere first?")
+                                          .arg(QFileInfo(projectPath_).fileName())
+                             : demo_ ? tr("Save your changes to the demo as a project first?")
+                                     : tr("Save this untitled project first?");
+    QMessageBox box(QMessageBox::Question, closing ? tr("Close Boneless") : tr("Open"), question,
+                    QMessageBox::NoButton, this);
+    box.setObjectName("unsavedQuestion");
     box.setInformativeText(
-        tr("Otherwise the changes stay only in the last autosave, which the "
-           "next session replaces."));
+        tr("Otherwise the changes are kept only in the last autosave, which the next change "
+           "replaces."));
     QPushButton* saveAs = box.addButton(tr("Save As…"), QMessageBox::AcceptRole);
-    QPushButton* discard = box.addButton(tr("Close Without Saving"), QMessageBox::DestructiveRole);
+    QPushButton* discard =
+        box.addButton(closing ? tr("Close Without Saving") : tr("Open Without Saving"),
+                      QMessageBox::DestructiveRole);
     QPushButton* cancel = box.addButton(QMessageBox::Cancel);
     saveAs->setObjectName("saveAsButton");
     discard->setObjectName("discardButton");
     cancel->setObjectName("cancelButton");
     box.setDefaultButton(saveAs);
-    box.exec();  // the window must not close before this is answered
+    box.exec();  // nothing closes or opens before this is answered
     if (box.clickedButton() == discard) return true;
-    if (box.clickedButton() != saveAs) return false;
-    const QString before = projectPath_;
-    chooseSaveProjectAs();
-    return !projectPath_.isEmpty() && !demo_ && (projectPath_ != before || saved);
+    return box.clickedButton() == saveAs && chooseSaveProjectAs();
 }
 
 }  // namespace boneless::ui

@@ -61,21 +61,21 @@ bool ProjectAutosave::saveNow() {
     QStringList targets{recoveryPath()};
     if (!path_.isEmpty()) targets.prepend(path_);
     QStringList errors;
-    bool recovered = false;
+    bool kept = true, recovered = true;
     for (const QString& target : targets) {
         QDir().mkpath(QFileInfo(target).absolutePath());
         QString error;
-        if (Project::save(*document_, target, &error))
-            recovered = target == recoveryPath();
-        else
-            errors << error;
+        const bool ok = Project::save(*document_, target, &error);
+        if (!ok) errors << error;
+        (target == path_ ? kept : recovered) = ok;
     }
+    if (path_.isEmpty()) kept = recovered;
     if (!errors.isEmpty()) {
         pending_ = true;  // try again after the next change
-        if (recovered)
+        if (!kept && recovered)
             errors << tr("The changes are kept in the last autosave, %1.").arg(recoveryPath());
         emit failed(errors.join("\n"));
-        return false;
+        return kept;
     }
     emit saved(targets.front());
     return true;

@@ -113,9 +113,11 @@ class MainWindow : public QMainWindow {
     // Over existing mappings, asks replace, merge or cancel (false); without message boxes,
     // replace.
     bool askMapLoad(const QString& path, Document::MapLoad& mode);
-    // On close, when the project could not be `saved` or edits were made untitled or on the
-    // demo: offers Save As; true when the window may close (saved, or the user said discard).
-    bool keepWorkBeforeClosing(bool saved);
+    // Before closing or opening another project, mesh or take: saves what is pending and, when
+    // the project could not be saved or edits were made untitled or on the demo (kept only in
+    // the recovery file, which the next change overwrites), asks Save As, go on, or cancel.
+    // True to go on.
+    bool keepUnsavedWork(bool closing);
     void showHelp(const QString& title, const QString& html);
     void storeSession();
     void restoreSession();
@@ -125,7 +127,7 @@ class MainWindow : public QMainWindow {
     void chooseTake();
     void chooseCorrespondence();
     void chooseProject();
-    void chooseSaveProjectAs();
+    bool chooseSaveProjectAs();  // true when it saved
     void chooseSaveCorrespondence();
 
     Document* document_;
@@ -155,6 +157,10 @@ class MainWindow : public QMainWindow {
     QString projectPath_;
     bool demo_ = false;
     QString opening_;  // the file being opened, for plainError()
+    // An edit (undoable, or of the settings) since the project was opened or saved; loading a
+    // file is none.
+    bool unsavedEdits_ = false;
+    int loading_ = 0;  // > 0 while a file is being loaded
     int startFrame_ = -1;
     bool messageBoxes_ = true;
 };

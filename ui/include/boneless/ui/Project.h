@@ -51,7 +51,9 @@ class ProjectAutosave : public QObject {
     static QString recoveryPath();
 
   public slots:
-    bool saveNow();  // writes at once if a change is pending; true when nothing failed
+    // Writes at once if a change is pending. True when the document is kept where it belongs:
+    // in the project file, or without one in the recovery file.
+    bool saveNow();
     // Forgets the pending change, e.g. the one a Project::load just caused: the file on disk
     // already is that state.
     void discardPending();
