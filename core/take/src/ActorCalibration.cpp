@@ -80,7 +80,7 @@ Positions fitActorShape(Reconstruction& solver, const Positions& targets,
     // its place far from where it is, it is not on this mesh (a wrong map, another actor's prop),
     // and a calibrated rest that follows it would be a spike, not a body.
     const std::vector<double> strain = vertexStrain(rest.F, fit.V, rest.V);
-    std::string unreachable;
+    std::vector<std::pair<double, std::string>> unreachable;  // mm, label
     const auto& markers = solver.markerVertices();
     for (std::size_t k = 0; k < markers.size(); ++k) {
         const int row = static_cast<int>(k);
@@ -91,18 +91,23 @@ Positions fitActorShape(Reconstruction& solver, const Positions& targets,
         if (!others.V.allFinite()) continue;
         const double mm = (markerPoint(solver, k, others.V) - targets.row(row).transpose()).norm() *
                           mmPerMeshUnit;
-        if (mm <= kUnreachableMm) continue;
+        if (mm > kUnreachableMm) unreachable.emplace_back(mm, k < labels.size() ? labels[k] : "?");
+    }
+    if (unreachable.empty()) return fit.V;
+    // Farthest first: one wrong entry also drags its neighbours' markers past the bound (C7 mapped
+    // onto a leg names the knee and shin too), and it is the farthest of them.
+    std::sort(unreachable.begin(), unreachable.end(),
+              [](const auto& a, const auto& b) { return a.first > b.first; });
+    std::string list;
+    for (const auto& [mm, label] : unreachable) {
         char line[160];
         std::snprintf(line, sizeof line, "%s%s (%.0f mm from where the other markers put it)",
-                      unreachable.empty() ? "" : ", ", k < labels.size() ? labels[k].c_str() : "?",
-                      mm);
-        unreachable += line;
+                      list.empty() ? "" : ", ", label.c_str(), mm);
+        list += line;
     }
-    if (!unreachable.empty())
-        throw Error("the mesh cannot reach the actor at the calibration frame: marker " +
-                    unreachable +
-                    "; check the map for these markers, or solve with --calibrate none");
-    return fit.V;
+    throw Error("the mesh cannot reach the actor at the calibration frame: marker " + list +
+                " (farthest first); check the map for these markers, or solve with --calibrate "
+                "none");
 }
 
 }  // namespace boneless

@@ -113,6 +113,24 @@ TEST(ActorCalibration, AMarkerTheMeshCannotReachIsNamed) {
     TakeSolveOptions none;  // the user's way out: solve against the rest as given
     none.calibrate = CalibrateMode::None;
     EXPECT_NO_THROW(TakeSolver(a.demo.rest, a.take.take, a.take.map, none));
+    // Two of them: the farther is named first, where a user starts checking the map.
+    const int farther = 20;
+    for (int t = 0; t < 4; ++t) {
+        const auto x = samples.position(t, farther);
+        ASSERT_TRUE(x);
+        samples.set(t, farther, x->x(), x->y() + 900.0, x->z());
+    }
+    try {
+        TakeSolver solver(a.demo.rest, a.take.take, a.take.map);
+        FAIL() << "markers 500 and 900 mm off the body were followed";
+    } catch (const Error& e) {
+        const std::string message = e.what();
+        const auto first = message.find(a.take.map.markers[farther].label + " (");
+        const auto second = message.find(a.take.map.markers[marker].label + " (");
+        ASSERT_NE(first, std::string::npos) << message;
+        ASSERT_NE(second, std::string::npos) << message;
+        EXPECT_LT(first, second) << message;
+    }
 }
 
 // `solve --write-calibrated-rest` writes the fitted rest in the input's vertex order and faces,
