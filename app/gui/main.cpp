@@ -118,8 +118,8 @@ int main(int argc, char** argv) {
 
     bool opened = true;
     if (parser.isSet(project)) opened = window.openProject(parser.value(project));
-    for (const QString& file : parser.positionalArguments())
-        opened = window.openFile(file) && opened;
+    if (!parser.positionalArguments().isEmpty())
+        opened = window.openFiles(parser.positionalArguments()) && opened;
     if (!parser.isSet(project) && parser.positionalArguments().isEmpty())
         opened = window.openDemo();
     if (batch && !opened) {

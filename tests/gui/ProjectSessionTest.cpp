@@ -246,6 +246,21 @@ class ProjectSessionTest : public QObject {
         answerClose("discardButton");
         QVERIFY(window.openFile(folder_ + "/mine/walker.c3d"));
         QCOMPARE(window.document()->mappedCount(), window.document()->markerCount() - 1);
+        // A take and a mesh opened together (dropped, or named on the command line): one
+        // question for both, and the mesh first.
+        int asked = 0;
+        QTimer answering;
+        connect(&answering, &QTimer::timeout, [&asked] {
+            if (auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget())) {
+                ++asked;
+                box->findChild<QPushButton*>("discardButton")->click();
+            }
+        });
+        answering.start(100);
+        QVERIFY(window.openFiles({folder_ + "/mine/walker.c3d", folder_ + "/mine/walker.obj"}));
+        answering.stop();
+        QCOMPARE(asked, 1);
+        QVERIFY(window.document()->hasMesh() && window.document()->hasTake());
         answerClose("discardButton");
         window.close();
         QVERIFY(!window.isVisible());

@@ -1,4 +1,6 @@
 // MainWindow: opening, saving, exporting, recent files and drag and drop.
+#include <algorithm>
+
 #include <QCloseEvent>
 #include <QDragEnterEvent>
 #include <QDropEvent>
@@ -359,13 +361,26 @@ void MainWindow::dropEvent(QDropEvent* event) {
     QStringList paths;
     for (const QUrl& url : event->mimeData()->urls())
         if (url.isLocalFile()) paths << url.toLocalFile();
-    // Mesh before take before map, whatever order they were dropped in: each needs the one
-    // before it to be checked against.
+    openFiles(paths);
+    event->acceptProposedAction();
+}
+
+bool MainWindow::openFiles(QStringList paths) {
+    // Mesh before take before map, whatever order they came in: each needs the one before it to
+    // be checked against.
     auto rank = [](const QString& p) { return int(kindOf(p)); };
     std::stable_sort(paths.begin(), paths.end(),
                      [&](const QString& a, const QString& b) { return rank(a) < rank(b); });
-    for (const QString& path : paths) openFile(path);
-    event->acceptProposedAction();
+    // One question for them all, not one for the mesh and another for the take.
+    const bool replaces = std::any_of(paths.begin(), paths.end(), [](const QString& p) {
+        return kindOf(p) == FileKind::Project || kindOf(p) == FileKind::Mesh ||
+               kindOf(p) == FileKind::Take;
+    });
+    if (replaces && !keepUnsavedWork(false)) return false;
+    const QScopedValueRollback<bool> asked(workAsked_, true);
+    bool opened = true;
+    for (const QString& path : paths) opened = openFile(path) && opened;
+    return opened;
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {
@@ -380,6 +395,7 @@ void MainWindow::closeEvent(QCloseEvent* event) {
 }
 
 bool MainWindow::keepUnsavedWork(bool closing) {
+    if (workAsked_) return true;
     // The edits of the last second go to the project (or recovery file) they were made in.
     const bool kept = autosave_->saveNow();
     const bool titled = !projectPath_.isEmpty() && !demo_;

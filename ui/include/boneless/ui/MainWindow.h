@@ -45,6 +45,9 @@ class MainWindow : public QMainWindow {
 
     // Opens by extension: .boneless project; .obj/.ply/.off/.stl mesh; .c3d take; .json map.
     bool openFile(const QString& path);
+    // Several files as one action (a drop, the command line): mesh, then take, then map, and
+    // one question about unsaved edits. True when every one opened.
+    bool openFiles(QStringList paths);
     // A mesh file; an OBJ with groups first asks which group (GroupChooser).
     bool openMesh(const QString& path);
     // A project that will not open leaves the window as it was and the file untouched, and the
@@ -160,7 +163,8 @@ class MainWindow : public QMainWindow {
     // An edit (undoable, or of the settings) since the project was opened or saved; loading a
     // file is none.
     bool unsavedEdits_ = false;
-    int loading_ = 0;  // > 0 while a file is being loaded
+    int loading_ = 0;         // > 0 while a file is being loaded
+    bool workAsked_ = false;  // keepUnsavedWork was answered for the files being opened
     int startFrame_ = -1;
     bool messageBoxes_ = true;
 };
