@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include <Eigen/Geometry>
+
 #include "boneless/C3dTake.h"
 #include "boneless/Error.h"
 
@@ -19,6 +21,36 @@ Positions takeFrame(const C3dTake& take, const std::vector<std::size_t>& points,
             P.row(k).setConstant(std::numeric_limits<double>::quiet_NaN());
     }
     return P;
+}
+
+Similarity levelled(const Similarity& free, const Positions& take, const Positions& mesh) {
+    const Vec3 up = free.R * Vec3::UnitZ();
+    int axis = 0;
+    up.cwiseAbs().maxCoeff(&axis);
+    const Vec3 a = (up[axis] < 0 ? -1.0 : 1.0) * Vec3::Unit(axis);
+    const Mat3 level = Eigen::Quaterniond::FromTwoVectors(up, a).toRotationMatrix() * free.R;
+    std::vector<Vec3> x, y;
+    for (Eigen::Index k = 0; k < take.rows(); ++k)
+        if (take.row(k).allFinite() && mesh.row(k).allFinite()) {
+            x.push_back(free.scale * (level * take.row(k).transpose()));
+            y.push_back(mesh.row(k).transpose());
+        }
+    Similarity s = free;
+    s.R = level;
+    if (x.empty()) return s;
+    Vec3 xMean = Vec3::Zero(), yMean = Vec3::Zero();
+    for (std::size_t k = 0; k < x.size(); ++k) xMean += x[k] / x.size(), yMean += y[k] / y.size();
+    // The turn about `a` that brings the centred take nearest the mesh, in closed form.
+    double along = 0, across = 0;
+    for (std::size_t k = 0; k < x.size(); ++k) {
+        const Vec3 xc = x[k] - xMean, yc = y[k] - yMean;
+        along += (xc - xc.dot(a) * a).dot(yc);
+        across += a.cross(xc).dot(yc);
+    }
+    const Mat3 turn = Eigen::AngleAxisd(std::atan2(across, along), a).toRotationMatrix();
+    s.R = turn * level;
+    s.t = yMean - turn * xMean;
+    return s;
 }
 
 Calibration calibrate(const C3dTake& take, const std::vector<std::size_t>& points,

@@ -30,6 +30,43 @@ TEST(Alignment, RecoversAKnownSimilarity) {
     EXPECT_LT(alignmentResidual(s, take, mesh), 1e-9);
 }
 
+// A pose unlike the rest's tilts the free fit; the level one puts the take's +Z on the mesh's
+// up exactly, keeps the scale, and still finds the turn about the vertical.
+TEST(Alignment, LevelledPutsTheTakesVerticalOnTheMeshsUpAndFindsTheTurn) {
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(-1, 1);
+    Positions mesh(12, 3);  // Y up, taller than wide
+    for (int i = 0; i < 12; ++i) mesh.row(i) << 0.3 * u(rng), 1 + u(rng), 0.2 * u(rng);
+    // The take: Z up, millimetres, turned 40° about its vertical; upper markers lean forward.
+    const Mat3 zUpToYUp = Eigen::AngleAxisd(-M_PI / 2, Vec3::UnitX()).toRotationMatrix();
+    const Mat3 turn = Eigen::AngleAxisd(0.7, Vec3::UnitZ()).toRotationMatrix();
+    Positions take(12, 3);
+    for (int i = 0; i < 12; ++i) {
+        Vec3 p = zUpToYUp.transpose() * mesh.row(i).transpose();
+        p.x() += 0.15 * p.z();  // a lean: a shear, which no rotation undoes
+        take.row(i) = (1000.0 * (turn * p) + Vec3(300, 100, 0)).transpose();
+    }
+    const Similarity free = fitSimilarity(take, mesh);
+    const Similarity s = levelled(free, take, mesh);
+    EXPECT_GT((free.R * Vec3::UnitZ() - Vec3::UnitY()).norm(), 0.02) << "the free fit leans";
+    EXPECT_LT((s.R * Vec3::UnitZ() - Vec3::UnitY()).norm(), 1e-12);
+    EXPECT_EQ(s.scale, free.scale);
+    // The turn: the take's forward (its +X turned by 40°) lands within a few degrees of the
+    // mesh's, which the lean biases a little.
+    const Vec3 forward = s.R * (turn * Vec3::UnitX());
+    EXPECT_GT(forward.dot(Vec3::UnitX()), std::cos(5.0 * M_PI / 180)) << forward.transpose();
+    // Without the lean, level and free agree: nothing to take out.
+    for (int i = 0; i < 12; ++i)
+        take.row(i) =
+            (1000.0 * (turn * (zUpToYUp.transpose() * mesh.row(i).transpose())) + Vec3(3, 1, 0))
+                .transpose();
+    const Similarity exact = fitSimilarity(take, mesh);
+    const Similarity same = levelled(exact, take, mesh);
+    EXPECT_LT((same.R - exact.R).norm(), 1e-9);
+    EXPECT_LT((same.t - exact.t).norm(), 1e-9);
+    EXPECT_LT(alignmentResidual(same, take, mesh), 1e-9);
+}
+
 TEST(Alignment, RefusesTooFewOrCollinearMarkers) {
     Positions a(3, 3), b(3, 3);
     a << 0, 0, 0, 1, 0, 0, 2, 0, 0;

@@ -6,6 +6,7 @@
 #include "boneless/DemoFiles.h"
 #include "boneless/MeshReader.h"
 #include "boneless/Metrics.h"
+#include "boneless/RigidFit.h"
 #include "boneless/TakeSolver.h"
 
 using namespace boneless;
@@ -47,6 +48,35 @@ TEST(TakeSolver, AFrameIsTheSameWhateverFramesWereSolvedBefore) {
             EXPECT_EQ(maxDistance(scrubber.solve(f, r), played[f]), 0.0)
                 << "detail " << detail << ", frame " << f;
         }
+    }
+}
+
+// An actor who leans in every frame, the calibration frame too, is solved leaning: the take's
+// vertical stays the mesh's, so an exported floor stays level (a free alignment took the lean
+// out, and tilted the walk it was fitted at instead). The shape is the same as upright.
+TEST(TakeSolver, AnActorLeaningAtTheCalibrationFrameIsSolvedLeaningNotTilted) {
+    const Take t = demoTake("take-lean", 1);
+    Take leaning = t;
+    const double lean = 8.0 * M_PI / 180;
+    const Mat3 tilt = Eigen::AngleAxisd(lean, Vec3::UnitX()).toRotationMatrix();
+    for (std::size_t f = 0; f < t.take.frameCount(); ++f)
+        for (std::size_t k = 0; k < t.take.points.size(); ++k)
+            if (const auto x = t.take.samples.position(f, k)) {
+                const Vec3 y = tilt * *x;
+                leaning.take.samples.set(f, k, y.x(), y.y(), y.z());
+            }
+    TakeSolver upright(t.mesh, t.take, t.map), leant(leaning.mesh, leaning.take, leaning.map);
+    const Vec3 up = upright.calibration().takeToMesh.R * Vec3::UnitZ();
+    EXPECT_LT((leant.calibration().takeToMesh.R * Vec3::UnitZ() - up).norm(), 1e-12);
+    for (int f : {0, 17}) {
+        FrameReport r;
+        const Positions a = upright.solve(f, r), b = leant.solve(f, r);
+        const RigidMotion m = fitRigidMotion(a, b);
+        const Eigen::AngleAxisd turn(m.R);
+        EXPECT_NEAR(turn.angle(), lean, 0.2 * M_PI / 180) << "frame " << f;
+        EXPECT_LT(std::abs(turn.axis().dot(up)), 0.01) << "frame " << f;  // a lean, not a turn
+        const Positions moved = (a * m.R.transpose()).rowwise() + m.t.transpose();
+        EXPECT_LT(maxDistance(moved, b) / boundingBoxDiagonal(t.mesh.V), 1e-4) << "frame " << f;
     }
 }
 

@@ -42,6 +42,13 @@ Calibration calibrate(int frames, const std::function<Positions(int)>& frameAt,
 Calibration roughAlignment(const C3dTake& take, const std::vector<std::size_t>& points,
                            const TriMesh& mesh);
 
+// `free` (a similarity fitted from `take` onto `mesh` rows, #K by 3 each, NaN rows skipped) turned
+// so that the take's vertical (C3D's +Z) goes exactly to the mesh's signed coordinate axis
+// nearest where `free` put it, then turned about that axis and moved to fit again; the scale is
+// kept. A pose unlike the rest's tilts a free fit, and the exported floor with it (a walk on
+// MakeHuman climbed 8°). The result is `free` followed by a rigid motion of the mesh's space.
+Similarity levelled(const Similarity& free, const Positions& take, const Positions& mesh);
+
 // The take's positions of `points` at `frame`, NaN rows where missing.
 Positions takeFrame(const C3dTake& take, const std::vector<std::size_t>& points, int frame);
 
