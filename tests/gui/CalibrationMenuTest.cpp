@@ -91,6 +91,12 @@ class CalibrationMenuTest : public QObject {
 
         QVERIFY(trigger(*window_, "calibrateAutomatically"));
         QCOMPARE(document->settings().calibrationFrame, -1);
+        // The way out for a mesh that cannot reach the actor: the calibrated rest is the rest.
+        QVERIFY(trigger(*window_, "calibrateNone"));
+        QVERIFY(document->settings().calibrate == CalibrateMode::None);
+        QCOMPARE(maxDistance(window_->meshView()->positions(), document->mesh().V), 0.0);
+        QVERIFY(trigger(*window_, "calibrateAutomatically"));
+        QVERIFY(document->settings().calibrate == CalibrateMode::Shape);
     }
 
     void theShowMenuTogglesFrameCalibratedRestAndRest() {

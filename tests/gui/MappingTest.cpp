@@ -12,6 +12,7 @@
 #include <QPushButton>
 #include <QStatusBar>
 #include <QTableView>
+#include <QUndoStack>
 #include <QtTest>
 
 #include "ViewTestSupport.h"
@@ -63,6 +64,66 @@ class MappingTest : public QObject {
         QVERIFY2(window.statusBar()->currentMessage().contains("missed the mesh"),
                  qPrintable(window.statusBar()->currentMessage()));
         QCOMPARE(d->mappedVertex(0), before);
+    }
+
+    // A click to look at the body moves no marker: only Map Markers maps.
+    void aClickOnTheMeshMapsTheSelectedMarkerOnlyInMapMarkersMode() {
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        QVERIFY(window.openProject(freshProject()));
+        QVERIFY(test::showAndWait(window));
+        QVERIFY(test::waitForFrame(window));
+        Document* d = window.document();
+        MeshView* view = window.meshView();
+        QPoint at;
+        int vertex = -1;
+        for (int y = view->height() / 3; y < 2 * view->height() / 3 && vertex < 0; y += 7)
+            for (int x = view->width() / 3; x < 2 * view->width() / 3 && vertex < 0; x += 7) {
+                const int v = view->pickVertex(QPoint(x, y));
+                if (v >= 0 && d->markerForVertex(v) < 0) vertex = v, at = QPoint(x, y);
+            }
+        QVERIFY(vertex >= 0);
+        d->setSelectedMarker(0);
+        const int before = d->mappedVertex(0);
+        QTest::mouseClick(view, Qt::LeftButton, {}, at);
+        QCOMPARE(d->mappedVertex(0), before);
+        QVERIFY2(window.statusBar()->currentMessage().contains("Map Markers"),
+                 qPrintable(window.statusBar()->currentMessage()));
+        auto* mapping = window.findChild<QAction*>("actionMapMarkers");
+        mapping->trigger();
+        QTest::mouseClick(view, Qt::LeftButton, {}, at);
+        QCOMPARE(d->mappedVertex(0), vertex);
+    }
+
+    // A head marker mapped onto a foot: the take cannot be solved with this map. The status says
+    // so and the playhead's frame is shown unposed, not the last answer under "solving…".
+    void aMapTheTakeCannotBeSolvedWithSaysSoAndShowsThePlayhead() {
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        QVERIFY(window.openProject(freshProject()));
+        QVERIFY(test::showAndWait(window));
+        QVERIFY(test::waitForFrame(window));
+        Document* d = window.document();
+        const int head = d->markerByLabel("LFHD");
+        QVERIFY(head >= 0);
+        const Positions& V = d->mesh().V;
+        const Eigen::RowVector3d from = V.row(d->mappedVertex(head));
+        int foot = -1;
+        for (int v = 0; v < V.rows(); ++v)
+            if (d->markerForVertex(v) < 0 &&
+                (foot < 0 || (V.row(v) - from).norm() > (V.row(foot) - from).norm()))
+                foot = v;
+        QSignalSpy failed(window.frameSolver(), &FrameSolver::failed);
+        QVERIFY(d->assign(head, foot));
+        QVERIFY(failed.wait(60000));
+        QTRY_VERIFY2(window.frameSummary().contains("Not solving"),
+                     qPrintable(window.frameSummary()));
+        window.timeline()->scrubTo(20);
+        QTRY_COMPARE(window.displayedFrame(), 20);
+        QVERIFY2(window.frameSummary().contains("Not solving"), qPrintable(window.frameSummary()));
+        d->undoStack()->undo();
+        QVERIFY(test::waitForFrame(window));
+        QVERIFY2(window.frameSummary().contains("solved"), qPrintable(window.frameSummary()));
     }
 
     void suggestRestSaysHowManyItSuggested() {
@@ -230,6 +291,18 @@ class MappingTest : public QObject {
         QVERIFY(test::showAndWait(window));
         QVERIFY2(highlightedPixels(window, far) > 0.5, "the doubtful row is not highlighted");
         QCOMPARE(highlightedPixels(window, far == 0 ? 1 : 0), 0.0);
+        // Mapping it onto its own vertex is the user's word that it is right; Undo doubts again.
+        const int vertex = d->mappedVertex(far);
+        QVERIFY(d->assign(far, vertex));
+        QCOMPARE(d->mappedVertex(far), vertex);
+        for (int row = 0; row < model->rowCount(); ++row)
+            QVERIFY(!model->index(row, 0).data(Qt::BackgroundRole).isValid());
+        d->undoStack()->undo();
+        QVERIFY(model->index(0, 0).isValid());
+        int doubtful = 0;
+        for (int row = 0; row < model->rowCount(); ++row)
+            doubtful += model->index(row, 0).data(Qt::BackgroundRole).isValid();
+        QCOMPARE(doubtful, 1);
         // Unmapping it clears the doubt.
         QVERIFY(d->clearMapping(far));
         for (int row = 0; row < model->rowCount(); ++row)

@@ -1,5 +1,6 @@
 // The 3D view's picking: a click at the projected position of a known vertex maps the selected
 // marker to exactly that vertex, undoably.
+#include <QAction>
 #include <QTableView>
 #include <QUndoStack>
 #include <QtTest>
@@ -95,6 +96,9 @@ class MeshViewTest : public QObject {
         }
         QVERIFY(target >= 0);
 
+        auto* mapping = window.findChild<QAction*>("actionMapMarkers");  // as the README says
+        QVERIFY(mapping);
+        mapping->trigger();
         QSignalSpy picked(view, &MeshView::vertexPicked);
         QTest::mouseClick(view, Qt::LeftButton, {}, view->projectVertex(target));
         QCOMPARE(picked.count(), 1);
@@ -109,7 +113,8 @@ class MeshViewTest : public QObject {
         QCOMPARE(document->mappedVertex(marker), target);
         QCOMPARE(errors.count(), 0);
 
-        // The edited map is solved and shown again.
+        // Leaving Map Markers, the edited map is solved and shown again.
+        mapping->trigger();
         QVERIFY(test::waitForFrame(window));
     }
 

@@ -9,6 +9,7 @@
 #include <QMenu>
 #include <QMessageBox>
 #include <QPushButton>
+#include <QStatusBar>
 #include <QUndoStack>
 #include <QtTest>
 
@@ -224,6 +225,42 @@ class ProjectSessionTest : public QObject {
             QVERIFY(test::waitForFrame(window));
         }
         QCOMPARE(readAll(project_).size() > 0, true);
+    }
+
+    // A take cut short opens with what the reader let through, where the user sees it, and a
+    // calibration frame past its end goes back to automatic instead of failing every frame.
+    void aTakeCutShortOpensWithItsNotesAndDropsACalibrationFrameItLacks() {
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        QVERIFY(window.openFile(folder_ + "/mine/walker.obj"));
+        QVERIFY(window.openFile(folder_ + "/mine/walker.c3d"));
+        QVERIFY(window.openFile(folder_ + "/mine/walker.map.json"));
+        Document* d = window.document();
+        QVERIFY(d->takeNotes().isEmpty());
+        const int frames = d->frameCount();
+        boneless::TakeSolveOptions settings = d->settings();
+        settings.calibrationFrame = frames - 1;
+        d->setSettings(settings);
+        QFile whole(folder_ + "/mine/walker.c3d");
+        QVERIFY(whole.open(QIODevice::ReadOnly));
+        const QByteArray bytes = whole.readAll();
+        QFile cut(folder_ + "/cut.c3d");
+        QVERIFY(cut.open(QIODevice::WriteOnly));
+        cut.write(bytes.left(bytes.size() * 6 / 10));
+        cut.close();
+
+        QVERIFY(window.openFile(cut.fileName()));
+        QVERIFY(d->frameCount() < frames);
+        const QStringList notes = d->takeNotes();
+        QCOMPARE(notes.size(), 2);
+        QVERIFY2(notes[0].contains("truncated"), qPrintable(notes[0]));
+        QVERIFY2(notes[1].contains("calibrated automatically"), qPrintable(notes[1]));
+        QCOMPARE(d->settings().calibrationFrame, -1);
+        QVERIFY2(window.statusBar()->currentMessage().contains("with 2 notes"),
+                 qPrintable(window.statusBar()->currentMessage()));
+        QVERIFY(test::showAndWait(window));
+        QVERIFY(test::waitForFrame(window));
+        QVERIFY2(window.frameSummary().contains("solved"), qPrintable(window.frameSummary()));
     }
 
     void closingAsksBeforeUntitledEditsAreLeftToTheAutosave() {

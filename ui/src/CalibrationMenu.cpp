@@ -34,9 +34,17 @@ void addCalibrationActions(QMenu* edit, QMenu* view, Document* document, Timelin
     QAction* automatic = edit->addAction(QObject::tr("Calibrate A&utomatically"), document,
                                          [=] { calibrateAt(document, -1); });
     automatic->setObjectName("calibrateAutomatically");
+    // The way out when the mesh cannot reach the actor, as `solve --calibrate none`.
+    QAction* none = edit->addAction(QObject::tr("&Do Not Calibrate"), document, [=] {
+        TakeSolveOptions settings = document->settings();
+        settings.calibrate = CalibrateMode::None;
+        document->setSettings(settings);
+    });
+    none->setObjectName("calibrateNone");
+    none->setStatusTip(
+        QObject::tr("Solve every frame against the rest as the mesh gives it (calibrate none)"));
     auto enable = [=] {
-        atFrame->setEnabled(document->hasTake());
-        automatic->setEnabled(document->hasTake());
+        for (QAction* action : {atFrame, automatic, none}) action->setEnabled(document->hasTake());
     };
     QObject::connect(document, &Document::takeChanged, atFrame, enable);
     enable();

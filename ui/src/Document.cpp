@@ -122,6 +122,16 @@ bool Document::loadTake(const QString& path) {
     hasTake_ = true;
     take_ = std::move(s.take);
     takePath_ = path;
+    takeNotes_.clear();
+    for (const auto& w : take_.warnings) takeNotes_ << QString::fromStdString(w);
+    const bool pastEnd = settings_.calibrationFrame >= frameCount();
+    if (pastEnd) {  // every frame would fail on it
+        takeNotes_ << tr("The calibration frame %1 is past this take's %2 frames: the take is "
+                         "calibrated automatically.")
+                          .arg(settings_.calibrationFrame)
+                          .arg(frameCount());
+        settings_.calibrationFrame = -1;
+    }
     alignment_.reset();
     undoStack_->clear();
     selected_ = -1;
@@ -130,6 +140,7 @@ bool Document::loadTake(const QString& path) {
     emit correspondenceChanged();
     emit alignmentChanged();
     emit selectionChanged(-1);
+    if (pastEnd) emit settingsChanged();
     emit changed();
     return true;
 }
@@ -190,6 +201,7 @@ void Document::reset() {
     meshGroup_.clear();
     meshWarnings_.clear();
     takePath_.clear();
+    takeNotes_.clear();
     map_ = emptyMap();
     mapPath_.clear();
     savedMapJson_.clear();
@@ -216,6 +228,7 @@ bool Document::restoreState(State state) {
     hasTake_ = state.hasTake;
     take_ = std::move(state.take);
     takePath_ = state.takePath;
+    takeNotes_.clear();
     map_ = std::move(state.map);
     if (map_.markers.empty()) map_ = emptyMap();
     mapPath_ = state.mapPath;

@@ -62,7 +62,18 @@ bool Document::assign(int marker, int vertex) {
         return fail(
             tr("Vertex %1 is not on the mesh (%2 vertices).").arg(vertex).arg(mesh_.vertexCount()));
     const int other = markerForVertex(vertex);
-    if (other == marker) return true;
+    if (other == marker) {
+        // Mapping a suggestion onto its own vertex is the user's word that it is right.
+        const int mapping = markers_[marker].mapping;
+        MapState after = mapState();
+        std::string& extra = after.map.markers[mapping].extraJson;
+        const auto json = nlohmann::json::parse(extra.empty() ? "{}" : extra, nullptr, false);
+        if (!json.is_object() || !json.contains("suggested")) return true;
+        extra = withoutSuggested(extra);
+        pushMapEdit(tr("Confirm %1 on vertex %2").arg(markerLabel(marker)).arg(vertex),
+                    std::move(after));
+        return true;
+    }
     if (other >= 0)
         return fail(tr("Vertex %1 already carries marker %2; clear that marker first.")
                         .arg(vertex)

@@ -1,5 +1,7 @@
 #include "FrameDisplay.h"
 
+#include <utility>
+
 #include <QStringList>
 #include <QTimer>
 #include <cmath>
@@ -45,7 +47,7 @@ FrameDisplay::FrameDisplay(Document* document, FrameSolver* solver, Timeline* ti
     connect(document_, &Document::selectionChanged, this, &FrameDisplay::updateMarkers);
     connect(timeline_, &Timeline::frameChanged, this, &FrameDisplay::onFrameChanged);
     connect(solver_, &FrameSolver::frameReady, this, &FrameDisplay::onFrameReady);
-    connect(solver_, &FrameSolver::failed, this, &FrameDisplay::solverFailed);
+    connect(solver_, &FrameSolver::failed, this, &FrameDisplay::onSolverFailed);
     connect(view_, &MeshView::rendered, this, &FrameDisplay::onRendered);
     connect(timeline_, &Timeline::playingChanged, view_, &MeshView::setPlaying);
 }
@@ -67,10 +69,15 @@ void FrameDisplay::setHeatMapVisible(bool visible) {
 void FrameDisplay::setFrozen(bool frozen) {
     if (frozen_ == frozen) return;
     frozen_ = frozen;
-    if (frozen_)
+    if (frozen_) {
         emitStatus();
-    else
-        onFrameChanged(timeline_->frame());
+        return;
+    }
+    if (std::exchange(upPending_, false)) {
+        updateUpAxis(false);
+        updateFloor();
+    }
+    onFrameChanged(timeline_->frame());
 }
 
 bool FrameDisplay::upToDate() const {
@@ -112,6 +119,10 @@ void FrameDisplay::updateUpAxis(bool force) {
         up = upAxisVector(
             QString::fromStdString(guessUpAxis(document_->displayAlignment().takeToMesh)));
     if (!force && up.isApprox(up_)) return;
+    if (!force && frozen_) {  // mapping holds the camera still: turn it when mapping ends
+        upPending_ = true;
+        return;
+    }
     up_ = up;
     if (!force) view_->setUpAxis(up_);
 }
@@ -127,6 +138,16 @@ void FrameDisplay::rebuildProblem() {
     if (!solving_) solver_->clearProblem();
     updateFloor();
     onFrameChanged(timeline_->frame());
+}
+
+void FrameDisplay::onSolverFailed(const QString& message) {
+    // Nothing of this problem will be solved: say so, and show the take on the unposed mesh
+    // rather than the last problem's answer under a "solving" that never ends.
+    solving_ = false;
+    notSolvingReason_ = tr("the take could not be solved with this map and settings");
+    result_.reset();
+    showUnsolved(timeline_->frame());
+    emit solverFailed(message);
 }
 
 void FrameDisplay::onFrameChanged(int frame) {

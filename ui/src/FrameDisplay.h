@@ -74,6 +74,7 @@ class FrameDisplay : public QObject {
     void onTakeChanged();
     void onFrameChanged(int frame);
     void onFrameReady(const FrameResult& result);
+    void onSolverFailed(const QString& message);
     void onRendered();
     void rebuildProblem();
     void showUnsolved(int frame);
@@ -92,6 +93,7 @@ class FrameDisplay : public QObject {
     QTimer* problemTimer_;
 
     bool solving_ = false;
+    bool upPending_ = false;  // the up axis changed while mapping held the camera
     QString notSolvingReason_;
     QString refusalShown_;  // the last solveRefused() message, while it still holds
     bool trails_ = false, heatMap_ = false;

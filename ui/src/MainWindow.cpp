@@ -374,7 +374,7 @@ void MainWindow::connectDocument() {
             showError(plainError(opening_), message);
     });
     connect(display_, &FrameDisplay::solverFailed, this, [this](const QString& message) {
-        showError(tr("This frame could not be solved."), message);
+        showError(tr("The take could not be solved with this map and settings."), message);
     });
     connect(display_, &FrameDisplay::solveRefused, this, [this](const QString& message) {
         showError(tr("%1 is too large to solve in the memory available: it is shown, unsolved.")
@@ -484,6 +484,19 @@ void MainWindow::syncTableSelection(int marker) {
 
 void MainWindow::onVertexPicked(int vertex) {
     const int selected = document_->selectedMarker();
+    // Only Map Markers maps: a click to look at the body must not move a marker.
+    if (selected >= 0 && !mappingAction_->isChecked()) {
+        const int onVertex = document_->markerForVertex(vertex);
+        if (onVertex >= 0 && onVertex != selected) {
+            document_->setSelectedMarker(onVertex);
+            return;
+        }
+        statusBar()->showMessage(tr("Vertex %1 — turn on Edit → Map Markers to map %2 by clicking")
+                                     .arg(vertex)
+                                     .arg(document_->markerLabel(selected)),
+                                 8000);
+        return;
+    }
     if (selected >= 0) {
         if (document_->assign(selected, vertex))
             statusBar()->showMessage(

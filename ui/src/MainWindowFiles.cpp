@@ -103,9 +103,29 @@ bool MainWindow::openFile(const QString& path) {
     // The document has already reported a failure through errorOccurred.
     if (ok) {
         RecentFiles::add(QFileInfo(path).absoluteFilePath());
-        statusBar()->showMessage(tr("Opened %1").arg(QFileInfo(path).fileName()), 5000);
+        showOpened(path, kindOf(path) == FileKind::Take ? document_->takeNotes() : QStringList());
     }
     return ok;
+}
+
+void MainWindow::showOpened(const QString& path, const QStringList& notes) {
+    const QString name = QFileInfo(path).fileName();
+    if (notes.isEmpty()) {
+        statusBar()->showMessage(tr("Opened %1").arg(name), 5000);
+        return;
+    }
+    // A truncated take or a map cleared for another mesh changes what the user sees: said
+    // where it cannot be missed, not only in a log.
+    const QString message = notes.size() == 1
+                                ? tr("Opened %1, with a note:").arg(name)
+                                : tr("Opened %1, with %2 notes:").arg(name).arg(notes.size());
+    statusBar()->showMessage(message + " " + notes.first(), 15000);
+    if (!messageBoxes_) return;
+    QMessageBox* box = errorBox(message, notes.join("\n"));
+    box->setObjectName("openingNotes");
+    box->setIcon(QMessageBox::Information);
+    box->setInformativeText(notes.first());
+    box->show();
 }
 
 bool MainWindow::openProject(const QString& path) {
@@ -254,7 +274,8 @@ void MainWindow::showExportDialog() {
 void MainWindow::chooseMesh() {
     const QString path = QFileDialog::getOpenFileName(
         this, tr("Open Mesh"), {}, tr("Meshes (*.obj *.ply *.off *.stl);;All files (*)"));
-    if (!path.isEmpty()) openMesh(path);
+    // A take or project chosen here (All files) opens as what it is, not as a broken mesh.
+    if (!path.isEmpty()) kindOf(path) == FileKind::Unknown ? openMesh(path) : openFile(path);
 }
 
 // An OBJ with groups asks which to open (the largest preselected), however it was opened.
@@ -278,7 +299,7 @@ bool MainWindow::openMesh(const QString& path) {
     if (!document_->loadMesh(path, group)) return false;
     startUntitled();  // never into the project (or demo) open before
     RecentFiles::add(QFileInfo(path).absoluteFilePath());
-    statusBar()->showMessage(tr("Opened %1").arg(QFileInfo(path).fileName()), 5000);
+    showOpened(path, document_->meshWarnings());
     return true;
 }
 
@@ -297,7 +318,7 @@ void MainWindow::chooseCorrespondence() {
 void MainWindow::chooseProject() {
     const QString path = QFileDialog::getOpenFileName(
         this, tr("Open Project"), {}, tr("Boneless projects (*.boneless);;All files (*)"));
-    if (!path.isEmpty()) openProject(path);
+    if (!path.isEmpty()) kindOf(path) == FileKind::Unknown ? openProject(path) : openFile(path);
 }
 
 bool MainWindow::chooseSaveProjectAs() {

@@ -106,8 +106,8 @@ Positions fitActorShape(Reconstruction& solver, const Positions& targets,
         list += line;
     }
     throw Error("the mesh cannot reach the actor at the calibration frame: marker " + list +
-                " (farthest first); check the map for these markers, or solve with --calibrate "
-                "none");
+                " (farthest first); check the map for these markers, or solve without calibrating "
+                "(calibrate none)");
 }
 
 }  // namespace boneless

@@ -54,6 +54,9 @@ class Document : public QObject {
     bool hasTake() const { return hasTake_; }
     const C3dTake& take() const { return take_; }
     QString takePath() const { return takePath_; }
+    // What opening the take let through or changed: the reader's warnings (a truncated file),
+    // a calibration frame past its end set back to automatic.
+    QStringList takeNotes() const { return takeNotes_; }
     int frameCount() const;    // 0 without a take
     double frameRate() const;  // frames per second, 0 without a take
 
@@ -193,6 +196,7 @@ class Document : public QObject {
     QStringList meshWarnings_;
     C3dTake take_;
     QString takePath_;
+    QStringList takeNotes_;
     Correspondence map_;
     QString mapPath_;
     std::string savedMapJson_;  // the map as in mapPath_'s file, to tell unsaved edits

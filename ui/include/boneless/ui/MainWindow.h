@@ -125,6 +125,8 @@ class MainWindow : public QMainWindow {
     void storeSession();
     void restoreSession();
     QMessageBox* errorBox(const QString& message, const QString& detail);
+    // "Opened X", and what opening it let through or changed, if anything.
+    void showOpened(const QString& path, const QStringList& notes);
 
     void chooseMesh();
     void chooseTake();
