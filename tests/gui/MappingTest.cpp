@@ -3,6 +3,7 @@
 // mapping (each mapping re-solves the frame, which would move the surface under the cursor) and
 // leaving shows the playhead's frame, and suggestions to review stand out.
 #include <QAction>
+#include <QDoubleSpinBox>
 #include <QFile>
 #include <QFileInfo>
 #include <QJsonArray>
@@ -16,6 +17,7 @@
 #include <QtTest>
 
 #include "ViewTestSupport.h"
+#include "boneless/Correspondence.h"
 #include "boneless/ui/Document.h"
 #include "boneless/ui/FrameSolver.h"
 #include "boneless/ui/MainWindow.h"
@@ -124,6 +126,47 @@ class MappingTest : public QObject {
         d->undoStack()->undo();
         QVERIFY(test::waitForFrame(window));
         QVERIFY2(window.frameSummary().contains("solved"), qPrintable(window.frameSummary()));
+    }
+
+    // Markers sit off the skin: the panel sets the selected marker's offset, or every mapped
+    // marker's, each one undo step, and a marker mapped next takes the offset the others have.
+    void theOffsetOffTheSkinIsSetForOneMarkerOrAllAndANewPickTakesIt() {
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        QVERIFY(window.openProject(freshProject()));
+        Document* d = window.document();
+        auto* spin = window.findChild<QDoubleSpinBox*>("offsetSpin");
+        auto* all = window.findChild<QPushButton*>("offsetAll");
+        QVERIFY(spin && all);
+        d->setSelectedMarker(-1);
+        QVERIFY(!spin->isEnabled());
+        d->setSelectedMarker(0);
+        QVERIFY(spin->isEnabled());
+        QCOMPARE(spin->value(), d->markerOffsetMm(0));
+        const double before = d->markerOffsetMm(1);
+        spin->setValue(12.5);
+        QCOMPARE(d->markerOffsetMm(0), 12.5);
+        QCOMPARE(d->markerOffsetMm(1), before);
+        all->click();
+        for (int m = 0; m < d->markerCount(); ++m)
+            if (d->mappedVertex(m) >= 0) QCOMPARE(d->markerOffsetMm(m), 12.5);
+        d->undoStack()->undo();
+        QCOMPARE(d->markerOffsetMm(1), before);
+        QCOMPARE(d->markerOffsetMm(0), 12.5);
+        all->click();
+        // Unmapped and mapped again, onto a free vertex: it takes the 12.5 mm the others have.
+        const int vertex = d->mappedVertex(3);
+        QVERIFY(d->clearMapping(3));
+        QVERIFY(d->assign(3, vertex));
+        QCOMPARE(d->markerOffsetMm(3), 12.5);
+        // Saved as offset_mm, read back as such.
+        const QString path = folder_ + "/offsets.json";
+        QVERIFY(d->saveCorrespondence(path));
+        QCOMPARE(Correspondence::read(path.toStdString()).markers.front().offsetMm, 12.5);
+        // Not a marker's offset: refused, and nothing changes.
+        QVERIFY(!d->setOffsetMm({0}, 5000));
+        QVERIFY(!d->setOffsetMm({0}, std::nan("")));
+        QCOMPARE(d->markerOffsetMm(0), 12.5);
     }
 
     void suggestRestSaysHowManyItSuggested() {

@@ -11,8 +11,9 @@ class Timeline;
 // The app's side of actor calibration (docs/calibration.md):
 //  Edit → Calibrate at This Frame / Calibrate Automatically: the frame the take is aligned and
 //    the rest fitted at (the project's settings.calibration_frame), and calibration on;
+//  Edit → Do Not Calibrate: calibrate none, frames solved against the rest as given;
 //  View → Show → Frame / Calibrated Rest / Rest: what the view draws (FrameDisplay::Shown).
-// The actions' object names: calibrateAtFrame, calibrateAutomatically, showFrame,
+// The actions' object names: calibrateAtFrame, calibrateAutomatically, calibrateNone, showFrame,
 // showCalibratedRest, showRest.
 void addCalibrationActions(QMenu* edit, QMenu* view, Document* document, Timeline* timeline,
                            FrameDisplay* display);

@@ -1,6 +1,7 @@
 // Document: the undoable edits of the map and alignment, settings, and what solving needs.
 #include <QFileInfo>
 #include <QUndoStack>
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -92,6 +93,13 @@ bool Document::assign(int marker, int vertex) {
         m.label = markers_[marker].label.toStdString();
         m.vertex = vertex;
         m.extraJson = "{}";
+        // Markers of one set sit alike off the skin: a new one takes the median of those mapped.
+        std::vector<double> offsets;
+        for (const auto& mapped : after.map.markers) offsets.push_back(mapped.offsetMm);
+        if (!offsets.empty()) {
+            std::nth_element(offsets.begin(), offsets.begin() + offsets.size() / 2, offsets.end());
+            m.offsetMm = offsets[offsets.size() / 2];
+        }
         after.map.markers.push_back(std::move(m));
     }
     pushMapEdit(tr("Map %1 to vertex %2").arg(markerLabel(marker)).arg(vertex), std::move(after));
@@ -105,6 +113,26 @@ bool Document::clearMapping(int marker) {
     MapState after = mapState();
     after.map.markers.erase(after.map.markers.begin() + mapping);
     pushMapEdit(tr("Clear %1").arg(markerLabel(marker)), std::move(after));
+    return true;
+}
+
+bool Document::setOffsetMm(const std::vector<int>& markers, double mm) {
+    if (!std::isfinite(mm) || std::abs(mm) > kMaxOffsetMm)
+        return fail(tr("An offset off the skin of %1 mm is not a marker's; up to %2 mm either way.")
+                        .arg(mm)
+                        .arg(kMaxOffsetMm));
+    MapState after = mapState();
+    int changed = 0;
+    for (int marker : markers) {
+        if (marker < 0 || marker >= markerCount() || markers_[marker].mapping < 0) continue;
+        double& offset = after.map.markers[markers_[marker].mapping].offsetMm;
+        changed += offset != mm;
+        offset = mm;
+    }
+    if (changed == 0) return true;
+    const QString what =
+        markers.size() == 1 ? markerLabel(markers.front()) : tr("%1 markers").arg(changed);
+    pushMapEdit(tr("Set the offset of %1 to %2 mm").arg(what).arg(mm), std::move(after));
     return true;
 }
 

@@ -23,6 +23,7 @@
 
 #include "CalibrationMenu.h"
 #include "FrameDisplay.h"
+#include "OffsetRow.h"
 #include "SuggestionHighlight.h"
 #include "boneless/ui/AppIcon.h"
 #include "boneless/ui/Document.h"
@@ -173,6 +174,7 @@ void MainWindow::buildMarkerDock() {
     buttons->addWidget(suggest);
     buttons->addWidget(align);
     layout->addLayout(buttons);
+    layout->addLayout(makeOffsetRow(document_));
     connect(clear, &QPushButton::clicked, this, [this] {
         if (document_->selectedMarker() >= 0) document_->clearMapping(document_->selectedMarker());
     });

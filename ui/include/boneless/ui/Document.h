@@ -110,6 +110,10 @@ class Document : public QObject {
     // Maps `marker` to `vertex`. Refused when another marker already sits on that vertex.
     bool assign(int marker, int vertex);
     bool clearMapping(int marker);
+    // How far the mapped `markers` sit off the skin (mm, along the normal), one undo step.
+    // Refused for a value that is not finite or beyond kMaxOffsetMm either way.
+    bool setOffsetMm(const std::vector<int>& markers, double mm);
+    static constexpr double kMaxOffsetMm = 100.0;
     bool clearAllMappings();
     // Proposes a vertex for every unmapped marker (needs at least 4 mapped). The alignment is
     // left as it is: the proposals' own alignment is only used to place them. `suggested` and
