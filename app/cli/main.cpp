@@ -41,7 +41,8 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        // --help is 0; a bad flag is bad input, 1 as every other, not CLI11's own 105 or 109.
+        return app.exit(e) == 0 ? 0 : 1;
     } catch (const boneless::Error& e) {
         fail(1, e.what());
     } catch (const std::bad_alloc&) {
