@@ -98,7 +98,9 @@ void run(const EvalArgs& args) {
     if (std::unique(distinct.begin(), distinct.end()) - distinct.begin() >= vertices)
         throw Error(args.markersFile + " makes every one of the " + std::to_string(vertices) +
                     " vertices a marker: none is left to reconstruct");
-    const FrameRange range = parseFrameRange(args.frames);
+    const FrameRange range =
+        withinFrames(parseFrameRange(args.frames), args.frames,
+                     static_cast<int>(sequence.frames.size()), args.sequence, "evaluating");
     options.firstFrame = range.first;
     options.endFrame = range.end;
     options.dropPercent = args.drop;

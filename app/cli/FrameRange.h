@@ -1,5 +1,7 @@
 #pragma once
 
+#include <algorithm>
+#include <cstdio>
 #include <string>
 
 #include "boneless/Error.h"
@@ -30,6 +32,21 @@ inline FrameRange parseFrameRange(const std::string& text, const std::string& na
     } catch (const std::exception&) {
         throw boneless::Error(name + " expects A:B (0-based, not negative, B excluded), got '" +
                               text + "'");
+    }
+    return range;
+}
+
+// `range` (parsed from `text`) within the `frames` frames of `source`: refused when it selects no
+// frame, cut at the end with a note on stderr ("solving 100:810") when it runs past it.
+inline FrameRange withinFrames(FrameRange range, const std::string& text, int frames,
+                               const std::string& source, const char* doing) {
+    if (range.first >= (range.end < 0 ? frames : std::min(range.end, frames)))
+        throw boneless::Error("frames " + text + " select no frame of " + source + " (" +
+                              std::to_string(frames) + " frames)");
+    if (range.end > frames) {
+        std::fprintf(stderr, "note: --frames %s runs past the end of %s (%d frames): %s %d:%d\n",
+                     text.c_str(), source.c_str(), frames, doing, range.first, frames);
+        range.end = frames;
     }
     return range;
 }

@@ -140,15 +140,8 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
         for (const std::string& w : take.take().warnings)
             std::fprintf(stderr, "warning: %s: %s\n", job.c3d.c_str(), w.c_str());
     const Correspondence map = Correspondence::read(job.map);
-    // Refused here, as exportTake would, so that the note below never says it solves "900:810".
-    const int frames = static_cast<int>(take.frameCount());
-    if (range.first >= (range.end < 0 ? frames : std::min(range.end, frames)))
-        throw Error("frames " + job.frames + " select no frame of " + job.c3d + " (" +
-                    std::to_string(frames) + " frames)");
-    if (range.end > frames)
-        std::fprintf(
-            stderr, "note: --frames %s runs past the end of %s (%zu frames): solving %d:%zu\n",
-            job.frames.c_str(), job.c3d.c_str(), take.frameCount(), range.first, take.frameCount());
+    // Refused or noted before the solver is prepared (the export would cut the range itself).
+    withinFrames(range, job.frames, static_cast<int>(take.frameCount()), job.c3d, "solving");
 
     auto announce = [&](const Calibration& c) {
         if (quiet) return;

@@ -168,6 +168,26 @@ TEST(EvalCommand, MarkersFileAndDropAreHonoured) {
     EXPECT_EQ(j["drop_pct"], 20.0);
 }
 
+// As solve does: a range past the end is cut with a note, and one past every frame is refused.
+// Before, eval cut it silently and evaluated a range that selected nothing.
+TEST(EvalCommand, AFrameRangePastTheEndIsCutWithANoteOrRefused) {
+    const int frames = static_cast<int>(
+        std::count_if(fs::directory_iterator(demoFolder()), fs::directory_iterator(),
+                      [](const auto& e) { return e.path().extension() == ".obj"; }));
+    ASSERT_GT(frames, 3);
+    CliResult r = runCli("eval --sequence " + demoFolder() +
+                         " --markers 20 --quiet --frames 2:" + std::to_string(frames + 30));
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("runs past the end of " + demoFolder() + " (" + std::to_string(frames) +
+                         " frames): evaluating 2:" + std::to_string(frames)),
+              std::string::npos)
+        << r.out;
+    r = runCli("eval --sequence " + demoFolder() + " --markers 20 --frames " +
+               std::to_string(frames) + ":");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("select no frame of " + demoFolder()), std::string::npos) << r.out;
+}
+
 TEST(EvalCommand, BadInputIsOneClearLineAndANonZeroExit) {
     const fs::path file = fs::path(BONELESS_TEST_WORK_DIR) / "bad-markers.txt";
     std::ofstream(file) << "0\n999999\n";
