@@ -91,6 +91,7 @@ class TimelineStripTest : public QObject {
             solver.requestFrame(frame);
             QVERIFY(ready.wait(60000));
         }
+        timeline.scrubTo(document_.frameCount() - 1);  // the playhead away from the calibration
         strip.resize(600, strip.sizeHint().height());
         strip.show();
         QVERIFY(QTest::qWaitForWindowExposed(&strip));
@@ -103,6 +104,7 @@ class TimelineStripTest : public QObject {
         for (int f = 0; f < document_.frameCount(); ++f) {
             const int x = strip.xOfFrame(f);
             if (std::abs(x - strip.xOfFrame(timeline.frame())) <= 1) continue;  // the playhead
+            if (std::abs(x - strip.xOfFrame(strip.calibrationFrame())) <= 2) continue;
             const QString at = QString("frame %1 at x %2: cache row %3, gap row %4")
                                    .arg(f)
                                    .arg(x)
@@ -125,6 +127,14 @@ class TimelineStripTest : public QObject {
             }
         }
         QVERIFY2(faint > 0, "no frame where only other markers are missing");
+        // The calibration frame the solved frames were fitted at, ticked through both rows.
+        const int calibration = ready.last().at(0).value<FrameResult>().calibration.frame;
+        QVERIFY(calibration >= 0);
+        QCOMPARE(strip.calibrationFrame(), calibration);
+        const int x = strip.xOfFrame(calibration);
+        QVERIFY(std::abs(x - strip.xOfFrame(timeline.frame())) > 1);
+        for (int y : {cacheY, gapY})
+            QCOMPARE(QColor(image.pixel(x, y)), TimelineStrip::calibrationColour());
         document_.setSelectedMarker(-1);
     }
 

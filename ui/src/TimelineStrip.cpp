@@ -31,9 +31,19 @@ TimelineStrip::TimelineStrip(Document* document, FrameSolver* solver, Timeline* 
     connect(document_, &Document::selectionChanged, this, qOverload<>(&QWidget::update));
     connect(timeline_, &Timeline::frameChanged, this, qOverload<>(&QWidget::update));
     // Read-ahead fills the cache without delivering: the worker going idle says when.
-    connect(solver_, &FrameSolver::frameReady, this, &TimelineStrip::refreshCache);
+    connect(solver_, &FrameSolver::frameReady, this, [this](const FrameResult& result) {
+        if (result.calibration.frame != calibrationFrame_) {
+            calibrationFrame_ = result.calibration.frame;
+            update();
+        }
+        refreshCache();
+    });
     connect(solver_, &FrameSolver::busyChanged, this, &TimelineStrip::refreshCache);
-    connect(solver_, &FrameSolver::problemChanged, this, &TimelineStrip::refreshCache);
+    connect(solver_, &FrameSolver::problemChanged, this, [this](bool solvable) {
+        if (!solvable) calibrationFrame_ = -1;
+        refreshCache();
+        update();
+    });
     rebuildGaps();
 }
 
@@ -65,6 +75,7 @@ void TimelineStrip::rebuildGaps() {
         }
     }
     cached_.assign(frames, false);
+    calibrationFrame_ = -1;  // another take's, until a frame of this one is solved
     refreshCache();
 }
 
@@ -139,6 +150,9 @@ void TimelineStrip::paintEvent(QPaintEvent*) {
     if (selected >= 0 && selected < int(gaps_.size()))
         for (const auto& [first, last] : gaps_[selected])
             painter.fillRect(frameRect(first, last, top, kGapRow), gap);
+    if (calibrationFrame_ >= 0 && calibrationFrame_ < frames)
+        painter.fillRect(QRect(xOfFrame(calibrationFrame_) - 1, 0, 3, height()),
+                         calibrationColour());
     painter.setPen(palette().color(QPalette::WindowText));
     const int x = xOfFrame(timeline_->frame());
     painter.drawLine(x, 0, x, height());
@@ -158,9 +172,10 @@ bool TimelineStrip::event(QEvent* event) {
     for (int k = 0; k < document_->markerCount(); ++k)
         if (!document_->markerVisible(k, frame)) missing << document_->markerLabel(k);
     QString text =
-        tr("Frame %1%2")
+        tr("Frame %1%2%3")
             .arg(frame)
-            .arg(frame < int(cached_.size()) && cached_[frame] ? tr(", solved") : QString());
+            .arg(frame < int(cached_.size()) && cached_[frame] ? tr(", solved") : QString())
+            .arg(frame == calibrationFrame_ ? tr(", the calibration frame") : QString());
     if (!missing.isEmpty())
         text += "\n" + tr("Missing: %1").arg(missing.mid(0, 12).join(", ")) +
                 (missing.size() > 12 ? tr(" and %1 more").arg(missing.size() - 12) : QString());

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <QColor>
 #include <QWidget>
 #include <utility>
 #include <vector>
@@ -15,6 +16,7 @@ class Timeline;
 // A strip over the timeline's slider, frame for frame: the frames already solved (cached, so
 // they show at once) as a thin line on top, and below it where markers are missing in the take:
 // the selected marker's gaps in full, every marker's faintly (darker where more are missing).
+// A tick through both marks the calibration frame of the frames solved (automatic or chosen).
 // Hovering names the missing markers; a click scrubs there.
 class TimelineStrip : public QWidget {
     Q_OBJECT
@@ -30,6 +32,9 @@ class TimelineStrip : public QWidget {
     const std::vector<Gaps>& gaps() const { return gaps_; }
     // Per frame, whether it is marked as cached.
     const std::vector<bool>& cachedFrames() const { return cached_; }
+    // The frame the solved frames were calibrated at; -1 before one is solved.
+    int calibrationFrame() const { return calibrationFrame_; }
+    static QColor calibrationColour() { return {30, 140, 60}; }
 
     // The x (widget pixels) of a frame's centre, and the frame under an x.
     int xOfFrame(int frame) const;
@@ -57,6 +62,7 @@ class TimelineStrip : public QWidget {
     std::vector<Gaps> gaps_;
     std::vector<int> missingCount_;  // per frame, markers missing
     std::vector<bool> cached_;
+    int calibrationFrame_ = -1;
 };
 
 }  // namespace boneless::ui
