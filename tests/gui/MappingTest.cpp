@@ -70,10 +70,9 @@ class MappingTest : public QObject {
 
     // A click to look at the body moves no marker: only Map Markers maps.
     void aClickOnTheMeshMapsTheSelectedMarkerOnlyInMapMarkersMode() {
-        MainWindow window;
-        window.setMessageBoxesEnabled(false);
-        QVERIFY(window.openProject(freshProject()));
-        QVERIFY(test::showAndWait(window));
+        const auto shown = test::openShown(freshProject());
+        QVERIFY(shown);
+        MainWindow& window = *shown;
         QVERIFY(test::waitForFrame(window));
         Document* d = window.document();
         MeshView* view = window.meshView();
@@ -100,10 +99,9 @@ class MappingTest : public QObject {
     // A head marker mapped onto a foot: the take cannot be solved with this map. The status says
     // so and the playhead's frame is shown unposed, not the last answer under "solving…".
     void aMapTheTakeCannotBeSolvedWithSaysSoAndShowsThePlayhead() {
-        MainWindow window;
-        window.setMessageBoxesEnabled(false);
-        QVERIFY(window.openProject(freshProject()));
-        QVERIFY(test::showAndWait(window));
+        const auto shown = test::openShown(freshProject());
+        QVERIFY(shown);
+        MainWindow& window = *shown;
         QVERIFY(test::waitForFrame(window));
         Document* d = window.document();
         const int head = d->markerByLabel("LFHD");
