@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <climits>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -23,6 +24,12 @@ using nlohmann::json;
 
 constexpr const char* kFormat = "boneless-correspondence";
 constexpr int kVersion = 2;  // read: 1 and 2; written: 1 unless a marker names a face point
+// Markers sit 0 to 30 mm off the skin (a sphere on its base, a bulky suit); a little below zero
+// fits a mesh whose surface is clothing, and 200 mm leaves room for a standoff or a headband.
+// Beyond, the value is a slip (metres, a sign), which the solve would only report as a marker
+// the mesh cannot reach.
+constexpr double kMinOffsetMm = -50.0;
+constexpr double kMaxOffsetMm = 200.0;
 
 [[noreturn]] void fail(const std::string& file, const std::string& what) {
     throw Error(file + ": " + what);
@@ -96,6 +103,12 @@ Correspondence Correspondence::fromJson(const std::string& text, const std::stri
         mapping.label = get<std::string>(m, "label", path, where);
         mapping.vertex = get<int>(m, "vertex", path, where + " (" + mapping.label + ")");
         mapping.offsetMm = m.contains("offset_mm") ? get<double>(m, "offset_mm", path, where) : 0.0;
+        if (!(mapping.offsetMm >= kMinOffsetMm && mapping.offsetMm <= kMaxOffsetMm)) {
+            char value[64];
+            std::snprintf(value, sizeof value, "%g", mapping.offsetMm);
+            fail(path, where + " (" + mapping.label + "): \"offset_mm\" " + value +
+                           " is out of range (a marker sits -50 to 200 mm off the skin)");
+        }
         if (version >= 2 && m.contains("face")) {
             const std::string at = where + " (" + mapping.label + ")";
             mapping.face = get<int>(m, "face", path, at);

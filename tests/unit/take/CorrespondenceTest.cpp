@@ -135,3 +135,25 @@ TEST(Correspondence, FromJsonTextMatchesTheFileAndNamesItsSource) {
         }
     }
 }
+
+TEST(Correspondence, AnOffsetNoMarkerSitsAtIsRefusedNamingTheEntryAndTheValue) {
+    for (const char* offset : {"-500", "5000", "200.5"}) {
+        const std::string text = std::string(R"({"format": "boneless-correspondence",
+          "version": 1, "markers": [{"label": "RFHD", "vertex": 3},
+                                    {"label": "LFHD", "vertex": 4, "offset_mm": )") +
+                                 offset + "}]}";
+        const std::string e =
+            errorOf([&] { Correspondence::read(writeTestFile("offset.json", text)); });
+        EXPECT_NE(e.find("offset.json: marker 1 (LFHD): \"offset_mm\" " + std::string(offset)),
+                  std::string::npos)
+            << e;
+        EXPECT_NE(e.find("-50 to 200 mm"), std::string::npos) << e;
+    }
+    // The ends of the range, and a marker a little under a clothed mesh's surface, still read.
+    for (const char* offset : {"-50", "-5", "200"})
+        EXPECT_NO_THROW(Correspondence::fromJson(
+            std::string(R"({"format": "boneless-correspondence", "version": 1,
+              "markers": [{"label": "A", "vertex": 1, "offset_mm": )") +
+                offset + "}]}",
+            "in range"));
+}

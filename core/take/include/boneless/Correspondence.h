@@ -38,7 +38,8 @@ class Correspondence {
     std::vector<MarkerMapping> markers;
 
     // Throws Error naming the file and the entry for malformed JSON, a wrong format or version,
-    // missing keys, negative ids, duplicate labels or duplicate vertices.
+    // missing keys, negative ids, duplicate labels or duplicate vertices, or an offset_mm outside
+    // -50 to 200.
     static Correspondence read(const std::string& path);
     // The same from JSON text (a project file embeds it); `source` names it in messages.
     static Correspondence fromJson(const std::string& text, const std::string& source);
