@@ -202,6 +202,7 @@ void Correspondence::checkMesh(int vertexCount, const std::string& meshPath,
 }
 
 std::vector<std::size_t> Correspondence::resolve(const C3dTake& take) const {
+    const std::string file = source_.empty() ? "correspondence" : source_;
     std::vector<std::size_t> points;
     std::string unknown;
     for (const auto& m : markers) {
@@ -210,11 +211,17 @@ std::vector<std::size_t> Correspondence::resolve(const C3dTake& take) const {
             unknown += (unknown.empty() ? "" : ", ") + m.label;
             continue;
         }
+        // A model's output (a joint angle, a force, a segment axis) is stored as a point too, but
+        // its numbers are no place on the body: pulled to, they fling the mesh about.
+        const C3dPoint& point = take.points[*index];
+        if (point.kind != C3dPointKind::Marker)
+            fail(file, "marker " + m.label + " names " +
+                           (point.kind == C3dPointKind::Angle ? "an " : "a ") +
+                           toString(point.kind) + " point of " + take.file +
+                           " (a model output), not a marker");
         points.push_back(*index);
     }
-    if (!unknown.empty())
-        fail(source_.empty() ? "correspondence" : source_,
-             "labels not found in " + take.file + ": " + unknown);
+    if (!unknown.empty()) fail(file, "labels not found in " + take.file + ": " + unknown);
     return points;
 }
 

@@ -157,3 +157,24 @@ TEST(Correspondence, AnOffsetNoMarkerSitsAtIsRefusedNamingTheEntryAndTheValue) {
                 offset + "}]}",
             "in range"));
 }
+
+TEST(Correspondence, ALabelNamingAModelOutputIsNoMarker) {
+    const Correspondence c = Correspondence::read(writeTestFile("angle.json", R"({
+      "format": "boneless-correspondence", "version": 1,
+      "markers": [{"label": "LFHD", "vertex": 1}, {"label": "LKneeAngles", "vertex": 2}]})"));
+    C3dTake take;
+    take.file = "gait.c3d";
+    for (const auto& [label, kind] :
+         {std::pair{"LFHD", C3dPointKind::Marker}, std::pair{"LKneeAngles", C3dPointKind::Angle}}) {
+        C3dPoint p;
+        p.label = label;
+        p.kind = kind;
+        splitC3dLabel(label, p.subject, p.name);
+        take.points.push_back(p);
+    }
+    const std::string e = errorOf([&] { c.resolve(take); });
+    EXPECT_NE(e.find("angle.json: marker LKneeAngles names an angle point of gait.c3d"),
+              std::string::npos)
+        << e;
+    EXPECT_NE(e.find("not a marker"), std::string::npos) << e;
+}

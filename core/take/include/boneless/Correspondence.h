@@ -51,7 +51,8 @@ class Correspondence {
     // vertex one of its corners (faces: the triangulated mesh's, when given). Throws Error.
     void checkMesh(int vertexCount, const std::string& meshPath,
                    const TriMesh* mesh = nullptr) const;
-    // The take's point index for each marker, in order; throws Error listing unknown labels.
+    // The take's point index for each marker, in order; throws Error listing unknown labels, or
+    // naming a label whose point is no marker (an angle, a force, a virtual point).
     std::vector<std::size_t> resolve(const C3dTake& take) const;
 
     const MarkerMapping* find(const std::string& label) const;
