@@ -213,6 +213,7 @@ void run(const BatchArgs& args) {
         if (static_cast<int>(k % shards) == shard - 1) ++mine;
     int done = 0;
     std::set<std::string> notedMeshes;  // mesh and group
+    std::set<std::string> notedMaps;
     for (std::size_t k = 0; k < jobs.size(); ++k) {
         if (static_cast<int>(k % shards) != shard - 1) continue;
         const TakeJob& job = jobs[k];
@@ -229,8 +230,9 @@ void run(const BatchArgs& args) {
         const auto start = std::chrono::steady_clock::now();
         std::vector<std::string> meshWarnings;  // filled once the mesh is read
         std::vector<std::string> takeWarnings;  // and the take's once it is opened
+        std::string mapWarning;                 // and the map's once it is read
         try {
-            const ExportResult r = runTakeJob(job, true, &meshWarnings, &takeWarnings);
+            const ExportResult r = runTakeJob(job, true, &meshWarnings, &takeWarnings, &mapWarning);
             std::printf(
                 "%d frames in %.1f s\n", r.framesWritten,
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
@@ -246,6 +248,9 @@ void run(const BatchArgs& args) {
         std::fflush(stdout);
         for (const std::string& w : takeWarnings)
             std::fprintf(stderr, "  warning: %s: %s\n", job.c3d.c_str(), w.c_str());
+        // Said once per map, as the mesh's notes: a library's takes share a few maps.
+        if (!mapWarning.empty() && notedMaps.insert(job.map).second)
+            std::fprintf(stderr, "  warning: %s\n", mapWarning.c_str());
         // A library of takes shares a few meshes: what one lacks is said once, solved or not.
         if (!meshWarnings.empty() && notedMeshes.insert(job.mesh + "\n" + job.group).second)
             for (const std::string& w : meshWarnings)

@@ -324,3 +324,22 @@ TEST(Batch, ABadFormatOrFrameRangeIsNamedBeforeAnythingIsSolved) {
         EXPECT_FALSE(fs::exists(dir / "a")) << r.out;
     }
 }
+
+// A suggested entry still marked for review may sit on a prop or the wrong limb: the run says so,
+// once for the map its takes share, and solves anyway (the user may have accepted them).
+TEST(Batch, SaysOnceWhichEntriesOfTheSharedMapAreStillMarkedForReview) {
+    const fs::path dir = makeLibrary();
+    json map = json::parse(std::ifstream(dir / "walker.map.json"));
+    for (json& m : map["markers"])
+        if (m["label"] == "LFHD" || m["label"] == "RBHD") m["needs_review"] = true;
+    std::ofstream(dir / "walker.map.json") << map.dump(2);
+    const CliResult r =
+        runCli("batch " + writeManifest(dir, "m.json", folderManifest("out")).string());
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("3 solved, 0 skipped, 0 failed"), std::string::npos) << r.out;
+    const std::string warning = "warning: " + (dir / "walker.map.json").string() +
+                                ": 2 suggested entries are still marked for review: LFHD, RBHD";
+    const size_t first = r.out.find(warning);
+    ASSERT_NE(first, std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find(warning, first + 1), std::string::npos) << r.out;  // three takes, once
+}

@@ -186,6 +186,27 @@ TEST(SolveCommand, CtrlCStopsCleanlyWithCompleteFilesOnly) {
     EXPECT_LT(objs, 3000);
 }
 
+// What `map suggest` flagged and nobody cleared is solved, but not in silence: a proposal on a
+// prop pulled the head to it, and nothing said so.
+TEST(SolveCommand, WarnsOfTheEntriesStillMarkedForReviewAndSolvesAnyway) {
+    const fs::path demo = makeDemo(3);
+    nlohmann::json map = nlohmann::json::parse(std::ifstream(demo / "walker.map.json"));
+    for (auto& m : map["markers"])
+        if (m["label"] == "T10") {
+            m["suggested"] = true;
+            m["needs_review"] = true;
+            m["review_reason"] = "62 mm from the fitted mesh";
+        }
+    std::ofstream(demo / "walker.map.json") << map.dump(2);
+    const CliResult r = runCli(solveArgs(demo, demo / "solved") + " --quiet");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("warning: " + (demo / "walker.map.json").string() +
+                         ": 1 suggested entry is still marked for review: T10"),
+              std::string::npos)
+        << r.out;
+    EXPECT_TRUE(sidecar(demo / "solved")["complete"]);
+}
+
 TEST(SolveCommand, BadInputIsOneClearLine) {
     const fs::path demo = makeDemo(3);
     std::ofstream(demo / "bad.map.json") << R"({"format": "boneless-correspondence", "version": 1,
