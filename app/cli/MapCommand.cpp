@@ -6,6 +6,7 @@
 
 #include "Commands.h"
 #include "OptionFlags.h"
+#include "TakeJob.h"
 #include "boneless/ActorCalibration.h"
 #include "boneless/C3dReader.h"
 #include "boneless/Error.h"
@@ -48,6 +49,7 @@ void registerMapCommand(CLI::App& app) {
         const std::optional<Correspondence> truth =
             args->check.empty() ? std::nullopt
                                 : std::optional<Correspondence>(Correspondence::read(args->check));
+        checkMapFitsMesh(partial, mesh, args->mesh, args->group);
         Suggestion s = suggestMappings(mesh, take, partial);
         // The map records the mesh it was made on, as the app's maps do.
         if (s.map.meshFile.empty())

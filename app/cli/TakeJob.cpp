@@ -80,6 +80,16 @@ void addTakeJobOptions(CLI::App* cmd, TakeJob& job) {
                   "Also write <stem>_calibrated_rest.obj, the rest fitted to the actor");
 }
 
+void checkMapFitsMesh(const Correspondence& map, const TriMesh& mesh, const std::string& meshPath,
+                      const std::string& group) {
+    try {
+        map.checkMesh(mesh.vertexCount(), meshPath, &mesh);
+    } catch (const Error& e) {
+        if (map.meshGroup.empty() || map.meshGroup == group) throw;
+        throw Error(std::string(e.what()) + "; open it with --group " + map.meshGroup);
+    }
+}
+
 std::string takeJobSidecar(const TakeJob& job) {
     ExportRequest request;
     request.meshPath = job.mesh;
@@ -141,6 +151,7 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
         for (const std::string& w : take.take().warnings)
             std::fprintf(stderr, "warning: %s: %s\n", job.c3d.c_str(), w.c_str());
     const Correspondence map = Correspondence::read(job.map);
+    checkMapFitsMesh(map, mesh, job.mesh, job.group);
     // Not an error: the user may have looked and accepted them; but a suggestion on a prop or
     // the wrong limb pulls the mesh there, and nothing else would say so.
     if (const std::vector<std::string> review = labelsToReview(map); !review.empty()) {

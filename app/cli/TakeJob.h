@@ -27,6 +27,11 @@ struct TakeJob {
 // flag per option of core's table, named as its JSON key.
 void addTakeJobOptions(CLI::App* command, TakeJob& job);
 
+// Checks the map against the mesh read from `meshPath` (Correspondence::checkMesh), and when the
+// map was made on another OBJ group than `group`, says which --group to open the mesh with.
+void checkMapFitsMesh(const boneless::Correspondence& map, const boneless::TriMesh& mesh,
+                      const std::string& meshPath, const std::string& group);
+
 // Where the job's sidecar goes: OUT/<stem>.json.
 std::string takeJobSidecar(const TakeJob& job);
 

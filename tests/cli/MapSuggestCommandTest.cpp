@@ -6,6 +6,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <sstream>
 
 #include "CliRunner.h"
 
@@ -81,6 +82,29 @@ std::string suggestOnDemo(const fs::path& dir) {
 }  // namespace
 
 // --check's map is read before the completed map is written: a run that fails leaves nothing.
+TEST(MapSuggestCommand, AMapMadeOnAGroupNamesTheMeshFileAndTheFlagToOpenItWith) {
+    const fs::path dir = freshTestDir("map-suggest-group");
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frames 3").exitCode, 0);
+    std::ostringstream obj;
+    obj << std::ifstream(dir / "walker.obj").rdbuf();
+    std::ofstream(dir / "walker.obj")
+        << "g body\n"
+        << obj.str() << "g helper\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n";
+    nlohmann::json map;
+    std::ifstream(dir / "walker.map.json") >> map;
+    map["mesh"]["group"] = "body";
+    std::ofstream(dir / "walker.map.json") << map.dump();
+    const CliResult r =
+        runCli("map suggest --mesh " + (dir / "walker.obj").string() + " --c3d " +
+               (dir / "walker.c3d").string() + " --map " + (dir / "walker.map.json").string() +
+               " --out " + (dir / "full.json").string());
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(
+        r.out.find("but " + (dir / "walker.obj").string() + " has 3429; open it with --group body"),
+        std::string::npos)
+        << r.out;
+}
+
 TEST(MapSuggestCommand, AMissingCheckMapFailsBeforeTheMapIsWritten) {
     const fs::path dir = freshTestDir("map-suggest-check");
     const CliResult r = runCli(suggestOnDemo(dir) + " --check " + (dir / "nosuch.json").string());

@@ -176,10 +176,12 @@ void Correspondence::write(const std::string& path) const {
 void Correspondence::checkMesh(int vertexCount, const std::string& meshPath,
                                const TriMesh* mesh) const {
     const std::string file = source_.empty() ? "correspondence" : source_;
-    // A whole OBJ read where the map was made on one of its groups is the likely slip.
+    // A whole OBJ read where the map was made on one of its groups is the likely slip: the
+    // message names the group and its file, and the caller says how to open it (a flag, a menu).
+    const std::string madeOn = meshFile.empty() ? "its OBJ" : meshFile;
     if (meshVertices != 0 && meshVertices != vertexCount)
         fail(file, "was made for " +
-                       (meshGroup.empty() ? "a mesh" : "group '" + meshGroup + "' of its OBJ") +
+                       (meshGroup.empty() ? "a mesh" : "group '" + meshGroup + "' of " + madeOn) +
                        " with " + std::to_string(meshVertices) + " vertices, but " + meshPath +
                        " has " + std::to_string(vertexCount));
     for (const auto& m : markers)

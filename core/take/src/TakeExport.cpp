@@ -302,9 +302,12 @@ SolveMemory solveMemory(const TriMesh& mesh, const ExportRequest& request) {
 }
 
 // What both sources check before a solver is built: the options, and that the mesh fits memory.
-void checkRequest(const TriMesh& mesh, const ExportRequest& request) {
+void checkRequest(const TriMesh& mesh, const Correspondence& map, const ExportRequest& request) {
     validate(request.options);
     checkSolveFits(mesh, request.meshPath, request.options.solver.method);
+    // Here, where the mesh's file is known: the solver's own check can only say "the mesh".
+    map.checkMesh(mesh.vertexCount(), request.meshPath.empty() ? "the mesh" : request.meshPath,
+                  &mesh);
 }
 
 // take: what the sidecar says of the take (its samples are not read).
@@ -382,7 +385,7 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
 ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspondence& map,
                         const ExportRequest& request, const ExportProgress& progress,
                         const ExportCalibrated& calibrated) {
-    checkRequest(mesh, request);
+    checkRequest(mesh, map, request);
     TakeSolver solver(mesh, take, map, request.options);
     return exportSolved(solver, mesh, take, map, request, progress, calibrated);
 }
@@ -390,7 +393,7 @@ ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspo
 ExportResult exportTake(const TriMesh& mesh, const C3dFrameReader& take, const Correspondence& map,
                         const ExportRequest& request, const ExportProgress& progress,
                         const ExportCalibrated& calibrated) {
-    checkRequest(mesh, request);
+    checkRequest(mesh, map, request);
     TakeSolver solver(mesh, take, map, request.options);
     return exportSolved(solver, mesh, take.take(), map, request, progress, calibrated);
 }

@@ -99,7 +99,7 @@ TEST(Correspondence, AMapMadeOnAGroupSaysSoWhenTheWholeFileIsGiven) {
     const Correspondence c = Correspondence::read(writeTestFile("group.json", text));
     EXPECT_EQ(c.meshGroup, "body");
     const std::string e = errorOf([&] { c.checkMesh(19158, "makehuman_base.obj"); });
-    EXPECT_NE(e.find("group 'body'"), std::string::npos) << e;
+    EXPECT_NE(e.find("group 'body' of body.obj"), std::string::npos) << e;
     EXPECT_NE(e.find("with 100 vertices, but makehuman_base.obj has 19158"), std::string::npos)
         << e;
     // The group is written back, and not twice.
