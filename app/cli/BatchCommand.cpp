@@ -4,9 +4,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <tuple>
+#include <vector>
 
 #include "Commands.h"
 #include "FrameRange.h"
@@ -159,7 +162,7 @@ std::pair<int, int> parseShard(const std::string& text) {
     return {i, n};
 }
 
-enum class Sidecar { Missing, Complete, OtherSettings };
+enum class Sidecar { Missing, Complete, OtherSettings, InputsChanged };
 
 // One file however it is spelled (relative to the working folder, through "..", a symbolic link):
 // sidecars written before the manifest's paths were made absolute name them relative.
@@ -171,10 +174,37 @@ bool sameFile(const json& recorded, const std::string& path) {
     return !a && !b && x == y;
 }
 
+// Fingerprints of the files this run has read so far: a library's takes share a few meshes and
+// maps, each read once however many takes name it.
+using Fingerprints = std::map<std::pair<std::string, bool>, std::string>;
+
+// Why the job's input files are not those its sidecar's fingerprints describe, or "" if they are:
+// a map corrected since, a mesh edited, a take recaptured. A sidecar that records none (an older
+// Boneless wrote it) cannot vouch for its inputs either.
+std::string changedInputs(const json& recorded, const TakeJob& job, Fingerprints& known) {
+    if (!recorded.is_object()) return "its sidecar does not record what its inputs held";
+    std::vector<std::string> changed;
+    for (const auto& [key, path, contents] :
+         {std::tuple{"mesh", &job.mesh, true}, {"c3d", &job.c3d, false}, {"map", &job.map, true}}) {
+        auto it = known.find({*path, contents});
+        if (it == known.end())
+            it = known.emplace(std::pair{*path, contents}, fileFingerprint(*path, contents)).first;
+        if (recorded.value(key, json()) != it->second)
+            changed.push_back(fs::path(*path).filename().string());
+    }
+    if (changed.empty()) return "";
+    std::string names;
+    for (std::size_t i = 0; i < changed.size(); ++i)
+        names += (i == 0 ? "" : i + 1 == changed.size() ? " and " : ", ") + changed[i];
+    return names + (changed.size() == 1 ? " changed since it was" : " changed since they were") +
+           " solved";
+}
+
 // A take is done when its sidecar says it completed from the same sources into the same format,
-// over the frames and with the options the manifest asks for now. A complete sidecar from other
-// frames or options means the manifest changed: the take is solved again.
-Sidecar sidecarState(const TakeJob& job) {
+// over the frames and with the options the manifest asks for now, and its input files are as
+// they were then. A complete sidecar from other frames or options means the manifest changed,
+// from other file contents that the files did: the take is solved again (`why` says which).
+Sidecar sidecarState(const TakeJob& job, Fingerprints& known, std::string& why) {
     std::ifstream in(takeJobSidecar(job));
     if (!in) return Sidecar::Missing;
     try {
@@ -195,9 +225,10 @@ Sidecar sidecarState(const TakeJob& job) {
         const bool sameRest =
             !job.writeCalibratedRest ||
             (rest.is_string() && fs::exists(fs::path(job.out) / rest.get<std::string>()));
-        return sameFrames && sameRest && s.at("options") == toJson(options)
-                   ? Sidecar::Complete
-                   : Sidecar::OtherSettings;
+        if (!(sameFrames && sameRest && s.at("options") == toJson(options)))
+            return Sidecar::OtherSettings;
+        why = changedInputs(s.value("source_fingerprints", json()), job, known);
+        return why.empty() ? Sidecar::Complete : Sidecar::InputsChanged;
     } catch (const json::exception&) {
         return Sidecar::Missing;  // unreadable or from an older version: solve it again
     } catch (const Error&) {
@@ -213,11 +244,14 @@ void run(const BatchArgs& args) {
         if (static_cast<int>(k % shards) == shard - 1) ++mine;
     int done = 0;
     std::set<std::string> notedMeshes;  // mesh and group
+    std::set<std::string> notedMaps;
+    Fingerprints fingerprints;
     for (std::size_t k = 0; k < jobs.size(); ++k) {
         if (static_cast<int>(k % shards) != shard - 1) continue;
         const TakeJob& job = jobs[k];
         std::printf("[%d/%d] %s -> %s: ", ++done, mine, job.c3d.c_str(), job.out.c_str());
-        const Sidecar sidecar = sidecarState(job);
+        std::string changed;
+        const Sidecar sidecar = sidecarState(job, fingerprints, changed);
         if (sidecar == Sidecar::Complete) {
             std::printf("skipped (its sidecar says it is complete)\n");
             ++skipped;
@@ -225,12 +259,14 @@ void run(const BatchArgs& args) {
         }
         if (sidecar == Sidecar::OtherSettings)
             std::printf("its sidecar is from other frames or options, solving again: ");
+        if (sidecar == Sidecar::InputsChanged) std::printf("%s, solving again: ", changed.c_str());
         std::fflush(stdout);
         const auto start = std::chrono::steady_clock::now();
         std::vector<std::string> meshWarnings;  // filled once the mesh is read
         std::vector<std::string> takeWarnings;  // and the take's once it is opened
+        std::string mapWarning;                 // and the map's once it is read
         try {
-            const ExportResult r = runTakeJob(job, true, &meshWarnings, &takeWarnings);
+            const ExportResult r = runTakeJob(job, true, &meshWarnings, &takeWarnings, &mapWarning);
             std::printf(
                 "%d frames in %.1f s\n", r.framesWritten,
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
@@ -246,6 +282,9 @@ void run(const BatchArgs& args) {
         std::fflush(stdout);
         for (const std::string& w : takeWarnings)
             std::fprintf(stderr, "  warning: %s: %s\n", job.c3d.c_str(), w.c_str());
+        // Said once per map, as the mesh's notes: a library's takes share a few maps.
+        if (!mapWarning.empty() && notedMaps.insert(job.map).second)
+            std::fprintf(stderr, "  warning: %s\n", mapWarning.c_str());
         // A library of takes shares a few meshes: what one lacks is said once, solved or not.
         if (!meshWarnings.empty() && notedMeshes.insert(job.mesh + "\n" + job.group).second)
             for (const std::string& w : meshWarnings)

@@ -6,6 +6,8 @@
 
 #include "Commands.h"
 #include "OptionFlags.h"
+#include "TakeJob.h"
+#include "boneless/ActorCalibration.h"
 #include "boneless/C3dReader.h"
 #include "boneless/Error.h"
 #include "boneless/MarkerSuggestion.h"
@@ -47,6 +49,7 @@ void registerMapCommand(CLI::App& app) {
         const std::optional<Correspondence> truth =
             args->check.empty() ? std::nullopt
                                 : std::optional<Correspondence>(Correspondence::read(args->check));
+        checkMapFitsMesh(partial, mesh, args->mesh, args->group);
         Suggestion s = suggestMappings(mesh, take, partial);
         // The map records the mesh it was made on, as the app's maps do.
         if (s.map.meshFile.empty())
@@ -54,7 +57,7 @@ void registerMapCommand(CLI::App& app) {
         if (s.map.meshGroup.empty()) s.map.meshGroup = args->group;
         if (s.map.meshVertices == 0) s.map.meshVertices = mesh.vertexCount();
         s.map.write(args->out);
-        if (s.proposals.empty())
+        if (s.proposals.empty() && s.offBody.empty())
             std::printf(
                 "%s: %zu markers, nothing to suggest: every marker seen in the take is "
                 "mapped\n",
@@ -66,6 +69,13 @@ void registerMapCommand(CLI::App& app) {
                 args->out.c_str(), s.map.markers.size(), s.suggested, s.needsReview,
                 s.calibration.frame, s.calibration.visibleMarkers, s.calibration.residual,
                 s.calibration.takeToMesh.scale, s.fittedFrame);
+        if (!s.offBody.empty()) {
+            std::string labels;
+            for (const std::string& label : s.offBody)
+                labels += (labels.empty() ? "" : ", ") + label;
+            std::printf("  left unmapped, more than %g mm from the fitted body: %s\n",
+                        kUnreachableMm, labels.c_str());
+        }
         for (const Proposal& p : s.proposals)
             if (p.needsReview)
                 std::printf("  review %s (vertex %d): %s\n", p.label.c_str(), p.vertex,

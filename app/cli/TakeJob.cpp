@@ -14,6 +14,7 @@
 #include "OptionFlags.h"
 #include "boneless/C3dFrameReader.h"
 #include "boneless/Error.h"
+#include "boneless/MarkerSuggestion.h"
 #include "boneless/MeshReader.h"
 #include "boneless/TakeOptionsJson.h"
 
@@ -79,6 +80,16 @@ void addTakeJobOptions(CLI::App* cmd, TakeJob& job) {
                   "Also write <stem>_calibrated_rest.obj, the rest fitted to the actor");
 }
 
+void checkMapFitsMesh(const Correspondence& map, const TriMesh& mesh, const std::string& meshPath,
+                      const std::string& group) {
+    try {
+        map.checkMesh(mesh.vertexCount(), meshPath, &mesh);
+    } catch (const Error& e) {
+        if (map.meshGroup.empty() || map.meshGroup == group) throw;
+        throw Error(std::string(e.what()) + "; open it with --group " + map.meshGroup);
+    }
+}
+
 std::string takeJobSidecar(const TakeJob& job) {
     ExportRequest request;
     request.meshPath = job.mesh;
@@ -105,7 +116,7 @@ void warnOfOtherFrames(const std::string& out, const std::string& stem, const Ex
 }  // namespace
 
 ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>* meshWarnings,
-                        std::vector<std::string>* takeWarnings) {
+                        std::vector<std::string>* takeWarnings, std::string* mapWarning) {
     ExportRequest request;
     const auto format = findExportFormat(job.format);
     if (!format) throw Error("unknown output format '" + job.format + "'");
@@ -140,6 +151,21 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
         for (const std::string& w : take.take().warnings)
             std::fprintf(stderr, "warning: %s: %s\n", job.c3d.c_str(), w.c_str());
     const Correspondence map = Correspondence::read(job.map);
+    checkMapFitsMesh(map, mesh, job.mesh, job.group);
+    // Not an error: the user may have looked and accepted them; but a suggestion on a prop or
+    // the wrong limb pulls the mesh there, and nothing else would say so.
+    if (const std::vector<std::string> review = labelsToReview(map); !review.empty()) {
+        std::string labels;
+        for (const std::string& label : review) labels += (labels.empty() ? "" : ", ") + label;
+        const std::string warning =
+            job.map + ": " + std::to_string(review.size()) +
+            (review.size() == 1 ? " suggested entry is" : " suggested entries are") +
+            " still marked for review: " + labels;
+        if (mapWarning)
+            *mapWarning = warning;
+        else
+            std::fprintf(stderr, "warning: %s\n", warning.c_str());
+    }
     // Refused or noted before the solver is prepared (the export would cut the range itself).
     withinFrames(range, job.frames, static_cast<int>(take.frameCount()), job.c3d, "solving");
 

@@ -27,14 +27,22 @@ struct TakeJob {
 // flag per option of core's table, named as its JSON key.
 void addTakeJobOptions(CLI::App* command, TakeJob& job);
 
+// Checks the map against the mesh read from `meshPath` (Correspondence::checkMesh), and when the
+// map was made on another OBJ group than `group`, says which --group to open the mesh with.
+void checkMapFitsMesh(const boneless::Correspondence& map, const boneless::TriMesh& mesh,
+                      const std::string& meshPath, const std::string& group);
+
 // Where the job's sidecar goes: OUT/<stem>.json.
 std::string takeJobSidecar(const TakeJob& job);
 
 // Reads the inputs, solves and writes. Progress and the mesh's warnings go to stderr unless
 // `quiet`; with `meshWarnings`, the warnings go there instead. The take's warnings (a truncated
 // file, ...) go to stderr, quiet or not, or to `takeWarnings` when given; the sidecar records them
-// too. Ctrl-C stops after the frames being solved and throws Error (the files written and the
-// sidecar are complete). Throws Error naming the file or option for bad input.
+// too. A map with entries `map suggest` marked for review is solved as it is, with a warning
+// naming them, on stderr, quiet or not, or in `mapWarning` when given. Ctrl-C stops after the
+// frames being solved and throws Error (the files written and the sidecar are complete). Throws
+// Error naming the file or option for bad input.
 boneless::ExportResult runTakeJob(const TakeJob& job, bool quiet,
                                   std::vector<std::string>* meshWarnings = nullptr,
-                                  std::vector<std::string>* takeWarnings = nullptr);
+                                  std::vector<std::string>* takeWarnings = nullptr,
+                                  std::string* mapWarning = nullptr);

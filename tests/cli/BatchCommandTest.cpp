@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -145,6 +146,59 @@ TEST(Batch, ATakeAskedForOtherFramesOrOptionsIsSolvedAgain) {
     r = runCli("batch " + path.string());
     EXPECT_NE(r.out.find("1 solved, 0 skipped"), std::string::npos) << r.out;
     EXPECT_EQ(json::parse(std::ifstream(sidecar))["options"]["marker_weight"], 5.0);
+}
+
+// The user corrects the map and runs the manifest again: before, every take was skipped, since
+// its sidecar said complete, and the frames solved with the wrong map stayed.
+TEST(Batch, ATakeWhoseMapMeshOrFileChangedIsSolvedAgainSayingWhich) {
+    const fs::path dir = makeLibrary();
+    const fs::path manifest = writeManifest(dir, "m.json", folderManifest("out"));
+    ASSERT_EQ(runCli("batch " + manifest.string()).exitCode, 0);
+    const fs::path sidecar = dir / "out" / "walk_b" / "walker.json";
+    EXPECT_TRUE(json::parse(std::ifstream(sidecar))["source_fingerprints"]["map"].is_string());
+
+    json map = json::parse(std::ifstream(dir / "walker.map.json"));
+    map["markers"][0]["offset_mm"] = 12.0;
+    std::ofstream(dir / "walker.map.json") << map.dump(2);
+    CliResult r = runCli("batch " + manifest.string());
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("walker.map.json changed since it was solved, solving again"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("3 solved, 0 skipped"), std::string::npos) << r.out;
+    r = runCli("batch " + manifest.string());  // as solved now: done
+    EXPECT_NE(r.out.find("0 solved, 3 skipped"), std::string::npos) << r.out;
+
+    // The same bytes again are the same map; a mesh edited and a take rewritten are not.
+    std::ofstream(dir / "walker.obj", std::ios::app) << "# edited\n";
+    const fs::path take = dir / "takes" / "walk_a.c3d";
+    fs::last_write_time(take, fs::last_write_time(take) + std::chrono::seconds(5));
+    r = runCli("batch " + manifest.string());
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("walker.obj and walk_a.c3d changed since they were solved"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("walk_b.c3d -> " + (dir / "out" / "walk_b").string() +
+                         ": walker.obj changed since it was solved"),
+              std::string::npos)
+        << r.out;
+}
+
+// A sidecar from before the fingerprints cannot say its inputs are unchanged.
+TEST(Batch, ASidecarThatRecordsNoFingerprintsIsSolvedAgain) {
+    const fs::path dir = makeLibrary();
+    const fs::path manifest = writeManifest(dir, "m.json", folderManifest("out"));
+    ASSERT_EQ(runCli("batch " + manifest.string()).exitCode, 0);
+    const fs::path sidecar = dir / "out" / "walk_c" / "walker.json";
+    json j = json::parse(std::ifstream(sidecar));
+    j.erase("source_fingerprints");
+    std::ofstream(sidecar) << j.dump();
+    const CliResult r = runCli("batch " + manifest.string());
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("its sidecar does not record what its inputs held, solving again"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("1 solved, 2 skipped"), std::string::npos) << r.out;
 }
 
 TEST(Batch, AFailingTakeDoesNotStopTheOthersButFailsTheRun) {
@@ -323,4 +377,23 @@ TEST(Batch, ABadFormatOrFrameRangeIsNamedBeforeAnythingIsSolved) {
         EXPECT_NE(r.out.find(message), std::string::npos) << r.out;
         EXPECT_FALSE(fs::exists(dir / "a")) << r.out;
     }
+}
+
+// A suggested entry still marked for review may sit on a prop or the wrong limb: the run says so,
+// once for the map its takes share, and solves anyway (the user may have accepted them).
+TEST(Batch, SaysOnceWhichEntriesOfTheSharedMapAreStillMarkedForReview) {
+    const fs::path dir = makeLibrary();
+    json map = json::parse(std::ifstream(dir / "walker.map.json"));
+    for (json& m : map["markers"])
+        if (m["label"] == "LFHD" || m["label"] == "RBHD") m["needs_review"] = true;
+    std::ofstream(dir / "walker.map.json") << map.dump(2);
+    const CliResult r =
+        runCli("batch " + writeManifest(dir, "m.json", folderManifest("out")).string());
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("3 solved, 0 skipped, 0 failed"), std::string::npos) << r.out;
+    const std::string warning = "warning: " + (dir / "walker.map.json").string() +
+                                ": 2 suggested entries are still marked for review: LFHD, RBHD";
+    const size_t first = r.out.find(warning);
+    ASSERT_NE(first, std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find(warning, first + 1), std::string::npos) << r.out;  // three takes, once
 }

@@ -326,15 +326,19 @@ bool Document::markerSuggested(int marker) const {
     if (marker < 0 || marker >= markerCount() || markers_[marker].mapping < 0) return false;
     const auto extra =
         nlohmann::json::parse(map_.markers[markers_[marker].mapping].extraJson, nullptr, false);
-    return extra.is_object() && extra.value("suggested", false) == true;
+    // Compared, not read as bool: a hand-edited "suggested": "yes" would throw from value<bool>.
+    return extra.is_object() && extra.contains("suggested") && extra["suggested"] == true;
 }
 
 QString Document::markerReviewReason(int marker) const {
     if (!markerSuggested(marker)) return {};
     const auto extra =
         nlohmann::json::parse(map_.markers[markers_[marker].mapping].extraJson, nullptr, false);
-    if (extra.value("needs_review", false) != true) return {};
-    return QString::fromStdString(extra.value("review_reason", std::string("needs review")));
+    if (!extra.contains("needs_review") || extra["needs_review"] != true) return {};
+    const auto reason = extra.find("review_reason");
+    return QString::fromStdString(reason != extra.end() && reason->is_string()
+                                      ? reason->get<std::string>()
+                                      : std::string("needs review"));
 }
 
 int Document::markerForVertex(int vertex) const {

@@ -117,10 +117,11 @@ bool Document::clearMapping(int marker) {
 }
 
 bool Document::setOffsetMm(const std::vector<int>& markers, double mm) {
-    if (!std::isfinite(mm) || std::abs(mm) > kMaxOffsetMm)
-        return fail(tr("An offset off the skin of %1 mm is not a marker's; up to %2 mm either way.")
+    if (!(mm >= Correspondence::kMinOffsetMm && mm <= Correspondence::kMaxOffsetMm))
+        return fail(tr("An offset off the skin of %1 mm is not a marker's: from %2 to %3 mm.")
                         .arg(mm)
-                        .arg(kMaxOffsetMm));
+                        .arg(Correspondence::kMinOffsetMm)
+                        .arg(Correspondence::kMaxOffsetMm));
     MapState after = mapState();
     int changed = 0;
     for (int marker : markers) {
@@ -144,7 +145,7 @@ bool Document::clearAllMappings() {
     return true;
 }
 
-bool Document::suggestMappings(int* suggested, int* toCheck) {
+bool Document::suggestMappings(int* suggested, int* toCheck, QStringList* offBody) {
     if (!hasMesh_ || !hasTake_) return fail(tr("Suggesting needs a mesh and a take."));
     MapState after = mapState();
     Suggestion s;
@@ -156,6 +157,8 @@ bool Document::suggestMappings(int* suggested, int* toCheck) {
     }
     if (suggested) *suggested = s.suggested;
     if (toCheck) *toCheck = s.needsReview;
+    if (offBody)
+        for (const std::string& label : s.offBody) *offBody << QString::fromStdString(label);
     if (s.suggested == 0) return true;
     pushMapEdit(tr("Suggest %n marker(s)", nullptr, s.suggested), std::move(after));
     return true;

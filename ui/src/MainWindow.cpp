@@ -25,6 +25,7 @@
 #include "FrameDisplay.h"
 #include "OffsetRow.h"
 #include "SuggestionHighlight.h"
+#include "boneless/ActorCalibration.h"
 #include "boneless/ui/AppIcon.h"
 #include "boneless/ui/Document.h"
 #include "boneless/ui/ExportDialog.h"
@@ -518,19 +519,25 @@ void MainWindow::onVertexPicked(int vertex) {
 
 bool MainWindow::suggestMappings() {
     int suggested = 0, toCheck = 0;
-    if (!document_->suggestMappings(&suggested, &toCheck)) return false;
+    QStringList offBody;
+    if (!document_->suggestMappings(&suggested, &toCheck, &offBody)) return false;
     // What this click added: markers suggested by an earlier click are the user's map by now.
-    if (suggested == 0)
-        statusBar()->showMessage(tr("Nothing to suggest: every marker seen in the take is mapped"),
-                                 10000);
+    QString message;
+    if (suggested == 0 && offBody.isEmpty())
+        message = tr("Nothing to suggest: every marker seen in the take is mapped");
     else if (toCheck == 0)
-        statusBar()->showMessage(tr("%n marker(s) suggested", nullptr, suggested), 10000);
+        message = tr("%n marker(s) suggested", nullptr, suggested);
     else
-        statusBar()->showMessage(
+        message =
             tr("%n marker(s) suggested, %1 of them to check: the list's \"To check\" shows them",
                nullptr, suggested)
-                .arg(toCheck),
-            15000);
+                .arg(toCheck);
+    // A prop's or another actor's markers: no place on this body, so none was given.
+    if (!offBody.isEmpty())
+        message += tr("; left unmapped, more than %1 mm from the body: %2")
+                       .arg(kUnreachableMm)
+                       .arg(offBody.join(", "));
+    statusBar()->showMessage(message, toCheck == 0 && offBody.isEmpty() ? 10000 : 15000);
     return true;
 }
 

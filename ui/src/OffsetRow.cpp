@@ -5,6 +5,7 @@
 #include <QLabel>
 #include <QPushButton>
 
+#include "boneless/Correspondence.h"
 #include "boneless/ui/Document.h"
 
 namespace boneless::ui {
@@ -13,7 +14,7 @@ QLayout* makeOffsetRow(Document* document) {
     auto* row = new QHBoxLayout;
     auto* spin = new QDoubleSpinBox;
     spin->setObjectName("offsetSpin");
-    spin->setRange(-Document::kMaxOffsetMm, Document::kMaxOffsetMm);
+    spin->setRange(Correspondence::kMinOffsetMm, Correspondence::kMaxOffsetMm);
     spin->setDecimals(1);
     spin->setSuffix(QObject::tr(" mm"));
     spin->setKeyboardTracking(false);  // one edit when the number is finished, not per digit

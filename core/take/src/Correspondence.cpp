@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <climits>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -96,6 +97,13 @@ Correspondence Correspondence::fromJson(const std::string& text, const std::stri
         mapping.label = get<std::string>(m, "label", path, where);
         mapping.vertex = get<int>(m, "vertex", path, where + " (" + mapping.label + ")");
         mapping.offsetMm = m.contains("offset_mm") ? get<double>(m, "offset_mm", path, where) : 0.0;
+        if (!(mapping.offsetMm >= Correspondence::kMinOffsetMm &&
+              mapping.offsetMm <= Correspondence::kMaxOffsetMm)) {
+            char value[64];
+            std::snprintf(value, sizeof value, "%g", mapping.offsetMm);
+            fail(path, where + " (" + mapping.label + "): \"offset_mm\" " + value +
+                           " is out of range (a marker sits -50 to 200 mm off the skin)");
+        }
         if (version >= 2 && m.contains("face")) {
             const std::string at = where + " (" + mapping.label + ")";
             mapping.face = get<int>(m, "face", path, at);
@@ -163,10 +171,12 @@ void Correspondence::write(const std::string& path) const {
 void Correspondence::checkMesh(int vertexCount, const std::string& meshPath,
                                const TriMesh* mesh) const {
     const std::string file = source_.empty() ? "correspondence" : source_;
-    // A whole OBJ read where the map was made on one of its groups is the likely slip.
+    // A whole OBJ read where the map was made on one of its groups is the likely slip: the
+    // message names the group and its file, and the caller says how to open it (a flag, a menu).
+    const std::string madeOn = meshFile.empty() ? "its OBJ" : meshFile;
     if (meshVertices != 0 && meshVertices != vertexCount)
         fail(file, "was made for " +
-                       (meshGroup.empty() ? "a mesh" : "group '" + meshGroup + "' of its OBJ") +
+                       (meshGroup.empty() ? "a mesh" : "group '" + meshGroup + "' of " + madeOn) +
                        " with " + std::to_string(meshVertices) + " vertices, but " + meshPath +
                        " has " + std::to_string(vertexCount));
     for (const auto& m : markers)
@@ -189,6 +199,7 @@ void Correspondence::checkMesh(int vertexCount, const std::string& meshPath,
 }
 
 std::vector<std::size_t> Correspondence::resolve(const C3dTake& take) const {
+    const std::string file = source_.empty() ? "correspondence" : source_;
     std::vector<std::size_t> points;
     std::string unknown;
     for (const auto& m : markers) {
@@ -197,11 +208,17 @@ std::vector<std::size_t> Correspondence::resolve(const C3dTake& take) const {
             unknown += (unknown.empty() ? "" : ", ") + m.label;
             continue;
         }
+        // A model's output (a joint angle, a force, a segment axis) is stored as a point too, but
+        // its numbers are no place on the body: pulled to, they fling the mesh about.
+        const C3dPoint& point = take.points[*index];
+        if (point.kind != C3dPointKind::Marker)
+            fail(file, "marker " + m.label + " names " +
+                           (point.kind == C3dPointKind::Angle ? "an " : "a ") +
+                           toString(point.kind) + " point of " + take.file +
+                           " (a model output), not a marker");
         points.push_back(*index);
     }
-    if (!unknown.empty())
-        fail(source_.empty() ? "correspondence" : source_,
-             "labels not found in " + take.file + ": " + unknown);
+    if (!unknown.empty()) fail(file, "labels not found in " + take.file + ": " + unknown);
     return points;
 }
 

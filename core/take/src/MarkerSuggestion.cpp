@@ -8,6 +8,7 @@
 #include <set>
 
 #include "SuggestionSides.h"
+#include "boneless/ActorCalibration.h"
 #include "boneless/C3dTake.h"
 #include "boneless/Error.h"
 #include "boneless/TakeSolver.h"
@@ -105,9 +106,12 @@ struct Draft {
 // `wanted` markers, and gives each of those the free vertex that follows it best over the kept
 // fits (the right vertex stays near its marker however the actor moves, where one fit's nearest
 // may be a neighbour): surest first, so that a vertex two markers want goes to the nearer one.
+// A marker no vertex comes within kUnreachableMm of over the fits is not on the body (a prop,
+// another actor): it gets no vertex, and goes to `offBody` instead.
 std::vector<Draft> draft(const TriMesh& rest, const C3dTake& take, const Correspondence& known,
                          const std::vector<std::size_t>& wanted, const MirrorPlane& mirror,
-                         Calibration& calibration, int& fittedFrame) {
+                         Calibration& calibration, int& fittedFrame,
+                         std::vector<std::size_t>& offBody) {
     // The rest is first fitted to the actor at the alignment's frame, as solve does: the limbs
     // between the picks then take the actor's lengths (CMU 85_02, six picks: 17 to 20 of 35).
     TakeSolver solver(rest, take, known, TakeSolveOptions{});
@@ -154,8 +158,14 @@ std::vector<Draft> draft(const TriMesh& rest, const C3dTake& take, const Corresp
     }
     const std::vector<Eigen::VectorXd> choice = withMirror(rest, take, known, wanted, mirror, cost);
     std::vector<std::size_t> order;
-    for (std::size_t w = 0; w < wanted.size(); ++w)
-        if (std::isfinite(cost[w].minCoeff())) order.push_back(w);  // never seen: no proposal
+    for (std::size_t w = 0; w < wanted.size(); ++w) {
+        const double best = cost[w].minCoeff();
+        if (!std::isfinite(best)) continue;  // never seen: no proposal
+        if (best > kUnreachableMm * unitsPerMm)
+            offBody.push_back(wanted[w]);
+        else
+            order.push_back(w);
+    }
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
         return choice[a].minCoeff() < choice[b].minCoeff();
     });
@@ -235,8 +245,9 @@ Suggestion suggestMappings(const TriMesh& rest, const C3dTake& take,
     out.map = partial;
     if (wanted.empty()) return out;  // every marker seen is mapped: nothing to fit the mesh for
     const MirrorPlane mirror(rest, sides);
+    std::vector<std::size_t> offBody;
     for (const Draft& d :
-         draft(rest, take, partial, wanted, mirror, out.calibration, out.fittedFrame)) {
+         draft(rest, take, partial, wanted, mirror, out.calibration, out.fittedFrame, offBody)) {
         Proposal p;
         p.label = markerName(take.points[d.point]);
         p.vertex = d.vertex;
@@ -255,7 +266,20 @@ Suggestion suggestMappings(const TriMesh& rest, const C3dTake& take,
         out.proposals.push_back(p);
     }
     out.suggested = static_cast<int>(out.proposals.size());
+    for (std::size_t p : offBody) out.offBody.push_back(take.points[p].label);
     return out;
+}
+
+std::vector<std::string> labelsToReview(const Correspondence& map) {
+    std::vector<std::string> labels;
+    for (const MarkerMapping& m : map.markers) {
+        const auto extra =
+            nlohmann::json::parse(m.extraJson.empty() ? "{}" : m.extraJson, nullptr, false);
+        // Compared, not read as a bool: a hand-edited "yes" is no mark, and no crash either.
+        if (extra.is_object() && extra.contains("needs_review") && extra["needs_review"] == true)
+            labels.push_back(m.label);
+    }
+    return labels;
 }
 
 }  // namespace boneless

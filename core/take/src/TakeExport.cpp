@@ -1,13 +1,17 @@
 #include "boneless/TakeExport.h"
 
+#include <sys/stat.h>
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
+#include <cstdint>
 #include <cstdio>
+#include <ctime>
 #include <exception>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -15,6 +19,7 @@
 #include <numeric>
 #include <optional>
 #include <thread>
+#include <vector>
 
 #include "FrameOutput.h"
 #include "SolveMemory.h"
@@ -158,7 +163,7 @@ json calibrationJson(const ExportRequest& request, const TriMesh& mesh, const Ta
 }
 
 json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibration& c,
-                 const ExportResult& result, json calibration, json summary) {
+                 const ExportResult& result, json fingerprints, json calibration, json summary) {
     const Similarity& s = c.takeToMesh;
     const double meshUnitsPerMm = s.scale / take.unitToMm;
     const TakeSolveOptions& o = request.options;
@@ -174,6 +179,7 @@ json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibr
               {"group", request.group},
               {"c3d", request.c3dPath},
               {"map", request.mapPath}}},
+            {"source_fingerprints", std::move(fingerprints)},
             {"units",
              {{"take", take.units},
               {"mesh_guess", guessMeshUnits(meshUnitsPerMm)},
@@ -302,9 +308,12 @@ SolveMemory solveMemory(const TriMesh& mesh, const ExportRequest& request) {
 }
 
 // What both sources check before a solver is built: the options, and that the mesh fits memory.
-void checkRequest(const TriMesh& mesh, const ExportRequest& request) {
+void checkRequest(const TriMesh& mesh, const Correspondence& map, const ExportRequest& request) {
     validate(request.options);
     checkSolveFits(mesh, request.meshPath, request.options.solver.method);
+    // Here, where the mesh's file is known: the solver's own check can only say "the mesh".
+    map.checkMesh(mesh.vertexCount(), request.meshPath.empty() ? "the mesh" : request.meshPath,
+                  &mesh);
 }
 
 // take: what the sidecar says of the take (its samples are not read).
@@ -328,6 +337,10 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
     result.sidecarPath = (out / (stem + ".json")).string();
     // While the outputs are being rewritten, no earlier sidecar may say they are complete.
     fs::remove(result.sidecarPath, ec);
+    // Taken before solving: a map corrected while the take solves is not the one solved.
+    const json fingerprints = {{"mesh", fileFingerprint(request.meshPath, true)},
+                               {"c3d", fileFingerprint(request.c3dPath, false)},
+                               {"map", fileFingerprint(request.mapPath, true)}};
     FrameOutput output = openFrameOutput(request.format, request.outDir, stem, mesh, request.first,
                                          take.rate, "Boneless: " + request.c3dPath);
 
@@ -371,18 +384,51 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
                      return true;
                  });
     output.finish();
-    perFrame.write(result.sidecarPath, sidecarJson(take, request, solver.calibration(), result,
-                                                   calibrationJson(request, mesh, solver, restFile),
-                                                   perFrame.summary()));
+    perFrame.write(
+        result.sidecarPath,
+        sidecarJson(take, request, solver.calibration(), result, fingerprints,
+                    calibrationJson(request, mesh, solver, restFile), perFrame.summary()));
     return result;
 }
 
 }  // namespace
 
+std::string fileFingerprint(const std::string& path, bool contents) {
+    std::error_code ec;
+    const std::uintmax_t bytes = fs::file_size(path, ec);
+    if (ec) return "unreadable";
+    if (!contents) {
+        // stat's time, not filesystem's: C++17 cannot say a file_time_type in calendar time.
+        struct stat st {};
+        if (::stat(path.c_str(), &st) != 0) return "unreadable";
+        std::tm utc{};
+        gmtime_r(&st.st_mtim.tv_sec, &utc);
+        char modified[64];
+        std::strftime(modified, sizeof modified, "%Y-%m-%d %H:%M:%S", &utc);
+        char nanoseconds[16];
+        std::snprintf(nanoseconds, sizeof nanoseconds, ".%09ld", st.st_mtim.tv_nsec);
+        return std::to_string(bytes) + " bytes, modified " + modified + nanoseconds + " UTC";
+    }
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return "unreadable";
+    std::uint64_t hash = 14695981039346656037ull;  // FNV-1a: a few ms for a mesh of megabytes
+    std::vector<char> buffer(1 << 16);
+    while (in.read(buffer.data(), buffer.size()) || in.gcount() > 0) {
+        const std::streamsize got = in.gcount();
+        for (std::streamsize i = 0; i < got; ++i) {
+            hash ^= static_cast<unsigned char>(buffer[i]);
+            hash *= 1099511628211ull;
+        }
+    }
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash));
+    return std::to_string(bytes) + " bytes, FNV-1a " + hex;
+}
+
 ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspondence& map,
                         const ExportRequest& request, const ExportProgress& progress,
                         const ExportCalibrated& calibrated) {
-    checkRequest(mesh, request);
+    checkRequest(mesh, map, request);
     TakeSolver solver(mesh, take, map, request.options);
     return exportSolved(solver, mesh, take, map, request, progress, calibrated);
 }
@@ -390,7 +436,7 @@ ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspo
 ExportResult exportTake(const TriMesh& mesh, const C3dFrameReader& take, const Correspondence& map,
                         const ExportRequest& request, const ExportProgress& progress,
                         const ExportCalibrated& calibrated) {
-    checkRequest(mesh, request);
+    checkRequest(mesh, map, request);
     TakeSolver solver(mesh, take, map, request.options);
     return exportSolved(solver, mesh, take.take(), map, request, progress, calibrated);
 }

@@ -99,7 +99,7 @@ TEST(Correspondence, AMapMadeOnAGroupSaysSoWhenTheWholeFileIsGiven) {
     const Correspondence c = Correspondence::read(writeTestFile("group.json", text));
     EXPECT_EQ(c.meshGroup, "body");
     const std::string e = errorOf([&] { c.checkMesh(19158, "makehuman_base.obj"); });
-    EXPECT_NE(e.find("group 'body'"), std::string::npos) << e;
+    EXPECT_NE(e.find("group 'body' of body.obj"), std::string::npos) << e;
     EXPECT_NE(e.find("with 100 vertices, but makehuman_base.obj has 19158"), std::string::npos)
         << e;
     // The group is written back, and not twice.
@@ -134,4 +134,47 @@ TEST(Correspondence, FromJsonTextMatchesTheFileAndNamesItsSource) {
                 << e.what();
         }
     }
+}
+
+TEST(Correspondence, AnOffsetNoMarkerSitsAtIsRefusedNamingTheEntryAndTheValue) {
+    for (const char* offset : {"-500", "5000", "200.5"}) {
+        const std::string text = std::string(R"({"format": "boneless-correspondence",
+          "version": 1, "markers": [{"label": "RFHD", "vertex": 3},
+                                    {"label": "LFHD", "vertex": 4, "offset_mm": )") +
+                                 offset + "}]}";
+        const std::string e =
+            errorOf([&] { Correspondence::read(writeTestFile("offset.json", text)); });
+        EXPECT_NE(e.find("offset.json: marker 1 (LFHD): \"offset_mm\" " + std::string(offset)),
+                  std::string::npos)
+            << e;
+        EXPECT_NE(e.find("-50 to 200 mm"), std::string::npos) << e;
+    }
+    // The ends of the range, and a marker a little under a clothed mesh's surface, still read.
+    for (const char* offset : {"-50", "-5", "200"})
+        EXPECT_NO_THROW(Correspondence::fromJson(
+            std::string(R"({"format": "boneless-correspondence", "version": 1,
+              "markers": [{"label": "A", "vertex": 1, "offset_mm": )") +
+                offset + "}]}",
+            "in range"));
+}
+
+TEST(Correspondence, ALabelNamingAModelOutputIsNoMarker) {
+    const Correspondence c = Correspondence::read(writeTestFile("angle.json", R"({
+      "format": "boneless-correspondence", "version": 1,
+      "markers": [{"label": "LFHD", "vertex": 1}, {"label": "LKneeAngles", "vertex": 2}]})"));
+    C3dTake take;
+    take.file = "gait.c3d";
+    for (const auto& [label, kind] :
+         {std::pair{"LFHD", C3dPointKind::Marker}, std::pair{"LKneeAngles", C3dPointKind::Angle}}) {
+        C3dPoint p;
+        p.label = label;
+        p.kind = kind;
+        splitC3dLabel(label, p.subject, p.name);
+        take.points.push_back(p);
+    }
+    const std::string e = errorOf([&] { c.resolve(take); });
+    EXPECT_NE(e.find("angle.json: marker LKneeAngles names an angle point of gait.c3d"),
+              std::string::npos)
+        << e;
+    EXPECT_NE(e.find("not a marker"), std::string::npos) << e;
 }

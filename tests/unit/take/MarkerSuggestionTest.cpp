@@ -199,6 +199,35 @@ TEST(MarkerSuggestion, FlagsAMarkerFarOffTheSkin) {
         << far.reviewReason;
 }
 
+// A prop's or another actor's markers are not the body's: proposed anyway, they pulled the mesh
+// to them when solved (ezc3d's Vicon.c3d: the box's 8 markers 429 to 706 mm off the fitted body).
+TEST(MarkerSuggestion, AMarkerFarFromTheBodyIsLeftUnmappedAndNamed) {
+    const TriMesh mesh = icosphere(2);
+    const std::vector<int> ids{0, 7, 19, 33, 48, 77};
+    // The last marker stands 500 mm off a 1 m sphere, past kUnreachableMm (300).
+    C3dTake take = takeOnVertices(mesh, ids, 0.5, 5);
+    Correspondence partial;
+    partial.meshVertices = mesh.vertexCount();
+    for (int k = 0; k < 4; ++k)
+        partial.markers.push_back({"M" + std::to_string(k), ids[k], 0, "{}"});
+    const Suggestion s = suggestMappings(mesh, take, partial);
+    EXPECT_EQ(s.suggested, 1);
+    EXPECT_EQ(proposalFor(s, "M4").vertex, ids[4]);
+    EXPECT_EQ(s.map.find("M5"), nullptr);
+    EXPECT_EQ(s.offBody, std::vector<std::string>{"actor:M5"});
+}
+
+TEST(MarkerSuggestion, TheEntriesStillMarkedForReviewAreListedInMapOrder) {
+    Correspondence map;
+    map.markers.push_back({"LFHD", 1, 10, R"({"suggested": true, "needs_review": true})"});
+    map.markers.push_back({"RFHD", 2, 10, R"({"suggested": true})"});
+    map.markers.push_back({"T10", 3, 10, R"({"needs_review": true, "review_reason": "far"})"});
+    map.markers.push_back({"C7", 4, 10, R"({"needs_review": false})"});
+    map.markers.push_back({"STRN", 5, 10, ""});
+    map.markers.push_back({"CLAV", 6, 10, R"({"needs_review": "yes"})"});
+    EXPECT_EQ(labelsToReview(map), (std::vector<std::string>{"LFHD", "T10"}));
+}
+
 TEST(MarkerSuggestion, TheDemoWalkersSuggestionsLandOnTheirOwnVertices) {
     const DemoWalker walker = makeDemoWalker();
     const DemoTake demo = makeDemoWalkerTake(walker);

@@ -37,8 +37,15 @@ class Correspondence {
     int meshVertices = 0;
     std::vector<MarkerMapping> markers;
 
+    // Markers sit 0 to 30 mm off the skin (a sphere on its base, a bulky suit); a little below
+    // zero fits a mesh whose surface is clothing, and 200 mm leaves room for a standoff or a
+    // headband. Beyond, the value is a slip (metres, a sign), which the solve would only report
+    // as a marker the mesh cannot reach.
+    static constexpr double kMinOffsetMm = -50.0, kMaxOffsetMm = 200.0;
+
     // Throws Error naming the file and the entry for malformed JSON, a wrong format or version,
-    // missing keys, negative ids, duplicate labels or duplicate vertices.
+    // missing keys, negative ids, duplicate labels or duplicate vertices, or an offset_mm outside
+    // -50 to 200.
     static Correspondence read(const std::string& path);
     // The same from JSON text (a project file embeds it); `source` names it in messages.
     static Correspondence fromJson(const std::string& text, const std::string& source);
@@ -50,7 +57,8 @@ class Correspondence {
     // vertex one of its corners (faces: the triangulated mesh's, when given). Throws Error.
     void checkMesh(int vertexCount, const std::string& meshPath,
                    const TriMesh* mesh = nullptr) const;
-    // The take's point index for each marker, in order; throws Error listing unknown labels.
+    // The take's point index for each marker, in order; throws Error listing unknown labels, or
+    // naming a label whose point is no marker (an angle, a force, a virtual point).
     std::vector<std::size_t> resolve(const C3dTake& take) const;
 
     const MarkerMapping* find(const std::string& label) const;

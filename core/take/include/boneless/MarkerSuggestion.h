@@ -1,6 +1,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "boneless/Alignment.h"
 #include "boneless/Correspondence.h"
@@ -25,6 +26,9 @@ struct Suggestion {
     std::vector<Proposal> proposals;  // one per suggested entry, in the map's order
     int suggested = 0;
     int needsReview = 0;
+    // Markers left unmapped because no fit comes within kUnreachableMm of them (a prop, another
+    // actor): their labels as the take gives them ("boite:1"), in the take's order.
+    std::vector<std::string> offBody;
 };
 
 // Proposes a vertex for every marker of the take that `partial` does not map. The take is
@@ -38,8 +42,13 @@ struct Suggestion {
 // "needs_review": true with a "review_reason" when it lies far from the fitted mesh, when another
 // part of the body fits it about as well, when it is named for one side (L…/R…, as the mapped pairs
 // show the sides) and lands on the other, or when it is not seen on the best fit's frame. Only
-// points classified as markers are considered. Throws Error naming what is missing, or a mapped
-// marker the mesh cannot reach.
+// points classified as markers are considered, and one farther than kUnreachableMm from every
+// vertex over the fits (a prop, another actor) gets no entry: Suggestion::offBody names it.
+// Throws Error naming what is missing, or a mapped marker the mesh cannot reach.
 Suggestion suggestMappings(const TriMesh& rest, const C3dTake& take, const Correspondence& partial);
+
+// The labels of the map's entries still marked "needs_review": true (the app clears the mark
+// when the user accepts or moves one), in the map's order.
+std::vector<std::string> labelsToReview(const Correspondence& map);
 
 }  // namespace boneless

@@ -63,6 +63,12 @@ ExportResult exportTake(const TriMesh& mesh, const C3dFrameReader& take, const C
                         const ExportRequest& request, const ExportProgress& progress = {},
                         const ExportCalibrated& calibrated = {});
 
+// What the sidecar's "source_fingerprints" records of an input file, so that a later run can tell
+// it changed since it was solved: with `contents`, its size and a hash of its bytes (FNV-1a, 64
+// bits); else its size and modification time, for files too large to read twice (a take).
+// "unreadable" when it cannot be read.
+std::string fileFingerprint(const std::string& path, bool contents);
+
 // The nearest of mm/cm/dm/m to the mesh's unit, from how many mesh units a millimetre is.
 const char* guessMeshUnits(double meshUnitsPerMm);
 

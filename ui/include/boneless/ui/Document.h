@@ -111,15 +111,15 @@ class Document : public QObject {
     bool assign(int marker, int vertex);
     bool clearMapping(int marker);
     // How far the mapped `markers` sit off the skin (mm, along the normal), one undo step.
-    // Refused for a value that is not finite or beyond kMaxOffsetMm either way.
+    // Refused outside Correspondence::kMinOffsetMm to kMaxOffsetMm, as a map file would be.
     bool setOffsetMm(const std::vector<int>& markers, double mm);
-    static constexpr double kMaxOffsetMm = 100.0;
     bool clearAllMappings();
     // Proposes a vertex for every unmapped marker (needs at least 4 mapped). The alignment is
     // left as it is: the proposals' own alignment is only used to place them. `suggested` and
     // `toCheck`, when given, receive how many markers this call proposed and how many of those
-    // are marked for review.
-    bool suggestMappings(int* suggested = nullptr, int* toCheck = nullptr);
+    // are marked for review; `offBody` the markers left unmapped as too far from the body.
+    bool suggestMappings(int* suggested = nullptr, int* toCheck = nullptr,
+                         QStringList* offBody = nullptr);
     // Fixes the alignment from the mapped markers (at least 3); calibrationFrame -1 = automatic.
     bool align(int calibrationFrame = -1);
     bool clearAlignment();
