@@ -99,10 +99,11 @@ Correspondence Correspondence::fromJson(const std::string& text, const std::stri
         mapping.offsetMm = m.contains("offset_mm") ? get<double>(m, "offset_mm", path, where) : 0.0;
         if (!(mapping.offsetMm >= Correspondence::kMinOffsetMm &&
               mapping.offsetMm <= Correspondence::kMaxOffsetMm)) {
-            char value[64];
-            std::snprintf(value, sizeof value, "%g", mapping.offsetMm);
-            fail(path, where + " (" + mapping.label + "): \"offset_mm\" " + value +
-                           " is out of range (a marker sits -50 to 200 mm off the skin)");
+            char value[160];  // the bounds from the constants, so the message follows them
+            std::snprintf(
+                value, sizeof value, "%g is out of range (a marker sits %g to %g mm off the skin)",
+                mapping.offsetMm, Correspondence::kMinOffsetMm, Correspondence::kMaxOffsetMm);
+            fail(path, where + " (" + mapping.label + "): \"offset_mm\" " + value);
         }
         if (version >= 2 && m.contains("face")) {
             const std::string at = where + " (" + mapping.label + ")";
