@@ -18,6 +18,7 @@
 #include "boneless/Error.h"
 #include "boneless/ExportFormat.h"
 #include "boneless/TakeOptionsJson.h"
+#include "boneless/Text.h"
 
 using namespace boneless;
 using nlohmann::json;
@@ -57,11 +58,10 @@ void applyKeys(const json& object, const fs::path& base, const std::string& wher
                 // Checked as solve's flag is, here rather than when the entry's turn comes.
                 job.format = value.get<std::string>();
                 if (!findExportFormat(job.format)) {
-                    std::string names;
-                    for (const ExportFormatInfo& f : exportFormats())
-                        names += std::string(names.empty() ? "" : ", ") + f.name;
-                    throw Error(where + ": unknown format '" + job.format + "' (expected " + names +
-                                ")");
+                    std::vector<std::string> names;
+                    for (const ExportFormatInfo& f : exportFormats()) names.push_back(f.name);
+                    throw Error(where + ": unknown format '" + job.format + "' (expected " +
+                                joined(names) + ")");
                 }
             } else if (key == "frames") {
                 job.frames = value.get<std::string>();

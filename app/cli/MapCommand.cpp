@@ -13,6 +13,7 @@
 #include "boneless/MarkerSuggestion.h"
 #include "boneless/MeshReader.h"
 #include "boneless/SuggestionCheck.h"
+#include "boneless/Text.h"
 
 using namespace boneless;
 
@@ -57,7 +58,7 @@ void registerMapCommand(CLI::App& app) {
         if (s.map.meshGroup.empty()) s.map.meshGroup = args->group;
         if (s.map.meshVertices == 0) s.map.meshVertices = mesh.vertexCount();
         s.map.write(args->out);
-        if (s.proposals.empty() && s.offBody.empty())
+        if (s.proposals.empty() && s.offBody.empty() && s.otherSubjects.empty())
             std::printf(
                 "%s: %zu markers, nothing to suggest: every marker seen in the take is "
                 "mapped\n",
@@ -69,13 +70,12 @@ void registerMapCommand(CLI::App& app) {
                 args->out.c_str(), s.map.markers.size(), s.suggested, s.needsReview,
                 s.calibration.frame, s.calibration.visibleMarkers, s.calibration.residual,
                 s.calibration.takeToMesh.scale, s.fittedFrame);
-        if (!s.offBody.empty()) {
-            std::string labels;
-            for (const std::string& label : s.offBody)
-                labels += (labels.empty() ? "" : ", ") + label;
+        if (!s.offBody.empty())
             std::printf("  left unmapped, more than %g mm from the fitted body: %s\n",
-                        kUnreachableMm, labels.c_str());
-        }
+                        kUnreachableMm, joined(s.offBody).c_str());
+        if (!s.otherSubjects.empty())
+            std::printf("  left unmapped, worn by a subject no mapped marker names: %s\n",
+                        joined(s.otherSubjects).c_str());
         for (const Proposal& p : s.proposals)
             if (p.needsReview)
                 std::printf("  review %s (vertex %d): %s\n", p.label.c_str(), p.vertex,

@@ -17,6 +17,7 @@
 #include "boneless/MarkerSuggestion.h"
 #include "boneless/MeshReader.h"
 #include "boneless/TakeOptionsJson.h"
+#include "boneless/Text.h"
 
 using namespace boneless;
 
@@ -155,12 +156,10 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
     // Not an error: the user may have looked and accepted them; but a suggestion on a prop or
     // the wrong limb pulls the mesh there, and nothing else would say so.
     if (const std::vector<std::string> review = labelsToReview(map); !review.empty()) {
-        std::string labels;
-        for (const std::string& label : review) labels += (labels.empty() ? "" : ", ") + label;
         const std::string warning =
             job.map + ": " + std::to_string(review.size()) +
             (review.size() == 1 ? " suggested entry is" : " suggested entries are") +
-            " still marked for review: " + labels;
+            " still marked for review: " + joined(review);
         if (mapWarning)
             *mapWarning = warning;
         else

@@ -5,11 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <nlohmann/json.hpp>
 
 #include "MapEditCommand.h"
 #include "boneless/C3dReader.h"
 #include "boneless/Error.h"
+#include "boneless/MarkerSuggestion.h"
 #include "boneless/MeshReader.h"
 
 namespace boneless::ui {
@@ -276,14 +276,10 @@ void Document::rebuildMarkers() {
     autoAlignment_.reset();
     markers_.clear();
     if (hasTake_) {
-        // A marker is named as a map names it: without the subject ("LFWT" for "Male:LFWT") while
-        // that bare name still finds this point, so the list's narrow column tells L from R.
-        for (std::size_t p : take_.markerIndices()) {
-            const C3dPoint& point = take_.points[p];
-            const bool bare = !point.name.empty() && take_.findPoint(point.name) == p;
-            markers_.push_back(
-                {QString::fromStdString(bare ? point.name : point.label), int(p), -1});
-        }
+        // A marker is named as a map names it: without the subject ("LFWT" for "Male:LFWT") unless
+        // another subject wears that name, so the list's narrow column tells L from R.
+        for (std::size_t p : take_.markerIndices())
+            markers_.push_back({QString::fromStdString(take_.shortLabel(p)), int(p), -1});
     }
     for (int i = 0; i < static_cast<int>(map_.markers.size()); ++i) {
         const MarkerMapping& m = map_.markers[i];
@@ -324,21 +320,13 @@ double Document::markerOffsetMm(int marker) const {
 
 bool Document::markerSuggested(int marker) const {
     if (marker < 0 || marker >= markerCount() || markers_[marker].mapping < 0) return false;
-    const auto extra =
-        nlohmann::json::parse(map_.markers[markers_[marker].mapping].extraJson, nullptr, false);
-    // Compared, not read as bool: a hand-edited "suggested": "yes" would throw from value<bool>.
-    return extra.is_object() && extra.contains("suggested") && extra["suggested"] == true;
+    return suggestionMark(map_.markers[markers_[marker].mapping]).suggested;
 }
 
 QString Document::markerReviewReason(int marker) const {
-    if (!markerSuggested(marker)) return {};
-    const auto extra =
-        nlohmann::json::parse(map_.markers[markers_[marker].mapping].extraJson, nullptr, false);
-    if (!extra.contains("needs_review") || extra["needs_review"] != true) return {};
-    const auto reason = extra.find("review_reason");
-    return QString::fromStdString(reason != extra.end() && reason->is_string()
-                                      ? reason->get<std::string>()
-                                      : std::string("needs review"));
+    if (marker < 0 || marker >= markerCount() || markers_[marker].mapping < 0) return {};
+    return QString::fromStdString(
+        suggestionMark(map_.markers[markers_[marker].mapping]).reviewReason);
 }
 
 int Document::markerForVertex(int vertex) const {

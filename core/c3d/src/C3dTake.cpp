@@ -122,16 +122,28 @@ std::string_view trimView(std::string_view s) {
 }
 }  // namespace
 
-std::optional<std::size_t> C3dTake::findPoint(std::string_view label) const {
+std::vector<std::size_t> C3dTake::pointsNamed(std::string_view label) const {
     label = trimView(label);
     for (std::size_t i = 0; i < points.size(); ++i)
-        if (c3dNameEquals(trimView(points[i].label), label)) return i;
+        if (c3dNameEquals(trimView(points[i].label), label)) return {i};
     // The caller may give "subject:NAME" for a file without prefixes, or "NAME" for one with.
     std::string subject, name;
     splitC3dLabel(label, subject, name);
+    std::vector<std::size_t> out;
     for (std::size_t i = 0; i < points.size(); ++i)
-        if (c3dNameEquals(trimView(points[i].name), trimView(name))) return i;
-    return std::nullopt;
+        if (c3dNameEquals(trimView(points[i].name), trimView(name))) out.push_back(i);
+    return out;
+}
+
+std::optional<std::size_t> C3dTake::findPoint(std::string_view label) const {
+    const std::vector<std::size_t> named = pointsNamed(label);
+    if (named.size() != 1) return std::nullopt;
+    return named.front();
+}
+
+std::string C3dTake::shortLabel(std::size_t point) const {
+    const C3dPoint& p = points.at(point);
+    return !p.name.empty() && findPoint(p.name) == point ? p.name : p.label;
 }
 
 std::vector<std::size_t> C3dTake::markerIndices() const {

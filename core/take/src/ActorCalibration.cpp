@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "boneless/Error.h"
+#include "boneless/Text.h"
 
 namespace boneless {
 
@@ -98,14 +99,14 @@ Positions fitActorShape(Reconstruction& solver, const Positions& targets,
     // onto a leg names the knee and shin too), and it is the farthest of them.
     std::sort(unreachable.begin(), unreachable.end(),
               [](const auto& a, const auto& b) { return a.first > b.first; });
-    std::string list;
+    std::vector<std::string> list;
     for (const auto& [mm, label] : unreachable) {
         char line[160];
-        std::snprintf(line, sizeof line, "%s%s (%.0f mm from where the other markers put it)",
-                      list.empty() ? "" : ", ", label.c_str(), mm);
-        list += line;
+        std::snprintf(line, sizeof line, "%s (%.0f mm from where the other markers put it)",
+                      label.c_str(), mm);
+        list.push_back(line);
     }
-    throw Error("the mesh cannot reach the actor at the calibration frame: marker " + list +
+    throw Error("the mesh cannot reach the actor at the calibration frame: marker " + joined(list) +
                 " (farthest first); check the map for these markers, or solve without calibrating "
                 "(calibrate none)");
 }

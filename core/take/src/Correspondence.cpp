@@ -14,6 +14,7 @@
 #include "boneless/C3dTake.h"
 #include "boneless/Error.h"
 #include "boneless/ObjWriter.h"
+#include "boneless/Text.h"
 #include "boneless/TriMesh.h"
 
 namespace boneless {
@@ -202,24 +203,32 @@ void Correspondence::checkMesh(int vertexCount, const std::string& meshPath,
 std::vector<std::size_t> Correspondence::resolve(const C3dTake& take) const {
     const std::string file = source_.empty() ? "correspondence" : source_;
     std::vector<std::size_t> points;
-    std::string unknown;
+    std::vector<std::string> unknown;
     for (const auto& m : markers) {
-        const auto index = take.findPoint(m.label);
-        if (!index) {
-            unknown += (unknown.empty() ? "" : ", ") + m.label;
+        const std::vector<std::size_t> named = take.pointsNamed(m.label);
+        if (named.empty()) {
+            unknown.push_back(m.label);
             continue;
         }
+        // A bare name two subjects wear would bind to whichever the file lists first.
+        if (named.size() > 1) {
+            std::vector<std::string> labels;
+            for (std::size_t p : named) labels.push_back(take.points[p].label);
+            fail(file, "marker " + m.label + " is worn by more than one subject in " + take.file +
+                           " (" + joined(labels) + "); write the subject prefix");
+        }
+        const auto index = named.front();
         // A model's output (a joint angle, a force, a segment axis) is stored as a point too, but
         // its numbers are no place on the body: pulled to, they fling the mesh about.
-        const C3dPoint& point = take.points[*index];
+        const C3dPoint& point = take.points[index];
         if (point.kind != C3dPointKind::Marker)
             fail(file, "marker " + m.label + " names " +
                            (point.kind == C3dPointKind::Angle ? "an " : "a ") +
                            toString(point.kind) + " point of " + take.file +
                            " (a model output), not a marker");
-        points.push_back(*index);
+        points.push_back(index);
     }
-    if (!unknown.empty()) fail(file, "labels not found in " + take.file + ": " + unknown);
+    if (!unknown.empty()) fail(file, "labels not found in " + take.file + ": " + joined(unknown));
     return points;
 }
 

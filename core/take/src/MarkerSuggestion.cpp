@@ -82,7 +82,10 @@ std::vector<Eigen::VectorXd> withMirror(const TriMesh& rest, const C3dTake& take
     std::vector<Eigen::VectorXd> out = cost;
     if (!mirror.known()) return out;
     for (std::size_t w = 0; w < wanted.size(); ++w) {
-        const MarkerMapping* m = known.find(SideCheck::partner(markerName(take.points[wanted[w]])));
+        const auto partner = take.findPoint(SideCheck::partner(take.points[wanted[w]].label));
+        const MarkerMapping* m = nullptr;
+        for (const MarkerMapping& k : known.markers)
+            if (partner && take.findPoint(k.label) == partner) m = &k;
         if (!m || !SideCheck::side(m->label)) continue;
         const Vec3 target = mirror.reflect(rest.V.row(m->vertex).transpose());
         const Eigen::VectorXd d2 = (rest.V.rowwise() - target.transpose()).rowwise().squaredNorm();
@@ -228,10 +231,19 @@ Suggestion suggestMappings(const TriMesh& rest, const C3dTake& take,
     partial.checkMesh(rest.vertexCount(), "the mesh", &rest);
     const std::vector<std::size_t> mapped = partial.resolve(take);
     const std::set<std::size_t> mappedPoints(mapped.begin(), mapped.end());
+    // A second actor's markers are not this body's: counted among the wanted, they would pick
+    // the fits by how far another person stands.
+    std::set<std::string> subjects;
+    for (std::size_t p : mapped) subjects.insert(take.points[p].subject);
     std::vector<std::size_t> wanted;  // unmapped markers the take shows at least once
-    for (std::size_t p : take.markerIndices())
-        if (!mappedPoints.count(p) && take.samples.missingFrames(p) < take.frameCount())
+    std::vector<std::string> otherSubjects;
+    for (std::size_t p : take.markerIndices()) {
+        if (mappedPoints.count(p) || take.samples.missingFrames(p) == take.frameCount()) continue;
+        if (subjects.count(take.points[p].subject))
             wanted.push_back(p);
+        else
+            otherSubjects.push_back(take.points[p].label);
+    }
     const SideCheck sides(rest, partial);
     // A proposal sits off the skin as the user's picks do: the distance to a fit is no offset,
     // since a fit from a few picks misses the body between them by centimetres (CMU 85_02: the
@@ -243,13 +255,14 @@ Suggestion suggestMappings(const TriMesh& rest, const C3dTake& take,
 
     Suggestion out;
     out.map = partial;
+    out.otherSubjects = otherSubjects;
     if (wanted.empty()) return out;  // every marker seen is mapped: nothing to fit the mesh for
     const MirrorPlane mirror(rest, sides);
     std::vector<std::size_t> offBody;
     for (const Draft& d :
          draft(rest, take, partial, wanted, mirror, out.calibration, out.fittedFrame, offBody)) {
         Proposal p;
-        p.label = markerName(take.points[d.point]);
+        p.label = take.shortLabel(d.point);
         p.vertex = d.vertex;
         p.reviewReason = reviewReason(d, p.label, sides, rest);
         p.needsReview = !p.reviewReason.empty();
@@ -270,15 +283,26 @@ Suggestion suggestMappings(const TriMesh& rest, const C3dTake& take,
     return out;
 }
 
+SuggestionMark suggestionMark(const MarkerMapping& entry) {
+    SuggestionMark mark;
+    const auto extra = nlohmann::json::parse(entry.extraJson, nullptr, false);
+    if (!extra.is_object()) return mark;
+    const auto isTrue = [&](const char* key) { return extra.contains(key) && extra[key] == true; };
+    mark.suggested = isTrue("suggested");
+    mark.needsReview = isTrue("needs_review");
+    if (mark.needsReview) {
+        const auto reason = extra.find("review_reason");
+        mark.reviewReason = reason != extra.end() && reason->is_string()
+                                ? reason->get<std::string>()
+                                : std::string("needs review");
+    }
+    return mark;
+}
+
 std::vector<std::string> labelsToReview(const Correspondence& map) {
     std::vector<std::string> labels;
-    for (const MarkerMapping& m : map.markers) {
-        const auto extra =
-            nlohmann::json::parse(m.extraJson.empty() ? "{}" : m.extraJson, nullptr, false);
-        // Compared, not read as a bool: a hand-edited "yes" is no mark, and no crash either.
-        if (extra.is_object() && extra.contains("needs_review") && extra["needs_review"] == true)
-            labels.push_back(m.label);
-    }
+    for (const MarkerMapping& m : map.markers)
+        if (suggestionMark(m).needsReview) labels.push_back(m.label);
     return labels;
 }
 

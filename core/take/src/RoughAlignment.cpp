@@ -127,9 +127,9 @@ Calibration roughAlignment(const C3dTake& take, const std::vector<std::size_t>& 
         centre += *x;
         floor = std::min(floor, x->z());
         ++counted;
-        const std::string name = markerName(take.points[p]);
-        if (SideCheck::side(name) != 'L') continue;
-        const auto partner = take.findPoint(SideCheck::partner(name));
+        const std::string& label = take.points[p].label;
+        if (SideCheck::side(label) != 'L') continue;
+        const auto partner = take.findPoint(SideCheck::partner(label));
         if (!partner) continue;
         if (const auto y = take.samples.position(c.frame, *partner)) left += *x - *y;
     }

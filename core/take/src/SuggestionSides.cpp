@@ -6,16 +6,25 @@
 
 namespace boneless {
 
+namespace {
+// Where the marker's own name starts: after a "subject:" prefix, if any.
+std::size_t nameStart(const std::string& label) {
+    const std::size_t colon = label.find(':');
+    return colon == std::string::npos ? 0 : colon + 1;
+}
+}  // namespace
+
 char SideCheck::side(const std::string& label) {
-    if (label.size() < 3 || (label[0] != 'L' && label[0] != 'R') ||
-        !std::isupper(static_cast<unsigned char>(label[1])))
+    const std::size_t i = nameStart(label);
+    if (label.size() < i + 3 || (label[i] != 'L' && label[i] != 'R') ||
+        !std::isupper(static_cast<unsigned char>(label[i + 1])))
         return 0;
-    return label[0];
+    return label[i];
 }
 
 std::string SideCheck::partner(const std::string& label) {
     std::string other = label;
-    if (side(label)) other[0] = label[0] == 'L' ? 'R' : 'L';
+    if (const char s = side(label)) other[nameStart(label)] = s == 'L' ? 'R' : 'L';
     return other;
 }
 

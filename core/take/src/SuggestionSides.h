@@ -2,16 +2,10 @@
 
 #include <string>
 
-#include "boneless/C3dTake.h"
 #include "boneless/Correspondence.h"
 #include "boneless/TriMesh.h"
 
 namespace boneless {
-
-// A take's marker as labels and sides name it: without its subject prefix, or as stored.
-inline std::string markerName(const C3dPoint& p) {
-    return p.name.empty() ? p.label : p.name;
-}
 
 // Left and right as the picks name them: a marker named L… whose partner R… exists is on the
 // left. The picks that come in such pairs (LWRA and RWRA) give the mesh's left direction and
@@ -23,7 +17,8 @@ class SideCheck {
     // the label's side (or within the margin of the mid-plane); otherwise why not.
     std::string mismatch(const std::string& label, const Vec3& restPoint) const;
 
-    // 'L', 'R' or 0: the side a label names when `partner` (L↔R swapped) is also a label.
+    // 'L', 'R' or 0: the side a label names when `partner` (L↔R swapped) is also a label. A
+    // subject prefix is kept: "B:LWRA"'s partner is "B:RWRA".
     static char side(const std::string& label);
     static std::string partner(const std::string& label);
 

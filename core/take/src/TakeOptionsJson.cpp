@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "boneless/Error.h"
+#include "boneless/Text.h"
 
 namespace boneless {
 
@@ -217,12 +218,10 @@ void fromJson(const json& object, SolverOptions& options, const std::string& whe
 
 std::string checkOptionValue(const TakeOption& option, const json& value) {
     if (option.kind == TakeOption::Kind::Choice) {
-        std::string names;
-        for (const std::string& c : option.choices) names += (names.empty() ? "" : ", ") + c;
         const auto& c = option.choices;
         if (value.is_string() && std::find(c.begin(), c.end(), value.get<std::string>()) != c.end())
             return "";
-        return "must be one of " + names + ", got " + value.dump();
+        return "must be one of " + joined(c) + ", got " + value.dump();
     }
     const bool integer = option.kind == TakeOption::Kind::Integer;
     const std::string wanted = std::string(integer ? "a whole number" : "a number") +

@@ -305,10 +305,18 @@ TEST(C3dTake, FindPointIgnoresSubjectPrefix) {
     C3dTake t = syntheticTake(1, {"male:LFHD", "female:LFHD", "RFHD"});
     EXPECT_EQ(t.findPoint("male:LFHD"), 0u);
     EXPECT_EQ(t.findPoint("female:LFHD"), 1u);
-    EXPECT_EQ(t.findPoint("LFHD"), 0u);  // first in file order
-    EXPECT_EQ(t.findPoint("lfhd "), 0u);
     EXPECT_EQ(t.findPoint("other:RFHD"), 2u);
+    EXPECT_EQ(t.findPoint("rfhd "), 2u);
     EXPECT_FALSE(t.findPoint("LBHD").has_value());
+}
+
+TEST(C3dTake, ABareNameTwoSubjectsWearFindsNeitherAndShortLabelsKeepTheirSubject) {
+    C3dTake t = syntheticTake(1, {"male:LFHD", "female:LFHD", "male:RFHD"});
+    EXPECT_FALSE(t.findPoint("LFHD").has_value());
+    EXPECT_EQ(t.pointsNamed("lfhd "), (std::vector<std::size_t>{0, 1}));
+    EXPECT_EQ(t.shortLabel(0), "male:LFHD");
+    EXPECT_EQ(t.shortLabel(1), "female:LFHD");
+    EXPECT_EQ(t.shortLabel(2), "RFHD");
 }
 
 TEST(C3dTake, MissingSampleIsNeverAPosition) {

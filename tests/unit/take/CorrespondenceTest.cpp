@@ -178,3 +178,26 @@ TEST(Correspondence, ALabelNamingAModelOutputIsNoMarker) {
         << e;
     EXPECT_NE(e.find("not a marker"), std::string::npos) << e;
 }
+
+TEST(Correspondence, ABareLabelTwoSubjectsWearIsRefusedAskingForTheSubject) {
+    C3dTake take;
+    take.file = "pair.c3d";
+    for (const char* label : {"A:ASISr", "B:ASISr", "A:LFHD"}) {
+        C3dPoint p;
+        p.label = label;
+        splitC3dLabel(label, p.subject, p.name);
+        take.points.push_back(p);
+    }
+    const auto mapOf = [](const char* label) {
+        return Correspondence::fromJson(std::string(R"({"format": "boneless-correspondence",
+          "version": 1, "markers": [{"label": "LFHD", "vertex": 1}, {"label": ")") +
+                                            label + R"(", "vertex": 2}]})",
+                                        "pair.json");
+    };
+    const std::string e = errorOf([&] { mapOf("ASISr").resolve(take); });
+    EXPECT_NE(e.find("pair.json: marker ASISr is worn by more than one subject in pair.c3d "
+                     "(A:ASISr, B:ASISr); write the subject prefix"),
+              std::string::npos)
+        << e;
+    EXPECT_EQ(mapOf("B:ASISr").resolve(take), (std::vector<std::size_t>{2, 1}));
+}

@@ -105,10 +105,15 @@ struct C3dTake {
     std::vector<std::string> warnings;  // header/parameter disagreements, truncation, ...
 
     std::size_t frameCount() const { return samples.frames(); }
-    // Index of the point whose label, or whose name without the subject prefix, equals label
-    // (case-insensitive, surrounding spaces ignored). An exact full-label match wins; otherwise
-    // the first point in file order whose name matches.
+    // The points `label` names (case-insensitive, surrounding spaces ignored): the one whose
+    // full label equals it, else every one whose name without the subject prefix equals its name.
+    // More than one means two subjects wear the marker, and the label must say which.
+    std::vector<std::size_t> pointsNamed(std::string_view label) const;
+    // The point `label` names, when exactly one does.
     std::optional<std::size_t> findPoint(std::string_view label) const;
+    // The shortest label that finds `point`: its name without the subject ("LFWT" for
+    // "Male:LFWT") unless another subject wears that name too.
+    std::string shortLabel(std::size_t point) const;
     std::vector<std::size_t> markerIndices() const;
 };
 

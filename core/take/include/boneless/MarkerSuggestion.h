@@ -29,6 +29,8 @@ struct Suggestion {
     // Markers left unmapped because no fit comes within kUnreachableMm of them (a prop, another
     // actor): their labels as the take gives them ("boite:1"), in the take's order.
     std::vector<std::string> offBody;
+    // Markers of a subject no pick names ("B:LFHD" when the picks are A's), left unmapped.
+    std::vector<std::string> otherSubjects;
 };
 
 // Proposes a vertex for every marker of the take that `partial` does not map. The take is
@@ -47,8 +49,18 @@ struct Suggestion {
 // Throws Error naming what is missing, or a mapped marker the mesh cannot reach.
 Suggestion suggestMappings(const TriMesh& rest, const C3dTake& take, const Correspondence& partial);
 
-// The labels of the map's entries still marked "needs_review": true (the app clears the mark
-// when the user accepts or moves one), in the map's order.
+// What `suggest` wrote on a map entry, as the user left it: "suggested": true, and
+// "needs_review": true with its "review_reason" (the app clears both when the user accepts or
+// moves the entry). Anything but a JSON true is no mark: a hand-edited "yes" neither counts nor
+// throws.
+struct SuggestionMark {
+    bool suggested = false;
+    bool needsReview = false;
+    std::string reviewReason;  // "needs review" when the mark gives none
+};
+SuggestionMark suggestionMark(const MarkerMapping& entry);
+
+// The labels of the map's entries still marked "needs_review": true, in the map's order.
 std::vector<std::string> labelsToReview(const Correspondence& map);
 
 }  // namespace boneless
