@@ -293,8 +293,8 @@ class DocumentTest : public QObject {
             QCOMPARE(d.markerLabel(m), QString::fromStdString(point.name));
             QCOMPARE(d.markerByLabel(QString::fromStdString(point.label)), m);
         }
-        // A second actor wearing one of the same markers: the bare name finds the first actor's,
-        // so the second shows its full label; every other marker keeps its bare name.
+        // A second actor wearing one of the same markers: the bare name finds neither, so both
+        // show their full labels; every other marker keeps its bare name.
         C3dTake two = d.take();
         const std::size_t shared = d.markerPoint(0), alone = d.markerPoint(1);
         C3dPoint second = two.points[shared];
@@ -313,7 +313,7 @@ class DocumentTest : public QObject {
         QStringList labels;
         for (int m = 0; m < d.markerCount(); ++m) labels << d.markerLabel(m);
         for (const std::string& label :
-             {two.points[shared].name, second.label, two.points[alone].name})
+             {two.points[shared].label, second.label, two.points[alone].name})
             QVERIFY2(labels.contains(QString::fromStdString(label)), qPrintable(labels.join(' ')));
     }
 
