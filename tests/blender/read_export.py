@@ -73,6 +73,13 @@ elif FORMAT == "glb":
     for frame in FRAMES:
         scene.frame_set(frame)
         worst = max(worst, compare(frame, positions(obj, from_gltf=True)))
+    # Where a user sees it: the node stands the body up (Blender's +Z) at its size in metres.
+    co = positions(obj)
+    world = co @ numpy.array(obj.matrix_world)[:3, :3].T
+    extent = world.max(axis=0) - world.min(axis=0)
+    print(f"glb: stands {extent[2]:.2f} m tall, {extent[0]:.2f} by {extent[1]:.2f} m across")
+    if extent[2] < extent.max() or not 1.0 < extent[2] < 2.5:
+        sys.exit("glb: the body does not stand upright at a human's height")
 else:
     sys.exit(f"unknown format {FORMAT}")
 

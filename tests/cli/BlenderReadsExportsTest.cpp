@@ -19,7 +19,7 @@ bool haveBlender() {
 }
 
 // Solves take frames 2..11 of a 12-frame demo into OBJ (the reference, exact digits) and `format`,
-// then has Blender read the export at frames 2, 7 and 11.
+// then has Blender read the export at frames 2, 7 and 11 (and a glb's walker stand upright).
 void checkInBlender(const std::string& format) {
     if (!haveBlender()) GTEST_SKIP() << "blender is not installed (scripts/install-deps.sh)";
     const fs::path dir = freshTestDir("blender-" + format);

@@ -58,7 +58,7 @@ void appendU32(std::string& out, std::uint32_t v) {  // GLB is little-endian, as
 
 // The scene: one node with the mesh, its morph targets named, and an animation that steps
 // through them (none without frames).
-void addAnimatedMesh(tinygltf::Model& m, const std::string& name,
+void addAnimatedMesh(tinygltf::Model& m, const std::string& name, const GltfPlacement& placement,
                      std::vector<tinygltf::Primitive> primitives,
                      std::vector<tinygltf::Value> targetNames, int timeAccessor,
                      int weightAccessor) {
@@ -73,6 +73,9 @@ void addAnimatedMesh(tinygltf::Model& m, const std::string& name,
     tinygltf::Node node;
     node.name = name;
     node.mesh = 0;
+    const Eigen::Quaterniond q(placement.turn);
+    if (!q.isApprox(Eigen::Quaterniond::Identity())) node.rotation = {q.x(), q.y(), q.z(), q.w()};
+    if (placement.metresPerUnit != 1.0) node.scale.assign(3, placement.metresPerUnit);
     m.nodes.push_back(node);
     m.scenes.emplace_back();
     m.scenes[0].nodes = {0};
@@ -205,11 +208,13 @@ std::string readImage(const std::string& path) {
 
 }  // namespace
 
-GltfWriter::GltfWriter(std::string path, const TriMesh& rest, std::string name)
+GltfWriter::GltfWriter(std::string path, const TriMesh& rest, std::string name,
+                       GltfPlacement placement)
     : path_(std::move(path)),
       spool_(path_ + ".frames.tmp" + std::to_string(::getpid())),
       name_(std::move(name)),
-      rest_(rest) {
+      rest_(rest),
+      placement_(placement) {
     if (!splitAtUvSeams(rest_, meshVertexOf_, uv_, triangles_)) {
         meshVertexOf_.resize(static_cast<size_t>(rest_.vertexCount()));
         for (int v = 0; v < rest_.vertexCount(); ++v) meshVertexOf_[v] = v;
@@ -396,8 +401,8 @@ void GltfWriter::finish() {
         primitives.push_back(std::move(p));
         first += count;
     }
-    addAnimatedMesh(m, name_, std::move(primitives), std::move(targetNames), timeAccessor,
-                    weightAccessor);
+    addAnimatedMesh(m, name_, placement_, std::move(primitives), std::move(targetNames),
+                    timeAccessor, weightAccessor);
     const std::string json = glbJson(m, offset);
     // append() estimated the JSON; this is the file's length as written, checked before it is.
     if (28 + json.size() + offset > kMaxGlbBytes)

@@ -13,7 +13,7 @@ namespace boneless {
 
 FrameOutput openFrameOutput(ExportFormat format, const std::string& outDir, const std::string& stem,
                             const TriMesh& mesh, int first, double rate,
-                            const std::string& objComment) {
+                            const std::string& objComment, const GltfPlacement& glb) {
     const std::filesystem::path out(outDir);
     const std::string path = (out / (stem + exportFormatInfo(format).extension)).string();
     // Times in the take: frame f is at f / rate seconds, whatever range is exported.
@@ -42,7 +42,7 @@ FrameOutput openFrameOutput(ExportFormat format, const std::string& outDir, cons
             break;
         }
         case ExportFormat::Glb: {
-            auto w = std::make_shared<GltfWriter>(path, mesh, stem);
+            auto w = std::make_shared<GltfWriter>(path, mesh, stem, glb);
             o.append = [w, period](int f, const Positions& V) { w->append(f, f * period, V); };
             o.finish = [w] { w->finish(); };
             o.writer = w;

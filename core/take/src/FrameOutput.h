@@ -5,6 +5,7 @@
 #include <string>
 
 #include "boneless/ExportFormat.h"
+#include "boneless/GltfWriter.h"
 #include "boneless/TriMesh.h"
 
 namespace boneless {
@@ -18,9 +19,10 @@ struct FrameOutput {
     std::shared_ptr<void> writer;  // keeps the format's writer alive
 };
 
-// `first` is the first take frame to be written; `rate` the take's frames per second.
+// `first` is the first take frame to be written; `rate` the take's frames per second; `glb` where
+// a glb's node puts the mesh.
 FrameOutput openFrameOutput(ExportFormat format, const std::string& outDir, const std::string& stem,
                             const TriMesh& mesh, int first, double rate,
-                            const std::string& objComment);
+                            const std::string& objComment, const GltfPlacement& glb);
 
 }  // namespace boneless

@@ -38,25 +38,50 @@ namespace boneless {
 using nlohmann::json;
 namespace fs = std::filesystem;
 
-const char* guessMeshUnits(double meshUnitsPerMm) {
-    const struct {
-        const char* name;
-        double perMm;
-    } units[] = {{"mm", 1.0}, {"cm", 0.1}, {"dm", 0.01}, {"m", 0.001}};
-    const char* best = "mm";
+namespace {
+
+struct MeshUnit {
+    const char* name;
+    double perMm;
+};
+
+MeshUnit nearestUnit(double meshUnitsPerMm) {
+    const MeshUnit units[] = {{"mm", 1.0}, {"cm", 0.1}, {"dm", 0.01}, {"m", 0.001}};
+    MeshUnit best = units[0];
     double bestGap = 1e300;
     for (const auto& u : units) {
         const double gap = std::abs(std::log(meshUnitsPerMm / u.perMm));
-        if (gap < bestGap) best = u.name, bestGap = gap;
+        if (gap < bestGap) best = u, bestGap = gap;
     }
     return best;
 }
 
-std::string guessUpAxis(const Similarity& s) {
+// The signed mesh axis nearest where the take's vertical (+z) goes.
+Vec3 meshUp(const Similarity& s) {
     const Vec3 up = s.R * Vec3::UnitZ();
     int axis = 0;
     up.cwiseAbs().maxCoeff(&axis);
+    return (up[axis] < 0 ? -1.0 : 1.0) * Vec3::Unit(axis);
+}
+
+}  // namespace
+
+const char* guessMeshUnits(double meshUnitsPerMm) {
+    return nearestUnit(meshUnitsPerMm).name;
+}
+
+std::string guessUpAxis(const Similarity& s) {
+    const Vec3 up = meshUp(s);
+    const int axis = up.x() != 0 ? 0 : up.y() != 0 ? 1 : 2;
     return std::string(up[axis] < 0 ? "-" : "+") + "xyz"[axis];
+}
+
+GltfPlacement gltfPlacement(const Similarity& takeToMesh, double takeUnitToMm) {
+    GltfPlacement p;
+    p.turn =
+        Eigen::Quaterniond::FromTwoVectors(meshUp(takeToMesh), Vec3::UnitY()).toRotationMatrix();
+    p.metresPerUnit = 0.001 / nearestUnit(takeToMesh.scale / takeUnitToMm).perMm;
+    return p;
 }
 
 std::string exportStem(const ExportRequest& request) {
@@ -341,8 +366,10 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
     const json fingerprints = {{"mesh", fileFingerprint(request.meshPath, true)},
                                {"c3d", fileFingerprint(request.c3dPath, false)},
                                {"map", fileFingerprint(request.mapPath, true)}};
-    FrameOutput output = openFrameOutput(request.format, request.outDir, stem, mesh, request.first,
-                                         take.rate, "Boneless: " + request.c3dPath);
+    FrameOutput output =
+        openFrameOutput(request.format, request.outDir, stem, mesh, request.first, take.rate,
+                        "Boneless: " + request.c3dPath,
+                        gltfPlacement(solver.calibration().takeToMesh, take.unitToMm));
 
     std::string restFile;
     if (request.writeCalibratedRest) {

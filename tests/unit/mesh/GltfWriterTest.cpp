@@ -260,3 +260,27 @@ TEST(GltfExport, AnAbandonedFileLeavesNothingBehind) {
     }
     EXPECT_TRUE(fs::is_empty(dir));
 }
+
+TEST(GltfExport, TheNodePlacesTheMeshsOwnCoordinatesInGltfsFrame) {
+    const fs::path dir = freshTestDir("glb-placement");
+    const std::string path = (dir / "sphere.glb").string();
+    const TriMesh mesh = icosphere(1);
+    GltfPlacement placement;  // a Z-up mesh in decimetres
+    placement.turn = Eigen::AngleAxisd(-M_PI / 2, Vec3::UnitX()).toRotationMatrix();
+    placement.metresPerUnit = 0.1;
+    {
+        GltfWriter writer(path, mesh, "sphere", placement);
+        writer.append(0, 0.0, mesh.V);
+        writer.finish();
+    }
+    const tinygltf::Model m = load(path);
+    ASSERT_EQ(m.nodes.size(), 1u);
+    const tinygltf::Node& node = m.nodes[0];
+    ASSERT_EQ(node.rotation.size(), 4u);
+    const Eigen::Quaterniond q(node.rotation[3], node.rotation[0], node.rotation[1],
+                               node.rotation[2]);
+    EXPECT_LT((q * Vec3::UnitZ() - Vec3::UnitY()).norm(), 1e-12);  // the mesh's up is glTF's
+    EXPECT_EQ(node.scale, (std::vector<double>{0.1, 0.1, 0.1}));
+    const std::vector<float> rest = floats(m, m.meshes[0].primitives[0].attributes.at("POSITION"));
+    for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(rest[c], float(mesh.V(0, c)));
+}

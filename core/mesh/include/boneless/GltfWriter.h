@@ -19,11 +19,20 @@ namespace boneless {
 // keyed at each frame's time in the take (LINEAR: frame k has weight 1 at its time, and playback
 // between two frames blends them). The weight keys are a sparse accessor, so they grow with the
 // frame count rather than its square. An OBJ's materials become one primitive each, with their
-// colour, opacity and PNG or JPEG texture (embedded). Coordinates and units are the mesh's own.
-// Frames are spooled to a file; finish() writes the .glb under a temporary name and renames it.
+// colour, opacity and PNG or JPEG texture (embedded). The accessors hold the mesh's own
+// coordinates; the node places them in glTF's frame. Frames are spooled to a
+// file; finish() writes the .glb under a temporary name and renames it.
+// glTF's frame is +Y up in metres: the node turns the mesh's up onto +Y and scales its unit to
+// metres, so that viewers show the body standing at its size whatever axes the mesh has.
+struct GltfPlacement {
+    Mat3 turn = Mat3::Identity();  // a rotation
+    double metresPerUnit = 1.0;
+};
+
 class GltfWriter {
   public:
-    GltfWriter(std::string path, const TriMesh& rest, std::string name);
+    GltfWriter(std::string path, const TriMesh& rest, std::string name,
+               GltfPlacement placement = {});
     ~GltfWriter();  // an unfinished file is removed
     GltfWriter(const GltfWriter&) = delete;
     GltfWriter& operator=(const GltfWriter&) = delete;
@@ -36,6 +45,7 @@ class GltfWriter {
   private:
     std::string path_, spool_, name_;
     const TriMesh& rest_;
+    GltfPlacement placement_;
     std::vector<int> meshVertexOf_;           // per glTF vertex, the mesh vertex it is
     std::vector<float> uv_;                   // 2 per glTF vertex (glTF's v runs down), or empty
     std::vector<std::uint32_t> triangles_;    // glTF vertex indices, 3 per mesh triangle

@@ -7,6 +7,7 @@
 #include "boneless/C3dTake.h"
 #include "boneless/Correspondence.h"
 #include "boneless/ExportFormat.h"
+#include "boneless/GltfWriter.h"
 #include "boneless/TakeSolver.h"
 #include "boneless/TriMesh.h"
 
@@ -74,5 +75,8 @@ const char* guessMeshUnits(double meshUnitsPerMm);
 
 // The mesh axis ("+y", "-z", …) the take's vertical (C3D: +z) maps onto.
 std::string guessUpAxis(const Similarity& takeToMesh);
+
+// Where a glb's node puts the mesh: its guessed up axis onto +Y, its guessed unit to metres.
+GltfPlacement gltfPlacement(const Similarity& takeToMesh, double takeUnitToMm);
 
 }  // namespace boneless

@@ -1,0 +1,44 @@
+#include <gtest/gtest.h>
+
+#include "boneless/TakeExport.h"
+
+using namespace boneless;
+
+namespace {
+
+// A take in millimetres standing on a mesh whose up is `up`, in units of `mmPerUnit`.
+Similarity takeOnto(const Vec3& up, double mmPerUnit) {
+    Similarity s;
+    s.R = Eigen::Quaterniond::FromTwoVectors(Vec3::UnitZ(), up).toRotationMatrix();
+    s.scale = 1.0 / mmPerUnit;
+    return s;
+}
+
+}  // namespace
+
+TEST(GltfPlacement, AZUpMeshInMetresIsTurnedUpright) {
+    const GltfPlacement p = gltfPlacement(takeOnto(Vec3::UnitZ(), 1000.0), 1.0);
+    EXPECT_LT((p.turn * Vec3::UnitZ() - Vec3::UnitY()).norm(), 1e-12);
+    EXPECT_NEAR(p.turn.determinant(), 1.0, 1e-12);
+    EXPECT_DOUBLE_EQ(p.metresPerUnit, 1.0);
+}
+
+TEST(GltfPlacement, AYUpMeshInDecimetresKeepsItsAxesAndIsScaledToMetres) {
+    // MakeHuman's: an actor of 1.7 m fits a body 16.5 units tall, not quite 1 dm a unit.
+    const GltfPlacement p = gltfPlacement(takeOnto(Vec3::UnitY(), 103.0), 1.0);
+    EXPECT_LT((p.turn - Mat3::Identity()).norm(), 1e-12);
+    EXPECT_DOUBLE_EQ(p.metresPerUnit, 0.1);
+}
+
+TEST(GltfPlacement, AMeshUpsideDownAlongYIsTurnedOver) {
+    const GltfPlacement p = gltfPlacement(takeOnto(-Vec3::UnitY(), 10.0), 1.0);
+    EXPECT_LT((p.turn * -Vec3::UnitY() - Vec3::UnitY()).norm(), 1e-12);
+    EXPECT_NEAR(p.metresPerUnit, 0.01, 1e-15);
+}
+
+TEST(GltfPlacement, ATakeInMetresIsReadInMillimetres) {
+    // A take stored in metres (unitToMm 1000) on a mesh in centimetres: 100 units a metre.
+    Similarity s = takeOnto(Vec3::UnitY(), 10.0);
+    s.scale *= 1000.0;  // take units (m) to mesh units (cm)
+    EXPECT_NEAR(gltfPlacement(s, 1000.0).metresPerUnit, 0.01, 1e-15);
+}
