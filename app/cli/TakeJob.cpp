@@ -51,6 +51,24 @@ std::vector<std::string> formatNames() {
 
 }  // namespace
 
+// Said even when quiet: without it, a stretch where the actor left the volume plays as a pose
+// frozen on purpose.
+static void warnOfHeldFrames(const std::string& c3d, const ExportResult& result) {
+    if (result.held.empty()) return;
+    std::vector<std::string> runs;
+    int frames = 0;
+    for (const auto& [first, last] : result.held) {
+        runs.push_back(first == last ? std::to_string(first)
+                                     : std::to_string(first) + " to " + std::to_string(last));
+        frames += last - first + 1;
+    }
+    std::fprintf(stderr,
+                 "warning: %s: %s %s %s no marker; %s the pose of the nearest frame that shows "
+                 "one\n",
+                 c3d.c_str(), frames == 1 ? "frame" : "frames", joined(runs).c_str(),
+                 frames == 1 ? "shows" : "show", frames == 1 ? "it holds" : "each holds");
+}
+
 // The sidecar's quality figures, so a run's stretch and fit are seen without opening it.
 static void printSummary(const std::string& sidecarPath) {
     std::ifstream in(sidecarPath);
@@ -203,6 +221,7 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
                                  ".json are complete");
     if (request.format == ExportFormat::Obj)
         warnOfOtherFrames(job.out, exportStem(request), result);
+    warnOfHeldFrames(job.c3d, result);
     if (!quiet) {
         namespace fs = std::filesystem;
         const std::string stem = exportStem(request);

@@ -126,7 +126,9 @@ int main(int argc, char** argv) {
             const std::vector<double> r = dents.ratios(V);
             for (size_t k = 0; k < r.size(); ++k) perMarker[k] = std::max(perMarker[k], r[k]);
             dent.add(*std::max_element(r.begin(), r.end()), f);
-            residual.add(sidecar["per_frame"][i]["residual_rms_mm"].get<double>(), f);
+            // null on a frame that shows no marker (it holds a neighbour's pose)
+            if (const nlohmann::json& r = sidecar["per_frame"][i]["residual_rms_mm"]; !r.is_null())
+                residual.add(r.get<double>(), f);
         }
         // The options the run was solved with, read as the project reads its settings (a sidecar
         // before version 2 kept them under "solver", the calibrate mode under "calibration").

@@ -8,6 +8,8 @@
 
 #include "CliRunner.h"
 #include "TestFiles.h"
+#include "boneless/C3dReader.h"
+#include "boneless/C3dWriter.h"
 #include "boneless/MeshReader.h"
 #include "boneless/Metrics.h"
 #include "boneless/PointCacheWriter.h"
@@ -328,6 +330,35 @@ TEST(SolveCommand, SaysATakeIsTruncatedAndSolvesTheFramesItHolds) {
     const CliResult clean = runCli(solveArgs(whole, whole / "x"));
     ASSERT_EQ(clean.exitCode, 0) << clean.out;
     EXPECT_EQ(clean.out.find("warning"), std::string::npos) << clean.out;
+}
+
+// The actor leaves the volume for frames 5 to 7: those frames hold a neighbour's pose, say so,
+// and have no residual to pull the take's mean down (they were the rest mesh at the origin,
+// with a residual of 0).
+TEST(SolveCommand, FramesThatShowNoMarkerHoldANeighboursPoseAndAreNamed) {
+    const fs::path demo = makeDemo(12);
+    const fs::path take = demo / "walker.c3d";
+    C3dTake t = readC3d(take.string());
+    for (std::size_t f : {5, 6, 7})
+        for (std::size_t k = 0; k < t.points.size(); ++k) t.samples.setMissing(f, k);
+    writeC3d(t, take.string());
+    const CliResult r = runCli(solveArgs(demo, demo / "x") + " --fill-gaps-s 0 --quiet");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("warning: " + take.string() +
+                         ": frames 5 to 7 show no marker; each holds the pose of the nearest "
+                         "frame that shows one"),
+              std::string::npos)
+        << r.out;
+    const nlohmann::json s = sidecar(demo / "x");
+    EXPECT_EQ(s["summary"]["frames_held"], nlohmann::json::parse("[[5, 7]]"));
+    for (int f : {5, 6, 7}) {
+        EXPECT_TRUE(s["per_frame"][f]["residual_rms_mm"].is_null());
+        EXPECT_EQ(s["per_frame"][f]["held_from"], f == 7 ? 8 : 4);
+    }
+    EXPECT_FALSE(s["per_frame"][4].contains("held_from"));
+    const TriMesh held = readMesh((demo / "x" / "walker_0006.obj").string()).mesh;
+    const TriMesh seen = readMesh((demo / "x" / "walker_0004.obj").string()).mesh;
+    EXPECT_EQ(held.V, seen.V);
 }
 
 // The glb's morph targets carry the take's frame numbers, as the OBJ files of the same range do:

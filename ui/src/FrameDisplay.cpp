@@ -302,9 +302,11 @@ void FrameDisplay::emitStatus() {
     } else {
         solve = result_->fromCache ? tr("cached")
                                    : tr("solved in %1 ms").arg(result_->solveMs, 0, 'f', 0);
-        residual = tr("residual %1 mm (max %2)")
-                       .arg(result_->report.residualRmsMm, 0, 'f', 2)
-                       .arg(result_->report.residualMaxMm, 0, 'f', 2);
+        residual = result_->report.heldFrom >= 0
+                       ? tr("no marker seen: holding frame %1's pose").arg(result_->report.heldFrom)
+                       : tr("residual %1 mm (max %2)")
+                             .arg(result_->report.residualRmsMm, 0, 'f', 2)
+                             .arg(result_->report.residualMaxMm, 0, 'f', 2);
     }
     emit statusChanged(frame, solve, residual);
 }

@@ -36,6 +36,12 @@ MarkerTrack::MarkerTrack(const C3dTake& take, const std::vector<std::size_t>& po
         for (std::size_t k = 0; k < markers_; ++k)
             if (const auto p = take.samples.position(f, points[k]))
                 memory_.set(f, k, p->x(), p->y(), p->z());
+    for (std::size_t f = 0; f < frames_; ++f)
+        for (std::size_t k = 0; k < markers_; ++k)
+            if (memory_.valid(f, k)) {
+                seen_.push_back(static_cast<int>(f));
+                break;
+            }
     if (lowPassHz > 0) lowPassFilter(memory_, rate_, lowPassHz);
 }
 
@@ -52,6 +58,12 @@ MarkerTrack::MarkerTrack(const C3dFrameReader& reader, const std::vector<std::si
     for (std::size_t first = 0; first < frames_; first += kSpoolBlock) {
         const std::size_t count = std::min(kSpoolBlock, frames_ - first);
         const C3dSamples block = reader.read(first, count);
+        for (std::size_t f = 0; f < count; ++f)
+            for (std::size_t k = 0; k < markers_; ++k)
+                if (block.valid(f, points[k])) {
+                    seen_.push_back(static_cast<int>(first + f));
+                    break;
+                }
         for (std::size_t k = 0; k < markers_; ++k) {
             xyz.assign(3 * count, kNaN);
             for (std::size_t f = 0; f < count; ++f)
@@ -78,6 +90,14 @@ MarkerTrack::MarkerTrack(const C3dFrameReader& reader, const std::vector<std::si
             spoolColumn(k, first, xyz);
         }
     }
+}
+
+int MarkerTrack::nearestSeen(int frame) const {
+    const auto after = std::lower_bound(seen_.begin(), seen_.end(), frame);
+    if (after != seen_.end() && *after == frame) return frame;
+    if (after == seen_.begin()) return after == seen_.end() ? -1 : *after;
+    const int before = *(after - 1);
+    return after == seen_.end() || frame - before <= *after - frame ? before : *after;
 }
 
 MarkerTrack::~MarkerTrack() {

@@ -124,8 +124,19 @@ class PerFrameFigures {
         if (spool_) std::fclose(spool_);
     }
     void add(const json& f) {
-        residualSum_ += f["residual_rms_mm"].get<double>();
-        residualWorst_ = std::max(residualWorst_, f["residual_rms_mm"].get<double>());
+        // A frame without markers has no residual: it would pull the mean towards 0.
+        if (!f["residual_rms_mm"].is_null()) {
+            residualSum_ += f["residual_rms_mm"].get<double>();
+            residualWorst_ = std::max(residualWorst_, f["residual_rms_mm"].get<double>());
+            ++residualFrames_;
+        }
+        if (f.contains("held_from")) {
+            const int frame = f["frame"].get<int>();
+            if (!held_.empty() && held_.back().second == frame - 1)
+                held_.back().second = frame;
+            else
+                held_.emplace_back(frame, frame);
+        }
         distortionWorst_ = std::max(distortionWorst_, f["edge_distortion"].get<double>());
         distortionSum_ += f["edge_distortion"].get<double>();
         strainWorst_ = std::max(strainWorst_, f["edge_strain_p95"].get<double>());
@@ -145,7 +156,7 @@ class PerFrameFigures {
         std::vector<double> ms = ms_;
         std::sort(ms.begin(), ms.end());
         const std::size_t n = ms.size();
-        return {{"residual_rms_mm_mean", n ? residualSum_ / n : 0.0},
+        return {{"residual_rms_mm_mean", residualFrames_ ? residualSum_ / residualFrames_ : 0.0},
                 {"residual_rms_mm_worst_frame", residualWorst_},
                 {"edge_distortion_mean", n ? distortionSum_ / n : 0.0},
                 {"edge_distortion_worst_frame", distortionWorst_},
@@ -154,8 +165,10 @@ class PerFrameFigures {
                 {"dent_ratio_worst_frame", dentWorst_},
                 {"ms_per_frame_mean", n ? std::accumulate(ms.begin(), ms.end(), 0.0) / n : 0.0},
                 {"ms_per_frame_worst", n ? ms.back() : 0.0},
-                {"ms_per_frame_median", n ? ms[n / 2] : 0.0}};
+                {"ms_per_frame_median", n ? ms[n / 2] : 0.0},
+                {"frames_held", held_}};
     }
+    const std::vector<std::pair<int, int>>& held() const { return held_; }
     // Writes `sidecar` (whose "per_frame" is an empty array) to path with the figures in it.
     void write(const std::string& path, const json& sidecar) {
         const std::string text = sidecar.dump(2) + "\n";
@@ -171,8 +184,9 @@ class PerFrameFigures {
     std::FILE* spool_;
     double residualSum_ = 0, residualWorst_ = 0, distortionWorst_ = 0, distortionSum_ = 0,
            strainWorst_ = 0, dentWorst_ = 0;
-    int foldedWorst_ = 0;
+    int foldedWorst_ = 0, residualFrames_ = 0;
     std::vector<double> ms_;
+    std::vector<std::pair<int, int>> held_;
 };
 
 // How the rest was fitted to the actor, and how far that moved it from the input mesh.
@@ -392,16 +406,20 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
                      output.append(f, V);
                      // Quality a user checks before importing: stretch against the rest pose,
                      // and folds.
-                     perFrame.add({{"frame", f},
-                                   {"visible_markers", report.visibleMarkers},
-                                   {"residual_rms_mm", report.residualRmsMm},
-                                   {"residual_max_mm", report.residualMaxMm},
-                                   {"edge_distortion", distortion},
-                                   {"edge_strain_p95", strainP95},
-                                   {"folded_faces", report.foldedFaces},
-                                   {"dent_ratio", report.dentRatio},
-                                   {"iterations", report.iterations},
-                                   {"ms", report.milliseconds}});
+                     const bool seen = report.visibleMarkers > 0;
+                     json figures = {
+                         {"frame", f},
+                         {"visible_markers", report.visibleMarkers},
+                         {"residual_rms_mm", seen ? json(report.residualRmsMm) : json()},
+                         {"residual_max_mm", seen ? json(report.residualMaxMm) : json()},
+                         {"edge_distortion", distortion},
+                         {"edge_strain_p95", strainP95},
+                         {"folded_faces", report.foldedFaces},
+                         {"dent_ratio", report.dentRatio},
+                         {"iterations", report.iterations},
+                         {"ms", report.milliseconds}};
+                     if (report.heldFrom >= 0) figures["held_from"] = report.heldFrom;
+                     perFrame.add(figures);
                      ++result.framesWritten;
                      if (progress && !progress(result.framesWritten, end - request.first, report) &&
                          f + 1 < end) {
@@ -411,6 +429,7 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
                      return true;
                  });
     output.finish();
+    result.held = perFrame.held();
     perFrame.write(
         result.sidecarPath,
         sidecarJson(take, request, solver.calibration(), result, fingerprints,

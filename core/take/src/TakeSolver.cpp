@@ -201,9 +201,19 @@ Positions TakeSolver::solve(int frame, FrameReport& report, const std::atomic<bo
         throw Error(track_->file() + ": frame " + std::to_string(frame) + " is outside the take");
     const auto start = std::chrono::steady_clock::now();
     const Positions T = targets(frame);  // what was seen: the residual is measured on it
-    const Positions pull = targets(frame, true);
+    Positions pull = targets(frame, true);
     report = {};
     report.frame = frame;
+    // A frame without a marker has no pose of its own: it holds the nearest frame's that has
+    // one, as an animator holds a pose, and so whichever frames were solved before it. Solved
+    // from nothing, it was the rest mesh where the mesh file stands.
+    if (!pull.array().isFinite().any()) {
+        const int held = track_->nearestSeen(frame);
+        if (held >= 0 && held != frame) {
+            pull = targets(held, true);
+            report.heldFrom = held;
+        }
+    }
     SolveResult result = solver_.solve(pull, nullptr, stop);
     if (result.report.stopped) {
         report.stopped = true;

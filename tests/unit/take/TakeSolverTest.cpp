@@ -1,6 +1,8 @@
 // TakeSolver: a take's frames, each from its own markers.
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include "boneless/C3dReader.h"
 #include "boneless/Correspondence.h"
 #include "boneless/DemoFiles.h"
@@ -111,25 +113,35 @@ TEST(TakeSolver, AMarkerMissingFromTheFrameShapesNothing) {
 
 // A frame where every marker is missing has nothing to follow: the (calibrated) rest pose, finite,
 // and the frames around it are what they would be without it.
-TEST(TakeSolver, AFrameWithoutMarkersIsTheRestPoseAndChangesNoOtherFrame) {
+// Frames 11 to 13 show no marker (the actor left the volume): each holds the pose of the nearest
+// frame that shows one, the earlier on a tie, whichever frames were solved before it. Solved from
+// nothing, they were the rest mesh where the mesh file stands.
+TEST(TakeSolver, AFrameWithoutMarkersHoldsTheNearestSeenFramesPoseAndChangesNoOtherFrame) {
     Take t = demoTake("take-blank", 2);
     const Take untouched = t;
-    for (int k = 0; k < static_cast<int>(t.take.points.size()); ++k)
-        t.take.samples.setMissing(11, k);
+    for (int f : {11, 12, 13})
+        for (int k = 0; k < static_cast<int>(t.take.points.size()); ++k)
+            t.take.samples.setMissing(f, k);
     TakeSolveOptions options;
     options.alignment =
         TakeSolver(untouched.mesh, untouched.take, untouched.map).calibration().takeToMesh;
-    options.fillGapSeconds = 0;  // a frame with no marker at all, not one put back
-    TakeSolver solver(t.mesh, t.take, t.map, options),
+    options.fillGapSeconds = 0;  // frames with no marker at all, not ones put back
+    TakeSolver solver(t.mesh, t.take, t.map, options), fresh(t.mesh, t.take, t.map, options),
         reference(untouched.mesh, untouched.take, untouched.map, options);
-    FrameReport r11, r12, expected;
-    const Positions V11 = solver.solve(11, r11);
-    const Positions V12 = solver.solve(12, r12);
-    EXPECT_EQ(r11.visibleMarkers, 0);
-    EXPECT_TRUE(V11.allFinite());
-    EXPECT_EQ(maxDistance(V11, solver.rest().V), 0.0);  // the calibrated rest, as it is solved
-    EXPECT_EQ(r12.visibleMarkers, static_cast<int>(t.map.markers.size()));
-    EXPECT_EQ(maxDistance(V12, reference.solve(12, expected)), 0.0);
+    FrameReport r;
+    std::map<int, Positions> blank;
+    for (int f : {13, 11, 12}) {
+        blank[f] = solver.solve(f, r);
+        EXPECT_EQ(r.visibleMarkers, 0);
+        EXPECT_EQ(r.heldFrom, f == 13 ? 14 : 10) << "frame " << f;
+    }
+    const Positions V10 = fresh.solve(10, r), V14 = fresh.solve(14, r);
+    EXPECT_EQ(r.heldFrom, -1);
+    EXPECT_EQ(maxDistance(blank[11], V10), 0.0);
+    EXPECT_EQ(maxDistance(blank[12], V10), 0.0);
+    EXPECT_EQ(maxDistance(blank[13], V14), 0.0);
+    EXPECT_GT(maxDistance(blank[11], solver.rest().V), 0.0);
+    EXPECT_EQ(maxDistance(V14, reference.solve(14, r)), 0.0);
 }
 
 // A gap short enough is filled from the marker's own path: the frame then lands closer to where

@@ -27,6 +27,8 @@ class MarkerTrack {
     MarkerTrack& operator=(const MarkerTrack&) = delete;
 
     std::size_t frames() const { return frames_; }
+    // The frame nearest `frame` (the earlier on a tie) where some marker is seen; −1 for none.
+    int nearestSeen(int frame) const;
     std::size_t markers() const { return markers_; }
     const std::string& file() const { return file_; }
     double rate() const { return rate_; }
@@ -47,6 +49,7 @@ class MarkerTrack {
     std::string file_;
     double rate_ = 0, unitToMm_ = 1;
     std::size_t frames_ = 0, markers_ = 0;
+    std::vector<int> seen_;       // the frames where some marker is seen, ascending
     C3dSamples memory_;           // when built from a take in memory
     std::FILE* spool_ = nullptr;  // when streamed: marker-major, xyz doubles, NaN where missing
 };

@@ -38,6 +38,9 @@ struct ExportResult {
     int framesWritten = 0;
     bool cancelled = false;
     std::string sidecarPath;
+    // Runs of frames [first, last] that show no marker and hold a neighbour's pose (as the
+    // sidecar's summary "frames_held" lists them).
+    std::vector<std::pair<int, int>> held;
 };
 
 // Called after each frame is written; return false to stop (the files written so far and the

@@ -54,6 +54,8 @@ struct FrameReport {
     // mean curvature at rest (DentGauge; 1 at rest).
     double dentRatio = 1.0;
     bool stopped = false;  // as SolveReport::stopped: the positions are not an answer
+    // The frame whose pose this one holds, since it shows no marker to pull to (−1: none held).
+    int heldFrom = -1;
     double milliseconds = 0;
 };
 
