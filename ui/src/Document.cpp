@@ -7,7 +7,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 
-#include "MapEditCommand.h"
+#include "EditCommand.h"
 #include "boneless/C3dReader.h"
 #include "boneless/Error.h"
 #include "boneless/MeshReader.h"
@@ -146,7 +146,7 @@ bool Document::loadTake(const QString& path) {
 }
 
 bool Document::loadCorrespondence(const QString& path, MapLoad mode) {
-    MapState after = mapState();
+    EditState after = editState();
     Correspondence file;
     try {
         file = Correspondence::read(std8(path));
@@ -158,7 +158,7 @@ bool Document::loadCorrespondence(const QString& path, MapLoad mode) {
         after.map = std::move(file);
         after.mapPath = path;
         savedMapJson_ = after.map.toJson();
-        pushMapEdit(tr("Load correspondence"), std::move(after));
+        pushEdit(tr("Load correspondence"), std::move(after));
         return true;
     }
     for (const MarkerMapping& m : file.markers) {
@@ -173,7 +173,7 @@ bool Document::loadCorrespondence(const QString& path, MapLoad mode) {
         if (!taken) after.map.markers.push_back(m);
     }
     if (after.mapPath.isEmpty()) after.mapPath = path;
-    pushMapEdit(tr("Merge correspondence"), std::move(after));
+    pushEdit(tr("Merge correspondence"), std::move(after));
     return true;
 }
 

@@ -393,7 +393,6 @@ void MainWindow::connectDocument() {
         if (!loading_) unsavedEdits_ = true;
     };
     connect(document_->undoStack(), &QUndoStack::indexChanged, this, edited);
-    connect(document_, &Document::settingsChanged, this, edited);
     connect(autosave_, &ProjectAutosave::saved, this, [this](const QString& path) {
         if (!demo_ && path == projectPath_) unsavedEdits_ = false;
     });

@@ -162,8 +162,7 @@ class MainWindow : public QMainWindow {
     QString projectPath_;
     bool demo_ = false;
     QString opening_;  // the file being opened, for plainError()
-    // An edit (undoable, or of the settings) since the project was opened or saved; loading a
-    // file is none.
+    // An edit (each one undoable) since the project was opened or saved; loading a file is none.
     bool unsavedEdits_ = false;
     int loading_ = 0;         // > 0 while a file is being loaded
     bool workAsked_ = false;  // keepUnsavedWork was answered for the files being opened
