@@ -302,9 +302,14 @@ void FrameDisplay::emitStatus() {
     } else {
         solve = result_->fromCache ? tr("cached")
                                    : tr("solved in %1 ms").arg(result_->solveMs, 0, 'f', 0);
-        residual = tr("residual %1 mm (max %2)")
+        // Frames meet their markers even on a take aligned 200 mm off: the alignment's own
+        // residual says that. The solver measures the one it finds, Align the one it fixes.
+        const Calibration& aligned =
+            document_->alignment() ? *document_->alignment() : result_->calibration;
+        residual = tr("residual %1 mm (max %2), alignment %3 mm")
                        .arg(result_->report.residualRmsMm, 0, 'f', 2)
-                       .arg(result_->report.residualMaxMm, 0, 'f', 2);
+                       .arg(result_->report.residualMaxMm, 0, 'f', 2)
+                       .arg(aligned.residualMm(document_->take().unitToMm), 0, 'f', 1);
     }
     emit statusChanged(frame, solve, residual);
 }

@@ -180,7 +180,7 @@ void MainWindow::buildMarkerDock() {
         if (document_->selectedMarker() >= 0) document_->clearMapping(document_->selectedMarker());
     });
     connect(suggest, &QPushButton::clicked, this, &MainWindow::suggestMappings);
-    connect(align, &QPushButton::clicked, this, [this] { document_->align(); });
+    connect(align, &QPushButton::clicked, this, &MainWindow::alignTake);
 
     auto* dock = new QDockWidget(tr("Markers"), this);
     dock->setObjectName("markerDock");
@@ -237,7 +237,7 @@ QMenu* MainWindow::buildEditMenu() {
     edit->addSeparator();
     edit->addAction(mappingAction_);
     edit->addAction(tr("&Suggest Rest"), this, &MainWindow::suggestMappings);
-    edit->addAction(tr("&Align Take to Mesh"), this, [this] { document_->align(); });
+    edit->addAction(tr("&Align Take to Mesh"), this, &MainWindow::alignTake);
     edit->addAction(tr("&Clear Mapping"), this, [this] {
         if (document_->selectedMarker() >= 0) document_->clearMapping(document_->selectedMarker());
     });
@@ -347,6 +347,10 @@ void MainWindow::buildStatusBar() {
     statusBar()->addPermanentWidget(frameLabel_);
     statusBar()->addPermanentWidget(solveLabel_);
     statusBar()->addPermanentWidget(residualLabel_);
+    residualLabel_->setToolTip(
+        tr("Residual: this frame's markers from where the posed mesh puts them (RMS and max).\n"
+           "Alignment: the mapped markers, aligned, from their points on the mesh at the "
+           "calibration frame (RMS)."));
     connect(display_, &FrameDisplay::statusChanged, this,
             [this](const QString& frame, const QString& solve, const QString& residual) {
                 frameLabel_->setText(frame);
@@ -538,6 +542,16 @@ bool MainWindow::suggestMappings() {
                        .arg(offBody.join(", "));
     statusBar()->showMessage(message, toCheck == 0 && offBody.isEmpty() ? 10000 : 15000);
     return true;
+}
+
+void MainWindow::alignTake() {
+    if (!document_->align()) return;
+    const Calibration& aligned = *document_->alignment();
+    statusBar()->showMessage(
+        tr("Aligned at frame %1: the mapped markers sit %2 mm (RMS) from their points on the mesh")
+            .arg(aligned.frame)
+            .arg(aligned.residualMm(document_->take().unitToMm), 0, 'f', 1),
+        10000);
 }
 
 int MainWindow::displayedFrame() const {

@@ -68,6 +68,8 @@ class MainWindow : public QMainWindow {
     void showExportDialog();
     // Edit → Suggest Rest, and the status bar says how many suggestions to check.
     bool suggestMappings();
+    // Align (Edit menu and marker panel), and the status bar says how well the alignment fits.
+    void alignTake();
 
     // The frame the timeline moves to once the next take is loaded (for --frame).
     void setStartFrame(int frame) { startFrame_ = frame; }
