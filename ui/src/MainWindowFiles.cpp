@@ -267,6 +267,7 @@ void MainWindow::showExportDialog() {
         showError(tr("Nothing to export: %1").arg(why));
         return;
     }
+    exportDialog_->setProjectPath(demo_ ? QString() : projectPath_);
     exportDialog_->show();
     exportDialog_->raise();
 }
