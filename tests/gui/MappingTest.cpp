@@ -188,16 +188,19 @@ class MappingTest : public QObject {
         suggest->click();
         QCOMPARE(d->mappedCount(), d->markerCount());
         const QString said = window.statusBar()->currentMessage();
-        QVERIFY2(said.startsWith(QString("%1 marker(s) suggested").arg(d->markerCount() - 4)),
+        QVERIFY2(said.startsWith(QString("%1 markers suggested").arg(d->markerCount() - 4)),
                  qPrintable(said));
+        QCOMPARE(d->undoStack()->undoText(),
+                 QString("Suggest %1 markers").arg(d->markerCount() - 4));
         // A later click counts what it adds, not the suggestions the map already holds.
         int dropped = 0;
         while (!d->markerSuggested(dropped)) ++dropped;
         QVERIFY(d->clearMapping(dropped));
         suggest->click();
         QCOMPARE(d->mappedCount(), d->markerCount());
-        QVERIFY2(window.statusBar()->currentMessage().startsWith("1 marker(s) suggested"),
+        QVERIFY2(window.statusBar()->currentMessage().startsWith("1 marker suggested"),
                  qPrintable(window.statusBar()->currentMessage()));
+        QCOMPARE(d->undoStack()->undoText(), QString("Suggest 1 marker"));
         suggest->click();
         QVERIFY2(window.statusBar()->currentMessage().startsWith("Nothing to suggest"),
                  qPrintable(window.statusBar()->currentMessage()));

@@ -7,6 +7,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 
+#include "Counted.h"
 #include "EditCommand.h"
 #include "boneless/C3dReader.h"
 #include "boneless/Error.h"
@@ -97,9 +98,10 @@ bool Document::loadMesh(const QString& path, const QString& group) {
     try {
         map_.checkMesh(mesh_.vertexCount(), std8(path));
     } catch (const Error&) {
-        meshWarnings_
-            << tr("The marker map (%1 markers) was made for another mesh and was cleared.")
-                   .arg(map_.markers.size());
+        meshWarnings_ << counted(
+            int(map_.markers.size()),
+            tr("The marker map (%n marker) was made for another mesh and was cleared."),
+            tr("The marker map (%n markers) was made for another mesh and was cleared."));
         map_ = emptyMap();
         mapPath_.clear();
         savedMapJson_.clear();

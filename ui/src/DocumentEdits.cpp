@@ -5,6 +5,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "Counted.h"
 #include "EditCommand.h"
 #include "boneless/Error.h"
 #include "boneless/MarkerSuggestion.h"
@@ -141,8 +142,8 @@ bool Document::setOffsetMm(const std::vector<int>& markers, double mm) {
         offset = mm;
     }
     if (changed == 0) return true;
-    const QString what =
-        markers.size() == 1 ? markerLabel(markers.front()) : tr("%1 markers").arg(changed);
+    const QString what = markers.size() == 1 ? markerLabel(markers.front())
+                                             : counted(changed, tr("%n marker"), tr("%n markers"));
     pushEdit(tr("Set the offset of %1 to %2 mm").arg(what).arg(mm), std::move(after));
     return true;
 }
@@ -170,7 +171,8 @@ bool Document::suggestMappings(int* suggested, int* toCheck, QStringList* offBod
     if (offBody)
         for (const std::string& label : s.offBody) *offBody << QString::fromStdString(label);
     if (s.suggested == 0) return true;
-    pushEdit(tr("Suggest %n marker(s)", nullptr, s.suggested), std::move(after));
+    pushEdit(counted(s.suggested, tr("Suggest %n marker"), tr("Suggest %n markers")),
+             std::move(after));
     return true;
 }
 

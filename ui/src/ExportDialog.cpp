@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "Counted.h"
 #include "boneless/Parallel.h"
 #include "boneless/ui/Document.h"
 #include "boneless/ui/ExportRunner.h"
@@ -51,10 +52,6 @@ QString defaultFolder(const QString& projectPath) {
     const QString last = QSettings().value("export/folder").toString();
     if (!last.isEmpty()) return last;
     return QStandardPaths::writableLocation(QStandardPaths::DocumentsLocation) + "/Boneless";
-}
-
-QString frameCount(int frames) {
-    return frames == 1 ? QObject::tr("1 frame") : QObject::tr("%1 frames").arg(frames);
 }
 
 }  // namespace
@@ -272,13 +269,14 @@ void ExportDialog::updateEstimate() {
         progress_->setRange(0, std::max(1, frames));
         progress_->setValue(0);
     }
+    const QString frameCount = counted(frames, tr("%n frame"), tr("%n frames"));
     const double ms = measuredMsPerFrame();
     if (ms <= 0) {
-        estimate_->setText(tr("%1; measuring the time a frame takes…").arg(frameCount(frames)));
+        estimate_->setText(tr("%1; measuring the time a frame takes…").arg(frameCount));
         return;
     }
     estimate_->setText(tr("%1, %2 (%3 ms a frame as solved here)")
-                           .arg(frameCount(frames), duration(estimatedMs()))
+                           .arg(frameCount, duration(estimatedMs()))
                            .arg(ms, 0, 'f', 0));
 }
 

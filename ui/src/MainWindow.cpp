@@ -22,6 +22,7 @@
 #include <cmath>
 
 #include "CalibrationMenu.h"
+#include "Counted.h"
 #include "FrameDisplay.h"
 #include "OffsetRow.h"
 #include "SuggestionHighlight.h"
@@ -528,13 +529,10 @@ bool MainWindow::suggestMappings() {
     QString message;
     if (suggested == 0 && offBody.isEmpty())
         message = tr("Nothing to suggest: every marker seen in the take is mapped");
-    else if (toCheck == 0)
-        message = tr("%n marker(s) suggested", nullptr, suggested);
     else
-        message =
-            tr("%n marker(s) suggested, %1 of them to check: the list's \"To check\" shows them",
-               nullptr, suggested)
-                .arg(toCheck);
+        message = counted(suggested, tr("%n marker suggested"), tr("%n markers suggested"));
+    if (toCheck > 0)
+        message += tr(", %1 of them to check: the list's \"To check\" shows them").arg(toCheck);
     // A prop's or another actor's markers: no place on this body, so none was given.
     if (!offBody.isEmpty())
         message += tr("; left unmapped, more than %1 mm from the body: %2")

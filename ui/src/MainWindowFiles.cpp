@@ -17,6 +17,7 @@
 #include <QStatusBar>
 #include <QUrl>
 
+#include "Counted.h"
 #include "FrameDisplay.h"
 #include "boneless/Error.h"
 #include "boneless/MeshReader.h"
@@ -174,7 +175,8 @@ bool MainWindow::askMapLoad(const QString& path, Document::MapLoad& mode) {
     const int mapped = document_->mappedCount();
     if (mapped == 0 || !messageBoxes_) return true;
     QMessageBox box(QMessageBox::Question, tr("Open Correspondence"),
-                    tr("%n marker(s) are mapped already. Open %1:", nullptr, mapped)
+                    counted(mapped, tr("%n marker is mapped already. Open %1:"),
+                            tr("%n markers are mapped already. Open %1:"))
                         .arg(QFileInfo(path).fileName()),
                     QMessageBox::NoButton, this);
     box.setObjectName("mapLoadQuestion");
