@@ -1,6 +1,6 @@
 // Actor calibration in the window: the user picks the calibration frame (Edit → Calibrate at This
 // Frame, kept in the project, undone as any edit) and the view shows the frame, the calibrated
-// rest or the rest (View → Show).
+// rest or the rest (View → Show), with the mapped markers on the rests.
 #include <QAction>
 #include <QFile>
 #include <QJsonDocument>
@@ -178,6 +178,39 @@ class CalibrationMenuTest : public QObject {
         QCOMPARE(document->settings().calibrationFrame, 25);
         QCOMPARE(document->alignment()->frame, 25);
         QCOMPARE(document->undoStack()->undoText(), QString("Calibrate at frame 25"));
+    }
+
+    // Showing a rest while mapping, the mapped markers sit at their vertices on it (the take's
+    // markers at this frame would float off the body), and follow a new mapping at once.
+    void theRestShowsTheMappedMarkersAtTheirVerticesWhileMapping() {
+        window_ = test::openShown(test::writeDemoProject(folder_ + "/rest"));
+        QVERIFY(window_);
+        Document* document = window_->document();
+        MeshView* view = window_->meshView();
+        for (QAction* action : window_->findChildren<QAction*>())
+            if (action->text() == "Marker &Labels") action->setChecked(true);
+        QVERIFY(trigger(*window_, "showRest"));
+        window_->findChild<QAction*>("actionMapMarkers")->setChecked(true);
+        view->resetCamera();
+        const int marker = 0;
+        document->setSelectedMarker(marker);
+        // The selected marker's label is always drawn, its bottom-left corner at the marker.
+        auto labelAt = [&](int vertex) {
+            (void)view->grabImage();  // lays the labels out for the picture as it is now
+            const QPoint at = view->projectVertex(vertex);
+            for (const QRect& box : view->labelBoxes())
+                if (std::abs(box.left() - at.x()) <= 2 && std::abs(box.bottom() - at.y()) <= 8)
+                    return true;
+            return false;
+        };
+        QVERIFY(labelAt(document->mappedVertex(marker)));
+
+        const int old = document->mappedVertex(marker);
+        int vertex = 0;
+        while (document->markerForVertex(vertex) >= 0 || vertex == old) ++vertex;
+        QVERIFY(document->assign(marker, vertex));
+        QVERIFY(labelAt(vertex));
+        QVERIFY(!labelAt(old));
     }
 
   private:
