@@ -583,7 +583,11 @@ QMessageBox* MainWindow::errorBox(const QString& message, const QString& detail)
 void MainWindow::showError(const QString& message, const QString& detail) {
     statusBar()->showMessage(message, 15000);
     emit errorShown(detail.isEmpty() ? message : message + "\n" + detail);
-    if (messageBoxes_) errorBox(message, detail)->show();
+    if (!messageBoxes_) return;
+    if (asking_)
+        heldErrors_.emplace_back(message, detail);
+    else
+        errorBox(message, detail)->show();
 }
 
 }  // namespace boneless::ui

@@ -1,5 +1,6 @@
 // MainWindow: opening, saving, exporting, recent files and drag and drop.
 #include <algorithm>
+#include <utility>
 
 #include <QCloseEvent>
 #include <QDragEnterEvent>
@@ -443,9 +444,14 @@ bool MainWindow::keepUnsavedWork(bool closing) {
     discard->setObjectName("discardButton");
     cancel->setObjectName("cancelButton");
     box.setDefaultButton(saveAs);
+    asking_ = true;
     box.exec();  // nothing closes or opens before this is answered
-    if (box.clickedButton() == discard) return true;
-    return box.clickedButton() == saveAs && chooseSaveProjectAs();
+    const bool goOn =
+        box.clickedButton() == discard || (box.clickedButton() == saveAs && chooseSaveProjectAs());
+    asking_ = false;
+    for (const auto& [message, detail] : std::exchange(heldErrors_, {}))
+        if (!goOn) errorBox(message, detail)->show();
+    return goOn;
 }
 
 }  // namespace boneless::ui

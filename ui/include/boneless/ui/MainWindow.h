@@ -2,6 +2,8 @@
 
 #include <QMainWindow>
 #include <QString>
+#include <utility>
+#include <vector>
 
 #include "boneless/ui/Document.h"
 
@@ -170,6 +172,10 @@ class MainWindow : public QMainWindow {
     bool workAsked_ = false;  // keepUnsavedWork was answered for the files being opened
     int startFrame_ = -1;
     bool messageBoxes_ = true;
+    // While keepUnsavedWork's question waits, error boxes are held (one over the question would
+    // hide it); the answer shows them if the session stays, drops them if it is left.
+    bool asking_ = false;
+    std::vector<std::pair<QString, QString>> heldErrors_;  // message, detail
 };
 
 }  // namespace boneless::ui
