@@ -193,7 +193,7 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
                      "%s: %zu frames at %g Hz, units %s; aligned at frame %d (residual %.1f mm), "
                      "mesh units look like %s, mesh up axis %s\n",
                      job.c3d.c_str(), take.frameCount(), take.take().rate,
-                     take.take().units.c_str(), c.frame, c.residual / meshUnitsPerMm,
+                     take.take().units.c_str(), c.frame, c.residualMm(take.take().unitToMm),
                      guessMeshUnits(meshUnitsPerMm), guessUpAxis(c.takeToMesh).c_str());
     };
     const auto start = std::chrono::steady_clock::now();

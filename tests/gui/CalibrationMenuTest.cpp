@@ -1,10 +1,11 @@
 // Actor calibration in the window: the user picks the calibration frame (Edit → Calibrate at This
-// Frame, kept in the project) and the view shows the frame, the calibrated rest or the rest
-// (View → Show).
+// Frame, kept in the project, undone as any edit) and the view shows the frame, the calibrated
+// rest or the rest (View → Show), with the mapped markers on the rests.
 #include <QAction>
 #include <QFile>
 #include <QJsonDocument>
 #include <QJsonObject>
+#include <QUndoStack>
 #include <QtTest>
 
 #include "ViewTestSupport.h"
@@ -140,6 +141,76 @@ class CalibrationMenuTest : public QObject {
         QVERIFY(test::waitForFrame(*window_));
         QVERIFY(trigger(*window_, "showCalibratedRest"));
         QCOMPARE(maxDistance(window_->meshView()->positions(), rest), 0.0);
+    }
+
+    // A fixed alignment is redone at each calibration frame: undone, it goes back with the
+    // settings, or frames would be solved with one frame's alignment and another's fit.
+    void undoingACalibrationRestoresItsSettingsAndAlignmentInOneStep() {
+        window_ = test::openShown(test::writeDemoProject(folder_ + "/undo"));
+        QVERIFY(window_);
+        Document* document = window_->document();
+        const TakeSolveOptions before = document->settings();
+        QVERIFY(document->align());
+        const Calibration aligned = *document->alignment();
+        QVERIFY(aligned.frame != 25);
+        window_->timeline()->scrubTo(25);
+        QVERIFY(test::waitForFrame(*window_));
+        QVERIFY(trigger(*window_, "calibrateAtFrame"));
+        QCOMPARE(document->settings().calibrationFrame, 25);
+        QCOMPARE(document->alignment()->frame, 25);
+        QVERIFY(trigger(*window_, "calibrateNone"));
+
+        QAction* undo = window_->findChild<QAction*>("actionUndo");
+        undo->trigger();
+        QVERIFY(document->settings().calibrate == CalibrateMode::Shape);
+        QCOMPARE(document->settings().calibrationFrame, 25);
+        undo->trigger();
+        QCOMPARE(document->settings().calibrationFrame, before.calibrationFrame);
+        QVERIFY(document->alignment());
+        QCOMPARE(document->alignment()->frame, aligned.frame);
+        QCOMPARE(document->alignment()->takeToMesh.t, aligned.takeToMesh.t);
+        QCOMPARE(document->alignment()->takeToMesh.R, aligned.takeToMesh.R);
+        undo->trigger();  // the Align itself
+        QVERIFY(!document->alignment());
+
+        window_->findChild<QAction*>("actionRedo")->trigger();
+        window_->findChild<QAction*>("actionRedo")->trigger();
+        QCOMPARE(document->settings().calibrationFrame, 25);
+        QCOMPARE(document->alignment()->frame, 25);
+        QCOMPARE(document->undoStack()->undoText(), QString("Calibrate at frame 25"));
+    }
+
+    // Showing a rest while mapping, the mapped markers sit at their vertices on it (the take's
+    // markers at this frame would float off the body), and follow a new mapping at once.
+    void theRestShowsTheMappedMarkersAtTheirVerticesWhileMapping() {
+        window_ = test::openShown(test::writeDemoProject(folder_ + "/rest"));
+        QVERIFY(window_);
+        Document* document = window_->document();
+        MeshView* view = window_->meshView();
+        for (QAction* action : window_->findChildren<QAction*>())
+            if (action->text() == "Marker &Labels") action->setChecked(true);
+        QVERIFY(trigger(*window_, "showRest"));
+        window_->findChild<QAction*>("actionMapMarkers")->setChecked(true);
+        view->resetCamera();
+        const int marker = 0;
+        document->setSelectedMarker(marker);
+        // The selected marker's label is always drawn, its bottom-left corner at the marker.
+        auto labelAt = [&](int vertex) {
+            (void)view->grabImage();  // lays the labels out for the picture as it is now
+            const QPoint at = view->projectVertex(vertex);
+            for (const QRect& box : view->labelBoxes())
+                if (std::abs(box.left() - at.x()) <= 2 && std::abs(box.bottom() - at.y()) <= 8)
+                    return true;
+            return false;
+        };
+        QVERIFY(labelAt(document->mappedVertex(marker)));
+
+        const int old = document->mappedVertex(marker);
+        int vertex = 0;
+        while (document->markerForVertex(vertex) >= 0 || vertex == old) ++vertex;
+        QVERIFY(document->assign(marker, vertex));
+        QVERIFY(labelAt(vertex));
+        QVERIFY(!labelAt(old));
     }
 
   private:

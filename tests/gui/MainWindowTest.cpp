@@ -8,7 +8,9 @@
 #include <QMenu>
 #include <QMessageBox>
 #include <QMimeData>
+#include <QSettings>
 #include <QSlider>
+#include <QStandardPaths>
 #include <QUrl>
 #include <QtTest>
 #include <map>
@@ -234,6 +236,30 @@ class MainWindowTest : public QObject {
         QVERIFY2(finished.at(0).at(0).toBool(), qPrintable(finished.at(0).at(1).toString()));
         QVERIFY(QFileInfo(out + "/walker.glb").size() > 0);
         QVERIFY(QDir(out).entryList({"*.obj"}, QDir::Files).isEmpty());
+    }
+
+    // An export goes where the user's own work is, never beside the mesh, which may be a shared,
+    // read-only library: beside the project, else the last folder chosen, else the documents.
+    void theExportFolderIsBesideTheProjectElseTheLastChosenElseTheDocuments() {
+        QSettings().setValue("export/folder", folder_ + "/chosen");
+        window_->showExportDialog();
+        QCOMPARE(window_->exportDialog()->folder(), folder_ + "/demo/demo_export");
+        window_->exportDialog()->close();
+
+        // What the export dialog of an untitled window offers.
+        auto untitled = [this] {
+            MainWindow window;
+            window.setMessageBoxesEnabled(false);
+            if (!window.openFiles({folder_ + "/demo/walker.obj", folder_ + "/demo/walker.c3d",
+                                   folder_ + "/demo/walker.map.json"}))
+                return QString("(the demo's files did not open)");
+            window.showExportDialog();
+            return window.exportDialog()->folder();
+        };
+        QCOMPARE(untitled(), folder_ + "/chosen");
+        QSettings().remove("export/folder");
+        QCOMPARE(untitled(),
+                 QStandardPaths::writableLocation(QStandardPaths::DocumentsLocation) + "/Boneless");
     }
 
     void scrubLatency() {

@@ -9,6 +9,7 @@
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
+#include <QLabel>
 #include <QMessageBox>
 #include <QPushButton>
 #include <QStatusBar>
@@ -187,16 +188,19 @@ class MappingTest : public QObject {
         suggest->click();
         QCOMPARE(d->mappedCount(), d->markerCount());
         const QString said = window.statusBar()->currentMessage();
-        QVERIFY2(said.startsWith(QString("%1 marker(s) suggested").arg(d->markerCount() - 4)),
+        QVERIFY2(said.startsWith(QString("%1 markers suggested").arg(d->markerCount() - 4)),
                  qPrintable(said));
+        QCOMPARE(d->undoStack()->undoText(),
+                 QString("Suggest %1 markers").arg(d->markerCount() - 4));
         // A later click counts what it adds, not the suggestions the map already holds.
         int dropped = 0;
         while (!d->markerSuggested(dropped)) ++dropped;
         QVERIFY(d->clearMapping(dropped));
         suggest->click();
         QCOMPARE(d->mappedCount(), d->markerCount());
-        QVERIFY2(window.statusBar()->currentMessage().startsWith("1 marker(s) suggested"),
+        QVERIFY2(window.statusBar()->currentMessage().startsWith("1 marker suggested"),
                  qPrintable(window.statusBar()->currentMessage()));
+        QCOMPARE(d->undoStack()->undoText(), QString("Suggest 1 marker"));
         suggest->click();
         QVERIFY2(window.statusBar()->currentMessage().startsWith("Nothing to suggest"),
                  qPrintable(window.statusBar()->currentMessage()));
@@ -349,6 +353,57 @@ class MappingTest : public QObject {
         for (int row = 0; row < model->rowCount(); ++row)
             QVERIFY(!model->index(row, 0).data(Qt::BackgroundRole).isValid());
         QCOMPARE(highlightedPixels(window, far), 0.0);
+    }
+
+    // The solve's residual says how well frames meet the markers, not whether the take sits on
+    // the mesh: the alignment's own residual is shown too, and a wrong mapping raises it.
+    void aligningSaysHowFarTheMappedMarkersSitFromTheMesh() {
+        const auto shown = test::openShown(freshProject());
+        QVERIFY(shown);
+        MainWindow& window = *shown;
+        Document* d = window.document();
+        auto* residual = window.findChild<QLabel*>("residualLabel");
+        QVERIFY(residual);
+        // As boneless-cli solve prints it: mesh units back to the take's millimetres.
+        auto mm = [&](const Calibration& c) {
+            return QString::number(c.residual * d->take().unitToMm / c.takeToMesh.scale, 'f', 1);
+        };
+        // Automatic: the alignment the frame was solved with.
+        QVERIFY2(residual->text().contains(QRegularExpression("alignment \\d+\\.\\d mm")),
+                 qPrintable(residual->text()));
+
+        QPushButton* align = nullptr;
+        for (QPushButton* b : window.findChildren<QPushButton*>())
+            if (b->text() == "Align") align = b;
+        QVERIFY(align);
+        align->click();
+        QVERIFY(d->alignment());
+        const double good =
+            d->alignment()->residual * d->take().unitToMm / d->alignment()->takeToMesh.scale;
+        QString said = window.statusBar()->currentMessage();
+        QVERIFY2(said.contains(QString("frame %1").arg(d->alignment()->frame)) &&
+                     said.contains(mm(*d->alignment()) + " mm"),
+                 qPrintable(said));
+        QVERIFY(test::waitForFrame(window));
+        QVERIFY2(residual->text().contains("alignment " + mm(*d->alignment()) + " mm"),
+                 qPrintable(residual->text()));
+
+        // A head marker mapped onto the far end of the body pulls the fit away.
+        const int head = d->markerByLabel("LFHD");
+        const Positions& V = d->mesh().V;
+        const Eigen::RowVector3d from = V.row(d->mappedVertex(head));
+        int foot = -1;
+        for (int v = 0; v < V.rows(); ++v)
+            if (d->markerForVertex(v) < 0 &&
+                (foot < 0 || (V.row(v) - from).norm() > (V.row(foot) - from).norm()))
+                foot = v;
+        QVERIFY(d->assign(head, foot));
+        align->click();
+        const double bad =
+            d->alignment()->residual * d->take().unitToMm / d->alignment()->takeToMesh.scale;
+        QVERIFY2(bad > good + 20, qPrintable(QString("%1 mm, then %2 mm").arg(good).arg(bad)));
+        said = window.statusBar()->currentMessage();
+        QVERIFY2(said.contains(mm(*d->alignment()) + " mm"), qPrintable(said));
     }
 
   private:

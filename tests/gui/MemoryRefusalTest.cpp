@@ -69,7 +69,9 @@ class MemoryRefusalTest : public QObject {
         window.timeline()->setFrame(10);
         QVERIFY(test::waitForFrame(window));
         QCOMPARE(window.displayedFrame(), 10);
-        window.document()->setSettings(document.settings());
+        boneless::TakeSolveOptions settings = document.settings();
+        settings.markerWeight += 1;  // any edit: an unchanged setting is none
+        window.document()->setSettings(settings);
         QVERIFY(test::waitForFrame(window));
         QCOMPARE(errors.size(), 1);
 
@@ -82,7 +84,8 @@ class MemoryRefusalTest : public QObject {
 
         // Once the memory is there, the same window solves.
         limitSolveMemoryForTests(0);
-        window.document()->setSettings(document.settings());
+        settings.markerWeight += 1;
+        window.document()->setSettings(settings);
         QTRY_VERIFY(window.isSolving());
         QVERIFY(test::waitForFrame(window));
         QVERIFY(window.frameSolver()->hasProblem());

@@ -16,6 +16,7 @@
 #include "ViewTestSupport.h"
 #include "boneless/ui/DemoProject.h"
 #include "boneless/ui/Document.h"
+#include "boneless/ui/FrameSolver.h"
 #include "boneless/ui/MainWindow.h"
 #include "boneless/ui/MeshView.h"
 #include "boneless/ui/Project.h"
@@ -385,6 +386,50 @@ class ProjectSessionTest : public QObject {
         answerClose("cancelButton");
         window.close();
         QVERIFY(window.isVisible());
+        answerClose("discardButton");
+        window.close();
+        QVERIFY(!window.isVisible());
+    }
+
+    // A frame that fails to solve while the close question is up: its message waits for the
+    // answer, so no box covers the question; cancelled, the window shows it then.
+    void aSolverErrorDuringTheCloseQuestionWaitsForTheAnswer() {
+        MainWindow window;
+        QVERIFY(window.openFile(folder_ + "/mine/walker.obj"));
+        QVERIFY(window.openFile(folder_ + "/mine/walker.c3d"));
+        QVERIFY(window.openFile(folder_ + "/mine/walker.map.json"));
+        QVERIFY(test::showAndWait(window));
+        Document* d = window.document();
+        // A head marker mapped onto a foot: the take cannot be solved with this map.
+        const int head = d->markerByLabel("LFHD");
+        const boneless::Positions& V = d->mesh().V;
+        const Eigen::RowVector3d from = V.row(d->mappedVertex(head));
+        int foot = -1;
+        for (int v = 0; v < V.rows(); ++v)
+            if (d->markerForVertex(v) < 0 &&
+                (foot < 0 || (V.row(v) - from).norm() > (V.row(foot) - from).norm()))
+                foot = v;
+        QSignalSpy failed(window.frameSolver(), &FrameSolver::failed);
+        QVERIFY(d->assign(head, foot));
+        auto errorShown = [&] {
+            for (QMessageBox* box : window.findChildren<QMessageBox*>("errorMessage"))
+                if (box->isVisible()) return true;
+            return false;
+        };
+        bool shownDuringQuestion = true;
+        QTimer::singleShot(100, [&] {
+            auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+            QVERIFY(box && box->objectName() == "unsavedQuestion");
+            QVERIFY(QTest::qWaitFor([&] { return failed.count() > 0; }, 60000));
+            QTest::qWait(200);  // the failure's message, had it been shown, is up by now
+            shownDuringQuestion = errorShown();
+            box->findChild<QPushButton*>("cancelButton")->click();
+        });
+        window.close();  // before the failure arrives: the solver is still being built
+        QVERIFY(window.isVisible());
+        QCOMPARE(failed.count(), 1);
+        QVERIFY(!shownDuringQuestion);
+        QVERIFY(errorShown());
         answerClose("discardButton");
         window.close();
         QVERIFY(!window.isVisible());

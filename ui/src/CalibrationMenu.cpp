@@ -10,35 +10,21 @@
 
 namespace boneless::ui {
 
-namespace {
-
-// frame −1: chosen automatically. A fixed alignment is redone at the same frame, since the
-// solver aligns and fits at one frame (Document::solveOptions).
-void calibrateAt(Document* document, int frame) {
-    TakeSolveOptions settings = document->settings();
-    settings.calibrationFrame = frame;
-    settings.calibrate = CalibrateMode::Shape;
-    document->setSettings(settings);
-    if (document->alignment()) document->align(frame);
-}
-
-}  // namespace
-
 void addCalibrationActions(QMenu* edit, QMenu* view, Document* document, Timeline* timeline,
                            FrameDisplay* display) {
     QAction* atFrame = edit->addAction(QObject::tr("Calibrate at &This Frame"), document,
-                                       [=] { calibrateAt(document, timeline->frame()); });
+                                       [=] { document->calibrateAt(timeline->frame()); });
     atFrame->setObjectName("calibrateAtFrame");
     atFrame->setStatusTip(QObject::tr(
         "Fit the mesh to the actor at the frame on screen, and solve every frame against it"));
     QAction* automatic = edit->addAction(QObject::tr("Calibrate A&utomatically"), document,
-                                         [=] { calibrateAt(document, -1); });
+                                         [=] { document->calibrateAt(-1); });
     automatic->setObjectName("calibrateAutomatically");
     // The way out when the mesh cannot reach the actor, as `solve --calibrate none`.
     QAction* none = edit->addAction(QObject::tr("&Do Not Calibrate"), document, [=] {
         TakeSolveOptions settings = document->settings();
         settings.calibrate = CalibrateMode::None;
-        document->setSettings(settings);
+        document->setSettings(settings, QObject::tr("Do not calibrate"));
     });
     none->setObjectName("calibrateNone");
     none->setStatusTip(

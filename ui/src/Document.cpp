@@ -6,7 +6,8 @@
 #include <cmath>
 #include <limits>
 
-#include "MapEditCommand.h"
+#include "Counted.h"
+#include "EditCommand.h"
 #include "boneless/C3dReader.h"
 #include "boneless/Error.h"
 #include "boneless/MarkerSuggestion.h"
@@ -97,9 +98,10 @@ bool Document::loadMesh(const QString& path, const QString& group) {
     try {
         map_.checkMesh(mesh_.vertexCount(), std8(path));
     } catch (const Error&) {
-        meshWarnings_
-            << tr("The marker map (%1 markers) was made for another mesh and was cleared.")
-                   .arg(map_.markers.size());
+        meshWarnings_ << counted(
+            int(map_.markers.size()),
+            tr("The marker map (%n marker) was made for another mesh and was cleared."),
+            tr("The marker map (%n markers) was made for another mesh and was cleared."));
         map_ = emptyMap();
         mapPath_.clear();
         savedMapJson_.clear();
@@ -146,7 +148,7 @@ bool Document::loadTake(const QString& path) {
 }
 
 bool Document::loadCorrespondence(const QString& path, MapLoad mode) {
-    MapState after = mapState();
+    EditState after = editState();
     Correspondence file;
     try {
         file = Correspondence::read(std8(path));
@@ -158,7 +160,7 @@ bool Document::loadCorrespondence(const QString& path, MapLoad mode) {
         after.map = std::move(file);
         after.mapPath = path;
         savedMapJson_ = after.map.toJson();
-        pushMapEdit(tr("Load correspondence"), std::move(after));
+        pushEdit(tr("Load correspondence"), std::move(after));
         return true;
     }
     for (const MarkerMapping& m : file.markers) {
@@ -173,7 +175,7 @@ bool Document::loadCorrespondence(const QString& path, MapLoad mode) {
         if (!taken) after.map.markers.push_back(m);
     }
     if (after.mapPath.isEmpty()) after.mapPath = path;
-    pushMapEdit(tr("Merge correspondence"), std::move(after));
+    pushEdit(tr("Merge correspondence"), std::move(after));
     return true;
 }
 

@@ -1,19 +1,32 @@
-// Document: the undoable edits of the map and alignment, settings, and what solving needs.
+// Document: the undoable edits of the map, the alignment and the settings, and what solving needs.
 #include <QFileInfo>
 #include <QUndoStack>
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "MapEditCommand.h"
+#include "Counted.h"
+#include "EditCommand.h"
 #include "boneless/Error.h"
 #include "boneless/MarkerSuggestion.h"
 #include "boneless/SolveFits.h"
+#include "boneless/TakeOptionsJson.h"
 #include "boneless/ui/Document.h"
 
 namespace boneless::ui {
 
 namespace {
+
+bool sameAlignment(const std::optional<Calibration>& a, const std::optional<Calibration>& b) {
+    return a.has_value() == b.has_value() &&
+           (!a || (a->takeToMesh.R == b->takeToMesh.R && a->takeToMesh.t == b->takeToMesh.t &&
+                   a->takeToMesh.scale == b->takeToMesh.scale));
+}
+
+// As the project stores them.
+bool sameSettings(const TakeSolveOptions& a, const TakeSolveOptions& b) {
+    return toJson(a) == toJson(b);
+}
 
 std::string withoutSuggested(const std::string& extraJson) {
     nlohmann::json extra =
@@ -25,27 +38,25 @@ std::string withoutSuggested(const std::string& extraJson) {
 
 }  // namespace
 
-Document::MapState Document::mapState() const {
-    return {map_, mapPath_, alignment_};
+Document::EditState Document::editState() const {
+    return {map_, mapPath_, alignment_, settings_};
 }
 
-void Document::applyMapState(const MapState& state) {
-    const bool alignmentChangedToo =
-        alignment_.has_value() != state.alignment.has_value() ||
-        (alignment_ && state.alignment &&
-         (alignment_->takeToMesh.R != state.alignment->takeToMesh.R ||
-          alignment_->takeToMesh.t != state.alignment->takeToMesh.t ||
-          alignment_->takeToMesh.scale != state.alignment->takeToMesh.scale));
+void Document::applyEditState(const EditState& state) {
+    const bool alignmentChangedToo = !sameAlignment(alignment_, state.alignment);
+    const bool settingsChangedToo = !sameSettings(settings_, state.settings);
     map_ = state.map;
     mapPath_ = state.mapPath;
     alignment_ = state.alignment;
+    settings_ = state.settings;
     rebuildMarkers();
     emit correspondenceChanged();
     if (alignmentChangedToo) emit alignmentChanged();
+    if (settingsChangedToo) emit settingsChanged();
     emit changed();
 }
 
-void Document::pushMapEdit(const QString& text, MapState after) {
+void Document::pushEdit(const QString& text, EditState after) {
     if (hasMesh_) {
         after.map.meshVertices = mesh_.vertexCount();
         if (after.map.meshFile.empty()) {
@@ -53,7 +64,7 @@ void Document::pushMapEdit(const QString& text, MapState after) {
             after.map.meshGroup = meshGroup_.toStdString();
         }
     }
-    undoStack_->push(new MapEditCommand(this, text, mapState(), std::move(after)));
+    undoStack_->push(new EditCommand(this, text, editState(), std::move(after)));
 }
 
 bool Document::assign(int marker, int vertex) {
@@ -66,20 +77,20 @@ bool Document::assign(int marker, int vertex) {
     if (other == marker) {
         // Mapping a suggestion onto its own vertex is the user's word that it is right.
         const int mapping = markers_[marker].mapping;
-        MapState after = mapState();
+        EditState after = editState();
         std::string& extra = after.map.markers[mapping].extraJson;
         const auto json = nlohmann::json::parse(extra.empty() ? "{}" : extra, nullptr, false);
         if (!json.is_object() || !json.contains("suggested")) return true;
         extra = withoutSuggested(extra);
-        pushMapEdit(tr("Confirm %1 on vertex %2").arg(markerLabel(marker)).arg(vertex),
-                    std::move(after));
+        pushEdit(tr("Confirm %1 on vertex %2").arg(markerLabel(marker)).arg(vertex),
+                 std::move(after));
         return true;
     }
     if (other >= 0)
         return fail(tr("Vertex %1 already carries marker %2; clear that marker first.")
                         .arg(vertex)
                         .arg(markerLabel(other)));
-    MapState after = mapState();
+    EditState after = editState();
     const int mapping = markers_[marker].mapping;
     if (mapping >= 0) {
         after.map.markers[mapping].vertex = vertex;
@@ -102,7 +113,7 @@ bool Document::assign(int marker, int vertex) {
         }
         after.map.markers.push_back(std::move(m));
     }
-    pushMapEdit(tr("Map %1 to vertex %2").arg(markerLabel(marker)).arg(vertex), std::move(after));
+    pushEdit(tr("Map %1 to vertex %2").arg(markerLabel(marker)).arg(vertex), std::move(after));
     return true;
 }
 
@@ -110,9 +121,9 @@ bool Document::clearMapping(int marker) {
     if (marker < 0 || marker >= markerCount()) return fail(tr("No marker is selected."));
     const int mapping = markers_[marker].mapping;
     if (mapping < 0) return true;
-    MapState after = mapState();
+    EditState after = editState();
     after.map.markers.erase(after.map.markers.begin() + mapping);
-    pushMapEdit(tr("Clear %1").arg(markerLabel(marker)), std::move(after));
+    pushEdit(tr("Clear %1").arg(markerLabel(marker)), std::move(after));
     return true;
 }
 
@@ -122,7 +133,7 @@ bool Document::setOffsetMm(const std::vector<int>& markers, double mm) {
                         .arg(mm)
                         .arg(Correspondence::kMinOffsetMm)
                         .arg(Correspondence::kMaxOffsetMm));
-    MapState after = mapState();
+    EditState after = editState();
     int changed = 0;
     for (int marker : markers) {
         if (marker < 0 || marker >= markerCount() || markers_[marker].mapping < 0) continue;
@@ -131,23 +142,23 @@ bool Document::setOffsetMm(const std::vector<int>& markers, double mm) {
         offset = mm;
     }
     if (changed == 0) return true;
-    const QString what =
-        markers.size() == 1 ? markerLabel(markers.front()) : tr("%1 markers").arg(changed);
-    pushMapEdit(tr("Set the offset of %1 to %2 mm").arg(what).arg(mm), std::move(after));
+    const QString what = markers.size() == 1 ? markerLabel(markers.front())
+                                             : counted(changed, tr("%n marker"), tr("%n markers"));
+    pushEdit(tr("Set the offset of %1 to %2 mm").arg(what).arg(mm), std::move(after));
     return true;
 }
 
 bool Document::clearAllMappings() {
     if (map_.markers.empty()) return true;
-    MapState after = mapState();
+    EditState after = editState();
     after.map.markers.clear();
-    pushMapEdit(tr("Clear all markers"), std::move(after));
+    pushEdit(tr("Clear all markers"), std::move(after));
     return true;
 }
 
 bool Document::suggestMappings(int* suggested, int* toCheck, QStringList* offBody) {
     if (!hasMesh_ || !hasTake_) return fail(tr("Suggesting needs a mesh and a take."));
-    MapState after = mapState();
+    EditState after = editState();
     Suggestion s;
     try {
         s = boneless::suggestMappings(mesh_, take_, map_);
@@ -160,35 +171,41 @@ bool Document::suggestMappings(int* suggested, int* toCheck, QStringList* offBod
     if (offBody)
         for (const std::string& label : s.offBody) *offBody << QString::fromStdString(label);
     if (s.suggested == 0) return true;
-    pushMapEdit(tr("Suggest %n marker(s)", nullptr, s.suggested), std::move(after));
+    pushEdit(counted(s.suggested, tr("Suggest %n marker"), tr("Suggest %n markers")),
+             std::move(after));
     return true;
 }
 
-bool Document::align(int calibrationFrame) {
+bool Document::fitAlignment(int frame, EditState& after) {
     QString why;
     if (!canSolve(&why)) return fail(why);
-    MapState after = mapState();
     try {
         // The solver's own calibration also corrects for the markers' offsets off the skin, so
         // a fixed alignment is exactly what an automatic solve would have used.
-        TakeSolveOptions options = settings_;
+        TakeSolveOptions options = after.settings;
         options.alignment.reset();
-        options.calibrationFrame = calibrationFrame;
+        options.calibrationFrame = frame;
         options.calibrate = CalibrateMode::None;  // the alignment alone, not the fit
-        TakeSolver solver(mesh_, take_, map_, options);
+        TakeSolver solver(mesh_, take_, after.map, options);
         after.alignment = solver.calibration();
     } catch (const std::exception& e) {
         return fail(QString::fromStdString(e.what()));
     }
-    pushMapEdit(tr("Align take"), std::move(after));
+    return true;
+}
+
+bool Document::align(int calibrationFrame) {
+    EditState after = editState();
+    if (!fitAlignment(calibrationFrame, after)) return false;
+    pushEdit(tr("Align take"), std::move(after));
     return true;
 }
 
 bool Document::clearAlignment() {
     if (!alignment_) return true;
-    MapState after = mapState();
+    EditState after = editState();
     after.alignment.reset();
-    pushMapEdit(tr("Clear alignment"), std::move(after));
+    pushEdit(tr("Clear alignment"), std::move(after));
     return true;
 }
 
@@ -225,11 +242,24 @@ Calibration Document::displayAlignment() const {
     return c;
 }
 
-void Document::setSettings(const TakeSolveOptions& settings) {
-    settings_ = settings;
-    settings_.alignment.reset();
-    emit settingsChanged();
-    emit changed();
+void Document::setSettings(const TakeSolveOptions& settings, const QString& text) {
+    EditState after = editState();
+    after.settings = settings;
+    after.settings.alignment.reset();
+    if (sameSettings(after.settings, settings_)) return;
+    pushEdit(text.isEmpty() ? tr("Change the solver settings") : text, std::move(after));
+}
+
+bool Document::calibrateAt(int frame) {
+    EditState after = editState();
+    after.settings.calibrationFrame = frame;
+    after.settings.calibrate = CalibrateMode::Shape;
+    if (alignment_ && !fitAlignment(frame, after)) return false;
+    if (sameSettings(after.settings, settings_) && sameAlignment(after.alignment, alignment_))
+        return true;
+    pushEdit(frame >= 0 ? tr("Calibrate at frame %1").arg(frame) : tr("Calibrate automatically"),
+             std::move(after));
+    return true;
 }
 
 TakeSolveOptions Document::solveOptions() const {

@@ -15,10 +15,12 @@
 #include <QRadioButton>
 #include <QSettings>
 #include <QSpinBox>
+#include <QStandardPaths>
 #include <QVBoxLayout>
 #include <algorithm>
 #include <vector>
 
+#include "Counted.h"
 #include "boneless/Parallel.h"
 #include "boneless/ui/Document.h"
 #include "boneless/ui/ExportRunner.h"
@@ -39,8 +41,17 @@ QString duration(double ms) {
     return QObject::tr("about %1 min %2 s").arg(s / 60).arg(s % 60);
 }
 
-QString frameCount(int frames) {
-    return frames == 1 ? QObject::tr("1 frame") : QObject::tr("%1 frames").arg(frames);
+// Where an export goes unless the user picks a folder: beside the saved project, else the last
+// folder exported into, else the user's documents; never beside the mesh, which may sit in a
+// shared, read-only library.
+QString defaultFolder(const QString& projectPath) {
+    if (!projectPath.isEmpty()) {
+        const QFileInfo project(projectPath);
+        return project.absolutePath() + "/" + project.completeBaseName() + "_export";
+    }
+    const QString last = QSettings().value("export/folder").toString();
+    if (!last.isEmpty()) return last;
+    return QStandardPaths::writableLocation(QStandardPaths::DocumentsLocation) + "/Boneless";
 }
 
 }  // namespace
@@ -85,7 +96,7 @@ ExportDialog::ExportDialog(Document* document, FrameSolver* solver, Timeline* ti
 
     folder_ = new QLineEdit;
     folder_->setObjectName("exportFolder");
-    folder_->setText(QSettings().value("export/folder").toString());
+    connect(folder_, &QLineEdit::textEdited, this, [this] { folderChosen_ = true; });
     auto* browse = new QPushButton(tr("Browse…"));
     auto* folderRow = new QHBoxLayout;
     folderRow->addWidget(folder_, 1);
@@ -135,7 +146,7 @@ ExportDialog::ExportDialog(Document* document, FrameSolver* solver, Timeline* ti
     connect(browse, &QPushButton::clicked, this, [this] {
         const QString chosen =
             QFileDialog::getExistingDirectory(this, tr("Export Into"), folder_->text());
-        if (!chosen.isEmpty()) folder_->setText(chosen);
+        if (!chosen.isEmpty()) setFolder(chosen);
     });
     connect(rangeGroup_, &QButtonGroup::idClicked, this, &ExportDialog::updateEstimate);
     // Editing the frames means exporting them.
@@ -179,6 +190,13 @@ void ExportDialog::setInOut(int in, int out) {
 
 void ExportDialog::setFolder(const QString& folder) {
     folder_->setText(folder);
+    folderChosen_ = true;
+}
+
+void ExportDialog::setProjectPath(const QString& path) {
+    if (path == projectPath_) return;
+    projectPath_ = path;
+    folderChosen_ = false;  // a folder picked for another project is not this one's
 }
 
 QString ExportDialog::folder() const {
@@ -240,8 +258,7 @@ void ExportDialog::syncFromDocument() {
         out_->setValue(last);
     }
     current_->setText(tr("Current frame (%1)").arg(timeline_->frame()));
-    if (folder_->text().isEmpty() && document_->hasMesh())
-        folder_->setText(QFileInfo(document_->meshPath()).absolutePath() + "/export");
+    if (!folderChosen_) folder_->setText(defaultFolder(projectPath_));
 }
 
 void ExportDialog::updateEstimate() {
@@ -252,13 +269,14 @@ void ExportDialog::updateEstimate() {
         progress_->setRange(0, std::max(1, frames));
         progress_->setValue(0);
     }
+    const QString frameCount = counted(frames, tr("%n frame"), tr("%n frames"));
     const double ms = measuredMsPerFrame();
     if (ms <= 0) {
-        estimate_->setText(tr("%1; measuring the time a frame takes…").arg(frameCount(frames)));
+        estimate_->setText(tr("%1; measuring the time a frame takes…").arg(frameCount));
         return;
     }
     estimate_->setText(tr("%1, %2 (%3 ms a frame as solved here)")
-                           .arg(frameCount(frames), duration(estimatedMs()))
+                           .arg(frameCount, duration(estimatedMs()))
                            .arg(ms, 0, 'f', 0));
 }
 

@@ -7,6 +7,7 @@
 #include <QTimer>
 #include <QtConcurrent/QtConcurrentRun>
 
+#include "Counted.h"
 #include "boneless/ui/Document.h"
 
 namespace boneless::ui {
@@ -93,12 +94,15 @@ void ExportRunner::onFinished() {
     if (!error_.isEmpty())
         message = error_;
     else if (result_.cancelled)
-        message = tr("Export stopped after %1 frames; the files written and %2 are complete.")
-                      .arg(result_.framesWritten)
+        message = counted(result_.framesWritten,
+                          tr("Export stopped after %n frame; the files written and %1 are "
+                             "complete."),
+                          tr("Export stopped after %n frames; the files written and %1 are "
+                             "complete."))
                       .arg(QString::fromStdString(result_.sidecarPath));
     else
-        message = tr("Exported %1 frames to %2.")
-                      .arg(result_.framesWritten)
+        message = counted(result_.framesWritten, tr("Exported %n frame to %1."),
+                          tr("Exported %n frames to %1."))
                       .arg(QString::fromStdString(job->request.outDir));
     emit finished(error_.isEmpty(), message);
 }

@@ -170,6 +170,7 @@ void FrameDisplay::onFrameChanged(int frame) {
 void FrameDisplay::showUnsolved(int frame) {
     displayedFrame_ = frame;
     view_->setPositions(document_->mesh().V);
+    markersOnRest_ = false;
     markerPositions_ = document_->markerPositions(frame);
     updateMarkers();
     updateTrails(frame);
@@ -220,7 +221,8 @@ void FrameDisplay::showResult() {
         view_->setPositions(*result.rest);
     else
         view_->setPositions(document_->mesh().V);
-    markerPositions_ = frame ? result.markers : Positions(0, 3);
+    markersOnRest_ = !frame;
+    if (frame) markerPositions_ = result.markers;
     updateMarkers();
 }
 
@@ -248,6 +250,13 @@ void FrameDisplay::onRendered() {
 
 void FrameDisplay::updateMarkers() {
     const int count = document_->markerCount();
+    if (markersOnRest_) {  // placed anew at each map edit, so mapping can go on on the rest
+        const Positions& V = view_->positions();
+        markerPositions_ = Positions::Constant(count, 3, std::numeric_limits<double>::quiet_NaN());
+        for (int k = 0; k < count; ++k)
+            if (const int v = document_->mappedVertex(k); v >= 0 && v < V.rows())
+                markerPositions_.row(k) = V.row(v);
+    }
     if (markerPositions_.rows() != count) {
         view_->setMarkers(Positions(0, 3), {}, {});
         view_->setHighlightedVertex(-1);
@@ -302,11 +311,20 @@ void FrameDisplay::emitStatus() {
     } else {
         solve = result_->fromCache ? tr("cached")
                                    : tr("solved in %1 ms").arg(result_->solveMs, 0, 'f', 0);
+        // Frames meet their markers even on a take aligned 200 mm off: the alignment's own
+        // residual says that. The solver measures the one it finds, Align the one it fixes.
+        const Calibration& aligned =
+            document_->alignment() ? *document_->alignment() : result_->calibration;
+        const QString alignment =
+            tr("alignment %1 mm").arg(aligned.residualMm(document_->take().unitToMm), 0, 'f', 1);
         residual = result_->report.heldFrom >= 0
-                       ? tr("no marker seen: holding frame %1's pose").arg(result_->report.heldFrom)
-                       : tr("residual %1 mm (max %2)")
+                       ? tr("no marker seen: holding frame %1's pose, %2")
+                             .arg(result_->report.heldFrom)
+                             .arg(alignment)
+                       : tr("residual %1 mm (max %2), %3")
                              .arg(result_->report.residualRmsMm, 0, 'f', 2)
-                             .arg(result_->report.residualMaxMm, 0, 'f', 2);
+                             .arg(result_->report.residualMaxMm, 0, 'f', 2)
+                             .arg(alignment);
     }
     emit statusChanged(frame, solve, residual);
 }

@@ -26,7 +26,8 @@ class FrameDisplay : public QObject {
   public:
     // What the view shows of a solved frame: the frame itself, the rest it was solved against
     // (the calibrated rest when calibrating: the mesh in the actor's proportions and pose at the
-    // calibration frame), or the mesh's own rest. The take's markers are drawn on the frame only.
+    // calibration frame), or the mesh's own rest. On a rest the mapped markers are drawn at their
+    // vertices: the take's, at this frame, would float off the body.
     enum class Shown { Frame, CalibratedRest, Rest };
     FrameDisplay(Document* document, FrameSolver* solver, Timeline* timeline, MeshView* view,
                  MarkerListModel* markers, QObject* parent = nullptr);
@@ -102,6 +103,7 @@ class FrameDisplay : public QObject {
     int displayedFrame_ = -1;
     std::optional<FrameResult> result_;
     Positions markerPositions_;
+    bool markersOnRest_ = false;  // markerPositions_ follow the map onto the rest shown
     Eigen::Vector3d up_ = Eigen::Vector3d::UnitY();
 
     int requestedFrame_ = -1;

@@ -3,9 +3,10 @@
 #include <QDialogButtonBox>
 #include <QLabel>
 #include <QListWidget>
-#include <QLocale>
 #include <QVBoxLayout>
 #include <algorithm>
+
+#include "Counted.h"
 
 namespace boneless::ui {
 
@@ -22,12 +23,11 @@ GroupChooser::GroupChooser(const QString& fileName, const std::vector<ObjGroup>&
     std::vector<ObjGroup> bySize = groups;
     std::stable_sort(bySize.begin(), bySize.end(),
                      [](const ObjGroup& a, const ObjGroup& b) { return a.vertices > b.vertices; });
-    const QLocale locale;
     for (const ObjGroup& g : bySize) {
-        auto* item = new QListWidgetItem(tr("%1 — %2 vertices")
-                                             .arg(QString::fromStdString(g.name))
-                                             .arg(locale.toString(g.vertices)),
-                                         list_);
+        auto* item =
+            new QListWidgetItem(counted(g.vertices, tr("%1 — %n vertex"), tr("%1 — %n vertices"))
+                                    .arg(QString::fromStdString(g.name)),
+                                list_);
         item->setData(kGroupRole, QString::fromStdString(g.name));
     }
     new QListWidgetItem(tr("(whole file)"), list_);
@@ -39,8 +39,9 @@ GroupChooser::GroupChooser(const QString& fileName, const std::vector<ObjGroup>&
     connect(list_, &QListWidget::itemDoubleClicked, this, &QDialog::accept);
 
     auto* layout = new QVBoxLayout(this);
-    layout->addWidget(
-        new QLabel(tr("%1 has %n group(s). Animate:", nullptr, int(groups.size())).arg(fileName)));
+    layout->addWidget(new QLabel(counted(int(groups.size()), tr("%1 has %n group. Animate:"),
+                                         tr("%1 has %n groups. Animate:"))
+                                     .arg(fileName)));
     layout->addWidget(list_, 1);
     layout->addWidget(buttons);
     resize(420, 360);

@@ -22,6 +22,7 @@
 #include <cmath>
 
 #include "CalibrationMenu.h"
+#include "Counted.h"
 #include "FrameDisplay.h"
 #include "OffsetRow.h"
 #include "SuggestionHighlight.h"
@@ -180,7 +181,7 @@ void MainWindow::buildMarkerDock() {
         if (document_->selectedMarker() >= 0) document_->clearMapping(document_->selectedMarker());
     });
     connect(suggest, &QPushButton::clicked, this, &MainWindow::suggestMappings);
-    connect(align, &QPushButton::clicked, this, [this] { document_->align(); });
+    connect(align, &QPushButton::clicked, this, &MainWindow::alignTake);
 
     auto* dock = new QDockWidget(tr("Markers"), this);
     dock->setObjectName("markerDock");
@@ -237,7 +238,7 @@ QMenu* MainWindow::buildEditMenu() {
     edit->addSeparator();
     edit->addAction(mappingAction_);
     edit->addAction(tr("&Suggest Rest"), this, &MainWindow::suggestMappings);
-    edit->addAction(tr("&Align Take to Mesh"), this, [this] { document_->align(); });
+    edit->addAction(tr("&Align Take to Mesh"), this, &MainWindow::alignTake);
     edit->addAction(tr("&Clear Mapping"), this, [this] {
         if (document_->selectedMarker() >= 0) document_->clearMapping(document_->selectedMarker());
     });
@@ -347,6 +348,10 @@ void MainWindow::buildStatusBar() {
     statusBar()->addPermanentWidget(frameLabel_);
     statusBar()->addPermanentWidget(solveLabel_);
     statusBar()->addPermanentWidget(residualLabel_);
+    residualLabel_->setToolTip(
+        tr("Residual: this frame's markers from where the posed mesh puts them (RMS and max).\n"
+           "Alignment: the mapped markers, aligned, from their points on the mesh at the "
+           "calibration frame (RMS)."));
     connect(display_, &FrameDisplay::statusChanged, this,
             [this](const QString& frame, const QString& solve, const QString& residual) {
                 frameLabel_->setText(frame);
@@ -393,7 +398,6 @@ void MainWindow::connectDocument() {
         if (!loading_) unsavedEdits_ = true;
     };
     connect(document_->undoStack(), &QUndoStack::indexChanged, this, edited);
-    connect(document_, &Document::settingsChanged, this, edited);
     connect(autosave_, &ProjectAutosave::saved, this, [this](const QString& path) {
         if (!demo_ && path == projectPath_) unsavedEdits_ = false;
     });
@@ -525,13 +529,10 @@ bool MainWindow::suggestMappings() {
     QString message;
     if (suggested == 0 && offBody.isEmpty())
         message = tr("Nothing to suggest: every marker seen in the take is mapped");
-    else if (toCheck == 0)
-        message = tr("%n marker(s) suggested", nullptr, suggested);
     else
-        message =
-            tr("%n marker(s) suggested, %1 of them to check: the list's \"To check\" shows them",
-               nullptr, suggested)
-                .arg(toCheck);
+        message = counted(suggested, tr("%n marker suggested"), tr("%n markers suggested"));
+    if (toCheck > 0)
+        message += tr(", %1 of them to check: the list's \"To check\" shows them").arg(toCheck);
     // A prop's or another actor's markers: no place on this body, so none was given.
     if (!offBody.isEmpty())
         message += tr("; left unmapped, more than %1 mm from the body: %2")
@@ -539,6 +540,16 @@ bool MainWindow::suggestMappings() {
                        .arg(offBody.join(", "));
     statusBar()->showMessage(message, toCheck == 0 && offBody.isEmpty() ? 10000 : 15000);
     return true;
+}
+
+void MainWindow::alignTake() {
+    if (!document_->align()) return;
+    const Calibration& aligned = *document_->alignment();
+    statusBar()->showMessage(
+        tr("Aligned at frame %1: the mapped markers sit %2 mm (RMS) from their points on the mesh")
+            .arg(aligned.frame)
+            .arg(aligned.residualMm(document_->take().unitToMm), 0, 'f', 1),
+        10000);
 }
 
 int MainWindow::displayedFrame() const {
@@ -572,7 +583,11 @@ QMessageBox* MainWindow::errorBox(const QString& message, const QString& detail)
 void MainWindow::showError(const QString& message, const QString& detail) {
     statusBar()->showMessage(message, 15000);
     emit errorShown(detail.isEmpty() ? message : message + "\n" + detail);
-    if (messageBoxes_) errorBox(message, detail)->show();
+    if (!messageBoxes_) return;
+    if (asking_)
+        heldErrors_.emplace_back(message, detail);
+    else
+        errorBox(message, detail)->show();
 }
 
 }  // namespace boneless::ui

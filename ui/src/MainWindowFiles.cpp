@@ -1,5 +1,6 @@
 // MainWindow: opening, saving, exporting, recent files and drag and drop.
 #include <algorithm>
+#include <utility>
 
 #include <QCloseEvent>
 #include <QDragEnterEvent>
@@ -17,6 +18,7 @@
 #include <QStatusBar>
 #include <QUrl>
 
+#include "Counted.h"
 #include "FrameDisplay.h"
 #include "boneless/Error.h"
 #include "boneless/MeshReader.h"
@@ -174,7 +176,8 @@ bool MainWindow::askMapLoad(const QString& path, Document::MapLoad& mode) {
     const int mapped = document_->mappedCount();
     if (mapped == 0 || !messageBoxes_) return true;
     QMessageBox box(QMessageBox::Question, tr("Open Correspondence"),
-                    tr("%n marker(s) are mapped already. Open %1:", nullptr, mapped)
+                    counted(mapped, tr("%n marker is mapped already. Open %1:"),
+                            tr("%n markers are mapped already. Open %1:"))
                         .arg(QFileInfo(path).fileName()),
                     QMessageBox::NoButton, this);
     box.setObjectName("mapLoadQuestion");
@@ -267,6 +270,7 @@ void MainWindow::showExportDialog() {
         showError(tr("Nothing to export: %1").arg(why));
         return;
     }
+    exportDialog_->setProjectPath(demo_ ? QString() : projectPath_);
     exportDialog_->show();
     exportDialog_->raise();
 }
@@ -440,9 +444,14 @@ bool MainWindow::keepUnsavedWork(bool closing) {
     discard->setObjectName("discardButton");
     cancel->setObjectName("cancelButton");
     box.setDefaultButton(saveAs);
+    asking_ = true;
     box.exec();  // nothing closes or opens before this is answered
-    if (box.clickedButton() == discard) return true;
-    return box.clickedButton() == saveAs && chooseSaveProjectAs();
+    const bool goOn =
+        box.clickedButton() == discard || (box.clickedButton() == saveAs && chooseSaveProjectAs());
+    asking_ = false;
+    for (const auto& [message, detail] : std::exchange(heldErrors_, {}))
+        if (!goOn) errorBox(message, detail)->show();
+    return goOn;
 }
 
 }  // namespace boneless::ui

@@ -226,7 +226,7 @@ json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibr
             {"up_axis", {{"take", "+z"}, {"mesh_guess", guessUpAxis(s)}}},
             {"alignment",
              {{"calibration_frame", c.frame},
-              {"residual_mm", c.residual / meshUnitsPerMm},
+              {"residual_mm", c.residualMm(take.unitToMm)},
               {"scale", s.scale},
               {"rotation",
                {{s.R(0, 0), s.R(0, 1), s.R(0, 2)},

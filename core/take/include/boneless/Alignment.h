@@ -17,6 +17,10 @@ struct Calibration {
     Similarity takeToMesh;
     double residual = 0;     // RMS marker distance after alignment, in mesh units
     int visibleMarkers = 0;  // markers seen at that frame (all of them unless the take is gappy)
+    // `residual` in millimetres, for a take whose unit is takeUnitToMm mm (C3dTake::unitToMm).
+    double residualMm(double takeUnitToMm) const {
+        return residual / (takeToMesh.scale / takeUnitToMm);  // as sidecars always wrote it
+    }
 };
 
 // Among the frames where every given point is visible, the one that is closest to the rest pose

@@ -19,9 +19,9 @@ class QUndoStack;
 namespace boneless::ui {
 
 // The open session: one rest mesh, one take, the marker-to-vertex map being authored, the
-// alignment and the solver settings. Every edit of the map or the alignment is an undo command on
-// undoStack(); loading never throws: a failure leaves the previous state and emits errorOccurred
-// with boneless::Error's complete message.
+// alignment and the solver settings. Every edit of the map, the alignment or the settings is an
+// undo command on undoStack(); loading never throws: a failure leaves the previous state and emits
+// errorOccurred with boneless::Error's complete message.
 //
 // Markers are the rows the user works with: the take's points classified as markers, in file
 // order (without a take: the map's entries). A marker is "mapped" when the map has an entry whose
@@ -94,7 +94,12 @@ class Document : public QObject {
     // Solver settings of this session (saved in the project). options().alignment is always
     // empty here; solveOptions() fills it from alignment().
     const TakeSolveOptions& settings() const { return settings_; }
-    void setSettings(const TakeSolveOptions& settings);
+    // One undo step named `text` (a default when empty); none when nothing changes.
+    void setSettings(const TakeSolveOptions& settings, const QString& text = {});
+    // Calibrates at `frame` (-1: chosen automatically), one undo step: the settings' calibration
+    // frame, calibration on, and a fixed alignment redone at that frame, since the solver aligns
+    // and fits at one frame (solveOptions()). Refused when that alignment fails.
+    bool calibrateAt(int frame);
     // What the solver and the export use: settings() plus the fixed alignment, if any.
     TakeSolveOptions solveOptions() const;
     // Free-form view state the window keeps in the project (labels, trails, heat map, ...).
@@ -178,15 +183,19 @@ class Document : public QObject {
     void errorOccurred(const QString& message);
 
   private:
-    friend class MapEditCommand;
-    struct MapState {
+    friend class EditCommand;
+    // What an undo step restores, all at once: a calibration changes settings and alignment.
+    struct EditState {
         Correspondence map;
         QString mapPath;
         std::optional<Calibration> alignment;
+        TakeSolveOptions settings;
     };
-    MapState mapState() const;
-    void applyMapState(const MapState& state);  // used by the undo commands
-    void pushMapEdit(const QString& text, MapState after);
+    EditState editState() const;
+    void applyEditState(const EditState& state);  // used by the undo commands
+    void pushEdit(const QString& text, EditState after);
+    // Fixes after.alignment from after's map and settings at `frame` (-1: automatic).
+    bool fitAlignment(int frame, EditState& after);
     void rebuildMarkers();
     void startAfresh();
     bool fail(const QString& message);

@@ -43,6 +43,9 @@ class ExportDialog : public QDialog {
     void setInOut(int in, int out);  // inclusive, 0-based
     void setFolder(const QString& folder);
     QString folder() const;
+    // The saved project the export belongs to (empty: untitled or the demo); the folder offered
+    // is beside it until the user picks another.
+    void setProjectPath(const QString& path);
     void setFormat(ExportFormat format);
     // What Export would start: the document's request for the folder, format and frames.
     ExportRequest request() const;
@@ -87,6 +90,8 @@ class ExportDialog : public QDialog {
     QSpinBox *in_, *out_;
     QComboBox* format_;
     QLineEdit* folder_;
+    QString projectPath_;
+    bool folderChosen_ = false;  // by the user, for this project: not replaced by the default
     QCheckBox* calibratedRest_;
     QLabel* estimate_;
     QProgressBar* progress_;

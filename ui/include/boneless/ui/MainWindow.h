@@ -2,6 +2,8 @@
 
 #include <QMainWindow>
 #include <QString>
+#include <utility>
+#include <vector>
 
 #include "boneless/ui/Document.h"
 
@@ -68,6 +70,8 @@ class MainWindow : public QMainWindow {
     void showExportDialog();
     // Edit → Suggest Rest, and the status bar says how many suggestions to check.
     bool suggestMappings();
+    // Align (Edit menu and marker panel), and the status bar says how well the alignment fits.
+    void alignTake();
 
     // The frame the timeline moves to once the next take is loaded (for --frame).
     void setStartFrame(int frame) { startFrame_ = frame; }
@@ -162,13 +166,16 @@ class MainWindow : public QMainWindow {
     QString projectPath_;
     bool demo_ = false;
     QString opening_;  // the file being opened, for plainError()
-    // An edit (undoable, or of the settings) since the project was opened or saved; loading a
-    // file is none.
+    // An edit (each one undoable) since the project was opened or saved; loading a file is none.
     bool unsavedEdits_ = false;
     int loading_ = 0;         // > 0 while a file is being loaded
     bool workAsked_ = false;  // keepUnsavedWork was answered for the files being opened
     int startFrame_ = -1;
     bool messageBoxes_ = true;
+    // While keepUnsavedWork's question waits, error boxes are held (one over the question would
+    // hide it); the answer shows them if the session stays, drops them if it is left.
+    bool asking_ = false;
+    std::vector<std::pair<QString, QString>> heldErrors_;  // message, detail
 };
 
 }  // namespace boneless::ui
