@@ -164,14 +164,10 @@ std::pair<int, int> parseShard(const std::string& text) {
 
 enum class Sidecar { Missing, Complete, OtherSettings, InputsChanged };
 
-// One file however it is spelled (relative to the working folder, through "..", a symbolic link):
-// sidecars written before the manifest's paths were made absolute name them relative.
+// One file however it is spelled: sidecars written before the manifest's paths were made absolute
+// name them relative.
 bool sameFile(const json& recorded, const std::string& path) {
-    if (!recorded.is_string()) return false;
-    std::error_code a, b;
-    const fs::path x = fs::weakly_canonical(recorded.get<std::string>(), a);
-    const fs::path y = fs::weakly_canonical(path, b);
-    return !a && !b && x == y;
+    return recorded.is_string() && boneless::sameFile(recorded.get<std::string>(), path);
 }
 
 // Fingerprints of the files this run has read so far: a library's takes share a few meshes and

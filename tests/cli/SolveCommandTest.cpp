@@ -186,6 +186,45 @@ TEST(SolveCommand, CtrlCStopsCleanlyWithCompleteFilesOnly) {
     EXPECT_LT(objs, 3000);
 }
 
+// A hand-made map kept beside the mesh as walker.json, and the same folder given as the output:
+// the sidecar replaced the map. Refused before solving, in batch entry by entry.
+TEST(SolveCommand, AnOutputThatWouldReplaceAnInputIsRefusedBeforeSolvingNamingBoth) {
+    const fs::path demo = makeDemo(4);
+    fs::rename(demo / "walker.map.json", demo / "walker.json");
+    std::ostringstream before;
+    before << std::ifstream(demo / "walker.json").rdbuf();
+    const std::string args = "solve --mesh " + (demo / "walker.obj").string() + " --c3d " +
+                             (demo / "walker.c3d").string() + " --map " +
+                             (demo / "walker.json").string() + " --format pc2 --quiet";
+    const CliResult r = runCli(args + " --out " + demo.string());
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find((demo / "walker.json").string() +
+                         ": the sidecar this solve writes would replace the map " +
+                         (demo / "walker.json").string()),
+              std::string::npos)
+        << r.out;
+    std::ostringstream after;
+    after << std::ifstream(demo / "walker.json").rdbuf();
+    EXPECT_TRUE(after.str() == before.str()) << "the map was replaced";
+    EXPECT_FALSE(fs::exists(demo / "walker.pc2"));
+    // The same folder spelled another way is the same file.
+    EXPECT_EQ(runCli(args + " --out " + (demo / "truth" / "..").string()).exitCode, 1);
+
+    std::ofstream(demo / "m.json") << nlohmann::json{
+        {"defaults", {{"mesh", "walker.obj"}, {"c3d", "walker.c3d"}, {"map", "walker.json"}}},
+        {"takes", {{{"out", "."}}, {{"out", "solved"}}}}};
+    const CliResult batch = runCli("batch " + (demo / "m.json").string());
+    EXPECT_EQ(batch.exitCode, 1) << batch.out;
+    EXPECT_NE(batch.out.find("FAILED: " + (demo / "walker.json").string() +
+                             ": the sidecar this solve writes would replace the map"),
+              std::string::npos)
+        << batch.out;
+    EXPECT_NE(batch.out.find("1 solved, 0 skipped, 1 failed"), std::string::npos) << batch.out;
+    std::ostringstream afterBatch;
+    afterBatch << std::ifstream(demo / "walker.json").rdbuf();
+    EXPECT_TRUE(afterBatch.str() == before.str()) << "the map was replaced";
+}
+
 // What `map suggest` flagged and nobody cleared is solved, but not in silence: a proposal on a
 // prop pulled the head to it, and nothing said so.
 TEST(SolveCommand, WarnsOfTheEntriesStillMarkedForReviewAndSolvesAnyway) {
