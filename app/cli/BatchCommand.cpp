@@ -89,6 +89,22 @@ void requireKeys(const TakeJob& job, const std::string& where) {
         if (value->empty()) throw Error(where + ": '" + key + "' is missing");
 }
 
+// Two entries that write one sidecar (sessA/walk.c3d and sessB/walk.c3d into one "out") would
+// overwrite each other's files, both say solved, and both be solved again on every run.
+// `entries` names each job as a message should ("takes[1] (/lib/sessB/walk.c3d)").
+void refuseSharedOutputs(const std::string& file, const std::vector<TakeJob>& jobs,
+                         const std::vector<std::string>& entries) {
+    std::map<std::string, std::size_t> writers;  // the sidecar, however spelled, and its entry
+    for (std::size_t k = 0; k < jobs.size(); ++k) {
+        const std::string sidecar = takeJobSidecar(jobs[k]);
+        std::error_code ec;
+        const auto [it, first] = writers.emplace(fs::weakly_canonical(sidecar, ec).string(), k);
+        if (!first)
+            throw Error(file + ": " + entries[it->second] + " and " + entries[k] + " both write " +
+                        sidecar + " and the outputs beside it; give each its own 'out'");
+    }
+}
+
 // Entries in manifest order: "takes" first, then each of "folders" expanded in file-name order.
 std::vector<TakeJob> readManifest(const std::string& file) {
     std::ifstream in(file);
@@ -119,6 +135,7 @@ std::vector<TakeJob> readManifest(const std::string& file) {
         }
     if (m.contains("defaults")) applyKeys(m["defaults"], base, file + ": defaults", defaults);
     std::vector<TakeJob> jobs;
+    std::vector<std::string> entries;  // what messages call each job
     const json takes = m.value("takes", json::array()), folders = m.value("folders", json::array());
     for (std::size_t i = 0; i < takes.size(); ++i) {
         const std::string where = file + ": takes[" + std::to_string(i) + "]";
@@ -126,6 +143,7 @@ std::vector<TakeJob> readManifest(const std::string& file) {
         applyKeys(takes[i], base, where, job);
         requireKeys(job, where);
         jobs.push_back(job);
+        entries.push_back("takes[" + std::to_string(i) + "] (" + job.c3d + ")");
     }
     for (std::size_t i = 0; i < folders.size(); ++i) {
         const std::string where = file + ": folders[" + std::to_string(i) + "]";
@@ -146,9 +164,11 @@ std::vector<TakeJob> readManifest(const std::string& file) {
             job.c3d = take.string();
             job.out = (fs::path(pattern.out) / take.stem()).string();
             jobs.push_back(job);
+            entries.push_back("folders[" + std::to_string(i) + "] (" + job.c3d + ")");
         }
     }
     if (jobs.empty()) throw Error(file + ": the manifest lists no take");
+    refuseSharedOutputs(file, jobs, entries);
     return jobs;
 }
 

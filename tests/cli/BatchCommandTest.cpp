@@ -397,3 +397,41 @@ TEST(Batch, SaysOnceWhichEntriesOfTheSharedMapAreStillMarkedForReview) {
     ASSERT_NE(first, std::string::npos) << r.out;
     EXPECT_EQ(r.out.find(warning, first + 1), std::string::npos) << r.out;  // three takes, once
 }
+
+// sessA/walk.c3d and sessB/walk.c3d with one "out" both said solved while the second overwrote the
+// first, and every run solved both again.
+TEST(Batch, TwoEntriesThatWriteTheSameFilesAreRefusedBeforeAnythingIsSolved) {
+    const fs::path dir = makeLibrary();
+    for (const char* session : {"sessA", "sessB"}) {
+        fs::create_directories(dir / session);
+        fs::copy_file(dir / "takes" / "walk_a.c3d", dir / session / "walk.c3d");
+    }
+    const json defaults = {{"mesh", "walker.obj"}, {"map", "walker.map.json"}};
+    const fs::path takes =
+        writeManifest(dir, "takes.json",
+                      {{"defaults", defaults},
+                       {"takes",
+                        {{{"c3d", "sessA/walk.c3d"}, {"out", "out"}},
+                         {{"c3d", "sessB/walk.c3d"}, {"out", "out/../out"}, {"format", "pc2"}}}}});
+    const CliResult r = runCli("batch " + takes.string());
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find(takes.string() + ": takes[0] (" + (dir / "sessA" / "walk.c3d").string() +
+                         ") and takes[1] (" + (dir / "sessB" / "walk.c3d").string() +
+                         ") both write " + (dir / "out" / "walker.json").string()),
+              std::string::npos)
+        << r.out;
+    EXPECT_FALSE(fs::exists(dir / "out"));
+    // Two folders with one "out" put their takes of the same name in one folder.
+    const fs::path folders = writeManifest(
+        dir, "folders.json",
+        {{"defaults", defaults},
+         {"folders", {{{"c3d", "sessA"}, {"out", "out"}}, {{"c3d", "sessB"}, {"out", "out"}}}}});
+    const CliResult f = runCli("batch " + folders.string());
+    EXPECT_EQ(f.exitCode, 1) << f.out;
+    EXPECT_NE(
+        f.out.find("folders[0] (" + (dir / "sessA" / "walk.c3d").string() + ") and folders[1] (" +
+                   (dir / "sessB" / "walk.c3d").string() + ") both write"),
+        std::string::npos)
+        << f.out;
+    EXPECT_FALSE(fs::exists(dir / "out"));
+}
