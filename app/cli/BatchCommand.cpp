@@ -185,9 +185,10 @@ std::pair<int, int> parseShard(const std::string& text) {
 enum class Sidecar { Missing, Complete, OtherSettings, InputsChanged };
 
 // One file however it is spelled: sidecars written before the manifest's paths were made absolute
-// name them relative.
+// name them relative, and a path that is not UTF-8 is recorded as validUtf8 reads it.
 bool sameFile(const json& recorded, const std::string& path) {
-    return recorded.is_string() && boneless::sameFile(recorded.get<std::string>(), path);
+    return recorded.is_string() && (recorded.get<std::string>() == validUtf8(path) ||
+                                    boneless::sameFile(recorded.get<std::string>(), path));
 }
 
 // Fingerprints of the files this run has read so far: a library's takes share a few meshes and
@@ -227,7 +228,7 @@ Sidecar sidecarState(const TakeJob& job, Fingerprints& known, std::string& why) 
         const json s = json::parse(in);
         const json& src = s.at("source");
         if (!s.at("complete").get<bool>() || s.at("output") != job.format ||
-            !sameFile(src.at("mesh"), job.mesh) || src.at("group") != job.group ||
+            !sameFile(src.at("mesh"), job.mesh) || src.at("group") != validUtf8(job.group) ||
             !sameFile(src.at("c3d"), job.c3d) || !sameFile(src.at("map"), job.map))
             return Sidecar::Missing;
         TakeSolveOptions options;
@@ -292,6 +293,10 @@ void run(const BatchArgs& args) {
             throw;
         } catch (const Error& e) {
             std::printf("FAILED: %s\n", e.what());
+            ++failed;
+        } catch (const std::exception& e) {
+            // Whatever went wrong with one take (a bug included), the others are still to solve.
+            std::printf("FAILED: internal error: %s\n", e.what());
             ++failed;
         }
         // Under the take's line, solved or not: a truncated take solves the frames it holds.

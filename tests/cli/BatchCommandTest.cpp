@@ -435,3 +435,22 @@ TEST(Batch, TwoEntriesThatWriteTheSameFilesAreRefusedBeforeAnythingIsSolved) {
         << f.out;
     EXPECT_FALSE(fs::exists(dir / "out"));
 }
+
+// A take named in Latin-1 ("caf\xe9.c3d") ended the whole run with an internal error; it is
+// solved, its sidecar names it read as Latin-1, and the next run finds it finished.
+TEST(Batch, ATakeWhoseNameIsNotUtf8IsSolvedAndThenSkippedLikeTheOthers) {
+    const fs::path dir = makeLibrary();
+    fs::copy_file(dir / "takes" / "walk_a.c3d", dir / "takes" / "caf\xe9.c3d");
+    const fs::path manifest = writeManifest(dir, "m.json", folderManifest("out"));
+    const CliResult first = runCli("batch " + manifest.string());
+    EXPECT_EQ(first.exitCode, 0) << first.out;
+    EXPECT_NE(first.out.find("4 of 4 entries in shard 1/1: 4 solved, 0 skipped, 0 failed"),
+              std::string::npos)
+        << first.out;
+    const json sidecar = json::parse(std::ifstream(dir / "out" / "caf\xe9" / "walker.json"));
+    EXPECT_EQ(sidecar["source"]["c3d"], (dir / "takes" / "caf\u00e9.c3d").string());
+    const CliResult again = runCli("batch " + manifest.string());
+    EXPECT_NE(again.out.find("4 of 4 entries in shard 1/1: 0 solved, 4 skipped, 0 failed"),
+              std::string::npos)
+        << again.out;
+}

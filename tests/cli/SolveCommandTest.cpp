@@ -225,6 +225,44 @@ TEST(SolveCommand, AnOutputThatWouldReplaceAnInputIsRefusedBeforeSolvingNamingBo
     EXPECT_TRUE(afterBatch.str() == before.str()) << "the map was replaced";
 }
 
+// A file name from a Latin-1 system ("caf\xe9.c3d") made solve, map suggest and eval die with
+// "internal error: [json.exception.type_error.316] invalid UTF-8 byte", leaving no sidecar.
+TEST(SolveCommand, FileNamesThatAreNotUtf8AreWrittenIntoTheJsonFilesReadAsLatin1) {
+    const fs::path demo = makeDemo(3);
+    const fs::path mesh = demo / "m\xe9sh.obj", take = demo / "caf\xe9.c3d";
+    fs::copy_file(demo / "walker.obj", mesh);
+    fs::copy_file(demo / "walker.c3d", take);
+    const CliResult r = runCli("solve --mesh '" + mesh.string() + "' --c3d '" + take.string() +
+                               "' --map " + (demo / "walker.map.json").string() + " --out " +
+                               (demo / "out").string() + " --format glb --quiet");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_TRUE(fs::file_size(demo / "out" / "m\xe9sh.glb") > 0);
+    const auto j = nlohmann::json::parse(std::ifstream(demo / "out" / "m\xe9sh.json"));
+    EXPECT_EQ(j["source"]["c3d"], (demo / "caf\u00e9.c3d").string());
+    EXPECT_EQ(j["source"]["mesh"], (demo / "m\u00e9sh.obj").string());
+    EXPECT_TRUE(j["complete"]);
+
+    nlohmann::json partial = nlohmann::json::parse(std::ifstream(demo / "walker.map.json"));
+    partial["markers"] =
+        std::vector<nlohmann::json>(partial["markers"].begin(), partial["markers"].begin() + 8);
+    partial["mesh"].erase("file");  // so that suggest names the mesh it was given
+    std::ofstream(demo / "partial.json") << partial.dump();
+    const CliResult s =
+        runCli("map suggest --mesh '" + mesh.string() + "' --c3d '" + take.string() + "' --map " +
+               (demo / "partial.json").string() + " --out " + (demo / "suggested.json").string());
+    ASSERT_EQ(s.exitCode, 0) << s.out;
+    EXPECT_EQ(nlohmann::json::parse(std::ifstream(demo / "suggested.json"))["mesh"]["file"],
+              "m\u00e9sh.obj");
+
+    const fs::path sequence = demo / "s\xe9quence";
+    fs::create_directories(sequence);
+    for (const char* frame : {"walker_0000.obj", "walker_0001.obj", "walker_0002.obj"})
+        fs::copy_file(demo / "truth" / frame, sequence / frame);
+    const CliResult e = runCli("eval --sequence '" + sequence.string() + "' --markers 20 --json");
+    ASSERT_EQ(e.exitCode, 0) << e.out;
+    EXPECT_NE(e.out.find("s\u00e9quence"), std::string::npos) << e.out;
+}
+
 // What `map suggest` flagged and nobody cleared is solved, but not in silence: a proposal on a
 // prop pulled the head to it, and nothing said so.
 TEST(SolveCommand, WarnsOfTheEntriesStillMarkedForReviewAndSolvesAnyway) {

@@ -15,6 +15,7 @@
 #include "MtlReader.h"
 #include "boneless/Error.h"
 #include "boneless/SpoolFile.h"
+#include "boneless/Text.h"
 
 namespace boneless {
 
@@ -175,7 +176,7 @@ std::vector<int> triangleMaterials(const TriMesh& mesh, std::vector<ObjMaterial>
 // Ns. With a texture the colour is the texture's (OBJ importers show map_Kd in place of Kd).
 tinygltf::Material gltfMaterial(const ObjMaterial& obj, int texture, int normalTexture) {
     tinygltf::Material m;
-    m.name = obj.name;
+    m.name = validUtf8(obj.name);
     auto& pbr = m.pbrMetallicRoughness;
     // glTF's factors lie in [0, 1]; an OBJ's Kd may not.
     const auto unit = [](double x) { return std::clamp(x, 0.0, 1.0); };
@@ -334,7 +335,7 @@ void GltfWriter::finish() {
         const std::string mimeType = detail::imageMimeType(bytes.substr(0, 8));
         if (mimeType.empty()) return textureOf[path] = -1;
         tinygltf::Image image;
-        image.name = std::filesystem::path(path).filename().string();
+        image.name = validUtf8(std::filesystem::path(path).filename().string());
         image.mimeType = mimeType;
         image.bufferView = place(bytes.size());
         const size_t pad = (4 - bytes.size() % 4) % 4;
@@ -396,8 +397,9 @@ void GltfWriter::finish() {
         primitives.push_back(std::move(p));
         first += count;
     }
-    addAnimatedMesh(m, name_, std::move(primitives), std::move(targetNames), timeAccessor,
-                    weightAccessor);
+    // Names from files may not be UTF-8 (a Latin-1 file name); tinygltf's JSON would throw.
+    addAnimatedMesh(m, validUtf8(name_), std::move(primitives), std::move(targetNames),
+                    timeAccessor, weightAccessor);
     const std::string json = glbJson(m, offset);
     // append() estimated the JSON; this is the file's length as written, checked before it is.
     if (28 + json.size() + offset > kMaxGlbBytes)

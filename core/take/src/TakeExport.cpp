@@ -32,6 +32,7 @@
 #include "boneless/SolveFits.h"
 #include "boneless/SpoolFile.h"
 #include "boneless/TakeOptionsJson.h"
+#include "boneless/Text.h"
 
 namespace boneless {
 
@@ -175,7 +176,7 @@ json calibrationJson(const ExportRequest& request, const TriMesh& mesh, const Ta
     j["frame"] = solver.calibration().frame;
     j["overridden"] = request.options.calibratedRest.has_value();
     j["edge_distortion_from_rest"] = edgeLengthDistortion(mesh.F, solver.rest().V, mesh.V);
-    j["calibrated_rest"] = restFile.empty() ? json(nullptr) : json(restFile);
+    j["calibrated_rest"] = restFile.empty() ? json(nullptr) : json(validUtf8(restFile));
     return j;
 }
 
@@ -192,10 +193,11 @@ json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibr
             {"complete", !result.cancelled},
             {"output", exportFormatInfo(request.format).name},
             {"source",
-             {{"mesh", request.meshPath},
-              {"group", request.group},
-              {"c3d", request.c3dPath},
-              {"map", request.mapPath}}},
+             // JSON holds only UTF-8: a Latin-1 file name is recorded read as Latin-1.
+             {{"mesh", validUtf8(request.meshPath)},
+              {"group", validUtf8(request.group)},
+              {"c3d", validUtf8(request.c3dPath)},
+              {"map", validUtf8(request.mapPath)}}},
             {"source_fingerprints", std::move(fingerprints)},
             {"units",
              {{"take", take.units},
