@@ -182,7 +182,7 @@ std::pair<int, int> parseShard(const std::string& text) {
     return {i, n};
 }
 
-enum class Sidecar { Missing, Complete, OtherSettings, InputsChanged };
+enum class Sidecar { Missing, Complete, Stale };
 
 // One file however it is spelled: sidecars written before the manifest's paths were made absolute
 // name them relative, and a path that is not UTF-8 is recorded as validUtf8 reads it.
@@ -217,10 +217,39 @@ std::string changedInputs(const json& recorded, const TakeJob& job, Fingerprints
            " solved";
 }
 
+// Why the files a complete sidecar vouches for are not all there, or "" if they are: an output
+// deleted or cut short (a copy, a full disk) since. Named as exportTake names them, not as recorded
+// (a name that is not UTF-8 is recorded otherwise): the frames of `range`, or the cache or glb,
+// and the calibrated rest when the entry asks for it.
+std::string missingOutputs(const TakeJob& job, const json& range) {
+    const fs::path sidecar = takeJobSidecar(job), out = sidecar.parent_path();
+    const std::string stem = sidecar.stem().string();
+    std::vector<fs::path> files;
+    const ExportFormat format = findExportFormat(job.format).value_or(ExportFormat::Obj);
+    if (format == ExportFormat::Obj)
+        for (int f = range.at(0).get<int>(); f < range.at(1).get<int>(); ++f)
+            files.push_back(out / objFrameFile(stem, f));
+    else
+        files.push_back(out / (stem + exportFormatInfo(format).extension));
+    if (job.writeCalibratedRest) files.push_back(out / (stem + "_calibrated_rest.obj"));
+    std::vector<std::string> gone;
+    for (const fs::path& file : files) {
+        std::error_code ec;
+        if (fs::file_size(file, ec) == 0 || ec) gone.push_back(file.filename().string());
+    }
+    if (gone.empty()) return "";
+    if (gone.size() == 1) return gone.front() + " is missing or empty";
+    const std::size_t named = std::min<std::size_t>(gone.size(), 3);
+    return std::to_string(gone.size()) + " of its files are missing or empty (" +
+           joined({gone.begin(), gone.begin() + named}) +
+           (gone.size() > named ? " and " + std::to_string(gone.size() - named) + " more" : "") +
+           ")";
+}
+
 // A take is done when its sidecar says it completed from the same sources into the same format,
-// over the frames and with the options the manifest asks for now, and its input files are as
-// they were then. A complete sidecar from other frames or options means the manifest changed,
-// from other file contents that the files did: the take is solved again (`why` says which).
+// over the frames and with the options the manifest asks for now, the files it wrote are still
+// there, and its input files are as they were then. Otherwise it is solved again, `why` saying
+// why: other frames or options (the manifest changed), an output gone, or other file contents.
 Sidecar sidecarState(const TakeJob& job, Fingerprints& known, std::string& why) {
     std::ifstream in(takeJobSidecar(job));
     if (!in) return Sidecar::Missing;
@@ -238,14 +267,13 @@ Sidecar sidecarState(const TakeJob& job, Fingerprints& known, std::string& why) 
         const int end = range.end < 0 ? frames : std::min(range.end, frames);
         const bool sameFrames = s.at("frame_range") == json::array({range.first, end});
         // Every sidecar of a calibrated take has "calibrated_rest", null when none was written.
-        const json rest = s.at("calibration").value("calibrated_rest", json());
-        const bool sameRest =
-            !job.writeCalibratedRest ||
-            (rest.is_string() && fs::exists(fs::path(job.out) / rest.get<std::string>()));
+        const bool sameRest = !job.writeCalibratedRest ||
+                              s.at("calibration").value("calibrated_rest", json()).is_string();
         if (!(sameFrames && sameRest && s.at("options") == toJson(options)))
-            return Sidecar::OtherSettings;
-        why = changedInputs(s.value("source_fingerprints", json()), job, known);
-        return why.empty() ? Sidecar::Complete : Sidecar::InputsChanged;
+            why = "its sidecar is from other frames or options";
+        if (why.empty()) why = missingOutputs(job, s.at("frame_range"));
+        if (why.empty()) why = changedInputs(s.value("source_fingerprints", json()), job, known);
+        return why.empty() ? Sidecar::Complete : Sidecar::Stale;
     } catch (const json::exception&) {
         return Sidecar::Missing;  // unreadable or from an older version: solve it again
     } catch (const Error&) {
@@ -267,16 +295,14 @@ void run(const BatchArgs& args) {
         if (static_cast<int>(k % shards) != shard - 1) continue;
         const TakeJob& job = jobs[k];
         std::printf("[%d/%d] %s -> %s: ", ++done, mine, job.c3d.c_str(), job.out.c_str());
-        std::string changed;
-        const Sidecar sidecar = sidecarState(job, fingerprints, changed);
+        std::string why;
+        const Sidecar sidecar = sidecarState(job, fingerprints, why);
         if (sidecar == Sidecar::Complete) {
             std::printf("skipped (its sidecar says it is complete)\n");
             ++skipped;
             continue;
         }
-        if (sidecar == Sidecar::OtherSettings)
-            std::printf("its sidecar is from other frames or options, solving again: ");
-        if (sidecar == Sidecar::InputsChanged) std::printf("%s, solving again: ", changed.c_str());
+        if (sidecar == Sidecar::Stale) std::printf("%s, solving again: ", why.c_str());
         std::fflush(stdout);
         const auto start = std::chrono::steady_clock::now();
         std::vector<std::string> meshWarnings;  // filled once the mesh is read

@@ -454,3 +454,35 @@ TEST(Batch, ATakeWhoseNameIsNotUtf8IsSolvedAndThenSkippedLikeTheOthers) {
               std::string::npos)
         << again.out;
 }
+
+// A take whose point cache was deleted or cut to nothing was skipped because its sidecar said it
+// was complete; so was one with an OBJ frame gone.
+TEST(Batch, ATakeWhoseOutputIsMissingOrEmptyIsSolvedAgain) {
+    const fs::path dir = makeLibrary();
+    json caches = folderManifest("caches");
+    caches["defaults"]["format"] = "pc2";
+    const fs::path manifest = writeManifest(dir, "caches.json", caches);
+    ASSERT_EQ(runCli("batch " + manifest.string()).exitCode, 0);
+    fs::remove(dir / "caches" / "walk_a" / "walker.pc2");
+    fs::resize_file(dir / "caches" / "walk_b" / "walker.pc2", 0);
+    const CliResult again = runCli("batch " + manifest.string());
+    ASSERT_EQ(again.exitCode, 0) << again.out;
+    EXPECT_NE(again.out.find("walker.pc2 is missing or empty, solving again: 4 frames"),
+              std::string::npos)
+        << again.out;
+    EXPECT_NE(again.out.find("3 of 3 entries in shard 1/1: 2 solved, 1 skipped, 0 failed"),
+              std::string::npos)
+        << again.out;
+    EXPECT_GT(fs::file_size(dir / "caches" / "walk_b" / "walker.pc2"), 0u);
+
+    const fs::path frames = writeManifest(dir, "frames.json", folderManifest("frames"));
+    ASSERT_EQ(runCli("batch " + frames.string()).exitCode, 0);
+    fs::remove(dir / "frames" / "walk_c" / "walker_0001.obj");
+    fs::remove(dir / "frames" / "walk_c" / "walker_0003.obj");
+    const CliResult objs = runCli("batch " + frames.string());
+    EXPECT_NE(objs.out.find("2 of its files are missing or empty (walker_0001.obj, "
+                            "walker_0003.obj), solving again: 6 frames"),
+              std::string::npos)
+        << objs.out;
+    EXPECT_TRUE(fs::exists(dir / "frames" / "walk_c" / "walker_0003.obj"));
+}
