@@ -28,6 +28,23 @@ extern "C" void onInterrupt(int) {
     interrupted = true;
 }
 
+// While a take is written, Ctrl-C (SIGINT) and SIGTERM (what Slurm, timeout and systemd send)
+// stop it after the frames being solved: killed outright, a run left its spool file behind and
+// no sidecar.
+struct StopSignals {
+    StopSignals() {
+        interrupted = false;
+        sigint = std::signal(SIGINT, onInterrupt);
+        sigterm = std::signal(SIGTERM, onInterrupt);
+    }
+    ~StopSignals() {
+        std::signal(SIGINT, sigint);
+        std::signal(SIGTERM, sigterm);
+    }
+    void (*sigint)(int);
+    void (*sigterm)(int);
+};
+
 void progress(int done, int total, double elapsedSeconds, const FrameReport& last) {
     // On a terminal the bar redraws in place; into a log it is a line every tenth of the take.
     static const bool terminal = ::isatty(STDERR_FILENO);
@@ -186,16 +203,11 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
         return !interrupted.load();
     };
 
-    interrupted = false;
-    auto previousHandler = std::signal(SIGINT, onInterrupt);
     ExportResult result;
-    try {
+    {
+        const StopSignals stop;
         result = exportTake(mesh, take, map, request, onFrame, announce);
-    } catch (...) {
-        std::signal(SIGINT, previousHandler);
-        throw;
     }
-    std::signal(SIGINT, previousHandler);
     if (!quiet && ::isatty(STDERR_FILENO)) std::fprintf(stderr, "\n");
     if (result.cancelled)
         throw TakeJobInterrupted("interrupted after " + std::to_string(result.framesWritten) +

@@ -8,7 +8,7 @@
 #include "boneless/Error.h"
 #include "boneless/TakeExport.h"
 
-// Thrown by runTakeJob when Ctrl-C stopped it: a batch stops there rather than going on.
+// Thrown by runTakeJob when Ctrl-C or SIGTERM stopped it: a batch stops there rather than going on.
 struct TakeJobInterrupted : boneless::Error {
     using boneless::Error::Error;
 };
@@ -39,8 +39,9 @@ std::string takeJobSidecar(const TakeJob& job);
 // `quiet`; with `meshWarnings`, the warnings go there instead. The take's warnings (a truncated
 // file, ...) go to stderr, quiet or not, or to `takeWarnings` when given; the sidecar records them
 // too. A map with entries `map suggest` marked for review is solved as it is, with a warning
-// naming them, on stderr, quiet or not, or in `mapWarning` when given. Ctrl-C stops after the
-// frames being solved and throws Error (the files written and the sidecar are complete). Throws
+// naming them, on stderr, quiet or not, or in `mapWarning` when given. Ctrl-C or SIGTERM stops
+// after the frames being solved and throws TakeJobInterrupted (the files written and the sidecar
+// are complete). Throws
 // Error naming the file or option for bad input.
 boneless::ExportResult runTakeJob(const TakeJob& job, bool quiet,
                                   std::vector<std::string>* meshWarnings = nullptr,

@@ -486,3 +486,26 @@ TEST(Batch, ATakeWhoseOutputIsMissingOrEmptyIsSolvedAgain) {
         << objs.out;
     EXPECT_TRUE(fs::exists(dir / "frames" / "walk_c" / "walker_0003.obj"));
 }
+
+// SIGTERM, what Slurm, timeout and systemd send, killed the run outright: no sidecar, and the
+// MDD's spool file (megabytes) left for good. It stops the take as Ctrl-C does.
+TEST(Batch, SigtermStopsTheTakeAsCtrlCDoesLeavingNoSpoolFile) {
+    const fs::path dir = freshTestDir("sigterm");
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frames 3000").exitCode, 0);
+    const fs::path manifest = writeManifest(dir, "m.json",
+                                            {{"takes",
+                                              {{{"mesh", "walker.obj"},
+                                                {"c3d", "walker.c3d"},
+                                                {"map", "walker.map.json"},
+                                                {"format", "mdd"},
+                                                {"out", "out"}}}}});
+    const CliResult r = runShell("timeout -s TERM 2 " + std::string(BONELESS_CLI) + " batch " +
+                                 manifest.string() + " 2>&1");
+    EXPECT_NE(r.out.find("interrupted"), std::string::npos) << r.out;
+    for (const auto& e : fs::directory_iterator(dir / "out"))
+        EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();
+    const json sidecar = json::parse(std::ifstream(dir / "out" / "walker.json"));
+    EXPECT_FALSE(sidecar["complete"].get<bool>());
+    EXPECT_LT(sidecar["frames_written"].get<int>(), 3000);
+    EXPECT_GT(fs::file_size(dir / "out" / "walker.mdd"), 0u);
+}
