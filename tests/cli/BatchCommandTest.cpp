@@ -509,3 +509,24 @@ TEST(Batch, SigtermStopsTheTakeAsCtrlCDoesLeavingNoSpoolFile) {
     EXPECT_LT(sidecar["frames_written"].get<int>(), 3000);
     EXPECT_GT(fs::file_size(dir / "out" / "walker.mdd"), 0u);
 }
+
+// macOS leaves ._walk_a.c3d (Finder's metadata) beside each take on a shared drive: the scan took
+// it, and .hidden.c3d, for takes, while a link to a take that is gone was dropped in silence.
+TEST(Batch, AFolderScanLeavesOutDotFilesAndFailsALinkToATakeThatIsGone) {
+    const fs::path dir = makeLibrary();
+    fs::copy_file(dir / "takes" / "walk_a.c3d", dir / "takes" / ".hidden.c3d");
+    std::ofstream(dir / "takes" / "._walk_a.c3d") << "Mac OS X        ATTR";
+    fs::create_symlink(dir / "moved" / "walk_d.c3d", dir / "takes" / "walk_d.c3d");
+    const fs::path manifest = writeManifest(dir, "m.json", folderManifest("out"));
+    const CliResult r = runCli("batch " + manifest.string());
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("4 of 4 entries in shard 1/1: 3 solved, 0 skipped, 1 failed"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find((dir / "takes" / "walk_d.c3d").string() + " -> " +
+                         (dir / "out" / "walk_d").string() + ": FAILED: "),
+              std::string::npos)
+        << r.out;
+    EXPECT_EQ(r.out.find("hidden"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("._walk_a"), std::string::npos) << r.out;
+}
