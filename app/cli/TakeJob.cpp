@@ -23,9 +23,9 @@ using namespace boneless;
 
 namespace {
 
-std::atomic<bool> interrupted{false};
-extern "C" void onInterrupt(int) {
-    interrupted = true;
+std::atomic<int> stopSignal{0};  // the signal that stopped the take; 0 while none has
+extern "C" void onStopSignal(int signal) {
+    stopSignal = signal;
 }
 
 // While a take is written, Ctrl-C (SIGINT) and SIGTERM (what Slurm, timeout and systemd send)
@@ -33,9 +33,9 @@ extern "C" void onInterrupt(int) {
 // no sidecar.
 struct StopSignals {
     StopSignals() {
-        interrupted = false;
-        sigint = std::signal(SIGINT, onInterrupt);
-        sigterm = std::signal(SIGTERM, onInterrupt);
+        stopSignal = 0;
+        sigint = std::signal(SIGINT, onStopSignal);
+        sigterm = std::signal(SIGTERM, onStopSignal);
     }
     ~StopSignals() {
         std::signal(SIGINT, sigint);
@@ -200,7 +200,7 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
         const double elapsed =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         if (!quiet) progress(done, total, elapsed, report);
-        return !interrupted.load();
+        return stopSignal.load() == 0;
     };
 
     ExportResult result;
@@ -209,10 +209,15 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
         result = exportTake(mesh, take, map, request, onFrame, announce);
     }
     if (!quiet && ::isatty(STDERR_FILENO)) std::fprintf(stderr, "\n");
-    if (result.cancelled)
-        throw TakeJobInterrupted("interrupted after " + std::to_string(result.framesWritten) +
-                                 " frames; " + "the frames written and " + exportStem(request) +
-                                 ".json are complete");
+    // The sidecar says "complete": false; the message must not call anything complete.
+    if (result.cancelled) {
+        const int n = result.framesWritten;
+        throw TakeJobInterrupted(
+            std::string(stopSignal == SIGTERM ? "stopped by SIGTERM" : "interrupted") + ": the " +
+                plural(n, "frame") + (n == 1 ? " written is" : " written are") + " valid, and " +
+                exportStem(request) + ".json records the take as incomplete",
+            stopSignal);
+    }
     if (request.format == ExportFormat::Obj)
         warnOfOtherFrames(job.out, exportStem(request), result);
     if (!quiet) {

@@ -8,9 +8,11 @@
 #include "boneless/Error.h"
 #include "boneless/TakeExport.h"
 
-// Thrown by runTakeJob when Ctrl-C or SIGTERM stopped it: a batch stops there rather than going on.
+// Thrown by runTakeJob when Ctrl-C or SIGTERM stopped it: a batch stops there rather than going on,
+// and the exit status is a shell's for the signal, 128 + `signal` (130, 143).
 struct TakeJobInterrupted : boneless::Error {
-    using boneless::Error::Error;
+    TakeJobInterrupted(const std::string& message, int signal) : Error(message), signal(signal) {}
+    int signal;
 };
 
 // One take solved into one output folder: what `solve` runs once and `batch` runs per manifest
@@ -40,9 +42,9 @@ std::string takeJobSidecar(const TakeJob& job);
 // file, ...) go to stderr, quiet or not, or to `takeWarnings` when given; the sidecar records them
 // too. A map with entries `map suggest` marked for review is solved as it is, with a warning
 // naming them, on stderr, quiet or not, or in `mapWarning` when given. Ctrl-C or SIGTERM stops
-// after the frames being solved and throws TakeJobInterrupted (the files written and the sidecar
-// are complete). Throws
-// Error naming the file or option for bad input.
+// after the frames being solved and throws TakeJobInterrupted (the frames written are valid, and
+// the sidecar records the take as incomplete). Throws Error naming the file or option for bad
+// input.
 boneless::ExportResult runTakeJob(const TakeJob& job, bool quiet,
                                   std::vector<std::string>* meshWarnings = nullptr,
                                   std::vector<std::string>* takeWarnings = nullptr,

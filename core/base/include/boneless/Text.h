@@ -18,6 +18,12 @@ inline std::string joined(const std::vector<std::string>& items,
     return out;
 }
 
+// "1 frame", "2 frames": a count and its noun as messages give them; `words` for an irregular
+// plural ("vertices").
+inline std::string plural(long long n, const std::string& word, const std::string& words = {}) {
+    return std::to_string(n) + " " + (n == 1 ? word : words.empty() ? word + "s" : words);
+}
+
 // Length of the well-formed UTF-8 sequence at text[i] (RFC 3629: no overlongs, no surrogates,
 // nothing past U+10FFFF), 0 when there is none.
 std::size_t utf8SequenceAt(std::string_view text, std::size_t i);

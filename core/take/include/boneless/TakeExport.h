@@ -39,8 +39,8 @@ struct ExportResult {
     std::string sidecarPath;
 };
 
-// Called after each frame is written; return false to stop (the files written so far and the
-// sidecar stay complete).
+// Called after each frame is written; return false to stop (the frames written so far stay valid,
+// and the sidecar records the take as incomplete).
 using ExportProgress = std::function<bool(int done, int total, const FrameReport& last)>;
 
 // The file stem outputs are named after: the group if one is given, else the mesh file's stem.
