@@ -3,6 +3,7 @@
 #include <tiny_gltf.h>
 #include <unistd.h>
 #include <algorithm>
+#include <cerrno>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -243,7 +244,7 @@ GltfWriter::GltfWriter(std::string path, const TriMesh& rest, std::string name)
             if (!error) textureBytes_ += size + 3;
         }
     file_ = std::fopen(spool_.c_str(), "wb+");
-    if (!file_) throw Error(path_ + ": cannot be written (cannot create " + spool_ + ")");
+    if (!file_) throw Error(path_ + ": cannot be written (" + std::strerror(errno) + ")");
 }
 
 GltfWriter::~GltfWriter() {
