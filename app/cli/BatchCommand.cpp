@@ -315,7 +315,7 @@ void run(const BatchArgs& args) {
         try {
             const ExportResult r = runTakeJob(job, true, &meshWarnings, &takeWarnings, &mapWarning);
             std::printf(
-                "%d frames in %.1f s\n", r.framesWritten,
+                "%s in %.1f s\n", plural(r.framesWritten, "frame").c_str(),
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
             ++solved;
         } catch (const TakeJobInterrupted& e) {

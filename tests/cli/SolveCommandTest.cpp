@@ -369,12 +369,35 @@ TEST(SolveCommand, SaysWhenTheRangeRunsPastTheTakeOrOldFramesStayBeside) {
     // Solving fewer frames into the same folder leaves the earlier run's others: say so.
     r = runCli(solveArgs(demo, out) + " --quiet --frames 2:4");
     ASSERT_EQ(r.exitCode, 0) << r.out;
-    EXPECT_NE(r.out.find("also holds 2 OBJ frame(s) this run did not write (frames 4 to 5"),
+    EXPECT_NE(r.out.find("also holds 2 OBJ frames this run did not write (frames 4 to 5"),
               std::string::npos)
         << r.out;
     EXPECT_TRUE(fs::exists(out / "walker_0005.obj"));  // the user's to remove, not ours
     r = runCli(solveArgs(demo, out) + " --quiet --frames 2:6");
     EXPECT_EQ(r.out.find("also holds"), std::string::npos) << r.out;
+}
+
+// Frames 3:6 solved into a folder that held 0..9 said "frames 0 to 9" were left, naming the three
+// it had just written; and a single frame was "1 frames".
+TEST(SolveCommand, TheNoteOfEarlierFramesSaysWhichAreLeftAndCountsReadRight) {
+    const fs::path demo = makeDemo(10);
+    const fs::path out = demo / "x";
+    ASSERT_EQ(runCli(solveArgs(demo, out) + " --quiet").exitCode, 0);
+    CliResult r = runCli(solveArgs(demo, out) + " --quiet --frames 3:6");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("also holds 7 OBJ frames this run did not write (frames 0 to 2 and 6 to 9 "
+                         "of walker_*.obj"),
+              std::string::npos)
+        << r.out;
+    fs::remove(out / "walker_0000.obj");
+    fs::remove(out / "walker_0001.obj");
+    r = runCli(solveArgs(demo, out) + " --frames 3:10");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("also holds 1 OBJ frame this run did not write (frame 2 of"),
+              std::string::npos)
+        << r.out;
+    r = runCli(solveArgs(demo, out) + " --frames 2:3");
+    EXPECT_NE(r.out.find("walker_*.obj: 1 frame, "), std::string::npos) << r.out;
 }
 
 // A range wholly past the take's end is refused; the note that the range was cut to the take must
