@@ -502,3 +502,19 @@ TEST(DemoCommand, AnOffsetThatIsNoSensibleDistanceIsRefusedNamingTheFlag) {
     EXPECT_EQ(runCli("demo --out " + (dir / "x").string() + " --frames 2 --offset-mm 100").exitCode,
               0);
 }
+
+// "--frames INT:INT in [1 - 100000]" read like a range, and "--frames 10:20" was refused with
+// "Value 10:20 not in range": it is a count.
+TEST(DemoCommand, FramesIsACountInItsHelpAndItsRefusal) {
+    const CliResult help = runCli("demo --help");
+    EXPECT_EQ(help.out.find("INT:INT"), std::string::npos) << help.out;
+    EXPECT_NE(help.out.find("How many frames the take has (1 to 100000)"), std::string::npos)
+        << help.out;
+    const fs::path dir = freshTestDir("demo-frames");
+    const CliResult r = runCli("demo --out " + (dir / "x").string() + " --frames 10:20");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("--frames: must be a whole number from 1 to 100000, got 10:20"),
+              std::string::npos)
+        << r.out;
+    EXPECT_FALSE(fs::exists(dir / "x"));
+}
