@@ -468,6 +468,16 @@ TEST(SolveCommand, RunningOutOfAddressSpaceEndsWithAMessageNotAHang) {
     EXPECT_EQ(r.out.find("internal error"), std::string::npos) << r.out;
 }
 
+// --help offered PC2 for Maya, which docs/export.md says cannot read it without a plug-in.
+TEST(SolveCommand, HelpOffersEachFormatForTheApplicationsTheExportGuideNames) {
+    const CliResult help = runCli("solve --help");
+    const std::size_t pc2 = help.out.find("pc2: "), mdd = help.out.find("mdd: ");
+    ASSERT_NE(pc2, std::string::npos) << help.out;
+    const std::string offered = help.out.substr(pc2, mdd - pc2);
+    EXPECT_NE(offered.find("3ds Max"), std::string::npos) << offered;
+    EXPECT_EQ(offered.find("Maya"), std::string::npos) << offered;
+}
+
 TEST(DemoCommand, DetailRefinesTheSameWalker) {
     const fs::path dir = freshTestDir("demo-detail");
     const CliResult r = runCli("demo --out " + dir.string() + " --frames 2 --detail 2");
