@@ -89,6 +89,22 @@ void requireKeys(const TakeJob& job, const std::string& where) {
         if (value->empty()) throw Error(where + ": '" + key + "' is missing");
 }
 
+// Two entries that write one sidecar (sessA/walk.c3d and sessB/walk.c3d into one "out") would
+// overwrite each other's files, both say solved, and both be solved again on every run.
+// `entries` names each job as a message should ("takes[1] (/lib/sessB/walk.c3d)").
+void refuseSharedOutputs(const std::string& file, const std::vector<TakeJob>& jobs,
+                         const std::vector<std::string>& entries) {
+    std::map<std::string, std::size_t> writers;  // the sidecar, however spelled, and its entry
+    for (std::size_t k = 0; k < jobs.size(); ++k) {
+        const std::string sidecar = takeJobSidecar(jobs[k]);
+        std::error_code ec;
+        const auto [it, first] = writers.emplace(fs::weakly_canonical(sidecar, ec).string(), k);
+        if (!first)
+            throw Error(file + ": " + entries[it->second] + " and " + entries[k] + " both write " +
+                        sidecar + " and the outputs beside it; give each its own 'out'");
+    }
+}
+
 // Entries in manifest order: "takes" first, then each of "folders" expanded in file-name order.
 std::vector<TakeJob> readManifest(const std::string& file) {
     std::ifstream in(file);
@@ -119,6 +135,7 @@ std::vector<TakeJob> readManifest(const std::string& file) {
         }
     if (m.contains("defaults")) applyKeys(m["defaults"], base, file + ": defaults", defaults);
     std::vector<TakeJob> jobs;
+    std::vector<std::string> entries;  // what messages call each job
     const json takes = m.value("takes", json::array()), folders = m.value("folders", json::array());
     for (std::size_t i = 0; i < takes.size(); ++i) {
         const std::string where = file + ": takes[" + std::to_string(i) + "]";
@@ -126,6 +143,7 @@ std::vector<TakeJob> readManifest(const std::string& file) {
         applyKeys(takes[i], base, where, job);
         requireKeys(job, where);
         jobs.push_back(job);
+        entries.push_back("takes[" + std::to_string(i) + "] (" + job.c3d + ")");
     }
     for (std::size_t i = 0; i < folders.size(); ++i) {
         const std::string where = file + ": folders[" + std::to_string(i) + "]";
@@ -135,9 +153,13 @@ std::vector<TakeJob> readManifest(const std::string& file) {
         std::error_code ec;
         std::vector<fs::path> found;
         for (const auto& e : fs::directory_iterator(pattern.c3d, ec)) {
+            // Hidden, or another tool's: macOS's ._take.c3d holds Finder's metadata, not a take.
+            if (e.path().filename().string().front() == '.') continue;
             std::string ext = e.path().extension().string();
             std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
-            if (e.is_regular_file() && ext == ".c3d") found.push_back(e.path());
+            // A link whose take is gone was meant as a take: its entry fails, naming it.
+            const bool dangling = e.is_symlink() && !e.exists();
+            if ((e.is_regular_file() || dangling) && ext == ".c3d") found.push_back(e.path());
         }
         if (ec) throw Error(where + ": cannot list " + pattern.c3d + " (" + ec.message() + ")");
         std::sort(found.begin(), found.end());
@@ -146,9 +168,11 @@ std::vector<TakeJob> readManifest(const std::string& file) {
             job.c3d = take.string();
             job.out = (fs::path(pattern.out) / take.stem()).string();
             jobs.push_back(job);
+            entries.push_back("folders[" + std::to_string(i) + "] (" + job.c3d + ")");
         }
     }
     if (jobs.empty()) throw Error(file + ": the manifest lists no take");
+    refuseSharedOutputs(file, jobs, entries);
     return jobs;
 }
 
@@ -162,16 +186,13 @@ std::pair<int, int> parseShard(const std::string& text) {
     return {i, n};
 }
 
-enum class Sidecar { Missing, Complete, OtherSettings, InputsChanged };
+enum class Sidecar { Missing, Complete, Stale };
 
-// One file however it is spelled (relative to the working folder, through "..", a symbolic link):
-// sidecars written before the manifest's paths were made absolute name them relative.
+// One file however it is spelled: sidecars written before the manifest's paths were made absolute
+// name them relative, and a path that is not UTF-8 is recorded as validUtf8 reads it.
 bool sameFile(const json& recorded, const std::string& path) {
-    if (!recorded.is_string()) return false;
-    std::error_code a, b;
-    const fs::path x = fs::weakly_canonical(recorded.get<std::string>(), a);
-    const fs::path y = fs::weakly_canonical(path, b);
-    return !a && !b && x == y;
+    return recorded.is_string() && (recorded.get<std::string>() == validUtf8(path) ||
+                                    boneless::sameFile(recorded.get<std::string>(), path));
 }
 
 // Fingerprints of the files this run has read so far: a library's takes share a few meshes and
@@ -200,10 +221,39 @@ std::string changedInputs(const json& recorded, const TakeJob& job, Fingerprints
            " solved";
 }
 
+// Why the files a complete sidecar vouches for are not all there, or "" if they are: an output
+// deleted or cut short (a copy, a full disk) since. Named as exportTake names them, not as recorded
+// (a name that is not UTF-8 is recorded otherwise): the frames of `range`, or the cache or glb,
+// and the calibrated rest when the entry asks for it.
+std::string missingOutputs(const TakeJob& job, const json& range) {
+    const fs::path sidecar = takeJobSidecar(job), out = sidecar.parent_path();
+    const std::string stem = sidecar.stem().string();
+    std::vector<fs::path> files;
+    const ExportFormat format = findExportFormat(job.format).value_or(ExportFormat::Obj);
+    if (format == ExportFormat::Obj)
+        for (int f = range.at(0).get<int>(); f < range.at(1).get<int>(); ++f)
+            files.push_back(out / objFrameFile(stem, f));
+    else
+        files.push_back(out / (stem + exportFormatInfo(format).extension));
+    if (job.writeCalibratedRest) files.push_back(out / (stem + "_calibrated_rest.obj"));
+    std::vector<std::string> gone;
+    for (const fs::path& file : files) {
+        std::error_code ec;
+        if (fs::file_size(file, ec) == 0 || ec) gone.push_back(file.filename().string());
+    }
+    if (gone.empty()) return "";
+    if (gone.size() == 1) return gone.front() + " is missing or empty";
+    const std::size_t named = std::min<std::size_t>(gone.size(), 3);
+    return std::to_string(gone.size()) + " of its files are missing or empty (" +
+           joined({gone.begin(), gone.begin() + named}) +
+           (gone.size() > named ? " and " + std::to_string(gone.size() - named) + " more" : "") +
+           ")";
+}
+
 // A take is done when its sidecar says it completed from the same sources into the same format,
-// over the frames and with the options the manifest asks for now, and its input files are as
-// they were then. A complete sidecar from other frames or options means the manifest changed,
-// from other file contents that the files did: the take is solved again (`why` says which).
+// over the frames and with the options the manifest asks for now, the files it wrote are still
+// there, and its input files are as they were then. Otherwise it is solved again, `why` saying
+// why: other frames or options (the manifest changed), an output gone, or other file contents.
 Sidecar sidecarState(const TakeJob& job, Fingerprints& known, std::string& why) {
     std::ifstream in(takeJobSidecar(job));
     if (!in) return Sidecar::Missing;
@@ -211,7 +261,7 @@ Sidecar sidecarState(const TakeJob& job, Fingerprints& known, std::string& why) 
         const json s = json::parse(in);
         const json& src = s.at("source");
         if (!s.at("complete").get<bool>() || s.at("output") != job.format ||
-            !sameFile(src.at("mesh"), job.mesh) || src.at("group") != job.group ||
+            !sameFile(src.at("mesh"), job.mesh) || src.at("group") != validUtf8(job.group) ||
             !sameFile(src.at("c3d"), job.c3d) || !sameFile(src.at("map"), job.map))
             return Sidecar::Missing;
         TakeSolveOptions options;
@@ -221,14 +271,13 @@ Sidecar sidecarState(const TakeJob& job, Fingerprints& known, std::string& why) 
         const int end = range.end < 0 ? frames : std::min(range.end, frames);
         const bool sameFrames = s.at("frame_range") == json::array({range.first, end});
         // Every sidecar of a calibrated take has "calibrated_rest", null when none was written.
-        const json rest = s.at("calibration").value("calibrated_rest", json());
-        const bool sameRest =
-            !job.writeCalibratedRest ||
-            (rest.is_string() && fs::exists(fs::path(job.out) / rest.get<std::string>()));
+        const bool sameRest = !job.writeCalibratedRest ||
+                              s.at("calibration").value("calibrated_rest", json()).is_string();
         if (!(sameFrames && sameRest && s.at("options") == toJson(options)))
-            return Sidecar::OtherSettings;
-        why = changedInputs(s.value("source_fingerprints", json()), job, known);
-        return why.empty() ? Sidecar::Complete : Sidecar::InputsChanged;
+            why = "its sidecar is from other frames or options";
+        if (why.empty()) why = missingOutputs(job, s.at("frame_range"));
+        if (why.empty()) why = changedInputs(s.value("source_fingerprints", json()), job, known);
+        return why.empty() ? Sidecar::Complete : Sidecar::Stale;
     } catch (const json::exception&) {
         return Sidecar::Missing;  // unreadable or from an older version: solve it again
     } catch (const Error&) {
@@ -250,16 +299,14 @@ void run(const BatchArgs& args) {
         if (static_cast<int>(k % shards) != shard - 1) continue;
         const TakeJob& job = jobs[k];
         std::printf("[%d/%d] %s -> %s: ", ++done, mine, job.c3d.c_str(), job.out.c_str());
-        std::string changed;
-        const Sidecar sidecar = sidecarState(job, fingerprints, changed);
+        std::string why;
+        const Sidecar sidecar = sidecarState(job, fingerprints, why);
         if (sidecar == Sidecar::Complete) {
             std::printf("skipped (its sidecar says it is complete)\n");
             ++skipped;
             continue;
         }
-        if (sidecar == Sidecar::OtherSettings)
-            std::printf("its sidecar is from other frames or options, solving again: ");
-        if (sidecar == Sidecar::InputsChanged) std::printf("%s, solving again: ", changed.c_str());
+        if (sidecar == Sidecar::Stale) std::printf("%s, solving again: ", why.c_str());
         std::fflush(stdout);
         const auto start = std::chrono::steady_clock::now();
         std::vector<std::string> meshWarnings;  // filled once the mesh is read
@@ -268,7 +315,7 @@ void run(const BatchArgs& args) {
         try {
             const ExportResult r = runTakeJob(job, true, &meshWarnings, &takeWarnings, &mapWarning);
             std::printf(
-                "%d frames in %.1f s\n", r.framesWritten,
+                "%s in %.1f s\n", plural(r.framesWritten, "frame").c_str(),
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
             ++solved;
         } catch (const TakeJobInterrupted& e) {
@@ -276,6 +323,10 @@ void run(const BatchArgs& args) {
             throw;
         } catch (const Error& e) {
             std::printf("FAILED: %s\n", e.what());
+            ++failed;
+        } catch (const std::exception& e) {
+            // Whatever went wrong with one take (a bug included), the others are still to solve.
+            std::printf("FAILED: internal error: %s\n", e.what());
             ++failed;
         }
         // Under the take's line, solved or not: a truncated take solves the frames it holds.

@@ -23,15 +23,16 @@ void registerDemoCommand(CLI::App& app) {
         "39-marker Plug-in Gait style set, with gaps), walker.map.json (the correspondence) and "
         "truth/ (the true motion, one OBJ per frame)");
     cmd->add_option("--out", args->out, "Output folder (created if missing)")->required();
-    cmd->add_option("--frames", args->frames, "Number of frames")->check(CLI::Range(1, 100000));
+    cmd->add_option("--frames", args->frames, "How many frames the take has (1 to 100000)")
+        ->check(numberFrom(1, 100000, true));
     // Markers sit on the skin or a few centimetres off it (a bulky suit); beyond 10 cm a marker
     // is no longer the body's.
     cmd->add_option("--offset-mm", args->offsetMm,
                     "How far the markers sit off the skin (0 to 100)")
         ->check(numberFrom(0, 100));
     cmd->add_option("--detail", args->detail,
-                    "Resolution: each step up has 4 times the faces (1 = 6,848 faces)")
-        ->check(CLI::Range(1, 4));
+                    "Resolution, 1 to 4: each step up has 4 times the faces (1 = 6,848 faces)")
+        ->check(numberFrom(1, 4, true));
     cmd->callback([args] {
         const DemoFiles demo = writeDemoFiles(args->out, args->frames, args->offsetMm, true,
                                               args->detail, DemoSubject::Walker);

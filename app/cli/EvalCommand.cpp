@@ -13,6 +13,7 @@
 #include "boneless/Sampling.h"
 #include "boneless/SequenceEvaluation.h"
 #include "boneless/TakeOptionsJson.h"
+#include "boneless/Text.h"
 
 using namespace boneless;
 
@@ -137,7 +138,7 @@ void run(const EvalArgs& args) {
     if (args.json) {
         nlohmann::json out = summaryJson(results[0].summary);
         out["method"] = methodName(methods[0]);
-        out["sequence"] = args.sequence;
+        out["sequence"] = validUtf8(args.sequence);  // JSON holds only UTF-8
         out["vertices"] = sequence.rest.vertexCount();
         out["faces"] = sequence.rest.faceCount();
         out["markers"] = options.markers.size();

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "boneless/Error.h"
+#include "boneless/Text.h"
 
 // "--frames A:B": 0-based, B excluded; "A:" and ":B" leave that end at its default. `name` is
 // what the error calls it (a manifest's entry says "m.json: takes[2]: 'frames'").
@@ -42,10 +43,11 @@ inline FrameRange withinFrames(FrameRange range, const std::string& text, int fr
                                const std::string& source, const char* doing) {
     if (range.first >= (range.end < 0 ? frames : std::min(range.end, frames)))
         throw boneless::Error("frames " + text + " select no frame of " + source + " (" +
-                              std::to_string(frames) + " frames)");
+                              boneless::plural(frames, "frame") + ")");
     if (range.end > frames) {
-        std::fprintf(stderr, "note: --frames %s runs past the end of %s (%d frames): %s %d:%d\n",
-                     text.c_str(), source.c_str(), frames, doing, range.first, frames);
+        std::fprintf(stderr, "note: --frames %s runs past the end of %s (%s): %s %d:%d\n",
+                     text.c_str(), source.c_str(), boneless::plural(frames, "frame").c_str(), doing,
+                     range.first, frames);
         range.end = frames;
     }
     return range;

@@ -33,15 +33,16 @@ void addOptionFlags(CLI::App* command, nlohmann::json& given, const nlohmann::js
     }
 }
 
-CLI::Validator numberFrom(double low, double high) {
+CLI::Validator numberFrom(double low, double high, bool whole) {
     char range[64];
-    std::snprintf(range, sizeof range, "must be a number from %g to %g, got ", low, high);
+    std::snprintf(range, sizeof range, "must be a %snumber from %g to %g, got ",
+                  whole ? "whole " : "", low, high);
     return CLI::Validator(
-        [low, high, range = std::string(range)](std::string& text) -> std::string {
+        [low, high, whole, range = std::string(range)](std::string& text) -> std::string {
             std::size_t used = 0;
             double x = NAN;
             try {
-                x = std::stod(text, &used);
+                x = whole ? static_cast<double>(std::stoll(text, &used)) : std::stod(text, &used);
             } catch (const std::exception&) {
                 used = 0;
             }

@@ -11,5 +11,6 @@ void addOptionFlags(CLI::App* command, nlohmann::json& given, const nlohmann::js
 
 // A number from low to high, as the option tables say it: "must be a number from 0 to 100, got
 // nan". CLI11's Range lets NaN through (every comparison with it is false), and inf and 1e308
-// through unbounded checks.
-CLI::Validator numberFrom(double low, double high);
+// through unbounded checks. `whole` for a count: "must be a whole number from 1 to 100000, got
+// 10:20", where Range's help read "INT:INT in [1 - 100000]", like a range.
+CLI::Validator numberFrom(double low, double high, bool whole = false);

@@ -23,10 +23,27 @@ using namespace boneless;
 
 namespace {
 
-std::atomic<bool> interrupted{false};
-extern "C" void onInterrupt(int) {
-    interrupted = true;
+std::atomic<int> stopSignal{0};  // the signal that stopped the take; 0 while none has
+extern "C" void onStopSignal(int signal) {
+    stopSignal = signal;
 }
+
+// While a take is written, Ctrl-C (SIGINT) and SIGTERM (what Slurm, timeout and systemd send)
+// stop it after the frames being solved: killed outright, a run left its spool file behind and
+// no sidecar.
+struct StopSignals {
+    StopSignals() {
+        stopSignal = 0;
+        sigint = std::signal(SIGINT, onStopSignal);
+        sigterm = std::signal(SIGTERM, onStopSignal);
+    }
+    ~StopSignals() {
+        std::signal(SIGINT, sigint);
+        std::signal(SIGTERM, sigterm);
+    }
+    void (*sigint)(int);
+    void (*sigterm)(int);
+};
 
 void progress(int done, int total, double elapsedSeconds, const FrameReport& last) {
     // On a terminal the bar redraws in place; into a log it is a line every tenth of the take.
@@ -125,11 +142,29 @@ void warnOfOtherFrames(const std::string& out, const std::string& stem, const Ex
     for (int frame : objFramesIn(out, stem))
         if (frame < r.first || frame >= r.first + r.framesWritten) others.push_back(frame);
     if (others.empty()) return;
-    const auto [lowest, highest] = std::minmax_element(others.begin(), others.end());
+    // As runs ("0 to 2 and 6 to 9"): the lowest and highest alone took in the frames just written.
+    std::sort(others.begin(), others.end());
+    std::vector<std::string> runs;
+    for (std::size_t i = 0; i < others.size();) {
+        std::size_t j = i;
+        while (j + 1 < others.size() && others[j + 1] == others[j] + 1) ++j;
+        runs.push_back(std::to_string(others[i]) +
+                       (j > i ? " to " + std::to_string(others[j]) : std::string()));
+        i = j + 1;
+    }
+    // Four runs named at most: scattered frames would make the note a page.
+    if (runs.size() > 4) {
+        const std::size_t more = runs.size() - 3;
+        runs.resize(3);
+        runs.push_back(std::to_string(more) + " more runs up to " + std::to_string(others.back()));
+    }
+    const std::string listed =
+        runs.size() == 1 ? runs[0] : joined({runs.begin(), runs.end() - 1}) + " and " + runs.back();
     std::fprintf(stderr,
-                 "note: %s also holds %zu OBJ frame(s) this run did not write (frames %d to %d "
-                 "of %s_*.obj, from an earlier run)\n",
-                 out.c_str(), others.size(), *lowest, *highest, stem.c_str());
+                 "note: %s also holds %s this run did not write (%s %s of %s_*.obj, from an "
+                 "earlier run)\n",
+                 out.c_str(), plural(others.size(), "OBJ frame").c_str(),
+                 others.size() == 1 ? "frame" : "frames", listed.c_str(), stem.c_str());
 }
 
 }  // namespace
@@ -201,24 +236,24 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
         const double elapsed =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         if (!quiet) progress(done, total, elapsed, report);
-        return !interrupted.load();
+        return stopSignal.load() == 0;
     };
 
-    interrupted = false;
-    auto previousHandler = std::signal(SIGINT, onInterrupt);
     ExportResult result;
-    try {
+    {
+        const StopSignals stop;
         result = exportTake(mesh, take, map, request, onFrame, announce);
-    } catch (...) {
-        std::signal(SIGINT, previousHandler);
-        throw;
     }
-    std::signal(SIGINT, previousHandler);
     if (!quiet && ::isatty(STDERR_FILENO)) std::fprintf(stderr, "\n");
-    if (result.cancelled)
-        throw TakeJobInterrupted("interrupted after " + std::to_string(result.framesWritten) +
-                                 " frames; " + "the frames written and " + exportStem(request) +
-                                 ".json are complete");
+    // The sidecar says "complete": false; the message must not call anything complete.
+    if (result.cancelled) {
+        const int n = result.framesWritten;
+        throw TakeJobInterrupted(
+            std::string(stopSignal == SIGTERM ? "stopped by SIGTERM" : "interrupted") + ": the " +
+                plural(n, "frame") + (n == 1 ? " written is" : " written are") + " valid, and " +
+                exportStem(request) + ".json records the take as incomplete",
+            stopSignal);
+    }
     if (request.format == ExportFormat::Obj)
         warnOfOtherFrames(job.out, exportStem(request), result);
     warnOfHeldFrames(job.c3d, result);
@@ -238,8 +273,8 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
         }
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        std::fprintf(stderr, "wrote %s: %d frames, %.1f MB in %.1f s\n", written.c_str(),
-                     result.framesWritten, bytes / 1e6, seconds);
+        std::fprintf(stderr, "wrote %s: %s, %.1f MB in %.1f s\n", written.c_str(),
+                     plural(result.framesWritten, "frame").c_str(), bytes / 1e6, seconds);
         printSummary(result.sidecarPath);
     }
     return result;

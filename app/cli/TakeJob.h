@@ -8,9 +8,11 @@
 #include "boneless/Error.h"
 #include "boneless/TakeExport.h"
 
-// Thrown by runTakeJob when Ctrl-C stopped it: a batch stops there rather than going on.
+// Thrown by runTakeJob when Ctrl-C or SIGTERM stopped it: a batch stops there rather than going on,
+// and the exit status is a shell's for the signal, 128 + `signal` (130, 143).
 struct TakeJobInterrupted : boneless::Error {
-    using boneless::Error::Error;
+    TakeJobInterrupted(const std::string& message, int signal) : Error(message), signal(signal) {}
+    int signal;
 };
 
 // One take solved into one output folder: what `solve` runs once and `batch` runs per manifest
@@ -39,9 +41,10 @@ std::string takeJobSidecar(const TakeJob& job);
 // `quiet`; with `meshWarnings`, the warnings go there instead. The take's warnings (a truncated
 // file, ...) go to stderr, quiet or not, or to `takeWarnings` when given; the sidecar records them
 // too. A map with entries `map suggest` marked for review is solved as it is, with a warning
-// naming them, on stderr, quiet or not, or in `mapWarning` when given. Ctrl-C stops after the
-// frames being solved and throws Error (the files written and the sidecar are complete). Throws
-// Error naming the file or option for bad input.
+// naming them, on stderr, quiet or not, or in `mapWarning` when given. Ctrl-C or SIGTERM stops
+// after the frames being solved and throws TakeJobInterrupted (the frames written are valid, and
+// the sidecar records the take as incomplete). Throws Error naming the file or option for bad
+// input.
 boneless::ExportResult runTakeJob(const TakeJob& job, bool quiet,
                                   std::vector<std::string>* meshWarnings = nullptr,
                                   std::vector<std::string>* takeWarnings = nullptr,

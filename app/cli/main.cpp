@@ -6,6 +6,7 @@
 #include <system_error>
 
 #include "Commands.h"
+#include "TakeJob.h"
 #include "boneless/Error.h"
 
 namespace {
@@ -43,6 +44,8 @@ int main(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         // --help is 0; a bad flag is bad input, 1 as every other, not CLI11's own 105 or 109.
         return app.exit(e) == 0 ? 0 : 1;
+    } catch (const TakeJobInterrupted& e) {
+        fail(128 + e.signal, e.what());  // what a shell reports for a job a signal ended
     } catch (const boneless::Error& e) {
         fail(1, e.what());
     } catch (const std::bad_alloc&) {

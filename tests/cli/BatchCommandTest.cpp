@@ -397,3 +397,138 @@ TEST(Batch, SaysOnceWhichEntriesOfTheSharedMapAreStillMarkedForReview) {
     ASSERT_NE(first, std::string::npos) << r.out;
     EXPECT_EQ(r.out.find(warning, first + 1), std::string::npos) << r.out;  // three takes, once
 }
+
+// sessA/walk.c3d and sessB/walk.c3d with one "out" both said solved while the second overwrote the
+// first, and every run solved both again.
+TEST(Batch, TwoEntriesThatWriteTheSameFilesAreRefusedBeforeAnythingIsSolved) {
+    const fs::path dir = makeLibrary();
+    for (const char* session : {"sessA", "sessB"}) {
+        fs::create_directories(dir / session);
+        fs::copy_file(dir / "takes" / "walk_a.c3d", dir / session / "walk.c3d");
+    }
+    const json defaults = {{"mesh", "walker.obj"}, {"map", "walker.map.json"}};
+    const fs::path takes =
+        writeManifest(dir, "takes.json",
+                      {{"defaults", defaults},
+                       {"takes",
+                        {{{"c3d", "sessA/walk.c3d"}, {"out", "out"}},
+                         {{"c3d", "sessB/walk.c3d"}, {"out", "out/../out"}, {"format", "pc2"}}}}});
+    const CliResult r = runCli("batch " + takes.string());
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find(takes.string() + ": takes[0] (" + (dir / "sessA" / "walk.c3d").string() +
+                         ") and takes[1] (" + (dir / "sessB" / "walk.c3d").string() +
+                         ") both write " + (dir / "out" / "walker.json").string()),
+              std::string::npos)
+        << r.out;
+    EXPECT_FALSE(fs::exists(dir / "out"));
+    // Two folders with one "out" put their takes of the same name in one folder.
+    const fs::path folders = writeManifest(
+        dir, "folders.json",
+        {{"defaults", defaults},
+         {"folders", {{{"c3d", "sessA"}, {"out", "out"}}, {{"c3d", "sessB"}, {"out", "out"}}}}});
+    const CliResult f = runCli("batch " + folders.string());
+    EXPECT_EQ(f.exitCode, 1) << f.out;
+    EXPECT_NE(
+        f.out.find("folders[0] (" + (dir / "sessA" / "walk.c3d").string() + ") and folders[1] (" +
+                   (dir / "sessB" / "walk.c3d").string() + ") both write"),
+        std::string::npos)
+        << f.out;
+    EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
+// A take named in Latin-1 ("caf\xe9.c3d") ended the whole run with an internal error; it is
+// solved, its sidecar names it read as Latin-1, and the next run finds it finished.
+TEST(Batch, ATakeWhoseNameIsNotUtf8IsSolvedAndThenSkippedLikeTheOthers) {
+    const fs::path dir = makeLibrary();
+    fs::copy_file(dir / "takes" / "walk_a.c3d", dir / "takes" / "caf\xe9.c3d");
+    const fs::path manifest = writeManifest(dir, "m.json", folderManifest("out"));
+    const CliResult first = runCli("batch " + manifest.string());
+    EXPECT_EQ(first.exitCode, 0) << first.out;
+    EXPECT_NE(first.out.find("4 of 4 entries in shard 1/1: 4 solved, 0 skipped, 0 failed"),
+              std::string::npos)
+        << first.out;
+    const json sidecar = json::parse(std::ifstream(dir / "out" / "caf\xe9" / "walker.json"));
+    EXPECT_EQ(sidecar["source"]["c3d"], (dir / "takes" / "caf\u00e9.c3d").string());
+    const CliResult again = runCli("batch " + manifest.string());
+    EXPECT_NE(again.out.find("4 of 4 entries in shard 1/1: 0 solved, 4 skipped, 0 failed"),
+              std::string::npos)
+        << again.out;
+}
+
+// A take whose point cache was deleted or cut to nothing was skipped because its sidecar said it
+// was complete; so was one with an OBJ frame gone.
+TEST(Batch, ATakeWhoseOutputIsMissingOrEmptyIsSolvedAgain) {
+    const fs::path dir = makeLibrary();
+    json caches = folderManifest("caches");
+    caches["defaults"]["format"] = "pc2";
+    const fs::path manifest = writeManifest(dir, "caches.json", caches);
+    ASSERT_EQ(runCli("batch " + manifest.string()).exitCode, 0);
+    fs::remove(dir / "caches" / "walk_a" / "walker.pc2");
+    fs::resize_file(dir / "caches" / "walk_b" / "walker.pc2", 0);
+    const CliResult again = runCli("batch " + manifest.string());
+    ASSERT_EQ(again.exitCode, 0) << again.out;
+    EXPECT_NE(again.out.find("walker.pc2 is missing or empty, solving again: 4 frames"),
+              std::string::npos)
+        << again.out;
+    EXPECT_NE(again.out.find("3 of 3 entries in shard 1/1: 2 solved, 1 skipped, 0 failed"),
+              std::string::npos)
+        << again.out;
+    EXPECT_GT(fs::file_size(dir / "caches" / "walk_b" / "walker.pc2"), 0u);
+
+    const fs::path frames = writeManifest(dir, "frames.json", folderManifest("frames"));
+    ASSERT_EQ(runCli("batch " + frames.string()).exitCode, 0);
+    fs::remove(dir / "frames" / "walk_c" / "walker_0001.obj");
+    fs::remove(dir / "frames" / "walk_c" / "walker_0003.obj");
+    const CliResult objs = runCli("batch " + frames.string());
+    EXPECT_NE(objs.out.find("2 of its files are missing or empty (walker_0001.obj, "
+                            "walker_0003.obj), solving again: 6 frames"),
+              std::string::npos)
+        << objs.out;
+    EXPECT_TRUE(fs::exists(dir / "frames" / "walk_c" / "walker_0003.obj"));
+}
+
+// SIGTERM, what Slurm, timeout and systemd send, killed the run outright: no sidecar, and the
+// MDD's spool file (megabytes) left for good. It stops the take as Ctrl-C does.
+TEST(Batch, SigtermStopsTheTakeAsCtrlCDoesLeavingNoSpoolFile) {
+    const fs::path dir = freshTestDir("sigterm");
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frames 3000").exitCode, 0);
+    const fs::path manifest = writeManifest(dir, "m.json",
+                                            {{"takes",
+                                              {{{"mesh", "walker.obj"},
+                                                {"c3d", "walker.c3d"},
+                                                {"map", "walker.map.json"},
+                                                {"format", "mdd"},
+                                                {"out", "out"}}}}});
+    const CliResult r =
+        runShell("timeout --preserve-status -s TERM 2 " + std::string(BONELESS_CLI) + " batch " +
+                 manifest.string() + " 2>&1");
+    EXPECT_EQ(r.exitCode, 143) << r.out;  // 128 + SIGTERM
+    EXPECT_NE(r.out.find("stopped by SIGTERM: the "), std::string::npos) << r.out;
+    for (const auto& e : fs::directory_iterator(dir / "out"))
+        EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();
+    const json sidecar = json::parse(std::ifstream(dir / "out" / "walker.json"));
+    EXPECT_FALSE(sidecar["complete"].get<bool>());
+    EXPECT_LT(sidecar["frames_written"].get<int>(), 3000);
+    EXPECT_GT(fs::file_size(dir / "out" / "walker.mdd"), 0u);
+}
+
+// macOS leaves ._walk_a.c3d (Finder's metadata) beside each take on a shared drive: the scan took
+// it, and .hidden.c3d, for takes, while a link to a take that is gone was dropped in silence.
+TEST(Batch, AFolderScanLeavesOutDotFilesAndFailsALinkToATakeThatIsGone) {
+    const fs::path dir = makeLibrary();
+    fs::copy_file(dir / "takes" / "walk_a.c3d", dir / "takes" / ".hidden.c3d");
+    std::ofstream(dir / "takes" / "._walk_a.c3d") << "Mac OS X        ATTR";
+    fs::create_symlink(dir / "moved" / "walk_d.c3d", dir / "takes" / "walk_d.c3d");
+    const fs::path manifest = writeManifest(dir, "m.json", folderManifest("out"));
+    const CliResult r = runCli("batch " + manifest.string());
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("4 of 4 entries in shard 1/1: 3 solved, 0 skipped, 1 failed"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find((dir / "takes" / "walk_d.c3d").string() + " -> " +
+                         (dir / "out" / "walk_d").string() + ": FAILED: "),
+              std::string::npos)
+        << r.out;
+    EXPECT_EQ(r.out.find("hidden"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("._walk_a"), std::string::npos) << r.out;
+}

@@ -39,7 +39,6 @@ struct HeaderWords {
     float rate = 0.0f;                        // words 11-12
 };
 
-bool isUtf8(std::string_view s);
 // UTF-8 of a string read from the file: as is when it is already UTF-8, else decoded as Latin-1
 // (every byte sequence is valid Latin-1) and wasLatin1 set.
 std::string textFromC3d(std::string_view raw, bool& wasLatin1);

@@ -2,49 +2,9 @@
 // close to it), newer ones UTF-8; the take holds UTF-8 and remembers which one the file used.
 
 #include "C3dDetail.h"
+#include "boneless/Text.h"
 
 namespace boneless::c3d_detail {
-
-namespace {
-
-// Length of the well-formed UTF-8 sequence at s[i] (RFC 3629: no overlongs, no surrogates,
-// nothing past U+10FFFF), 0 when there is none.
-std::size_t utf8Sequence(std::string_view s, std::size_t i) {
-    const auto at = [&](std::size_t k) { return static_cast<unsigned char>(s[k]); };
-    const unsigned char c = at(i);
-    if (c < 0x80) return 1;
-    std::size_t n;
-    unsigned char lo = 0x80, hi = 0xBF;
-    if (c >= 0xC2 && c <= 0xDF) {
-        n = 2;
-    } else if (c >= 0xE0 && c <= 0xEF) {
-        n = 3;
-        if (c == 0xE0) lo = 0xA0;
-        if (c == 0xED) hi = 0x9F;
-    } else if (c >= 0xF0 && c <= 0xF4) {
-        n = 4;
-        if (c == 0xF0) lo = 0x90;
-        if (c == 0xF4) hi = 0x8F;
-    } else {
-        return 0;
-    }
-    if (i + n > s.size()) return 0;
-    if (at(i + 1) < lo || at(i + 1) > hi) return 0;
-    for (std::size_t k = 2; k < n; ++k)
-        if (at(i + k) < 0x80 || at(i + k) > 0xBF) return 0;
-    return n;
-}
-
-}  // namespace
-
-bool isUtf8(std::string_view s) {
-    for (std::size_t i = 0; i < s.size();) {
-        const std::size_t n = utf8Sequence(s, i);
-        if (n == 0) return false;
-        i += n;
-    }
-    return true;
-}
 
 std::string textFromC3d(std::string_view raw, bool& wasLatin1) {
     if (isUtf8(raw)) return std::string(raw);
@@ -68,7 +28,7 @@ std::string textToC3d(std::string_view utf8, C3dTextEncoding encoding) {
     std::string out;
     out.reserve(utf8.size());
     for (std::size_t i = 0; i < utf8.size();) {
-        const std::size_t n = utf8Sequence(utf8, i);
+        const std::size_t n = utf8SequenceAt(utf8, i);
         const auto c = static_cast<unsigned char>(utf8[i]);
         if (n == 1) {
             out.push_back(utf8[i]);

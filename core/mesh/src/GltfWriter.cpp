@@ -3,6 +3,7 @@
 #include <tiny_gltf.h>
 #include <unistd.h>
 #include <algorithm>
+#include <cerrno>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -15,6 +16,7 @@
 #include "MtlReader.h"
 #include "boneless/Error.h"
 #include "boneless/SpoolFile.h"
+#include "boneless/Text.h"
 
 namespace boneless {
 
@@ -178,7 +180,7 @@ std::vector<int> triangleMaterials(const TriMesh& mesh, std::vector<ObjMaterial>
 // Ns. With a texture the colour is the texture's (OBJ importers show map_Kd in place of Kd).
 tinygltf::Material gltfMaterial(const ObjMaterial& obj, int texture, int normalTexture) {
     tinygltf::Material m;
-    m.name = obj.name;
+    m.name = validUtf8(obj.name);
     auto& pbr = m.pbrMetallicRoughness;
     // glTF's factors lie in [0, 1]; an OBJ's Kd may not.
     const auto unit = [](double x) { return std::clamp(x, 0.0, 1.0); };
@@ -247,7 +249,7 @@ GltfWriter::GltfWriter(std::string path, const TriMesh& rest, std::string name,
             if (!error) textureBytes_ += size + 3;
         }
     file_ = std::fopen(spool_.c_str(), "wb+");
-    if (!file_) throw Error(path_ + ": cannot be written (cannot create " + spool_ + ")");
+    if (!file_) throw Error(path_ + ": cannot be written (" + std::strerror(errno) + ")");
 }
 
 GltfWriter::~GltfWriter() {
@@ -339,7 +341,7 @@ void GltfWriter::finish() {
         const std::string mimeType = detail::imageMimeType(bytes.substr(0, 8));
         if (mimeType.empty()) return textureOf[path] = -1;
         tinygltf::Image image;
-        image.name = std::filesystem::path(path).filename().string();
+        image.name = validUtf8(std::filesystem::path(path).filename().string());
         image.mimeType = mimeType;
         image.bufferView = place(bytes.size());
         const size_t pad = (4 - bytes.size() % 4) % 4;
@@ -401,7 +403,8 @@ void GltfWriter::finish() {
         primitives.push_back(std::move(p));
         first += count;
     }
-    addAnimatedMesh(m, name_, placement_, std::move(primitives), std::move(targetNames),
+    // Names from files may not be UTF-8 (a Latin-1 file name); tinygltf's JSON would throw.
+    addAnimatedMesh(m, validUtf8(name_), placement_, std::move(primitives), std::move(targetNames),
                     timeAccessor, weightAccessor);
     const std::string json = glbJson(m, offset);
     // append() estimated the JSON; this is the file's length as written, checked before it is.

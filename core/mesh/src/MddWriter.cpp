@@ -1,6 +1,7 @@
 #include "boneless/MddWriter.h"
 
 #include <unistd.h>
+#include <cerrno>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -48,7 +49,7 @@ MddWriter::MddWriter(std::string path, int pointCount)
     : path_(std::move(path)), points_(pointCount) {
     spool_ = path_ + ".frames.tmp" + std::to_string(::getpid());
     file_ = std::fopen(spool_.c_str(), "wb+");
-    if (!file_) throw Error(path_ + ": cannot be written (cannot create " + spool_ + ")");
+    if (!file_) throw Error(path_ + ": cannot be written (" + std::strerror(errno) + ")");
 }
 
 MddWriter::~MddWriter() {

@@ -8,16 +8,13 @@
 #include "OpenMeshPrecheck.h"
 #include "PolygonSoup.h"
 #include "boneless/Error.h"
+#include "boneless/Text.h"
 
 namespace boneless {
 
 using namespace detail;
 
 namespace {
-
-std::string plural(int n, const std::string& word, const std::string& words = {}) {
-    return std::to_string(n) + " " + (n == 1 ? word : words.empty() ? word + "s" : words);
-}
 
 std::string faceList(const PolygonSoup& soup, const std::vector<int>& faces) {
     std::string s;

@@ -1,8 +1,10 @@
 #include "boneless/ObjWriter.h"
 
 #include <unistd.h>
+#include <cerrno>
 #include <charconv>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <system_error>
@@ -15,7 +17,7 @@ void writeFileAtomically(const std::string& path, const std::string& contents) {
     const std::string temporary = path + ".tmp" + std::to_string(::getpid());
     {
         std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-        if (!out) throw Error(path + ": cannot be written (cannot create " + temporary + ")");
+        if (!out) throw Error(path + ": cannot be written (" + std::strerror(errno) + ")");
         out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
         out.flush();
         if (!out) {

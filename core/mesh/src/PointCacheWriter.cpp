@@ -1,6 +1,7 @@
 #include "boneless/PointCacheWriter.h"
 
 #include <unistd.h>
+#include <cerrno>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -33,7 +34,8 @@ PointCacheWriter::PointCacheWriter(std::string path, int pointCount, double star
     if (!littleEndian()) throw Error(path_ + ": PC2 writing needs a little-endian machine");
     temporary_ = path_ + ".tmp" + std::to_string(::getpid());
     file_ = std::fopen(temporary_.c_str(), "wb");
-    if (!file_) throw Error(path_ + ": cannot be written (cannot create " + temporary_ + ")");
+    // The user's file and the system's reason: the temporary beside it is ours, not theirs.
+    if (!file_) throw Error(path_ + ": cannot be written (" + std::strerror(errno) + ")");
     const std::int32_t version = 1, points = pointCount, samples = 0;
     const float start = static_cast<float>(startFrame), rate = static_cast<float>(sampleRate);
     std::fwrite(kSignature, 1, sizeof kSignature, file_);

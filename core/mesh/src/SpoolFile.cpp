@@ -1,6 +1,8 @@
 #include "boneless/SpoolFile.h"
 
 #include <unistd.h>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <vector>
 
@@ -12,6 +14,7 @@ void writeSpooled(const std::string& path, const std::string& head, std::FILE* s
                   const std::string& spoolPath, const std::string& tail) {
     const std::string temporary = path + ".tmp" + std::to_string(::getpid());
     std::FILE* out = std::fopen(temporary.c_str(), "wb");
+    const std::string cannotCreate = out ? "" : std::strerror(errno);
     bool ok = out && std::fflush(spool) == 0 && std::fseek(spool, 0, SEEK_SET) == 0 &&
               std::fwrite(head.data(), 1, head.size(), out) == head.size();
     std::vector<char> buffer(1 << 20);
@@ -28,8 +31,11 @@ void writeSpooled(const std::string& path, const std::string& head, std::FILE* s
     if (ok) std::filesystem::rename(temporary, path, ec);
     if (!ok || ec) {
         std::remove(temporary.c_str());
-        throw Error(path + ": cannot be written" +
-                    (ec ? " (" + ec.message() + ")" : " (disk full?)"));
+        throw Error(path + ": cannot be written (" +
+                    (!out ? cannotCreate
+                     : ec ? ec.message()
+                          : "disk full?") +
+                    ")");
     }
 }
 

@@ -146,8 +146,9 @@ std::string Correspondence::toJson() const {
     for (const auto& m : markers) facePoints = facePoints || m.face >= 0;
     doc["version"] = facePoints ? 2 : 1;
     json mesh = doc.contains("mesh") ? doc["mesh"] : json::object();
-    mesh["file"] = meshFile;
-    if (!meshGroup.empty()) mesh["group"] = meshGroup;
+    // The mesh's file name may not be UTF-8 (Latin-1), which JSON cannot hold as it is.
+    mesh["file"] = validUtf8(meshFile);
+    if (!meshGroup.empty()) mesh["group"] = validUtf8(meshGroup);
     mesh["vertices"] = meshVertices;
     doc["mesh"] = mesh;
     json list = json::array();

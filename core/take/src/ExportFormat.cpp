@@ -5,7 +5,8 @@ namespace boneless {
 const std::vector<ExportFormatInfo>& exportFormats() {
     static const std::vector<ExportFormatInfo> formats = {
         {ExportFormat::Obj, "obj", ".obj", "OBJ sequence: one mesh file per frame"},
-        {ExportFormat::Pc2, "pc2", ".pc2", "PC2 point cache (Blender Mesh Cache, Maya, 3ds Max)"},
+        // Those docs/export.md says read it as it is: Maya needs a plug-in.
+        {ExportFormat::Pc2, "pc2", ".pc2", "PC2 point cache (Blender Mesh Cache, 3ds Max)"},
         {ExportFormat::Mdd, "mdd", ".mdd",
          "MDD point cache (LightWave, Cinema 4D, Blender Mesh Cache, Houdini)"},
         {ExportFormat::Glb, "glb", ".glb",

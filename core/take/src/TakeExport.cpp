@@ -32,6 +32,7 @@
 #include "boneless/SolveFits.h"
 #include "boneless/SpoolFile.h"
 #include "boneless/TakeOptionsJson.h"
+#include "boneless/Text.h"
 
 namespace boneless {
 
@@ -94,21 +95,38 @@ std::string objFrameFile(const std::string& stem, int frame) {
     return stem + number;
 }
 
+namespace {
+
+// The take frame whose OBJ (objFrameFile) `name` is, if it is one of `stem`'s.
+std::optional<int> objFrameOf(const fs::path& name, const std::string& stem) {
+    const std::string file = name.filename().string();
+    if (file.size() < stem.size() + 9 || file.compare(0, stem.size() + 1, stem + "_") != 0 ||
+        name.extension() != ".obj")
+        return std::nullopt;
+    const std::string digits = file.substr(stem.size() + 1, file.size() - stem.size() - 5);
+    // At least the four digits objFrameFile writes; more than an int holds is no frame.
+    if (digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos)
+        return std::nullopt;
+    return std::stoi(digits);
+}
+
+}  // namespace
+
 std::vector<int> objFramesIn(const std::string& outDir, const std::string& stem) {
     std::vector<int> frames;
     std::error_code ec;
-    for (const auto& entry : fs::directory_iterator(outDir, ec)) {
-        const std::string name = entry.path().filename().string();
-        if (name.size() < stem.size() + 9 || name.compare(0, stem.size() + 1, stem + "_") != 0 ||
-            entry.path().extension() != ".obj")
-            continue;
-        const std::string digits = name.substr(stem.size() + 1, name.size() - stem.size() - 5);
-        // At least the four digits objFrameFile writes; more than an int holds is no frame.
-        if (digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos)
-            continue;
-        frames.push_back(std::stoi(digits));
-    }
+    for (const auto& entry : fs::directory_iterator(outDir, ec))
+        if (const std::optional<int> frame = objFrameOf(entry.path(), stem))
+            frames.push_back(*frame);
     return frames;
+}
+
+bool sameFile(const std::string& a, const std::string& b) {
+    std::error_code ec;
+    if (fs::equivalent(a, b, ec)) return true;
+    std::error_code ea, eb;
+    const fs::path x = fs::weakly_canonical(a, ea), y = fs::weakly_canonical(b, eb);
+    return !ea && !eb && x == y;
 }
 
 namespace {
@@ -197,7 +215,7 @@ json calibrationJson(const ExportRequest& request, const TriMesh& mesh, const Ta
     j["frame"] = solver.calibration().frame;
     j["overridden"] = request.options.calibratedRest.has_value();
     j["edge_distortion_from_rest"] = edgeLengthDistortion(mesh.F, solver.rest().V, mesh.V);
-    j["calibrated_rest"] = restFile.empty() ? json(nullptr) : json(restFile);
+    j["calibrated_rest"] = restFile.empty() ? json(nullptr) : json(validUtf8(restFile));
     return j;
 }
 
@@ -214,10 +232,11 @@ json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibr
             {"complete", !result.cancelled},
             {"output", exportFormatInfo(request.format).name},
             {"source",
-             {{"mesh", request.meshPath},
-              {"group", request.group},
-              {"c3d", request.c3dPath},
-              {"map", request.mapPath}}},
+             // JSON holds only UTF-8: a Latin-1 file name is recorded read as Latin-1.
+             {{"mesh", validUtf8(request.meshPath)},
+              {"group", validUtf8(request.group)},
+              {"c3d", validUtf8(request.c3dPath)},
+              {"map", validUtf8(request.mapPath)}}},
             {"source_fingerprints", std::move(fingerprints)},
             {"units",
              {{"take", take.units},
@@ -346,9 +365,41 @@ SolveMemory solveMemory(const TriMesh& mesh, const ExportRequest& request) {
     return estimateSolveMemory(mesh.vertexCount(), mesh.faceCount(), request.options.solver.method);
 }
 
-// What both sources check before a solver is built: the options, and that the mesh fits memory.
-void checkRequest(const TriMesh& mesh, const Correspondence& map, const ExportRequest& request) {
+// A file written over an input would destroy it: the map clob/walker.json beside clob/walker.obj
+// was replaced by the sidecar of a solve into clob. `frames`: the take's frame count.
+void refuseOutputsOverInputs(const ExportRequest& request, int frames) {
+    const fs::path out(request.outDir);
+    const std::string stem = exportStem(request);
+    const int end = request.end < 0 ? frames : std::min(request.end, frames);
+    for (const auto& [input, path] :
+         {std::pair<const char*, const std::string*>{"mesh", &request.meshPath},
+          {"take", &request.c3dPath},
+          {"map", &request.mapPath}}) {
+        if (path->empty()) continue;  // the app's map may not be saved anywhere yet
+        std::vector<std::pair<std::string, fs::path>> outputs = {
+            {"sidecar", out / (stem + ".json")}};
+        if (request.format != ExportFormat::Obj)
+            outputs.push_back({std::string(exportFormatInfo(request.format).name) + " file",
+                               out / (stem + exportFormatInfo(request.format).extension)});
+        else if (const std::optional<int> f = objFrameOf(*path, stem);
+                 f && *f >= request.first && *f < end)
+            outputs.push_back({"OBJ frame", out / objFrameFile(stem, *f)});
+        if (request.writeCalibratedRest)
+            outputs.push_back({"calibrated rest", out / (stem + "_calibrated_rest.obj")});
+        for (const auto& [what, output] : outputs)
+            if (sameFile(output.string(), *path))
+                throw Error(output.string() + ": the " + what +
+                            " this solve writes would replace the " + input + " " + *path +
+                            "; write to another output folder");
+    }
+}
+
+// What both sources check before a solver is built: the options, that the mesh fits memory, and
+// that no output would replace an input.
+void checkRequest(const TriMesh& mesh, const Correspondence& map, const ExportRequest& request,
+                  int frames) {
     validate(request.options);
+    refuseOutputsOverInputs(request, frames);
     checkSolveFits(mesh, request.meshPath, request.options.solver.method);
     // Here, where the mesh's file is known: the solver's own check can only say "the mesh".
     map.checkMesh(mesh.vertexCount(), request.meshPath.empty() ? "the mesh" : request.meshPath,
@@ -474,7 +525,7 @@ std::string fileFingerprint(const std::string& path, bool contents) {
 ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspondence& map,
                         const ExportRequest& request, const ExportProgress& progress,
                         const ExportCalibrated& calibrated) {
-    checkRequest(mesh, map, request);
+    checkRequest(mesh, map, request, static_cast<int>(take.frameCount()));
     TakeSolver solver(mesh, take, map, request.options);
     return exportSolved(solver, mesh, take, map, request, progress, calibrated);
 }
@@ -482,7 +533,7 @@ ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspo
 ExportResult exportTake(const TriMesh& mesh, const C3dFrameReader& take, const Correspondence& map,
                         const ExportRequest& request, const ExportProgress& progress,
                         const ExportCalibrated& calibrated) {
-    checkRequest(mesh, map, request);
+    checkRequest(mesh, map, request, static_cast<int>(take.frameCount()));
     TakeSolver solver(mesh, take, map, request.options);
     return exportSolved(solver, mesh, take.take(), map, request, progress, calibrated);
 }

@@ -4,11 +4,15 @@
 #include <fstream>
 #include <random>
 
+#include "TestFiles.h"
 #include "TestMeshes.h"
 #include "boneless/Error.h"
+#include "boneless/GltfWriter.h"
+#include "boneless/MddWriter.h"
 #include "boneless/MeshReader.h"
 #include "boneless/MeshSequence.h"
 #include "boneless/ObjWriter.h"
+#include "boneless/PointCacheWriter.h"
 
 using namespace boneless;
 using namespace boneless::testing;
@@ -186,4 +190,21 @@ TEST(ObjWriter, FramesOfAQuadMeshReadBackAsOneSequenceHoweverTheirQuadsSplit) {
     ASSERT_EQ(sequence.frames.size(), 2u);
     EXPECT_EQ(sequence.frames[1], pulled);
     EXPECT_EQ(sequence.rest.F, cube.F);
+}
+
+// A read-only folder said "walker.pc2: cannot be written (cannot create walker.pc2.tmp12663)":
+// our temporary file, and not why. Each writer names the user's file and the system's reason.
+TEST(FileWriters, NameTheUsersFileAndTheSystemsReasonWhenItCannotBeCreated) {
+    const fs::path missing = fs::path(freshTestDir("unwritable")) / "missing";
+    const TriMesh mesh = icosphere(1);
+    auto refusal = [&](const std::string& name) {
+        return (missing / name).string() + ": cannot be written (No such file or directory)";
+    };
+    EXPECT_EQ(errorOf([&] { PointCacheWriter((missing / "w.pc2").string(), 12, 0, 1); }),
+              refusal("w.pc2"));
+    EXPECT_EQ(errorOf([&] { MddWriter((missing / "w.mdd").string(), 12); }), refusal("w.mdd"));
+    EXPECT_EQ(errorOf([&] { GltfWriter((missing / "w.glb").string(), mesh, "w"); }),
+              refusal("w.glb"));
+    EXPECT_EQ(errorOf([&] { writeObj((missing / "w.obj").string(), mesh.V, mesh.F, "test"); }),
+              refusal("w.obj"));
 }

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -16,5 +17,22 @@ inline std::string joined(const std::vector<std::string>& items,
     }
     return out;
 }
+
+// "1 frame", "2 frames": a count and its noun as messages give them; `words` for an irregular
+// plural ("vertices").
+inline std::string plural(long long n, const std::string& word, const std::string& words = {}) {
+    return std::to_string(n) + " " + (n == 1 ? word : words.empty() ? word + "s" : words);
+}
+
+// Length of the well-formed UTF-8 sequence at text[i] (RFC 3629: no overlongs, no surrogates,
+// nothing past U+10FFFF), 0 when there is none.
+std::size_t utf8SequenceAt(std::string_view text, std::size_t i);
+
+bool isUtf8(std::string_view text);
+
+// `text` as UTF-8, which JSON holds and nothing else: its UTF-8 as it is, every other byte read as
+// Latin-1. A file name from a Latin-1 system ("caf\xe9.c3d") is recorded as "café.c3d" where a
+// JSON writer would have thrown.
+std::string validUtf8(std::string_view text);
 
 }  // namespace boneless

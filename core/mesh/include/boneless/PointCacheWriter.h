@@ -7,9 +7,9 @@
 
 namespace boneless {
 
-// Streams frames into a PC2 point cache (the format Blender's Mesh Cache modifier and Maya read):
-// a 32-byte header, "POINTCACHE2\0", version 1, point count, start frame, sample rate, sample
-// count, then float32 x y z per point per frame, little-endian. The file is written under a
+// Streams frames into a PC2 point cache (the format Blender's Mesh Cache modifier and 3ds Max
+// read): a 32-byte header, "POINTCACHE2\0", version 1, point count, start frame, sample rate,
+// sample count, then float32 x y z per point per frame, little-endian. The file is written under a
 // temporary name and only renamed into place by finish(), so an interrupted export never leaves a
 // cache that claims frames it does not hold.
 class PointCacheWriter {

@@ -43,8 +43,8 @@ struct ExportResult {
     std::vector<std::pair<int, int>> held;
 };
 
-// Called after each frame is written; return false to stop (the files written so far and the
-// sidecar stay complete).
+// Called after each frame is written; return false to stop (the frames written so far stay valid,
+// and the sidecar records the take as incomplete).
 using ExportProgress = std::function<bool(int done, int total, const FrameReport& last)>;
 
 // The file stem outputs are named after: the group if one is given, else the mesh file's stem.
@@ -54,10 +54,16 @@ std::string objFrameFile(const std::string& stem, int frame);
 // The frames of `stem`'s OBJ sequence that `outDir` holds, in no particular order.
 std::vector<int> objFramesIn(const std::string& outDir, const std::string& stem);
 
+// Whether `a` and `b` name one file however each is spelled (relative, through "..", a symbolic or
+// hard link); a path that does not exist yet is compared by where it would be.
+bool sameFile(const std::string& a, const std::string& b);
+
 // Told the alignment once it is found, before the first frame is solved.
 using ExportCalibrated = std::function<void(const Calibration&)>;
 
-// Solves and writes the frames. Throws Error naming the file or option for bad input.
+// Solves and writes the frames. Throws Error naming the file or option for bad input, and, before
+// solving, naming both files when an output (the sidecar, the frames, the calibrated rest) would
+// replace one of the request's inputs.
 ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspondence& map,
                         const ExportRequest& request, const ExportProgress& progress = {},
                         const ExportCalibrated& calibrated = {});
