@@ -95,10 +95,10 @@ void ExportRunner::onFinished() {
         message = error_;
     else if (result_.cancelled)
         message = counted(result_.framesWritten,
-                          tr("Export stopped after %n frame; the files written and %1 are "
-                             "complete."),
-                          tr("Export stopped after %n frames; the files written and %1 are "
-                             "complete."))
+                          tr("Export stopped after %n frame: it is valid, and %1 records "
+                             "the take as incomplete."),
+                          tr("Export stopped after %n frames: they are valid, and %1 records "
+                             "the take as incomplete."))
                       .arg(QString::fromStdString(result_.sidecarPath));
     else
         message = counted(result_.framesWritten, tr("Exported %n frame to %1."),
