@@ -107,13 +107,7 @@ class MappingTest : public QObject {
         Document* d = window.document();
         const int head = d->markerByLabel("LFHD");
         QVERIFY(head >= 0);
-        const Positions& V = d->mesh().V;
-        const Eigen::RowVector3d from = V.row(d->mappedVertex(head));
-        int foot = -1;
-        for (int v = 0; v < V.rows(); ++v)
-            if (d->markerForVertex(v) < 0 &&
-                (foot < 0 || (V.row(v) - from).norm() > (V.row(foot) - from).norm()))
-                foot = v;
+        const int foot = test::farthestFreeVertex(*d, head);
         QSignalSpy failed(window.frameSolver(), &FrameSolver::failed);
         QVERIFY(d->assign(head, foot));
         QVERIFY(failed.wait(60000));
@@ -390,13 +384,7 @@ class MappingTest : public QObject {
 
         // A head marker mapped onto the far end of the body pulls the fit away.
         const int head = d->markerByLabel("LFHD");
-        const Positions& V = d->mesh().V;
-        const Eigen::RowVector3d from = V.row(d->mappedVertex(head));
-        int foot = -1;
-        for (int v = 0; v < V.rows(); ++v)
-            if (d->markerForVertex(v) < 0 &&
-                (foot < 0 || (V.row(v) - from).norm() > (V.row(foot) - from).norm()))
-                foot = v;
+        const int foot = test::farthestFreeVertex(*d, head);
         QVERIFY(d->assign(head, foot));
         align->click();
         const double bad =

@@ -402,13 +402,7 @@ class ProjectSessionTest : public QObject {
         Document* d = window.document();
         // A head marker mapped onto a foot: the take cannot be solved with this map.
         const int head = d->markerByLabel("LFHD");
-        const boneless::Positions& V = d->mesh().V;
-        const Eigen::RowVector3d from = V.row(d->mappedVertex(head));
-        int foot = -1;
-        for (int v = 0; v < V.rows(); ++v)
-            if (d->markerForVertex(v) < 0 &&
-                (foot < 0 || (V.row(v) - from).norm() > (V.row(foot) - from).norm()))
-                foot = v;
+        const int foot = test::farthestFreeVertex(*d, head);
         QSignalSpy failed(window.frameSolver(), &FrameSolver::failed);
         QVERIFY(d->assign(head, foot));
         auto errorShown = [&] {

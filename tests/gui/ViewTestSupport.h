@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "ModelTestFixtures.h"
+#include "boneless/ui/Document.h"
 #include "boneless/ui/MainWindow.h"
 #include "boneless/ui/MeshView.h"
 #include "boneless/ui/SurfaceFormat.h"
@@ -51,6 +52,19 @@ inline bool showMesh(MeshView& view, const TriMesh& mesh,
 
 inline bool waitForFrame(MainWindow& window, int timeoutMs = 60000) {
     return QTest::qWaitFor([&] { return window.frameUpToDate(); }, timeoutMs);
+}
+
+// The unmapped vertex farthest from `marker`'s: mapped there, a head marker on a foot pulls the
+// fit away, or makes the take unsolvable.
+inline int farthestFreeVertex(const Document& d, int marker) {
+    const Positions& V = d.mesh().V;
+    const Eigen::RowVector3d from = V.row(d.mappedVertex(marker));
+    int far = -1;
+    for (int v = 0; v < V.rows(); ++v)
+        if (d.markerForVertex(v) < 0 &&
+            (far < 0 || (V.row(v) - from).norm() > (V.row(far) - from).norm()))
+            far = v;
+    return far;
 }
 
 }  // namespace boneless::ui::test
