@@ -19,6 +19,19 @@ const char* kValid = R"({"format": "boneless-correspondence", "version": 1,
   "markers": [{"label": "LFHD", "vertex": 12, "offset_mm": 9.5, "note": "left front head"},
               {"label": "RFHD", "vertex": 40}]})";
 
+// A take `file` holding markers labelled `labels`, without samples: what resolve() reads.
+C3dTake takeOf(const char* file, std::initializer_list<const char*> labels) {
+    C3dTake take;
+    take.file = file;
+    for (const char* label : labels) {
+        C3dPoint p;
+        p.label = label;
+        splitC3dLabel(label, p.subject, p.name);
+        take.points.push_back(p);
+    }
+    return take;
+}
+
 }  // namespace
 
 TEST(Correspondence, ReadsTheDocumentedFormat) {
@@ -77,14 +90,7 @@ TEST(Correspondence, ChecksTheMeshAndTheTake) {
     EXPECT_NO_THROW(c.checkMesh(100, "body.obj"));
     EXPECT_NE(errorOf([&] { c.checkMesh(99, "other.obj"); }).find("99"), std::string::npos);
 
-    C3dTake take;
-    take.file = "take.c3d";
-    for (const char* label : {"actor:RFHD", "actor:LFHD", "actor:C7"}) {
-        C3dPoint p;
-        p.label = label;
-        splitC3dLabel(label, p.subject, p.name);
-        take.points.push_back(p);
-    }
+    C3dTake take = takeOf("take.c3d", {"actor:RFHD", "actor:LFHD", "actor:C7"});
     const auto points = c.resolve(take);
     EXPECT_EQ(points, (std::vector<std::size_t>{1, 0}));  // prefixes ignored, file order kept
     take.points.erase(take.points.begin());
@@ -180,14 +186,7 @@ TEST(Correspondence, ALabelNamingAModelOutputIsNoMarker) {
 }
 
 TEST(Correspondence, ABareLabelTwoSubjectsWearIsRefusedAskingForTheSubject) {
-    C3dTake take;
-    take.file = "pair.c3d";
-    for (const char* label : {"A:ASISr", "B:ASISr", "A:LFHD"}) {
-        C3dPoint p;
-        p.label = label;
-        splitC3dLabel(label, p.subject, p.name);
-        take.points.push_back(p);
-    }
+    const C3dTake take = takeOf("pair.c3d", {"A:ASISr", "B:ASISr", "A:LFHD"});
     const auto mapOf = [](const char* label) {
         return Correspondence::fromJson(std::string(R"({"format": "boneless-correspondence",
           "version": 1, "markers": [{"label": "LFHD", "vertex": 1}, {"label": ")") +
