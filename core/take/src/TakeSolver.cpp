@@ -89,11 +89,23 @@ void TakeSolver::prepare(const Correspondence& map) {
                            .transpose();
         return R;
     };
+    // A given alignment (the app's Align) is measured at its frame as a found one is, so the
+    // sidecar's residual says how well it fits rather than 0.
+    auto measureGivenAlignment = [&] {
+        const Positions P = trackFrame(calibration_.frame, false);
+        calibration_.residual =
+            alignmentResidual(calibration_.takeToMesh, P,
+                              restMarkers(calibration_.takeToMesh.scale / track_->unitToMm()));
+        calibration_.visibleMarkers = 0;
+        for (Eigen::Index k = 0; k < P.rows(); ++k)
+            calibration_.visibleMarkers += P.row(k).allFinite() ? 1 : 0;
+    };
     std::optional<Similarity> level;
     double levelResidual = 0;
     if (options_.alignment) {
         calibration_.takeToMesh = *options_.alignment;
         calibration_.frame = options_.calibrationFrame;
+        if (calibration_.frame >= 0) measureGivenAlignment();
     } else {
         double meshUnitsPerMm = 0;  // first pass: markers on the skin
         for (int pass = 0; pass < 3; ++pass) {
@@ -125,8 +137,10 @@ void TakeSolver::prepare(const Correspondence& map) {
     // The calibration stage (docs/calibration.md): the engine's answer at the calibration frame
     // becomes the rest every frame is encoded, solved and measured against.
     if (options_.calibrate == CalibrateMode::Shape) {
-        if (calibration_.frame < 0)
+        if (calibration_.frame < 0) {
             calibration_.frame = calibrateTrack(restMarkers(meshUnitsPerMm_)).frame;
+            if (options_.alignment) measureGivenAlignment();
+        }
         if (options_.calibratedRest) {
             if (options_.calibratedRest->rows() != rest_.vertexCount() ||
                 options_.calibratedRest->cols() != 3)

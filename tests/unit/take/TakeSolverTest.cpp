@@ -111,6 +111,23 @@ TEST(TakeSolver, AMarkerMissingFromTheFrameShapesNothing) {
     }
 }
 
+// The app's Align hands the solver an alignment; the sidecar's residual is then the one that
+// alignment leaves at its frame, measured as a found one is, not 0 whatever it fits.
+TEST(TakeSolver, AGivenAlignmentReportsTheResidualItLeavesAtItsFrame) {
+    const Take t = demoTake("take-given-alignment", 1);
+    const TakeSolver automatic(t.mesh, t.take, t.map);
+    TakeSolveOptions options;
+    options.alignment = automatic.calibration().takeToMesh;
+    options.calibrationFrame = automatic.calibration().frame;
+    const TakeSolver given(t.mesh, t.take, t.map, options);
+    const double diagonal = boundingBoxDiagonal(t.mesh.V);
+    EXPECT_NEAR(given.calibration().residual, automatic.calibration().residual, 1e-9 * diagonal);
+
+    options.alignment->t += Vec3(0.05 * diagonal, 0, 0);  // Align done 5 % of the body off
+    const TakeSolver shifted(t.mesh, t.take, t.map, options);
+    EXPECT_NEAR(shifted.calibration().residual, 0.05 * diagonal, 0.01 * diagonal);
+}
+
 // A frame where every marker is missing has nothing to follow: the (calibrated) rest pose, finite,
 // and the frames around it are what they would be without it.
 // Frames 11 to 13 show no marker (the actor left the volume): each holds the pose of the nearest
