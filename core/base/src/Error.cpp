@@ -1,5 +1,8 @@
 #include "boneless/Error.h"
 
+#include <cerrno>
+#include <cstring>
+
 namespace boneless {
 
 namespace {
@@ -16,5 +19,9 @@ MeshError::MeshError(std::string file, std::string what, std::string where)
       file_(std::move(file)),
       cause_(std::move(what)),
       where_(std::move(where)) {}
+
+std::string writeFailure() {
+    return errno ? std::strerror(errno) : "disk full?";
+}
 
 }  // namespace boneless

@@ -285,7 +285,7 @@ void GltfWriter::append(int frame, double seconds, const Positions& positions) {
             b[3 + c] = std::max(b[3 + c], double(d));
         }
     if (std::fwrite(offsets.data(), sizeof(float), offsets.size(), file_) != offsets.size())
-        throw Error(path_ + ": writing failed (disk full?)");
+        throw Error(path_ + ": writing failed (" + writeFailure() + ")");
     times_.push_back(static_cast<float>(seconds));
     frames_.push_back(frame);
     bounds_.push_back(b);

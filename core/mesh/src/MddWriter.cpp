@@ -69,7 +69,7 @@ void MddWriter::append(double seconds, const Positions& positions) {
         for (int c = 0; c < 3; ++c)
             buffer[3 * v + c] = floatBits(static_cast<float>(positions(v, c)));
     if (std::fwrite(buffer.data(), 4, buffer.size(), file_) != buffer.size())
-        throw Error(path_ + ": writing failed (disk full?)");
+        throw Error(path_ + ": writing failed (" + writeFailure() + ")");
     times_.push_back(static_cast<float>(seconds));
 }
 

@@ -21,8 +21,9 @@ void writeFileAtomically(const std::string& path, const std::string& contents) {
         out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
         out.flush();
         if (!out) {
+            const std::string why = writeFailure();
             std::remove(temporary.c_str());
-            throw Error(path + ": writing failed (disk full?)");
+            throw Error(path + ": writing failed (" + why + ")");
         }
     }
     std::error_code ec;

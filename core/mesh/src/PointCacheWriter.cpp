@@ -62,7 +62,7 @@ void PointCacheWriter::append(const Positions& positions) {
     for (int v = 0; v < points_; ++v)
         for (int c = 0; c < 3; ++c) buffer[3 * v + c] = static_cast<float>(positions(v, c));
     if (std::fwrite(buffer.data(), sizeof(float), buffer.size(), file_) != buffer.size())
-        throw Error(path_ + ": writing failed (disk full?)");
+        throw Error(path_ + ": writing failed (" + writeFailure() + ")");
     ++frames_;
 }
 

@@ -24,7 +24,11 @@ void writeSpooled(const std::string& path, const std::string& head, std::FILE* s
         ok = std::fwrite(buffer.data(), 1, got, out) == got;
     }
     ok = ok && !std::ferror(spool) && std::fwrite(tail.data(), 1, tail.size(), out) == tail.size();
-    if (out) ok = std::fclose(out) == 0 && ok;
+    std::string why = ok ? "" : writeFailure();  // before fclose and remove touch errno
+    if (out && std::fclose(out) != 0 && ok) {
+        ok = false;
+        why = writeFailure();
+    }
     std::fclose(spool);
     if (!spoolPath.empty()) std::remove(spoolPath.c_str());
     std::error_code ec;
@@ -34,7 +38,7 @@ void writeSpooled(const std::string& path, const std::string& head, std::FILE* s
         throw Error(path + ": cannot be written (" +
                     (!out ? cannotCreate
                      : ec ? ec.message()
-                          : "disk full?") +
+                          : why) +
                     ")");
     }
 }

@@ -168,7 +168,8 @@ class PerFrameFigures {
              i = text.find('\n', i + 1))
             text.insert(i + 1, "    ");
         if (std::fwrite(text.data(), 1, text.size(), spool_) != text.size())
-            throw Error("cannot write the sidecar's figures to a temporary file (disk full?)");
+            throw Error("cannot write the sidecar's figures to a temporary file (" +
+                        writeFailure() + ")");
     }
     json summary() const {
         std::vector<double> ms = ms_;

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -207,4 +209,33 @@ TEST(FileWriters, NameTheUsersFileAndTheSystemsReasonWhenItCannotBeCreated) {
               refusal("w.glb"));
     EXPECT_EQ(errorOf([&] { writeObj((missing / "w.obj").string(), mesh.V, mesh.F, "test"); }),
               refusal("w.obj"));
+}
+
+// A write that fails part-way said "(disk full?)" whatever the system said. Here the process may
+// not grow a file past 4 KiB (RLIMIT_FSIZE, as a quota does), and each writer passes the
+// system's reason on.
+TEST(FileWriters, NameTheSystemsReasonWhenAWriteFailsPartWay) {
+    const fs::path dir = freshTestDir("write-fails");
+    const TriMesh mesh = icosphere(4);  // 2,562 vertices: 30 KiB a frame
+    std::signal(SIGXFSZ, SIG_IGN);
+    rlimit normal{};
+    ASSERT_EQ(getrlimit(RLIMIT_FSIZE, &normal), 0);
+    rlimit small = normal;
+    small.rlim_cur = 4096;
+    ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &small), 0);
+    auto failure = [&](const std::string& name) {
+        return (dir / name).string() + ": writing failed (File too large)";
+    };
+    const std::string pc2 = errorOf([&] {
+        PointCacheWriter((dir / "w.pc2").string(), mesh.vertexCount(), 0, 1).append(mesh.V);
+    });
+    const std::string mdd =
+        errorOf([&] { MddWriter((dir / "w.mdd").string(), mesh.vertexCount()).append(0, mesh.V); });
+    const std::string obj =
+        errorOf([&] { writeObj((dir / "w.obj").string(), mesh.V, mesh.F, "test"); });
+    ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &normal), 0);
+    EXPECT_EQ(pc2, failure("w.pc2"));
+    EXPECT_EQ(mdd, failure("w.mdd"));
+    EXPECT_EQ(obj, failure("w.obj"));
+    EXPECT_TRUE(fs::is_empty(dir)) << "a failed write leaves no file behind";
 }

@@ -31,4 +31,8 @@ class SolverError : public Error {
     using Error::Error;
 };
 
+// Why the write just made failed, as the system words it ("No space left on device", "File too
+// large", "Input/output error"); a guess only when the C library failed without saying.
+std::string writeFailure();
+
 }  // namespace boneless
