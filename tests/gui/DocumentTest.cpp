@@ -257,13 +257,13 @@ class DocumentTest : public QObject {
     void exportRequestNamesTheFilesLikeTheCli() {
         Document d;
         QVERIFY(test::loadDemo(d, demo_));
-        ExportRequest r = d.exportRequest(work_ + "/out", ExportFormat::Pc2, "project");
+        ExportRequest r = d.exportRequest(work_ + "/out", ExportFormat::Pc2);
         QCOMPARE(QString::fromStdString(r.mapPath), d.correspondencePath());
         QCOMPARE(QString::fromStdString(r.c3dPath), d.takePath());
         QCOMPARE(QString::fromStdString(exportStem(r)), QString("walker"));
         QVERIFY(d.clearMapping(0));
-        r = d.exportRequest(work_ + "/out", ExportFormat::Pc2, "project");
-        QCOMPARE(QString::fromStdString(r.mapPath), QString("project"));  // unsaved edits
+        r = d.exportRequest(work_ + "/out", ExportFormat::Pc2);
+        QVERIFY(r.mapPath.empty());  // unsaved edits: the sidecar holds the map itself
         const QString saved = work_ + "/saved.map.json";
         QVERIFY(d.saveCorrespondence(saved));
         QVERIFY(!d.correspondenceModified());

@@ -329,13 +329,12 @@ bool Document::correspondenceModified() const {
     return mapPath_.isEmpty() || map_.toJson() != savedMapJson_;
 }
 
-ExportRequest Document::exportRequest(const QString& outDir, ExportFormat format,
-                                      const QString& mapLabel) const {
+ExportRequest Document::exportRequest(const QString& outDir, ExportFormat format) const {
     ExportRequest r;
     r.meshPath = meshPath_.toStdString();
     r.group = meshGroup_.toStdString();
     r.c3dPath = takePath_.toStdString();
-    r.mapPath = (correspondenceModified() ? mapLabel : mapPath_).toStdString();
+    if (!correspondenceModified()) r.mapPath = mapPath_.toStdString();
     r.outDir = outDir.toStdString();
     r.format = format;
     r.options = solveOptions();

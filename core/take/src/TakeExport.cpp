@@ -237,7 +237,7 @@ json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibr
              {{"mesh", validUtf8(request.meshPath)},
               {"group", validUtf8(request.group)},
               {"c3d", validUtf8(request.c3dPath)},
-              {"map", validUtf8(request.mapPath)}}},
+              {"map", request.mapPath.empty() ? json(nullptr) : json(validUtf8(request.mapPath))}}},
             {"source_fingerprints", std::move(fingerprints)},
             {"units",
              {{"take", take.units},
@@ -429,9 +429,11 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
     // While the outputs are being rewritten, no earlier sidecar may say they are complete.
     fs::remove(result.sidecarPath, ec);
     // Taken before solving: a map corrected while the take solves is not the one solved.
-    const json fingerprints = {{"mesh", fileFingerprint(request.meshPath, true)},
-                               {"c3d", fileFingerprint(request.c3dPath, false)},
-                               {"map", fileFingerprint(request.mapPath, true)}};
+    const json fingerprints = {
+        {"mesh", fileFingerprint(request.meshPath, true)},
+        {"c3d", fileFingerprint(request.c3dPath, false)},
+        {"map",
+         request.mapPath.empty() ? json(nullptr) : json(fileFingerprint(request.mapPath, true))}};
     FrameOutput output =
         openFrameOutput(request.format, request.outDir, stem, mesh, request.first, take.rate,
                         "Boneless: " + request.c3dPath,
@@ -482,10 +484,13 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
                  });
     output.finish();
     result.held = perFrame.held();
-    perFrame.write(
-        result.sidecarPath,
+    json sidecar =
         sidecarJson(take, request, solver.calibration(), result, fingerprints,
-                    calibrationJson(request, mesh, solver, restFile), perFrame.summary()));
+                    calibrationJson(request, mesh, solver, restFile), perFrame.summary());
+    // The app's map may be in no file (edited, or kept in the project): the sidecar then holds
+    // the map that was solved, so the frames can be traced and solved again.
+    if (request.mapPath.empty()) sidecar["map"] = json::parse(map.toJson());
+    perFrame.write(result.sidecarPath, std::move(sidecar));
     return result;
 }
 

@@ -138,9 +138,9 @@ class Document : public QObject {
     // the file, its size, the memory its solve would need and the limit (checkSolveFits).
     QString memoryRefusal() const;
     // The request `boneless-cli solve` would make for the same inputs. mapPath is the
-    // correspondence file when the map is unchanged since it was read or saved, else `mapLabel`.
-    ExportRequest exportRequest(const QString& outDir, ExportFormat format,
-                                const QString& mapLabel = {}) const;
+    // correspondence file when the map is unchanged since it was read or saved, else empty (the
+    // sidecar then holds the map itself).
+    ExportRequest exportRequest(const QString& outDir, ExportFormat format) const;
     // True when the map differs from correspondencePath()'s content (or there is no file).
     bool correspondenceModified() const;
 

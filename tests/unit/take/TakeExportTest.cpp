@@ -1,0 +1,46 @@
+// exportTake's sidecar: what was solved, traceable afterwards.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "boneless/C3dReader.h"
+#include "boneless/Correspondence.h"
+#include "boneless/DemoFiles.h"
+#include "boneless/MeshReader.h"
+#include "boneless/TakeExport.h"
+
+using namespace boneless;
+using nlohmann::json;
+
+// The app solves a map edited since it was read, or kept only in the project: its export's
+// sidecar said "map": "" and fingerprinted that as "unreadable". It now holds the map solved.
+TEST(TakeExport, AMapThatIsInNoFileIsKeptInTheSidecar) {
+    const DemoFiles files = writeDemoFiles(freshTestDir("export-map"), 3, 10.0, false);
+    const TriMesh mesh = readMesh(files.mesh).mesh;
+    const C3dTake take = readC3d(files.take);
+    Correspondence edited = Correspondence::read(files.map);
+    edited.markers[0].offsetMm = 14.5;  // as the app's offset box leaves it
+    auto sidecarOf = [&](const std::string& mapPath, const std::string& dir) {
+        ExportRequest request;
+        request.meshPath = files.mesh;
+        request.c3dPath = files.take;
+        request.mapPath = mapPath;
+        request.outDir = freshTestDir(dir);
+        request.format = ExportFormat::Pc2;
+        return json::parse(std::ifstream(exportTake(mesh, take, edited, request).sidecarPath));
+    };
+
+    const json inNoFile = sidecarOf("", "export-map-none");
+    EXPECT_TRUE(inNoFile["source"]["map"].is_null());
+    EXPECT_TRUE(inNoFile["source_fingerprints"]["map"].is_null());
+    ASSERT_TRUE(inNoFile.contains("map"));
+    const Correspondence kept = Correspondence::fromJson(inNoFile["map"].dump(), "sidecar");
+    EXPECT_EQ(kept.toJson(), edited.toJson());
+
+    const json inAFile = sidecarOf(files.map, "export-map-file");
+    EXPECT_EQ(inAFile["source"]["map"], files.map);
+    EXPECT_TRUE(inAFile["source_fingerprints"]["map"].is_string());
+    EXPECT_FALSE(inAFile.contains("map")) << "a map in a file is named, not copied";
+}
