@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 
@@ -36,6 +37,7 @@ std::vector<int> readMarkerFile(const std::string& path, int vertexCount) {
     std::ifstream in(path);
     if (!in) throw Error(path + ": cannot open the marker file");
     std::vector<int> ids;
+    std::map<int, int> lineOf;  // each id's line, to name both lines of a repeated one
     std::string line;
     for (int lineNo = 1; std::getline(in, line); ++lineNo) {
         const auto first = line.find_first_not_of(" \t\r");
@@ -54,6 +56,10 @@ std::vector<int> readMarkerFile(const std::string& path, int vertexCount) {
             throw Error(path + ":" + std::to_string(lineNo) + ": vertex " + std::to_string(id) +
                         " is out of range (the mesh has " + std::to_string(vertexCount) +
                         " vertices)");
+        // Else the reconstruction refuses it by marker index, naming neither file nor line.
+        if (const auto [at, fresh] = lineOf.emplace(id, lineNo); !fresh)
+            throw Error(path + ":" + std::to_string(lineNo) + ": vertex " + std::to_string(id) +
+                        " is already a marker (line " + std::to_string(at->second) + ")");
         ids.push_back(id);
     }
     if (ids.empty()) throw Error(path + ": no vertex ids in the marker file");
@@ -85,6 +91,10 @@ void printSummary(const char* name, const EvaluationSummary& s) {
 
 void run(const EvalArgs& args) {
     const MeshSequence sequence = readMeshSequence(args.sequence);
+    // The summaries run over the frames after the rest pose: with none, they are all zeros.
+    if (sequence.frames.size() < 2)
+        throw Error(args.sequence +
+                    ": no frame after the rest pose to evaluate (it holds one OBJ)");
     const int vertices = sequence.rest.vertexCount();
     if (args.markersFile.empty() && args.markers >= vertices)
         throw Error("--markers " + std::to_string(args.markers) +
@@ -102,6 +112,9 @@ void run(const EvalArgs& args) {
     const FrameRange range =
         withinFrames(parseFrameRange(args.frames), args.frames,
                      static_cast<int>(sequence.frames.size()), args.sequence, "evaluating");
+    if (range.first == 0 && range.end == 1)
+        throw Error("frames " + args.frames + " select only the rest pose of " + args.sequence +
+                    ": no frame after it to evaluate");
     options.firstFrame = range.first;
     options.endFrame = range.end;
     options.dropPercent = args.drop;

@@ -58,18 +58,26 @@ void registerMapCommand(CLI::App& app) {
         if (s.map.meshGroup.empty()) s.map.meshGroup = args->group;
         if (s.map.meshVertices == 0) s.map.meshVertices = mesh.vertexCount();
         s.map.write(args->out);
-        if (s.proposals.empty() && s.offBody.empty() && s.otherSubjects.empty())
-            std::printf(
-                "%s: %zu markers, nothing to suggest: every marker seen in the take is "
-                "mapped\n",
-                args->out.c_str(), s.map.markers.size());
-        else
+        // Nothing fitted, no alignment worth a figure: "aligned at frame -1" said nothing.
+        if (s.proposals.empty() && s.offBody.empty() && s.fittedFrame < 0) {
+            const char* why =
+                s.calibration.frame >= 0
+                    ? "no frame the mesh was fitted at shows an unmapped marker"
+                : s.otherSubjects.empty()
+                    ? "every marker seen in the take is mapped"
+                    : "every marker of the mapped markers' subject is mapped, and the take's "
+                      "others are worn by another subject";
+            std::printf("%s: %zu markers, nothing to suggest: %s\n", args->out.c_str(),
+                        s.map.markers.size(), why);
+        } else {
             std::printf(
                 "%s: %zu markers (%d suggested, %d to review), aligned at frame %d (%d markers "
-                "visible), RMS residual %.4g mesh units, scale %.6g, fitted best at frame %d\n",
+                "visible), RMS residual %.1f mm, scale %.6g, fitted best at frame %d\n",
                 args->out.c_str(), s.map.markers.size(), s.suggested, s.needsReview,
-                s.calibration.frame, s.calibration.visibleMarkers, s.calibration.residual,
-                s.calibration.takeToMesh.scale, s.fittedFrame);
+                s.calibration.frame, s.calibration.visibleMarkers,
+                s.calibration.residualMm(take.unitToMm), s.calibration.takeToMesh.scale,
+                s.fittedFrame);
+        }
         if (!s.offBody.empty())
             std::printf("  left unmapped, more than %g mm from the fitted body: %s\n",
                         kUnreachableMm, joined(s.offBody).c_str());

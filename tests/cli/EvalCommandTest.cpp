@@ -212,6 +212,37 @@ TEST(EvalCommand, BadInputIsOneClearLineAndANonZeroExit) {
     EXPECT_EQ(r.out.find("CHOLMOD"), std::string::npos) << r.out;
 }
 
+// Before, a folder holding the rest pose alone printed "frames 0  RMS % mean 0.000" and exited 0.
+TEST(EvalCommand, ASequenceWithNoFrameAfterTheRestPoseIsRefused) {
+    const fs::path dir = freshTestDir("eval-rest-only");
+    fs::copy_file(fs::path(demoFolder()) / "walker_0000.obj", dir / "walker_0000.obj");
+    CliResult r = runCli("eval --sequence " + dir.string() + " --markers 20");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find(dir.string() + ": no frame after the rest pose to evaluate"),
+              std::string::npos)
+        << r.out;
+    EXPECT_EQ(r.out.find("frames 0"), std::string::npos) << r.out;
+    r = runCli("eval --sequence " + demoFolder() + " --markers 20 --frames 0:1");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("frames 0:1 select only the rest pose of " + demoFolder() +
+                         ": no frame after it to evaluate"),
+              std::string::npos)
+        << r.out;
+}
+
+// The reconstruction said "markers 0 and 1 are both attached to vertex 1", naming neither the
+// file nor its lines, where every other mistake in the file is named by its line.
+TEST(EvalCommand, AVertexListedTwiceInTheMarkersFileIsNamedByFileAndLines) {
+    const fs::path file = fs::path(BONELESS_TEST_WORK_DIR) / "twice.txt";
+    std::ofstream(file) << "# ids\n5\n1\n\n1\n";
+    const CliResult r =
+        runCli("eval --sequence " + demoFolder() + " --markers-file " + file.string());
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find(file.string() + ":5: vertex 1 is already a marker (line 3)"),
+              std::string::npos)
+        << r.out;
+}
+
 // Before, --drop nan ran as if it were 0 (CLI11's range lets NaN through).
 TEST(EvalCommand, ADropThatIsNotAPercentageIsRefusedNamingTheFlag) {
     for (const char* drop : {"nan", "inf", "-1", "101"}) {

@@ -170,3 +170,55 @@ TEST(MapSuggestCommand, LeavesUnmappedAndNamesThePropsMarkers) {
     for (const auto& m : full["markers"]) EXPECT_EQ(box.count(m["label"]), 0u) << m;
     EXPECT_EQ(full["markers"].size(), 43u);  // 51 points, the 8 of the box left out
 }
+
+// A map of the box's markers alone left nothing to suggest, and the command printed "aligned at
+// frame -1 (0 markers visible), RMS residual 0 mesh units, scale 1, fitted best at frame -1".
+TEST(MapSuggestCommand, AMapOfThePropsMarkersAloneSaysPlainlyThatNothingIsSuggestedAndWhy) {
+    const fs::path data = BONELESS_SHARED_DATA;
+    const fs::path mesh = data / "meshes" / "makehuman" / "makehuman_base.obj";
+    const fs::path take = data / "c3d" / "ezc3d" / "Vicon.c3d";
+    if (!fs::exists(mesh) || !fs::exists(take)) GTEST_SKIP() << "no " << data;
+    const fs::path dir = freshTestDir("map-suggest-prop-only");
+    nlohmann::json map = {{"format", "boneless-correspondence"},
+                          {"version", 1},
+                          {"mesh", {{"file", "makehuman_base.obj"}, {"group", "body"}}},
+                          {"markers", nlohmann::json::array()}};
+    int vertex = 100;
+    for (const char* name : {"gauche_ext", "gauche_int", "droite_int", "droite_ext", "avant_gauche",
+                             "avant_droit", "arriere_droit", "arriere_gauche"})
+        map["markers"].push_back({{"label", std::string("boite:") + name},
+                                  {"vertex", vertex += 100},
+                                  {"offset_mm", 10}});
+    std::ofstream(dir / "partial.json") << map.dump();
+    const CliResult r = runCli("map suggest --mesh " + mesh.string() + " --group body --c3d " +
+                               take.string() + " --map " + (dir / "partial.json").string() +
+                               " --out " + (dir / "full.json").string());
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find((dir / "full.json").string() +
+                         ": 8 markers, nothing to suggest: every marker of the mapped markers' "
+                         "subject is mapped, and the take's others are worn by another subject"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("left unmapped, worn by a subject no mapped marker names: "),
+              std::string::npos)
+        << r.out;
+    EXPECT_EQ(r.out.find("frame -1"), std::string::npos) << r.out;
+}
+
+// Every other figure the command prints is in millimetres; the residual was in mesh units.
+TEST(MapSuggestCommand, GivesTheAlignmentResidualInMillimetres) {
+    const fs::path dir = freshTestDir("map-suggest-residual");
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frames 5").exitCode, 0);
+    nlohmann::json map;
+    std::ifstream(dir / "walker.map.json") >> map;
+    map["markers"] = nlohmann::json::array(
+        {map["markers"][0], map["markers"][5], map["markers"][10], map["markers"][20]});
+    std::ofstream(dir / "partial.json") << map.dump();
+    const CliResult r =
+        runCli("map suggest --mesh " + (dir / "walker.obj").string() + " --c3d " +
+               (dir / "walker.c3d").string() + " --map " + (dir / "partial.json").string() +
+               " --out " + (dir / "full.json").string());
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find(" mm, scale "), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("mesh units"), std::string::npos) << r.out;
+}

@@ -333,6 +333,35 @@ TEST(SolveCommand, BadInputIsOneClearLine) {
     EXPECT_NE(r.out.find("bad.map.json"), std::string::npos) << r.out;
 }
 
+// A map of fewer than 3 markers cannot align the take, and the error blamed the take: "walker.c3d:
+// no frame shows three or more of the mapped markers in general position".
+TEST(SolveCommand, AMapOfFewerThanThreeMarkersIsRefusedNamingTheMap) {
+    const fs::path demo = makeDemo(3);
+    std::ofstream(demo / "empty.json")
+        << R"({"format": "boneless-correspondence", "version": 1, "markers": []})";
+    std::ofstream(demo / "two.json") << R"({"format": "boneless-correspondence", "version": 1,
+        "markers": [{"label": "LFHD", "vertex": 1}, {"label": "RFHD", "vertex": 2}]})";
+    for (const auto& [map, count] : {std::pair{"empty.json", "0"}, {"two.json", "2"}}) {
+        const CliResult r = runCli("solve --mesh " + (demo / "walker.obj").string() + " --c3d " +
+                                   (demo / "walker.c3d").string() + " --map " +
+                                   (demo / map).string() + " --out " + (demo / "x").string());
+        EXPECT_EQ(r.exitCode, 1) << r.out;
+        EXPECT_NE(r.out.find((demo / map).string() + ": maps " + count +
+                             " markers; solving needs at least 3"),
+                  std::string::npos)
+            << r.out;
+        EXPECT_EQ(r.out.find("general position"), std::string::npos) << r.out;
+    }
+    std::ofstream(demo / "m.json") << nlohmann::json{
+        {"defaults", {{"mesh", "walker.obj"}, {"c3d", "walker.c3d"}, {"map", "empty.json"}}},
+        {"takes", {{{"out", "solved"}}}}};
+    const CliResult batch = runCli("batch " + (demo / "m.json").string());
+    EXPECT_EQ(batch.exitCode, 1) << batch.out;
+    EXPECT_NE(batch.out.find("empty.json: maps 0 markers; solving needs at least 3"),
+              std::string::npos)
+        << batch.out;
+}
+
 TEST(SolveCommand, AFrameRangeWithTrailingCharactersIsRefused) {
     const fs::path demo = makeDemo(3);
     const CliResult r =

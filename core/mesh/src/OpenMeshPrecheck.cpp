@@ -206,13 +206,26 @@ Precheck checkOff(const std::string& path) {
     return p;
 }
 
+// No NUL and no control character but whitespace: an ASCII STL. A binary one has zeros in its
+// triangle count (below 2^24 triangles) and its floats.
+bool isText(const std::string& data) {
+    return std::none_of(data.begin(), data.end(), [](char c) {
+        const auto u = static_cast<unsigned char>(c);
+        return (u < 0x20 && !(c >= '\t' && c <= '\r')) || u == 0x7f;  // \t \n \v \f \r
+    });
+}
+
 bool isBinaryStl(const std::string& path, const std::string& data) {
     const std::string ext = lowerExtension(path);
     if (ext == "stlb") return true;
     if (ext == "stla" || data.size() < 84) return false;
     uint32_t n;
     std::memcpy(&n, data.data() + 80, 4);  // little-endian, as on every platform we build for
-    return data.size() == 84 + 50 * uint64_t(n);  // the rule OpenMesh applies
+    const uint64_t size = 84 + 50 * uint64_t(n);
+    if (data.size() == size) return true;  // the rule OpenMesh applies
+    // OpenMesh would parse a cut binary file as text and find no faces; shorter than its header
+    // says and not text, it is binary, and checkStl reports it truncated.
+    return data.size() < size && !isText(data);
 }
 
 Precheck checkStl(const std::string& path) {
@@ -220,10 +233,15 @@ Precheck checkStl(const std::string& path) {
     Precheck p;
     p.stl = true;
     if (isBinaryStl(path, data)) {
-        uint32_t n = 0;
-        if (data.size() >= 84) std::memcpy(&n, data.data() + 80, 4);
+        if (data.size() < 84)
+            throw MeshError(path, "binary STL file is truncated: " + std::to_string(data.size()) +
+                                      " bytes, shorter than the 84-byte header");
+        uint32_t n;
+        std::memcpy(&n, data.data() + 80, 4);
         if (data.size() < 84 + 50 * uint64_t(n))
-            throw MeshError(path, "binary STL file is truncated");
+            throw MeshError(path, "binary STL file is truncated: the header announces " +
+                                      std::to_string(n) + " triangles, the file holds " +
+                                      std::to_string((data.size() - 84) / 50));
         for (uint32_t t = 0; t < n; ++t) {
             float xyz[9];
             std::memcpy(xyz, data.data() + 84 + 50 * size_t(t) + 12, sizeof xyz);

@@ -109,8 +109,9 @@ struct Draft {
 // `wanted` markers, and gives each of those the free vertex that follows it best over the kept
 // fits (the right vertex stays near its marker however the actor moves, where one fit's nearest
 // may be a neighbour): surest first, so that a vertex two markers want goes to the nearer one.
-// A marker no vertex comes within kUnreachableMm of over the fits is not on the body (a prop,
-// another actor): it gets no vertex, and goes to `offBody` instead.
+// A marker no vertex comes within kUnreachableMm of over the fits, or that lies farther than that
+// from its vertex on the best fit, is not on the body (a prop, another actor, a limb the picks
+// leave unposed): it gets no vertex, and goes to `offBody` instead.
 std::vector<Draft> draft(const TriMesh& rest, const C3dTake& take, const Correspondence& known,
                          const std::vector<std::size_t>& wanted, const MirrorPlane& mirror,
                          Calibration& calibration, int& fittedFrame,
@@ -196,8 +197,16 @@ std::vector<Draft> draft(const TriMesh& rest, const C3dTake& take, const Corresp
         if (x)
             d.fitMm =
                 (fits.front().posed.row(d.vertex).transpose() - s.apply(*x)).norm() / unitsPerMm;
+        // The bound holds on the distance the review reason gives, not only on the RMS over the
+        // kept fits: from four picks on CMU 85_02, RFIN was written "336 mm from the fitted mesh".
+        if (d.fitMm > kUnreachableMm) {
+            taken.erase(d.vertex);
+            offBody.push_back(d.point);
+            continue;
+        }
         drafts.push_back(d);
     }
+    std::sort(offBody.begin(), offBody.end());  // in the take's order, as wanted lists them
     return drafts;
 }
 

@@ -395,6 +395,20 @@ void refuseOutputsOverInputs(const ExportRequest& request, int frames) {
     }
 }
 
+// Else the automatic alignment finds no frame with three markers and blames the take. After the
+// labels are resolved: a label the take lacks is the more precise mistake.
+void requireMarkersToAlign(const Correspondence& map, const ExportRequest& request,
+                           const C3dTake& take) {
+    if (request.options.alignment) return;
+    map.resolve(take);
+    if (map.markers.size() >= 3) return;
+    const std::string name = !map.source().empty()      ? map.source()
+                             : !request.mapPath.empty() ? request.mapPath
+                                                        : std::string("the map");
+    throw Error(name + ": maps " + plural(static_cast<long long>(map.markers.size()), "marker") +
+                "; solving needs at least 3");
+}
+
 // What both sources check before a solver is built: the options, that the mesh fits memory, and
 // that no output would replace an input.
 void checkRequest(const TriMesh& mesh, const Correspondence& map, const ExportRequest& request,
@@ -532,6 +546,7 @@ ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspo
                         const ExportRequest& request, const ExportProgress& progress,
                         const ExportCalibrated& calibrated) {
     checkRequest(mesh, map, request, static_cast<int>(take.frameCount()));
+    requireMarkersToAlign(map, request, take);
     TakeSolver solver(mesh, take, map, request.options);
     return exportSolved(solver, mesh, take, map, request, progress, calibrated);
 }
@@ -540,6 +555,7 @@ ExportResult exportTake(const TriMesh& mesh, const C3dFrameReader& take, const C
                         const ExportRequest& request, const ExportProgress& progress,
                         const ExportCalibrated& calibrated) {
     checkRequest(mesh, map, request, static_cast<int>(take.frameCount()));
+    requireMarkersToAlign(map, request, take.take());
     TakeSolver solver(mesh, take, map, request.options);
     return exportSolved(solver, mesh, take.take(), map, request, progress, calibrated);
 }

@@ -332,6 +332,20 @@ TEST(MeshReaderErrors, EmptyMesh) {
                     "no usable faces");
 }
 
+// A cut binary file was parsed as text (its size no longer 84 + 50 n) and reported as having no
+// faces; exporters often begin the binary header with "solid" too.
+TEST(MeshReaderErrors, ACutBinaryStlIsReportedAsTruncatedWithTheTrianglesItHolds) {
+    const std::string whole = stlBinary(tentV(), toFaces(tentP));
+    const std::string cut = whole.substr(0, whole.size() * 6 / 10);
+    for (const std::string& bytes : {cut, "solid tent" + cut.substr(10)}) {
+        const std::string msg = errorOf(writeFile("cut.stl", bytes));
+        EXPECT_CONTAINS(msg, "binary STL file is truncated");
+        EXPECT_CONTAINS(msg, "the header announces 4 triangles, the file holds 1");
+    }
+    EXPECT_CONTAINS(errorOf(writeFile("cut.stlb", whole.substr(0, 50))),
+                    "50 bytes, shorter than the 84-byte header");
+}
+
 TEST(MeshReaderErrors, NonFiniteCoordinates) {
     const std::string obj = writeFile("nan.obj", "v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n");
     const std::string msg = errorOf(obj);

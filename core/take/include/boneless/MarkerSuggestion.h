@@ -27,7 +27,8 @@ struct Suggestion {
     int suggested = 0;
     int needsReview = 0;
     // Markers left unmapped because no fit comes within kUnreachableMm of them (a prop, another
-    // actor): their labels as the take gives them ("boite:1"), in the take's order.
+    // actor), or the best fit puts their vertex farther: their labels as the take gives them
+    // ("boite:1"), in the take's order.
     std::vector<std::string> offBody;
     // Markers of a subject no pick names ("B:LFHD" when the picks are A's), left unmapped.
     std::vector<std::string> otherSubjects;
@@ -45,7 +46,8 @@ struct Suggestion {
 // part of the body fits it about as well, when it is named for one side (L…/R…, as the mapped pairs
 // show the sides) and lands on the other, or when it is not seen on the best fit's frame. Only
 // points classified as markers are considered, and one farther than kUnreachableMm from every
-// vertex over the fits (a prop, another actor) gets no entry: Suggestion::offBody names it.
+// vertex over the fits (a prop, another actor), or from its vertex on the best fit, gets no
+// entry: Suggestion::offBody names it.
 // Throws Error naming what is missing, or a mapped marker the mesh cannot reach.
 Suggestion suggestMappings(const TriMesh& rest, const C3dTake& take, const Correspondence& partial);
 
