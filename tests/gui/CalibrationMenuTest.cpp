@@ -5,6 +5,7 @@
 #include <QFile>
 #include <QJsonDocument>
 #include <QJsonObject>
+#include <QStatusBar>
 #include <QUndoStack>
 #include <QtTest>
 
@@ -178,6 +179,28 @@ class CalibrationMenuTest : public QObject {
         QCOMPARE(document->settings().calibrationFrame, 25);
         QCOMPARE(document->alignment()->frame, 25);
         QCOMPARE(document->undoStack()->undoText(), QString("Calibrate at frame 25"));
+    }
+
+    // The solver aligns and fits at one frame: Align must not move the user's calibration frame.
+    void aligningTheTakeKeepsTheCalibrationFrameTheUserSet() {
+        window_ = test::openShown(test::writeDemoProject(folder_ + "/alignAtFrame"));
+        QVERIFY(window_);
+        Document* document = window_->document();
+        window_->timeline()->scrubTo(25);
+        QVERIFY(test::waitForFrame(*window_));
+        QVERIFY(trigger(*window_, "calibrateAtFrame"));
+        QVERIFY(trigger(*window_, "actionAlign"));
+        QVERIFY(document->alignment());
+        QCOMPARE(document->alignment()->frame, 25);
+        QCOMPARE(document->settings().calibrationFrame, 25);
+        QVERIFY2(window_->statusBar()->currentMessage().startsWith("Aligned at frame 25:"),
+                 qPrintable(window_->statusBar()->currentMessage()));
+
+        // Automatic stays automatic: the alignment's frame is the solver's choice.
+        QVERIFY(trigger(*window_, "calibrateAutomatically"));
+        QVERIFY(trigger(*window_, "actionAlign"));
+        QCOMPARE(document->settings().calibrationFrame, -1);
+        QVERIFY(document->alignment()->frame != 25);
     }
 
     // Showing a rest while mapping, the mapped markers sit at their vertices on it (the take's
