@@ -377,6 +377,7 @@ void MainWindow::buildShortcuts() {
 
 void MainWindow::connectDocument() {
     connect(document_, &Document::errorOccurred, this, [this](const QString& message) {
+        if (loadingProject_) return;  // openProject says it once, with the project's name
         if (opening_.isEmpty())
             showError(message);
         else
