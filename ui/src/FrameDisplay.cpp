@@ -312,9 +312,9 @@ void FrameDisplay::emitStatus() {
         solve = result_->fromCache ? tr("cached")
                                    : tr("solved in %1 ms").arg(result_->solveMs, 0, 'f', 0);
         // Frames meet their markers even on a take aligned 200 mm off: the alignment's own
-        // residual says that. The solver measures the one it finds, Align the one it fixes.
-        const Calibration& aligned =
-            document_->alignment() ? *document_->alignment() : result_->calibration;
+        // residual says that. The solver measures it, found or given: a project's stored
+        // residual is only what the file says.
+        const Calibration& aligned = result_->calibration;
         const QString alignment =
             tr("alignment %1 mm").arg(aligned.residualMm(document_->take().unitToMm), 0, 'f', 1);
         residual = result_->report.heldFrom >= 0
