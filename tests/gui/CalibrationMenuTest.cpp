@@ -203,6 +203,45 @@ class CalibrationMenuTest : public QObject {
         QVERIFY(document->alignment()->frame != 25);
     }
 
+    // A rest on screen is not the frame: its solve time and residual would be read as the rest's.
+    void theStatusSaysWhichRestIsShown() {
+        QVERIFY(trigger(*window_, "showFrame"));
+        QVERIFY2(window_->frameSummary().contains("residual"), qPrintable(window_->frameSummary()));
+        QVERIFY(trigger(*window_, "showCalibratedRest"));
+        QString summary = window_->frameSummary();
+        QVERIFY2(summary.contains("showing the calibrated rest"), qPrintable(summary));
+        QVERIFY2(!summary.contains("residual"), qPrintable(summary));
+        QVERIFY(trigger(*window_, "showRest"));
+        summary = window_->frameSummary();
+        QVERIFY2(summary.contains("showing the rest"), qPrintable(summary));
+        QVERIFY2(!summary.contains("residual"), qPrintable(summary));
+        QVERIFY(trigger(*window_, "showFrame"));
+        QVERIFY2(window_->frameSummary().contains("residual"), qPrintable(window_->frameSummary()));
+    }
+
+    void theCalibrationMenuChecksTheModeInUseThroughUndoAndRedo() {
+        window_ = test::openShown(test::writeDemoProject(folder_ + "/checked"));
+        QVERIFY(window_);
+        auto checked = [&] {
+            QStringList names;
+            for (const char* name : {"calibrateAtFrame", "calibrateAutomatically", "calibrateNone"})
+                if (window_->findChild<QAction*>(name)->isChecked()) names << name;
+            return names.join(",");
+        };
+        QCOMPARE(checked(), QString("calibrateAutomatically"));
+        QVERIFY(trigger(*window_, "calibrateAtFrame"));
+        QCOMPARE(checked(), QString("calibrateAtFrame"));
+        QVERIFY(trigger(*window_, "calibrateNone"));
+        QCOMPARE(checked(), QString("calibrateNone"));
+        QAction* undo = window_->findChild<QAction*>("actionUndo");
+        undo->trigger();
+        QCOMPARE(checked(), QString("calibrateAtFrame"));
+        undo->trigger();
+        QCOMPARE(checked(), QString("calibrateAutomatically"));
+        window_->findChild<QAction*>("actionRedo")->trigger();
+        QCOMPARE(checked(), QString("calibrateAtFrame"));
+    }
+
     // Showing a rest while mapping, the mapped markers sit at their vertices on it (the take's
     // markers at this frame would float off the body), and follow a new mapping at once.
     void theRestShowsTheMappedMarkersAtTheirVerticesWhileMapping() {
