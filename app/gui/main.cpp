@@ -10,6 +10,7 @@
 #include <QTimer>
 #include <cstdio>
 
+#include "boneless/ui/Document.h"
 #include "boneless/ui/MainWindow.h"
 #include "boneless/ui/MeshView.h"
 #include "boneless/ui/SurfaceFormat.h"
@@ -34,6 +35,13 @@ int runScreenshot(QApplication& app, boneless::ui::MainWindow& window, const QSt
     QObject::connect(&poll, &QTimer::timeout, [&] {
         if (!firstError.isEmpty()) {
             fail(firstError);
+            status = 1;
+        } else if (QString why; window.frameUpToDate() && window.document()->hasTake() &&
+                                !window.document()->canSolve(&why)) {
+            // A picture of the take unsolved is not the frame asked for.
+            const QString file = window.projectPath().isEmpty() ? window.document()->takePath()
+                                                                : window.projectPath();
+            fail(QString("%1: not solving: %2").arg(file, why));
             status = 1;
         } else if (window.frameUpToDate()) {
             const QImage image = window.meshView()->grabImage();
@@ -116,6 +124,10 @@ int main(int argc, char** argv) {
     window.setStartFrame(startFrame);
     if (batch) window.meshView()->setFixedSize(viewSize);
 
+    // What the error box's details would show: the status bar has only the first line.
+    QString openError;
+    const auto openErrors = QObject::connect(&window, &boneless::ui::MainWindow::errorShown,
+                                             [&](const QString& message) { openError = message; });
     bool opened = true;
     if (parser.isSet(project)) opened = window.openProject(parser.value(project));
     if (!parser.positionalArguments().isEmpty())
@@ -123,7 +135,7 @@ int main(int argc, char** argv) {
     if (!parser.isSet(project) && parser.positionalArguments().isEmpty())
         opened = window.openDemo();
     if (batch && !opened) {
-        fail(window.statusBar()->currentMessage());
+        fail(openError.isEmpty() ? window.statusBar()->currentMessage() : openError);
         return 1;
     }
 
@@ -136,6 +148,7 @@ int main(int argc, char** argv) {
                      .arg(window.timeline()->frameCount() - 1));
             return 1;
         }
+        QObject::disconnect(openErrors);
         return runScreenshot(app, window, parser.value(screenshot), 300000);
     }
     return app.exec();

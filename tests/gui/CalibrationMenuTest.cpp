@@ -5,6 +5,7 @@
 #include <QFile>
 #include <QJsonDocument>
 #include <QJsonObject>
+#include <QStatusBar>
 #include <QUndoStack>
 #include <QtTest>
 
@@ -178,6 +179,67 @@ class CalibrationMenuTest : public QObject {
         QCOMPARE(document->settings().calibrationFrame, 25);
         QCOMPARE(document->alignment()->frame, 25);
         QCOMPARE(document->undoStack()->undoText(), QString("Calibrate at frame 25"));
+    }
+
+    // The solver aligns and fits at one frame: Align must not move the user's calibration frame.
+    void aligningTheTakeKeepsTheCalibrationFrameTheUserSet() {
+        window_ = test::openShown(test::writeDemoProject(folder_ + "/alignAtFrame"));
+        QVERIFY(window_);
+        Document* document = window_->document();
+        window_->timeline()->scrubTo(25);
+        QVERIFY(test::waitForFrame(*window_));
+        QVERIFY(trigger(*window_, "calibrateAtFrame"));
+        QVERIFY(trigger(*window_, "actionAlign"));
+        QVERIFY(document->alignment());
+        QCOMPARE(document->alignment()->frame, 25);
+        QCOMPARE(document->settings().calibrationFrame, 25);
+        QVERIFY2(window_->statusBar()->currentMessage().startsWith("Aligned at frame 25:"),
+                 qPrintable(window_->statusBar()->currentMessage()));
+
+        // Automatic stays automatic: the alignment's frame is the solver's choice.
+        QVERIFY(trigger(*window_, "calibrateAutomatically"));
+        QVERIFY(trigger(*window_, "actionAlign"));
+        QCOMPARE(document->settings().calibrationFrame, -1);
+        QVERIFY(document->alignment()->frame != 25);
+    }
+
+    // A rest on screen is not the frame: its solve time and residual would be read as the rest's.
+    void theStatusSaysWhichRestIsShown() {
+        QVERIFY(trigger(*window_, "showFrame"));
+        QVERIFY2(window_->frameSummary().contains("residual"), qPrintable(window_->frameSummary()));
+        QVERIFY(trigger(*window_, "showCalibratedRest"));
+        QString summary = window_->frameSummary();
+        QVERIFY2(summary.contains("showing the calibrated rest"), qPrintable(summary));
+        QVERIFY2(!summary.contains("residual"), qPrintable(summary));
+        QVERIFY(trigger(*window_, "showRest"));
+        summary = window_->frameSummary();
+        QVERIFY2(summary.contains("showing the rest"), qPrintable(summary));
+        QVERIFY2(!summary.contains("residual"), qPrintable(summary));
+        QVERIFY(trigger(*window_, "showFrame"));
+        QVERIFY2(window_->frameSummary().contains("residual"), qPrintable(window_->frameSummary()));
+    }
+
+    void theCalibrationMenuChecksTheModeInUseThroughUndoAndRedo() {
+        window_ = test::openShown(test::writeDemoProject(folder_ + "/checked"));
+        QVERIFY(window_);
+        auto checked = [&] {
+            QStringList names;
+            for (const char* name : {"calibrateAtFrame", "calibrateAutomatically", "calibrateNone"})
+                if (window_->findChild<QAction*>(name)->isChecked()) names << name;
+            return names.join(",");
+        };
+        QCOMPARE(checked(), QString("calibrateAutomatically"));
+        QVERIFY(trigger(*window_, "calibrateAtFrame"));
+        QCOMPARE(checked(), QString("calibrateAtFrame"));
+        QVERIFY(trigger(*window_, "calibrateNone"));
+        QCOMPARE(checked(), QString("calibrateNone"));
+        QAction* undo = window_->findChild<QAction*>("actionUndo");
+        undo->trigger();
+        QCOMPARE(checked(), QString("calibrateAtFrame"));
+        undo->trigger();
+        QCOMPARE(checked(), QString("calibrateAutomatically"));
+        window_->findChild<QAction*>("actionRedo")->trigger();
+        QCOMPARE(checked(), QString("calibrateAtFrame"));
     }
 
     // Showing a rest while mapping, the mapped markers sit at their vertices on it (the take's

@@ -394,6 +394,35 @@ class MappingTest : public QObject {
         QVERIFY2(said.contains(mm(*d->alignment()) + " mm"), qPrintable(said));
     }
 
+    // A project's alignment is shown as it fits the take, whatever residual the file claims: a
+    // hand-edited one that throws the take off the body must not read as 0 mm.
+    void anAlignmentFromAProjectShowsItsMeasuredResidualNotTheStoredOne() {
+        const QString project = freshProject();
+        QFile file(project);
+        QVERIFY(file.open(QIODevice::ReadOnly));
+        QJsonObject root = QJsonDocument::fromJson(file.readAll()).object();
+        file.close();
+        root["alignment"] = QJsonObject{
+            {"calibration_frame", 0},
+            {"scale", 1},
+            {"rotation", QJsonArray{QJsonArray{1, 0, 0}, QJsonArray{0, 1, 0}, QJsonArray{0, 0, 1}}},
+            {"translation", QJsonArray{1000, 1000, 1000}},
+            {"residual", 0},
+            {"visible_markers", 39}};
+        QVERIFY(file.open(QIODevice::WriteOnly | QIODevice::Truncate));
+        file.write(QJsonDocument(root).toJson());
+        file.close();
+
+        const auto shown = test::openShown(project);
+        QVERIFY(shown);
+        QVERIFY(shown->document()->alignment());
+        const QString text = shown->findChild<QLabel*>("residualLabel")->text();
+        const QRegularExpressionMatch said =
+            QRegularExpression("alignment (\\d+\\.\\d) mm").match(text);
+        QVERIFY2(said.hasMatch(), qPrintable(text));
+        QVERIFY2(said.captured(1).toDouble() > 10, qPrintable(text));
+    }
+
   private:
     // The share of the marker's row, as the table draws it, in the doubtful suggestion's colour.
     static double highlightedPixels(MainWindow& window, int marker) {

@@ -3,6 +3,9 @@
 #include <QDir>
 #include <QFileInfo>
 #include <QImage>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
 #include <QProcess>
 #include <QSet>
 #include <QtTest>
@@ -41,6 +44,28 @@ Run runBoneless(const QStringList& arguments, const QString& home) {
     run.output += QString::fromLocal8Bit(process.readAll());
     run.exitCode = process.exitStatus() == QProcess::NormalExit ? process.exitCode() : -1;
     return run;
+}
+
+// A copy of the demo project at `path` whose first map entry `edit` changed.
+template <typename Edit>
+QString editedDemoMap(const QString& demo, const QString& path, Edit edit) {
+    QFile in(demo);
+    if (!in.open(QIODevice::ReadOnly)) return {};
+    QJsonObject root = QJsonDocument::fromJson(in.readAll()).object();
+    QJsonObject correspondence = root["correspondence"].toObject();
+    QJsonObject map = correspondence["map"].toObject();
+    QJsonArray markers = map["markers"].toArray();
+    QJsonObject first = markers[0].toObject();
+    edit(first);
+    markers[0] = first;
+    map["markers"] = markers;
+    correspondence["map"] = map;
+    correspondence["modified"] = true;
+    root["correspondence"] = correspondence;
+    QFile out(path);
+    if (!out.open(QIODevice::WriteOnly)) return {};
+    out.write(QJsonDocument(root).toJson());
+    return path;
 }
 
 }  // namespace
@@ -91,6 +116,34 @@ class ScreenshotTest : public QObject {
             runBoneless({"--project", folder_ + "/missing.boneless", "--screenshot", out}, folder_);
         QVERIFY2(run.exitCode != 0, qPrintable(run.output));
         QVERIFY2(run.output.contains("missing.boneless"), qPrintable(run.output));
+        QVERIFY(!QFileInfo::exists(out));
+    }
+
+    // A script has no error box to read: the reason must reach its output.
+    void aProjectThatDoesNotOpenPrintsWhy() {
+        const QString project =
+            editedDemoMap(project_, QFileInfo(project_).absolutePath() + "/far-vertex.boneless",
+                          [](QJsonObject& marker) { marker["vertex"] = 999999; });
+        QVERIFY(!project.isEmpty());
+        const QString out = folder_ + "/never.png";
+        const Run run = runBoneless({"--project", project, "--screenshot", out}, folder_);
+        QVERIFY2(run.exitCode != 0, qPrintable(run.output));
+        QVERIFY2(run.output.contains("far-vertex.boneless"), qPrintable(run.output));
+        QVERIFY2(run.output.contains("999999"), qPrintable(run.output));
+        QVERIFY(!QFileInfo::exists(out));
+    }
+
+    // The picture of an unsolved take is not the frame asked for.
+    void aProjectThatCannotSolveFailsWithTheReason() {
+        const QString project =
+            editedDemoMap(project_, QFileInfo(project_).absolutePath() + "/no-label.boneless",
+                          [](QJsonObject& marker) { marker["label"] = "NOSUCHLABEL"; });
+        QVERIFY(!project.isEmpty());
+        const QString out = folder_ + "/never.png";
+        const Run run = runBoneless({"--project", project, "--screenshot", out}, folder_);
+        QVERIFY2(run.exitCode != 0, qPrintable(run.output));
+        QVERIFY2(run.output.contains("no-label.boneless"), qPrintable(run.output));
+        QVERIFY2(run.output.contains("NOSUCHLABEL"), qPrintable(run.output));
         QVERIFY(!QFileInfo::exists(out));
     }
 

@@ -34,6 +34,24 @@ void addCalibrationActions(QMenu* edit, QMenu* view, Document* document, Timelin
     };
     QObject::connect(document, &Document::takeChanged, atFrame, enable);
     enable();
+    // The mode in use is checked, from the document's settings: a refused calibration, an undo
+    // or a loaded project changes it without the menu.
+    auto* modes = new QActionGroup(edit);
+    for (QAction* action : {atFrame, automatic, none}) {
+        action->setCheckable(true);
+        modes->addAction(action);
+    }
+    auto showMode = [=] {
+        const TakeSolveOptions& settings = document->settings();
+        QAction* mode = settings.calibrate == CalibrateMode::None ? none
+                        : settings.calibrationFrame >= 0          ? atFrame
+                                                                  : automatic;
+        mode->setChecked(true);
+    };
+    QObject::connect(document, &Document::settingsChanged, modes, showMode);
+    for (QAction* action : {atFrame, automatic, none})
+        QObject::connect(action, &QAction::triggered, modes, showMode);
+    showMode();
 
     QMenu* show = view->addMenu(QObject::tr("&Show"));
     auto* group = new QActionGroup(show);

@@ -12,7 +12,9 @@ class Timeline;
 //  Edit → Calibrate at This Frame / Calibrate Automatically: the frame the take is aligned and
 //    the rest fitted at (the project's settings.calibration_frame), and calibration on;
 //  Edit → Do Not Calibrate: calibrate none, frames solved against the rest as given;
-//  View → Show → Frame / Calibrated Rest / Rest: what the view draws (FrameDisplay::Shown).
+//    of these three, the mode in use is checked (the document's settings, through undo);
+//  View → Show → Frame / Calibrated Rest / Rest: what the view draws (FrameDisplay::Shown), and
+//    the status bar says which rest is shown.
 // The actions' object names: calibrateAtFrame, calibrateAutomatically, calibrateNone, showFrame,
 // showCalibratedRest, showRest.
 void addCalibrationActions(QMenu* edit, QMenu* view, Document* document, Timeline* timeline,

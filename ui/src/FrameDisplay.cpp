@@ -210,6 +210,7 @@ void FrameDisplay::setShown(Shown shown) {
     if (shown_ == shown) return;
     shown_ = shown;
     if (result_ && solving_) showResult();
+    emitStatus();
 }
 
 void FrameDisplay::showResult() {
@@ -308,13 +309,21 @@ void FrameDisplay::emitStatus() {
                                             : tr("Not solving: %1").arg(notSolvingReason_);
     } else if (!current) {
         solve = tr("solving frame %1…").arg(playhead);
+    } else if (shown_ == Shown::CalibratedRest) {
+        // The frame's solve time and residual would read as the rest's.
+        solve = document_->settings().calibrate == CalibrateMode::None
+                    ? tr("showing the rest (not calibrated)")
+                    : tr("showing the calibrated rest, fitted at frame %1")
+                          .arg(result_->calibration.frame);
+    } else if (shown_ == Shown::Rest) {
+        solve = tr("showing the rest");
     } else {
         solve = result_->fromCache ? tr("cached")
                                    : tr("solved in %1 ms").arg(result_->solveMs, 0, 'f', 0);
         // Frames meet their markers even on a take aligned 200 mm off: the alignment's own
-        // residual says that. The solver measures the one it finds, Align the one it fixes.
-        const Calibration& aligned =
-            document_->alignment() ? *document_->alignment() : result_->calibration;
+        // residual says that. The solver measures it, found or given: a project's stored
+        // residual is only what the file says.
+        const Calibration& aligned = result_->calibration;
         const QString alignment =
             tr("alignment %1 mm").arg(aligned.residualMm(document_->take().unitToMm), 0, 'f', 1);
         residual = result_->report.heldFrom >= 0

@@ -238,7 +238,8 @@ QMenu* MainWindow::buildEditMenu() {
     edit->addSeparator();
     edit->addAction(mappingAction_);
     edit->addAction(tr("&Suggest Rest"), this, &MainWindow::suggestMappings);
-    edit->addAction(tr("&Align Take to Mesh"), this, &MainWindow::alignTake);
+    edit->addAction(tr("&Align Take to Mesh"), this, &MainWindow::alignTake)
+        ->setObjectName("actionAlign");
     edit->addAction(tr("&Clear Mapping"), this, [this] {
         if (document_->selectedMarker() >= 0) document_->clearMapping(document_->selectedMarker());
     });
@@ -376,6 +377,7 @@ void MainWindow::buildShortcuts() {
 
 void MainWindow::connectDocument() {
     connect(document_, &Document::errorOccurred, this, [this](const QString& message) {
+        if (loadingProject_) return;  // openProject says it once, with the project's name
         if (opening_.isEmpty())
             showError(message);
         else
@@ -543,7 +545,9 @@ bool MainWindow::suggestMappings() {
 }
 
 void MainWindow::alignTake() {
-    if (!document_->align()) return;
+    // At the user's calibration frame when one is set: the solver aligns and fits at one frame,
+    // so an alignment made elsewhere would move the calibration there.
+    if (!document_->align(document_->settings().calibrationFrame)) return;
     const Calibration& aligned = *document_->alignment();
     statusBar()->showMessage(
         tr("Aligned at frame %1: the mapped markers sit %2 mm (RMS) from their points on the mesh")

@@ -134,17 +134,23 @@ bool MainWindow::openProject(const QString& path) {
     if (!keepUnsavedWork(false)) return false;
     const QScopedValueRollback<int> loading(loading_, loading_ + 1);
     QString error;
-    if (!Project::load(*document_, path, &error)) {
+    bool loaded = false;
+    {
+        const QScopedValueRollback<bool> quiet(loadingProject_, true);
+        loaded = Project::load(*document_, path, &error);
+    }
+    if (!loaded) {
         const QString message =
             tr("%1 could not be opened as a Boneless project.").arg(QFileInfo(path).fileName());
         const QString recovery = ProjectAutosave::recoveryPath();
+        const QString absolute = QFileInfo(path).absoluteFilePath();
         statusBar()->showMessage(message, 15000);
         emit errorShown(message + "\n" + error);
         if (!messageBoxes_) return false;
         QMessageBox* box = errorBox(message, error);
         box->setObjectName("projectErrorMessage");
-        if (QFileInfo::exists(recovery) &&
-            QFileInfo(recovery).absoluteFilePath() != QFileInfo(path).absoluteFilePath()) {
+        if (QFileInfo::exists(recovery) && QFileInfo(recovery).absoluteFilePath() != absolute &&
+            ProjectAutosave::recoveredProject() == absolute) {
             box->setInformativeText(
                 tr("The file is left as it is. The last autosave, from %1, can be opened "
                    "instead.")
@@ -204,7 +210,12 @@ bool MainWindow::askMapLoad(const QString& path, Document::MapLoad& mode) {
 bool MainWindow::openRecovery() {
     const QScopedValueRollback<int> loading(loading_, loading_ + 1);
     QString error;
-    if (!Project::load(*document_, ProjectAutosave::recoveryPath(), &error)) {
+    bool loaded = false;
+    {
+        const QScopedValueRollback<bool> quiet(loadingProject_, true);
+        loaded = Project::load(*document_, ProjectAutosave::recoveryPath(), &error);
+    }
+    if (!loaded) {
         showError(tr("The last autosave could not be opened either."), error);
         return false;
     }

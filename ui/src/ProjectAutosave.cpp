@@ -45,6 +45,14 @@ QString ProjectAutosave::recoveryPath() {
     return QStandardPaths::writableLocation(QStandardPaths::AppDataLocation) + "/recovery.boneless";
 }
 
+namespace {
+const char* kRecoveredProjectKey = "autosave/recoveredProject";
+}  // namespace
+
+QString ProjectAutosave::recoveredProject() {
+    return QSettings().value(kRecoveredProjectKey).toString();
+}
+
 bool ProjectAutosave::saveNow() {
     timer_->stop();
     if (!pending_ || !document_) return true;
@@ -69,6 +77,8 @@ bool ProjectAutosave::saveNow() {
         if (!ok) errors << error;
         (target == path_ ? kept : recovered) = ok;
     }
+    // Which project the recovery file holds: offered for another one, it would pass for it.
+    if (recovered) QSettings().setValue(kRecoveredProjectKey, path_);
     if (path_.isEmpty()) kept = recovered;
     if (!errors.isEmpty()) {
         pending_ = true;  // try again after the next change

@@ -53,7 +53,7 @@ class MainWindow : public QMainWindow {
     // A mesh file; an OBJ with groups first asks which group (GroupChooser).
     bool openMesh(const QString& path);
     // A project that will not open leaves the window as it was and the file untouched, and the
-    // message offers the recovery autosave (openRecovery()).
+    // message offers the recovery autosave (openRecovery()) when it was made from that project.
     bool openProject(const QString& path);
     // Writes the demo afresh and opens it. The demo is never saved into: Save goes to Save As,
     // autosave to the recovery file.
@@ -166,6 +166,8 @@ class MainWindow : public QMainWindow {
     QString projectPath_;
     bool demo_ = false;
     QString opening_;  // the file being opened, for plainError()
+    // While a project file loads, the document's errors are left to the project's message.
+    bool loadingProject_ = false;
     // An edit (each one undoable) since the project was opened or saved; loading a file is none.
     bool unsavedEdits_ = false;
     int loading_ = 0;         // > 0 while a file is being loaded

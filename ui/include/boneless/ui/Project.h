@@ -35,8 +35,8 @@ QByteArray toJson(const Document& document, const QString& path);
 // Keeps a project file up to date: after each change of the document (Document::changed) it
 // saves the project within a short delay, so a crash loses at most that delay's edits. Each save
 // also goes to recoveryPath() (the only place it goes without a project path), which the window
-// offers to reopen when a project file will not open; a project that cannot be written does not
-// keep the change from it.
+// offers to reopen when the project it was saved from will not open; a project that cannot be
+// written does not keep the change from it.
 class ProjectAutosave : public QObject {
     Q_OBJECT
   public:
@@ -49,6 +49,8 @@ class ProjectAutosave : public QObject {
     bool isPending() const;
     // Where an untitled session is kept (in the per-user data folder).
     static QString recoveryPath();
+    // The project the recovery file was last saved from; empty for an untitled session.
+    static QString recoveredProject();
 
   public slots:
     // Writes at once if a change is pending. True when the document is kept where it belongs:
