@@ -103,20 +103,6 @@ void refuseSharedOutputs(const std::string& file, const std::vector<TakeJob>& jo
             throw Error(file + ": " + entries[it->second] + " and " + entries[k] + " both write " +
                         sidecar + " and the outputs beside it; give each its own 'out'");
     }
-    // An entry's sidecar over another entry's input (its map kept as <stem>.json in that "out")
-    // would destroy it before that entry is solved; its own inputs are checked as it is solved.
-    for (std::size_t j = 0; j < jobs.size(); ++j)
-        for (const auto& [what, input] :
-             {std::pair<const char*, const std::string*>{"mesh", &jobs[j].mesh},
-              {"take", &jobs[j].c3d},
-              {"map", &jobs[j].map}}) {
-            std::error_code ec;
-            const auto writer = writers.find(fs::weakly_canonical(*input, ec).string());
-            if (writer != writers.end() && writer->second != j)
-                throw Error(file + ": the sidecar of " + entries[writer->second] + ", " + *input +
-                            ", would replace the " + what + " of " + entries[j] +
-                            "; give it another 'out'");
-        }
 }
 
 // Entries in manifest order: "takes" first, then each of "folders" expanded in file-name order.
