@@ -1,5 +1,6 @@
 // boneless-cli batch: many takes from one manifest, resumable and shardable (docs/batch.md).
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -94,15 +95,37 @@ void requireKeys(const TakeJob& job, const std::string& where) {
 // `entries` names each job as a message should ("takes[1] (/lib/sessB/walk.c3d)").
 void refuseSharedOutputs(const std::string& file, const std::vector<TakeJob>& jobs,
                          const std::vector<std::string>& entries) {
+    const auto canonical = [](const std::string& path) {
+        std::error_code ec;
+        return fs::weakly_canonical(path, ec).string();
+    };
     std::map<std::string, std::size_t> writers;  // the sidecar, however spelled, and its entry
     for (std::size_t k = 0; k < jobs.size(); ++k) {
         const std::string sidecar = takeJobSidecar(jobs[k]);
-        std::error_code ec;
-        const auto [it, first] = writers.emplace(fs::weakly_canonical(sidecar, ec).string(), k);
+        const auto [it, first] = writers.emplace(canonical(sidecar), k);
         if (!first)
             throw Error(file + ": " + entries[it->second] + " and " + entries[k] + " both write " +
                         sidecar + " and the outputs beside it; give each its own 'out'");
     }
+    // An entry's sidecar over another entry's input (its map kept as <stem>.json in that "out")
+    // would destroy it before that entry is solved. A writer whose own inputs hold that file is
+    // refused as it is solved and never writes, so it is left to that check.
+    const auto inputs = [](const TakeJob& job) {
+        return std::array<std::pair<const char*, std::string>, 3>{
+            {{"mesh", job.mesh}, {"take", job.c3d}, {"map", job.map}}};
+    };
+    for (std::size_t j = 0; j < jobs.size(); ++j)
+        for (const auto& [what, input] : inputs(jobs[j])) {
+            const auto writer = writers.find(canonical(input));
+            if (writer == writers.end() || writer->second == j) continue;
+            bool refusedOnItsOwn = false;
+            for (const auto& own : inputs(jobs[writer->second]))
+                refusedOnItsOwn = refusedOnItsOwn || canonical(own.second) == writer->first;
+            if (!refusedOnItsOwn)
+                throw Error(file + ": the sidecar of " + entries[writer->second] + ", " + input +
+                            ", would replace the " + what + " of " + entries[j] +
+                            "; give it another 'out'");
+        }
 }
 
 // Entries in manifest order: "takes" first, then each of "folders" expanded in file-name order.

@@ -436,6 +436,36 @@ TEST(Batch, TwoEntriesThatWriteTheSameFilesAreRefusedBeforeAnythingIsSolved) {
     EXPECT_FALSE(fs::exists(dir / "out"));
 }
 
+// One entry's sidecar is another entry's map: solving the first replaced the user's map before the
+// second read it. The manifest is refused before anything is solved.
+TEST(Batch, AnEntryWhoseSidecarWouldReplaceAnotherEntrysMapIsRefusedBeforeAnythingIsSolved) {
+    const fs::path dir = makeLibrary();
+    fs::create_directories(dir / "maps");
+    fs::copy_file(dir / "walker.map.json", dir / "maps" / "walker.json");
+    auto readText = [](const fs::path& path) {
+        std::ostringstream text;
+        text << std::ifstream(path).rdbuf();
+        return text.str();
+    };
+    const std::string before = readText(dir / "maps" / "walker.json");
+    const fs::path manifest = writeManifest(
+        dir, "takes.json",
+        {{"defaults", {{"mesh", "walker.obj"}}},
+         {"takes",
+          {{{"c3d", "takes/walk_a.c3d"}, {"map", "walker.map.json"}, {"out", "maps"}},
+           {{"c3d", "takes/walk_b.c3d"}, {"map", "maps/walker.json"}, {"out", "out"}}}}});
+    const CliResult r = runCli("batch " + manifest.string());
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("the sidecar of takes[0] (" + (dir / "takes" / "walk_a.c3d").string() +
+                         "), " + (dir / "maps" / "walker.json").string() +
+                         ", would replace the map of takes[1] (" +
+                         (dir / "takes" / "walk_b.c3d").string() + ")"),
+              std::string::npos)
+        << r.out;
+    EXPECT_EQ(readText(dir / "maps" / "walker.json"), before);
+    EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
 // A take named in Latin-1 ("caf\xe9.c3d") ended the whole run with an internal error; it is
 // solved, its sidecar names it read as Latin-1, and the next run finds it finished.
 TEST(Batch, ATakeWhoseNameIsNotUtf8IsSolvedAndThenSkippedLikeTheOthers) {
