@@ -226,10 +226,11 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
         const double meshUnitsPerMm = c.takeToMesh.scale / take.take().unitToMm;
         std::fprintf(stderr,
                      "%s: %zu frames at %g Hz, units %s; aligned at frame %d (residual %.1f mm), "
-                     "mesh units look like %s, mesh up axis %s\n",
+                     "mesh units look like %s, mesh up axis %s%s\n",
                      job.c3d.c_str(), take.frameCount(), take.take().rate,
                      take.take().units.c_str(), c.frame, c.residualMm(take.take().unitToMm),
-                     guessMeshUnits(meshUnitsPerMm), guessUpAxis(c.takeToMesh).c_str());
+                     guessMeshUnits(meshUnitsPerMm), guessUpAxis(c.takeToMesh).c_str(),
+                     request.options.meshUp ? "" : " (guessed; --mesh-up sets it)");
     };
     const auto start = std::chrono::steady_clock::now();
     auto onFrame = [&](int done, int total, const FrameReport& report) {

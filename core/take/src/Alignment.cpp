@@ -23,11 +23,24 @@ Positions takeFrame(const C3dTake& take, const std::vector<std::size_t>& points,
     return P;
 }
 
-Similarity levelled(const Similarity& free, const Positions& take, const Positions& mesh) {
+std::string axisName(const Vec3& axis) {
+    int k = 0;
+    axis.cwiseAbs().maxCoeff(&k);
+    return std::string(axis[k] < 0 ? "-" : "+") + "xyz"[k];
+}
+
+std::optional<Vec3> parseAxis(const std::string& name) {
+    if (name.size() != 2 || (name[0] != '+' && name[0] != '-') || name[1] < 'x' || name[1] > 'z')
+        return std::nullopt;
+    return (name[0] == '-' ? -1.0 : 1.0) * Vec3::Unit(name[1] - 'x');
+}
+
+Similarity levelled(const Similarity& free, const Positions& take, const Positions& mesh,
+                    const std::optional<Vec3>& meshUp) {
     const Vec3 up = free.R * Vec3::UnitZ();
     int axis = 0;
     up.cwiseAbs().maxCoeff(&axis);
-    const Vec3 a = (up[axis] < 0 ? -1.0 : 1.0) * Vec3::Unit(axis);
+    const Vec3 a = meshUp ? *meshUp : (up[axis] < 0 ? -1.0 : 1.0) * Vec3::Unit(axis);
     const Mat3 level = Eigen::Quaterniond::FromTwoVectors(up, a).toRotationMatrix() * free.R;
     std::vector<Vec3> x, y;
     for (Eigen::Index k = 0; k < take.rows(); ++k)

@@ -72,9 +72,7 @@ const char* guessMeshUnits(double meshUnitsPerMm) {
 }
 
 std::string guessUpAxis(const Similarity& s) {
-    const Vec3 up = meshUp(s);
-    const int axis = up.x() != 0 ? 0 : up.y() != 0 ? 1 : 2;
-    return std::string(up[axis] < 0 ? "-" : "+") + "xyz"[axis];
+    return axisName(meshUp(s));
 }
 
 GltfPlacement gltfPlacement(const Similarity& takeToMesh, double takeUnitToMm) {

@@ -6,6 +6,7 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 
+#include "boneless/Alignment.h"
 #include "boneless/Error.h"
 #include "boneless/Text.h"
 
@@ -79,6 +80,13 @@ const std::vector<Entry>& entries() {
          [](TakeSolveOptions& o, const json& v) {
              o.calibrationFrame = static_cast<int>(v.get<double>());
          }},
+        {choice("mesh_up", {"auto", "+x", "-x", "+y", "-y", "+z", "-z"},
+                "the mesh's up axis, where the take's vertical goes; auto: the axis nearest "
+                "where the alignment at the calibration frame puts it (set it for an actor who "
+                "lies or rolls there)",
+                {}, false),
+         [](const TakeSolveOptions& o) { return json(o.meshUp ? axisName(*o.meshUp) : "auto"); },
+         [](TakeSolveOptions& o, const json& v) { o.meshUp = parseAxis(v.get<std::string>()); }},
         {number("marker_weight", 1e-9, 1e9, "",
                 "how hard each marker pulls its point of the mesh, against the mesh's shape",
                 {"weight"}),

@@ -82,6 +82,36 @@ TEST(TakeSolver, AnActorLeaningAtTheCalibrationFrameIsSolvedLeaningNotTilted) {
     }
 }
 
+// An actor who lies in every frame (a floor routine) tips the guess over: the take's vertical
+// goes wherever the standing mesh's front is. The user's `meshUp` stands the mesh's up on it, and
+// the frames' shapes are the same, turned.
+TEST(TakeSolver, AnActorLyingInEveryFrameStandsOnTheMeshUpTheUserGives) {
+    const Take t = demoTake("take-lying", 1);
+    Take lying = t;
+    const Mat3 down = Eigen::AngleAxisd(M_PI / 2, Vec3::UnitX()).toRotationMatrix();
+    for (std::size_t f = 0; f < t.take.frameCount(); ++f)
+        for (std::size_t k = 0; k < t.take.points.size(); ++k)
+            if (const auto x = t.take.samples.position(f, k)) {
+                const Vec3 y = down * *x;
+                lying.take.samples.set(f, k, y.x(), y.y(), y.z());
+            }
+    const Vec3 meshUp =
+        TakeSolver(t.mesh, t.take, t.map).calibration().takeToMesh.R * Vec3::UnitZ();
+    const TakeSolver guessed(lying.mesh, lying.take, lying.map);
+    EXPECT_LT(std::abs((guessed.calibration().takeToMesh.R * Vec3::UnitZ()).dot(meshUp)), 1e-9);
+    TakeSolveOptions options;
+    options.meshUp = parseAxis(axisName(meshUp));
+    ASSERT_TRUE(options.meshUp);
+    TakeSolver told(lying.mesh, lying.take, lying.map, options);
+    EXPECT_LT((told.calibration().takeToMesh.R * Vec3::UnitZ() - meshUp).norm(), 1e-12);
+    FrameReport r;
+    const Positions a = TakeSolver(t.mesh, t.take, t.map).solve(9, r), b = told.solve(9, r);
+    const RigidMotion m = fitRigidMotion(a, b);
+    EXPECT_NEAR(Eigen::AngleAxisd(m.R).angle(), M_PI / 2, 0.5 * M_PI / 180);
+    const Positions moved = (a * m.R.transpose()).rowwise() + m.t.transpose();
+    EXPECT_LT(maxDistance(moved, b) / boundingBoxDiagonal(t.mesh.V), 1e-3);
+}
+
 // Marker 4 is missing from frames 20–27. Leaving it in the map and taking it out pose one
 // problem: the local/global factor takes it out by a low-rank correction, the same algebra as a
 // factor without it. Only the coarse level can differ (a map's markers are kept in it); here it

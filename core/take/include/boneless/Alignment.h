@@ -1,6 +1,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,11 +48,18 @@ Calibration roughAlignment(const C3dTake& take, const std::vector<std::size_t>& 
                            const TriMesh& mesh);
 
 // `free` (a similarity fitted from `take` onto `mesh` rows, #K by 3 each, NaN rows skipped) turned
-// so that the take's vertical (C3D's +Z) goes exactly to the mesh's signed coordinate axis
-// nearest where `free` put it, then turned about that axis and moved to fit again; the scale is
-// kept. A pose unlike the rest's tilts a free fit, and the exported floor with it (a walk on
-// MakeHuman climbed 8°). The result is `free` followed by a rigid motion of the mesh's space.
-Similarity levelled(const Similarity& free, const Positions& take, const Positions& mesh);
+// so that the take's vertical (C3D's +Z) goes exactly to `up` (a signed coordinate axis), or when
+// none is given to the one nearest where `free` put it, then turned about that axis and moved to
+// fit again; the scale is kept. A pose unlike the rest's tilts a free fit, and the exported floor
+// with it (a walk on MakeHuman climbed 8°); an actor who never stands tips it over, and only the
+// user can say where the mesh's up is. The result is `free` followed by a rigid motion.
+Similarity levelled(const Similarity& free, const Positions& take, const Positions& mesh,
+                    const std::optional<Vec3>& up = std::nullopt);
+
+// "+x", "-y", …: a signed coordinate axis as options and sidecars name it.
+std::string axisName(const Vec3& axis);
+// The signed coordinate axis `name` ("+x" … "-z") stands for, or nothing.
+std::optional<Vec3> parseAxis(const std::string& name);
 
 // The take's positions of `points` at `frame`, NaN rows where missing.
 Positions takeFrame(const C3dTake& take, const std::vector<std::size_t>& points, int frame);

@@ -25,7 +25,10 @@ struct TakeSolveOptions {
     // gap: each frame is solved from its own markers, so without this a limb whose markers are
     // all occluded would fall back to its rest shape. 0 = off. Longer gaps stay missing.
     double fillGapSeconds = 0.2;
-    int calibrationFrame = -1;            // -1 = chosen automatically (see calibrate())
+    int calibrationFrame = -1;  // -1 = chosen automatically (see calibrate())
+    // The mesh's up (a signed coordinate axis), where the take's vertical goes; unset: the axis
+    // nearest where the alignment at the calibration frame puts it, wrong for an actor lying there.
+    std::optional<Vec3> meshUp;
     std::optional<Similarity> alignment;  // overrides the automatic alignment
     // Shape: the rest mesh is first fitted to the actor at the calibration frame, and every frame
     // is solved against that calibrated rest (see docs/calibration.md). None: against the rest.
