@@ -47,7 +47,10 @@ struct MeshUnit {
 };
 
 MeshUnit nearestUnit(double meshUnitsPerMm) {
-    const MeshUnit units[] = {{"mm", 1.0}, {"cm", 0.1}, {"dm", 0.01}, {"m", 0.001}};
+    // Inches and feet too: 3ds Max's default and many game assets (an inch mesh read as cm made
+    // a glb 2.54 times too small).
+    const MeshUnit units[] = {{"mm", 1.0},  {"cm", 0.1},         {"in", 1.0 / 25.4},
+                              {"dm", 0.01}, {"ft", 1.0 / 304.8}, {"m", 0.001}};
     MeshUnit best = units[0];
     double bestGap = 1e300;
     for (const auto& u : units) {

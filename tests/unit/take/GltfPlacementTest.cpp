@@ -42,3 +42,15 @@ TEST(GltfPlacement, ATakeInMetresIsReadInMillimetres) {
     s.scale *= 1000.0;  // take units (m) to mesh units (cm)
     EXPECT_NEAR(gltfPlacement(s, 1000.0).metresPerUnit, 0.01, 1e-15);
 }
+
+// 3ds Max's default unit: a body modelled in inches was read as centimetres, and its glb came out
+// 2.54 times too small (a 1.86 m walker 0.73 m tall).
+TEST(GltfPlacement, AMeshInInchesOrFeetIsScaledToMetresByItsOwnUnit) {
+    EXPECT_NEAR(gltfPlacement(takeOnto(Vec3::UnitY(), 25.4 * 1.04), 1.0).metresPerUnit, 0.0254,
+                1e-15);
+    EXPECT_STREQ(guessMeshUnits(1.0 / 25.4), "in");
+    EXPECT_NEAR(gltfPlacement(takeOnto(Vec3::UnitY(), 304.8 * 0.95), 1.0).metresPerUnit, 0.3048,
+                1e-15);
+    EXPECT_STREQ(guessMeshUnits(1.0 / 304.8), "ft");
+    EXPECT_STREQ(guessMeshUnits(0.1 * 1.2), "cm");  // an actor a fifth smaller than the mesh
+}
