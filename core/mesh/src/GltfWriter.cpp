@@ -1,11 +1,8 @@
 #include "boneless/GltfWriter.h"
 
 #include <tiny_gltf.h>
-#include <unistd.h>
 #include <algorithm>
-#include <cerrno>
 #include <cstdint>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -212,11 +209,7 @@ std::string readImage(const std::string& path) {
 
 GltfWriter::GltfWriter(std::string path, const TriMesh& rest, std::string name,
                        GltfPlacement placement)
-    : path_(std::move(path)),
-      spool_(path_ + ".frames.tmp" + std::to_string(::getpid())),
-      name_(std::move(name)),
-      rest_(rest),
-      placement_(placement) {
+    : path_(std::move(path)), name_(std::move(name)), rest_(rest), placement_(placement) {
     if (!splitAtUvSeams(rest_, meshVertexOf_, uv_, triangles_)) {
         meshVertexOf_.resize(static_cast<size_t>(rest_.vertexCount()));
         for (int v = 0; v < rest_.vertexCount(); ++v) meshVertexOf_[v] = v;
@@ -248,15 +241,11 @@ GltfWriter::GltfWriter(std::string path, const TriMesh& rest, std::string name,
             const std::uintmax_t size = std::filesystem::file_size(texture, error);
             if (!error) textureBytes_ += size + 3;
         }
-    file_ = std::fopen(spool_.c_str(), "wb+");
-    if (!file_) throw Error(path_ + ": cannot be written (" + std::strerror(errno) + ")");
+    file_ = openSpoolBeside(path_);
 }
 
 GltfWriter::~GltfWriter() {
-    if (file_) {
-        std::fclose(file_);
-        std::remove(spool_.c_str());
-    }
+    if (file_) std::fclose(file_);
 }
 
 void GltfWriter::append(int frame, double seconds, const Positions& positions) {
@@ -438,7 +427,7 @@ void GltfWriter::finish() {
     }
     std::FILE* spool = file_;
     file_ = nullptr;
-    writeSpooled(path_, head, spool, spool_, tail);
+    writeSpooled(path_, head, spool, tail);
 }
 
 }  // namespace boneless

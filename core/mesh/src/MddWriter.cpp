@@ -1,7 +1,5 @@
 #include "boneless/MddWriter.h"
 
-#include <unistd.h>
-#include <cerrno>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -46,17 +44,10 @@ float bitsFloat(std::uint32_t stored) {
 }  // namespace
 
 MddWriter::MddWriter(std::string path, int pointCount)
-    : path_(std::move(path)), points_(pointCount) {
-    spool_ = path_ + ".frames.tmp" + std::to_string(::getpid());
-    file_ = std::fopen(spool_.c_str(), "wb+");
-    if (!file_) throw Error(path_ + ": cannot be written (" + std::strerror(errno) + ")");
-}
+    : path_(std::move(path)), file_(openSpoolBeside(path_)), points_(pointCount) {}
 
 MddWriter::~MddWriter() {
-    if (file_) {
-        std::fclose(file_);
-        std::remove(spool_.c_str());
-    }
+    if (file_) std::fclose(file_);
 }
 
 void MddWriter::append(double seconds, const Positions& positions) {
@@ -82,7 +73,7 @@ void MddWriter::finish() {
     std::memcpy(head.data(), header.data(), head.size());
     std::FILE* spool = file_;
     file_ = nullptr;
-    writeSpooled(path_, head, spool, spool_, {});
+    writeSpooled(path_, head, spool, {});
 }
 
 std::vector<Positions> readMdd(const std::string& path, std::vector<double>* seconds) {

@@ -1,6 +1,5 @@
 #include "boneless/ObjWriter.h"
 
-#include <unistd.h>
 #include <cerrno>
 #include <charconv>
 #include <cstdio>
@@ -10,11 +9,12 @@
 #include <system_error>
 
 #include "boneless/Error.h"
+#include "boneless/SpoolFile.h"
 
 namespace boneless {
 
 void writeFileAtomically(const std::string& path, const std::string& contents) {
-    const std::string temporary = path + ".tmp" + std::to_string(::getpid());
+    const std::string temporary = temporaryFor(path);
     {
         std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
         if (!out) throw Error(path + ": cannot be written (" + std::strerror(errno) + ")");

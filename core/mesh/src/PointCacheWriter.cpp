@@ -1,6 +1,5 @@
 #include "boneless/PointCacheWriter.h"
 
-#include <unistd.h>
 #include <cerrno>
 #include <cstdint>
 #include <cstring>
@@ -8,6 +7,7 @@
 #include <vector>
 
 #include "boneless/Error.h"
+#include "boneless/SpoolFile.h"
 
 namespace boneless {
 
@@ -32,7 +32,7 @@ PointCacheWriter::PointCacheWriter(std::string path, int pointCount, double star
                                    double sampleRate)
     : path_(std::move(path)), points_(pointCount) {
     if (!littleEndian()) throw Error(path_ + ": PC2 writing needs a little-endian machine");
-    temporary_ = path_ + ".tmp" + std::to_string(::getpid());
+    temporary_ = temporaryFor(path_);
     file_ = std::fopen(temporary_.c_str(), "wb");
     // The user's file and the system's reason: the temporary beside it is ours, not theirs.
     if (!file_) throw Error(path_ + ": cannot be written (" + std::strerror(errno) + ")");

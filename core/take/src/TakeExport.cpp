@@ -196,7 +196,7 @@ class PerFrameFigures {
         const std::size_t at = text.find(slot) + slot.size() - 1;
         std::FILE* spool = spool_;
         spool_ = nullptr;  // writeSpooled closes it
-        writeSpooled(path, text.substr(0, at) + (ms_.empty() ? "" : "\n"), spool, "",
+        writeSpooled(path, text.substr(0, at) + (ms_.empty() ? "" : "\n"), spool,
                      (ms_.empty() ? "" : "\n  ") + text.substr(at));
     }
 

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 #include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <csignal>
 #include <filesystem>
@@ -238,4 +240,128 @@ TEST(FileWriters, NameTheSystemsReasonWhenAWriteFailsPartWay) {
     EXPECT_EQ(mdd, failure("w.mdd"));
     EXPECT_EQ(obj, failure("w.obj"));
     EXPECT_TRUE(fs::is_empty(dir)) << "a failed write leaves no file behind";
+}
+
+namespace {
+
+// A pid that no process has: a child's, once it has exited and been waited for.
+pid_t deadPid() {
+    const pid_t child = ::fork();
+    if (child == 0) ::_exit(0);
+    ::waitpid(child, nullptr, 0);
+    return child;
+}
+
+std::string contents(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// Writes one frame of `mesh` as w.pc2, w.mdd, w.glb and w.obj in `dir`.
+void writeEachFormat(const fs::path& dir, const TriMesh& mesh) {
+    PointCacheWriter pc2((dir / "w.pc2").string(), mesh.vertexCount(), 0, 1);
+    pc2.append(mesh.V);
+    pc2.finish();
+    MddWriter mdd((dir / "w.mdd").string(), mesh.vertexCount());
+    mdd.append(0, mesh.V);
+    mdd.finish();
+    GltfWriter glb((dir / "w.glb").string(), mesh, "w");
+    glb.append(0, 0, mesh.V);
+    glb.finish();
+    writeObj((dir / "w.obj").string(), mesh.V, mesh.F, "test");
+}
+
+}  // namespace
+
+// An export killed with SIGKILL (or by a power cut) left its temporary, `walker.pc2.tmp<pid>`,
+// beside the user's files for good: hundreds of MB for a long take, and more with every such run.
+TEST(FileWriters, RemoveTheTemporariesADeadProcessLeftForTheSameOutput) {
+    const fs::path dir = freshTestDir("stale-temporaries"), clean = freshTestDir("no-temporaries");
+    const TriMesh mesh = icosphere(1);
+    // The live pid is not this test's own: that is the writer's, whose temporary is its to replace.
+    const std::string dead = std::to_string(deadPid()), live = std::to_string(::getppid());
+    const std::vector<std::string> outputs = {"w.pc2", "w.mdd", "w.glb", "w.obj"};
+    std::vector<std::string> stale, kept = {"notes.txt",
+                                            "w.pc2.tmp",
+                                            "w.pc2.tmp" + dead + "x",
+                                            "w.pc2.tmp0" + dead,
+                                            "w.pc2.tmp-" + dead,
+                                            "w.pc2.bak" + dead,
+                                            "w.pc2.other.tmp" + dead,
+                                            "other.pc2.tmp" + dead,
+                                            "w.pc.tmp" + dead,
+                                            "ww.pc2.tmp" + dead};
+    for (const std::string& output : outputs)
+        for (const std::string& suffix : {".tmp", ".frames.tmp"}) {
+            stale.push_back(output + suffix + dead);
+            kept.push_back(output + suffix + live);  // another export of the same file, running
+        }
+    for (const std::vector<std::string>* names : {&stale, &kept})
+        for (const std::string& name : *names) std::ofstream(dir / name) << name;
+    fs::create_directory(dir / ("v.obj.tmp" + dead));  // a folder is never a writer's temporary
+    writeObj((dir / "v.obj").string(), mesh.V, mesh.F, "test");
+    writeEachFormat(dir, mesh);
+    writeEachFormat(clean, mesh);
+
+    for (const std::string& name : stale) EXPECT_FALSE(fs::exists(dir / name)) << name;
+    for (const std::string& name : kept) EXPECT_EQ(contents(dir / name), name) << name;
+    EXPECT_TRUE(fs::is_directory(dir / ("v.obj.tmp" + dead)));
+    for (const std::string& output : outputs)
+        EXPECT_EQ(contents(dir / output), contents(clean / output)) << output;
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}),
+              static_cast<std::ptrdiff_t>(kept.size() + outputs.size() + 2));
+}
+
+// MDD and glb spool the frames until the end; a spool with a name is one more file to leave
+// behind when the export is killed.
+TEST(FileWriters, SpoolTheFramesInAFileWithNoName) {
+    const fs::path dir = freshTestDir("unnamed-spool");
+    const TriMesh mesh = icosphere(1);
+    MddWriter mdd((dir / "w.mdd").string(), mesh.vertexCount());
+    GltfWriter glb((dir / "w.glb").string(), mesh, "w");
+    mdd.append(0, mesh.V);
+    glb.append(0, 0, mesh.V);
+    EXPECT_TRUE(fs::is_empty(dir));
+    mdd.finish();
+    glb.finish();
+    EXPECT_EQ(readMdd((dir / "w.mdd").string()).size(), 1u);
+}
+
+// Two exports of one file at once: the second's clean-up must leave the first's temporary alone,
+// and each must finish whole (the last one renamed into place wins).
+TEST(FileWriters, TwoExportsOfTheSameFileAtOnceBothFinish) {
+    const fs::path dir = freshTestDir("two-exports");
+    const std::string path = (dir / "w.pc2").string();
+    const TriMesh mesh = icosphere(1);
+    int started[2], go[2];
+    ASSERT_EQ(::pipe(started), 0);
+    ASSERT_EQ(::pipe(go), 0);
+    const pid_t first = ::fork();
+    if (first == 0) {  // the first export: one frame, then it waits for the second to finish
+        char byte = 0;
+        bool ok = true;
+        try {
+            PointCacheWriter writer(path, mesh.vertexCount(), 0, 1);
+            writer.append(mesh.V);
+            ok = ::write(started[1], &byte, 1) == 1 && ::read(go[0], &byte, 1) == 1;
+            writer.append(mesh.V);
+            writer.finish();
+        } catch (...) {
+            ok = false;
+        }
+        ::_exit(ok ? 0 : 1);
+    }
+    char byte = 0;
+    ASSERT_EQ(::read(started[0], &byte, 1), 1);
+    PointCacheWriter second(path, mesh.vertexCount(), 0, 1);
+    second.append(mesh.V);
+    second.finish();
+    EXPECT_EQ(readPointCache(path).size(), 1u);
+    ASSERT_EQ(::write(go[1], &byte, 1), 1);
+    int status = 0;
+    ASSERT_EQ(::waitpid(first, &status, 0), first);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+    EXPECT_EQ(readPointCache(path).size(), 2u);
+    for (int fd : {started[0], started[1], go[0], go[1]}) ::close(fd);
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);
 }

@@ -43,7 +43,7 @@ class GltfWriter {
     void finish();
 
   private:
-    std::string path_, spool_, name_;
+    std::string path_, name_;
     const TriMesh& rest_;
     GltfPlacement placement_;
     std::vector<int> meshVertexOf_;           // per glTF vertex, the mesh vertex it is

@@ -24,7 +24,7 @@ class MddWriter {
     void finish();
 
   private:
-    std::string path_, spool_;
+    std::string path_;
     std::FILE* file_ = nullptr;
     int points_ = 0;
     std::vector<float> times_;

@@ -5,12 +5,24 @@
 
 namespace boneless {
 
+// Where a writer puts `path` before renaming it into place: `<path>.tmp<pid>`, beside it (a
+// rename only replaces a file atomically on its own disk). A process that is killed or loses its
+// machine leaves that file, so this first removes the `<path>.tmp<pid>` and
+// `<path>.frames.tmp<pid>` (the frames spool of earlier versions) whose process `pid` no longer
+// runs. A running export's temporary, for this path too, and any other file are left alone.
+std::string temporaryFor(const std::string& path);
+
+// A spool for frames that are copied into `path` at the end, opened for reading and writing: a
+// file beside `path` (on its disk, not /tmp's, which may be too small) that has no name, so
+// nothing is left behind whatever ends the process. Removes the stale temporaries of `path` as
+// temporaryFor does, freeing their disk before a long export. Throws Error naming `path`.
+std::FILE* openSpoolBeside(const std::string& path);
+
 // Formats whose header holds the frame count before the frames (MDD, glb) spool the frames to a
 // file first, and the solve's sidecar its per-frame figures. This writes `head`, the spool's bytes
-// and `tail` to a temporary file beside `path` and renames it into place; the spool is closed and
-// removed whatever happens. Throws Error naming `path` when a write fails. spoolPath is empty for
-// an unnamed spool (std::tmpfile).
+// and `tail` to temporaryFor(`path`) and renames it into place; the spool is closed whatever
+// happens. Throws Error naming `path` when a write fails.
 void writeSpooled(const std::string& path, const std::string& head, std::FILE* spool,
-                  const std::string& spoolPath, const std::string& tail);
+                  const std::string& tail);
 
 }  // namespace boneless
