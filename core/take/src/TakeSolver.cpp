@@ -112,6 +112,13 @@ void TakeSolver::prepare(const Correspondence& map) {
             const Positions R = restMarkers(meshUnitsPerMm);
             if (options_.calibrationFrame >= 0) {
                 const Positions P = trackFrame(options_.calibrationFrame, false);
+                Eigen::Index seen = 0;
+                for (Eigen::Index k = 0; k < P.rows(); ++k) seen += P.row(k).allFinite() ? 1 : 0;
+                if (seen < 3)
+                    throw Error(track_->file() + ": calibration frame " +
+                                std::to_string(options_.calibrationFrame) + " shows " +
+                                std::to_string(seen) + " of the " + std::to_string(P.rows()) +
+                                " mapped markers; aligning needs at least 3 seen at once");
                 calibration_.frame = options_.calibrationFrame;
                 calibration_.takeToMesh = fitSimilarity(P, R);
                 calibration_.residual = alignmentResidual(calibration_.takeToMesh, P, R);

@@ -6,6 +6,7 @@
 #include "boneless/C3dReader.h"
 #include "boneless/Correspondence.h"
 #include "boneless/DemoFiles.h"
+#include "boneless/Error.h"
 #include "boneless/MeshReader.h"
 #include "boneless/Metrics.h"
 #include "boneless/RigidFit.h"
@@ -110,6 +111,25 @@ TEST(TakeSolver, AnActorLyingInEveryFrameStandsOnTheMeshUpTheUserGives) {
     EXPECT_NEAR(Eigen::AngleAxisd(m.R).angle(), M_PI / 2, 0.5 * M_PI / 180);
     const Positions moved = (a * m.R.transpose()).rowwise() + m.t.transpose();
     EXPECT_LT(maxDistance(moved, b) / boundingBoxDiagonal(t.mesh.V), 1e-3);
+}
+
+// A calibration frame the user picked where the actor left the volume said only "alignment needs at
+// least 3 markers visible at once, got 0", naming neither the frame nor the take.
+TEST(TakeSolver, ACalibrationFrameThatShowsTooFewMarkersIsNamedWithWhatItShows) {
+    Take t = demoTake("take-empty-calibration", 1);
+    for (std::size_t k = 0; k < t.take.points.size(); ++k) t.take.samples.set(5, k, NAN, NAN, NAN);
+    TakeSolveOptions options;
+    options.calibrationFrame = 5;
+    try {
+        TakeSolver solver(t.mesh, t.take, t.map, options);
+        FAIL() << "solved from a frame without markers";
+    } catch (const Error& e) {
+        EXPECT_NE(
+            std::string(e.what()).find(t.take.file + ": calibration frame 5 shows 0 of the " +
+                                       std::to_string(t.map.markers.size()) + " mapped markers"),
+            std::string::npos)
+            << e.what();
+    }
 }
 
 // Marker 4 is missing from frames 20–27. Leaving it in the map and taking it out pose one
