@@ -209,6 +209,7 @@ void FrameDisplay::onFrameReady(const FrameResult& result) {
 void FrameDisplay::setShown(Shown shown) {
     if (shown_ == shown) return;
     shown_ = shown;
+    markers_->setRestShown(shown_ != Shown::Frame);
     if (result_ && solving_) showResult();
     emitStatus();
 }
