@@ -264,6 +264,29 @@ class CalibrationMenuTest : public QObject {
         }
     }
 
+    // Trails are the take's markers over the frames before this one, around the posed mesh. A
+    // rest is not posed: they would hang off the body, so a rest has none, scrubbed or not, and
+    // the frame has them again.
+    void theTrailsAreDrawnWithTheFrameAndNotOnARest() {
+        MeshView* view = window_->meshView();
+        for (QAction* action : window_->findChildren<QAction*>())
+            if (action->text() == "Marker &Trails") action->setChecked(true);
+        Timeline* timeline = window_->timeline();
+        timeline->setFrame(20);  // frame 0 has no frame before it, so no trail
+        QVERIFY(test::waitForFrame(*window_));
+        QVERIFY(trigger(*window_, "showFrame"));
+        QVERIFY(view->trailsVisible());
+        for (const char* rest : {"showCalibratedRest", "showRest"}) {
+            QVERIFY(trigger(*window_, rest));
+            QVERIFY2(!view->trailsVisible(), rest);
+        }
+        timeline->setFrame(30);
+        QVERIFY(test::waitForFrame(*window_));
+        QVERIFY(!view->trailsVisible());
+        QVERIFY(trigger(*window_, "showFrame"));
+        QVERIFY(view->trailsVisible());
+    }
+
     void theCalibrationMenuChecksTheModeInUseThroughUndoAndRedo() {
         window_ = test::openShown(test::writeDemoProject(folder_ + "/checked"));
         QVERIFY(window_);
