@@ -67,11 +67,9 @@ int runScreenshot(QApplication& app, boneless::ui::MainWindow& window, const QSt
 }  // namespace
 
 int main(int argc, char** argv) {
-    boneless::ui::setDefaultSurfaceFormat();
-    QApplication app(argc, argv);
-    QApplication::setApplicationName("Boneless");
-    QApplication::setOrganizationName("Boneless");
-    QApplication::setApplicationVersion(BONELESS_VERSION);
+    QCoreApplication::setApplicationName("Boneless");
+    QCoreApplication::setOrganizationName("Boneless");
+    QCoreApplication::setApplicationVersion(BONELESS_VERSION);
 
     QCommandLineParser parser;
     parser.setApplicationDescription(
@@ -82,8 +80,8 @@ int main(int argc, char** argv) {
         "  boneless body.obj take.c3d map.json\n"
         "  boneless --project walk.boneless --frame 40 --screenshot walk.png --size 640x480\n\n"
         "boneless-cli solves, inspects and maps takes from scripts.");
-    parser.addHelpOption();
-    parser.addVersionOption();
+    const QCommandLineOption help = parser.addHelpOption();
+    const QCommandLineOption version = parser.addVersionOption();
     const QCommandLineOption project("project", "Open the project file P.", "P");
     const QCommandLineOption frame("frame", "Show frame N (0-based) of the take.", "N");
     const QCommandLineOption screenshot("screenshot",
@@ -93,6 +91,23 @@ int main(int argc, char** argv) {
                                   "WxH", "800x600");
     parser.addOptions({project, frame, screenshot, noMsaa, size});
     parser.addPositionalArgument("files", "Projects, meshes, takes or maps to open.", "[FILE...]");
+
+    // --help and --version are answered before the QApplication, which aborts without a display
+    // (ssh, a headless machine). The rest waits for it: Qt's own options (-platform) are its, and
+    // --help-all lists them.
+    {
+        QStringList arguments;
+        for (int i = 0; i < argc; ++i) arguments << QString::fromLocal8Bit(argv[i]);
+        (void)parser.parse(arguments);  // process() below reports the errors
+        if (parser.isSet(version) || parser.isSet(help)) {
+            const QCoreApplication core(argc, argv);  // for the program's name in the usage
+            if (parser.isSet(version)) parser.showVersion();
+            parser.showHelp(0);
+        }
+    }
+
+    boneless::ui::setDefaultSurfaceFormat();
+    QApplication app(argc, argv);
     parser.process(app);
 
     const bool batch = parser.isSet(screenshot);

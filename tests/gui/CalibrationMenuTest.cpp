@@ -8,6 +8,7 @@
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QStatusBar>
+#include <QTableView>
 #include <QUndoStack>
 #include <QtTest>
 
@@ -15,6 +16,7 @@
 #include "boneless/ui/Document.h"
 #include "boneless/ui/FrameSolver.h"
 #include "boneless/ui/MainWindow.h"
+#include "boneless/ui/MarkerListModel.h"
 #include "boneless/ui/MeshView.h"
 #include "boneless/ui/Timeline.h"
 
@@ -225,6 +227,64 @@ class CalibrationMenuTest : public QObject {
         QVERIFY2(!summary.contains("residual"), qPrintable(summary));
         QVERIFY(trigger(*window_, "showFrame"));
         QVERIFY2(window_->frameSummary().contains("residual"), qPrintable(window_->frameSummary()));
+    }
+
+    // Nor are the marker list's residuals the rest's: the column is blank on a rest, scrubbed
+    // or not, and holds the frame's again when the frame is shown.
+    void theResidualColumnIsBlankWhileARestIsShown() {
+        QAbstractItemModel* model = window_->markerTable()->model();
+        auto residuals = [&] {
+            QStringList cells;
+            for (int row = 0; row < model->rowCount(); ++row)
+                if (const QString text =
+                        model->index(row, MarkerListModel::ResidualColumn).data().toString();
+                    !text.isEmpty())
+                    cells << text;
+            return cells;
+        };
+        QVERIFY(trigger(*window_, "showFrame"));
+        QVERIFY2(residuals().size() > model->rowCount() / 2, qPrintable(residuals().join(" ")));
+        for (const char* rest : {"showCalibratedRest", "showRest"}) {
+            QVERIFY(trigger(*window_, rest));
+            QVERIFY2(residuals().isEmpty(), qPrintable(rest + (": " + residuals().join(" "))));
+        }
+        Timeline* timeline = window_->timeline();
+        const int frame = (timeline->frame() + 5) % timeline->frameCount();
+        timeline->setFrame(frame);
+        QVERIFY(test::waitForFrame(*window_));
+        QVERIFY2(residuals().isEmpty(), qPrintable(residuals().join(" ")));
+
+        QVERIFY(trigger(*window_, "showFrame"));
+        QVERIFY2(residuals().size() > model->rowCount() / 2, qPrintable(residuals().join(" ")));
+        for (int row = 0; row < model->rowCount(); ++row) {
+            const QModelIndex cell = model->index(row, MarkerListModel::ResidualColumn);
+            if (cell.data().toString().isEmpty()) continue;
+            const QString tip = cell.data(Qt::ToolTipRole).toString();
+            QVERIFY2(tip.endsWith(QString("frame %1").arg(frame)), qPrintable(tip));
+        }
+    }
+
+    // Trails are the take's markers over the frames before this one, around the posed mesh. A
+    // rest is not posed: they would hang off the body, so a rest has none, scrubbed or not, and
+    // the frame has them again.
+    void theTrailsAreDrawnWithTheFrameAndNotOnARest() {
+        MeshView* view = window_->meshView();
+        for (QAction* action : window_->findChildren<QAction*>())
+            if (action->text() == "Marker &Trails") action->setChecked(true);
+        Timeline* timeline = window_->timeline();
+        timeline->setFrame(20);  // frame 0 has no frame before it, so no trail
+        QVERIFY(test::waitForFrame(*window_));
+        QVERIFY(trigger(*window_, "showFrame"));
+        QVERIFY(view->trailsVisible());
+        for (const char* rest : {"showCalibratedRest", "showRest"}) {
+            QVERIFY(trigger(*window_, rest));
+            QVERIFY2(!view->trailsVisible(), rest);
+        }
+        timeline->setFrame(30);
+        QVERIFY(test::waitForFrame(*window_));
+        QVERIFY(!view->trailsVisible());
+        QVERIFY(trigger(*window_, "showFrame"));
+        QVERIFY(view->trailsVisible());
     }
 
     void theCalibrationMenuChecksTheModeInUseThroughUndoAndRedo() {

@@ -186,7 +186,6 @@ void FrameDisplay::onFrameReady(const FrameResult& result) {
     result_ = result;
     displayedFrame_ = result.frame;
     showResult();
-    updateTrails(result.frame);
     if (heatMap_ && !result.shapeError.empty()) {
         // Shape error comes in mesh units; a user reads millimetres, as in the residuals.
         const double meshUnitsPerMm =
@@ -209,6 +208,7 @@ void FrameDisplay::onFrameReady(const FrameResult& result) {
 void FrameDisplay::setShown(Shown shown) {
     if (shown_ == shown) return;
     shown_ = shown;
+    markers_->setRestShown(shown_ != Shown::Frame);
     if (result_ && solving_) showResult();
     emitStatus();
 }
@@ -225,6 +225,7 @@ void FrameDisplay::showResult() {
     markersOnRest_ = !frame;
     if (frame) markerPositions_ = result.markers;
     updateMarkers();
+    updateTrails(result.frame);
 }
 
 void FrameDisplay::updateFloor() {
@@ -276,7 +277,9 @@ void FrameDisplay::updateMarkers() {
 }
 
 void FrameDisplay::updateTrails(int frame) {
-    if (!trails_ || !document_->hasTake() || frame < 0) {
+    // Trails are the take's markers over the frames before this one, where the posed mesh meets
+    // them. A rest is not posed and draws its markers at their vertices: trails would float.
+    if (!trails_ || !document_->hasTake() || frame < 0 || markersOnRest_) {
         view_->setTrails({});
         return;
     }

@@ -27,7 +27,7 @@ class FrameDisplay : public QObject {
     // What the view shows of a solved frame: the frame itself, the rest it was solved against
     // (the calibrated rest when calibrating: the mesh in the actor's proportions and pose at the
     // calibration frame), or the mesh's own rest. On a rest the mapped markers are drawn at their
-    // vertices: the take's, at this frame, would float off the body.
+    // vertices, and no trails: the take's, around this frame, would float off the body.
     enum class Shown { Frame, CalibratedRest, Rest };
     FrameDisplay(Document* document, FrameSolver* solver, Timeline* timeline, MeshView* view,
                  MarkerListModel* markers, QObject* parent = nullptr);

@@ -60,13 +60,21 @@ void MarkerListModel::setFrameResult(const FrameResult& result) {
     emitColumnChanged(ResidualColumn);
 }
 
+void MarkerListModel::setRestShown(bool rest) {
+    if (rest == restShown_) return;
+    restShown_ = rest;
+    emitColumnChanged(ResidualColumn);
+}
+
 QVariant MarkerListModel::data(const QModelIndex& index, int role) const {
     if (!index.isValid() || index.row() >= rowCount()) return {};
     const int m = index.row();
     const int vertex = document_->mappedVertex(m);
     const bool visible = document_->markerVisible(m, frame_);
-    const double residual =
-        m < int(residualMm_.size()) ? residualMm_[m] : std::numeric_limits<double>::quiet_NaN();
+    // The residuals are kept while a rest is shown, for the frame's return.
+    const double residual = !restShown_ && m < int(residualMm_.size())
+                                ? residualMm_[m]
+                                : std::numeric_limits<double>::quiet_NaN();
     switch (role) {
         case MarkerRole:
             return m;
@@ -105,6 +113,8 @@ QVariant MarkerListModel::data(const QModelIndex& index, int role) const {
     }
     if (role == Qt::ToolTipRole && index.column() == ResidualColumn && std::isfinite(residual))
         return tr("Marker to the posed mesh at frame %1").arg(residualFrame_);
+    if (role == Qt::ToolTipRole && index.column() == ResidualColumn && restShown_)
+        return tr("A rest is shown: residuals are a frame's (View → Show → Frame)");
     if (role == Qt::ForegroundRole && document_->hasTake() && !visible)
         return QBrush(QPalette().color(QPalette::Disabled, QPalette::Text));
     if (role == Qt::TextAlignmentRole && index.column() != LabelColumn)

@@ -262,6 +262,10 @@ void MeshScene::setTrails(const std::vector<Positions>& trails) {
     trailActor_->SetVisibility(lines->GetNumberOfCells() > 0);
 }
 
+bool MeshScene::trailsVisible() const {
+    return trailActor_->GetVisibility();
+}
+
 void MeshScene::setHeatMap(const std::vector<float>& values, const QString& title) {
     if (values.empty() || static_cast<Eigen::Index>(values.size()) != V_.rows()) {
         mesh_->GetPointData()->SetScalars(nullptr);

@@ -48,6 +48,7 @@ class MeshScene {
     void layoutLabels() { labels_.layout(renderer_); }
     const MarkerLabels& labels() const { return labels_; }
     void setTrails(const std::vector<Positions>& trails);
+    bool trailsVisible() const;
     // `title` names the quantity and its units, for the legend.
     void setHeatMap(const std::vector<float>& values, const QString& title);
     bool legendVisible() const;

@@ -268,6 +268,10 @@ void MeshView::setTrails(const std::vector<Positions>& trails) {
     update();
 }
 
+bool MeshView::trailsVisible() const {
+    return d_->scene.trailsVisible();
+}
+
 void MeshView::setHeatMap(const std::vector<float>& values, const QString& title) {
     d_->scene.setHeatMap(values, title);
     update();

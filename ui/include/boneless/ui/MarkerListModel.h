@@ -10,7 +10,8 @@ class Document;
 struct FrameResult;
 
 // The Document's markers as a table: label, mapped vertex, visible/missing at the current frame,
-// residual (mm) in the last solved frame. One row per Document marker, same order.
+// residual (mm) in the last solved frame (none while a rest is shown). One row per Document
+// marker, same order.
 class MarkerListModel : public QAbstractTableModel {
     Q_OBJECT
   public:
@@ -39,6 +40,9 @@ class MarkerListModel : public QAbstractTableModel {
   public slots:
     void setFrame(int frame);  // visibility column follows the timeline
     void setFrameResult(const boneless::ui::FrameResult& result);  // residual column
+    // A rest on screen has no frame: the residual column is blank until the frame is back, as
+    // the status bar drops the frame's residual.
+    void setRestShown(bool rest);
 
   private:
     void rebuild();
@@ -48,6 +52,7 @@ class MarkerListModel : public QAbstractTableModel {
     int frame_ = 0;
     std::vector<double> residualMm_;
     int residualFrame_ = -1;
+    bool restShown_ = false;
 };
 
 // Filters the marker list: text in the label (case-insensitive), and a state.

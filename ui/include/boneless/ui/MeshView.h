@@ -51,6 +51,8 @@ class MeshView : public QOpenGLWidget {
     bool labelsVisible() const;
     // One polyline per marker (NaN rows break it); empty = no trails.
     void setTrails(const std::vector<Positions>& trails);
+    // Whether a trail is drawn (one of two points or more).
+    bool trailsVisible() const;
     // Per-vertex scalars coloured from blue (0) to red (max), with a colour legend titled with
     // the quantity and its units ("Shape error (mm)"); empty = plain shading, no legend.
     void setHeatMap(const std::vector<float>& values, const QString& title = {});
