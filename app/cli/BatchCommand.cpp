@@ -223,19 +223,29 @@ bool sameFile(const json& recorded, const std::string& path) {
 using Fingerprints = std::map<std::pair<std::string, bool>, std::string>;
 
 // Why the job's input files are not those its sidecar's fingerprints describe, or "" if they are:
-// a map corrected since, a mesh edited, a take recaptured. A sidecar that records none (an older
-// Boneless wrote it) cannot vouch for its inputs either.
+// a map corrected since, a mesh edited, a take recaptured, a glb's texture repainted. A sidecar
+// that records none (an older Boneless wrote it) cannot vouch for its inputs either.
 std::string changedInputs(const json& recorded, const TakeJob& job, Fingerprints& known) {
     if (!recorded.is_object()) return "its sidecar does not record what its inputs held";
+    const bool glb = job.format == exportFormatInfo(ExportFormat::Glb).name;
+    // Sidecars written before the glb's materials were fingerprinted: it may hold old ones.
+    if (glb && !recorded.value("materials", json()).is_object())
+        return "its sidecar does not record what the glb's material files held";
     std::vector<std::string> changed;
-    for (const auto& [key, path, contents] :
-         {std::tuple{"mesh", &job.mesh, true}, {"c3d", &job.c3d, false}, {"map", &job.map, true}}) {
-        auto it = known.find({*path, contents});
+    const auto compare = [&](const std::string& path, bool contents, const json& then) {
+        auto it = known.find({path, contents});
         if (it == known.end())
-            it = known.emplace(std::pair{*path, contents}, fileFingerprint(*path, contents)).first;
-        if (recorded.value(key, json()) != it->second)
-            changed.push_back(fs::path(*path).filename().string());
-    }
+            it = known.emplace(std::pair{path, contents}, fileFingerprint(path, contents)).first;
+        if (then != it->second) changed.push_back(fs::path(path).filename().string());
+    };
+    for (const auto& [key, path, contents] :
+         {std::tuple{"mesh", &job.mesh, true}, {"c3d", &job.c3d, false}, {"map", &job.map, true}})
+        compare(*path, contents, recorded.value(key, json()));
+    // The libraries and textures as the sidecar names them: which ones the glb reads can only
+    // change with the mesh or a library, whose own fingerprints would differ. A name that is not
+    // UTF-8 is recorded as read in Latin-1, names no file, and is solved again each run.
+    if (glb)
+        for (const auto& [file, then] : recorded.at("materials").items()) compare(file, true, then);
     if (changed.empty()) return "";
     std::string names;
     for (std::size_t i = 0; i < changed.size(); ++i)

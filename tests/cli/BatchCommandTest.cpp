@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "CliRunner.h"
+#include "TestFiles.h"
 
 using namespace boneless::testing;
 namespace fs = std::filesystem;
@@ -561,4 +562,66 @@ TEST(Batch, AFolderScanLeavesOutDotFilesAndFailsALinkToATakeThatIsGone) {
         << r.out;
     EXPECT_EQ(r.out.find("hidden"), std::string::npos) << r.out;
     EXPECT_EQ(r.out.find("._walk_a"), std::string::npos) << r.out;
+}
+
+// A glb embeds the OBJ's material library and its textures: before, only the mesh, take and map
+// were fingerprinted, so a texture or a Kd changed after the run left the glb skipped, old inside.
+TEST(Batch, AGlbWhoseMaterialLibraryOrTextureChangedIsSolvedAgainSayingWhich) {
+    const fs::path dir = makeLibrary();
+    addTextureCoordinatesAndMaterial((dir / "walker.obj").string(), "walker.mtl", "skin");
+    std::ofstream(dir / "walker.mtl") << "newmtl skin\nKd 0.8 0.6 0.5\nmap_Kd tex/skin.png\n";
+    fs::create_directories(dir / "tex");
+    std::ofstream(dir / "tex" / "skin.png", std::ios::binary) << twoByTwoPng();
+    const json entry = {{"mesh", "walker.obj"}, {"map", "walker.map.json"}};
+    json glb = entry, pc2 = entry;
+    glb.update({{"c3d", "takes/walk_a.c3d"}, {"out", "glb"}, {"format", "glb"}});
+    pc2.update({{"c3d", "takes/walk_b.c3d"}, {"out", "pc2"}, {"format", "pc2"}});
+    const fs::path manifest = writeManifest(dir, "m.json", {{"takes", {glb, pc2}}});
+    ASSERT_EQ(runCli("batch " + manifest.string()).exitCode, 0);
+    auto bytes = [](const fs::path& path) {
+        std::ostringstream text;
+        text << std::ifstream(path, std::ios::binary).rdbuf();
+        return text.str();
+    };
+    const std::string before = bytes(dir / "glb" / "walker.glb");
+
+    // Another image: the glb now embeds it; a point cache embeds no texture and stays done.
+    std::ofstream(dir / "tex" / "skin.png", std::ios::binary | std::ios::app) << "repainted";
+    CliResult r = runCli("batch " + manifest.string());
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("skin.png changed since it was solved, solving again"), std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("1 solved, 1 skipped"), std::string::npos) << r.out;
+    EXPECT_NE(bytes(dir / "glb" / "walker.glb"), before);
+    r = runCli("batch " + manifest.string());
+    EXPECT_NE(r.out.find("0 solved, 2 skipped"), std::string::npos) << r.out;
+
+    std::ofstream(dir / "walker.mtl") << "newmtl skin\nKd 0.2 0.6 0.5\nmap_Kd tex/skin.png\n";
+    r = runCli("batch " + manifest.string());
+    EXPECT_NE(r.out.find("walker.mtl changed since it was solved, solving again"),
+              std::string::npos)
+        << r.out;
+    fs::remove(dir / "tex" / "skin.png");
+    r = runCli("batch " + manifest.string());
+    EXPECT_NE(r.out.find("skin.png changed since it was solved, solving again"), std::string::npos)
+        << r.out;
+    // A texture the library names but that was missing when solved is an input too, once there.
+    std::ofstream(dir / "tex" / "skin.png", std::ios::binary) << twoByTwoPng();
+    r = runCli("batch " + manifest.string());
+    EXPECT_NE(r.out.find("skin.png changed since it was solved, solving again"), std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("1 solved, 1 skipped"), std::string::npos) << r.out;
+
+    // A glb's sidecar from before cannot say what its materials held.
+    const fs::path sidecar = dir / "glb" / "walker.json";
+    json j = json::parse(std::ifstream(sidecar));
+    EXPECT_EQ(j["source_fingerprints"]["materials"].size(), 2u) << j["source_fingerprints"];
+    j["source_fingerprints"].erase("materials");
+    std::ofstream(sidecar) << j.dump();
+    r = runCli("batch " + manifest.string());
+    EXPECT_NE(r.out.find("its sidecar does not record what the glb's material files held, solving "
+                         "again"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("1 solved, 1 skipped"), std::string::npos) << r.out;
 }

@@ -26,6 +26,7 @@
 #include "boneless/ActorCalibration.h"
 #include "boneless/C3dFrameReader.h"
 #include "boneless/Error.h"
+#include "boneless/MaterialFiles.h"
 #include "boneless/Metrics.h"
 #include "boneless/ObjWriter.h"
 #include "boneless/Parallel.h"
@@ -444,11 +445,18 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
     // While the outputs are being rewritten, no earlier sidecar may say they are complete.
     fs::remove(result.sidecarPath, ec);
     // Taken before solving: a map corrected while the take solves is not the one solved.
-    const json fingerprints = {
+    json fingerprints = {
         {"mesh", fileFingerprint(request.meshPath, true)},
         {"c3d", fileFingerprint(request.c3dPath, false)},
         {"map",
          request.mapPath.empty() ? json(nullptr) : json(fileFingerprint(request.mapPath, true))}};
+    // A glb embeds the OBJ's materials and textures, so they are its inputs as much as the mesh.
+    if (request.format == ExportFormat::Glb) {
+        json& materials = fingerprints["materials"] = json::object();
+        if (mesh.sourceFaces)
+            for (const std::string& file : materialFiles(*mesh.sourceFaces))
+                materials[validUtf8(file)] = fileFingerprint(file, true);
+    }
     FrameOutput output =
         openFrameOutput(request.format, request.outDir, stem, mesh, request.first, take.rate,
                         "Boneless: " + request.c3dPath,
