@@ -32,6 +32,33 @@ struct BatchArgs {
     bool quiet = false;
 };
 
+// A manifest key as written ("fill-gaps", from manifests of before) under its JSON name.
+std::string underscored(std::string written) {
+    std::replace(written.begin(), written.end(), '-', '_');
+    return written;
+}
+
+// Where `written` stands among the names of `option`: today's key first, then its old keys in
+// order, each written with '_' before its dashed spelling (the manifests of before).
+int nameRank(const TakeOption& option, const std::string& written) {
+    const std::string key = underscored(written);
+    std::vector<std::string> names{option.key};
+    names.insert(names.end(), option.oldKeys.begin(), option.oldKeys.end());
+    const auto at = std::find(names.begin(), names.end(), key) - names.begin();
+    return 2 * static_cast<int>(at) + (key != written ? 1 : 0);
+}
+
+// Whether `object` also names `option` by a name that comes before `written`: read in the keys'
+// (alphabetical) order, "weight" overrode "marker_weight". As projects and sidecars read them
+// (TakeOptionsJson's lookUp), today's name wins whatever the order.
+bool outranked(const json& object, const TakeOption& option, const std::string& written) {
+    for (const auto& [other, value] : object.items())
+        if (findTakeOption(underscored(other)) == &option &&
+            nameRank(option, other) < nameRank(option, written))
+            return true;
+    return false;
+}
+
 // The keys a manifest entry may hold: the names of `solve`'s options, each its flag's name with
 // '_' for '-' (the options of core's table: their JSON keys). Dashed keys, which manifests held
 // before, read the same.
@@ -42,8 +69,7 @@ void applyKeys(const json& object, const fs::path& base, const std::string& wher
     };
     if (!object.is_object()) throw Error(where + ": an entry is a JSON object");
     for (const auto& [written, value] : object.items()) {
-        std::string key = written;
-        std::replace(key.begin(), key.end(), '-', '_');
+        const std::string key = underscored(written);
         try {
             if (key == "mesh")
                 job.mesh = path(value);
@@ -72,7 +98,7 @@ void applyKeys(const json& object, const fs::path& base, const std::string& wher
             else if (const TakeOption* option = findTakeOption(key)) {
                 TakeSolveOptions check;  // names the key and what is wrong, before any solve
                 fromJson(json{{key, value}}, check, where);
-                for (const std::string& old : option->oldKeys) job.options.erase(old);
+                if (outranked(object, *option, written)) continue;
                 job.options[option->key] = value;
             } else
                 throw Error(where + ": unknown key '" + written + "'");

@@ -625,3 +625,32 @@ TEST(Batch, AGlbWhoseMaterialLibraryOrTextureChangedIsSolvedAgainSayingWhich) {
         << r.out;
     EXPECT_NE(r.out.find("1 solved, 1 skipped"), std::string::npos) << r.out;
 }
+
+// An old name beside today's in one object: the keys were read in alphabetical order, each
+// erasing the other, so "weight" beat "marker_weight" and "lowpass" beat "low_pass_hz". Today's
+// name wins, as in projects and sidecars; an entry's own key, old or not, still beats the
+// defaults'.
+TEST(Batch, TodaysOptionNameWinsOverItsOldNameGivenInTheSameEntryOrDefaults) {
+    const fs::path dir = makeLibrary();
+    const json both = {{"weight", 5}, {"marker_weight", 7}, {"low_pass_hz", 6}, {"lowpass", 0}};
+    const json entry = {{"mesh", "walker.obj"}, {"map", "walker.map.json"}, {"format", "pc2"}};
+    json own = entry, defaulted = entry, old = entry;
+    own.update(both);
+    own.update({{"c3d", "takes/walk_a.c3d"}, {"out", "own"}});
+    defaulted.update({{"c3d", "takes/walk_b.c3d"}, {"out", "defaulted"}});
+    old.update({{"c3d", "takes/walk_c.c3d"}, {"out", "old"}, {"weight", 9}});
+    const json defaults = {
+        {"weight", 50}, {"marker_weight", 70}, {"low_pass_hz", 8}, {"lowpass", 0}};
+    const fs::path manifest =
+        writeManifest(dir, "m.json", {{"defaults", defaults}, {"takes", {own, defaulted, old}}});
+    const CliResult r = runCli("batch " + manifest.string());
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    auto options = [&](const char* out) {
+        return json::parse(std::ifstream(dir / out / "walker.json"))["options"];
+    };
+    EXPECT_EQ(options("own")["marker_weight"], 7.0);
+    EXPECT_EQ(options("own")["low_pass_hz"], 6.0);
+    EXPECT_EQ(options("defaulted")["marker_weight"], 70.0);
+    EXPECT_EQ(options("defaulted")["low_pass_hz"], 8.0);
+    EXPECT_EQ(options("old")["marker_weight"], 9.0);
+}
