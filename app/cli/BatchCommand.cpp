@@ -237,11 +237,20 @@ std::pair<int, int> parseShard(const std::string& text) {
 
 enum class Sidecar { Missing, Complete, Stale };
 
-// One file however it is spelled: sidecars written before the manifest's paths were made absolute
-// name them relative, and a path that is not UTF-8 is recorded as validUtf8 reads it.
+// One file however it is spelled: a path that is not UTF-8 is recorded as validUtf8 reads it.
+// Sidecars written before solve recorded paths in full name them as typed, relative to a folder
+// unknown here: such a path that ends the job's is taken for its file, and the fingerprints,
+// compared next, say whether the file is the one solved.
 bool sameFile(const json& recorded, const std::string& path) {
-    return recorded.is_string() && (recorded.get<std::string>() == validUtf8(path) ||
-                                    boneless::sameFile(recorded.get<std::string>(), path));
+    if (!recorded.is_string()) return false;
+    const std::string named = recorded.get<std::string>();
+    if (named == validUtf8(path) || boneless::sameFile(named, path)) return true;
+    const fs::path tail = fs::path(named).lexically_normal();
+    if (tail.is_absolute() || tail.empty() || *tail.begin() == "..") return false;
+    const fs::path full = fs::path(validUtf8(path)).lexically_normal();
+    const auto parts = [](const fs::path& p) { return std::vector<fs::path>(p.begin(), p.end()); };
+    const std::vector<fs::path> a = parts(tail), b = parts(full);
+    return a.size() <= b.size() && std::equal(a.rbegin(), a.rend(), b.rbegin());
 }
 
 // Fingerprints of the files this run has read so far: a library's takes share a few meshes and
@@ -319,10 +328,25 @@ Sidecar sidecarState(const TakeJob& job, Fingerprints& known, std::string& why) 
     try {
         const json s = json::parse(in);
         const json& src = s.at("source");
-        if (!s.at("complete").get<bool>() || s.at("output") != job.format ||
-            !sameFile(src.at("mesh"), job.mesh) || src.at("group") != validUtf8(job.group) ||
-            !sameFile(src.at("c3d"), job.c3d) || !sameFile(src.at("map"), job.map))
-            return Sidecar::Missing;
+        // Said, as every reason to solve again is: a take re-solved in silence looks like a bug.
+        const auto other = [](const char* what, const json& recorded) {
+            const std::string named = recorded.is_string() ? recorded.get<std::string>() : "";
+            return std::string("its sidecar is from another ") + what + " (" +
+                   (named.empty() ? "none" : named) + ")";
+        };
+        if (!s.at("complete").get<bool>())
+            why = "its sidecar says its run did not finish";
+        else if (s.at("output") != job.format)
+            why = other("format", s.at("output"));
+        else if (!sameFile(src.at("mesh"), job.mesh))
+            why = other("mesh", src.at("mesh"));
+        else if (src.at("group") != validUtf8(job.group))
+            why = other("group", src.at("group"));
+        else if (!sameFile(src.at("c3d"), job.c3d))
+            why = other("take", src.at("c3d"));
+        else if (!sameFile(src.at("map"), job.map))
+            why = other("map", src.at("map"));
+        if (!why.empty()) return Sidecar::Stale;
         TakeSolveOptions options;
         fromJson(job.options, options, "options");
         const FrameRange range = parseFrameRange(job.frames);
@@ -338,7 +362,8 @@ Sidecar sidecarState(const TakeJob& job, Fingerprints& known, std::string& why) 
         if (why.empty()) why = changedInputs(s.value("source_fingerprints", json()), job, known);
         return why.empty() ? Sidecar::Complete : Sidecar::Stale;
     } catch (const json::exception&) {
-        return Sidecar::Missing;  // unreadable or from an older version: solve it again
+        why = "its sidecar cannot be read (cut short, or from an older Boneless)";
+        return Sidecar::Stale;
     } catch (const Error&) {
         return Sidecar::Missing;  // the take is unreadable now: solving says why
     }

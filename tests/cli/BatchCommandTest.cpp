@@ -114,6 +114,9 @@ TEST(Batch, ARunAgainSkipsTheTakesItFinished) {
     EXPECT_NE(again.out.find("3 of 3 entries in shard 1/1: 1 solved, 2 skipped, 0 failed"),
               std::string::npos)
         << again.out;
+    EXPECT_NE(again.out.find("its sidecar says its run did not finish, solving again"),
+              std::string::npos)
+        << again.out;
     EXPECT_EQ(fs::last_write_time(dir / "out" / "walk_a" / "walker_0000.obj"), before);
     EXPECT_TRUE(json::parse(std::ifstream(sidecar))["complete"]);
 }
@@ -653,4 +656,44 @@ TEST(Batch, TodaysOptionNameWinsOverItsOldNameGivenInTheSameEntryOrDefaults) {
     EXPECT_EQ(options("defaulted")["marker_weight"], 70.0);
     EXPECT_EQ(options("defaulted")["low_pass_hz"], 8.0);
     EXPECT_EQ(options("old")["marker_weight"], 9.0);
+}
+
+// solve recorded its inputs as typed, relative to the folder it ran in: a batch of the same take
+// (which names them in full) solved it again, and said nothing of why.
+TEST(Batch, ATakeSolvedFromAnyFolderIsSkippedAndOneFromOtherFilesIsSolvedAgainSayingSo) {
+    const fs::path dir = makeLibrary();
+    const std::string lib = dir.filename().string();
+    const CliResult solved =
+        runShell("cd " + dir.parent_path().string() + " && " + BONELESS_CLI + " solve --mesh " +
+                 lib + "/walker.obj --c3d " + lib + "/takes/walk_a.c3d --map " + lib +
+                 "/walker.map.json --out " + lib + "/cliexp --format pc2 --quiet 2>&1");
+    ASSERT_EQ(solved.exitCode, 0) << solved.out;
+    const fs::path sidecar = dir / "cliexp" / "walker.json";
+    json j = json::parse(std::ifstream(sidecar));
+    EXPECT_EQ(j["source"]["mesh"], (dir / "walker.obj").string());
+    EXPECT_EQ(j["source"]["c3d"], (dir / "takes" / "walk_a.c3d").string());
+    const json entry = {{"mesh", "walker.obj"},
+                        {"c3d", "takes/walk_a.c3d"},
+                        {"map", "walker.map.json"},
+                        {"out", "cliexp"},
+                        {"format", "pc2"}};
+    const fs::path manifest = writeManifest(dir, "m.json", {{"takes", {entry}}});
+    CliResult r = runCli("batch " + manifest.string());
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("0 solved, 1 skipped"), std::string::npos) << r.out;
+
+    // A sidecar from before, with the paths as typed in the folder above: the same files.
+    j["source"]["mesh"] = lib + "/walker.obj";
+    j["source"]["map"] = "./" + lib + "/walker.map.json";
+    std::ofstream(sidecar) << j.dump();
+    r = runCli("batch " + manifest.string());
+    EXPECT_NE(r.out.find("0 solved, 1 skipped"), std::string::npos) << r.out;
+    // One naming another mesh is solved again, and the line says so.
+    j["source"]["mesh"] = "elsewhere/walker.obj";
+    std::ofstream(sidecar) << j.dump();
+    r = runCli("batch " + manifest.string());
+    EXPECT_NE(r.out.find("its sidecar is from another mesh (elsewhere/walker.obj), solving again"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("1 solved, 0 skipped"), std::string::npos) << r.out;
 }

@@ -222,6 +222,15 @@ json calibrationJson(const ExportRequest& request, const TriMesh& mesh, const Ta
     return j;
 }
 
+// An input as the sidecar names it: in full, so that the same file is recognised whichever folder
+// solve, batch or the app ran in. JSON holds only UTF-8: a Latin-1 name is read as Latin-1.
+json recordedPath(const std::string& path) {
+    if (path.empty()) return nullptr;  // the app's map may be in no file
+    std::error_code ec;
+    const fs::path full = fs::absolute(path, ec);
+    return validUtf8(ec ? path : full.string());
+}
+
 json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibration& c,
                  const ExportResult& result, json fingerprints, json calibration, json summary) {
     const Similarity& s = c.takeToMesh;
@@ -235,11 +244,10 @@ json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibr
             {"complete", !result.cancelled},
             {"output", exportFormatInfo(request.format).name},
             {"source",
-             // JSON holds only UTF-8: a Latin-1 file name is recorded read as Latin-1.
-             {{"mesh", validUtf8(request.meshPath)},
+             {{"mesh", recordedPath(request.meshPath)},
               {"group", validUtf8(request.group)},
-              {"c3d", validUtf8(request.c3dPath)},
-              {"map", request.mapPath.empty() ? json(nullptr) : json(validUtf8(request.mapPath))}}},
+              {"c3d", recordedPath(request.c3dPath)},
+              {"map", recordedPath(request.mapPath)}}},
             {"source_fingerprints", std::move(fingerprints)},
             {"units",
              {{"take", take.units},
