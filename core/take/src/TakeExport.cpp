@@ -177,8 +177,11 @@ class PerFrameFigures {
         std::vector<double> ms = ms_;
         std::sort(ms.begin(), ms.end());
         const std::size_t n = ms.size();
-        return {{"residual_rms_mm_mean", residualFrames_ ? residualSum_ / residualFrames_ : 0.0},
-                {"residual_rms_mm_worst_frame", residualWorst_},
+        // Every frame held (none shows a marker): no residual at all, which 0 would call a
+        // perfect fit.
+        const auto residual = [&](double x) { return residualFrames_ ? json(x) : json(nullptr); };
+        return {{"residual_rms_mm_mean", residual(residualSum_ / std::max(residualFrames_, 1))},
+                {"residual_rms_mm_worst_frame", residual(residualWorst_)},
                 {"edge_distortion_mean", n ? distortionSum_ / n : 0.0},
                 {"edge_distortion_worst_frame", distortionWorst_},
                 {"edge_strain_p95_worst_frame", strainWorst_},
