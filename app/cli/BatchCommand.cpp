@@ -32,6 +32,33 @@ struct BatchArgs {
     bool quiet = false;
 };
 
+// A manifest key as written ("fill-gaps", from manifests of before) under its JSON name.
+std::string underscored(std::string written) {
+    std::replace(written.begin(), written.end(), '-', '_');
+    return written;
+}
+
+// Where `written` stands among the names of `option`: today's key first, then its old keys in
+// order, each written with '_' before its dashed spelling (the manifests of before).
+int nameRank(const TakeOption& option, const std::string& written) {
+    const std::string key = underscored(written);
+    std::vector<std::string> names{option.key};
+    names.insert(names.end(), option.oldKeys.begin(), option.oldKeys.end());
+    const auto at = std::find(names.begin(), names.end(), key) - names.begin();
+    return 2 * static_cast<int>(at) + (key != written ? 1 : 0);
+}
+
+// Whether `object` also names `option` by a name that comes before `written`: read in the keys'
+// (alphabetical) order, "weight" overrode "marker_weight". As projects and sidecars read them
+// (TakeOptionsJson's lookUp), today's name wins whatever the order.
+bool outranked(const json& object, const TakeOption& option, const std::string& written) {
+    for (const auto& [other, value] : object.items())
+        if (findTakeOption(underscored(other)) == &option &&
+            nameRank(option, other) < nameRank(option, written))
+            return true;
+    return false;
+}
+
 // The keys a manifest entry may hold: the names of `solve`'s options, each its flag's name with
 // '_' for '-' (the options of core's table: their JSON keys). Dashed keys, which manifests held
 // before, read the same.
@@ -42,8 +69,7 @@ void applyKeys(const json& object, const fs::path& base, const std::string& wher
     };
     if (!object.is_object()) throw Error(where + ": an entry is a JSON object");
     for (const auto& [written, value] : object.items()) {
-        std::string key = written;
-        std::replace(key.begin(), key.end(), '-', '_');
+        const std::string key = underscored(written);
         try {
             if (key == "mesh")
                 job.mesh = path(value);
@@ -72,7 +98,7 @@ void applyKeys(const json& object, const fs::path& base, const std::string& wher
             else if (const TakeOption* option = findTakeOption(key)) {
                 TakeSolveOptions check;  // names the key and what is wrong, before any solve
                 fromJson(json{{key, value}}, check, where);
-                for (const std::string& old : option->oldKeys) job.options.erase(old);
+                if (outranked(object, *option, written)) continue;
                 job.options[option->key] = value;
             } else
                 throw Error(where + ": unknown key '" + written + "'");
@@ -211,11 +237,20 @@ std::pair<int, int> parseShard(const std::string& text) {
 
 enum class Sidecar { Missing, Complete, Stale };
 
-// One file however it is spelled: sidecars written before the manifest's paths were made absolute
-// name them relative, and a path that is not UTF-8 is recorded as validUtf8 reads it.
+// One file however it is spelled: a path that is not UTF-8 is recorded as validUtf8 reads it.
+// Sidecars written before solve recorded paths in full name them as typed, relative to a folder
+// unknown here: such a path that ends the job's is taken for its file, and the fingerprints,
+// compared next, say whether the file is the one solved.
 bool sameFile(const json& recorded, const std::string& path) {
-    return recorded.is_string() && (recorded.get<std::string>() == validUtf8(path) ||
-                                    boneless::sameFile(recorded.get<std::string>(), path));
+    if (!recorded.is_string()) return false;
+    const std::string named = recorded.get<std::string>();
+    if (named == validUtf8(path) || boneless::sameFile(named, path)) return true;
+    const fs::path tail = fs::path(named).lexically_normal();
+    if (tail.is_absolute() || tail.empty() || *tail.begin() == "..") return false;
+    const fs::path full = fs::path(validUtf8(path)).lexically_normal();
+    const auto parts = [](const fs::path& p) { return std::vector<fs::path>(p.begin(), p.end()); };
+    const std::vector<fs::path> a = parts(tail), b = parts(full);
+    return a.size() <= b.size() && std::equal(a.rbegin(), a.rend(), b.rbegin());
 }
 
 // Fingerprints of the files this run has read so far: a library's takes share a few meshes and
@@ -223,19 +258,29 @@ bool sameFile(const json& recorded, const std::string& path) {
 using Fingerprints = std::map<std::pair<std::string, bool>, std::string>;
 
 // Why the job's input files are not those its sidecar's fingerprints describe, or "" if they are:
-// a map corrected since, a mesh edited, a take recaptured. A sidecar that records none (an older
-// Boneless wrote it) cannot vouch for its inputs either.
+// a map corrected since, a mesh edited, a take recaptured, a glb's texture repainted. A sidecar
+// that records none (an older Boneless wrote it) cannot vouch for its inputs either.
 std::string changedInputs(const json& recorded, const TakeJob& job, Fingerprints& known) {
     if (!recorded.is_object()) return "its sidecar does not record what its inputs held";
+    const bool glb = job.format == exportFormatInfo(ExportFormat::Glb).name;
+    // Sidecars written before the glb's materials were fingerprinted: it may hold old ones.
+    if (glb && !recorded.value("materials", json()).is_object())
+        return "its sidecar does not record what the glb's material files held";
     std::vector<std::string> changed;
-    for (const auto& [key, path, contents] :
-         {std::tuple{"mesh", &job.mesh, true}, {"c3d", &job.c3d, false}, {"map", &job.map, true}}) {
-        auto it = known.find({*path, contents});
+    const auto compare = [&](const std::string& path, bool contents, const json& then) {
+        auto it = known.find({path, contents});
         if (it == known.end())
-            it = known.emplace(std::pair{*path, contents}, fileFingerprint(*path, contents)).first;
-        if (recorded.value(key, json()) != it->second)
-            changed.push_back(fs::path(*path).filename().string());
-    }
+            it = known.emplace(std::pair{path, contents}, fileFingerprint(path, contents)).first;
+        if (then != it->second) changed.push_back(fs::path(path).filename().string());
+    };
+    for (const auto& [key, path, contents] :
+         {std::tuple{"mesh", &job.mesh, true}, {"c3d", &job.c3d, false}, {"map", &job.map, true}})
+        compare(*path, contents, recorded.value(key, json()));
+    // The libraries and textures as the sidecar names them: which ones the glb reads can only
+    // change with the mesh or a library, whose own fingerprints would differ. A name that is not
+    // UTF-8 is recorded as read in Latin-1, names no file, and is solved again each run.
+    if (glb)
+        for (const auto& [file, then] : recorded.at("materials").items()) compare(file, true, then);
     if (changed.empty()) return "";
     std::string names;
     for (std::size_t i = 0; i < changed.size(); ++i)
@@ -283,10 +328,25 @@ Sidecar sidecarState(const TakeJob& job, Fingerprints& known, std::string& why) 
     try {
         const json s = json::parse(in);
         const json& src = s.at("source");
-        if (!s.at("complete").get<bool>() || s.at("output") != job.format ||
-            !sameFile(src.at("mesh"), job.mesh) || src.at("group") != validUtf8(job.group) ||
-            !sameFile(src.at("c3d"), job.c3d) || !sameFile(src.at("map"), job.map))
-            return Sidecar::Missing;
+        // Said, as every reason to solve again is: a take re-solved in silence looks like a bug.
+        const auto other = [](const char* what, const json& recorded) {
+            const std::string named = recorded.is_string() ? recorded.get<std::string>() : "";
+            return std::string("its sidecar is from another ") + what + " (" +
+                   (named.empty() ? "none" : named) + ")";
+        };
+        if (!s.at("complete").get<bool>())
+            why = "its sidecar says its run did not finish";
+        else if (s.at("output") != job.format)
+            why = other("format", s.at("output"));
+        else if (!sameFile(src.at("mesh"), job.mesh))
+            why = other("mesh", src.at("mesh"));
+        else if (src.at("group") != validUtf8(job.group))
+            why = other("group", src.at("group"));
+        else if (!sameFile(src.at("c3d"), job.c3d))
+            why = other("take", src.at("c3d"));
+        else if (!sameFile(src.at("map"), job.map))
+            why = other("map", src.at("map"));
+        if (!why.empty()) return Sidecar::Stale;
         TakeSolveOptions options;
         fromJson(job.options, options, "options");
         const FrameRange range = parseFrameRange(job.frames);
@@ -302,7 +362,8 @@ Sidecar sidecarState(const TakeJob& job, Fingerprints& known, std::string& why) 
         if (why.empty()) why = changedInputs(s.value("source_fingerprints", json()), job, known);
         return why.empty() ? Sidecar::Complete : Sidecar::Stale;
     } catch (const json::exception&) {
-        return Sidecar::Missing;  // unreadable or from an older version: solve it again
+        why = "its sidecar cannot be read (cut short, or from an older Boneless)";
+        return Sidecar::Stale;
     } catch (const Error&) {
         return Sidecar::Missing;  // the take is unreadable now: solving says why
     }

@@ -92,17 +92,22 @@ static void printSummary(const std::string& sidecarPath) {
     const nlohmann::json sidecar = nlohmann::json::parse(in);
     const nlohmann::json& s = sidecar.at("summary");
     const nlohmann::json& c = sidecar.at("calibration");
-    std::fprintf(
-        stderr,
-        "calibrate %s: marker residual RMS %.2f mm mean, %.2f mm worst frame; edge "
-        "distortion RMS %.3f mean, %.3f worst frame; 95th percentile edge strain %.3f "
-        "worst frame; folded faces %d worst frame; dent ratio %.2f worst frame\n",
-        c.at("calibrate").get<std::string>().c_str(), s.at("residual_rms_mm_mean").get<double>(),
-        s.at("residual_rms_mm_worst_frame").get<double>(),
-        s.at("edge_distortion_mean").get<double>(),
-        s.at("edge_distortion_worst_frame").get<double>(),
-        s.at("edge_strain_p95_worst_frame").get<double>(),
-        s.at("folded_faces_worst_frame").get<int>(), s.at("dent_ratio_worst_frame").get<double>());
+    // null when every frame held a neighbour's pose: then there is no residual to give.
+    char residual[96] = "none (no frame shows a marker)";
+    if (!s.at("residual_rms_mm_mean").is_null())
+        std::snprintf(residual, sizeof residual, "%.2f mm mean, %.2f mm worst frame",
+                      s.at("residual_rms_mm_mean").get<double>(),
+                      s.at("residual_rms_mm_worst_frame").get<double>());
+    std::fprintf(stderr,
+                 "calibrate %s: marker residual RMS %s; edge "
+                 "distortion RMS %.3f mean, %.3f worst frame; 95th percentile edge strain %.3f "
+                 "worst frame; folded faces %d worst frame; dent ratio %.2f worst frame\n",
+                 c.at("calibrate").get<std::string>().c_str(), residual,
+                 s.at("edge_distortion_mean").get<double>(),
+                 s.at("edge_distortion_worst_frame").get<double>(),
+                 s.at("edge_strain_p95_worst_frame").get<double>(),
+                 s.at("folded_faces_worst_frame").get<int>(),
+                 s.at("dent_ratio_worst_frame").get<double>());
 }
 
 void addTakeJobOptions(CLI::App* cmd, TakeJob& job) {

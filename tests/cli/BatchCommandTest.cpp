@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "CliRunner.h"
+#include "TestFiles.h"
 
 using namespace boneless::testing;
 namespace fs = std::filesystem;
@@ -111,6 +112,9 @@ TEST(Batch, ARunAgainSkipsTheTakesItFinished) {
     const CliResult again = runCli("batch " + manifest.string());
     ASSERT_EQ(again.exitCode, 0) << again.out;
     EXPECT_NE(again.out.find("3 of 3 entries in shard 1/1: 1 solved, 2 skipped, 0 failed"),
+              std::string::npos)
+        << again.out;
+    EXPECT_NE(again.out.find("its sidecar says its run did not finish, solving again"),
               std::string::npos)
         << again.out;
     EXPECT_EQ(fs::last_write_time(dir / "out" / "walk_a" / "walker_0000.obj"), before);
@@ -561,4 +565,135 @@ TEST(Batch, AFolderScanLeavesOutDotFilesAndFailsALinkToATakeThatIsGone) {
         << r.out;
     EXPECT_EQ(r.out.find("hidden"), std::string::npos) << r.out;
     EXPECT_EQ(r.out.find("._walk_a"), std::string::npos) << r.out;
+}
+
+// A glb embeds the OBJ's material library and its textures: before, only the mesh, take and map
+// were fingerprinted, so a texture or a Kd changed after the run left the glb skipped, old inside.
+TEST(Batch, AGlbWhoseMaterialLibraryOrTextureChangedIsSolvedAgainSayingWhich) {
+    const fs::path dir = makeLibrary();
+    addTextureCoordinatesAndMaterial((dir / "walker.obj").string(), "walker.mtl", "skin");
+    std::ofstream(dir / "walker.mtl") << "newmtl skin\nKd 0.8 0.6 0.5\nmap_Kd tex/skin.png\n";
+    fs::create_directories(dir / "tex");
+    std::ofstream(dir / "tex" / "skin.png", std::ios::binary) << twoByTwoPng();
+    const json entry = {{"mesh", "walker.obj"}, {"map", "walker.map.json"}};
+    json glb = entry, pc2 = entry;
+    glb.update({{"c3d", "takes/walk_a.c3d"}, {"out", "glb"}, {"format", "glb"}});
+    pc2.update({{"c3d", "takes/walk_b.c3d"}, {"out", "pc2"}, {"format", "pc2"}});
+    const fs::path manifest = writeManifest(dir, "m.json", {{"takes", {glb, pc2}}});
+    ASSERT_EQ(runCli("batch " + manifest.string()).exitCode, 0);
+    auto bytes = [](const fs::path& path) {
+        std::ostringstream text;
+        text << std::ifstream(path, std::ios::binary).rdbuf();
+        return text.str();
+    };
+    const std::string before = bytes(dir / "glb" / "walker.glb");
+
+    // Another image: the glb now embeds it; a point cache embeds no texture and stays done.
+    std::ofstream(dir / "tex" / "skin.png", std::ios::binary | std::ios::app) << "repainted";
+    CliResult r = runCli("batch " + manifest.string());
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("skin.png changed since it was solved, solving again"), std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("1 solved, 1 skipped"), std::string::npos) << r.out;
+    EXPECT_NE(bytes(dir / "glb" / "walker.glb"), before);
+    r = runCli("batch " + manifest.string());
+    EXPECT_NE(r.out.find("0 solved, 2 skipped"), std::string::npos) << r.out;
+
+    std::ofstream(dir / "walker.mtl") << "newmtl skin\nKd 0.2 0.6 0.5\nmap_Kd tex/skin.png\n";
+    r = runCli("batch " + manifest.string());
+    EXPECT_NE(r.out.find("walker.mtl changed since it was solved, solving again"),
+              std::string::npos)
+        << r.out;
+    fs::remove(dir / "tex" / "skin.png");
+    r = runCli("batch " + manifest.string());
+    EXPECT_NE(r.out.find("skin.png changed since it was solved, solving again"), std::string::npos)
+        << r.out;
+    // A texture the library names but that was missing when solved is an input too, once there.
+    std::ofstream(dir / "tex" / "skin.png", std::ios::binary) << twoByTwoPng();
+    r = runCli("batch " + manifest.string());
+    EXPECT_NE(r.out.find("skin.png changed since it was solved, solving again"), std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("1 solved, 1 skipped"), std::string::npos) << r.out;
+
+    // A glb's sidecar from before cannot say what its materials held.
+    const fs::path sidecar = dir / "glb" / "walker.json";
+    json j = json::parse(std::ifstream(sidecar));
+    EXPECT_EQ(j["source_fingerprints"]["materials"].size(), 2u) << j["source_fingerprints"];
+    j["source_fingerprints"].erase("materials");
+    std::ofstream(sidecar) << j.dump();
+    r = runCli("batch " + manifest.string());
+    EXPECT_NE(r.out.find("its sidecar does not record what the glb's material files held, solving "
+                         "again"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("1 solved, 1 skipped"), std::string::npos) << r.out;
+}
+
+// An old name beside today's in one object: the keys were read in alphabetical order, each
+// erasing the other, so "weight" beat "marker_weight" and "lowpass" beat "low_pass_hz". Today's
+// name wins, as in projects and sidecars; an entry's own key, old or not, still beats the
+// defaults'.
+TEST(Batch, TodaysOptionNameWinsOverItsOldNameGivenInTheSameEntryOrDefaults) {
+    const fs::path dir = makeLibrary();
+    const json both = {{"weight", 5}, {"marker_weight", 7}, {"low_pass_hz", 6}, {"lowpass", 0}};
+    const json entry = {{"mesh", "walker.obj"}, {"map", "walker.map.json"}, {"format", "pc2"}};
+    json own = entry, defaulted = entry, old = entry;
+    own.update(both);
+    own.update({{"c3d", "takes/walk_a.c3d"}, {"out", "own"}});
+    defaulted.update({{"c3d", "takes/walk_b.c3d"}, {"out", "defaulted"}});
+    old.update({{"c3d", "takes/walk_c.c3d"}, {"out", "old"}, {"weight", 9}});
+    const json defaults = {
+        {"weight", 50}, {"marker_weight", 70}, {"low_pass_hz", 8}, {"lowpass", 0}};
+    const fs::path manifest =
+        writeManifest(dir, "m.json", {{"defaults", defaults}, {"takes", {own, defaulted, old}}});
+    const CliResult r = runCli("batch " + manifest.string());
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    auto options = [&](const char* out) {
+        return json::parse(std::ifstream(dir / out / "walker.json"))["options"];
+    };
+    EXPECT_EQ(options("own")["marker_weight"], 7.0);
+    EXPECT_EQ(options("own")["low_pass_hz"], 6.0);
+    EXPECT_EQ(options("defaulted")["marker_weight"], 70.0);
+    EXPECT_EQ(options("defaulted")["low_pass_hz"], 8.0);
+    EXPECT_EQ(options("old")["marker_weight"], 9.0);
+}
+
+// solve recorded its inputs as typed, relative to the folder it ran in: a batch of the same take
+// (which names them in full) solved it again, and said nothing of why.
+TEST(Batch, ATakeSolvedFromAnyFolderIsSkippedAndOneFromOtherFilesIsSolvedAgainSayingSo) {
+    const fs::path dir = makeLibrary();
+    const std::string lib = dir.filename().string();
+    const CliResult solved =
+        runShell("cd " + dir.parent_path().string() + " && " + BONELESS_CLI + " solve --mesh " +
+                 lib + "/walker.obj --c3d " + lib + "/takes/walk_a.c3d --map " + lib +
+                 "/walker.map.json --out " + lib + "/cliexp --format pc2 --quiet 2>&1");
+    ASSERT_EQ(solved.exitCode, 0) << solved.out;
+    const fs::path sidecar = dir / "cliexp" / "walker.json";
+    json j = json::parse(std::ifstream(sidecar));
+    EXPECT_EQ(j["source"]["mesh"], (dir / "walker.obj").string());
+    EXPECT_EQ(j["source"]["c3d"], (dir / "takes" / "walk_a.c3d").string());
+    const json entry = {{"mesh", "walker.obj"},
+                        {"c3d", "takes/walk_a.c3d"},
+                        {"map", "walker.map.json"},
+                        {"out", "cliexp"},
+                        {"format", "pc2"}};
+    const fs::path manifest = writeManifest(dir, "m.json", {{"takes", {entry}}});
+    CliResult r = runCli("batch " + manifest.string());
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("0 solved, 1 skipped"), std::string::npos) << r.out;
+
+    // A sidecar from before, with the paths as typed in the folder above: the same files.
+    j["source"]["mesh"] = lib + "/walker.obj";
+    j["source"]["map"] = "./" + lib + "/walker.map.json";
+    std::ofstream(sidecar) << j.dump();
+    r = runCli("batch " + manifest.string());
+    EXPECT_NE(r.out.find("0 solved, 1 skipped"), std::string::npos) << r.out;
+    // One naming another mesh is solved again, and the line says so.
+    j["source"]["mesh"] = "elsewhere/walker.obj";
+    std::ofstream(sidecar) << j.dump();
+    r = runCli("batch " + manifest.string());
+    EXPECT_NE(r.out.find("its sidecar is from another mesh (elsewhere/walker.obj), solving again"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("1 solved, 0 skipped"), std::string::npos) << r.out;
 }

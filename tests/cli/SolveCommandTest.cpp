@@ -588,3 +588,23 @@ TEST(DemoCommand, FramesIsACountInItsHelpAndItsRefusal) {
         << r.out;
     EXPECT_FALSE(fs::exists(dir / "x"));
 }
+
+// Every exported frame holds a neighbour's pose: no frame has a residual, so there is no mean.
+// The summary said 0.00 mm, a perfect fit.
+TEST(SolveCommand, ARangeOfHeldFramesOnlyHasNoResidualMeanRatherThanZero) {
+    const fs::path demo = makeDemo(40);
+    const fs::path take = demo / "walker.c3d";
+    C3dTake t = readC3d(take.string());
+    for (std::size_t f = 20; f < 32; ++f)
+        for (std::size_t k = 0; k < t.points.size(); ++k) t.samples.setMissing(f, k);
+    writeC3d(t, take.string());
+    const CliResult r =
+        runCli(solveArgs(demo, demo / "x") + " --format pc2 --frames 22:28 --fill-gaps-s 0");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("marker residual RMS none (no frame shows a marker)"), std::string::npos)
+        << r.out;
+    EXPECT_EQ(r.out.find("0.00 mm mean"), std::string::npos) << r.out;
+    const nlohmann::json summary = sidecar(demo / "x")["summary"];
+    EXPECT_TRUE(summary["residual_rms_mm_mean"].is_null()) << summary;
+    EXPECT_TRUE(summary["residual_rms_mm_worst_frame"].is_null()) << summary;
+}

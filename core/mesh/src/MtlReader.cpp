@@ -7,6 +7,8 @@
 #include <optional>
 #include <sstream>
 
+#include "boneless/MaterialFiles.h"
+
 namespace boneless::detail {
 
 namespace {
@@ -78,7 +80,7 @@ bool glTFImage(const std::filesystem::path& file) {
 constexpr int kNotesPerLibrary = 5;
 
 void readLibrary(const std::string& path, std::vector<ObjMaterial>& materials,
-                 std::vector<std::string>& warnings) {
+                 std::vector<std::string>& warnings, std::vector<std::string>* textures) {
     // A regular file only: a library named /dev/zero or a pipe must not hang the reader.
     std::error_code error;
     std::ifstream in;
@@ -137,6 +139,7 @@ void readLibrary(const std::string& path, std::vector<ObjMaterial>& materials,
                 std::string name = map.file;
                 std::replace(name.begin(), name.end(), '\\', '/');
                 const std::filesystem::path file = (folder / name).lexically_normal();
+                if (textures && !name.empty()) textures->push_back(file.string());
                 if (name.empty())
                     note(key + " names no file");
                 else if (std::error_code e; !std::filesystem::is_regular_file(file, e))
@@ -180,11 +183,12 @@ void readLibrary(const std::string& path, std::vector<ObjMaterial>& materials,
 }  // namespace
 
 std::vector<ObjMaterial> readMaterialLibraries(const std::vector<std::string>& paths,
-                                               std::vector<std::string>& warnings) {
+                                               std::vector<std::string>& warnings,
+                                               std::vector<std::string>* textures) {
     std::vector<ObjMaterial> materials;
     for (size_t k = 0; k < paths.size(); ++k)
         if (std::find(paths.begin(), paths.begin() + k, paths[k]) == paths.begin() + k)
-            readLibrary(paths[k], materials, warnings);
+            readLibrary(paths[k], materials, warnings, textures);
     return materials;
 }
 
@@ -197,3 +201,17 @@ std::string imageMimeType(const std::string& head) {
 }
 
 }  // namespace boneless::detail
+
+namespace boneless {
+
+std::vector<std::string> materialFiles(const SourceFaces& faces) {
+    std::vector<std::string> files, warnings;
+    detail::readMaterialLibraries(faces.materialLibraries, warnings, &files);
+    files.insert(files.begin(), faces.materialLibraries.begin(), faces.materialLibraries.end());
+    std::vector<std::string> once;
+    for (const std::string& f : files)
+        if (std::find(once.begin(), once.end(), f) == once.end()) once.push_back(f);
+    return once;
+}
+
+}  // namespace boneless

@@ -26,6 +26,7 @@
 #include "boneless/ActorCalibration.h"
 #include "boneless/C3dFrameReader.h"
 #include "boneless/Error.h"
+#include "boneless/MaterialFiles.h"
 #include "boneless/Metrics.h"
 #include "boneless/ObjWriter.h"
 #include "boneless/Parallel.h"
@@ -176,8 +177,11 @@ class PerFrameFigures {
         std::vector<double> ms = ms_;
         std::sort(ms.begin(), ms.end());
         const std::size_t n = ms.size();
-        return {{"residual_rms_mm_mean", residualFrames_ ? residualSum_ / residualFrames_ : 0.0},
-                {"residual_rms_mm_worst_frame", residualWorst_},
+        // Every frame held (none shows a marker): no residual at all, which 0 would call a
+        // perfect fit.
+        const auto residual = [&](double x) { return residualFrames_ ? json(x) : json(nullptr); };
+        return {{"residual_rms_mm_mean", residual(residualSum_ / std::max(residualFrames_, 1))},
+                {"residual_rms_mm_worst_frame", residual(residualWorst_)},
                 {"edge_distortion_mean", n ? distortionSum_ / n : 0.0},
                 {"edge_distortion_worst_frame", distortionWorst_},
                 {"edge_strain_p95_worst_frame", strainWorst_},
@@ -221,6 +225,15 @@ json calibrationJson(const ExportRequest& request, const TriMesh& mesh, const Ta
     return j;
 }
 
+// An input as the sidecar names it: in full, so that the same file is recognised whichever folder
+// solve, batch or the app ran in. JSON holds only UTF-8: a Latin-1 name is read as Latin-1.
+json recordedPath(const std::string& path) {
+    if (path.empty()) return nullptr;  // the app's map may be in no file
+    std::error_code ec;
+    const fs::path full = fs::absolute(path, ec);
+    return validUtf8(ec ? path : full.string());
+}
+
 json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibration& c,
                  const ExportResult& result, json fingerprints, json calibration, json summary) {
     const Similarity& s = c.takeToMesh;
@@ -234,11 +247,10 @@ json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibr
             {"complete", !result.cancelled},
             {"output", exportFormatInfo(request.format).name},
             {"source",
-             // JSON holds only UTF-8: a Latin-1 file name is recorded read as Latin-1.
-             {{"mesh", validUtf8(request.meshPath)},
+             {{"mesh", recordedPath(request.meshPath)},
               {"group", validUtf8(request.group)},
-              {"c3d", validUtf8(request.c3dPath)},
-              {"map", request.mapPath.empty() ? json(nullptr) : json(validUtf8(request.mapPath))}}},
+              {"c3d", recordedPath(request.c3dPath)},
+              {"map", recordedPath(request.mapPath)}}},
             {"source_fingerprints", std::move(fingerprints)},
             {"units",
              {{"take", take.units},
@@ -444,11 +456,18 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
     // While the outputs are being rewritten, no earlier sidecar may say they are complete.
     fs::remove(result.sidecarPath, ec);
     // Taken before solving: a map corrected while the take solves is not the one solved.
-    const json fingerprints = {
+    json fingerprints = {
         {"mesh", fileFingerprint(request.meshPath, true)},
         {"c3d", fileFingerprint(request.c3dPath, false)},
         {"map",
          request.mapPath.empty() ? json(nullptr) : json(fileFingerprint(request.mapPath, true))}};
+    // A glb embeds the OBJ's materials and textures, so they are its inputs as much as the mesh.
+    if (request.format == ExportFormat::Glb) {
+        json& materials = fingerprints["materials"] = json::object();
+        if (mesh.sourceFaces)
+            for (const std::string& file : materialFiles(*mesh.sourceFaces))
+                materials[validUtf8(file)] = fileFingerprint(file, true);
+    }
     FrameOutput output =
         openFrameOutput(request.format, request.outDir, stem, mesh, request.first, take.rate,
                         "Boneless: " + request.c3dPath,
