@@ -6,6 +6,7 @@
 #include "Commands.h"
 #include "OptionFlags.h"
 #include "boneless/DemoFiles.h"
+#include "boneless/Text.h"
 
 using namespace boneless;
 
@@ -37,9 +38,10 @@ void registerDemoCommand(CLI::App& app) {
         const DemoFiles demo = writeDemoFiles(args->out, args->frames, args->offsetMm, true,
                                               args->detail, DemoSubject::Walker);
         std::printf(
-            "%s: walker.obj (%d vertices, %d faces), walker.c3d (%d markers, %d "
-            "frames at %g Hz), walker.map.json, truth/ (%d frames)\n",
-            args->out.c_str(), demo.vertices, demo.faces, demo.markers, demo.frames, demo.rate,
-            demo.frames);
+            "%s: walker.obj (%d vertices, %d faces), walker.c3d (%d markers, %s at %g Hz), "
+            "walker.map.json, truth/ (%s)\n",
+            args->out.c_str(), demo.vertices, demo.faces, demo.markers,
+            boneless::plural(demo.frames, "frame").c_str(), demo.rate,
+            boneless::plural(demo.frames, "frame").c_str());
     });
 }

@@ -40,8 +40,10 @@ std::vector<int> readMarkerFile(const std::string& path, int vertexCount) {
     std::map<int, int> lineOf;  // each id's line, to name both lines of a repeated one
     std::string line;
     for (int lineNo = 1; std::getline(in, line); ++lineNo) {
+        const std::string text = line;          // as written, for the message
+        line = line.substr(0, line.find('#'));  // a comment runs to the end of its line
         const auto first = line.find_first_not_of(" \t\r");
-        if (first == std::string::npos || line[first] == '#') continue;
+        if (first == std::string::npos) continue;
         std::size_t used = 0;
         int id = -1;
         try {
@@ -51,7 +53,7 @@ std::vector<int> readMarkerFile(const std::string& path, int vertexCount) {
         }
         if (used == 0 || line.find_first_not_of(" \t\r", first + used) != std::string::npos)
             throw Error(path + ":" + std::to_string(lineNo) + ": expected one vertex id, got '" +
-                        line + "'");
+                        text + "'");
         if (id < 0 || id >= vertexCount)
             throw Error(path + ":" + std::to_string(lineNo) + ": vertex " + std::to_string(id) +
                         " is out of range (the mesh has " + std::to_string(vertexCount) +
@@ -95,6 +97,11 @@ void run(const EvalArgs& args) {
     if (sequence.frames.size() < 2)
         throw Error(args.sequence +
                     ": no frame after the rest pose to evaluate (it holds one OBJ)");
+    // Every marker missing in every frame: nothing to reconstruct from, and the summary would read
+    // as a reconstruction.
+    if (args.drop >= 100)
+        throw Error(
+            "--drop 100 leaves no marker in any frame: there is nothing to reconstruct from");
     const int vertices = sequence.rest.vertexCount();
     if (args.markersFile.empty() && args.markers >= vertices)
         throw Error("--markers " + std::to_string(args.markers) +
@@ -194,7 +201,7 @@ void registerEvalCommand(CLI::App& app) {
         ->required();
     auto* k = cmd->add_option("--markers", args->markers,
                               "Number of marker vertices (farthest-point sampled from vertex 0)")
-                  ->check(CLI::PositiveNumber);
+                  ->check(numberFrom(1, 1e9, true));
     auto* file = cmd->add_option("--markers-file", args->markersFile,
                                  "File with one marker vertex id per line (instead of --markers)");
     k->excludes(file);

@@ -158,7 +158,8 @@ TEST(EvalCommand, FoldedFacesAreTheAnswersOwnAndFlippedOnesAgainstTheTruth) {
 
 TEST(EvalCommand, MarkersFileAndDropAreHonoured) {
     const fs::path file = fs::path(BONELESS_TEST_WORK_DIR) / "markers.txt";
-    std::ofstream(file) << "# ids\n0\n100\n200\n300\n400\n500\n600\n700\n800\n900\n";
+    // A comment may also end a line, as eval.md says (it was refused: "expected one vertex id").
+    std::ofstream(file) << "# ids\n0\n100  # the hip\n200\n300\n400\n500\n600\n700\n800\n900\n";
     const CliResult r = runCli("eval --sequence " + demoFolder() + " --markers-file " +
                                file.string() + " --frames 0:4 --drop 20 --json");
     ASSERT_EQ(r.exitCode, 0) << r.out;
@@ -210,6 +211,18 @@ TEST(EvalCommand, BadInputIsOneClearLineAndANonZeroExit) {
     EXPECT_NE(r.out.find("--markers 1000000 leaves no vertex to reconstruct"), std::string::npos)
         << r.out;
     EXPECT_EQ(r.out.find("CHOLMOD"), std::string::npos) << r.out;
+
+    // It printed the range up to 1.8e308, digit by digit.
+    r = runCli("eval --sequence " + demoFolder() + " --markers 0");
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.out.find("must be a whole number from 1 to"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("1797693"), std::string::npos) << r.out;
+
+    // Every marker dropped in every frame printed a summary as if something had been solved.
+    r = runCli("eval --sequence " + demoFolder() + " --markers 20 --drop 100");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("--drop 100 leaves no marker in any frame"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("RMS %"), std::string::npos) << r.out;
 }
 
 // Before, a folder holding the rest pose alone printed "frames 0  RMS % mean 0.000" and exited 0.
