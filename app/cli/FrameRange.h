@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "boneless/Error.h"
 #include "boneless/Text.h"
@@ -38,16 +39,22 @@ inline FrameRange parseFrameRange(const std::string& text, const std::string& na
 }
 
 // `range` (parsed from `text`) within the `frames` frames of `source`: refused when it selects no
-// frame, cut at the end with a note on stderr ("solving 100:810") when it runs past it.
+// frame, cut at the end with a note ("solving 100:810") when it runs past it: on stderr, or into
+// `notes` for a caller that says it under its own line (batch).
 inline FrameRange withinFrames(FrameRange range, const std::string& text, int frames,
-                               const std::string& source, const char* doing) {
+                               const std::string& source, const char* doing,
+                               std::vector<std::string>* notes = nullptr) {
     if (range.first >= (range.end < 0 ? frames : std::min(range.end, frames)))
         throw boneless::Error("frames " + text + " select no frame of " + source + " (" +
                               boneless::plural(frames, "frame") + ")");
     if (range.end > frames) {
-        std::fprintf(stderr, "note: --frames %s runs past the end of %s (%s): %s %d:%d\n",
-                     text.c_str(), source.c_str(), boneless::plural(frames, "frame").c_str(), doing,
-                     range.first, frames);
+        const std::string note = "--frames " + text + " runs past the end of " + source + " (" +
+                                 boneless::plural(frames, "frame") + "): " + doing + " " +
+                                 std::to_string(range.first) + ":" + std::to_string(frames);
+        if (notes)
+            notes->push_back(note);
+        else
+            std::fprintf(stderr, "note: %s\n", note.c_str());
         range.end = frames;
     }
     return range;

@@ -224,7 +224,8 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
             std::fprintf(stderr, "warning: %s\n", warning.c_str());
     }
     // Refused or noted before the solver is prepared (the export would cut the range itself).
-    withinFrames(range, job.frames, static_cast<int>(take.frameCount()), job.c3d, "solving");
+    withinFrames(range, job.frames, static_cast<int>(take.frameCount()), job.c3d, "solving",
+                 takeWarnings);
 
     auto announce = [&](const Calibration& c) {
         if (quiet) return;

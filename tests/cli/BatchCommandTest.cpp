@@ -152,6 +152,28 @@ TEST(Batch, ATakeAskedForOtherFramesOrOptionsIsSolvedAgain) {
     EXPECT_EQ(json::parse(std::ifstream(sidecar))["options"]["marker_weight"], 5.0);
 }
 
+// With stdout and stderr in one log (a cluster's default), the note on a range cut at the take's
+// end landed in the middle of the take's line, between its name and "6 frames in 0.4 s".
+TEST(Batch, ARangePastTheTakesEndIsNotedUnderTheTakesLine) {
+    const fs::path dir = makeLibrary();
+    const fs::path path = writeManifest(dir, "m.json",
+                                        {{"defaults", {{"format", "pc2"}}},
+                                         {"takes",
+                                          {{{"mesh", "walker.obj"},
+                                            {"map", "walker.map.json"},
+                                            {"c3d", "takes/walk_c.c3d"},
+                                            {"out", "one"},
+                                            {"frames", "2:100"}}}}});
+    const CliResult r = runCli("batch " + path.string());
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    const std::string line = ": 4 frames in ";
+    ASSERT_NE(r.out.find(line), std::string::npos) << r.out;
+    const std::size_t note = r.out.find("runs past the end");
+    ASSERT_NE(note, std::string::npos) << r.out;
+    EXPECT_GT(note, r.out.find(line)) << r.out;
+    EXPECT_NE(r.out.find("solving 2:6\n"), std::string::npos) << r.out;
+}
+
 // The user corrects the map and runs the manifest again: before, every take was skipped, since
 // its sidecar said complete, and the frames solved with the wrong map stayed.
 TEST(Batch, ATakeWhoseMapMeshOrFileChangedIsSolvedAgainSayingWhich) {
