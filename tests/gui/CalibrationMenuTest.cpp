@@ -36,7 +36,7 @@ bool trigger(MainWindow& window, const char* name) {
     const quint64 generation = window.frameSolver()->generation();
     action->trigger();
     // A calibration change rebuilds the solver (a new generation) before the frame is solved.
-    if (QString(name).startsWith("calibrate") &&
+    if ((QString(name).startsWith("calibrate") || QString(name).startsWith("meshUp")) &&
         !QTest::qWaitFor([&] { return window.frameSolver()->generation() != generation; }, 10000))
         return false;
     return test::waitForFrame(window);
@@ -109,6 +109,27 @@ class CalibrationMenuTest : public QObject {
         QCOMPARE(maxDistance(window_->meshView()->positions(), document->mesh().V), 0.0);
         QVERIFY(trigger(*window_, "calibrateAutomatically"));
         QVERIFY(document->settings().calibrate == CalibrateMode::Shape);
+    }
+
+    // An actor who never stands tips the guessed up over; the user names it (mesh_up), undoably,
+    // and the menu checks the one in use.
+    void theMeshUpIsTheUsersChoiceCheckedAndUndone() {
+        Document* document = window_->document();
+        QVERIFY(!document->settings().meshUp);
+        QVERIFY(window_->findChild<QAction*>("meshUpauto")->isChecked());
+        const Positions guessed = window_->meshView()->positions();
+        QVERIFY(trigger(*window_, "meshUp+x"));
+        QVERIFY(document->settings().meshUp);
+        QCOMPARE((*document->settings().meshUp - Vec3::UnitX()).norm(), 0.0);
+        QVERIFY(window_->findChild<QAction*>("meshUp+x")->isChecked());
+        QVERIFY(!window_->findChild<QAction*>("meshUpauto")->isChecked());
+        // The walker is Z-up: with the take's vertical on +x the frame lies on its side.
+        const double size = boundingBoxDiagonal(document->mesh().V);
+        const double moved = maxDistance(window_->meshView()->positions(), guessed);
+        QVERIFY2(moved > 0.1 * size, qPrintable(QString("moved %1 of %2").arg(moved).arg(size)));
+        document->undoStack()->undo();
+        QVERIFY(!document->settings().meshUp);
+        QVERIFY(window_->findChild<QAction*>("meshUpauto")->isChecked());
     }
 
     void theShowMenuTogglesFrameCalibratedRestAndRest() {

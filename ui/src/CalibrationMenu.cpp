@@ -5,6 +5,8 @@
 #include <QMenu>
 
 #include "FrameDisplay.h"
+#include "boneless/Alignment.h"
+#include "boneless/TakeOptionsJson.h"
 #include "boneless/ui/Document.h"
 #include "boneless/ui/Timeline.h"
 
@@ -52,6 +54,34 @@ void addCalibrationActions(QMenu* edit, QMenu* view, Document* document, Timelin
     for (QAction* action : {atFrame, automatic, none})
         QObject::connect(action, &QAction::triggered, modes, showMode);
     showMode();
+
+    // The mesh's up, where the take's vertical goes (mesh_up): the guess fails for an actor who
+    // never stands. The choices are the option's own, from the one table of options.
+    QMenu* up = edit->addMenu(QObject::tr("Mesh &Up"));
+    up->setObjectName("meshUp");
+    auto* ups = new QActionGroup(up);
+    for (const std::string& choice : findTakeOption("mesh_up")->choices) {
+        const bool guess = choice == "auto";
+        QAction* action = up->addAction(guess ? QObject::tr("&Guessed from the Take")
+                                              : QString::fromStdString(choice).toUpper());
+        action->setObjectName(QString::fromStdString("meshUp" + choice));
+        action->setCheckable(true);
+        ups->addAction(action);
+        QObject::connect(action, &QAction::triggered, document, [=] {
+            TakeSolveOptions settings = document->settings();
+            settings.meshUp = parseAxis(choice);
+            document->setSettings(settings, guess ? QObject::tr("Guess the mesh's up")
+                                                  : QObject::tr("Mesh up %1").arg(action->text()));
+        });
+    }
+    auto showUp = [=] {
+        const auto& meshUp = document->settings().meshUp;
+        const QString name =
+            QString::fromStdString("meshUp" + (meshUp ? axisName(*meshUp) : "auto"));
+        for (QAction* action : ups->actions()) action->setChecked(action->objectName() == name);
+    };
+    QObject::connect(document, &Document::settingsChanged, ups, showUp);
+    showUp();
 
     QMenu* show = view->addMenu(QObject::tr("&Show"));
     auto* group = new QActionGroup(show);

@@ -13,10 +13,11 @@ class Timeline;
 //    the rest fitted at (the project's settings.calibration_frame), and calibration on;
 //  Edit → Do Not Calibrate: calibrate none, frames solved against the rest as given;
 //    of these three, the mode in use is checked (the document's settings, through undo);
+//  Edit → Mesh Up → Guessed from the Take / +X … -Z: the project's settings.mesh_up, checked;
 //  View → Show → Frame / Calibrated Rest / Rest: what the view draws (FrameDisplay::Shown), and
 //    the status bar says which rest is shown.
-// The actions' object names: calibrateAtFrame, calibrateAutomatically, calibrateNone, showFrame,
-// showCalibratedRest, showRest.
+// The actions' object names: calibrateAtFrame, calibrateAutomatically, calibrateNone, meshUpauto,
+// meshUp+x … meshUp-z, showFrame, showCalibratedRest, showRest.
 void addCalibrationActions(QMenu* edit, QMenu* view, Document* document, Timeline* timeline,
                            FrameDisplay* display);
 
