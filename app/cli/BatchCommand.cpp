@@ -239,18 +239,11 @@ enum class Sidecar { Missing, Complete, Stale };
 
 // One file however it is spelled: a path that is not UTF-8 is recorded as validUtf8 reads it.
 // Sidecars written before solve recorded paths in full name them as typed, relative to a folder
-// unknown here: such a path that ends the job's is taken for its file, and the fingerprints,
-// compared next, say whether the file is the one solved.
+// unknown here, and are solved once more: a take is fingerprinted by size and time only, so
+// sessA/walk.c3d could pass for sessB/walk.c3d.
 bool sameFile(const json& recorded, const std::string& path) {
-    if (!recorded.is_string()) return false;
-    const std::string named = recorded.get<std::string>();
-    if (named == validUtf8(path) || boneless::sameFile(named, path)) return true;
-    const fs::path tail = fs::path(named).lexically_normal();
-    if (tail.is_absolute() || tail.empty() || *tail.begin() == "..") return false;
-    const fs::path full = fs::path(validUtf8(path)).lexically_normal();
-    const auto parts = [](const fs::path& p) { return std::vector<fs::path>(p.begin(), p.end()); };
-    const std::vector<fs::path> a = parts(tail), b = parts(full);
-    return a.size() <= b.size() && std::equal(a.rbegin(), a.rend(), b.rbegin());
+    return recorded.is_string() && (recorded.get<std::string>() == validUtf8(path) ||
+                                    boneless::sameFile(recorded.get<std::string>(), path));
 }
 
 // Fingerprints of the files this run has read so far: a library's takes share a few meshes and
@@ -356,7 +349,12 @@ Sidecar sidecarState(const TakeJob& job, Fingerprints& known, std::string& why) 
         // Every sidecar of a calibrated take has "calibrated_rest", null when none was written.
         const bool sameRest = !job.writeCalibratedRest ||
                               s.at("calibration").value("calibrated_rest", json()).is_string();
-        if (!(sameFrames && sameRest && s.at("options") == toJson(options)))
+        // Sidecars from before mesh_up solved with the up guessed, as "auto" does: without this,
+        // every take of a library was solved again "from other options". (Other keys missing
+        // from older sidecars had other defaults then, and stay a difference.)
+        json recorded = s.at("options");
+        if (recorded.is_object() && !recorded.contains("mesh_up")) recorded["mesh_up"] = "auto";
+        if (!(sameFrames && sameRest && recorded == toJson(options)))
             why = "its sidecar is from other frames or options";
         if (why.empty()) why = missingOutputs(job, s.at("frame_range"));
         if (why.empty()) why = changedInputs(s.value("source_fingerprints", json()), job, known);

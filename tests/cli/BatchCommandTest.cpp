@@ -227,6 +227,27 @@ TEST(Batch, ASidecarThatRecordsNoFingerprintsIsSolvedAgain) {
     EXPECT_NE(r.out.find("1 solved, 2 skipped"), std::string::npos) << r.out;
 }
 
+// mesh_up came after these sidecars: they were solved with the up guessed, as "auto" is, and
+// every take of a library was solved again "from other frames or options".
+TEST(Batch, ASidecarFromBeforeMeshUpIsSkippedAsAnAutoOne) {
+    const fs::path dir = makeLibrary();
+    const fs::path manifest = writeManifest(dir, "m.json", folderManifest("out"));
+    ASSERT_EQ(runCli("batch " + manifest.string()).exitCode, 0);
+    const fs::path sidecar = dir / "out" / "walk_c" / "walker.json";
+    json j = json::parse(std::ifstream(sidecar));
+    ASSERT_EQ(j["options"]["mesh_up"], "auto");
+    j["options"].erase("mesh_up");
+    std::ofstream(sidecar) << j.dump();
+    CliResult r = runCli("batch " + manifest.string());
+    EXPECT_NE(r.out.find("0 solved, 3 skipped"), std::string::npos) << r.out;
+    // A take asked for another up is not the one solved.
+    json m = json::parse(std::ifstream(manifest));
+    m["defaults"]["mesh_up"] = "+y";
+    writeManifest(dir, "m.json", m);
+    r = runCli("batch " + manifest.string());
+    EXPECT_NE(r.out.find("3 solved, 0 skipped"), std::string::npos) << r.out;
+}
+
 TEST(Batch, AFailingTakeDoesNotStopTheOthersButFailsTheRun) {
     const fs::path dir = makeLibrary();
     std::ofstream(dir / "takes" / "broken.c3d") << "not a c3d file";
@@ -704,12 +725,18 @@ TEST(Batch, ATakeSolvedFromAnyFolderIsSkippedAndOneFromOtherFilesIsSolvedAgainSa
     ASSERT_EQ(r.exitCode, 0) << r.out;
     EXPECT_NE(r.out.find("0 solved, 1 skipped"), std::string::npos) << r.out;
 
-    // A sidecar from before, with the paths as typed in the folder above: the same files.
-    j["source"]["mesh"] = lib + "/walker.obj";
-    j["source"]["map"] = "./" + lib + "/walker.map.json";
+    // A sidecar from before, with the paths as typed in another folder, cannot say which files
+    // it names (walk.c3d of another session has its size, and a copy its time): it is solved
+    // once more, and from then on names them in full.
+    j["source"]["c3d"] = lib + "/takes/walk_a.c3d";
     std::ofstream(sidecar) << j.dump();
     r = runCli("batch " + manifest.string());
+    EXPECT_NE(r.out.find("its sidecar is from another take (" + lib + "/takes/walk_a.c3d)"),
+              std::string::npos)
+        << r.out;
+    r = runCli("batch " + manifest.string());
     EXPECT_NE(r.out.find("0 solved, 1 skipped"), std::string::npos) << r.out;
+    j = json::parse(std::ifstream(sidecar));
     // One naming another mesh is solved again, and the line says so.
     j["source"]["mesh"] = "elsewhere/walker.obj";
     std::ofstream(sidecar) << j.dump();
