@@ -1,5 +1,6 @@
 // boneless-cli eval: reconstruct a ground-truth sequence from K of its vertices and measure it.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -97,11 +98,6 @@ void run(const EvalArgs& args) {
     if (sequence.frames.size() < 2)
         throw Error(args.sequence +
                     ": no frame after the rest pose to evaluate (it holds one OBJ)");
-    // Every marker missing in every frame: nothing to reconstruct from, and the summary would read
-    // as a reconstruction.
-    if (args.drop >= 100)
-        throw Error(
-            "--drop 100 leaves no marker in any frame: there is nothing to reconstruct from");
     const int vertices = sequence.rest.vertexCount();
     if (args.markersFile.empty() && args.markers >= vertices)
         throw Error("--markers " + std::to_string(args.markers) +
@@ -116,6 +112,16 @@ void run(const EvalArgs& args) {
     if (std::unique(distinct.begin(), distinct.end()) - distinct.begin() >= vertices)
         throw Error(args.markersFile + " makes every one of the " + std::to_string(vertices) +
                     " vertices a marker: none is left to reconstruct");
+    // Every marker missing in every frame (the evaluation drops round(K × P / 100) of K): nothing
+    // to reconstruct from, and the summary would read as a reconstruction.
+    const std::size_t markers = options.markers.size();
+    if (std::lround(markers * args.drop / 100.0) >= static_cast<long>(markers)) {
+        char drop[32];
+        std::snprintf(drop, sizeof drop, "%g", args.drop);
+        throw Error(std::string("--drop ") + drop + " leaves none of the " +
+                    std::to_string(markers) +
+                    " markers in any frame: there is nothing to reconstruct from");
+    }
     const FrameRange range =
         withinFrames(parseFrameRange(args.frames), args.frames,
                      static_cast<int>(sequence.frames.size()), args.sequence, "evaluating");

@@ -221,8 +221,14 @@ TEST(EvalCommand, BadInputIsOneClearLineAndANonZeroExit) {
     // Every marker dropped in every frame printed a summary as if something had been solved.
     r = runCli("eval --sequence " + demoFolder() + " --markers 20 --drop 100");
     EXPECT_EQ(r.exitCode, 1) << r.out;
-    EXPECT_NE(r.out.find("--drop 100 leaves no marker in any frame"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("--drop 100 leaves none of the 20 markers in any frame"),
+              std::string::npos)
+        << r.out;
     EXPECT_EQ(r.out.find("RMS %"), std::string::npos) << r.out;
+    // 95 % of 10 rounds to all 10.
+    r = runCli("eval --sequence " + demoFolder() + " --markers 10 --drop 95");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("--drop 95 leaves none of the 10 markers"), std::string::npos) << r.out;
 }
 
 // Before, a folder holding the rest pose alone printed "frames 0  RMS % mean 0.000" and exited 0.
