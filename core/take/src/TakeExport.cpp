@@ -48,16 +48,18 @@ struct MeshUnit {
 };
 
 MeshUnit nearestUnit(double meshUnitsPerMm) {
-    // Inches and feet too: 3ds Max's default and many game assets (an inch mesh read as cm made
-    // a glb 2.54 times too small).
-    const MeshUnit units[] = {{"mm", 1.0},  {"cm", 0.1},         {"in", 1.0 / 25.4},
-                              {"dm", 0.01}, {"ft", 1.0 / 304.8}, {"m", 0.001}};
-    MeshUnit best = units[0];
-    double bestGap = 1e300;
-    for (const auto& u : units) {
-        const double gap = std::abs(std::log(meshUnitsPerMm / u.perMm));
-        if (gap < bestGap) best = u, bestGap = gap;
-    }
+    const auto gap = [&](const MeshUnit& u) {
+        return std::abs(std::log(meshUnitsPerMm / u.perMm));
+    };
+    const MeshUnit metric[] = {{"mm", 1.0}, {"cm", 0.1}, {"dm", 0.01}, {"m", 0.001}};
+    MeshUnit best = metric[0];
+    for (const auto& u : metric)
+        if (gap(u) < gap(best)) best = u;
+    // Inches and feet, 3ds Max's default and many game assets' (an inch mesh read as cm made a
+    // glb 2.54 times too small), only within a factor 1.2 of one:
+    // between metric units they would take a child's body in cm, driven by an adult, for inches.
+    for (const MeshUnit u : {MeshUnit{"in", 1.0 / 25.4}, MeshUnit{"ft", 1.0 / 304.8}})
+        if (gap(u) < std::log(1.2) && gap(u) < gap(best)) best = u;
     return best;
 }
 

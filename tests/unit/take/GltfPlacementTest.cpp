@@ -53,4 +53,7 @@ TEST(GltfPlacement, AMeshInInchesOrFeetIsScaledToMetresByItsOwnUnit) {
                 1e-15);
     EXPECT_STREQ(guessMeshUnits(1.0 / 304.8), "ft");
     EXPECT_STREQ(guessMeshUnits(0.1 * 1.2), "cm");  // an actor a fifth smaller than the mesh
+    // A child's body modelled in cm, driven by an adult 1.64 times its size, is not in inches.
+    EXPECT_STREQ(guessMeshUnits(0.1 / 1.64), "cm");
+    EXPECT_STREQ(guessMeshUnits(0.01 / 1.75), "dm");
 }
