@@ -130,6 +130,14 @@ class CalibrationMenuTest : public QObject {
         document->undoStack()->undo();
         QVERIFY(!document->settings().meshUp);
         QVERIFY(window_->findChild<QAction*>("meshUpauto")->isChecked());
+        // The user's alignment is refitted on the new up: kept as it was, the view and the
+        // exports kept the old up while the menu checked the new one.
+        QVERIFY(trigger(*window_, "actionAlign"));
+        QVERIFY(document->alignment());
+        QVERIFY(trigger(*window_, "meshUp+x"));
+        QVERIFY(document->alignment());
+        QVERIFY((document->alignment()->takeToMesh.R * Vec3::UnitZ() - Vec3::UnitX()).norm() <
+                1e-9);
     }
 
     void theShowMenuTogglesFrameCalibratedRestAndRest() {

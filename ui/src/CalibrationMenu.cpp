@@ -81,6 +81,8 @@ void addCalibrationActions(QMenu* edit, QMenu* view, Document* document, Timelin
         for (QAction* action : ups->actions()) action->setChecked(action->objectName() == name);
     };
     QObject::connect(document, &Document::settingsChanged, ups, showUp);
+    for (QAction* action : ups->actions())  // a refused change leaves the up in use checked
+        QObject::connect(action, &QAction::triggered, ups, showUp);
     showUp();
 
     QMenu* show = view->addMenu(QObject::tr("&Show"));

@@ -247,6 +247,11 @@ void Document::setSettings(const TakeSolveOptions& settings, const QString& text
     after.settings = settings;
     after.settings.alignment.reset();
     if (sameSettings(after.settings, settings_)) return;
+    // The user's alignment was levelled onto the mesh's up: another up refits it at its frame, as
+    // another calibration frame does, or the view and the exports would keep the old one.
+    if (alignment_ && after.settings.meshUp != settings_.meshUp &&
+        !fitAlignment(alignment_->frame, after))
+        return;
     pushEdit(text.isEmpty() ? tr("Change the solver settings") : text, std::move(after));
 }
 
