@@ -48,13 +48,13 @@ inline FrameRange withinFrames(FrameRange range, const std::string& text, int fr
         throw boneless::Error("frames " + text + " select no frame of " + source + " (" +
                               boneless::plural(frames, "frame") + ")");
     if (range.end > frames) {
-        const std::string note = "--frames " + text + " runs past the end of " + source + " (" +
-                                 boneless::plural(frames, "frame") + "): " + doing + " " +
-                                 std::to_string(range.first) + ":" + std::to_string(frames);
-        if (notes)
-            notes->push_back(note);
+        const std::string cut = " (" + boneless::plural(frames, "frame") + "): " + doing + " " +
+                                std::to_string(range.first) + ":" + std::to_string(frames);
+        if (notes)  // said under a line that names the take, for a manifest's "frames"
+            notes->push_back("frames " + text + " run past its end" + cut);
         else
-            std::fprintf(stderr, "note: %s\n", note.c_str());
+            std::fprintf(stderr, "note: --frames %s runs past the end of %s%s\n", text.c_str(),
+                         source.c_str(), cut.c_str());
         range.end = frames;
     }
     return range;
