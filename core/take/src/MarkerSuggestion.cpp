@@ -33,14 +33,16 @@ constexpr double kLiftMm = 10.0;
 // pick keeps its distance to it within heldMm over the take (from the 10th to the 90th
 // percentile: no pick holds its part of the body); the kept fits' own nearest vertices lie
 // spreadMm from it (RMS, on the rest mesh); or another part of the body (farther than
-// otherPartMm on the rest mesh) costs at most ambiguity times its cost plus ambiguityMm.
+// otherPartMm on the rest mesh) costs at most ambiguity times its cost plus ambiguityMm. An
+// entry within mirrorMm of its picked partner's mirror image is exempt from the last three.
 // On CMU 85_02 from five sets of six picks (docs/markers.md), correct entries lie up to 125 mm
-// from the best fit, and the last two rules flag 82 of the 98 misses and 37 of the 77 hits,
+// from the best fit, and the review flags catch 84 of the 98 misses and 37 of the 77 hits,
 // where a 45 mm bound on the fit alone flagged 38 and 37.
 struct ReviewThresholds {
     double farMm = 100.0;
     double heldMm = 25.0;
     double spreadMm = 30.0;
+    double mirrorMm = 30.0;
     double otherPartMm = 150.0;
     double ambiguity = 1.5;
     double ambiguityMm = 10.0;
@@ -242,7 +244,7 @@ std::vector<Draft> draft(const TriMesh& rest, const C3dTake& take, const Corresp
             }
         d.spreadMm = spreadFits ? std::sqrt(spread / spreadFits) / unitsPerMm : 0.0;
         const auto image = mirrorOfPartner(rest, take, known, d.point, mirror);
-        d.mirrored = image && (*image - home).norm() <= kReview.spreadMm * unitsPerMm;
+        d.mirrored = image && (*image - home).norm() <= kReview.mirrorMm * unitsPerMm;
         const auto x = take.samples.position(fits.front().frame, d.point);
         d.seen = x.has_value();
         if (x)
