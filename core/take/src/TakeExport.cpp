@@ -232,7 +232,7 @@ json calibrationJson(const ExportRequest& request, const TriMesh& mesh, const Ta
 json recordedPath(const std::string& path) {
     if (path.empty()) return nullptr;  // the app's map may be in no file
     std::error_code ec;
-    const fs::path full = fs::absolute(path, ec);
+    const fs::path full = fs::absolute(path, ec).lexically_normal();
     return validUtf8(ec ? path : full.string());
 }
 
