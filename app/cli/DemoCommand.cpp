@@ -37,11 +37,11 @@ void registerDemoCommand(CLI::App& app) {
     cmd->callback([args] {
         const DemoFiles demo = writeDemoFiles(args->out, args->frames, args->offsetMm, true,
                                               args->detail, DemoSubject::Walker);
+        const std::string frames = plural(demo.frames, "frame");
         std::printf(
             "%s: walker.obj (%d vertices, %d faces), walker.c3d (%d markers, %s at %g Hz), "
             "walker.map.json, truth/ (%s)\n",
-            args->out.c_str(), demo.vertices, demo.faces, demo.markers,
-            boneless::plural(demo.frames, "frame").c_str(), demo.rate,
-            boneless::plural(demo.frames, "frame").c_str());
+            args->out.c_str(), demo.vertices, demo.faces, demo.markers, frames.c_str(), demo.rate,
+            frames.c_str());
     });
 }

@@ -1,6 +1,5 @@
 // boneless-cli eval: reconstruct a ground-truth sequence from K of its vertices and measure it.
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -112,14 +111,14 @@ void run(const EvalArgs& args) {
     if (std::unique(distinct.begin(), distinct.end()) - distinct.begin() >= vertices)
         throw Error(args.markersFile + " makes every one of the " + std::to_string(vertices) +
                     " vertices a marker: none is left to reconstruct");
-    // Every marker missing in every frame (the evaluation drops round(K × P / 100) of K): nothing
-    // to reconstruct from, and the summary would read as a reconstruction.
-    const std::size_t markers = options.markers.size();
-    if (std::lround(markers * args.drop / 100.0) >= static_cast<long>(markers)) {
+    // Every marker missing in every frame: nothing to reconstruct from, and the summary would
+    // read as a reconstruction.
+    options.dropPercent = args.drop;
+    if (options.droppedPerFrame() >= static_cast<int>(options.markers.size())) {
         char drop[32];
         std::snprintf(drop, sizeof drop, "%g", args.drop);
         throw Error(std::string("--drop ") + drop + " leaves none of the " +
-                    std::to_string(markers) +
+                    std::to_string(options.markers.size()) +
                     " markers in any frame: there is nothing to reconstruct from");
     }
     const FrameRange range =
@@ -130,7 +129,6 @@ void run(const EvalArgs& args) {
                     ": no frame after it to evaluate");
     options.firstFrame = range.first;
     options.endFrame = range.end;
-    options.dropPercent = args.drop;
     options.seed = args.seed;
     fromJson(args.options, options.solver, "eval");
 

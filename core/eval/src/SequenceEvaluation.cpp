@@ -12,6 +12,10 @@
 
 namespace boneless {
 
+int EvaluationOptions::droppedPerFrame() const {
+    return static_cast<int>(std::lround(markers.size() * dropPercent / 100.0));
+}
+
 const char* methodName(EvaluationOptions::Method method) {
     return method == EvaluationOptions::Method::Arap ? "arap" : "boneless";
 }
@@ -81,7 +85,7 @@ Evaluation evaluateSequence(const MeshSequence& sequence, const EvaluationOption
     }
 
     std::mt19937 rng(options.seed);
-    const int dropCount = static_cast<int>(std::lround(K * options.dropPercent / 100.0));
+    const int dropCount = options.droppedPerFrame();
     std::vector<int> order(K);
     std::optional<Positions> previous;
     if (options.firstFrame == 0) previous = sequence.rest.V;

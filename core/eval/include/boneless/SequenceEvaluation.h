@@ -29,6 +29,8 @@ struct EvaluationOptions {
         return s;
     }();
     int arapIterations = 10;
+    // How many markers each frame drops: dropPercent of them, rounded.
+    int droppedPerFrame() const;
 };
 
 struct FrameEvaluation {
