@@ -35,6 +35,12 @@ std::optional<Vec3> parseAxis(const std::string& name) {
     return (name[0] == '-' ? -1.0 : 1.0) * Vec3::Unit(name[1] - 'x');
 }
 
+int visibleRows(const Positions& P) {
+    int seen = 0;
+    for (Eigen::Index k = 0; k < P.rows(); ++k) seen += P.row(k).allFinite() ? 1 : 0;
+    return seen;
+}
+
 Similarity levelled(const Similarity& free, const Positions& take, const Positions& mesh,
                     const std::optional<Vec3>& meshUp) {
     const Vec3 up = free.R * Vec3::UnitZ();
@@ -80,8 +86,7 @@ Calibration calibrate(int frames, const std::function<Positions(int)>& frameAt,
     std::vector<int> visible(frames, 0);
     int mostVisible = 0;
     for (int f = 0; f < frames; ++f) {
-        const Positions P = frameAt(f);
-        for (int k = 0; k < P.rows(); ++k) visible[f] += P.row(k).allFinite() ? 1 : 0;
+        visible[f] = visibleRows(frameAt(f));
         mostVisible = std::max(mostVisible, visible[f]);
     }
     Calibration best;

@@ -80,12 +80,6 @@ double fitQuality(const C3dTake& take, const Similarity& s, const std::vector<st
     return nearest[nearest.size() / 2];
 }
 
-// Marker sets are mirrored (LFWT and RFWT), and so are most bodies: on a mirrored rest mesh, an
-// unmapped marker whose partner is picked costs more the farther it lands from the mirror image
-// of the partner's vertex, a metre of asymmetry as much as a metre of distance to its marker over
-// the fits (CMU 85_02, the two pick sets of docs/markers.md: 20 to 21 and 15 to 16 of 35). Pairs
-// that are both unmapped are left to the take: tied together they lost as many as they gained,
-// since actors wear limb markers unevenly and the fit does not know which side is right.
 // Where the mirror image of the marker's picked partner's vertex lies on the rest mesh, if the
 // mesh is mirrored and the partner (LFWT for RFWT) is picked.
 std::optional<Vec3> mirrorOfPartner(const TriMesh& rest, const C3dTake& take,
@@ -99,6 +93,12 @@ std::optional<Vec3> mirrorOfPartner(const TriMesh& rest, const C3dTake& take,
     return std::nullopt;
 }
 
+// Marker sets are mirrored (LFWT and RFWT), and so are most bodies: on a mirrored rest mesh, an
+// unmapped marker whose partner is picked costs more the farther it lands from the mirror image
+// of the partner's vertex, a metre of asymmetry as much as a metre of distance to its marker over
+// the fits (CMU 85_02, the two pick sets of docs/markers.md: 20 to 21 and 15 to 16 of 35). Pairs
+// that are both unmapped are left to the take: tied together they lost as many as they gained,
+// since actors wear limb markers unevenly and the fit does not know which side is right.
 std::vector<Eigen::VectorXd> withMirror(const TriMesh& rest, const C3dTake& take,
                                         const Correspondence& known,
                                         const std::vector<std::size_t>& wanted,

@@ -96,9 +96,7 @@ void TakeSolver::prepare(const Correspondence& map) {
         calibration_.residual =
             alignmentResidual(calibration_.takeToMesh, P,
                               restMarkers(calibration_.takeToMesh.scale / track_->unitToMm()));
-        calibration_.visibleMarkers = 0;
-        for (Eigen::Index k = 0; k < P.rows(); ++k)
-            calibration_.visibleMarkers += P.row(k).allFinite() ? 1 : 0;
+        calibration_.visibleMarkers = visibleRows(P);
     };
     std::optional<Similarity> level;
     double levelResidual = 0;
@@ -112,9 +110,7 @@ void TakeSolver::prepare(const Correspondence& map) {
             const Positions R = restMarkers(meshUnitsPerMm);
             if (options_.calibrationFrame >= 0) {
                 const Positions P = trackFrame(options_.calibrationFrame, false);
-                Eigen::Index seen = 0;
-                for (Eigen::Index k = 0; k < P.rows(); ++k) seen += P.row(k).allFinite() ? 1 : 0;
-                if (seen < 3)
+                if (const int seen = visibleRows(P); seen < 3)
                     throw Error(track_->file() + ": calibration frame " +
                                 std::to_string(options_.calibrationFrame) + " shows " +
                                 std::to_string(seen) + " of the " + std::to_string(P.rows()) +

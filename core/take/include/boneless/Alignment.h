@@ -63,5 +63,7 @@ std::optional<Vec3> parseAxis(const std::string& name);
 
 // The take's positions of `points` at `frame`, NaN rows where missing.
 Positions takeFrame(const C3dTake& take, const std::vector<std::size_t>& points, int frame);
+// How many rows of such a frame are seen (finite).
+int visibleRows(const Positions& P);
 
 }  // namespace boneless
