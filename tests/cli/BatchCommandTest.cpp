@@ -48,6 +48,14 @@ json folderManifest(const std::string& out) {
          {{{"c3d", "takes"}, {"mesh", "walker.obj"}, {"map", "walker.map.json"}, {"out", out}}}}};
 }
 
+// `dir`'s folder manifest (into "out"), written and run once; its path.
+fs::path solvedOnce(const fs::path& dir) {
+    const fs::path manifest = writeManifest(dir, "m.json", folderManifest("out"));
+    const CliResult r = runCli("batch " + manifest.string());
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    return manifest;
+}
+
 // Every file under `root` by relative path; sidecars without their timings (they differ run to
 // run), everything else byte for byte.
 std::map<std::string, std::string> contents(const fs::path& root) {
@@ -101,8 +109,7 @@ TEST(Batch, TwoShardsTogetherWriteExactlyWhatOneRunWrites) {
 
 TEST(Batch, ARunAgainSkipsTheTakesItFinished) {
     const fs::path dir = makeLibrary();
-    const fs::path manifest = writeManifest(dir, "m.json", folderManifest("out"));
-    ASSERT_EQ(runCli("batch " + manifest.string()).exitCode, 0);
+    const fs::path manifest = solvedOnce(dir);
     // A take whose run did not finish has a sidecar saying so: it is solved again.
     const fs::path sidecar = dir / "out" / "walk_c" / "walker.json";
     json j = json::parse(std::ifstream(sidecar));
@@ -178,8 +185,7 @@ TEST(Batch, ARangePastTheTakesEndIsNotedUnderTheTakesLine) {
 // its sidecar said complete, and the frames solved with the wrong map stayed.
 TEST(Batch, ATakeWhoseMapMeshOrFileChangedIsSolvedAgainSayingWhich) {
     const fs::path dir = makeLibrary();
-    const fs::path manifest = writeManifest(dir, "m.json", folderManifest("out"));
-    ASSERT_EQ(runCli("batch " + manifest.string()).exitCode, 0);
+    const fs::path manifest = solvedOnce(dir);
     const fs::path sidecar = dir / "out" / "walk_b" / "walker.json";
     EXPECT_TRUE(json::parse(std::ifstream(sidecar))["source_fingerprints"]["map"].is_string());
 
@@ -213,8 +219,7 @@ TEST(Batch, ATakeWhoseMapMeshOrFileChangedIsSolvedAgainSayingWhich) {
 // A sidecar from before the fingerprints cannot say its inputs are unchanged.
 TEST(Batch, ASidecarThatRecordsNoFingerprintsIsSolvedAgain) {
     const fs::path dir = makeLibrary();
-    const fs::path manifest = writeManifest(dir, "m.json", folderManifest("out"));
-    ASSERT_EQ(runCli("batch " + manifest.string()).exitCode, 0);
+    const fs::path manifest = solvedOnce(dir);
     const fs::path sidecar = dir / "out" / "walk_c" / "walker.json";
     json j = json::parse(std::ifstream(sidecar));
     j.erase("source_fingerprints");
@@ -231,8 +236,7 @@ TEST(Batch, ASidecarThatRecordsNoFingerprintsIsSolvedAgain) {
 // every take of a library was solved again "from other frames or options".
 TEST(Batch, ASidecarFromBeforeMeshUpIsSkippedAsAnAutoOne) {
     const fs::path dir = makeLibrary();
-    const fs::path manifest = writeManifest(dir, "m.json", folderManifest("out"));
-    ASSERT_EQ(runCli("batch " + manifest.string()).exitCode, 0);
+    const fs::path manifest = solvedOnce(dir);
     const fs::path sidecar = dir / "out" / "walk_c" / "walker.json";
     json j = json::parse(std::ifstream(sidecar));
     ASSERT_EQ(j["options"]["mesh_up"], "auto");

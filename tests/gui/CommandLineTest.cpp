@@ -1,43 +1,22 @@
 // `boneless` run from a shell: what it answers before it needs a window.
-#include <QProcess>
 #include <QRegularExpression>
 #include <QtTest>
 
+#include "AppRun.h"
 #include "ModelTestFixtures.h"
 
 namespace {
 
-struct Run {
-    bool crashed = true;
-    int exitCode = -1;
-    QString output;
-};
+using boneless::ui::test::AppRun;
 
 // Runs boneless with `arguments`, without a display when `headless` (no DISPLAY, no Xvfb, no
 // QT_QPA_PLATFORM): a user on a headless machine or over ssh.
-Run runBoneless(const QStringList& arguments, bool headless) {
+AppRun runFromShell(const QStringList& arguments, bool headless) {
     QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
     if (headless)
         for (const char* name : {"DISPLAY", "WAYLAND_DISPLAY", "QT_QPA_PLATFORM"}) env.remove(name);
-    // Any settings it would write stay in the test's folder, not the user's.
-    const QString home = boneless::ui::test::freshFolder("CommandLineTest");
-    env.insert("XDG_CONFIG_HOME", home + "/config");
-    env.insert("XDG_DATA_HOME", home + "/data");
-    env.insert("XDG_CACHE_HOME", home + "/cache");
-    QProcess process;
-    process.setProcessEnvironment(env);
-    process.setProcessChannelMode(QProcess::MergedChannels);
-    process.start(QStringLiteral(BONELESS_GUI), arguments);
-    Run run;
-    if (!process.waitForFinished(60000)) {
-        process.kill();
-        process.waitForFinished();
-        run.output = "timed out\n";
-    }
-    run.output += QString::fromLocal8Bit(process.readAll());
-    run.crashed = process.exitStatus() != QProcess::NormalExit;
-    run.exitCode = process.exitCode();
-    return run;
+    return boneless::ui::test::runBoneless(
+        arguments, boneless::ui::test::freshFolder("CommandLineTest"), env, 60000);
 }
 
 }  // namespace
@@ -48,7 +27,7 @@ class CommandLineTest : public QObject {
     void helpIsPrintedWithoutADisplay() {
         for (const QStringList& arguments :
              {QStringList{"--help"}, QStringList{"-h"}, QStringList{"--frame", "3", "--help"}}) {
-            const Run run = runBoneless(arguments, true);
+            const AppRun run = runFromShell(arguments, true);
             QVERIFY2(!run.crashed && run.exitCode == 0,
                      qPrintable(QString("%1: exit %2%3\n%4")
                                     .arg(arguments.join(' '))
@@ -64,7 +43,7 @@ class CommandLineTest : public QObject {
     }
 
     void versionIsPrintedWithoutADisplay() {
-        const Run run = runBoneless({"--version"}, true);
+        const AppRun run = runFromShell({"--version"}, true);
         QVERIFY2(!run.crashed && run.exitCode == 0,
                  qPrintable(QString("exit %1%2\n%3")
                                 .arg(run.exitCode)
@@ -76,7 +55,7 @@ class CommandLineTest : public QObject {
 
     // Answering --help early must not let a wrong option through to the window.
     void anUnknownOptionIsStillRefusedWithTheParsersMessage() {
-        const Run run = runBoneless({"--no-such-option"}, false);
+        const AppRun run = runFromShell({"--no-such-option"}, false);
         QVERIFY2(!run.crashed && run.exitCode == 1, qPrintable(run.output));
         QVERIFY2(run.output.contains("Unknown option 'no-such-option'"), qPrintable(run.output));
     }

@@ -6,10 +6,10 @@
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
-#include <QProcess>
 #include <QSet>
 #include <QtTest>
 
+#include "AppRun.h"
 #include "BaselineImage.h"
 #include "ViewTestSupport.h"
 
@@ -18,33 +18,6 @@ namespace {
 namespace test = boneless::ui::test;
 
 constexpr double kMaxMismatchShare = 0.01;  // of all pixels
-
-struct Run {
-    int exitCode = -1;
-    QString output;
-};
-
-Run runBoneless(const QStringList& arguments, const QString& home) {
-    QProcess process;
-    QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
-    // The child keeps its settings and recent files in the test's folder, not the user's.
-    env.insert("XDG_CONFIG_HOME", home + "/config");
-    env.insert("XDG_DATA_HOME", home + "/data");
-    env.insert("XDG_CACHE_HOME", home + "/cache");
-    env.insert("OPENBLAS_NUM_THREADS", "1");
-    process.setProcessEnvironment(env);
-    process.setProcessChannelMode(QProcess::MergedChannels);
-    process.start(QStringLiteral(BONELESS_GUI), arguments);
-    Run run;
-    if (!process.waitForFinished(240000)) {
-        process.kill();
-        process.waitForFinished();
-        run.output = "timed out\n";
-    }
-    run.output += QString::fromLocal8Bit(process.readAll());
-    run.exitCode = process.exitStatus() == QProcess::NormalExit ? process.exitCode() : -1;
-    return run;
-}
 
 // A copy of the demo project at `path` whose first map entry `edit` changed.
 template <typename Edit>
@@ -81,8 +54,8 @@ class ScreenshotTest : public QObject {
 
     void demoFrameMatchesBaseline() {
         const QString out = folder_ + "/demo-frame10.png";
-        const Run run =
-            runBoneless({"--project", project_, "--frame", "10", "--screenshot", out}, folder_);
+        const test::AppRun run = test::runBoneless(
+            {"--project", project_, "--frame", "10", "--screenshot", out}, folder_);
         QVERIFY2(run.exitCode == 0, qPrintable(run.output));
         qInfo("boneless: %s", qPrintable(run.output.trimmed()));
         const QImage actual = QImage(out).convertToFormat(QImage::Format_RGB32);
@@ -112,8 +85,8 @@ class ScreenshotTest : public QObject {
 
     void badProjectFailsWithMessage() {
         const QString out = folder_ + "/never.png";
-        const Run run =
-            runBoneless({"--project", folder_ + "/missing.boneless", "--screenshot", out}, folder_);
+        const test::AppRun run = test::runBoneless(
+            {"--project", folder_ + "/missing.boneless", "--screenshot", out}, folder_);
         QVERIFY2(run.exitCode != 0, qPrintable(run.output));
         QVERIFY2(run.output.contains("missing.boneless"), qPrintable(run.output));
         QVERIFY(!QFileInfo::exists(out));
@@ -126,7 +99,8 @@ class ScreenshotTest : public QObject {
                           [](QJsonObject& marker) { marker["vertex"] = 999999; });
         QVERIFY(!project.isEmpty());
         const QString out = folder_ + "/never.png";
-        const Run run = runBoneless({"--project", project, "--screenshot", out}, folder_);
+        const test::AppRun run =
+            test::runBoneless({"--project", project, "--screenshot", out}, folder_);
         QVERIFY2(run.exitCode != 0, qPrintable(run.output));
         QVERIFY2(run.output.contains("far-vertex.boneless"), qPrintable(run.output));
         QVERIFY2(run.output.contains("999999"), qPrintable(run.output));
@@ -140,7 +114,8 @@ class ScreenshotTest : public QObject {
                           [](QJsonObject& marker) { marker["label"] = "NOSUCHLABEL"; });
         QVERIFY(!project.isEmpty());
         const QString out = folder_ + "/never.png";
-        const Run run = runBoneless({"--project", project, "--screenshot", out}, folder_);
+        const test::AppRun run =
+            test::runBoneless({"--project", project, "--screenshot", out}, folder_);
         QVERIFY2(run.exitCode != 0, qPrintable(run.output));
         QVERIFY2(run.output.contains("no-label.boneless"), qPrintable(run.output));
         QVERIFY2(run.output.contains("NOSUCHLABEL"), qPrintable(run.output));
@@ -148,7 +123,7 @@ class ScreenshotTest : public QObject {
     }
 
     void frameOutsideTheTakeFails() {
-        const Run run = runBoneless(
+        const test::AppRun run = test::runBoneless(
             {"--project", project_, "--frame", "600", "--screenshot", folder_ + "/never.png"},
             folder_);
         QVERIFY2(run.exitCode != 0, qPrintable(run.output));
