@@ -94,7 +94,7 @@ int main(int argc, char** argv) {
 
     // --help and --version are answered before the QApplication, which aborts without a display
     // (ssh, a headless machine). The rest waits for it: Qt's own options (-platform) are its, and
-    // --help-all lists them.
+    // --help-all lists them, from an application on the offscreen platform, which needs no display.
     {
         QStringList arguments;
         for (int i = 0; i < argc; ++i) arguments << QString::fromLocal8Bit(argv[i]);
@@ -104,6 +104,7 @@ int main(int argc, char** argv) {
             if (parser.isSet(version)) parser.showVersion();
             parser.showHelp(0);
         }
+        if (parser.isSet("help-all")) qputenv("QT_QPA_PLATFORM", "offscreen");
     }
 
     boneless::ui::setDefaultSurfaceFormat();

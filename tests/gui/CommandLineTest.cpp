@@ -42,6 +42,18 @@ class CommandLineTest : public QObject {
         }
     }
 
+    // --help-all adds Qt's own options, which exist only once the application does.
+    void helpWithQtsOptionsIsPrintedWithoutADisplay() {
+        const AppRun run = runFromShell({"--help-all"}, true);
+        QVERIFY2(!run.crashed && run.exitCode == 0,
+                 qPrintable(QString("exit %1%2\n%3")
+                                .arg(run.exitCode)
+                                .arg(run.crashed ? " (crashed)" : "")
+                                .arg(run.output)));
+        for (const char* option : {"--project", "--screenshot", "-platform"})
+            QVERIFY2(run.output.contains(option), qPrintable(option + ("\n" + run.output)));
+    }
+
     void versionIsPrintedWithoutADisplay() {
         const AppRun run = runFromShell({"--version"}, true);
         QVERIFY2(!run.crashed && run.exitCode == 0,
