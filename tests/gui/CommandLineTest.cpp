@@ -19,6 +19,15 @@ AppRun runFromShell(const QStringList& arguments, bool headless) {
         arguments, boneless::ui::test::freshFolder("CommandLineTest"), env, 60000);
 }
 
+// Why a run that should have exited 0 did not, for the test's message.
+QString exitText(const QStringList& arguments, const AppRun& run) {
+    return QString("%1: exit %2%3\n%4")
+        .arg(arguments.join(' '))
+        .arg(run.exitCode)
+        .arg(run.crashed ? " (crashed)" : "")
+        .arg(run.output);
+}
+
 }  // namespace
 
 class CommandLineTest : public QObject {
@@ -28,12 +37,7 @@ class CommandLineTest : public QObject {
         for (const QStringList& arguments :
              {QStringList{"--help"}, QStringList{"-h"}, QStringList{"--frame", "3", "--help"}}) {
             const AppRun run = runFromShell(arguments, true);
-            QVERIFY2(!run.crashed && run.exitCode == 0,
-                     qPrintable(QString("%1: exit %2%3\n%4")
-                                    .arg(arguments.join(' '))
-                                    .arg(run.exitCode)
-                                    .arg(run.crashed ? " (crashed)" : "")
-                                    .arg(run.output)));
+            QVERIFY2(!run.crashed && run.exitCode == 0, qPrintable(exitText(arguments, run)));
             QVERIFY2(run.output.contains("Usage: ") && run.output.contains("boneless"),
                      qPrintable(run.output));
             for (const char* option :
@@ -45,22 +49,14 @@ class CommandLineTest : public QObject {
     // --help-all adds Qt's own options, which exist only once the application does.
     void helpWithQtsOptionsIsPrintedWithoutADisplay() {
         const AppRun run = runFromShell({"--help-all"}, true);
-        QVERIFY2(!run.crashed && run.exitCode == 0,
-                 qPrintable(QString("exit %1%2\n%3")
-                                .arg(run.exitCode)
-                                .arg(run.crashed ? " (crashed)" : "")
-                                .arg(run.output)));
+        QVERIFY2(!run.crashed && run.exitCode == 0, qPrintable(exitText({"--help-all"}, run)));
         for (const char* option : {"--project", "--screenshot", "-platform"})
             QVERIFY2(run.output.contains(option), qPrintable(option + ("\n" + run.output)));
     }
 
     void versionIsPrintedWithoutADisplay() {
         const AppRun run = runFromShell({"--version"}, true);
-        QVERIFY2(!run.crashed && run.exitCode == 0,
-                 qPrintable(QString("exit %1%2\n%3")
-                                .arg(run.exitCode)
-                                .arg(run.crashed ? " (crashed)" : "")
-                                .arg(run.output)));
+        QVERIFY2(!run.crashed && run.exitCode == 0, qPrintable(exitText({"--version"}, run)));
         QVERIFY2(QRegularExpression("^Boneless \\d+\\.\\d+").match(run.output).hasMatch(),
                  qPrintable(run.output));
     }
