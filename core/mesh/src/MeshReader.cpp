@@ -226,19 +226,16 @@ MeshReadResult readMesh(const std::string& path, const MeshReadOptions& options)
     r.components = topo.components;
     r.isolatedVertices = topo.isolatedVertices;
 
-    // Relative to the model's size, so that float-rounded collinear corners count as degenerate.
     const double diagonal = boundingBoxDiagonal(V);
-    std::vector<int> zeroArea;
-    for (int t = 0; t < r.mesh.faceCount(); ++t) {
-        const Eigen::Vector3d a = V.row(r.mesh.F(t, 0)), b = V.row(r.mesh.F(t, 1)),
-                              c = V.row(r.mesh.F(t, 2));
-        if ((b - a).cross(c - a).norm() <= 1e-12 * diagonal * diagonal) {
+    std::vector<int> flat;
+    for (int t = 0; t < r.mesh.faceCount(); ++t)
+        if (zeroArea(V.row(r.mesh.F(t, 0)), V.row(r.mesh.F(t, 1)), V.row(r.mesh.F(t, 2)),
+                     diagonal)) {
             ++r.zeroAreaFaces;
-            if (zeroArea.size() < 5) zeroArea.push_back(triFace[t]);
+            if (flat.size() < 5) flat.push_back(triFace[t]);
         }
-    }
 
-    addWarnings(r, soup, dropped, zeroArea, topo);
+    addWarnings(r, soup, dropped, flat, topo);
     r.mesh.sourceFaces = sourceFaces(path, soup, kept, meshIndex, r.mesh.vertexCount(), r.warnings);
     return r;
 }

@@ -57,9 +57,13 @@ std::vector<Vec3> carriedRestNormals(const Faces& F, const Positions& V, const P
 
 std::vector<int> foldedFaces(const Faces& F, const Positions& V, const Positions& rest) {
     const std::vector<Vec3> carried = carriedRestNormals(F, V, rest);
+    const double diagonal = boundingBoxDiagonal(rest);
     std::vector<int> folded;
     for (int f = 0; f < F.rows(); ++f)
-        if (faceNormal(F, V, f).dot(carried[f]) < 0) folded.push_back(f);
+        // A face with no area at rest has no side to turn over: its normal is rounding noise.
+        if (!zeroArea(rest.row(F(f, 0)), rest.row(F(f, 1)), rest.row(F(f, 2)), diagonal) &&
+            faceNormal(F, V, f).dot(carried[f]) < 0)
+            folded.push_back(f);
     return folded;
 }
 

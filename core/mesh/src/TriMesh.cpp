@@ -7,4 +7,8 @@ double boundingBoxDiagonal(const Positions& V) {
     return (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
 }
 
+bool zeroArea(const Vec3& a, const Vec3& b, const Vec3& c, double diagonal) {
+    return (b - a).cross(c - a).norm() <= 1e-12 * diagonal * diagonal;
+}
+
 }  // namespace boneless

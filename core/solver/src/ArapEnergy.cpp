@@ -13,16 +13,20 @@ ArapEnergy::ArapEnergy(const TriMesh& rest) : rest_(&rest) {
     cotangent_.resize(rest.faceCount(), 3);
     restEdge_.resize(3 * static_cast<size_t>(rest.faceCount()));
     cornerOffsets_.assign(n + 1, 0);
-    for (int f = 0; f < rest.faceCount(); ++f)
+    const double diagonal = boundingBoxDiagonal(rest.V);
+    for (int f = 0; f < rest.faceCount(); ++f) {
+        // A zero-area face has no angles to keep; it contributes nothing. Its cotangents, rounding
+        // noise over a rounding-noise sine, would otherwise reach ±1e15 and swamp the others.
+        const bool flat = zeroArea(rest.V.row(rest.F(f, 0)), rest.V.row(rest.F(f, 1)),
+                                   rest.V.row(rest.F(f, 2)), diagonal);
         for (int c = 0; c < 3; ++c) {
             ++cornerOffsets_[rest.F(f, c) + 1];
             const int o = rest.F(f, c), j = rest.F(f, (c + 1) % 3), k = rest.F(f, (c + 2) % 3);
             const Vec3 a = rest.V.row(j) - rest.V.row(o), b = rest.V.row(k) - rest.V.row(o);
-            const double sine = a.cross(b).norm();
-            // A zero-area face has no angles to keep; it contributes nothing.
-            cotangent_(f, c) = sine > 1e-300 ? 0.5 * a.dot(b) / sine : 0.0;
+            cotangent_(f, c) = flat ? 0.0 : 0.5 * a.dot(b) / a.cross(b).norm();
             restEdge_[3 * f + c] = rest.V.row(j) - rest.V.row(k);
         }
+    }
     cornerRest_.resize(restEdge_.size());
     for (int f = 0; f < rest.faceCount(); ++f)
         for (int c = 0; c < 3; ++c) {

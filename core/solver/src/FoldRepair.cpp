@@ -32,9 +32,13 @@ FoldRepair::FoldRepair(const TriMesh& rest, const RingFit& rings) : rest_(rest),
     std::vector<int> fill(cornerStart_.begin(), cornerStart_.end() - 1);
     restNormal_.resize(faces);
     double total = 0;
+    const double diagonal = boundingBoxDiagonal(rest.V);
     for (int f = 0; f < faces; ++f) {
         for (int c = 0; c < 3; ++c) cornerFace_[fill[rest.F(f, c)]++] = f;
-        restNormal_[f] = faceNormal(rest.F, rest.V, f);
+        // A face with no area has no side to fold over: a zero normal leaves it out.
+        const Vec3 a = rest.V.row(rest.F(f, 0)), b = rest.V.row(rest.F(f, 1)),
+                   c = rest.V.row(rest.F(f, 2));
+        restNormal_[f] = zeroArea(a, b, c, diagonal) ? Vec3::Zero() : faceNormal(rest.F, rest.V, f);
         total += restNormal_[f].norm();
     }
     scale_ = faces ? kWeight * 0.5 * total / faces : 0.0;

@@ -18,7 +18,13 @@ OrientationGuard::OrientationGuard(const TriMesh& rest, double weight, double th
     const int faces = rest.faceCount();
     restArea2_.resize(faces);
     double total = 0;
-    for (int f = 0; f < faces; ++f) total += restArea2_[f] = faceNormal(rest, rest.V, f).norm();
+    const double diagonal = boundingBoxDiagonal(rest.V);
+    // A face with no area has no orientation to guard: an area of 0 leaves it out.
+    for (int f = 0; f < faces; ++f)
+        total += restArea2_[f] = zeroArea(rest.V.row(rest.F(f, 0)), rest.V.row(rest.F(f, 1)),
+                                          rest.V.row(rest.F(f, 2)), diagonal)
+                                     ? 0.0
+                                     : faceNormal(rest, rest.V, f).norm();
     const double meanArea = faces ? 0.5 * total / faces : 0.0;
     scale_ = std::sqrt(weight * meanArea);
 }

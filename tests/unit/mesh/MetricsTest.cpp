@@ -71,6 +71,23 @@ TEST(Metrics, ATurnedMeshFoldsNothingAPinchedVertexFolds) {
     EXPECT_LE(folded, 12);
 }
 
+// A sliver whose corners lie on a line up to rounding has no side: lifted off its line either way,
+// it turns over nothing (the walker with a stray sliver reported "folded faces 1").
+TEST(Metrics, AFaceWithNoAreaAtRestNeverFolds) {
+    TriMesh mesh = icosphere(1);
+    const int n = mesh.vertexCount();
+    mesh.V.conservativeResize(n + 3, 3);
+    const Vec3 start(5.1, 0.3, 0.7), step = Vec3(0.1, 0.2, 0.3) / 3.0;
+    for (int i = 0; i < 3; ++i) mesh.V.row(n + i) = (start + i * step).transpose();
+    mesh.F.conservativeResize(mesh.faceCount() + 1, 3);
+    mesh.F.row(mesh.faceCount() - 1) << n, n + 1, n + 2;
+    for (const double side : {-0.05, 0.05}) {
+        Positions lifted = mesh.V;
+        lifted.row(n + 1) += side * Vec3(1, -1, 0.3).normalized().transpose();
+        EXPECT_EQ(foldedFaceCount(mesh.F, lifted, mesh.V), 0) << "lifted by " << side;
+    }
+}
+
 TEST(Metrics, OnlyTheEdgesAlongAFoldAreBent) {
     const int n = 9;
     const TriMesh mesh = grid(n);

@@ -247,6 +247,37 @@ TEST_P(EveryMethod, MeshesWithBoundariesAndDegenerateFacesGiveFiniteResults) {
     EXPECT_TRUE(r.V.allFinite());
 }
 
+// Scans carry stray slivers: a triangle of its own whose corners lie on a line up to rounding has
+// no angles to keep, but computed naively cotangents of ±1e15, which took over the ARAP term's
+// scale (a solve of the MakeHuman-sized walker failed: "could not be factorised").
+TEST_P(EveryMethod, AStrayTriangleWhoseCornersLieOnALineChangesNothingElse) {
+    const TriMesh mesh = tube(8, 10, 3.0);
+    const int n = mesh.vertexCount();
+    TriMesh withSliver = mesh;
+    withSliver.V.conservativeResize(n + 3, 3);
+    const Vec3 start(5.1, 0.3, 0.7), step = Vec3(0.1, 0.2, 0.3) / 3.0;
+    for (int i = 0; i < 3; ++i) withSliver.V.row(n + i) = (start + i * step).transpose();
+    withSliver.F.conservativeResize(mesh.faceCount() + 1, 3);
+    withSliver.F.row(mesh.faceCount()) << n, n + 1, n + 2;
+    const Vec3 a = withSliver.V.row(n), b = withSliver.V.row(n + 1), c = withSliver.V.row(n + 2);
+    ASSERT_GT((b - a).cross(c - a).norm(), 0.0);  // rounded, not exactly flat
+    const auto markers = everyNth(n, 8);
+    const Positions pose = bent(mesh.V, 0.5);
+    for (const auto constraints :
+         {SolverOptions::Constraints::Hard, SolverOptions::Constraints::Soft}) {
+        SolverOptions o = options();
+        o.constraints = constraints;
+        Reconstruction plain, sliver;
+        plain.prepare(mesh, markers, o);
+        sliver.prepare(withSliver, markers, o);
+        const SolveResult r = sliver.solve(rows(pose, markers));
+        const Positions& V = r.V;
+        ASSERT_TRUE(V.allFinite());
+        EXPECT_LE(r.report.foldedFaces, 0);  // it has no side to fold over (−1: not counted)
+        EXPECT_LE(maxDistance(V.topRows(n), plain.solve(rows(pose, markers)).V), 1e-6);
+    }
+}
+
 TEST_P(EveryMethod, RejectsBadMarkerSetsAndTargets) {
     const TriMesh mesh = icosphere(1);
     Reconstruction solver;

@@ -59,4 +59,8 @@ struct TriMesh {
 // Length of the diagonal of the axis-aligned bounding box (0 for an empty mesh).
 double boundingBoxDiagonal(const Positions& V);
 
+// Whether the triangle (a, b, c) has no area, relative to a model of bounding-box diagonal
+// `diagonal`: corners on a line up to rounding count, since their angles are rounding noise.
+bool zeroArea(const Vec3& a, const Vec3& b, const Vec3& c, double diagonal);
+
 }  // namespace boneless
