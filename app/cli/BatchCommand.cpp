@@ -18,6 +18,7 @@
 #include "boneless/C3dFrameReader.h"
 #include "boneless/Error.h"
 #include "boneless/ExportFormat.h"
+#include "boneless/InputFile.h"
 #include "boneless/TakeOptionsJson.h"
 #include "boneless/Text.h"
 
@@ -156,6 +157,8 @@ void refuseSharedOutputs(const std::string& file, const std::vector<TakeJob>& jo
 
 // Entries in manifest order: "takes" first, then each of "folders" expanded in file-name order.
 std::vector<TakeJob> readManifest(const std::string& file) {
+    if (const std::string why = notARegularFile(file, "batch manifest"); !why.empty())
+        throw Error(file + ": " + why);
     std::ifstream in(file);
     if (!in) throw Error(file + ": cannot open the batch manifest");
     json m;

@@ -11,6 +11,7 @@
 #include "FrameRange.h"
 #include "OptionFlags.h"
 #include "boneless/Error.h"
+#include "boneless/InputFile.h"
 #include "boneless/Sampling.h"
 #include "boneless/SequenceEvaluation.h"
 #include "boneless/TakeOptionsJson.h"
@@ -34,6 +35,8 @@ struct EvalArgs {
 };
 
 std::vector<int> readMarkerFile(const std::string& path, int vertexCount) {
+    if (const std::string why = notARegularFile(path, "marker"); !why.empty())
+        throw Error(path + ": " + why);
     std::ifstream in(path);
     if (!in) throw Error(path + ": cannot open the marker file");
     std::vector<int> ids;

@@ -2,13 +2,14 @@
 
 #include <charconv>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
 
 #include "Commands.h"
 #include "boneless/C3dReader.h"
+#include "boneless/ObjWriter.h"
+#include "boneless/TakeExport.h"
 
 namespace {
 
@@ -91,9 +92,7 @@ std::string csvField(const std::string& s) {
     return q + "\"";
 }
 
-void writeCsv(const boneless::C3dTake& t, const std::string& path) {
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    if (!out) throw boneless::Error(path + ": cannot open for writing");
+void writeCsv(const boneless::C3dTake& t, std::ostream& out) {
     std::vector<std::string> labels;
     for (const auto& p : t.points) labels.push_back(csvField(p.label));
     std::string buf = "frame,label,x,y,z,valid\n";
@@ -102,7 +101,7 @@ void writeCsv(const boneless::C3dTake& t, const std::string& path) {
         auto r = std::to_chars(num, num + sizeof num, v);
         buf.append(num, r.ptr);
     };
-    for (std::size_t f = 0; f < t.frameCount(); ++f) {
+    for (std::size_t f = 0; f < t.frameCount() && out; ++f) {  // not on past a full disk
         for (std::size_t k = 0; k < t.points.size(); ++k) {
             put(f);
             buf += ',';
@@ -123,7 +122,6 @@ void writeCsv(const boneless::C3dTake& t, const std::string& path) {
         }
     }
     out.write(buf.data(), std::streamsize(buf.size()));
-    if (!out) throw boneless::Error(path + ": write failed");
 }
 
 }  // namespace
@@ -140,10 +138,18 @@ void registerInspectCommand(CLI::App& app) {
     cmd->add_flag("--keep-zero", opts->keepZero,
                   "keep samples at exactly (0,0,0) instead of treating them as missing");
     cmd->callback([opts]() {
+        // `--csv take.c3d` replaced the take with its own CSV.
+        if (!opts->csv.empty() && boneless::sameFile(opts->csv, opts->take))
+            throw boneless::Error(opts->csv + ": the CSV would replace the take " + opts->take +
+                                  "; give --csv another file");
         boneless::C3dReadOptions ro;
         ro.keepZeroSamples = opts->keepZero;
         const boneless::C3dTake take = boneless::readC3d(opts->take, ro);
-        if (!opts->csv.empty()) writeCsv(take, opts->csv);
+        // Under a temporary name, renamed once whole: a write that fails (a full disk) leaves
+        // the file it was to replace as it was.
+        if (!opts->csv.empty())
+            boneless::writeFileAtomically(opts->csv,
+                                          [&](std::ostream& out) { writeCsv(take, out); });
         if (opts->json)
             // Labels are UTF-8 already (the reader converts them); a path need not be.
             std::cout << toJson(take).dump(2, ' ', false, nlohmann::json::error_handler_t::replace)

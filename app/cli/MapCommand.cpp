@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <utility>
 
 #include "Commands.h"
 #include "OptionFlags.h"
@@ -13,6 +14,7 @@
 #include "boneless/MarkerSuggestion.h"
 #include "boneless/MeshReader.h"
 #include "boneless/SuggestionCheck.h"
+#include "boneless/TakeExport.h"
 #include "boneless/Text.h"
 
 using namespace boneless;
@@ -41,6 +43,16 @@ void registerMapCommand(CLI::App& app) {
                      "With --check: how near counts as landing (0.1 to 1000, default 30)")
         ->check(numberFrom(0.1, 1000));
     suggest->callback([args] {
+        // `--out take.c3d` replaced the take, `--out ref.json --check ref.json` the map to check
+        // against: refused before anything is read.
+        for (const auto& [what, input] :
+             {std::pair<const char*, const std::string*>{"mesh", &args->mesh},
+              {"take", &args->c3d},
+              {"map", &args->map},
+              {"reference map", &args->check}})
+            if (!input->empty() && sameFile(args->out, *input))
+                throw Error(args->out + ": the completed map would replace the " + what + " " +
+                            *input + "; give --out another file");
         MeshReadOptions options;
         options.group = args->group;
         const TriMesh mesh = readMesh(args->mesh, options).mesh;

@@ -1,8 +1,10 @@
 // boneless-cli inspect, run as a user would.
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 
+#include <csignal>
 #include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -89,6 +91,62 @@ TEST(C3dInspect, CsvHasOneRowPerSampleAndEmptyMissing) {
     ASSERT_EQ(rows.size(), 15u);
     EXPECT_EQ(rows[0], "0,bob:LFHD,1.5,-2.25,3,1");
     EXPECT_EQ(rows[6], "2,bob:LFHD,,,,0");
+}
+
+// `inspect victim.c3d --csv victim.c3d` replaced the take with its own CSV. An output that is the
+// take however it is spelled (through "..", a symbolic or a hard link) is refused, naming both,
+// and the take is left as it was.
+TEST(C3dInspect, ACsvThatWouldReplaceTheTakeIsRefusedNamingBoth) {
+    namespace fs = std::filesystem;
+    const fs::path dir = c3dtest::workDir() / "csv-over-take";
+    fs::remove_all(dir);
+    fs::create_directories(dir / "sub");
+    const fs::path take = dir / "victim.c3d";
+    writeC3d(c3dtest::syntheticTake(5, {"A", "B"}), take.string());
+    const std::string before = slurp(take);
+    fs::create_symlink(take, dir / "link.csv");
+    fs::create_hard_link(take, dir / "hard.csv");
+    for (const fs::path& csv :
+         {take, dir / "sub" / ".." / "victim.c3d", dir / "link.csv", dir / "hard.csv"}) {
+        const CliRun r = inspect(quoted(take.string()) + " --csv " + quoted(csv.string()));
+        EXPECT_EQ(r.exitCode, 1) << csv;
+        EXPECT_EQ(r.err, "boneless-cli: " + csv.string() + ": the CSV would replace the take " +
+                             take.string() + "; give --csv another file\n");
+        EXPECT_TRUE(slurp(take) == before) << csv << ": the take was replaced";
+    }
+}
+
+// A CSV that could not be written had already wiped the file it was to replace, was left
+// truncated, and the error said only "write failed". Here the process may not grow a file past
+// 4 KiB (RLIMIT_FSIZE, as a quota or a full disk stops it): the error gives the system's reason
+// and the old file and nothing else is left.
+TEST(C3dInspect, ACsvThatCannotBeWrittenSaysWhyAndLeavesTheOldFileAsItWas) {
+    namespace fs = std::filesystem;
+    const fs::path dir = c3dtest::workDir() / "csv-fails";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const fs::path take = dir / "long.c3d", csv = dir / "long.csv";
+    writeC3d(c3dtest::syntheticTake(200, {"A", "B", "C"}), take.string());  // a 20 KB CSV
+    std::ofstream(csv) << "the old CSV\n";
+    std::signal(SIGXFSZ, SIG_IGN);
+    rlimit normal{};
+    ASSERT_EQ(getrlimit(RLIMIT_FSIZE, &normal), 0);
+    rlimit small = normal;
+    small.rlim_cur = 4096;
+    ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &small), 0);
+    const CliRun r = inspect(quoted(take.string()) + " --csv " + quoted(csv.string()));
+    ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &normal), 0);
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_EQ(r.err, "boneless-cli: " + csv.string() + ": writing failed (File too large)\n");
+    EXPECT_TRUE(slurp(csv) == "the old CSV\n") << "the old CSV was replaced";
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 2)
+        << "a failed write leaves no temporary behind";
+
+    const fs::path nowhere = dir / "missing" / "x.csv";
+    const CliRun missing = inspect(quoted(take.string()) + " --csv " + quoted(nowhere.string()));
+    EXPECT_EQ(missing.exitCode, 1);
+    EXPECT_EQ(missing.err, "boneless-cli: " + nowhere.string() +
+                               ": cannot be written (No such file or directory)\n");
 }
 
 TEST(C3dInspect, UnreadableFileExitsNonZeroWithOneLine) {

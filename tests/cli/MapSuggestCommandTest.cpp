@@ -114,6 +114,51 @@ TEST(MapSuggestCommand, AMissingCheckMapFailsBeforeTheMapIsWritten) {
     EXPECT_FALSE(fs::exists(dir / "full.json"));
 }
 
+// `--out take.c3d` replaced the take with the map, and `--out ref.json --check ref.json` the map it
+// was to be checked against. An output that is an input, however it is spelled (a symbolic or hard
+// link), is refused before anything is read, naming both, and the input is left as it was.
+TEST(MapSuggestCommand, AnOutputThatWouldReplaceAnInputIsRefusedBeforeAnyWorkNamingBoth) {
+    const fs::path dir = freshTestDir("map-suggest-over-input");
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frames 3").exitCode, 0);
+    const fs::path mesh = dir / "walker.obj", take = dir / "walker.c3d",
+                   map = dir / "walker.map.json", ref = dir / "ref.json";
+    fs::copy_file(map, ref);
+    fs::create_symlink(take, dir / "link.json");
+    fs::create_hard_link(ref, dir / "hard.json");
+    auto contents = [](const fs::path& file) {
+        std::ostringstream s;
+        s << std::ifstream(file, std::ios::binary).rdbuf();
+        return s.str();
+    };
+    const std::string before[] = {contents(mesh), contents(take), contents(map), contents(ref)};
+    const std::string args = "map suggest --mesh " + mesh.string() + " --c3d " + take.string() +
+                             " --map " + map.string() + " --check " + ref.string() + " --out ";
+    const std::pair<fs::path, std::string> cases[] = {
+        {take, "take " + take.string()},
+        {mesh, "mesh " + mesh.string()},
+        {map, "map " + map.string()},
+        {ref, "reference map " + ref.string()},
+        {dir / "link.json", "take " + take.string()},
+        {dir / "hard.json", "reference map " + ref.string()}};
+    for (const auto& [out, input] : cases) {
+        const CliResult r = runCli(args + out.string());
+        EXPECT_EQ(r.exitCode, 1) << r.out;
+        EXPECT_EQ(r.out, "boneless-cli: " + out.string() +
+                             ": the completed map would replace the " + input +
+                             "; give --out another file\n");
+    }
+    EXPECT_TRUE(contents(mesh) == before[0] && contents(take) == before[1] &&
+                contents(map) == before[2] && contents(ref) == before[3])
+        << "an input was replaced";
+    // Before any work: a take that cannot be read is not what the refusal waits on.
+    const CliResult r =
+        runCli("map suggest --mesh " + mesh.string() + " --c3d " + (dir / "absent.c3d").string() +
+               " --map " + map.string() + " --out " + map.string());
+    EXPECT_NE(r.out.find(map.string() + ": the completed map would replace the map"),
+              std::string::npos)
+        << r.out;
+}
+
 // Before, a NaN tolerance printed "0 of 33 within nan mm".
 TEST(MapSuggestCommand, AToleranceThatIsNoSensibleDistanceIsRefusedNamingTheFlag) {
     const fs::path dir = freshTestDir("map-suggest-tolerance");

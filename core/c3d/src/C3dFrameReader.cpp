@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "C3dDetail.h"
+#include "boneless/InputFile.h"
 
 namespace boneless {
 
@@ -23,13 +24,13 @@ namespace {
 
 C3dFrameReader::C3dFrameReader(const std::string& path, const C3dReadOptions& options)
     : options_(options) {
+    if (const std::string why = notARegularFile(path, "C3D"); !why.empty())
+        throw C3dError(path, C3dError::kNoOffset, why);
     fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
     if (fd_ < 0) failSystem(path, "cannot open");
     try {
         struct stat st {};
         if (::fstat(fd_, &st) != 0) failSystem(path, "cannot determine the file size");
-        if (S_ISDIR(st.st_mode))
-            throw C3dError(path, C3dError::kNoOffset, "is a directory, not a C3D file");
         const std::size_t size = static_cast<std::size_t>(st.st_size);
         // The reader's checks run on a mapping of the file: they touch the header and the
         // parameters only, so the 3D data is never brought into memory here.

@@ -4,10 +4,10 @@
 
 #include <cerrno>
 #include <cstring>
-#include <filesystem>
 #include <fstream>
 
 #include "C3dTakeLayout.h"
+#include "boneless/InputFile.h"
 
 namespace boneless {
 
@@ -70,9 +70,8 @@ C3dTake readC3dMemory(const std::uint8_t* data, std::size_t size, const std::str
 }
 
 C3dTake readC3d(const std::string& path, const C3dReadOptions& options) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec))
-        throw C3dError(path, C3dError::kNoOffset, "is a directory, not a C3D file");
+    if (const std::string why = notARegularFile(path, "C3D"); !why.empty())
+        throw C3dError(path, C3dError::kNoOffset, why);
     std::ifstream in(path, std::ios::binary);
     if (!in)
         throw C3dError(path, C3dError::kNoOffset,

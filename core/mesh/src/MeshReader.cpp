@@ -8,6 +8,7 @@
 #include "OpenMeshPrecheck.h"
 #include "PolygonSoup.h"
 #include "boneless/Error.h"
+#include "boneless/InputFile.h"
 #include "boneless/Text.h"
 
 namespace boneless {
@@ -161,6 +162,8 @@ std::shared_ptr<const SourceFaces> sourceFaces(const std::string& path, const Po
 }  // namespace
 
 MeshReadResult readMesh(const std::string& path, const MeshReadOptions& options) {
+    if (const std::string why = notARegularFile(path, "mesh"); !why.empty())
+        throw MeshError(path, why);
     const bool obj = lowerExtension(path) == "obj";
     if (!options.group.empty() && !obj)
         throw MeshError(path, "only OBJ files have groups", "group '" + options.group + "'");
@@ -242,6 +245,8 @@ MeshReadResult readMesh(const std::string& path, const MeshReadOptions& options)
 
 std::vector<ObjGroup> objGroups(const std::string& path) {
     if (lowerExtension(path) != "obj") return {};
+    if (const std::string why = notARegularFile(path, "mesh"); !why.empty())
+        throw MeshError(path, why);
     return readObjGroups(path);
 }
 

@@ -14,11 +14,23 @@
 namespace boneless {
 
 void writeFileAtomically(const std::string& path, const std::string& contents) {
+    writeFileAtomically(path, [&](std::ostream& out) {
+        out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
+    });
+}
+
+void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
     const std::string temporary = temporaryFor(path);
     {
         std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
         if (!out) throw Error(path + ": cannot be written (" + std::strerror(errno) + ")");
-        out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
+        try {
+            write(out);
+        } catch (...) {
+            out.close();
+            std::remove(temporary.c_str());
+            throw;
+        }
         out.flush();
         if (!out) {
             const std::string why = writeFailure();

@@ -13,6 +13,7 @@
 
 #include "boneless/C3dTake.h"
 #include "boneless/Error.h"
+#include "boneless/InputFile.h"
 #include "boneless/ObjWriter.h"
 #include "boneless/Text.h"
 #include "boneless/TriMesh.h"
@@ -54,6 +55,8 @@ json withoutKeys(json object, std::initializer_list<const char*> keys) {
 }  // namespace
 
 Correspondence Correspondence::read(const std::string& path) {
+    if (const std::string why = notARegularFile(path, "correspondence"); !why.empty())
+        fail(path, why);
     std::ifstream in(path);
     if (!in)
         fail(path,

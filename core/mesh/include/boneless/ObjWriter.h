@@ -1,5 +1,7 @@
 #pragma once
 
+#include <functional>
+#include <ostream>
 #include <string>
 
 #include "boneless/TriMesh.h"
@@ -15,7 +17,11 @@ namespace boneless {
 void writeObj(const std::string& path, const Positions& positions, const Faces& faces,
               const std::string& comment = {}, const SourceFaces* source = nullptr);
 
-// Writes `contents` to `path` through a temporary file and a rename.
+// Writes `contents` to `path` through a temporary file (temporaryFor) and a rename: a write that
+// fails leaves the file `path` was and no temporary. Throws Error naming `path` and the system's
+// reason.
 void writeFileAtomically(const std::string& path, const std::string& contents);
+// The same for contents too long to hold at once (a take's CSV): `write` puts them on the stream.
+void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write);
 
 }  // namespace boneless

@@ -1,0 +1,98 @@
+// Inputs that are no file to read: a folder, a FIFO, a device. Every loader refuses them by what
+// they are, before opening them.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "CliRunner.h"
+
+using namespace boneless::testing;
+namespace fs = std::filesystem;
+
+namespace {
+
+// boneless-cli with `arguments`, stopped after 10 s: a loader that opens a FIFO waits for a
+// writer for ever.
+CliResult runBounded(const std::string& arguments) {
+    return runShell("timeout 10 " + std::string(BONELESS_CLI) + " " + arguments + " 2>&1");
+}
+
+struct Case {
+    std::string arguments, refusal;
+};
+
+void expectRefusals(const std::vector<Case>& cases) {
+    for (const Case& c : cases) {
+        const CliResult r = runBounded(c.arguments);
+        EXPECT_EQ(r.exitCode, 1) << c.arguments << "\n" << r.out;
+        EXPECT_EQ(r.out, "boneless-cli: " + c.refusal + "\n") << c.arguments;
+    }
+}
+
+}  // namespace
+
+// `solve --mesh somedir` said "unknown mesh file extension ''", a folder named d.obj "cannot read
+// file", one named d.ply "not a PLY file", `--map somedir` "is not valid JSON" and
+// `eval --markers-file somedir` "no vertex ids in the marker file".
+TEST(InputFiles, AFolderGivenForAFileIsRefusedAsAFolderByEveryLoader) {
+    const fs::path dir = freshTestDir("folders");
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frames 3").exitCode, 0);
+    for (const char* folder : {"somedir", "d.obj", "d.ply"}) fs::create_directory(dir / folder);
+    const std::string somedir = (dir / "somedir").string(), mesh = (dir / "walker.obj").string(),
+                      take = (dir / "walker.c3d").string(),
+                      map = (dir / "walker.map.json").string(),
+                      out = " --out " + (dir / "out").string();
+    auto solve = [&](const std::string& m, const std::string& t, const std::string& c) {
+        return "solve --mesh " + m + " --c3d " + t + " --map " + c + out;
+    };
+    expectRefusals({
+        {solve(somedir, take, map), somedir + ": is a directory, not a mesh file"},
+        {solve((dir / "d.obj").string() + "/", take, map),
+         (dir / "d.obj").string() + "/: is a directory, not a mesh file"},
+        {solve((dir / "d.ply").string(), take, map),
+         (dir / "d.ply").string() + ": is a directory, not a mesh file"},
+        {solve(mesh, take, somedir), somedir + ": is a directory, not a correspondence file"},
+        {solve(mesh, somedir, map), somedir + ": is a directory, not a C3D file"},
+        {"map suggest --mesh " + mesh + " --c3d " + take + " --map " + map + " --check " + somedir +
+             " --out " + (dir / "full.json").string(),
+         somedir + ": is a directory, not a correspondence file"},
+        {"eval --sequence " + (dir / "truth").string() + " --markers-file " + somedir,
+         somedir + ": is a directory, not a marker file"},
+        {"batch " + somedir, somedir + ": is a directory, not a batch manifest file"},
+        {"inspect " + somedir, somedir + ": is a directory, not a C3D file"},
+    });
+}
+
+// `inspect fifo.c3d` waited for a writer for ever, as did every other loader given a FIFO; a
+// device (/dev/null) read as an empty file or went by its name's extension.
+TEST(InputFiles, AFifoOrADeviceIsRefusedBeforeItIsOpenedRatherThanWaitedOn) {
+    const fs::path dir = freshTestDir("fifos");
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frames 3").exitCode, 0);
+    for (const char* name : {"fifo.obj", "fifo.c3d", "fifo.json", "fifo.txt"})
+        ASSERT_EQ(::mkfifo((dir / name).c_str(), 0600), 0) << name;
+    const std::string mesh = (dir / "walker.obj").string(), take = (dir / "walker.c3d").string(),
+                      map = (dir / "walker.map.json").string(),
+                      out = " --out " + (dir / "out").string();
+    auto solve = [&](const std::string& m, const std::string& t, const std::string& c) {
+        return "solve --mesh " + m + " --c3d " + t + " --map " + c + out;
+    };
+    auto fifo = [&](const char* name) { return (dir / name).string(); };
+    expectRefusals({
+        {"inspect " + fifo("fifo.c3d"), fifo("fifo.c3d") + ": is not a regular file"},
+        {solve(fifo("fifo.obj"), take, map), fifo("fifo.obj") + ": is not a regular file"},
+        {solve(mesh, fifo("fifo.c3d"), map), fifo("fifo.c3d") + ": is not a regular file"},
+        {solve(mesh, take, fifo("fifo.json")), fifo("fifo.json") + ": is not a regular file"},
+        {"map suggest --mesh " + mesh + " --c3d " + fifo("fifo.c3d") + " --map " + map + " --out " +
+             (dir / "full.json").string(),
+         fifo("fifo.c3d") + ": is not a regular file"},
+        {"eval --sequence " + (dir / "truth").string() + " --markers-file " + fifo("fifo.txt"),
+         fifo("fifo.txt") + ": is not a regular file"},
+        {"batch " + fifo("fifo.json"), fifo("fifo.json") + ": is not a regular file"},
+        {solve("/dev/null", take, map), "/dev/null: is not a regular file"},
+        {"inspect /dev/null", "/dev/null: is not a regular file"},
+    });
+}
