@@ -42,7 +42,11 @@ MarkerTrack::MarkerTrack(const C3dTake& take, const std::vector<std::size_t>& po
                 seen_.push_back(static_cast<int>(f));
                 break;
             }
-    if (lowPassHz > 0) lowPassFilter(memory_, rate_, lowPassHz);
+    if (lowPassHz > 0) {
+        recorded_ = memory_;
+        lowPassFilter(memory_, rate_, lowPassHz);
+        layer_ = 1;
+    }
 }
 
 MarkerTrack::MarkerTrack(const C3dFrameReader& reader, const std::vector<std::size_t>& points,
@@ -73,7 +77,8 @@ MarkerTrack::MarkerTrack(const C3dFrameReader& reader, const std::vector<std::si
         }
     }
     if (!(lowPassHz > 0)) return;
-    // The filter runs over whole runs of a trajectory: one marker's at a time is in memory.
+    // The filter runs over whole runs of a trajectory: one marker's at a time is in memory. The
+    // filtered trajectories go to a second layer; the recorded ones stay for the residuals.
     for (std::size_t k = 0; k < markers_; ++k) {
         C3dSamples column(frames_, 1);
         for (std::size_t first = 0; first < frames_; first += kSpoolBlock) {
@@ -87,9 +92,10 @@ MarkerTrack::MarkerTrack(const C3dFrameReader& reader, const std::vector<std::si
         for (std::size_t first = 0; first < frames_; first += kSpoolBlock) {
             const std::size_t count = std::min(kSpoolBlock, frames_ - first);
             xyz.assign(column.xyzData() + 3 * first, column.xyzData() + 3 * (first + count));
-            spoolColumn(k, first, xyz);
+            spoolColumn(markers_ + k, first, xyz);
         }
     }
+    layer_ = 1;
 }
 
 int MarkerTrack::nearestSeen(int frame) const {
@@ -135,20 +141,29 @@ void MarkerTrack::unspoolColumn(std::size_t marker, std::size_t first,
 }
 
 C3dSamples MarkerTrack::read(std::size_t first, std::size_t count) const {
+    return readLayer(layer_, first, count);
+}
+
+C3dSamples MarkerTrack::recorded(std::size_t frame) const {
+    return readLayer(0, frame, 1);
+}
+
+C3dSamples MarkerTrack::readLayer(std::size_t layer, std::size_t first, std::size_t count) const {
     if (first > frames_ || count > frames_ - first)
         throw std::out_of_range("MarkerTrack: frames " + std::to_string(first) + "+" +
                                 std::to_string(count) + " outside " + std::to_string(frames_));
     C3dSamples out(count, markers_);
     if (!spool_) {
+        const C3dSamples& from = layer == 0 && recorded_.frames() ? recorded_ : memory_;
         for (std::size_t f = 0; f < count; ++f)
             for (std::size_t k = 0; k < markers_; ++k)
-                if (const auto p = memory_.position(first + f, k))
+                if (const auto p = from.position(first + f, k))
                     out.set(f, k, p->x(), p->y(), p->z());
         return out;
     }
     std::vector<double> xyz(3 * count);
     for (std::size_t k = 0; k < markers_; ++k) {
-        unspoolColumn(k, first, xyz);
+        unspoolColumn(layer * markers_ + k, first, xyz);
         for (std::size_t f = 0; f < count; ++f)  // NaN stays missing
             out.set(f, k, xyz[3 * f], xyz[3 * f + 1], xyz[3 * f + 2]);
     }

@@ -205,6 +205,17 @@ Positions TakeSolver::trackFrame(int frame, bool filled) const {
     return T;
 }
 
+Positions TakeSolver::recorded(int frame) const {
+    const C3dSamples samples = track_->recorded(static_cast<std::size_t>(frame));
+    Positions T(samples.points(), 3);
+    for (int k = 0; k < T.rows(); ++k)
+        if (const auto x = samples.position(0, k))
+            T.row(k) = calibration_.takeToMesh.apply(*x).transpose();
+        else
+            T.row(k).setConstant(std::numeric_limits<double>::quiet_NaN());
+    return T;
+}
+
 Positions TakeSolver::targets(int frame, bool filled) const {
     Positions T = trackFrame(frame, filled);
     for (int k = 0; k < T.rows(); ++k)
@@ -217,7 +228,7 @@ Positions TakeSolver::solve(int frame, FrameReport& report, const std::atomic<bo
     if (frame < 0 || frame >= frameCount())
         throw Error(track_->file() + ": frame " + std::to_string(frame) + " is outside the take");
     const auto start = std::chrono::steady_clock::now();
-    const Positions T = targets(frame);  // what was seen: the residual is measured on it
+    const Positions T = recorded(frame);  // what was seen: the residual is measured on it
     Positions pull = targets(frame, true);
     report = {};
     report.frame = frame;

@@ -34,9 +34,12 @@ class MarkerTrack {
     double rate() const { return rate_; }
     double unitToMm() const { return unitToMm_; }
 
-    // Frames [first, first + count) of the markers (residuals are not kept). Safe to call from
-    // several threads. Throws Error when the spool cannot be read.
+    // Frames [first, first + count) of the markers, low-passed if asked (residuals are not
+    // kept). Safe to call from several threads. Throws Error when the spool cannot be read.
     C3dSamples read(std::size_t first, std::size_t count) const;
+    // One frame of the markers as the file records them, before any low-pass filter: what a
+    // frame's marker residual is measured against.
+    C3dSamples recorded(std::size_t frame) const;
 
   private:
     void describe(const C3dTake& take, std::size_t frames, std::size_t markers);
@@ -45,13 +48,18 @@ class MarkerTrack {
     void unspoolColumn(std::size_t marker, std::size_t first, std::vector<double>& xyz) const;
     void moveColumn(bool write, std::size_t marker, std::size_t first, double* xyz,
                     std::size_t count) const;
+    C3dSamples readLayer(std::size_t layer, std::size_t first, std::size_t count) const;
 
     std::string file_;
     double rate_ = 0, unitToMm_ = 1;
     std::size_t frames_ = 0, markers_ = 0;
-    std::vector<int> seen_;       // the frames where some marker is seen, ascending
-    C3dSamples memory_;           // when built from a take in memory
-    std::FILE* spool_ = nullptr;  // when streamed: marker-major, xyz doubles, NaN where missing
+    std::vector<int> seen_;  // the frames where some marker is seen, ascending
+    C3dSamples memory_;      // when built from a take in memory
+    C3dSamples recorded_;    // layer 0 when filtered: memory_ before the filter (else empty)
+    // When streamed: marker-major, xyz doubles, NaN where missing; the recorded samples, then,
+    // when filtered, the low-passed ones (layer 1).
+    std::FILE* spool_ = nullptr;
+    std::size_t layer_ = 0;  // the layer read() reads
 };
 
 }  // namespace boneless

@@ -110,6 +110,8 @@ class TakeSolver {
     // The track's markers at `frame` (K by 3, NaN rows where missing), and with `filled` the
     // short gaps filled, read through a window of frames about it.
     Positions trackFrame(int frame, bool filled) const;
+    // The markers at `frame` as recorded, before any low-pass filter, in mesh coordinates.
+    Positions recorded(int frame) const;
 
     TriMesh rest_;
     std::shared_ptr<const MarkerTrack> track_;
