@@ -85,6 +85,10 @@ class ProjectSessionTest : public QObject {
         QFile::remove(ProjectAutosave::recoveryPath());
     }
 
+    // A window destroyed without closing is a crash here: its autosave must not hold the next
+    // test's recovery file.
+    void init() { QFile::remove(ProjectAutosave::recoveryPath()); }
+
     void theDemoIsNeverWrittenAndOpensAsGenerated() {
         const QString demo = DemoProject::defaultFolder() + "/demo.boneless";
         {
@@ -400,6 +404,75 @@ class ProjectSessionTest : public QObject {
         QVERIFY(window.projectPath().isEmpty());
         QVERIFY(!window.isDemoOpen());
         QCOMPARE(window.document()->mappedCount(), mapped);
+    }
+
+    // kill -9 after untitled edits, then `boneless` with no file: the demo's edits leave that
+    // work alone, and the next start asks to reopen it, once.
+    void workLeftByACrashIsOfferedAtStartAndNotOverwrittenByTheDemo() {
+        QFile::remove(ProjectAutosave::recoveryPath());
+        int mapped = 0;
+        {
+            MainWindow window;
+            window.setMessageBoxesEnabled(false);
+            QVERIFY(window.openFiles({folder_ + "/mine/walker.obj", folder_ + "/mine/walker.c3d",
+                                      folder_ + "/mine/walker.map.json"}));
+            QVERIFY(window.document()->clearMapping(0));
+            mapped = window.document()->mappedCount();
+            QVERIFY(window.autosave()->saveNow());
+        }  // gone without closing, as in a crash
+        const QByteArray crashed = readAll(ProjectAutosave::recoveryPath());
+        QVERIFY(!crashed.isEmpty());
+        {
+            MainWindow demo;
+            demo.setMessageBoxesEnabled(false);
+            QVERIFY(!demo.offerRecovery());  // batch use asks nothing and keeps it
+            QVERIFY(demo.openDemo());
+            QVERIFY(demo.document()->clearMapping(5));
+            (void)demo.autosave()->saveNow();
+            QCOMPARE(readAll(ProjectAutosave::recoveryPath()), crashed);
+        }
+        MainWindow window;
+        QTimer::singleShot(300, [] {
+            auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+            QVERIFY(box);
+            QCOMPARE(box->objectName(), QString("recoveryQuestion"));
+            box->findChild<QPushButton*>("reopenButton")->click();
+        });
+        QVERIFY(window.offerRecovery());
+        QVERIFY(window.projectPath().isEmpty());
+        QCOMPARE(window.document()->mappedCount(), mapped);
+        // Reopened, it is this session's; closed cleanly, there is nothing to offer.
+        QVERIFY(!window.autosave()->hasUnfinishedRecovery());
+        window.setMessageBoxesEnabled(false);
+        window.close();
+        MainWindow next;
+        QVERIFY(!next.autosave()->hasUnfinishedRecovery());
+        QVERIFY(!next.offerRecovery());
+    }
+
+    void discardingACrashsWorkLetsTheNextSessionAutosave() {
+        QFile::remove(ProjectAutosave::recoveryPath());
+        {
+            MainWindow window;
+            window.setMessageBoxesEnabled(false);
+            QVERIFY(window.openFile(folder_ + "/mine/walker.obj"));
+            QVERIFY(window.autosave()->saveNow());
+        }  // a crash
+        MainWindow window;
+        QTimer::singleShot(300, [] {
+            auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+            QVERIFY(box && box->objectName() == "recoveryQuestion");
+            box->findChild<QPushButton*>("discardButton")->click();
+        });
+        QVERIFY(!window.offerRecovery());
+        QVERIFY(!window.document()->hasMesh());
+        window.setMessageBoxesEnabled(false);
+        QVERIFY(window.openDemo());
+        QVERIFY(window.document()->clearMapping(5));
+        QVERIFY(window.autosave()->saveNow());
+        Document recovered;
+        QVERIFY(Project::load(recovered, ProjectAutosave::recoveryPath()));
+        QCOMPARE(recovered.mappedCount(), recovered.markerCount() - 1);
     }
 
     void anEditJustMadeReachesItsProjectWhenAnotherFileIsOpened() {

@@ -222,10 +222,36 @@ bool MainWindow::openRecovery() {
     startUntitled();
     unsavedEdits_ = true;  // untitled: only the autosave holds it, until Save As
     autosave_->discardPending();
+    autosave_->claimRecovery();  // a crash now offers it again
     applyViewSettings();
     restoreSession();
     statusBar()->showMessage(tr("Opened the last autosave, untitled: Save As keeps it"), 10000);
     return true;
+}
+
+bool MainWindow::offerRecovery() {
+    if (!messageBoxes_ || !autosave_->hasUnfinishedRecovery()) return false;
+    const QFileInfo recovery(ProjectAutosave::recoveryPath());
+    const QString from = ProjectAutosave::recoveredProject();
+    QMessageBox box(QMessageBox::Question, tr("Boneless"),
+                    tr("Boneless did not close normally. Reopen the work it autosaved?"),
+                    QMessageBox::NoButton, this);
+    box.setObjectName("recoveryQuestion");
+    box.setInformativeText(
+        tr("The last autosave, from %1, holds %2. Discarded, it stays under File → Recent Files "
+           "→ Last Autosave until the next change replaces it.")
+            .arg(QLocale().toString(recovery.lastModified(), QLocale::ShortFormat),
+                 from.isEmpty() ? tr("an untitled project")
+                                : tr("unsaved changes to %1").arg(QFileInfo(from).fileName())));
+    QPushButton* reopen = box.addButton(tr("Reopen"), QMessageBox::AcceptRole);
+    QPushButton* discard = box.addButton(tr("Discard"), QMessageBox::DestructiveRole);
+    reopen->setObjectName("reopenButton");
+    discard->setObjectName("discardButton");
+    box.setDefaultButton(reopen);
+    box.exec();  // answered before anything else opens (and autosaves over it)
+    if (box.clickedButton() == reopen) return openRecovery();
+    autosave_->discardRecovery();
+    return false;
 }
 
 void MainWindow::startUntitled() {
@@ -427,6 +453,7 @@ void MainWindow::closeEvent(QCloseEvent* event) {
         return;
     }
     exportDialog_->cancelExport();
+    autosave_->endSession();  // closed, not crashed: nothing to offer at the next start
     event->accept();
 }
 

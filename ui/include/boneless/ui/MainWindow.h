@@ -59,8 +59,12 @@ class MainWindow : public QMainWindow {
     // autosave to the recovery file.
     bool openDemo();
     bool isDemoOpen() const { return demo_; }
-    // Opens ProjectAutosave::recoveryPath() as an untitled project.
+    // Opens ProjectAutosave::recoveryPath() as an untitled project, this session's from then on.
     bool openRecovery();
+    // At start-up: when the last session did not close and left work that no project file holds
+    // in the recovery file, asks Reopen or Discard (recoveryQuestion). True when reopened;
+    // without message boxes it asks nothing and leaves that work alone.
+    bool offerRecovery();
     bool saveProject();  // Save As when untitled or the demo
     bool saveProjectAs(const QString& path);
     QString projectPath() const { return projectPath_; }
