@@ -186,15 +186,6 @@ void FrameDisplay::onFrameReady(const FrameResult& result) {
     result_ = result;
     displayedFrame_ = result.frame;
     showResult();
-    if (heatMap_ && !result.shapeError.empty()) {
-        // Shape error comes in mesh units; a user reads millimetres, as in the residuals.
-        const double meshUnitsPerMm =
-            result.calibration.takeToMesh.scale / document_->take().unitToMm;
-        std::vector<float> mm(result.shapeError.size());
-        for (std::size_t i = 0; i < mm.size(); ++i)
-            mm[i] = float(result.shapeError[i] / meshUnitsPerMm);
-        view_->setHeatMap(mm, tr("Shape error (mm)"));
-    }
     markers_->setFrameResult(result);
     if (result.frame == requestedFrame_) {
         awaitingRender_ = true;
@@ -226,6 +217,18 @@ void FrameDisplay::showResult() {
     if (frame) markerPositions_ = result.markers;
     updateMarkers();
     updateTrails(result.frame);
+    // The heat map is the frame's shape error: on a rest it would read as the rest's.
+    if (!frame) {
+        view_->setHeatMap({}, {});
+    } else if (heatMap_ && !result.shapeError.empty()) {
+        // Shape error comes in mesh units; a user reads millimetres, as in the residuals.
+        const double meshUnitsPerMm =
+            result.calibration.takeToMesh.scale / document_->take().unitToMm;
+        std::vector<float> mm(result.shapeError.size());
+        for (std::size_t i = 0; i < mm.size(); ++i)
+            mm[i] = float(result.shapeError[i] / meshUnitsPerMm);
+        view_->setHeatMap(mm, tr("Shape error (mm)"));
+    }
 }
 
 void FrameDisplay::updateFloor() {
