@@ -1,11 +1,14 @@
 // Keys whichever widget has focus: the frame box applies on Enter and never on the way, Space
 // plays after typing a frame, the arrows step once the number is applied; menu shortcuts.
+#include <QDoubleSpinBox>
 #include <QLabel>
+#include <QLineEdit>
 #include <QMenuBar>
 #include <QSpinBox>
 #include <QtTest>
 
 #include "ViewTestSupport.h"
+#include "boneless/ui/Document.h"
 #include "boneless/ui/MainWindow.h"
 #include "boneless/ui/Timeline.h"
 #include "boneless/ui/TimelineWidget.h"
@@ -61,6 +64,35 @@ class KeysTest : public QObject {
         QCOMPARE(box->text().trimmed().isEmpty(), false);
         QTest::keyClick(window_.get(), Qt::Key_Space);
         QVERIFY(!timeline->isPlaying());
+    }
+
+    // A line edit takes Ctrl+Z for its own undo of the typing: in the offset and filter boxes it
+    // undid nothing the user could see.
+    void undoAndRedoWorkAfterTypingAnOffsetOrAFilter() {
+        Document* document = window_->document();
+        document->setSelectedMarker(0);  // mapped in the demo
+        auto* offset = window_->findChild<QDoubleSpinBox*>("offsetSpin");
+        QVERIFY(offset && offset->isEnabled());
+        const double before = document->markerOffsetMm(0);
+        offset->setFocus();
+        QTRY_VERIFY(offset->hasFocus());
+        offset->selectAll();
+        QTest::keyClicks(offset, "30");
+        QTest::keyClick(offset, Qt::Key_Return);
+        QCOMPARE(document->markerOffsetMm(0), 30.0);
+        QTest::keyClick(offset, Qt::Key_Z, Qt::ControlModifier);
+        QCOMPARE(document->markerOffsetMm(0), before);
+        offset->setFocus();
+        QTRY_VERIFY(offset->hasFocus());
+        QTest::keyClick(offset, Qt::Key_Z, Qt::ControlModifier | Qt::ShiftModifier);
+        QCOMPARE(document->markerOffsetMm(0), 30.0);
+
+        QLineEdit* filter = window_->markerFilter();
+        filter->setFocus();
+        QTRY_VERIFY(filter->hasFocus());
+        QTest::keyClicks(filter, "LF");
+        QTest::keyClick(filter, Qt::Key_Z, Qt::ControlModifier);
+        QCOMPARE(document->markerOffsetMm(0), before);
     }
 
     void theCountIsTheNumberOfFrames() {

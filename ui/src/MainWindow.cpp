@@ -1,5 +1,6 @@
 #include "boneless/ui/MainWindow.h"
 
+#include <QAbstractSpinBox>
 #include <QAction>
 #include <QComboBox>
 #include <QDockWidget>
@@ -25,6 +26,7 @@
 #include "Counted.h"
 #include "FrameDisplay.h"
 #include "OffsetRow.h"
+#include "ShortcutPassThrough.h"
 #include "SuggestionHighlight.h"
 #include "boneless/ActorCalibration.h"
 #include "boneless/ui/AppIcon.h"
@@ -177,6 +179,10 @@ void MainWindow::buildMarkerDock() {
     buttons->addWidget(align);
     layout->addLayout(buttons);
     layout->addLayout(makeOffsetRow(document_));
+    // Ctrl+Z after typing an offset or a filter undoes the last edit, as everywhere else; the
+    // boxes' own undo of the typing took it.
+    passShortcuts(filterEdit_, undoRedoKeys());
+    passShortcuts(panel->findChild<QAbstractSpinBox*>("offsetSpin"), undoRedoKeys());
     connect(clear, &QPushButton::clicked, this, [this] {
         if (document_->selectedMarker() >= 0) document_->clearMapping(document_->selectedMarker());
     });
@@ -229,10 +235,10 @@ QMenu* MainWindow::buildEditMenu() {
     QMenu* edit = menuBar()->addMenu(tr("&Edit"));
     QAction* undo = document_->undoStack()->createUndoAction(this, tr("&Undo"));
     undo->setObjectName("actionUndo");
-    undo->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_Z));
+    undo->setShortcut(undoRedoKeys()[0]);
     QAction* redo = document_->undoStack()->createRedoAction(this, tr("&Redo"));
     redo->setObjectName("actionRedo");
-    redo->setShortcut(QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_Z));
+    redo->setShortcut(undoRedoKeys()[1]);
     edit->addAction(undo);
     edit->addAction(redo);
     edit->addSeparator();
