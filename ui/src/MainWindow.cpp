@@ -220,7 +220,8 @@ void MainWindow::buildFileMenu() {
     connect(recentMenu_, &QMenu::aboutToShow, this, &MainWindow::rebuildRecentMenu);
     file->addSeparator();
     file->addAction(tr("&Save Project"), QKeySequence::Save, this, &MainWindow::saveProject);
-    file->addAction(tr("Save Project &As…"), QKeySequence::SaveAs, this,
+    // Not QKeySequence::SaveAs: it has no key on Windows, nor on X11 without a desktop theme.
+    file->addAction(tr("Save Project &As…"), QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_S), this,
                     &MainWindow::chooseSaveProjectAs);
     file->addAction(tr("Save Co&rrespondence As…"), this, &MainWindow::chooseSaveCorrespondence);
     file->addSeparator();
@@ -321,7 +322,8 @@ void MainWindow::buildHelpMenu() {
                                "<tr><td>double-click a marker in the list</td><td>bring the "
                                "camera to it</td></tr>"
                                "<tr><td>mouse</td><td>left drag turns, right drag or wheel zooms, "
-                               "middle drag pans; a click maps the selected marker</td></tr>"
+                               "middle drag pans; in Edit → Map Markers mode a click maps the "
+                               "selected marker</td></tr>"
                                "</table>"));
                     })
         ->setObjectName("actionShortcuts");
