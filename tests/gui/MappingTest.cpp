@@ -230,6 +230,44 @@ class MappingTest : public QObject {
         QCOMPARE(d->mappedCount(), all);
     }
 
+    // A map that cannot be used is said so at once: asked first, the user chose Merge or Replace
+    // for nothing. A merge that adds nothing says so, and is no undo step.
+    void aMapIsCheckedBeforeAskingAndAMergeOfNothingSaysSo() {
+        MainWindow window;
+        const QString project = freshProject();
+        QVERIFY(window.openProject(project));
+        QVERIFY(test::showAndWait(window));
+        Document* d = window.document();
+        int asked = 0;
+        QTimer answering;
+        connect(&answering, &QTimer::timeout, [&asked] {
+            auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+            if (!box || box->objectName() != "mapLoadQuestion") return;
+            ++asked;
+            box->findChild<QPushButton*>("cancelButton")->click();
+        });
+        answering.start(100);
+        const QString broken = folder_ + "/broken.map.json";
+        QFile file(broken);
+        QVERIFY(file.open(QIODevice::WriteOnly));
+        file.write("{\"markers\": [");
+        file.close();
+        QSignalSpy errors(&window, &MainWindow::errorShown);
+        QVERIFY(!window.openFile(broken));
+        answering.stop();
+        QCOMPARE(asked, 0);
+        QCOMPARE(errors.count(), 1);
+        for (auto* box : window.findChildren<QMessageBox*>("errorMessage")) box->close();
+
+        // The project's own map again: every marker is mapped, so there is nothing to merge.
+        const int steps = d->undoStack()->count();
+        answer("mergeButton");
+        QVERIFY(window.openFile(QFileInfo(project).dir().filePath("walker.map.json")));
+        QCOMPARE(d->undoStack()->count(), steps);
+        QVERIFY2(window.statusBar()->currentMessage().startsWith("Nothing merged from"),
+                 qPrintable(window.statusBar()->currentMessage()));
+    }
+
     void whileMappingTheMeshAndCameraHoldStillAndLeavingShowsThePlayhead() {
         MainWindow window;
         window.setMessageBoxesEnabled(false);

@@ -89,10 +89,22 @@ bool MainWindow::openFile(const QString& path) {
             break;
         }
         case FileKind::Correspondence: {
+            // Read and checked first: a map that cannot be used is said so, not asked about.
+            if (!document_->checkCorrespondence(path)) return false;
             Document::MapLoad mode = Document::MapLoad::Replace;
             if (!askMapLoad(path, mode)) return false;
             const QScopedValueRollback<int> loading(loading_, loading_ + 1);
-            ok = document_->loadCorrespondence(path, mode);
+            int added = 0;
+            ok = document_->loadCorrespondence(path, mode, &added);
+            if (ok && mode == Document::MapLoad::Merge && added == 0) {
+                RecentFiles::add(QFileInfo(path).absoluteFilePath());
+                statusBar()->showMessage(
+                    tr("Nothing merged from %1: each marker it maps is mapped already, or its "
+                       "vertex is taken")
+                        .arg(QFileInfo(path).fileName()),
+                    10000);
+                return true;
+            }
             break;
         }
         case FileKind::Unknown:
