@@ -292,6 +292,36 @@ class ProjectSessionTest : public QObject {
         QCOMPARE(errors.size(), 2);
     }
 
+    // A project whose mesh or take was moved says which file is missing, not only that the
+    // project would not open.
+    void aProjectWhoseMeshOrTakeIsMissingNamesIt() {
+        const QString moved = folder_ + "/moved";
+        QDir(moved).removeRecursively();
+        QVERIFY(QDir().mkpath(moved));
+        const QString lost = moved + "/lost.boneless";
+        QVERIFY(QFile::copy(project_, lost));
+        MainWindow window;
+        QSignalSpy errors(&window, &MainWindow::errorShown);
+        QVERIFY(!window.openProject(lost));
+        QString said = errors.last().at(0).toString();
+        QVERIFY2(
+            said.startsWith(
+                QString("The mesh %1/walker.obj named by lost.boneless is missing.").arg(moved)),
+            qPrintable(said));
+        auto* box = window.findChild<QMessageBox*>("projectErrorMessage");
+        QVERIFY(box && box->isVisible());
+        QVERIFY2(box->text().contains(moved + "/walker.obj"), qPrintable(box->text()));
+        box->close();
+
+        QVERIFY(QFile::copy(folder_ + "/mine/walker.obj", moved + "/walker.obj"));
+        QVERIFY(!window.openProject(lost));
+        said = errors.last().at(0).toString();
+        QVERIFY2(
+            said.startsWith(
+                QString("The take %1/walker.c3d named by lost.boneless is missing.").arg(moved)),
+            qPrintable(said));
+    }
+
     // A take cut short opens with what the reader let through, where the user sees it, and a
     // calibration frame past its end goes back to automatic instead of failing every frame.
     void aTakeCutShortOpensWithItsNotesAndDropsACalibrationFrameItLacks() {

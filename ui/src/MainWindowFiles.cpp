@@ -145,15 +145,17 @@ void MainWindow::showOpened(const QString& path, const QStringList& notes) {
 bool MainWindow::openProject(const QString& path) {
     if (!keepUnsavedWork(false)) return false;
     const QScopedValueRollback<int> loading(loading_, loading_ + 1);
-    QString error;
+    QString error, missing;
     bool loaded = false;
     {
         const QScopedValueRollback<bool> quiet(loadingProject_, true);
-        loaded = Project::load(*document_, path, &error);
+        loaded = Project::load(*document_, path, &error, &missing);
     }
     if (!loaded) {
-        const QString message =
-            tr("%1 could not be opened as a Boneless project.").arg(QFileInfo(path).fileName());
+        const QString message = !missing.isEmpty()
+                                    ? missing
+                                    : tr("%1 could not be opened as a Boneless project.")
+                                          .arg(QFileInfo(path).fileName());
         const QString recovery = ProjectAutosave::recoveryPath();
         const QString absolute = QFileInfo(path).absoluteFilePath();
         statusBar()->showMessage(message, 15000);

@@ -26,7 +26,10 @@ namespace Project {
 bool save(const Document& document, const QString& path, QString* error = nullptr);
 // Loads the files the project names into the document and restores its state; on failure the
 // document is left as it was and *error holds a message naming the project and the cause.
-bool load(Document& document, const QString& path, QString* error = nullptr);
+// When it failed because a file the project names is not there, *missing (if given) says which,
+// in a plain sentence: "The mesh /data/walker.obj named by walk.boneless is missing."
+bool load(Document& document, const QString& path, QString* error = nullptr,
+          QString* missing = nullptr);
 // The project's JSON text (what save() writes), for tests and comparisons.
 QByteArray toJson(const Document& document, const QString& path);
 
