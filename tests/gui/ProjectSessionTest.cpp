@@ -169,6 +169,36 @@ class ProjectSessionTest : public QObject {
                              camera[key].toList()[k].toDouble()) < 1e-6);
     }
 
+    // Opening another project left this one's frame, speed and camera unsaved, and the next
+    // project (the demo, a file without them) started from them, still playing.
+    void aProjectLeftForAnotherKeepsItsViewAndTheNextStartsFromItsOwn() {
+        const QString first = test::writeDemoProject(folder_ + "/left");
+        const QString second = test::writeDemoProject(folder_ + "/next");
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        Timeline* timeline = window.timeline();
+        QVERIFY(window.openProject(first));
+        QVERIFY(test::showAndWait(window));
+        timeline->scrubTo(23);
+        timeline->setSpeed(Timeline::Speed::Half);
+        QVERIFY(window.openProject(second));
+        Document left;
+        QVERIFY(Project::load(left, first));
+        QCOMPARE(left.viewSettings().value("frame").toInt(), 23);
+        QCOMPARE(left.viewSettings().value("speed").toString(), QString("half"));
+        QCOMPARE(timeline->frame(), 0);
+        QCOMPARE(timeline->speed(), Timeline::Speed::Realtime);
+
+        timeline->play();
+        QVERIFY(window.openProject(first));
+        QVERIFY(!timeline->isPlaying());
+        QCOMPARE(timeline->frame(), 23);
+        QCOMPARE(timeline->speed(), Timeline::Speed::Half);
+        QVERIFY(window.openDemo());
+        QCOMPARE(timeline->frame(), 0);
+        QCOMPARE(timeline->speed(), Timeline::Speed::Realtime);
+    }
+
     void aDamagedProjectGivesAMessageAndIsLeftAlone() {
         const QByteArray good = readAll(project_);
         QByteArray huge = good, wrongType = good, badAlignment = good;

@@ -21,6 +21,7 @@
 #include <QUndoStack>
 #include <QVBoxLayout>
 #include <cmath>
+#include <utility>
 
 #include "CalibrationMenu.h"
 #include "Counted.h"
@@ -434,7 +435,8 @@ void MainWindow::connectDocument() {
 }
 
 void MainWindow::onTakeLoaded() {
-    if (startFrame_ >= 0 && document_->hasTake()) {
+    // A project's take: restoreSession() puts the start frame over the project's own.
+    if (startFrame_ >= 0 && document_->hasTake() && !loadingProject_) {
         timeline_->setFrame(startFrame_);
         startFrame_ = -1;
     }
@@ -461,18 +463,27 @@ void MainWindow::storeSession() {
     if (document_->hasMesh()) document_->setViewSetting("camera", view_->cameraState());
 }
 
-// What a hostile file holds there is checked: a frame out of range, an unknown speed or a camera
-// that is not one leave the window's own.
+// A project opens where it was left, paused, or at the start frame asked for (--frame). What it
+// does not give (the demo, an older file) is the default, never the previous project's: the first
+// frame, the take's rate, the camera fitted to the mesh. What a hostile file holds there is
+// checked: a frame out of range, an unknown speed or a camera that is not one count as not given.
 void MainWindow::restoreSession() {
+    timeline_->pause();
     const QVariantMap settings = document_->viewSettings();
     const QVariant frame = settings.value("frame");
     bool ok = false;
     const double f = frame.toDouble(&ok);
-    if (ok && f >= 0 && f < timeline_->frameCount() && f == std::floor(f))
-        timeline_->setFrame(int(f));
+    const int start = std::exchange(startFrame_, -1);  // --frame
+    if (start >= 0 && start < timeline_->frameCount())
+        timeline_->setFrame(start);
+    else
+        timeline_->setFrame(
+            ok && f >= 0 && f < timeline_->frameCount() && f == std::floor(f) ? int(f) : 0);
     const QString speedName = settings.value("speed").toString();
+    timeline_->setSpeed(Timeline::Speed::Realtime);
     for (const auto& [speed, name] : kSpeedNames)
         if (speedName == name) timeline_->setSpeed(speed);
+    // Without one, the camera fitted to the mesh as it loaded.
     if (settings.contains("camera")) view_->setCameraState(settings.value("camera").toMap());
 }
 

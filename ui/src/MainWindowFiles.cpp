@@ -460,8 +460,6 @@ bool MainWindow::openFiles(QStringList paths) {
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {
-    // The frame and camera only count as a change at the end; the demo's never do.
-    if (!demo_) storeSession();
     if (!keepUnsavedWork(true)) {
         event->ignore();  // and an export running goes on
         return;
@@ -473,6 +471,9 @@ void MainWindow::closeEvent(QCloseEvent* event) {
 
 bool MainWindow::keepUnsavedWork(bool closing) {
     if (workAsked_) return true;
+    // The frame, speed and camera only count as a change when the project is left, closed or for
+    // another file; the demo's never do. Opening another project lost them.
+    if (!demo_) storeSession();
     // The edits of the last second go to the project (or recovery file) they were made in.
     const bool kept = autosave_->saveNow();
     const bool titled = !projectPath_.isEmpty() && !demo_;
