@@ -36,12 +36,13 @@ int runScreenshot(QApplication& app, boneless::ui::MainWindow& window, const QSt
         if (!firstError.isEmpty()) {
             fail(firstError);
             status = 1;
-        } else if (QString why; window.frameUpToDate() && window.document()->hasTake() &&
-                                !window.document()->canSolve(&why)) {
+        } else if (QString why, detail; window.frameUpToDate() && window.document()->hasTake() &&
+                                        !window.document()->canSolve(&why, &detail)) {
             // A picture of the take unsolved is not the frame asked for.
             const QString file = window.projectPath().isEmpty() ? window.document()->takePath()
                                                                 : window.projectPath();
-            fail(QString("%1: not solving: %2").arg(file, why));
+            fail(QString("%1: not solving: %2%3")
+                     .arg(file, why, detail.isEmpty() ? "" : " " + detail));
             status = 1;
         } else if (window.frameUpToDate()) {
             const QImage image = window.meshView()->grabImage();

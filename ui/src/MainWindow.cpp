@@ -363,11 +363,17 @@ void MainWindow::buildStatusBar() {
            "Alignment: the mapped markers, aligned, from their points on the mesh at the "
            "calibration frame (RMS)."));
     connect(display_, &FrameDisplay::statusChanged, this,
-            [this](const QString& frame, const QString& solve, const QString& residual) {
+            [this](const QString& frame, const QString& solve, const QString& residual,
+                   const QString& solveDetail) {
                 frameLabel_->setText(frame);
                 solveLabel_->setText(solve);
+                solveLabel_->setToolTip(solveDetail);
                 residualLabel_->setText(residual);
             });
+    // A message's whole list, while the message is up.
+    connect(statusBar(), &QStatusBar::messageChanged, this, [this](const QString& message) {
+        if (message.isEmpty() || message != detailedMessage_) statusBar()->setToolTip({});
+    });
 }
 
 void MainWindow::buildShortcuts() {
@@ -495,6 +501,12 @@ void MainWindow::applyViewSettings() {
     followAction_->setChecked(settings.value("follow", true).toBool());
 }
 
+void MainWindow::showStatus(const QString& message, const QString& detail, int timeoutMs) {
+    detailedMessage_ = detail.isEmpty() ? QString() : message;
+    statusBar()->showMessage(message, timeoutMs);
+    statusBar()->setToolTip(detail);
+}
+
 void MainWindow::syncTableSelection(int marker) {
     const int row = proxy_->rowOfMarker(marker);
     QItemSelectionModel* selection = markerTable_->selectionModel();
@@ -555,11 +567,19 @@ bool MainWindow::suggestMappings() {
     if (toCheck > 0)
         message += tr(", %1 of them to check: the list's \"To check\" shows them").arg(toCheck);
     // A prop's or another actor's markers: no place on this body, so none was given.
+    // Named a few at a time: the status bar cuts off what does not fit, the tooltip has them all.
     if (!offBody.isEmpty())
-        message += tr("; left unmapped, more than %1 mm from the body: %2")
-                       .arg(kUnreachableMm)
-                       .arg(offBody.join(", "));
-    statusBar()->showMessage(message, toCheck == 0 && offBody.isEmpty() ? 10000 : 15000);
+        message +=
+            counted(offBody.size(), tr("; %n left unmapped, more than %1 mm from the body: %2"),
+                    tr("; %n left unmapped, more than %1 mm from the body: %2"))
+                .arg(kUnreachableMm)
+                .arg(firstFew(offBody));
+    showStatus(message,
+               offBody.isEmpty() ? QString()
+                                 : tr("Left unmapped, more than %1 mm from the body: %2")
+                                       .arg(kUnreachableMm)
+                                       .arg(offBody.join(", ")),
+               toCheck == 0 && offBody.isEmpty() ? 10000 : 15000);
     return true;
 }
 

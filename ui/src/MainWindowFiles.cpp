@@ -316,9 +316,9 @@ bool MainWindow::saveProjectAs(const QString& path) {
 }
 
 void MainWindow::showExportDialog() {
-    QString why;
-    if (!document_->canSolve(&why)) {
-        showError(tr("Nothing to export: %1").arg(why));
+    QString why, detail;
+    if (!document_->canSolve(&why, &detail)) {
+        showError(tr("Nothing to export: %1").arg(why), detail);
         return;
     }
     exportDialog_->setProjectPath(demo_ ? QString() : projectPath_);

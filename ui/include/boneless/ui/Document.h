@@ -138,7 +138,8 @@ class Document : public QObject {
     // --- solving and export ----------------------------------------------------------------
     // True when a frame can be solved: mesh, take, at least 3 mapped markers, and memory for
     // the mesh's solve. Else *why says what is missing.
-    bool canSolve(QString* why = nullptr) const;
+    // *detail (when given): what *why, kept to a status bar's length, leaves out.
+    bool canSolve(QString* why = nullptr, QString* detail = nullptr) const;
     // Empty when solving the mesh fits the memory this process may use; else the refusal, naming
     // the file, its size, the memory its solve would need and the limit (checkSolveFits).
     QString memoryRefusal() const;

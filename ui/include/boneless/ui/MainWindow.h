@@ -130,6 +130,9 @@ class MainWindow : public QMainWindow {
     // True to go on.
     bool keepUnsavedWork(bool closing);
     void showHelp(const QString& title, const QString& html);
+    // A status message whose whole `detail` (a list it names a few of) is the bar's tooltip while
+    // it is shown.
+    void showStatus(const QString& message, const QString& detail, int timeoutMs);
     void storeSession();
     void restoreSession();
     QMessageBox* errorBox(const QString& message, const QString& detail);
@@ -182,6 +185,7 @@ class MainWindow : public QMainWindow {
     // hide it); the answer shows them if the session stays, drops them if it is left.
     bool asking_ = false;
     std::vector<std::pair<QString, QString>> heldErrors_;  // message, detail
+    QString detailedMessage_;  // the status message the bar's tooltip goes with
 };
 
 }  // namespace boneless::ui
