@@ -36,12 +36,13 @@ int runScreenshot(QApplication& app, boneless::ui::MainWindow& window, const QSt
         if (!firstError.isEmpty()) {
             fail(firstError);
             status = 1;
-        } else if (QString why; window.frameUpToDate() && window.document()->hasTake() &&
-                                !window.document()->canSolve(&why)) {
+        } else if (QString why, detail; window.frameUpToDate() && window.document()->hasTake() &&
+                                        !window.document()->canSolve(&why, &detail)) {
             // A picture of the take unsolved is not the frame asked for.
             const QString file = window.projectPath().isEmpty() ? window.document()->takePath()
                                                                 : window.projectPath();
-            fail(QString("%1: not solving: %2").arg(file, why));
+            fail(QString("%1: not solving: %2%3")
+                     .arg(file, why, detail.isEmpty() ? "" : " " + detail));
             status = 1;
         } else if (window.frameUpToDate()) {
             const QImage image = window.meshView()->grabImage();
@@ -144,11 +145,14 @@ int main(int argc, char** argv) {
     QString openError;
     const auto openErrors = QObject::connect(&window, &boneless::ui::MainWindow::errorShown,
                                              [&](const QString& message) { openError = message; });
+    // A crash's work first: a file opened, or the demo edited, before the question would autosave
+    // over it.
+    const bool recovered = window.offerRecovery();
     bool opened = true;
     if (parser.isSet(project)) opened = window.openProject(parser.value(project));
     if (!parser.positionalArguments().isEmpty())
         opened = window.openFiles(parser.positionalArguments()) && opened;
-    if (!parser.isSet(project) && parser.positionalArguments().isEmpty())
+    if (!parser.isSet(project) && parser.positionalArguments().isEmpty() && !recovered)
         opened = window.openDemo();
     if (batch && !opened) {
         fail(openError.isEmpty() ? window.statusBar()->currentMessage() : openError);

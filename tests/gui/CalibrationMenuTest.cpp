@@ -316,6 +316,25 @@ class CalibrationMenuTest : public QObject {
         QVERIFY(view->trailsVisible());
     }
 
+    // The heat map is the frame's shape error: painted on a rest it reads as the rest's. A rest,
+    // scrubbed or not, has neither colours nor legend; the frame has them again.
+    void theHeatMapIsPaintedOnTheFrameAndNotOnARest() {
+        MeshView* view = window_->meshView();
+        for (QAction* action : window_->findChildren<QAction*>())
+            if (action->text() == "Shape Error &Heat Map") action->setChecked(true);
+        QVERIFY(QTest::qWaitFor([&] { return window_->frameUpToDate() && view->legendVisible(); },
+                                60000));
+        for (const char* rest : {"showCalibratedRest", "showRest"}) {
+            QVERIFY(trigger(*window_, rest));
+            QVERIFY2(!view->legendVisible(), rest);
+        }
+        window_->timeline()->setFrame(30);
+        QVERIFY(test::waitForFrame(*window_));
+        QVERIFY(!view->legendVisible());
+        QVERIFY(trigger(*window_, "showFrame"));
+        QVERIFY(view->legendVisible());
+    }
+
     void theCalibrationMenuChecksTheModeInUseThroughUndoAndRedo() {
         window_ = test::openShown(test::writeDemoProject(folder_ + "/checked"));
         QVERIFY(window_);

@@ -147,6 +147,34 @@ class CameraFollowTest : public QObject {
         QVERIFY((view.focalPoint() - paused).norm() < 8.0);
     }
 
+    // Double-click a marker (the camera zooms onto it), then step a frame: paused, the camera is
+    // the user's, and it jumped back to the hips, which the zoom had put off the middle.
+    void pausedACameraZoomedOntoAMarkerStaysThereForTheNextFrame() {
+        const TriMesh walker = readMesh((folder_ + "/demo/walker.obj").toStdString()).mesh;
+        MeshView view;
+        QVERIFY(test::showMesh(view, walker, Eigen::Vector3d::UnitZ()));
+        int foot = 0;
+        for (int v = 0; v < walker.V.rows(); ++v)
+            if (walker.V(v, 2) < walker.V(foot, 2)) foot = v;
+        const Eigen::Vector3d zoomed = walker.V.row(foot).transpose();
+        view.frame(zoomed);
+        QVERIFY(!insideView(view, centroidOf(walker.V)));
+        Positions V = walker.V;
+        for (int step = 0; step < 2; ++step) {  // the next frames: the body a step on each
+            V.col(0).array() += 0.02;
+            view.setPositions(V);
+            QVERIFY2((view.focalPoint() - zoomed).norm() < 1e-9,
+                     qPrintable(QString("the camera moved %1 at step %2")
+                                    .arg((view.focalPoint() - zoomed).norm())
+                                    .arg(step)));
+        }
+        // Playing, it follows the body as before.
+        view.setPlaying(true);
+        V.col(0).array() += 0.02;
+        view.setPositions(V);
+        QVERIFY((view.focalPoint() - zoomed).norm() > 1e-6);
+    }
+
     // Paused, as when scrubbing to the deepest pose: the centroid stays near the middle, but a leg
     // swung out sideways leaves the view unless the camera makes room for it.
     void aLegSwungOutComesOnScreenWhileTheBodyFits() {

@@ -230,6 +230,83 @@ class MappingTest : public QObject {
         QCOMPARE(d->mappedCount(), all);
     }
 
+    // A map that cannot be used is said so at once: asked first, the user chose Merge or Replace
+    // for nothing. A merge that adds nothing says so, and is no undo step.
+    void aMapIsCheckedBeforeAskingAndAMergeOfNothingSaysSo() {
+        MainWindow window;
+        const QString project = freshProject();
+        QVERIFY(window.openProject(project));
+        QVERIFY(test::showAndWait(window));
+        Document* d = window.document();
+        int asked = 0;
+        QTimer answering;
+        connect(&answering, &QTimer::timeout, [&asked] {
+            auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+            if (!box || box->objectName() != "mapLoadQuestion") return;
+            ++asked;
+            box->findChild<QPushButton*>("cancelButton")->click();
+        });
+        answering.start(100);
+        const QString broken = folder_ + "/broken.map.json";
+        QFile file(broken);
+        QVERIFY(file.open(QIODevice::WriteOnly));
+        file.write("{\"markers\": [");
+        file.close();
+        QSignalSpy errors(&window, &MainWindow::errorShown);
+        QVERIFY(!window.openFile(broken));
+        answering.stop();
+        QCOMPARE(asked, 0);
+        QCOMPARE(errors.count(), 1);
+        for (auto* box : window.findChildren<QMessageBox*>("errorMessage")) box->close();
+
+        // The project's own map again: every marker is mapped, so there is nothing to merge.
+        const int steps = d->undoStack()->count();
+        answer("mergeButton");
+        QVERIFY(window.openFile(QFileInfo(project).dir().filePath("walker.map.json")));
+        QCOMPARE(d->undoStack()->count(), steps);
+        QVERIFY2(window.statusBar()->currentMessage().startsWith("Nothing merged from"),
+                 qPrintable(window.statusBar()->currentMessage()));
+    }
+
+    // A map of another actor's labels: the status bar said "Not solving: The map names markers
+    // the take does not have: " and every label, cut off by the bar's end, and not what to do.
+    void aMapTheTakeDoesNotFitSaysSoBrieflyAndWhatToDo() {
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        const QString project = freshProject();
+        QVERIFY(window.openProject(project));
+        QVERIFY(test::showAndWait(window));
+        QFile own(QFileInfo(project).dir().filePath("walker.map.json"));
+        QVERIFY(own.open(QIODevice::ReadOnly));
+        QJsonObject map = QJsonDocument::fromJson(own.readAll()).object();
+        QJsonArray markers = map["markers"].toArray();
+        QStringList labels;
+        for (int k = 0; k < markers.size(); ++k) {
+            QJsonObject m = markers[k].toObject();
+            m["label"] = "X_" + m["label"].toString();  // no marker of the take
+            labels << m["label"].toString();
+            markers[k] = m;
+        }
+        map["markers"] = markers;
+        const QString foreign = folder_ + "/foreign.map.json";
+        QFile file(foreign);
+        QVERIFY(file.open(QIODevice::WriteOnly));
+        file.write(QJsonDocument(map).toJson());
+        file.close();
+        QVERIFY(window.openFile(foreign));
+
+        auto* solve = window.findChild<QLabel*>("solveLabel");
+        QVERIFY(solve);
+        QTRY_VERIFY2(solve->text().startsWith("Not solving"), qPrintable(solve->text()));
+        const QString said = solve->text();
+        QVERIFY2(said.contains(QString("%1 markers the take does not have").arg(labels.size())),
+                 qPrintable(said));
+        QVERIFY2(said.contains("Edit → Clear All Mappings"), qPrintable(said));
+        QVERIFY2(said.contains(labels[0]) && !said.contains(labels[5]), qPrintable(said));
+        for (const QString& label : labels)
+            QVERIFY2(solve->toolTip().contains(label), qPrintable(label));
+    }
+
     void whileMappingTheMeshAndCameraHoldStillAndLeavingShowsThePlayhead() {
         MainWindow window;
         window.setMessageBoxesEnabled(false);

@@ -85,6 +85,10 @@ class ProjectSessionTest : public QObject {
         QFile::remove(ProjectAutosave::recoveryPath());
     }
 
+    // A window destroyed without closing is a crash here: its autosave must not hold the next
+    // test's recovery file.
+    void init() { QFile::remove(ProjectAutosave::recoveryPath()); }
+
     void theDemoIsNeverWrittenAndOpensAsGenerated() {
         const QString demo = DemoProject::defaultFolder() + "/demo.boneless";
         {
@@ -163,6 +167,36 @@ class ProjectSessionTest : public QObject {
             for (int k = 0; k < 3; ++k)
                 QVERIFY(qAbs(restored[key].toList()[k].toDouble() -
                              camera[key].toList()[k].toDouble()) < 1e-6);
+    }
+
+    // Opening another project left this one's frame, speed and camera unsaved, and the next
+    // project (the demo, a file without them) started from them, still playing.
+    void aProjectLeftForAnotherKeepsItsViewAndTheNextStartsFromItsOwn() {
+        const QString first = test::writeDemoProject(folder_ + "/left");
+        const QString second = test::writeDemoProject(folder_ + "/next");
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        Timeline* timeline = window.timeline();
+        QVERIFY(window.openProject(first));
+        QVERIFY(test::showAndWait(window));
+        timeline->scrubTo(23);
+        timeline->setSpeed(Timeline::Speed::Half);
+        QVERIFY(window.openProject(second));
+        Document left;
+        QVERIFY(Project::load(left, first));
+        QCOMPARE(left.viewSettings().value("frame").toInt(), 23);
+        QCOMPARE(left.viewSettings().value("speed").toString(), QString("half"));
+        QCOMPARE(timeline->frame(), 0);
+        QCOMPARE(timeline->speed(), Timeline::Speed::Realtime);
+
+        timeline->play();
+        QVERIFY(window.openProject(first));
+        QVERIFY(!timeline->isPlaying());
+        QCOMPARE(timeline->frame(), 23);
+        QCOMPARE(timeline->speed(), Timeline::Speed::Half);
+        QVERIFY(window.openDemo());
+        QCOMPARE(timeline->frame(), 0);
+        QCOMPARE(timeline->speed(), Timeline::Speed::Realtime);
     }
 
     void aDamagedProjectGivesAMessageAndIsLeftAlone() {
@@ -288,6 +322,36 @@ class ProjectSessionTest : public QObject {
         QCOMPARE(errors.size(), 2);
     }
 
+    // A project whose mesh or take was moved says which file is missing, not only that the
+    // project would not open.
+    void aProjectWhoseMeshOrTakeIsMissingNamesIt() {
+        const QString moved = folder_ + "/moved";
+        QDir(moved).removeRecursively();
+        QVERIFY(QDir().mkpath(moved));
+        const QString lost = moved + "/lost.boneless";
+        QVERIFY(QFile::copy(project_, lost));
+        MainWindow window;
+        QSignalSpy errors(&window, &MainWindow::errorShown);
+        QVERIFY(!window.openProject(lost));
+        QString said = errors.last().at(0).toString();
+        QVERIFY2(
+            said.startsWith(
+                QString("The mesh %1/walker.obj named by lost.boneless is missing.").arg(moved)),
+            qPrintable(said));
+        auto* box = window.findChild<QMessageBox*>("projectErrorMessage");
+        QVERIFY(box && box->isVisible());
+        QVERIFY2(box->text().contains(moved + "/walker.obj"), qPrintable(box->text()));
+        box->close();
+
+        QVERIFY(QFile::copy(folder_ + "/mine/walker.obj", moved + "/walker.obj"));
+        QVERIFY(!window.openProject(lost));
+        said = errors.last().at(0).toString();
+        QVERIFY2(
+            said.startsWith(
+                QString("The take %1/walker.c3d named by lost.boneless is missing.").arg(moved)),
+            qPrintable(said));
+    }
+
     // A take cut short opens with what the reader let through, where the user sees it, and a
     // calibration frame past its end goes back to automatic instead of failing every frame.
     void aTakeCutShortOpensWithItsNotesAndDropsACalibrationFrameItLacks() {
@@ -400,6 +464,75 @@ class ProjectSessionTest : public QObject {
         QVERIFY(window.projectPath().isEmpty());
         QVERIFY(!window.isDemoOpen());
         QCOMPARE(window.document()->mappedCount(), mapped);
+    }
+
+    // kill -9 after untitled edits, then `boneless` with no file: the demo's edits leave that
+    // work alone, and the next start asks to reopen it, once.
+    void workLeftByACrashIsOfferedAtStartAndNotOverwrittenByTheDemo() {
+        QFile::remove(ProjectAutosave::recoveryPath());
+        int mapped = 0;
+        {
+            MainWindow window;
+            window.setMessageBoxesEnabled(false);
+            QVERIFY(window.openFiles({folder_ + "/mine/walker.obj", folder_ + "/mine/walker.c3d",
+                                      folder_ + "/mine/walker.map.json"}));
+            QVERIFY(window.document()->clearMapping(0));
+            mapped = window.document()->mappedCount();
+            QVERIFY(window.autosave()->saveNow());
+        }  // gone without closing, as in a crash
+        const QByteArray crashed = readAll(ProjectAutosave::recoveryPath());
+        QVERIFY(!crashed.isEmpty());
+        {
+            MainWindow demo;
+            demo.setMessageBoxesEnabled(false);
+            QVERIFY(!demo.offerRecovery());  // batch use asks nothing and keeps it
+            QVERIFY(demo.openDemo());
+            QVERIFY(demo.document()->clearMapping(5));
+            (void)demo.autosave()->saveNow();
+            QCOMPARE(readAll(ProjectAutosave::recoveryPath()), crashed);
+        }
+        MainWindow window;
+        QTimer::singleShot(300, [] {
+            auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+            QVERIFY(box);
+            QCOMPARE(box->objectName(), QString("recoveryQuestion"));
+            box->findChild<QPushButton*>("reopenButton")->click();
+        });
+        QVERIFY(window.offerRecovery());
+        QVERIFY(window.projectPath().isEmpty());
+        QCOMPARE(window.document()->mappedCount(), mapped);
+        // Reopened, it is this session's; closed cleanly, there is nothing to offer.
+        QVERIFY(!window.autosave()->hasUnfinishedRecovery());
+        window.setMessageBoxesEnabled(false);
+        window.close();
+        MainWindow next;
+        QVERIFY(!next.autosave()->hasUnfinishedRecovery());
+        QVERIFY(!next.offerRecovery());
+    }
+
+    void discardingACrashsWorkLetsTheNextSessionAutosave() {
+        QFile::remove(ProjectAutosave::recoveryPath());
+        {
+            MainWindow window;
+            window.setMessageBoxesEnabled(false);
+            QVERIFY(window.openFile(folder_ + "/mine/walker.obj"));
+            QVERIFY(window.autosave()->saveNow());
+        }  // a crash
+        MainWindow window;
+        QTimer::singleShot(300, [] {
+            auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+            QVERIFY(box && box->objectName() == "recoveryQuestion");
+            box->findChild<QPushButton*>("discardButton")->click();
+        });
+        QVERIFY(!window.offerRecovery());
+        QVERIFY(!window.document()->hasMesh());
+        window.setMessageBoxesEnabled(false);
+        QVERIFY(window.openDemo());
+        QVERIFY(window.document()->clearMapping(5));
+        QVERIFY(window.autosave()->saveNow());
+        Document recovered;
+        QVERIFY(Project::load(recovered, ProjectAutosave::recoveryPath()));
+        QCOMPARE(recovered.mappedCount(), recovered.markerCount() - 1);
     }
 
     void anEditJustMadeReachesItsProjectWhenAnotherFileIsOpened() {

@@ -1,6 +1,7 @@
 // The strip over the timeline: each marker's gaps are the take's missing frames, solved frames
 // are marked as they come, both are painted at their frames, and a click there scrubs.
 #include <QSignalSpy>
+#include <QUndoStack>
 #include <QtTest>
 #include <set>
 
@@ -72,6 +73,33 @@ class TimelineStripTest : public QObject {
         solver.requestFrame(41);
         QVERIFY(ready.wait(60000));
         QCOMPARE(marked(strip.cachedFrames()), (std::set<int>{3, 41}));
+    }
+
+    // A new problem (another take, a map that does not fit) has solved nothing yet, and no
+    // problem has nothing solved: the marks of the old one went on showing as solved.
+    void theSolvedMarksGoWhenTheProblemChanges() {
+        FrameSolver solver;
+        Timeline timeline;
+        timeline.setFrameCount(document_.frameCount());
+        TimelineStrip strip(&document_, &solver, &timeline);
+        QVERIFY(solver.setProblem(document_));
+        QSignalSpy ready(&solver, &FrameSolver::frameReady);
+        solver.requestFrame(7);
+        QVERIFY(ready.wait(60000));
+        QCOMPARE(marked(strip.cachedFrames()), (std::set<int>{7}));
+        solver.clearProblem();
+        QVERIFY(marked(strip.cachedFrames()).empty());
+
+        QVERIFY(solver.setProblem(document_));
+        solver.requestFrame(7);
+        QVERIFY(ready.wait(60000));
+        QCOMPARE(marked(strip.cachedFrames()), (std::set<int>{7}));
+        // The map changed: until the problem is rebuilt, the solver's frames are the old map's.
+        QVERIFY(document_.clearMapping(0));
+        QVERIFY(marked(strip.cachedFrames()).empty());
+        document_.undoStack()->undo();
+        QVERIFY(solver.setProblem(document_));
+        QVERIFY(marked(strip.cachedFrames()).empty());
     }
 
     void itPaintsTheSolvedFramesAndTheSelectedMarkersGapsAtTheirFrames() {

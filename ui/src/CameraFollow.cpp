@@ -5,6 +5,7 @@
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 
+#include <QScopeGuard>
 #include <algorithm>
 #include <utility>
 
@@ -67,6 +68,15 @@ std::pair<Eigen::Vector2d, Eigen::Vector2d> screenExtent(vtkRenderer* renderer,
 
 }  // namespace
 
+CameraFollow::Placement CameraFollow::cameraOf(vtkRenderer* renderer) {
+    double p[3], f[3];
+    renderer->GetActiveCamera()->GetPosition(p);
+    renderer->GetActiveCamera()->GetFocalPoint(f);
+    Placement out;
+    out << p[0], p[1], p[2], f[0], f[1], f[2];
+    return out;
+}
+
 Eigen::Vector3d centroid(const Positions& V) {
     if (V.rows() == 0) return Eigen::Vector3d::Zero();
     return V.colwise().mean().transpose();
@@ -79,6 +89,7 @@ void CameraFollow::setEnabled(bool enabled) {
 
 void CameraFollow::restart(const Positions& V) {
     tracked_ = V.rows() > 0 ? std::optional(centroid(V)) : std::nullopt;
+    userFramed_ = false;
 }
 
 void CameraFollow::follow(vtkRenderer* renderer, const Positions& V, const Eigen::Vector3d& up) {
@@ -89,6 +100,30 @@ void CameraFollow::follow(vtkRenderer* renderer, const Positions& V, const Eigen
         return;
     }
     const Eigen::Vector3d u = up.normalized();
+    const int* size =
+        renderer->GetRenderWindow() ? renderer->GetRenderWindow()->GetSize() : nullptr;
+    const bool sized = size && size[0] > 1 && size[1] > 1;
+    const double hx = sized ? 0.5 * size[0] : 0, hy = sized ? 0.5 * size[1] : 0;
+    // Where the inner box would have a display point be.
+    auto boxed = [&](const Eigen::Vector3d& d) {
+        return Eigen::Vector3d(std::clamp(d.x(), hx - kInnerBox * hx, hx + kInnerBox * hx),
+                               std::clamp(d.y(), hy - kInnerBox * hy, hy + kInnerBox * hy), d.z());
+    };
+    if (sized) renderer->ResetCameraClippingRange();
+    // Paused, the camera is the user's. Moved by them (not by following) so that the last frame's
+    // middle is off the inner box (zoomed onto a marker, panned to look at a hand), it stays:
+    // keeping the body on screen would take it back to the hips at each step.
+    if (playing_) {
+        userFramed_ = false;
+    } else if (sized && cameraOf(renderer) != left_) {
+        const Eigen::Vector3d last = displayOf(renderer, *tracked_);
+        userFramed_ = !(last.z() > 0 && last.z() < 1) || !boxed(last).isApprox(last);
+    }
+    const auto leave = qScopeGuard([&] { left_ = cameraOf(renderer); });
+    if (!playing_ && userFramed_) {
+        *tracked_ = c;
+        return;
+    }
     // Paused, a new frame is looked at from where the camera is: scrubbing, reopening a project
     // or mapping keeps the user's view.
     Eigen::Vector3d step = (playing_ ? kSmoothing : 0.0) * (c - *tracked_);
@@ -97,16 +132,11 @@ void CameraFollow::follow(vtkRenderer* renderer, const Positions& V, const Eigen
     translateCamera(renderer, step);
 
     // Energetic frames: whatever the smoothing, the centroid stays in the inner box.
-    const int* size =
-        renderer->GetRenderWindow() ? renderer->GetRenderWindow()->GetSize() : nullptr;
-    if (!size || size[0] <= 1 || size[1] <= 1) return;
+    if (!sized) return;
     renderer->ResetCameraClippingRange();
     const Eigen::Vector3d d = displayOf(renderer, c);
     if (!(d.z() > 0 && d.z() < 1)) return;  // behind the camera: nothing sensible to do
-    const double hx = 0.5 * size[0], hy = 0.5 * size[1];
-    const Eigen::Vector3d inside(std::clamp(d.x(), hx - kInnerBox * hx, hx + kInnerBox * hx),
-                                 std::clamp(d.y(), hy - kInnerBox * hy, hy + kInnerBox * hy),
-                                 d.z());
+    const Eigen::Vector3d inside = boxed(d);
     if (!inside.isApprox(d)) {
         const Eigen::Vector3d shift = worldOf(renderer, d) - worldOf(renderer, inside);
         translateCamera(renderer, shift);

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <limits>
 #include <optional>
 
 #include "boneless/TriMesh.h"
@@ -12,7 +13,8 @@ namespace boneless::ui {
 // floor (not up and down, so a walk does not bob the picture), smoothed over frames; paused, it
 // stays where the user put it. Either way it moves whenever the centroid would come near the
 // viewport's edge, or a part of the mesh would leave the screen while the whole mesh fits on it
-// (a raised leg). The camera only translates: the user's angle and zoom are kept.
+// (a raised leg); paused, not when the user put the camera with the centroid out there already
+// (zoomed onto a marker). The camera only translates: the user's angle and zoom are kept.
 class CameraFollow {
   public:
     void setEnabled(bool enabled);
@@ -28,8 +30,15 @@ class CameraFollow {
     static constexpr double kInnerBox = 0.6;
 
   private:
+    using Placement = Eigen::Matrix<double, 6, 1>;  // the camera's position and focal point
+    static Placement cameraOf(vtkRenderer* renderer);
+
     bool enabled_ = true;
     bool playing_ = false;
+    // Where follow() left the camera: moved since, it was the user.
+    Placement left_ = Placement::Constant(std::numeric_limits<double>::quiet_NaN());
+    // Paused, the user moved the camera off the body's middle: it stays there.
+    bool userFramed_ = false;
     std::optional<Eigen::Vector3d> tracked_;  // the smoothed centroid the camera follows
 };
 

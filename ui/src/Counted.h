@@ -2,6 +2,7 @@
 
 #include <QLocale>
 #include <QString>
+#include <QStringList>
 
 namespace boneless::ui {
 
@@ -10,6 +11,13 @@ namespace boneless::ui {
 // a translation still replaces them; %n in them is the count.
 inline QString counted(int n, const QString& one, const QString& many) {
     return QString(n == 1 ? one : many).replace(QLatin1String("%n"), QLocale().toString(n));
+}
+
+// "LFWT, RFWT, LBWT, …": the first names of a list too long for the status bar, which cuts off
+// what does not fit; the whole list goes where there is room (a tooltip, a box's details).
+inline QString firstFew(const QStringList& names, int few = 3) {
+    if (names.size() <= few + 1) return names.join(", ");  // "…" would hide no more than a name
+    return names.mid(0, few).join(", ") + ", …";
 }
 
 }  // namespace boneless::ui

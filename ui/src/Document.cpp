@@ -147,7 +147,17 @@ bool Document::loadTake(const QString& path) {
     return true;
 }
 
-bool Document::loadCorrespondence(const QString& path, MapLoad mode) {
+bool Document::checkCorrespondence(const QString& path) {
+    try {
+        const Correspondence file = Correspondence::read(std8(path));
+        if (hasMesh_) file.checkMesh(mesh_.vertexCount(), std8(meshPath_));
+    } catch (const std::exception& e) {
+        return fail(QString::fromStdString(e.what()));
+    }
+    return true;
+}
+
+bool Document::loadCorrespondence(const QString& path, MapLoad mode, int* added) {
     EditState after = editState();
     Correspondence file;
     try {
@@ -157,6 +167,7 @@ bool Document::loadCorrespondence(const QString& path, MapLoad mode) {
         return fail(QString::fromStdString(e.what()));
     }
     if (mode == MapLoad::Replace) {
+        if (added) *added = int(file.markers.size());
         after.map = std::move(file);
         after.mapPath = path;
         savedMapJson_ = after.map.toJson();
@@ -174,6 +185,9 @@ bool Document::loadCorrespondence(const QString& path, MapLoad mode) {
             });
         if (!taken) after.map.markers.push_back(m);
     }
+    const int merged = int(after.map.markers.size() - map_.markers.size());
+    if (added) *added = merged;
+    if (merged == 0) return true;  // an empty undo step would undo nothing
     if (after.mapPath.isEmpty()) after.mapPath = path;
     pushEdit(tr("Merge correspondence"), std::move(after));
     return true;

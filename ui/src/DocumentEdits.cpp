@@ -297,7 +297,7 @@ void Document::setSelectedMarker(int marker) {
     emit selectionChanged(marker);
 }
 
-bool Document::canSolve(QString* why) const {
+bool Document::canSolve(QString* why, QString* detail) const {
     auto no = [&](const QString& reason) {
         if (why) *why = reason;
         return false;
@@ -314,8 +314,15 @@ bool Document::canSolve(QString* why) const {
         else
             unknown << QString::fromStdString(m.label);
     }
-    if (!unknown.isEmpty())
-        return no(tr("The map names markers the take does not have: %1.").arg(unknown.join(", ")));
+    if (!unknown.isEmpty()) {
+        if (detail) *detail = tr("Not in the take: %1.").arg(unknown.join(", "));
+        return no(counted(unknown.size(),
+                          tr("The map names %n marker the take does not have (%1): open this "
+                             "take's map, or Edit → Clear All Mappings and map anew."),
+                          tr("The map names %n markers the take does not have (%1): open this "
+                             "take's map, or Edit → Clear All Mappings and map anew."))
+                      .arg(firstFew(unknown)));
+    }
     if (resolved < 3) return no(tr("Map at least 3 markers to solve (%1 mapped).").arg(resolved));
     return true;
 }

@@ -131,6 +131,8 @@ void FrameDisplay::rebuildProblem() {
     QString why;
     solving_ = document_->hasMesh() && solver_->setProblem(*document_, &why);
     notSolvingReason_ = solving_ ? QString() : why;
+    notSolvingDetail_.clear();
+    if (!solving_) document_->canSolve(nullptr, &notSolvingDetail_);
     const QString refusal = document_->memoryRefusal();
     if (!refusal.isEmpty() && refusal != refusalShown_) emit solveRefused(refusal);
     refusalShown_ = refusal;
@@ -145,6 +147,7 @@ void FrameDisplay::onSolverFailed(const QString& message) {
     // rather than the last problem's answer under a "solving" that never ends.
     solving_ = false;
     notSolvingReason_ = tr("the take could not be solved with this map and settings");
+    notSolvingDetail_.clear();
     result_.reset();
     showUnsolved(timeline_->frame());
     emit solverFailed(message);
@@ -186,15 +189,6 @@ void FrameDisplay::onFrameReady(const FrameResult& result) {
     result_ = result;
     displayedFrame_ = result.frame;
     showResult();
-    if (heatMap_ && !result.shapeError.empty()) {
-        // Shape error comes in mesh units; a user reads millimetres, as in the residuals.
-        const double meshUnitsPerMm =
-            result.calibration.takeToMesh.scale / document_->take().unitToMm;
-        std::vector<float> mm(result.shapeError.size());
-        for (std::size_t i = 0; i < mm.size(); ++i)
-            mm[i] = float(result.shapeError[i] / meshUnitsPerMm);
-        view_->setHeatMap(mm, tr("Shape error (mm)"));
-    }
     markers_->setFrameResult(result);
     if (result.frame == requestedFrame_) {
         awaitingRender_ = true;
@@ -226,6 +220,18 @@ void FrameDisplay::showResult() {
     if (frame) markerPositions_ = result.markers;
     updateMarkers();
     updateTrails(result.frame);
+    // The heat map is the frame's shape error: on a rest it would read as the rest's.
+    if (!frame) {
+        view_->setHeatMap({}, {});
+    } else if (heatMap_ && !result.shapeError.empty()) {
+        // Shape error comes in mesh units; a user reads millimetres, as in the residuals.
+        const double meshUnitsPerMm =
+            result.calibration.takeToMesh.scale / document_->take().unitToMm;
+        std::vector<float> mm(result.shapeError.size());
+        for (std::size_t i = 0; i < mm.size(); ++i)
+            mm[i] = float(result.shapeError[i] / meshUnitsPerMm);
+        view_->setHeatMap(mm, tr("Shape error (mm)"));
+    }
 }
 
 void FrameDisplay::updateFloor() {
@@ -303,13 +309,14 @@ void FrameDisplay::emitStatus() {
         frame += tr(" (held while mapping; playhead at %1)").arg(playhead);
     else if (document_->hasTake() && displayedFrame_ != playhead)
         frame += tr(" (preview; playhead at %1)").arg(playhead);
-    QString solve, residual;
+    QString solve, residual, solveDetail;
     const bool current = result_ && result_->frame == playhead && !problemTimer_->isActive();
     if (frozen_) {
         solve = tr("mapping markers");
     } else if (!solving_ && !problemTimer_->isActive()) {
         solve = notSolvingReason_.isEmpty() ? tr("Not solving")
                                             : tr("Not solving: %1").arg(notSolvingReason_);
+        solveDetail = notSolvingDetail_;
     } else if (!current) {
         solve = tr("solving frame %1…").arg(playhead);
     } else if (shown_ == Shown::CalibratedRest) {
@@ -338,7 +345,7 @@ void FrameDisplay::emitStatus() {
                              .arg(result_->report.residualMaxMm, 0, 'f', 2)
                              .arg(alignment);
     }
-    emit statusChanged(frame, solve, residual);
+    emit statusChanged(frame, solve, residual, solveDetail);
 }
 
 }  // namespace boneless::ui

@@ -62,7 +62,9 @@ class FrameDisplay : public QObject {
 
   signals:
     void frameDisplayed(int frame);
-    void statusChanged(const QString& frame, const QString& solve, const QString& residual);
+    // solveDetail: what `solve` leaves out (the whole list of markers it names a few of).
+    void statusChanged(const QString& frame, const QString& solve, const QString& residual,
+                       const QString& solveDetail);
     // From the frame request to the end of the render that shows it.
     void latencyMeasured(int frame, double milliseconds, bool fromCache);
     void solverFailed(const QString& message);
@@ -96,7 +98,8 @@ class FrameDisplay : public QObject {
     bool solving_ = false;
     bool upPending_ = false;  // the up axis changed while mapping held the camera
     QString notSolvingReason_;
-    QString refusalShown_;  // the last solveRefused() message, while it still holds
+    QString notSolvingDetail_;  // the reason's whole list
+    QString refusalShown_;      // the last solveRefused() message, while it still holds
     bool trails_ = false, heatMap_ = false;
     Shown shown_ = Shown::Frame;
     bool frozen_ = false;

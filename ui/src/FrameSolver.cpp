@@ -287,17 +287,21 @@ bool FrameSolver::setProblem(const Document& document, QString* why) {
     }
     updateBusy();
     if (why) *why = reason;
+    emit problemChanged(p != nullptr, reason);
     return p != nullptr;
 }
 
 void FrameSolver::clearProblem() {
-    std::lock_guard lock(shared_->mutex);
-    ++shared_->generation;
-    shared_->problem.reset();
-    shared_->pending.reset();
-    shared_->lastRequest.reset();
-    shared_->stopSolve = true;
-    shared_->cache.clear();
+    {
+        std::lock_guard lock(shared_->mutex);
+        ++shared_->generation;
+        shared_->problem.reset();
+        shared_->pending.reset();
+        shared_->lastRequest.reset();
+        shared_->stopSolve = true;
+        shared_->cache.clear();
+    }
+    emit problemChanged(false, {});
 }
 
 bool FrameSolver::hasProblem() const {
@@ -320,9 +324,7 @@ void FrameSolver::watch(const Document* document) {
         QTimer::singleShot(0, this, [this] {
             refreshQueued_ = false;
             if (!watched_) return;
-            QString why;
-            const bool ok = setProblem(*watched_, &why);
-            emit problemChanged(ok, why);
+            setProblem(*watched_);  // which says so (problemChanged)
         });
     };
     for (auto signal :

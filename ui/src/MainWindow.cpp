@@ -1,5 +1,6 @@
 #include "boneless/ui/MainWindow.h"
 
+#include <QAbstractSpinBox>
 #include <QAction>
 #include <QComboBox>
 #include <QDockWidget>
@@ -20,11 +21,13 @@
 #include <QUndoStack>
 #include <QVBoxLayout>
 #include <cmath>
+#include <utility>
 
 #include "CalibrationMenu.h"
 #include "Counted.h"
 #include "FrameDisplay.h"
 #include "OffsetRow.h"
+#include "ShortcutPassThrough.h"
 #include "SuggestionHighlight.h"
 #include "boneless/ActorCalibration.h"
 #include "boneless/ui/AppIcon.h"
@@ -177,6 +180,10 @@ void MainWindow::buildMarkerDock() {
     buttons->addWidget(align);
     layout->addLayout(buttons);
     layout->addLayout(makeOffsetRow(document_));
+    // Ctrl+Z after typing an offset or a filter undoes the last edit, as everywhere else; the
+    // boxes' own undo of the typing took it.
+    passShortcuts(filterEdit_, undoRedoKeys());
+    passShortcuts(panel->findChild<QAbstractSpinBox*>("offsetSpin"), undoRedoKeys());
     connect(clear, &QPushButton::clicked, this, [this] {
         if (document_->selectedMarker() >= 0) document_->clearMapping(document_->selectedMarker());
     });
@@ -214,7 +221,8 @@ void MainWindow::buildFileMenu() {
     connect(recentMenu_, &QMenu::aboutToShow, this, &MainWindow::rebuildRecentMenu);
     file->addSeparator();
     file->addAction(tr("&Save Project"), QKeySequence::Save, this, &MainWindow::saveProject);
-    file->addAction(tr("Save Project &As…"), QKeySequence::SaveAs, this,
+    // Not QKeySequence::SaveAs: it has no key on Windows, nor on X11 without a desktop theme.
+    file->addAction(tr("Save Project &As…"), QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_S), this,
                     &MainWindow::chooseSaveProjectAs);
     file->addAction(tr("Save Co&rrespondence As…"), this, &MainWindow::chooseSaveCorrespondence);
     file->addSeparator();
@@ -229,10 +237,10 @@ QMenu* MainWindow::buildEditMenu() {
     QMenu* edit = menuBar()->addMenu(tr("&Edit"));
     QAction* undo = document_->undoStack()->createUndoAction(this, tr("&Undo"));
     undo->setObjectName("actionUndo");
-    undo->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_Z));
+    undo->setShortcut(undoRedoKeys()[0]);
     QAction* redo = document_->undoStack()->createRedoAction(this, tr("&Redo"));
     redo->setObjectName("actionRedo");
-    redo->setShortcut(QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_Z));
+    redo->setShortcut(undoRedoKeys()[1]);
     edit->addAction(undo);
     edit->addAction(redo);
     edit->addSeparator();
@@ -315,7 +323,8 @@ void MainWindow::buildHelpMenu() {
                                "<tr><td>double-click a marker in the list</td><td>bring the "
                                "camera to it</td></tr>"
                                "<tr><td>mouse</td><td>left drag turns, right drag or wheel zooms, "
-                               "middle drag pans; a click maps the selected marker</td></tr>"
+                               "middle drag pans; in Edit → Map Markers mode a click maps the "
+                               "selected marker</td></tr>"
                                "</table>"));
                     })
         ->setObjectName("actionShortcuts");
@@ -354,11 +363,17 @@ void MainWindow::buildStatusBar() {
            "Alignment: the mapped markers, aligned, from their points on the mesh at the "
            "calibration frame (RMS)."));
     connect(display_, &FrameDisplay::statusChanged, this,
-            [this](const QString& frame, const QString& solve, const QString& residual) {
+            [this](const QString& frame, const QString& solve, const QString& residual,
+                   const QString& solveDetail) {
                 frameLabel_->setText(frame);
                 solveLabel_->setText(solve);
+                solveLabel_->setToolTip(solveDetail);
                 residualLabel_->setText(residual);
             });
+    // A message's whole list, while the message is up.
+    connect(statusBar(), &QStatusBar::messageChanged, this, [this](const QString& message) {
+        if (message.isEmpty() || message != detailedMessage_) statusBar()->setToolTip({});
+    });
 }
 
 void MainWindow::buildShortcuts() {
@@ -426,7 +441,8 @@ void MainWindow::connectDocument() {
 }
 
 void MainWindow::onTakeLoaded() {
-    if (startFrame_ >= 0 && document_->hasTake()) {
+    // A project's take: restoreSession() puts the start frame over the project's own.
+    if (startFrame_ >= 0 && document_->hasTake() && !loadingProject_) {
         timeline_->setFrame(startFrame_);
         startFrame_ = -1;
     }
@@ -453,18 +469,27 @@ void MainWindow::storeSession() {
     if (document_->hasMesh()) document_->setViewSetting("camera", view_->cameraState());
 }
 
-// What a hostile file holds there is checked: a frame out of range, an unknown speed or a camera
-// that is not one leave the window's own.
+// A project opens where it was left, paused, or at the start frame asked for (--frame). What it
+// does not give (the demo, an older file) is the default, never the previous project's: the first
+// frame, the take's rate, the camera fitted to the mesh. What a hostile file holds there is
+// checked: a frame out of range, an unknown speed or a camera that is not one count as not given.
 void MainWindow::restoreSession() {
+    timeline_->pause();
     const QVariantMap settings = document_->viewSettings();
     const QVariant frame = settings.value("frame");
     bool ok = false;
     const double f = frame.toDouble(&ok);
-    if (ok && f >= 0 && f < timeline_->frameCount() && f == std::floor(f))
-        timeline_->setFrame(int(f));
+    const int start = std::exchange(startFrame_, -1);  // --frame
+    if (start >= 0 && start < timeline_->frameCount())
+        timeline_->setFrame(start);
+    else
+        timeline_->setFrame(
+            ok && f >= 0 && f < timeline_->frameCount() && f == std::floor(f) ? int(f) : 0);
     const QString speedName = settings.value("speed").toString();
+    timeline_->setSpeed(Timeline::Speed::Realtime);
     for (const auto& [speed, name] : kSpeedNames)
         if (speedName == name) timeline_->setSpeed(speed);
+    // Without one, the camera fitted to the mesh as it loaded.
     if (settings.contains("camera")) view_->setCameraState(settings.value("camera").toMap());
 }
 
@@ -474,6 +499,12 @@ void MainWindow::applyViewSettings() {
     trailsAction_->setChecked(settings.value("trails").toBool());
     heatMapAction_->setChecked(settings.value("heatMap").toBool());
     followAction_->setChecked(settings.value("follow", true).toBool());
+}
+
+void MainWindow::showStatus(const QString& message, const QString& detail, int timeoutMs) {
+    detailedMessage_ = detail.isEmpty() ? QString() : message;
+    statusBar()->showMessage(message, timeoutMs);
+    statusBar()->setToolTip(detail);
 }
 
 void MainWindow::syncTableSelection(int marker) {
@@ -536,11 +567,19 @@ bool MainWindow::suggestMappings() {
     if (toCheck > 0)
         message += tr(", %1 of them to check: the list's \"To check\" shows them").arg(toCheck);
     // A prop's or another actor's markers: no place on this body, so none was given.
+    // Named a few at a time: the status bar cuts off what does not fit, the tooltip has them all.
     if (!offBody.isEmpty())
-        message += tr("; left unmapped, more than %1 mm from the body: %2")
-                       .arg(kUnreachableMm)
-                       .arg(offBody.join(", "));
-    statusBar()->showMessage(message, toCheck == 0 && offBody.isEmpty() ? 10000 : 15000);
+        message +=
+            counted(offBody.size(), tr("; %n left unmapped, more than %1 mm from the body: %2"),
+                    tr("; %n left unmapped, more than %1 mm from the body: %2"))
+                .arg(kUnreachableMm)
+                .arg(firstFew(offBody));
+    showStatus(message,
+               offBody.isEmpty() ? QString()
+                                 : tr("Left unmapped, more than %1 mm from the body: %2")
+                                       .arg(kUnreachableMm)
+                                       .arg(offBody.join(", ")),
+               toCheck == 0 && offBody.isEmpty() ? 10000 : 15000);
     return true;
 }
 

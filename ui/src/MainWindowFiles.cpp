@@ -89,10 +89,22 @@ bool MainWindow::openFile(const QString& path) {
             break;
         }
         case FileKind::Correspondence: {
+            // Read and checked first: a map that cannot be used is said so, not asked about.
+            if (!document_->checkCorrespondence(path)) return false;
             Document::MapLoad mode = Document::MapLoad::Replace;
             if (!askMapLoad(path, mode)) return false;
             const QScopedValueRollback<int> loading(loading_, loading_ + 1);
-            ok = document_->loadCorrespondence(path, mode);
+            int added = 0;
+            ok = document_->loadCorrespondence(path, mode, &added);
+            if (ok && mode == Document::MapLoad::Merge && added == 0) {
+                RecentFiles::add(QFileInfo(path).absoluteFilePath());
+                statusBar()->showMessage(
+                    tr("Nothing merged from %1: each marker it maps is mapped already, or its "
+                       "vertex is taken")
+                        .arg(QFileInfo(path).fileName()),
+                    10000);
+                return true;
+            }
             break;
         }
         case FileKind::Unknown:
@@ -133,15 +145,17 @@ void MainWindow::showOpened(const QString& path, const QStringList& notes) {
 bool MainWindow::openProject(const QString& path) {
     if (!keepUnsavedWork(false)) return false;
     const QScopedValueRollback<int> loading(loading_, loading_ + 1);
-    QString error;
+    QString error, missing;
     bool loaded = false;
     {
         const QScopedValueRollback<bool> quiet(loadingProject_, true);
-        loaded = Project::load(*document_, path, &error);
+        loaded = Project::load(*document_, path, &error, &missing);
     }
     if (!loaded) {
-        const QString message =
-            tr("%1 could not be opened as a Boneless project.").arg(QFileInfo(path).fileName());
+        const QString message = !missing.isEmpty()
+                                    ? missing
+                                    : tr("%1 could not be opened as a Boneless project.")
+                                          .arg(QFileInfo(path).fileName());
         const QString recovery = ProjectAutosave::recoveryPath();
         const QString absolute = QFileInfo(path).absoluteFilePath();
         statusBar()->showMessage(message, 15000);
@@ -222,10 +236,36 @@ bool MainWindow::openRecovery() {
     startUntitled();
     unsavedEdits_ = true;  // untitled: only the autosave holds it, until Save As
     autosave_->discardPending();
+    autosave_->claimRecovery();  // a crash now offers it again
     applyViewSettings();
     restoreSession();
     statusBar()->showMessage(tr("Opened the last autosave, untitled: Save As keeps it"), 10000);
     return true;
+}
+
+bool MainWindow::offerRecovery() {
+    if (!messageBoxes_ || !autosave_->hasUnfinishedRecovery()) return false;
+    const QFileInfo recovery(ProjectAutosave::recoveryPath());
+    const QString from = ProjectAutosave::recoveredProject();
+    QMessageBox box(QMessageBox::Question, tr("Boneless"),
+                    tr("Boneless did not close normally. Reopen the work it autosaved?"),
+                    QMessageBox::NoButton, this);
+    box.setObjectName("recoveryQuestion");
+    box.setInformativeText(
+        tr("The last autosave, from %1, holds %2. Discarded, it stays under File → Recent Files "
+           "→ Last Autosave until the next change replaces it.")
+            .arg(QLocale().toString(recovery.lastModified(), QLocale::ShortFormat),
+                 from.isEmpty() ? tr("an untitled project")
+                                : tr("unsaved changes to %1").arg(QFileInfo(from).fileName())));
+    QPushButton* reopen = box.addButton(tr("Reopen"), QMessageBox::AcceptRole);
+    QPushButton* discard = box.addButton(tr("Discard"), QMessageBox::DestructiveRole);
+    reopen->setObjectName("reopenButton");
+    discard->setObjectName("discardButton");
+    box.setDefaultButton(reopen);
+    box.exec();  // answered before anything else opens (and autosaves over it)
+    if (box.clickedButton() == reopen) return openRecovery();
+    autosave_->discardRecovery();
+    return false;
 }
 
 void MainWindow::startUntitled() {
@@ -276,9 +316,9 @@ bool MainWindow::saveProjectAs(const QString& path) {
 }
 
 void MainWindow::showExportDialog() {
-    QString why;
-    if (!document_->canSolve(&why)) {
-        showError(tr("Nothing to export: %1").arg(why));
+    QString why, detail;
+    if (!document_->canSolve(&why, &detail)) {
+        showError(tr("Nothing to export: %1").arg(why), detail);
         return;
     }
     exportDialog_->setProjectPath(demo_ ? QString() : projectPath_);
@@ -420,18 +460,20 @@ bool MainWindow::openFiles(QStringList paths) {
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {
-    // The frame and camera only count as a change at the end; the demo's never do.
-    if (!demo_) storeSession();
     if (!keepUnsavedWork(true)) {
         event->ignore();  // and an export running goes on
         return;
     }
     exportDialog_->cancelExport();
+    autosave_->endSession();  // closed, not crashed: nothing to offer at the next start
     event->accept();
 }
 
 bool MainWindow::keepUnsavedWork(bool closing) {
     if (workAsked_) return true;
+    // The frame, speed and camera only count as a change when the project is left, closed or for
+    // another file; the demo's never do. Opening another project lost them.
+    if (!demo_) storeSession();
     // The edits of the last second go to the project (or recovery file) they were made in.
     const bool kept = autosave_->saveNow();
     const bool titled = !projectPath_.isEmpty() && !demo_;

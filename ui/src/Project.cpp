@@ -138,10 +138,18 @@ bool save(const Document& document, const QString& path, QString* error) {
     return true;
 }
 
-bool load(Document& document, const QString& path, QString* error) {
+bool load(Document& document, const QString& path, QString* error, QString* missing) {
     auto fail = [&](const QString& why) {
         if (error) *error = path + ": " + why;
         return false;
+    };
+    // A file moved or deleted since the project was saved: the reader's message would not say it
+    // in the words the user needs.
+    const QString project = QFileInfo(path).fileName();
+    auto gone = [&](const QString& file, const QString& sentence) {
+        if (QFileInfo::exists(file)) return false;
+        if (missing) *missing = sentence.arg(file, project);
+        return true;
     };
     QFile file(path);
     if (!file.open(QIODevice::ReadOnly)) return fail(file.errorString());
@@ -164,15 +172,23 @@ bool load(Document& document, const QString& path, QString* error) {
     Document::State state;
     QString why;
     const QJsonObject mesh = root["mesh"].toObject();
-    if (const QString m = resolve(dir, mesh["file"].toString()); !m.isEmpty())
+    if (const QString m = resolve(dir, mesh["file"].toString()); !m.isEmpty()) {
+        if (gone(m, QObject::tr("The mesh %1 named by %2 is missing.")))
+            return fail(QObject::tr("no such mesh file: %1").arg(m));
         if (!Document::readMeshFile(m, mesh["group"].toString(), state, &why)) return fail(why);
-    if (const QString t = resolve(dir, root["take"].toObject()["file"].toString()); !t.isEmpty())
+    }
+    if (const QString t = resolve(dir, root["take"].toObject()["file"].toString()); !t.isEmpty()) {
+        if (gone(t, QObject::tr("The take %1 named by %2 is missing.")))
+            return fail(QObject::tr("no such take file: %1").arg(t));
         if (!Document::readTakeFile(t, state, &why)) return fail(why);
+    }
     const QJsonObject correspondence = root["correspondence"].toObject();
     state.mapPath = resolve(dir, correspondence["file"].toString());
     if (correspondence["map"].isObject()) {
         if (!readEmbeddedMap(correspondence["map"].toObject(), state.map, &why)) return fail(why);
     } else if (!state.mapPath.isEmpty()) {
+        if (gone(state.mapPath, QObject::tr("The correspondence %1 named by %2 is missing.")))
+            return fail(QObject::tr("no such correspondence file: %1").arg(state.mapPath));
         try {
             state.map = Correspondence::read(state.mapPath.toStdString());
         } catch (const std::exception& e) {

@@ -3,6 +3,7 @@
 #include <QSettings>
 #include <QStandardPaths>
 #include <QTimer>
+#include <QUuid>
 
 #include "boneless/ui/Document.h"
 #include "boneless/ui/Project.h"
@@ -10,7 +11,10 @@
 namespace boneless::ui {
 
 ProjectAutosave::ProjectAutosave(Document* document, QObject* parent)
-    : QObject(parent), document_(document), timer_(new QTimer(this)) {
+    : QObject(parent),
+      document_(document),
+      session_(QUuid::createUuid().toString()),
+      timer_(new QTimer(this)) {
     timer_->setSingleShot(true);
     timer_->setInterval(1000);
     connect(timer_, &QTimer::timeout, this, &ProjectAutosave::saveNow);
@@ -47,10 +51,36 @@ QString ProjectAutosave::recoveryPath() {
 
 namespace {
 const char* kRecoveredProjectKey = "autosave/recoveredProject";
+// The session whose work the recovery file holds and no project file does; removed when that
+// session ends cleanly or its work is reopened elsewhere or discarded.
+const char* kSessionKey = "autosave/unfinishedSession";
+
+QString recoverySession() {
+    return QFileInfo::exists(ProjectAutosave::recoveryPath())
+               ? QSettings().value(kSessionKey).toString()
+               : QString();
+}
 }  // namespace
 
 QString ProjectAutosave::recoveredProject() {
     return QSettings().value(kRecoveredProjectKey).toString();
+}
+
+bool ProjectAutosave::hasUnfinishedRecovery() const {
+    const QString session = recoverySession();
+    return !session.isEmpty() && session != session_;
+}
+
+void ProjectAutosave::claimRecovery() {
+    QSettings().setValue(kSessionKey, session_);
+}
+
+void ProjectAutosave::discardRecovery() {
+    QSettings().remove(kSessionKey);
+}
+
+void ProjectAutosave::endSession() {
+    if (QSettings().value(kSessionKey).toString() == session_) QSettings().remove(kSessionKey);
 }
 
 bool ProjectAutosave::saveNow() {
@@ -62,14 +92,21 @@ bool ProjectAutosave::saveNow() {
     emit aboutToSave();  // the window stores its session; that change is this save's
     timer_->stop();
     pending_ = false;
-    // The recovery file always holds the last session saved, titled or not: it is what the
-    // window offers when a project file will not open.
+    // The recovery file holds the last session saved, titled or not: it is what the window
+    // offers when a project file will not open, or at start after a crash. Another session's
+    // work there, not yet reopened or discarded, is not written over (the demo opened after a
+    // crash did, at its first edit).
     // Every target is tried: a project that cannot be written (a read-only folder, a full
     // disk) must not keep the edits out of the recovery file too.
-    QStringList targets{recoveryPath()};
+    QStringList targets;
+    if (!hasUnfinishedRecovery()) targets << recoveryPath();
     if (!path_.isEmpty()) targets.prepend(path_);
+    if (targets.isEmpty()) {
+        pending_ = true;  // kept for a save once that work is reopened or discarded
+        return false;
+    }
     QStringList errors;
-    bool kept = true, recovered = true;
+    bool kept = true, recovered = targets.contains(recoveryPath());
     for (const QString& target : targets) {
         QDir().mkpath(QFileInfo(target).absolutePath());
         QString error;
@@ -78,8 +115,15 @@ bool ProjectAutosave::saveNow() {
         (target == path_ ? kept : recovered) = ok;
     }
     // Which project the recovery file holds: offered for another one, it would pass for it.
-    if (recovered) QSettings().setValue(kRecoveredProjectKey, path_);
     if (path_.isEmpty()) kept = recovered;
+    if (recovered) {
+        QSettings().setValue(kRecoveredProjectKey, path_);
+        // Only work that no project file holds is offered after a crash.
+        if (kept && !path_.isEmpty())
+            endSession();
+        else
+            claimRecovery();
+    }
     if (!errors.isEmpty()) {
         pending_ = true;  // try again after the next change
         if (!kept && recovered)

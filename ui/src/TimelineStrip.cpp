@@ -45,6 +45,8 @@ TimelineStrip::TimelineStrip(Document* document, FrameSolver* solver, Timeline* 
         update();
     });
     rebuildGaps();
+    staleGeneration_ = kNoGeneration;  // the solver's frames so far may be this document's
+    refreshCache();
 }
 
 void TimelineStrip::setSlider(QSlider* slider) {
@@ -76,7 +78,10 @@ void TimelineStrip::rebuildGaps() {
     }
     cached_.assign(frames, false);
     calibrationFrame_ = -1;  // another take's, until a frame of this one is solved
-    refreshCache();
+    // The solver still holds the old take's or map's frames until its problem is rebuilt (on the
+    // next turn of the event loop): none of them is this one's.
+    staleGeneration_ = solver_->generation();
+    update();
 }
 
 void TimelineStrip::refreshCache() {
@@ -84,7 +89,8 @@ void TimelineStrip::refreshCache() {
     if (int(cached_.size()) != frames) cached_.assign(frames, false);
     bool changed = false;
     for (int f = 0; f < frames; ++f) {
-        const bool cached = solver_->hasProblem() && solver_->isCached(f);
+        const bool cached = solver_->generation() != staleGeneration_ && solver_->hasProblem() &&
+                            solver_->isCached(f);
         changed |= cached != cached_[f];
         cached_[f] = cached;
     }

@@ -2,7 +2,6 @@
 
 #include <QComboBox>
 #include <QHBoxLayout>
-#include <QKeyEvent>
 #include <QLabel>
 #include <QSignalBlocker>
 #include <QSlider>
@@ -11,6 +10,7 @@
 #include <QToolButton>
 #include <QVBoxLayout>
 
+#include "ShortcutPassThrough.h"
 #include "boneless/ui/Timeline.h"
 
 namespace boneless::ui {
@@ -50,7 +50,9 @@ TimelineWidget::TimelineWidget(Timeline* timeline, QWidget* parent)
     frameBox_->setToolTip(tr("Frame (0-based); Enter goes there"));
     // Typing "100" must not visit frames 1 and 10 on the way: the box applies on Enter.
     frameBox_->setKeyboardTracking(false);
-    frameBox_->installEventFilter(this);
+    // Space applies the number typed and plays instead of being typed into the box; undo and
+    // redo are the window's.
+    passShortcuts(frameBox_, QList<QKeySequence>{QKeySequence(Qt::Key_Space)} + undoRedoKeys());
     countLabel_ = new QLabel(this);
 
     speed_ = new QComboBox(this);
@@ -106,19 +108,6 @@ TimelineWidget::TimelineWidget(Timeline* timeline, QWidget* parent)
         speed_->setCurrentIndex(speed_->findData(int(speed)));
     });
     syncRange(timeline->frameCount());
-}
-
-bool TimelineWidget::eventFilter(QObject* watched, QEvent* event) {
-    // Space in the frame box applies the number typed and lets the window's Space (play) act,
-    // instead of being typed into the box.
-    if (watched == frameBox_ && event->type() == QEvent::ShortcutOverride &&
-        static_cast<QKeyEvent*>(event)->key() == Qt::Key_Space) {
-        frameBox_->interpretText();
-        frameBox_->clearFocus();
-        event->ignore();
-        return true;
-    }
-    return QWidget::eventFilter(watched, event);
 }
 
 void TimelineWidget::setOverview(QWidget* strip) {

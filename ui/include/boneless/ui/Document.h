@@ -38,8 +38,13 @@ class Document : public QObject {
     // Replaces the map (one undo step). Entries that do not fit the mesh are an error.
     // Replace: the file's map instead of this one. Merge: this map plus the file's mappings of
     // markers not mapped here (unless their vertex is taken). One undo step either way.
+    // *added (when given): the mappings the file added; a merge that adds none is no edit.
     enum class MapLoad { Replace, Merge };
-    bool loadCorrespondence(const QString& path, MapLoad mode = MapLoad::Replace);
+    bool loadCorrespondence(const QString& path, MapLoad mode = MapLoad::Replace,
+                            int* added = nullptr);
+    // Whether the file is a correspondence that fits the mesh, as loadCorrespondence checks it
+    // (errorOccurred says why not), leaving the map alone: checked before asking how to load it.
+    bool checkCorrespondence(const QString& path);
     // Writes the map as a correspondence file (atomic); remembers the path.
     bool saveCorrespondence(const QString& path);
     // Back to an empty session: no mesh, no take, empty map, default settings, empty undo stack.
@@ -133,7 +138,8 @@ class Document : public QObject {
     // --- solving and export ----------------------------------------------------------------
     // True when a frame can be solved: mesh, take, at least 3 mapped markers, and memory for
     // the mesh's solve. Else *why says what is missing.
-    bool canSolve(QString* why = nullptr) const;
+    // *detail (when given): what *why, kept to a status bar's length, leaves out.
+    bool canSolve(QString* why = nullptr, QString* detail = nullptr) const;
     // Empty when solving the mesh fits the memory this process may use; else the refusal, naming
     // the file, its size, the memory its solve would need and the limit (checkSolveFits).
     QString memoryRefusal() const;

@@ -99,8 +99,9 @@ class FrameSolver : public QObject {
     // Building the solver for a generation failed (bad map for this take, ...): the message.
     void failed(const QString& message);
     void busyChanged(bool busy);
-    // After watch()'s automatic setProblem(): solvable or why not. Cached frames are gone, so the
-    // window asks for its current frame again.
+    // After each setProblem() or clearProblem(), watch()'s included: solvable or why not. Cached
+    // frames are gone, so the window asks for its current frame again and the timeline strip
+    // drops its solved marks.
     void problemChanged(bool solvable, const QString& why);
 
   private:

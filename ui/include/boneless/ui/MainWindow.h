@@ -59,8 +59,12 @@ class MainWindow : public QMainWindow {
     // autosave to the recovery file.
     bool openDemo();
     bool isDemoOpen() const { return demo_; }
-    // Opens ProjectAutosave::recoveryPath() as an untitled project.
+    // Opens ProjectAutosave::recoveryPath() as an untitled project, this session's from then on.
     bool openRecovery();
+    // At start-up: when the last session did not close and left work that no project file holds
+    // in the recovery file, asks Reopen or Discard (recoveryQuestion). True when reopened;
+    // without message boxes it asks nothing and leaves that work alone.
+    bool offerRecovery();
     bool saveProject();  // Save As when untitled or the demo
     bool saveProjectAs(const QString& path);
     QString projectPath() const { return projectPath_; }
@@ -126,6 +130,9 @@ class MainWindow : public QMainWindow {
     // True to go on.
     bool keepUnsavedWork(bool closing);
     void showHelp(const QString& title, const QString& html);
+    // A status message whose whole `detail` (a list it names a few of) is the bar's tooltip while
+    // it is shown.
+    void showStatus(const QString& message, const QString& detail, int timeoutMs);
     void storeSession();
     void restoreSession();
     QMessageBox* errorBox(const QString& message, const QString& detail);
@@ -178,6 +185,7 @@ class MainWindow : public QMainWindow {
     // hide it); the answer shows them if the session stays, drops them if it is left.
     bool asking_ = false;
     std::vector<std::pair<QString, QString>> heldErrors_;  // message, detail
+    QString detailedMessage_;  // the status message the bar's tooltip goes with
 };
 
 }  // namespace boneless::ui

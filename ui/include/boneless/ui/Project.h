@@ -26,7 +26,10 @@ namespace Project {
 bool save(const Document& document, const QString& path, QString* error = nullptr);
 // Loads the files the project names into the document and restores its state; on failure the
 // document is left as it was and *error holds a message naming the project and the cause.
-bool load(Document& document, const QString& path, QString* error = nullptr);
+// When it failed because a file the project names is not there, *missing (if given) says which,
+// in a plain sentence: "The mesh /data/walker.obj named by walk.boneless is missing."
+bool load(Document& document, const QString& path, QString* error = nullptr,
+          QString* missing = nullptr);
 // The project's JSON text (what save() writes), for tests and comparisons.
 QByteArray toJson(const Document& document, const QString& path);
 
@@ -37,6 +40,10 @@ QByteArray toJson(const Document& document, const QString& path);
 // also goes to recoveryPath() (the only place it goes without a project path), which the window
 // offers to reopen when the project it was saved from will not open; a project that cannot be
 // written does not keep the change from it.
+// The recovery file belongs to one session at a time: while it holds work that no project file
+// holds, from a session that did not end (a crash), another session does not write over it until
+// that work is reopened (claimRecovery) or discarded (discardRecovery); the window offers both at
+// start-up.
 class ProjectAutosave : public QObject {
     Q_OBJECT
   public:
@@ -51,6 +58,14 @@ class ProjectAutosave : public QObject {
     static QString recoveryPath();
     // The project the recovery file was last saved from; empty for an untitled session.
     static QString recoveredProject();
+    // The recovery file holds work that no project file holds, from a session that did not end.
+    bool hasUnfinishedRecovery() const;
+    // This session takes the recovery file's work as its own (it reopened it).
+    void claimRecovery();
+    // The unfinished session's work is given up: the next save may write over it.
+    void discardRecovery();
+    // This session ended cleanly (the window closed): its recovery file is not offered at start.
+    void endSession();
 
   public slots:
     // Writes at once if a change is pending. True when the document is kept where it belongs:
@@ -70,6 +85,7 @@ class ProjectAutosave : public QObject {
   private:
     QPointer<Document> document_;
     QString path_;
+    const QString session_;  // this session's id in the recovery file's record
     QTimer* timer_;
     bool pending_ = false;
 };

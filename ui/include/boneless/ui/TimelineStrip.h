@@ -63,6 +63,10 @@ class TimelineStrip : public QWidget {
     std::vector<int> missingCount_;  // per frame, markers missing
     std::vector<bool> cached_;
     int calibrationFrame_ = -1;
+    static constexpr quint64 kNoGeneration = ~quint64(0);
+    // The solver's generation when the take or map last changed: its cached frames are not this
+    // take's (TimelineStrip.cpp, rebuildGaps).
+    quint64 staleGeneration_ = kNoGeneration;
 };
 
 }  // namespace boneless::ui

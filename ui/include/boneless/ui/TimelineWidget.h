@@ -28,9 +28,6 @@ class TimelineWidget : public QWidget {
     // Puts `strip` right over the slider, the same width (TimelineStrip lines up its frames).
     void setOverview(QWidget* strip);
 
-  protected:
-    bool eventFilter(QObject* watched, QEvent* event) override;
-
   private:
     void syncFrame(int frame);
     void syncRange(int frames);

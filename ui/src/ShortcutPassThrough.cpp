@@ -1,0 +1,44 @@
+#include "ShortcutPassThrough.h"
+
+#include <QAbstractSpinBox>
+#include <QEvent>
+#include <QKeyEvent>
+#include <QWidget>
+
+namespace boneless::ui {
+namespace {
+
+class ShortcutPassThrough : public QObject {
+  public:
+    ShortcutPassThrough(QWidget* box, const QList<QKeySequence>& keys)
+        : QObject(box), keys_(keys) {}
+
+    bool eventFilter(QObject* watched, QEvent* event) override {
+        // Before a key press the focus widget is asked whether it takes the key itself
+        // (ShortcutOverride); ignored here, the key goes to the window's shortcut.
+        if (event->type() != QEvent::ShortcutOverride) return false;
+        const auto* key = static_cast<QKeyEvent*>(event);
+        const QKeySequence typed(
+            QKeyCombination(key->modifiers() & ~Qt::KeypadModifier, Qt::Key(key->key())));
+        if (!keys_.contains(typed)) return false;
+        if (auto* spin = qobject_cast<QAbstractSpinBox*>(watched)) spin->interpretText();
+        if (auto* widget = qobject_cast<QWidget*>(watched)) widget->clearFocus();
+        event->ignore();
+        return true;
+    }
+
+  private:
+    QList<QKeySequence> keys_;
+};
+
+}  // namespace
+
+QList<QKeySequence> undoRedoKeys() {
+    return {QKeySequence(Qt::CTRL | Qt::Key_Z), QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_Z)};
+}
+
+void passShortcuts(QWidget* box, const QList<QKeySequence>& keys) {
+    box->installEventFilter(new ShortcutPassThrough(box, keys));
+}
+
+}  // namespace boneless::ui
