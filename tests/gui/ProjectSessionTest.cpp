@@ -12,7 +12,9 @@
 #include <QLineEdit>
 #include <QMenu>
 #include <QMessageBox>
+#include <QProcess>
 #include <QPushButton>
+#include <QSettings>
 #include <QStatusBar>
 #include <QUndoStack>
 #include <QtTest>
@@ -508,6 +510,32 @@ class ProjectSessionTest : public QObject {
         MainWindow next;
         QVERIFY(!next.autosave()->hasUnfinishedRecovery());
         QVERIFY(!next.offerRecovery());
+    }
+
+    // A second Boneless started while the first runs: the first's work is live, not a crash's, and
+    // must not be offered (nor kept from the second's autosave) until that process has ended.
+    void theWorkOfABonelessStillRunningIsNotOfferedAsACrashs() {
+        QFile::remove(ProjectAutosave::recoveryPath());
+        {
+            MainWindow window;
+            window.setMessageBoxesEnabled(false);
+            QVERIFY(window.openFile(folder_ + "/mine/walker.obj"));
+            QVERIFY(window.autosave()->saveNow());
+        }
+        QProcess other;  // stands for the first Boneless
+        other.start("sleep", {"60"});
+        QVERIFY(other.waitForStarted());
+        QSettings().setValue("autosave/unfinishedSession",
+                             QString("{first-session} %1").arg(other.processId()));
+        {
+            MainWindow second;
+            QVERIFY(!second.autosave()->hasUnfinishedRecovery());
+            QVERIFY(!second.offerRecovery());  // no question box: it would wait for an answer
+        }
+        other.kill();
+        QVERIFY(other.waitForFinished());
+        MainWindow afterIt;
+        QVERIFY(afterIt.autosave()->hasUnfinishedRecovery());
     }
 
     void discardingACrashsWorkLetsTheNextSessionAutosave() {

@@ -1,3 +1,4 @@
+#include <QCoreApplication>
 #include <QDir>
 #include <QFileInfo>
 #include <QSettings>
@@ -5,6 +6,7 @@
 #include <QTimer>
 #include <QUuid>
 
+#include "boneless/Process.h"
 #include "boneless/ui/Document.h"
 #include "boneless/ui/Project.h"
 
@@ -13,7 +15,9 @@ namespace boneless::ui {
 ProjectAutosave::ProjectAutosave(Document* document, QObject* parent)
     : QObject(parent),
       document_(document),
-      session_(QUuid::createUuid().toString()),
+      // The process too: a session whose process still runs (a second window) has not crashed.
+      session_(QUuid::createUuid().toString() + " " +
+               QString::number(QCoreApplication::applicationPid())),
       timer_(new QTimer(this)) {
     timer_->setSingleShot(true);
     timer_->setInterval(1000);
@@ -68,7 +72,12 @@ QString ProjectAutosave::recoveredProject() {
 
 bool ProjectAutosave::hasUnfinishedRecovery() const {
     const QString session = recoverySession();
-    return !session.isEmpty() && session != session_;
+    if (session.isEmpty() || session == session_) return false;
+    // Another of this process's sessions is a window that is gone (the app has one at a time);
+    // another running Boneless's is live work, which it keeps saving: the recovery file then holds
+    // whichever saved last, as it always did.
+    const qint64 pid = session.section(' ', 1).toLongLong();
+    return pid == QCoreApplication::applicationPid() || processIsGone(pid);
 }
 
 void ProjectAutosave::claimRecovery() {

@@ -1,6 +1,5 @@
 #include "boneless/SpoolFile.h"
 
-#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 #include <cerrno>
@@ -16,6 +15,7 @@
 #include <vector>
 
 #include "boneless/Error.h"
+#include "boneless/Process.h"
 
 namespace boneless {
 
@@ -36,10 +36,6 @@ pid_t temporaryPid(std::string_view name, std::string_view& output) {
         return 0;
     output = name.substr(0, at);
     return static_cast<pid_t>(pid);
-}
-
-bool processIsGone(pid_t pid) {
-    return ::kill(pid, 0) != 0 && errno == ESRCH;
 }
 
 // The writers' temporaries in one folder, by the name of the output they were for. An OBJ
