@@ -1,5 +1,6 @@
 #include "boneless/C3dTake.h"
 
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 
@@ -133,6 +134,13 @@ std::vector<std::size_t> C3dTake::pointsNamed(std::string_view label) const {
     for (std::size_t i = 0; i < points.size(); ++i)
         if (c3dNameEquals(trimView(points[i].name), trimView(name))) out.push_back(i);
     return out;
+}
+
+std::string C3dTake::rateText() const {
+    if (std::isnan(rate)) return "not a number";
+    char text[32];
+    std::snprintf(text, sizeof text, "%g Hz", rate);
+    return text;
 }
 
 std::optional<std::size_t> C3dTake::findPoint(std::string_view label) const {

@@ -86,7 +86,7 @@ struct C3dTake {
     C3dProcessor processor = C3dProcessor::Intel;
     C3dStorage storage = C3dStorage::Float;
     double pointScale = -1.0;  // POINT:SCALE as stored (sign gives the storage)
-    double rate = 0.0;         // frames per second
+    double rate = 0.0;         // frames per second; 0 when the file gives none (hasFrameRate)
     std::string units = "mm";  // POINT:UNITS as stored
     double unitToMm = 1.0;     // multiply coordinates by this to get millimetres
     int firstFrameWord = 1;    // header words 4 and 5 (1-based, 16-bit)
@@ -105,6 +105,11 @@ struct C3dTake {
     std::vector<std::string> warnings;  // header/parameter disagreements, truncation, ...
 
     std::size_t frameCount() const { return samples.frames(); }
+    // Whether the take says how long a frame is: the reader reports 0 for a rate that is 0, not
+    // a number or negative in both POINT:RATE and the header, with a warning.
+    bool hasFrameRate() const { return std::isfinite(rate) && rate > 0; }
+    // The rate as messages give it: "120 Hz", "0 Hz", "not a number".
+    std::string rateText() const;
     // The points `label` names (case-insensitive, surrounding spaces ignored): the one whose
     // full label equals it, else every one whose name without the subject prefix equals its name.
     // More than one means two subjects wear the marker, and the label must say which.
