@@ -180,3 +180,15 @@ TEST(C3dInspect, RealFilesJson) {
     EXPECT_NE(e.err.find("Empty.c3d"), std::string::npos);
     EXPECT_NE(e.err.find("empty"), std::string::npos);
 }
+
+// Two points with one label: no map can name either, and inspect says so before a solve does.
+TEST(C3dInspect, WarnsOfTwoPointsThatShareALabel) {
+    const C3dTake t =
+        c3dtest::syntheticTake(3, {"Male:LFHD", "Male:LFWT", "Male:RFWT", "Male:LFWT"});
+    const std::string path = (c3dtest::workDir() / "shared-label.c3d").string();
+    writeC3d(t, path);
+    const CliRun r = inspect(quoted(path));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("warning   points 1 and 3 are both labelled Male:LFWT"), std::string::npos)
+        << r.out;
+}

@@ -608,3 +608,31 @@ TEST(SolveCommand, ARangeOfHeldFramesOnlyHasNoResidualMeanRatherThanZero) {
     EXPECT_TRUE(summary["residual_rms_mm_mean"].is_null()) << summary;
     EXPECT_TRUE(summary["residual_rms_mm_worst_frame"].is_null()) << summary;
 }
+
+// A take whose POINT:RATE and header rate are 0 has no time per frame. glb and MDD key frames by
+// time: every key was written at 0 (glTF wants them increasing; Blender collapsed the animation),
+// and --low-pass-hz 5 said "below 0 Hz at a frame rate of 0 Hz". OBJ and PC2 number frames.
+TEST(SolveCommand, ATakeWithoutAFrameRateIsRefusedAsGlbOrMddAndForLowPassButSolvesAsObjOrPc2) {
+    const fs::path demo = makeDemo(3);
+    const fs::path take = demo / "walker.c3d";
+    C3dTake t = readC3d(take.string());
+    t.rate = 0;
+    writeC3d(t, take.string());
+    for (const std::string format : {"glb", "mdd"}) {
+        const CliResult r = runCli(solveArgs(demo, demo / format) + " --format " + format);
+        EXPECT_EQ(r.exitCode, 1) << r.out;
+        EXPECT_NE(r.out.find(take.string() + ": its frame rate is 0"), std::string::npos) << r.out;
+        EXPECT_NE(r.out.find("obj or pc2"), std::string::npos) << r.out;
+        EXPECT_FALSE(fs::exists(demo / format / ("walker." + format)));
+    }
+    const CliResult lowPass = runCli(solveArgs(demo, demo / "lp") + " --low-pass-hz 5");
+    EXPECT_EQ(lowPass.exitCode, 1) << lowPass.out;
+    EXPECT_NE(lowPass.out.find(take.string() + ": the take has no frame rate"), std::string::npos)
+        << lowPass.out;
+    EXPECT_EQ(lowPass.out.find("below 0 Hz"), std::string::npos) << lowPass.out;
+    for (const std::string format : {"obj", "pc2"}) {
+        const CliResult r = runCli(solveArgs(demo, demo / format) + " --quiet --format " + format);
+        ASSERT_EQ(r.exitCode, 0) << r.out;
+        EXPECT_TRUE(sidecar(demo / format)["fps"].is_null()) << "not 0 frames a second";
+    }
+}

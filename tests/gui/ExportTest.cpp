@@ -9,6 +9,8 @@
 #include <QtTest>
 
 #include "ModelTestFixtures.h"
+#include "boneless/C3dReader.h"
+#include "boneless/C3dWriter.h"
 #include "boneless/ui/ExportRunner.h"
 
 using namespace boneless;
@@ -128,6 +130,29 @@ class ExportTest : public QObject {
         QVERIFY(!finished.first().at(0).toBool());
         QVERIFY2(finished.first().at(1).toString().contains("500"),
                  qPrintable(finished.first().at(1).toString()));
+    }
+
+    // The app exports through the same core: a glb of a take without a frame rate is refused
+    // with solve's message, not written with every key at time 0.
+    void aGlbOfATakeWithoutAFrameRateIsRefusedNamingTheTake() {
+        const QString folder = test::freshFolder("ExportTest/no-rate");
+        test::writeDemoProject(folder);
+        const QString take = folder + "/walker.c3d";
+        C3dTake t = readC3d(take.toStdString());
+        t.rate = 0;
+        writeC3d(t, take.toStdString());
+        Document d;
+        QVERIFY(d.loadMesh(folder + "/walker.obj"));
+        QVERIFY(d.loadTake(take));
+        QVERIFY(d.loadCorrespondence(folder + "/walker.map.json"));
+        ExportRunner runner;
+        QSignalSpy finished(&runner, &ExportRunner::finished);
+        QVERIFY(runner.start(d, d.exportRequest(work_ + "/no-rate", ExportFormat::Glb)));
+        QVERIFY(finished.wait(60000));
+        QVERIFY(!finished.first().at(0).toBool());
+        const QString message = finished.first().at(1).toString();
+        QVERIFY2(message.contains(take + ": its frame rate is 0"), qPrintable(message));
+        QVERIFY(!QFile::exists(work_ + "/no-rate/walker.glb"));
     }
 };
 

@@ -28,6 +28,14 @@ void readLabels(const C3dParameters& ps, std::size_t points, C3dTake& take, bool
     }
     if (unnamed > 0 && labels.size() >= points)
         warn.push_back(std::to_string(unnamed) + " points have empty labels; named P<n>");
+    // No map entry can say which of them it means (Correspondence::resolve refuses it).
+    const std::vector<std::vector<std::size_t>> shared = take.sharedLabels();
+    constexpr std::size_t kListed = 10;
+    for (std::size_t g = 0; g < shared.size() && g < kListed; ++g)
+        warn.push_back(take.sharedLabelText(shared[g]) + "; no map can name one of them");
+    if (shared.size() > kListed)
+        warn.push_back(std::to_string(shared.size() - kListed) +
+                       " more labels are each held by several points");
 }
 
 }  // namespace boneless::c3d_detail

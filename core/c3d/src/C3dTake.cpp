@@ -1,6 +1,9 @@
 #include "boneless/C3dTake.h"
 
+#include <algorithm>
+#include <cstdio>
 #include <limits>
+#include <map>
 #include <stdexcept>
 
 namespace boneless {
@@ -124,15 +127,53 @@ std::string_view trimView(std::string_view s) {
 
 std::vector<std::size_t> C3dTake::pointsNamed(std::string_view label) const {
     label = trimView(label);
+    std::vector<std::size_t> out;
     for (std::size_t i = 0; i < points.size(); ++i)
-        if (c3dNameEquals(trimView(points[i].label), label)) return {i};
+        if (c3dNameEquals(trimView(points[i].label), label)) out.push_back(i);
+    if (!out.empty()) return out;
     // The caller may give "subject:NAME" for a file without prefixes, or "NAME" for one with.
     std::string subject, name;
     splitC3dLabel(label, subject, name);
-    std::vector<std::size_t> out;
     for (std::size_t i = 0; i < points.size(); ++i)
         if (c3dNameEquals(trimView(points[i].name), trimView(name))) out.push_back(i);
     return out;
+}
+
+std::string C3dTake::rateText() const {
+    if (std::isnan(rate)) return "not a number";
+    char text[32];
+    std::snprintf(text, sizeof text, "%g Hz", rate);
+    return text;
+}
+
+std::vector<std::vector<std::size_t>> C3dTake::sharedLabels() const {
+    // Keyed as c3dNameEquals compares: ASCII letters in upper case. A map, since a take may hold
+    // 65535 points.
+    std::map<std::string, std::vector<std::size_t>> byLabel;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        std::string key(trimView(points[i].label));
+        for (char& c : key)
+            if (c >= 'a' && c <= 'z') c = char(c - 'a' + 'A');
+        byLabel[key].push_back(i);
+    }
+    std::vector<std::vector<std::size_t>> shared;
+    for (auto& [key, group] : byLabel)
+        if (group.size() > 1) shared.push_back(std::move(group));
+    std::sort(shared.begin(), shared.end());
+    return shared;
+}
+
+std::string C3dTake::sharedLabelText(const std::vector<std::size_t>& group) const {
+    constexpr std::size_t kListed = 5;
+    std::vector<std::string> listed;
+    for (std::size_t k = 0; k < group.size() && k < kListed; ++k)
+        listed.push_back(std::to_string(group[k]));
+    if (group.size() > kListed) listed.push_back(std::to_string(group.size() - kListed) + " more");
+    std::string text = "points ";
+    for (std::size_t k = 0; k < listed.size(); ++k)
+        text += (k == 0 ? "" : k + 1 == listed.size() ? " and " : ", ") + listed[k];
+    return text + (group.size() == 2 ? " are both labelled " : " are all labelled ") +
+           points.at(group.front()).label;
 }
 
 std::optional<std::size_t> C3dTake::findPoint(std::string_view label) const {

@@ -214,6 +214,12 @@ std::vector<std::size_t> Correspondence::resolve(const C3dTake& take) const {
             unknown.push_back(m.label);
             continue;
         }
+        // Two points with one full label: no label can say which, the subject prefix included.
+        if (named.size() > 1 && take.pointsNamed(take.points[named.front()].label) == named)
+            fail(file, "marker " + m.label + ": in " + take.file + ", " +
+                           take.sharedLabelText(named) +
+                           ": two points with one label, not two subjects, so no map label can "
+                           "say which; relabel one of them in the take");
         // A bare name two subjects wear would bind to whichever the file lists first.
         if (named.size() > 1) {
             std::vector<std::string> labels;

@@ -20,9 +20,14 @@ constexpr std::size_t kSpoolBlock = 2048;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 }  // namespace
 
-void MarkerTrack::describe(const C3dTake& take, std::size_t frames, std::size_t markers) {
+void MarkerTrack::describe(const C3dTake& take, std::size_t frames, std::size_t markers,
+                           double lowPassHz) {
+    // A cutoff in Hz means nothing without one: the filter said "below 0 Hz at a frame rate of 0".
+    if (lowPassHz > 0 && !take.hasFrameRate())
+        throw Error(take.file + ": the take has no frame rate (" + take.rateText() +
+                    "), so its trajectories cannot be low-pass filtered; set low_pass_hz to 0");
     file_ = take.file;
-    rate_ = take.rate;
+    rate_ = take.hasFrameRate() ? take.rate : 0;  // 0: no gap is a number of frames long
     unitToMm_ = take.unitToMm;
     frames_ = frames;
     markers_ = markers;
@@ -30,7 +35,7 @@ void MarkerTrack::describe(const C3dTake& take, std::size_t frames, std::size_t 
 
 MarkerTrack::MarkerTrack(const C3dTake& take, const std::vector<std::size_t>& points,
                          double lowPassHz) {
-    describe(take, take.frameCount(), points.size());
+    describe(take, take.frameCount(), points.size(), lowPassHz);
     memory_ = C3dSamples(frames_, markers_);
     for (std::size_t f = 0; f < frames_; ++f)
         for (std::size_t k = 0; k < markers_; ++k)
@@ -51,7 +56,7 @@ MarkerTrack::MarkerTrack(const C3dTake& take, const std::vector<std::size_t>& po
 
 MarkerTrack::MarkerTrack(const C3dFrameReader& reader, const std::vector<std::size_t>& points,
                          double lowPassHz) {
-    describe(reader.take(), reader.frameCount(), points.size());
+    describe(reader.take(), reader.frameCount(), points.size(), lowPassHz);
     spool_ = std::tmpfile();
     if (!spool_)
         throw Error(file_ + ": cannot create a temporary file for the take's trajectories: " +

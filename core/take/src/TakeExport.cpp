@@ -243,7 +243,7 @@ json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibr
     const TakeSolveOptions& o = request.options;
     return {{"format", "boneless-solve"},
             {"version", 2},
-            {"fps", take.rate},
+            {"fps", take.hasFrameRate() ? json(take.rate) : json(nullptr)},
             {"frame_range", {result.first, result.first + result.framesWritten}},
             {"frames_written", result.framesWritten},
             {"complete", !result.cancelled},
@@ -424,11 +424,22 @@ void requireMarkersToAlign(const Correspondence& map, const ExportRequest& reque
                 "; solving needs at least 3");
 }
 
-// What both sources check before a solver is built: the options, that the mesh fits memory, and
-// that no output would replace an input.
+// A glb or MDD keys each frame at its time (frame / rate): of a take without a rate every key was
+// at 0, which glTF forbids and Blender plays as one frame.
+void requireFrameRate(const ExportRequest& request, const C3dTake& take) {
+    const ExportFormatInfo& format = exportFormatInfo(request.format);
+    if (!format.timed || take.hasFrameRate()) return;
+    throw Error(take.file + ": its frame rate is " + take.rateText() +
+                " (the file gives none), and the " + format.name +
+                " format keys each frame at its time; export obj or pc2, which number frames");
+}
+
+// What both sources check before a solver is built: the options, that the format can hold the
+// take, that the mesh fits memory, and that no output would replace an input.
 void checkRequest(const TriMesh& mesh, const Correspondence& map, const ExportRequest& request,
-                  int frames) {
+                  const C3dTake& take, int frames) {
     validate(request.options);
+    requireFrameRate(request, take);
     refuseOutputsOverInputs(request, frames);
     checkSolveFits(mesh, request.meshPath, request.options.solver.method);
     // Here, where the mesh's file is known: the solver's own check can only say "the mesh".
@@ -567,7 +578,7 @@ std::string fileFingerprint(const std::string& path, bool contents) {
 ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspondence& map,
                         const ExportRequest& request, const ExportProgress& progress,
                         const ExportCalibrated& calibrated) {
-    checkRequest(mesh, map, request, static_cast<int>(take.frameCount()));
+    checkRequest(mesh, map, request, take, static_cast<int>(take.frameCount()));
     requireMarkersToAlign(map, request, take);
     TakeSolver solver(mesh, take, map, request.options);
     return exportSolved(solver, mesh, take, map, request, progress, calibrated);
@@ -576,7 +587,7 @@ ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspo
 ExportResult exportTake(const TriMesh& mesh, const C3dFrameReader& take, const Correspondence& map,
                         const ExportRequest& request, const ExportProgress& progress,
                         const ExportCalibrated& calibrated) {
-    checkRequest(mesh, map, request, static_cast<int>(take.frameCount()));
+    checkRequest(mesh, map, request, take.take(), static_cast<int>(take.frameCount()));
     requireMarkersToAlign(map, request, take.take());
     TakeSolver solver(mesh, take, map, request.options);
     return exportSolved(solver, mesh, take.take(), map, request, progress, calibrated);

@@ -200,3 +200,24 @@ TEST(Correspondence, ABareLabelTwoSubjectsWearIsRefusedAskingForTheSubject) {
         << e;
     EXPECT_EQ(mapOf("B:ASISr").resolve(take), (std::vector<std::size_t>{2, 1}));
 }
+
+// Two points of a take with one full label are not two subjects: the advice to write the subject
+// prefix led to "Male:LFWT", which bound silently to the first of them.
+TEST(Correspondence, ALabelTwoPointsOfTheTakeShareIsRefusedNamingBothPoints) {
+    const C3dTake take = takeOf("twice.c3d", {"Male:LFHD", "Male:LFWT", "Male:RFWT", "Male:LFWT"});
+    const auto mapOf = [](const char* label) {
+        return Correspondence::fromJson(std::string(R"({"format": "boneless-correspondence",
+          "version": 1, "markers": [{"label": "LFHD", "vertex": 1}, {"label": ")") +
+                                            label + R"(", "vertex": 2}]})",
+                                        "twice.json");
+    };
+    for (const char* label : {"LFWT", "Male:LFWT", "male:lfwt"}) {
+        const std::string e = errorOf([&] { mapOf(label).resolve(take); });
+        EXPECT_NE(e.find(std::string("twice.json: marker ") + label +
+                         ": in twice.c3d, points 1 and 3 are both labelled Male:LFWT"),
+                  std::string::npos)
+            << e;
+        EXPECT_NE(e.find("two points with one label, not two subjects"), std::string::npos) << e;
+    }
+    EXPECT_EQ(mapOf("RFWT").resolve(take), (std::vector<std::size_t>{0, 2}));
+}

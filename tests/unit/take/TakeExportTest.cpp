@@ -1,6 +1,7 @@
 // exportTake's sidecar: what was solved, traceable afterwards.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -8,6 +9,7 @@
 #include "boneless/C3dReader.h"
 #include "boneless/Correspondence.h"
 #include "boneless/DemoFiles.h"
+#include "boneless/Error.h"
 #include "boneless/MeshReader.h"
 #include "boneless/TakeExport.h"
 
@@ -43,4 +45,27 @@ TEST(TakeExport, AMapThatIsInNoFileIsKeptInTheSidecar) {
     EXPECT_EQ(inAFile["source"]["map"], files.map);
     EXPECT_TRUE(inAFile["source_fingerprints"]["map"].is_string());
     EXPECT_FALSE(inAFile.contains("map")) << "a map in a file is named, not copied";
+}
+
+// A take held in memory (the app's) may carry a rate that is not a number: a glb of it is
+// refused as one of rate 0 is, saying so.
+TEST(TakeExport, AGlbOfATakeWhoseRateIsNotANumberIsRefusedSayingSo) {
+    const DemoFiles files = writeDemoFiles(freshTestDir("export-nan-rate"), 3, 10.0, false);
+    const TriMesh mesh = readMesh(files.mesh).mesh;
+    C3dTake take = readC3d(files.take);
+    take.rate = std::nan("");
+    ExportRequest request;
+    request.meshPath = files.mesh;
+    request.c3dPath = files.take;
+    request.mapPath = files.map;
+    request.outDir = freshTestDir("export-nan-rate-out");
+    request.format = ExportFormat::Glb;
+    try {
+        exportTake(mesh, take, Correspondence::read(files.map), request);
+        FAIL() << "exported";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find(files.take + ": its frame rate is not a number"),
+                  std::string::npos)
+            << e.what();
+    }
 }

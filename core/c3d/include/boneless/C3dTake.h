@@ -86,7 +86,7 @@ struct C3dTake {
     C3dProcessor processor = C3dProcessor::Intel;
     C3dStorage storage = C3dStorage::Float;
     double pointScale = -1.0;  // POINT:SCALE as stored (sign gives the storage)
-    double rate = 0.0;         // frames per second
+    double rate = 0.0;         // frames per second; 0 when the file gives none (hasFrameRate)
     std::string units = "mm";  // POINT:UNITS as stored
     double unitToMm = 1.0;     // multiply coordinates by this to get millimetres
     int firstFrameWord = 1;    // header words 4 and 5 (1-based, 16-bit)
@@ -105,10 +105,22 @@ struct C3dTake {
     std::vector<std::string> warnings;  // header/parameter disagreements, truncation, ...
 
     std::size_t frameCount() const { return samples.frames(); }
-    // The points `label` names (case-insensitive, surrounding spaces ignored): the one whose
-    // full label equals it, else every one whose name without the subject prefix equals its name.
-    // More than one means two subjects wear the marker, and the label must say which.
+    // Whether the take says how long a frame is: the reader reports 0 for a rate that is 0, not
+    // a number or negative in both POINT:RATE and the header, with a warning.
+    bool hasFrameRate() const { return std::isfinite(rate) && rate > 0; }
+    // The rate as messages give it: "120 Hz", "0 Hz", "not a number".
+    std::string rateText() const;
+    // The points `label` names (case-insensitive, surrounding spaces ignored): those whose full
+    // label equals it, else every one whose name without the subject prefix equals its name.
+    // More than one means two subjects wear the marker, and the label must say which, or that
+    // the take holds two points with one label (sharedLabels), which no label can tell apart.
     std::vector<std::size_t> pointsNamed(std::string_view label) const;
+    // The groups of points whose full labels are one label as pointsNamed compares them, each in
+    // ascending order, in the order of their first points.
+    std::vector<std::vector<std::size_t>> sharedLabels() const;
+    // One such group as messages give it: "points 1 and 3 are both labelled Male:LFWT" (indices
+    // 0-based, as inspect lists them; the first few of a long list and how many more).
+    std::string sharedLabelText(const std::vector<std::size_t>& group) const;
     // The point `label` names, when exactly one does.
     std::optional<std::size_t> findPoint(std::string_view label) const;
     // The shortest label that finds `point`: its name without the subject ("LFWT" for

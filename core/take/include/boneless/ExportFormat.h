@@ -15,6 +15,9 @@ struct ExportFormatInfo {
     const char* name;         // --format value and sidecar "output": "obj", "pc2", "mdd", "glb"
     const char* extension;    // with the dot; an OBJ sequence is one file per frame
     const char* description;  // one line for a file dialog or --help
+    // Keys each frame at its time in the take (frame / rate), so it needs the take's frame rate;
+    // OBJ frames and PC2 samples are numbered by frame.
+    bool timed;
 };
 
 // In the order a user is offered them.

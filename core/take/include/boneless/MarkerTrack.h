@@ -42,7 +42,8 @@ class MarkerTrack {
     C3dSamples recorded(std::size_t frame) const;
 
   private:
-    void describe(const C3dTake& take, std::size_t frames, std::size_t markers);
+    // Throws Error when lowPassHz asks to filter a take without a frame rate.
+    void describe(const C3dTake& take, std::size_t frames, std::size_t markers, double lowPassHz);
     // A marker's frames [first, first + xyz.size() / 3) to and from the spool.
     void spoolColumn(std::size_t marker, std::size_t first, std::vector<double>& xyz);
     void unspoolColumn(std::size_t marker, std::size_t first, std::vector<double>& xyz) const;
