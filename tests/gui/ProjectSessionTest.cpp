@@ -538,6 +538,32 @@ class ProjectSessionTest : public QObject {
         QVERIFY(afterIt.autosave()->hasUnfinishedRecovery());
     }
 
+    // While a crash's work holds the recovery file, an untitled session has nowhere to autosave:
+    // it is told so once, not left to believe its edits are kept.
+    void anUntitledSessionThatCannotAutosaveIsToldSoOnce() {
+        QFile::remove(ProjectAutosave::recoveryPath());
+        {
+            MainWindow crashed;
+            crashed.setMessageBoxesEnabled(false);
+            QVERIFY(crashed.openFile(folder_ + "/mine/walker.obj"));
+            QVERIFY(crashed.autosave()->saveNow());
+        }  // gone without closing, as in a crash
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        QVERIFY(window.autosave()->hasUnfinishedRecovery());
+        QSignalSpy failed(window.autosave(), &ProjectAutosave::failed);
+        QVERIFY(window.openFiles({folder_ + "/mine/walker.obj", folder_ + "/mine/walker.c3d",
+                                  folder_ + "/mine/walker.map.json"}));
+        QVERIFY(window.document()->clearMapping(0));
+        QVERIFY(!window.autosave()->saveNow());
+        QCOMPARE(failed.count(), 1);
+        QVERIFY(failed.at(0).at(0).toString().contains("not autosaved"));
+        QVERIFY(window.document()->clearMapping(1));
+        QVERIFY(!window.autosave()->saveNow());
+        QCOMPARE(failed.count(), 1);
+        window.autosave()->discardRecovery();
+    }
+
     void discardingACrashsWorkLetsTheNextSessionAutosave() {
         QFile::remove(ProjectAutosave::recoveryPath());
         {

@@ -263,7 +263,8 @@ bool MainWindow::offerRecovery() {
     discard->setObjectName("discardButton");
     box.setDefaultButton(reopen);
     box.exec();  // answered before anything else opens (and autosaves over it)
-    if (box.clickedButton() == reopen) return openRecovery();
+    if (box.clickedButton() == reopen && openRecovery()) return true;
+    // Discarded, or it would not open (openRecovery said why): this session autosaves again.
     autosave_->discardRecovery();
     return false;
 }

@@ -112,6 +112,14 @@ bool ProjectAutosave::saveNow() {
     if (!path_.isEmpty()) targets.prepend(path_);
     if (targets.isEmpty()) {
         pending_ = true;  // kept for a save once that work is reopened or discarded
+        // Said once: an untitled session left unsaved must know (a second Boneless running
+        // when the first crashed, or a crash's work that would not reopen).
+        if (!heldBackSaid_)
+            emit failed(
+                tr("Edits are not autosaved: the recovery file holds the work of a "
+                   "Boneless that did not close (File → Recent Files → Last Autosave). "
+                   "Save this project to keep them."));
+        heldBackSaid_ = true;
         return false;
     }
     QStringList errors;

@@ -85,7 +85,8 @@ class ProjectAutosave : public QObject {
   private:
     QPointer<Document> document_;
     QString path_;
-    const QString session_;  // this session's id in the recovery file's record
+    const QString session_;      // this session's id in the recovery file's record
+    bool heldBackSaid_ = false;  // failed() said the recovery file is another session's
     QTimer* timer_;
     bool pending_ = false;
 };
