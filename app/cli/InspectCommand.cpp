@@ -1,7 +1,11 @@
 // boneless-cli inspect TAKE.c3d [--json] [--csv OUT.csv]
 
+#include <cerrno>
 #include <charconv>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -146,10 +150,22 @@ void registerInspectCommand(CLI::App& app) {
         ro.keepZeroSamples = opts->keepZero;
         const boneless::C3dTake take = boneless::readC3d(opts->take, ro);
         // Under a temporary name, renamed once whole: a write that fails (a full disk) leaves
-        // the file it was to replace as it was.
-        if (!opts->csv.empty())
+        // the file it was to replace as it was. A link or a device (/dev/stdout, a pipe) is
+        // written through: a rename would replace the link, or cannot be made beside it.
+        std::error_code ec;
+        const auto kind = std::filesystem::symlink_status(opts->csv, ec).type();
+        if (opts->csv.empty()) {
+        } else if (kind == std::filesystem::file_type::not_found ||
+                   kind == std::filesystem::file_type::regular) {
             boneless::writeFileAtomically(opts->csv,
                                           [&](std::ostream& out) { writeCsv(take, out); });
+        } else {
+            std::ofstream out(opts->csv, std::ios::binary);
+            if (out) writeCsv(take, out);
+            if (!out.flush())
+                throw boneless::Error(opts->csv + ": writing failed (" + std::strerror(errno) +
+                                      ")");
+        }
         if (opts->json)
             // Labels are UTF-8 already (the reader converts them); a path need not be.
             std::cout << toJson(take).dump(2, ' ', false, nlohmann::json::error_handler_t::replace)

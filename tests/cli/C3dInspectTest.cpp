@@ -96,6 +96,21 @@ TEST(C3dInspect, CsvHasOneRowPerSampleAndEmptyMissing) {
 // `inspect victim.c3d --csv victim.c3d` replaced the take with its own CSV. An output that is the
 // take however it is spelled (through "..", a symbolic or a hard link) is refused, naming both,
 // and the take is left as it was.
+// `--csv /dev/stdout` (or a process substitution) writes through to the pipe: the atomic path's
+// temporary beside it could not be made (Permission denied in /dev).
+TEST(C3dInspect, ACsvGivenAsStdoutGoesDownThePipe) {
+    namespace fs = std::filesystem;
+    const fs::path dir = c3dtest::workDir();
+    const fs::path take = dir / "csv-stdout.c3d", out = dir / "piped.out", err = dir / "piped.err";
+    writeC3d(c3dtest::syntheticTake(5, {"A", "B"}), take.string());
+    const std::string cmd = std::string("\"") + BONELESS_CLI + "\" inspect " +
+                            quoted(take.string()) + " --csv /dev/stdout 2>" + quoted(err.string()) +
+                            " | cat >" + quoted(out.string());
+    ASSERT_EQ(std::system(cmd.c_str()), 0);
+    EXPECT_EQ(slurp(err), "");
+    EXPECT_EQ(slurp(out).rfind("frame,label,x,y,z,valid\n", 0), 0u) << slurp(out);
+}
+
 TEST(C3dInspect, ACsvThatWouldReplaceTheTakeIsRefusedNamingBoth) {
     namespace fs = std::filesystem;
     const fs::path dir = c3dtest::workDir() / "csv-over-take";
