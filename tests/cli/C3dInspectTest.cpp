@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "C3dTestSupport.h"
+#include "FileSizeLimit.h"
 
 using namespace boneless;
 
@@ -143,14 +144,10 @@ TEST(C3dInspect, ACsvThatCannotBeWrittenSaysWhyAndLeavesTheOldFileAsItWas) {
     const fs::path take = dir / "long.c3d", csv = dir / "long.csv";
     writeC3d(c3dtest::syntheticTake(200, {"A", "B", "C"}), take.string());  // a 20 KB CSV
     std::ofstream(csv) << "the old CSV\n";
-    std::signal(SIGXFSZ, SIG_IGN);
     rlimit normal{};
-    ASSERT_EQ(getrlimit(RLIMIT_FSIZE, &normal), 0);
-    rlimit small = normal;
-    small.rlim_cur = 4096;
-    ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &small), 0);
+    ASSERT_TRUE(boneless::test::limitFileSize(normal, 4096));
     const CliRun r = inspect(quoted(take.string()) + " --csv " + quoted(csv.string()));
-    ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &normal), 0);
+    ASSERT_TRUE(boneless::test::restoreFileSize(normal));
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_EQ(r.err, "boneless-cli: " + csv.string() + ": writing failed (File too large)\n");
     EXPECT_TRUE(slurp(csv) == "the old CSV\n") << "the old CSV was replaced";

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <random>
 
+#include "FileSizeLimit.h"
 #include "TestFiles.h"
 #include "TestMeshes.h"
 #include "boneless/Error.h"
@@ -219,12 +220,8 @@ TEST(FileWriters, NameTheUsersFileAndTheSystemsReasonWhenItCannotBeCreated) {
 TEST(FileWriters, NameTheSystemsReasonWhenAWriteFailsPartWay) {
     const fs::path dir = freshTestDir("write-fails");
     const TriMesh mesh = icosphere(4);  // 2,562 vertices: 30 KiB a frame
-    std::signal(SIGXFSZ, SIG_IGN);
     rlimit normal{};
-    ASSERT_EQ(getrlimit(RLIMIT_FSIZE, &normal), 0);
-    rlimit small = normal;
-    small.rlim_cur = 4096;
-    ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &small), 0);
+    ASSERT_TRUE(boneless::test::limitFileSize(normal, 4096));
     auto failure = [&](const std::string& name) {
         return (dir / name).string() + ": writing failed (File too large)";
     };
@@ -235,7 +232,7 @@ TEST(FileWriters, NameTheSystemsReasonWhenAWriteFailsPartWay) {
         errorOf([&] { MddWriter((dir / "w.mdd").string(), mesh.vertexCount()).append(0, mesh.V); });
     const std::string obj =
         errorOf([&] { writeObj((dir / "w.obj").string(), mesh.V, mesh.F, "test"); });
-    ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &normal), 0);
+    ASSERT_TRUE(boneless::test::restoreFileSize(normal));
     EXPECT_EQ(pc2, failure("w.pc2"));
     EXPECT_EQ(mdd, failure("w.mdd"));
     EXPECT_EQ(obj, failure("w.obj"));
