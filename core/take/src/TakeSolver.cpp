@@ -228,7 +228,8 @@ Positions TakeSolver::solve(int frame, FrameReport& report, const std::atomic<bo
     if (frame < 0 || frame >= frameCount())
         throw Error(track_->file() + ": frame " + std::to_string(frame) + " is outside the take");
     const auto start = std::chrono::steady_clock::now();
-    const Positions T = recorded(frame);  // what was seen: the residual is measured on it
+    // What was seen: the residual is measured on it. Unfiltered, the read window already holds it.
+    const Positions T = track_->filtered() ? recorded(frame) : targets(frame);
     Positions pull = targets(frame, true);
     report = {};
     report.frame = frame;

@@ -40,6 +40,7 @@ class MarkerTrack {
     // One frame of the markers as the file records them, before any low-pass filter: what a
     // frame's marker residual is measured against.
     C3dSamples recorded(std::size_t frame) const;
+    bool filtered() const { return layer_ == 1; }  // recorded() differs from read()
 
   private:
     // Throws Error when lowPassHz asks to filter a take without a frame rate.
