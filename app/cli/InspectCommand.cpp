@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "Commands.h"
+#include "boneless/Alignment.h"
 #include "boneless/C3dReader.h"
 #include "boneless/ObjWriter.h"
 #include "boneless/TakeExport.h"
@@ -32,6 +33,7 @@ nlohmann::json toJson(const boneless::C3dTake& t) {
     j["rate"] = t.rate;
     j["units"] = t.units;
     j["unit_to_mm"] = t.unitToMm;
+    j["up"] = boneless::axisName(t.vertical);
     j["processor"] = toString(t.processor);
     j["storage"] = toString(t.storage);
     j["scale"] = t.pointScale;
@@ -66,6 +68,7 @@ void printSummary(const boneless::C3dTake& t, std::ostream& out) {
     out << "  frames    " << t.frameCount() << " @ " << t.rate << " Hz (header frames "
         << t.firstFrameWord << ".." << t.lastFrameWord << ")\n";
     out << "  units     " << t.units << " (x" << t.unitToMm << " to mm)\n";
+    out << "  up        " << boneless::axisName(t.vertical) << "\n";
     out << "  analog    " << t.analogChannels << " channels @ " << t.analogRate << " Hz\n";
     out << "  points    " << t.points.size();
     const char* sep = " (";

@@ -235,7 +235,8 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
                      "mesh units look like %s, mesh up axis %s%s\n",
                      job.c3d.c_str(), take.frameCount(), take.take().rate,
                      take.take().units.c_str(), c.frame, c.residualMm(take.take().unitToMm),
-                     guessMeshUnits(meshUnitsPerMm), guessUpAxis(c.takeToMesh).c_str(),
+                     guessMeshUnits(meshUnitsPerMm),
+                     guessUpAxis(c.takeToMesh, take.take().vertical).c_str(),
                      request.options.meshUp ? "" : " (guessed; --mesh-up sets it)");
     };
     const auto start = std::chrono::steady_clock::now();

@@ -636,3 +636,42 @@ TEST(SolveCommand, ATakeWithoutAFrameRateIsRefusedAsGlbOrMddAndForLowPassButSolv
         EXPECT_TRUE(sidecar(demo / format)["fps"].is_null()) << "not 0 frames a second";
     }
 }
+
+// A take whose POINT:Y_SCREEN says +Y is up (many systems but Vicon's) is the same capture as the
+// Z-up take turned a quarter about X: it solves to the same mesh, and the sidecar says which axis
+// was the take's up. Before, its +Z (then horizontal) was levelled onto the mesh's up: the guess
+// said "mesh up axis -y" and the sidecar "+z", and --mesh-up +z laid the body down.
+TEST(SolveCommand, ATakeWhoseYScreenSaysPlusYSolvesToTheSameMeshAsItsZUpTwin) {
+    const fs::path demo = makeDemo(4);
+    C3dTake t = readC3d((demo / "walker.c3d").string());
+    for (std::size_t f = 0; f < t.frameCount(); ++f)
+        for (std::size_t k = 0; k < t.points.size(); ++k)
+            if (const auto p = t.samples.position(f, k))
+                t.samples.set(f, k, p->x(), p->z(), -p->y(), t.samples.residual(f, k));
+    t.parameters.set("POINT", C3dParameter::chars("X_SCREEN", {"+X"}));
+    t.parameters.set("POINT", C3dParameter::chars("Y_SCREEN", {"+Y"}));
+    const fs::path yUp = demo / "walker_y_up.c3d";
+    writeC3d(t, yUp.string());
+    EXPECT_NE(runCli("inspect " + yUp.string()).out.find("  up        +y\n"), std::string::npos);
+    const std::string args = " --mesh " + (demo / "walker.obj").string() + " --map " +
+                             (demo / "walker.map.json").string() + " --format pc2";
+    for (const std::string up : {"", " --mesh-up +z"}) {
+        const CliResult z = runCli("solve --c3d " + (demo / "walker.c3d").string() + args + up +
+                                   " --out " + (demo / "z").string());
+        ASSERT_EQ(z.exitCode, 0) << z.out;
+        const CliResult y =
+            runCli("solve --c3d " + yUp.string() + args + up + " --out " + (demo / "y").string());
+        ASSERT_EQ(y.exitCode, 0) << y.out;
+        EXPECT_NE(y.out.find("mesh up axis +z"), std::string::npos) << y.out;
+        EXPECT_EQ(sidecar(demo / "y")["up_axis"]["take"], "+y");
+        EXPECT_EQ(sidecar(demo / "y")["up_axis"]["mesh_guess"], "+z");
+        EXPECT_EQ(sidecar(demo / "z")["up_axis"]["take"], "+z");
+        const auto fromZ = readPointCache((demo / "z" / "walker.pc2").string());
+        const auto fromY = readPointCache((demo / "y" / "walker.pc2").string());
+        ASSERT_EQ(fromZ.size(), fromY.size());
+        const double diagonal = boundingBoxDiagonal(fromZ[0]);
+        for (std::size_t f = 0; f < fromZ.size(); ++f)
+            EXPECT_LT((fromZ[f] - fromY[f]).rowwise().norm().maxCoeff(), 1e-5 * diagonal)
+                << "frame " << f << up;
+    }
+}

@@ -16,6 +16,8 @@
 #include <map>
 
 #include "ViewTestSupport.h"
+#include "boneless/C3dReader.h"
+#include "boneless/C3dWriter.h"
 #include "boneless/ui/Document.h"
 #include "boneless/ui/ExportDialog.h"
 #include "boneless/ui/FrameSolver.h"
@@ -75,6 +77,25 @@ class MainWindowTest : public QObject {
         QVERIFY(window.openFile(folder_ + "/demo/walker.obj"));
         QVERIFY(window.meshView()->upAxis().isApprox(Eigen::Vector3d::UnitY()));
         QVERIFY(window.openFile(folder_ + "/demo/walker.c3d"));
+        QVERIFY(window.openFile(folder_ + "/demo/walker.map.json"));
+        QVERIFY(window.meshView()->upAxis().isApprox(Eigen::Vector3d::UnitZ()));
+    }
+
+    void aTakeWhoseYScreenSaysPlusYStandsTheMeshUpAsItsZUpTwin() {
+        // The demo's take turned a quarter about X, Y up, and saying so: its +Z, now horizontal,
+        // used to go to the mesh's up, and the view's floor stood on end.
+        C3dTake take = readC3d((folder_ + "/demo/walker.c3d").toStdString());
+        for (std::size_t f = 0; f < take.frameCount(); ++f)
+            for (std::size_t k = 0; k < take.points.size(); ++k)
+                if (const auto x = take.samples.position(f, k))
+                    take.samples.set(f, k, x->x(), x->z(), -x->y());
+        take.parameters.set("POINT", C3dParameter::chars("Y_SCREEN", {"+Y"}));
+        const QString yUp = folder_ + "/demo/walker_y_up.c3d";
+        writeC3d(take, yUp.toStdString());
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        QVERIFY(window.openFile(folder_ + "/demo/walker.obj"));
+        QVERIFY(window.openFile(yUp));
         QVERIFY(window.openFile(folder_ + "/demo/walker.map.json"));
         QVERIFY(window.meshView()->upAxis().isApprox(Eigen::Vector3d::UnitZ()));
     }

@@ -116,8 +116,8 @@ void FrameDisplay::updateUpAxis(bool force) {
     // Whichever alignment places the markers (roughAlignment's before three are mapped) says
     // which way the take's vertical points on the mesh.
     if (document_->hasTake() && document_->hasMesh())
-        up = upAxisVector(
-            QString::fromStdString(guessUpAxis(document_->displayAlignment().takeToMesh)));
+        up = upAxisVector(QString::fromStdString(
+            guessUpAxis(document_->displayAlignment().takeToMesh, document_->take().vertical)));
     if (!force && up.isApprox(up_)) return;
     if (!force && frozen_) {  // mapping holds the camera still: turn it when mapping ends
         upPending_ = true;

@@ -3,6 +3,7 @@
 // Internal pieces of the C3D reader, shared between its source files; not installed.
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -84,6 +85,12 @@ PointLayout readTakeLayout(const Source& src, const C3dReadOptions& options, C3d
 // The warnings readC3dMemory gives for what decoding the samples found.
 void noteDecodeStats(const DecodeStats& stats, const C3dReadOptions& options,
                      std::vector<std::string>& warnings);
+
+// Sets take.vertical from POINT:Y_SCREEN and the markers of `frames` frames spread over the take
+// (frameAt(f) gives frame f alone), with a warning when the markers reverse the file's axis. Both
+// readers judge the same frames, so a take streamed and one read whole get the same vertical.
+void setVertical(C3dTake& take, std::size_t frames,
+                 const std::function<C3dSamples(std::size_t frame)>& frameAt);
 
 // Fills kind (and subject/name) of every point from POINT:ANGLES, FORCES, ... and known
 // model-output names.

@@ -51,6 +51,7 @@ C3dFrameReader::C3dFrameReader(const std::string& path, const C3dReadOptions& op
         analogWords_ = L.analogWords;
         scale_ = L.scale;
         take_.samples = C3dSamples(0, points_);
+        setVertical(take_, frames_, [this](std::size_t f) { return read(f, 1); });
     } catch (...) {
         ::close(fd_);
         throw;

@@ -66,6 +66,12 @@ C3dTake readC3dMemory(const std::uint8_t* data, std::size_t size, const std::str
     const PointLayout L = readTakeLayout(src, options, take);
     take.samples = C3dSamples(L.frames, L.points);
     noteDecodeStats(decodePoints(src, L, take.samples), options, take.warnings);
+    setVertical(take, L.frames, [&take](std::size_t f) {
+        C3dSamples frame(1, take.samples.points());
+        for (std::size_t k = 0; k < frame.points(); ++k)
+            if (const auto p = take.samples.position(f, k)) frame.set(0, k, p->x(), p->y(), p->z());
+        return frame;
+    });
     return take;
 }
 

@@ -42,8 +42,8 @@ int visibleRows(const Positions& P) {
 }
 
 Similarity levelled(const Similarity& free, const Positions& take, const Positions& mesh,
-                    const std::optional<Vec3>& meshUp) {
-    const Vec3 up = free.R * Vec3::UnitZ();
+                    const Vec3& takeUp, const std::optional<Vec3>& meshUp) {
+    const Vec3 up = free.R * takeUp;
     int axis = 0;
     up.cwiseAbs().maxCoeff(&axis);
     const Vec3 a = meshUp ? *meshUp : (up[axis] < 0 ? -1.0 : 1.0) * Vec3::Unit(axis);

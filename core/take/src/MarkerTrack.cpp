@@ -29,6 +29,7 @@ void MarkerTrack::describe(const C3dTake& take, std::size_t frames, std::size_t 
     file_ = take.file;
     rate_ = take.hasFrameRate() ? take.rate : 0;  // 0: no gap is a number of frames long
     unitToMm_ = take.unitToMm;
+    vertical_ = take.vertical;
     frames_ = frames;
     markers_ = markers;
 }

@@ -79,6 +79,7 @@ Calibration roughAlignment(const C3dTake& take, const std::vector<std::size_t>& 
     Calibration c;
     const std::size_t frames = take.frameCount();
     if (frames == 0 || points.empty() || mesh.vertexCount() == 0) return c;
+    const Vec3 takeUp = take.vertical;
     int best = 0;
     std::vector<double> heights, spans;
     const std::size_t step = std::max<std::size_t>(1, frames / kHeightSamples);
@@ -96,7 +97,7 @@ Calibration roughAlignment(const C3dTake& take, const std::vector<std::size_t>& 
             c.frame = int(f);
         }
         if (seen > 1 && f % step == 0) {
-            heights.push_back(hi.z() - lo.z());
+            heights.push_back(std::abs((hi - lo).dot(takeUp)));
             spans.push_back((hi - lo).norm());
         }
     }
@@ -125,7 +126,7 @@ Calibration roughAlignment(const C3dTake& take, const std::vector<std::size_t>& 
         const auto x = take.samples.position(c.frame, p);
         if (!x) continue;
         centre += *x;
-        floor = std::min(floor, x->z());
+        floor = std::min(floor, x->dot(takeUp));
         ++counted;
         const std::string& label = take.points[p].label;
         if (SideCheck::side(label) != 'L') continue;
@@ -135,10 +136,11 @@ Calibration roughAlignment(const C3dTake& take, const std::vector<std::size_t>& 
     }
     centre /= counted;
     const double offset = left.norm();
-    left.z() = 0;
-    if (offset == 0 || left.norm() < kLevelShare * offset) left = Vec3::UnitX();
+    left -= left.dot(takeUp) * takeUp;
+    // Without sided names: +X, or +Y for a take whose vertical is X.
+    if (offset == 0 || left.norm() < kLevelShare * offset)
+        left = takeUp.x() != 0 ? Vec3::UnitY() : Vec3::UnitX();
     left.normalize();
-    const Vec3 takeUp = Vec3::UnitZ();
     Mat3 from, to;
     from << left, takeUp, left.cross(takeUp);
     to << meshLeftAxis, meshUp, meshLeftAxis.cross(meshUp);
@@ -151,7 +153,7 @@ Calibration roughAlignment(const C3dTake& take, const std::vector<std::size_t>& 
     const double s = c.takeToMesh.scale;
     const Vec3 middle = 0.5 * (mlo + mhi);
     c.takeToMesh.t = middle - s * (c.takeToMesh.R * centre) +
-                     meshUp * (mlo[up] + s * (centre.z() - floor) - middle[up]);
+                     meshUp * (mlo[up] + s * (centre.dot(takeUp) - floor) - middle[up]);
     return c;
 }
 

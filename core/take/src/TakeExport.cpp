@@ -63,9 +63,9 @@ MeshUnit nearestUnit(double meshUnitsPerMm) {
     return best;
 }
 
-// The signed mesh axis nearest where the take's vertical (+z) goes.
-Vec3 meshUp(const Similarity& s) {
-    const Vec3 up = s.R * Vec3::UnitZ();
+// The signed mesh axis nearest where the take's vertical goes.
+Vec3 meshUp(const Similarity& s, const Vec3& takeUp) {
+    const Vec3 up = s.R * takeUp;
     int axis = 0;
     up.cwiseAbs().maxCoeff(&axis);
     return (up[axis] < 0 ? -1.0 : 1.0) * Vec3::Unit(axis);
@@ -77,14 +77,14 @@ const char* guessMeshUnits(double meshUnitsPerMm) {
     return nearestUnit(meshUnitsPerMm).name;
 }
 
-std::string guessUpAxis(const Similarity& s) {
-    return axisName(meshUp(s));
+std::string guessUpAxis(const Similarity& s, const Vec3& takeUp) {
+    return axisName(meshUp(s, takeUp));
 }
 
-GltfPlacement gltfPlacement(const Similarity& takeToMesh, double takeUnitToMm) {
+GltfPlacement gltfPlacement(const Similarity& takeToMesh, double takeUnitToMm, const Vec3& takeUp) {
     GltfPlacement p;
-    p.turn =
-        Eigen::Quaterniond::FromTwoVectors(meshUp(takeToMesh), Vec3::UnitY()).toRotationMatrix();
+    p.turn = Eigen::Quaterniond::FromTwoVectors(meshUp(takeToMesh, takeUp), Vec3::UnitY())
+                 .toRotationMatrix();
     p.metresPerUnit = 0.001 / nearestUnit(takeToMesh.scale / takeUnitToMm).perMm;
     return p;
 }
@@ -241,6 +241,7 @@ json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibr
     const Similarity& s = c.takeToMesh;
     const double meshUnitsPerMm = s.scale / take.unitToMm;
     const TakeSolveOptions& o = request.options;
+    const Vec3 up = take.vertical;
     return {{"format", "boneless-solve"},
             {"version", 2},
             {"fps", take.hasFrameRate() ? json(take.rate) : json(nullptr)},
@@ -258,7 +259,7 @@ json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibr
              {{"take", take.units},
               {"mesh_guess", guessMeshUnits(meshUnitsPerMm)},
               {"mesh_units_per_mm", meshUnitsPerMm}}},
-            {"up_axis", {{"take", "+z"}, {"mesh_guess", guessUpAxis(s)}}},
+            {"up_axis", {{"take", axisName(up)}, {"mesh_guess", guessUpAxis(s, up)}}},
             {"alignment",
              {{"calibration_frame", c.frame},
               {"residual_mm", c.residualMm(take.unitToMm)},
@@ -481,10 +482,10 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
             for (const std::string& file : materialFiles(*mesh.sourceFaces))
                 materials[validUtf8(file)] = fileFingerprint(file, true);
     }
-    FrameOutput output =
-        openFrameOutput(request.format, request.outDir, stem, mesh, request.first, take.rate,
-                        "Boneless: " + request.c3dPath,
-                        gltfPlacement(solver.calibration().takeToMesh, take.unitToMm));
+    FrameOutput output = openFrameOutput(
+        request.format, request.outDir, stem, mesh, request.first, take.rate,
+        "Boneless: " + request.c3dPath,
+        gltfPlacement(solver.calibration().takeToMesh, take.unitToMm, take.vertical));
 
     std::string restFile;
     if (request.writeCalibratedRest) {

@@ -128,7 +128,7 @@ void TakeSolver::prepare(const Correspondence& map) {
         // a leaning calibration frame (CMU 85_02, six picks: 77 suggestions within 30 mm of 175
         // fell to 62).
         const Positions P = trackFrame(calibration_.frame, false), R = restMarkers(meshUnitsPerMm);
-        level = levelled(calibration_.takeToMesh, P, R, options_.meshUp);
+        level = levelled(calibration_.takeToMesh, P, R, track_->vertical(), options_.meshUp);
         levelResidual = alignmentResidual(*level, P, R);
     }
     // Offsets are given in millimetres of the take; the solver works in mesh units.

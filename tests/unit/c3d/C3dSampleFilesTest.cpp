@@ -245,6 +245,8 @@ TEST(C3dSampleFiles, NumediartHeavyOcclusion) {
     EXPECT_NEAR(invalidShare(t), 0.23, 0.005);
     EXPECT_EQ(pointsWithGaps(t), 67u);
     EXPECT_EQ(t.firstFrameWord, 1368);
+    // Its POINT:Y_SCREEN says -Z, but its floor is at z = 0 and the actor above it.
+    EXPECT_EQ(t.vertical, Eigen::Vector3d::UnitZ());
     const C3dTake kept = readKeepingZeros(rolling);
     EXPECT_EQ(kept.samples.missingCount(), 0u);
 }

@@ -47,7 +47,7 @@ TEST(Alignment, LevelledPutsTheTakesVerticalOnTheMeshsUpAndFindsTheTurn) {
         take.row(i) = (1000.0 * (turn * p) + Vec3(300, 100, 0)).transpose();
     }
     const Similarity free = fitSimilarity(take, mesh);
-    const Similarity s = levelled(free, take, mesh);
+    const Similarity s = levelled(free, take, mesh, Vec3::UnitZ());
     EXPECT_GT((free.R * Vec3::UnitZ() - Vec3::UnitY()).norm(), 0.02) << "the free fit leans";
     EXPECT_LT((s.R * Vec3::UnitZ() - Vec3::UnitY()).norm(), 1e-12);
     EXPECT_EQ(s.scale, free.scale);
@@ -61,7 +61,7 @@ TEST(Alignment, LevelledPutsTheTakesVerticalOnTheMeshsUpAndFindsTheTurn) {
             (1000.0 * (turn * (zUpToYUp.transpose() * mesh.row(i).transpose())) + Vec3(3, 1, 0))
                 .transpose();
     const Similarity exact = fitSimilarity(take, mesh);
-    const Similarity same = levelled(exact, take, mesh);
+    const Similarity same = levelled(exact, take, mesh, Vec3::UnitZ());
     EXPECT_LT((same.R - exact.R).norm(), 1e-9);
     EXPECT_LT((same.t - exact.t).norm(), 1e-9);
     EXPECT_LT(alignmentResidual(same, take, mesh), 1e-9);
@@ -228,4 +228,44 @@ TEST(RoughAlignment, ATakeWithNoHeightStillGetsAFiniteScale) {
     const Calibration one = roughAlignment(take, {0}, mesh);  // one marker: nothing to measure
     EXPECT_EQ(one.takeToMesh.scale, 1.0);
     EXPECT_TRUE(one.takeToMesh.apply(*take.samples.position(0, 0)).allFinite());
+}
+
+// The same actor recorded Y up (POINT:Y_SCREEN +Y, as many systems but Vicon's write) lands where
+// the Z-up one does: before, its +Z, then horizontal, went to the mesh's up and laid it down.
+TEST(RoughAlignment, ATakeWhoseYScreenSaysPlusYStandsWhereItsZUpTwinStands) {
+    const C3dTake zUp = standingActor();
+    C3dTake yUp = zUp;
+    for (std::size_t f = 0; f < 2; ++f)
+        for (std::size_t k = 0; k < yUp.points.size(); ++k)
+            if (const auto x = zUp.samples.position(f, k))
+                yUp.samples.set(f, k, x->x(), x->z(), -x->y());
+    yUp.vertical = Vec3::UnitY();  // what the reader makes of Y_SCREEN +Y (C3dVerticalTest)
+    for (const Vec3& extent : {Vec3(17, 16, 3), Vec3(18, 3, 17)}) {
+        const TriMesh mesh = bodyBox(extent);
+        const Calibration a = roughAlignment(zUp, allPoints(zUp), mesh);
+        const Calibration b = roughAlignment(yUp, allPoints(yUp), mesh);
+        for (const char* name : {"LFHD", "RFHD", "STRN", "RANK"})
+            EXPECT_LT((placed(zUp, a, name) - placed(yUp, b, name)).norm(), 1e-9) << name;
+    }
+}
+
+// The levelling turns the take's own vertical onto the mesh's up, whichever axis that is.
+TEST(Alignment, LevelledTurnsTheTakesOwnVerticalOntoTheMeshsUp) {
+    std::mt19937 rng(4);
+    std::uniform_real_distribution<double> u(-1, 1);
+    Positions mesh(10, 3);  // Z up
+    for (int i = 0; i < 10; ++i) mesh.row(i) << 0.3 * u(rng), 0.2 * u(rng), 1 + u(rng);
+    // The take: Y up, a slight lean.
+    const Mat3 zUpToYUp = Eigen::AngleAxisd(-M_PI / 2, Vec3::UnitX()).toRotationMatrix();
+    Positions take(10, 3);
+    for (int i = 0; i < 10; ++i) {
+        Vec3 p = mesh.row(i).transpose();
+        p.x() += 0.1 * p.z();
+        take.row(i) = (1000.0 * (zUpToYUp * p)).transpose();
+    }
+    const Similarity free = fitSimilarity(take, mesh);
+    const Similarity s = levelled(free, take, mesh, Vec3::UnitY());
+    EXPECT_LT((s.R * Vec3::UnitY() - Vec3::UnitZ()).norm(), 1e-12);
+    const Similarity told = levelled(free, take, mesh, Vec3::UnitY(), -Vec3::UnitZ());
+    EXPECT_LT((told.R * Vec3::UnitY() + Vec3::UnitZ()).norm(), 1e-12);
 }

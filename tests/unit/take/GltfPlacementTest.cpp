@@ -17,7 +17,7 @@ Similarity takeOnto(const Vec3& up, double mmPerUnit) {
 }  // namespace
 
 TEST(GltfPlacement, AZUpMeshInMetresIsTurnedUpright) {
-    const GltfPlacement p = gltfPlacement(takeOnto(Vec3::UnitZ(), 1000.0), 1.0);
+    const GltfPlacement p = gltfPlacement(takeOnto(Vec3::UnitZ(), 1000.0), 1.0, Vec3::UnitZ());
     EXPECT_LT((p.turn * Vec3::UnitZ() - Vec3::UnitY()).norm(), 1e-12);
     EXPECT_NEAR(p.turn.determinant(), 1.0, 1e-12);
     EXPECT_DOUBLE_EQ(p.metresPerUnit, 1.0);
@@ -25,13 +25,13 @@ TEST(GltfPlacement, AZUpMeshInMetresIsTurnedUpright) {
 
 TEST(GltfPlacement, AYUpMeshInDecimetresKeepsItsAxesAndIsScaledToMetres) {
     // MakeHuman's: an actor of 1.7 m fits a body 16.5 units tall, not quite 1 dm a unit.
-    const GltfPlacement p = gltfPlacement(takeOnto(Vec3::UnitY(), 103.0), 1.0);
+    const GltfPlacement p = gltfPlacement(takeOnto(Vec3::UnitY(), 103.0), 1.0, Vec3::UnitZ());
     EXPECT_LT((p.turn - Mat3::Identity()).norm(), 1e-12);
     EXPECT_DOUBLE_EQ(p.metresPerUnit, 0.1);
 }
 
 TEST(GltfPlacement, AMeshUpsideDownAlongYIsTurnedOver) {
-    const GltfPlacement p = gltfPlacement(takeOnto(-Vec3::UnitY(), 10.0), 1.0);
+    const GltfPlacement p = gltfPlacement(takeOnto(-Vec3::UnitY(), 10.0), 1.0, Vec3::UnitZ());
     EXPECT_LT((p.turn * -Vec3::UnitY() - Vec3::UnitY()).norm(), 1e-12);
     EXPECT_NEAR(p.metresPerUnit, 0.01, 1e-15);
 }
@@ -40,17 +40,19 @@ TEST(GltfPlacement, ATakeInMetresIsReadInMillimetres) {
     // A take stored in metres (unitToMm 1000) on a mesh in centimetres: 100 units a metre.
     Similarity s = takeOnto(Vec3::UnitY(), 10.0);
     s.scale *= 1000.0;  // take units (m) to mesh units (cm)
-    EXPECT_NEAR(gltfPlacement(s, 1000.0).metresPerUnit, 0.01, 1e-15);
+    EXPECT_NEAR(gltfPlacement(s, 1000.0, Vec3::UnitZ()).metresPerUnit, 0.01, 1e-15);
 }
 
 // 3ds Max's default unit: a body modelled in inches was read as centimetres, and its glb came out
 // 2.54 times too small (a 1.86 m walker 0.73 m tall).
 TEST(GltfPlacement, AMeshInInchesOrFeetIsScaledToMetresByItsOwnUnit) {
-    EXPECT_NEAR(gltfPlacement(takeOnto(Vec3::UnitY(), 25.4 * 1.04), 1.0).metresPerUnit, 0.0254,
-                1e-15);
+    EXPECT_NEAR(
+        gltfPlacement(takeOnto(Vec3::UnitY(), 25.4 * 1.04), 1.0, Vec3::UnitZ()).metresPerUnit,
+        0.0254, 1e-15);
     EXPECT_STREQ(guessMeshUnits(1.0 / 25.4), "in");
-    EXPECT_NEAR(gltfPlacement(takeOnto(Vec3::UnitY(), 304.8 * 0.95), 1.0).metresPerUnit, 0.3048,
-                1e-15);
+    EXPECT_NEAR(
+        gltfPlacement(takeOnto(Vec3::UnitY(), 304.8 * 0.95), 1.0, Vec3::UnitZ()).metresPerUnit,
+        0.3048, 1e-15);
     EXPECT_STREQ(guessMeshUnits(1.0 / 304.8), "ft");
     EXPECT_STREQ(guessMeshUnits(0.1 * 1.2), "cm");  // an actor a fifth smaller than the mesh
     // A child's body modelled in cm, driven by an adult 1.64 times its size, is not in inches.

@@ -103,6 +103,10 @@ struct C3dTake {
     C3dSamples samples;
     C3dParameters parameters;
     std::vector<std::string> warnings;  // header/parameter disagreements, truncation, ...
+    // The take's up, a unit coordinate axis the readers set (docs/c3d.md, "The take's vertical"):
+    // the one POINT:Y_SCREEN names, else +Z, reversed when nearly all markers lie below the
+    // origin along it. The alignment's levelling, the view's floor, the sidecar and the glb ask it.
+    Eigen::Vector3d vertical = Eigen::Vector3d::UnitZ();
 
     std::size_t frameCount() const { return samples.frames(); }
     // Whether the take says how long a frame is: the reader reports 0 for a rate that is 0, not

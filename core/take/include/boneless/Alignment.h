@@ -37,24 +37,25 @@ Calibration calibrate(int frames, const std::function<Positions(int)>& frameAt,
                       const std::string& file, const Positions& restPositions);
 
 // Where the view draws the take before three markers are mapped, from conventions alone. The
-// take's +Z (C3D's vertical) goes to the mesh's up: +Y, else +Z, when that axis is at least 0.6
-// of the mesh's longest (a T-posed body is about as wide as tall), else +X. The actor's left (each
-// L… marker's offset from its R… partner, when mostly level) goes to the mesh's left: its widest
-// level axis, towards the side that puts its soles' front in front, or by convention +X (a mesh
-// facing +Z with Y up, or -Y with Z up), +Y for an X-up mesh. The actor's median height goes to
-// the mesh's, and the lowest marker of the frame that shows the most of `points` (`frame` of the
-// result) to the mesh's lowest point, centred on it. Identity when no frame shows any.
+// take's vertical (C3dTake::vertical) goes to the mesh's up: +Y, else +Z, when that axis is at
+// least 0.6 of the mesh's longest (a T-posed body is about as wide as tall), else +X. The actor's
+// left (each L… marker's offset from its R… partner, when mostly level) goes to the mesh's left:
+// its widest level axis, towards the side that puts its soles' front in front, or by convention +X
+// (a mesh facing +Z with Y up, or -Y with Z up), +Y for an X-up mesh. The actor's median height
+// goes to the mesh's, and the lowest marker of the frame that shows the most of `points` (`frame`
+// of the result) to the mesh's lowest point, centred on it. Identity when no frame shows any.
 Calibration roughAlignment(const C3dTake& take, const std::vector<std::size_t>& points,
                            const TriMesh& mesh);
 
 // `free` (a similarity fitted from `take` onto `mesh` rows, #K by 3 each, NaN rows skipped) turned
-// so that the take's vertical (C3D's +Z) goes exactly to `up` (a signed coordinate axis), or when
-// none is given to the one nearest where `free` put it, then turned about that axis and moved to
+// so that the take's vertical `takeUp` (C3dTake::vertical) goes exactly to `up` (a signed
+// coordinate axis), or when none is given to the one nearest where `free` put it, then turned
+// about that axis and moved to
 // fit again; the scale is kept. A pose unlike the rest's tilts a free fit, and the exported floor
 // with it (a walk on MakeHuman climbed 8°); an actor who never stands tips it over, and only the
 // user can say where the mesh's up is. The result is `free` followed by a rigid motion.
 Similarity levelled(const Similarity& free, const Positions& take, const Positions& mesh,
-                    const std::optional<Vec3>& up = std::nullopt);
+                    const Vec3& takeUp, const std::optional<Vec3>& up = std::nullopt);
 
 // "+x", "-y", …: a signed coordinate axis as options and sidecars name it.
 std::string axisName(const Vec3& axis);

@@ -33,6 +33,7 @@ class MarkerTrack {
     const std::string& file() const { return file_; }
     double rate() const { return rate_; }
     double unitToMm() const { return unitToMm_; }
+    const Eigen::Vector3d& vertical() const { return vertical_; }  // C3dTake::vertical
 
     // Frames [first, first + count) of the markers, low-passed if asked (residuals are not
     // kept). Safe to call from several threads. Throws Error when the spool cannot be read.
@@ -54,6 +55,7 @@ class MarkerTrack {
 
     std::string file_;
     double rate_ = 0, unitToMm_ = 1;
+    Eigen::Vector3d vertical_ = Eigen::Vector3d::UnitZ();
     std::size_t frames_ = 0, markers_ = 0;
     std::vector<int> seen_;  // the frames where some marker is seen, ascending
     C3dSamples memory_;      // when built from a take in memory

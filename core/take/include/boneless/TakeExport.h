@@ -82,10 +82,11 @@ std::string fileFingerprint(const std::string& path, bool contents);
 // The nearest of mm/cm/dm/m to the mesh's unit, from how many mesh units a millimetre is.
 const char* guessMeshUnits(double meshUnitsPerMm);
 
-// The mesh axis ("+y", "-z", …) the take's vertical (C3D: +z) maps onto.
-std::string guessUpAxis(const Similarity& takeToMesh);
+// The mesh axis ("+y", "-z", …) the take's vertical `takeUp` (C3dTake::vertical) maps onto.
+std::string guessUpAxis(const Similarity& takeToMesh, const Vec3& takeUp);
 
-// Where a glb's node puts the mesh: its guessed up axis onto +Y, its guessed unit to metres.
-GltfPlacement gltfPlacement(const Similarity& takeToMesh, double takeUnitToMm);
+// Where a glb's node puts the mesh: its guessed up axis (where `takeUp` goes) onto +Y, its
+// guessed unit to metres.
+GltfPlacement gltfPlacement(const Similarity& takeToMesh, double takeUnitToMm, const Vec3& takeUp);
 
 }  // namespace boneless
