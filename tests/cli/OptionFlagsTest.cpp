@@ -95,3 +95,27 @@ TEST(OptionFlags, TheSidecarRecordsTheOptionsUnderTheFlagsNames) {
     EXPECT_EQ(o["solver"], "local-global");
     EXPECT_EQ(sidecar["alignment"]["calibration_frame"], 1);
 }
+
+// The flags that took their keys' names are refused naming the new one; CLI11 alone said "The
+// following arguments were not expected: 5 --weight". A command without the new flag (inspect)
+// gets no such line.
+TEST(OptionFlags, AnOldFlagIsRefusedNamingItsNewName) {
+    const std::string solve = "solve --mesh m.obj --c3d t.c3d --map m.json --out o ";
+    const std::pair<std::string, std::string> renamed[] = {
+        {solve + "--weight 5", "--weight was renamed --marker-weight"},
+        {solve + "--weight=5", "--weight was renamed --marker-weight"},
+        {solve + "--lowpass 6", "--lowpass was renamed --low-pass-hz"},
+        {solve + "--fill-gaps 0.1", "--fill-gaps was renamed --fill-gaps-s"},
+        {"eval --sequence x --markers 3 --rigidity 1", "--rigidity was renamed --fold-guard"},
+        {"eval --sequence x --markers 3 --tolerance 0.1",
+         "--tolerance was renamed --relative-tolerance"}};
+    for (const auto& [arguments, hint] : renamed) {
+        const CliResult r = runCli(arguments);
+        EXPECT_EQ(r.exitCode, 1) << arguments;
+        EXPECT_NE(r.out.find("not expected"), std::string::npos) << r.out;
+        EXPECT_NE(r.out.find(hint + "\n"), std::string::npos) << arguments << "\n" << r.out;
+    }
+    const CliResult inspect = runCli("inspect t.c3d --weight 5");
+    EXPECT_EQ(inspect.exitCode, 1);
+    EXPECT_EQ(inspect.out.find("renamed"), std::string::npos) << inspect.out;
+}
