@@ -34,9 +34,8 @@ void addOptionFlags(CLI::App* command, nlohmann::json& given, const nlohmann::js
             optionFlag(o),
             [&given, o](const std::string& text) { given[o.key] = optionValueFromText(o, text); },
             help);
-        flag->check(CLI::Validator(
-            [o](std::string& text) { return checkOptionValue(o, optionValueFromText(o, text)); },
-            ""));
+        flag->check(
+            CLI::Validator([o](std::string& text) { return checkOptionText(o, text); }, ""));
         std::string type = o.kind == TakeOption::Kind::Integer ? "INT" : "NUMBER";
         if (o.kind == TakeOption::Kind::Choice) {
             type.clear();

@@ -68,6 +68,24 @@ TEST(OptionFlags, ABadFlagValueIsRefusedAsTheJsonReaderRefusesIt) {
         << e.out;
 }
 
+// A flag's number is echoed as typed, as the other flags' checks echo it (--offset-mm nan: "got
+// nan"). Through JSON, nan and inf read "got null", and -1 "got -1.0".
+TEST(OptionFlags, ABadNumberIsEchoedAsTyped) {
+    const std::string solve = "solve --mesh m.obj --c3d t.c3d --map m.json --out o ";
+    for (const char* typed : {"nan", "inf", "-1", "0"}) {
+        const CliResult r = runCli(solve + "--marker-weight " + typed);
+        EXPECT_EQ(r.exitCode, 1) << typed;
+        EXPECT_NE(r.out.find("--marker-weight: must be a number from 1e-09 to 1e+09, got " +
+                             std::string(typed) + "\n"),
+                  std::string::npos)
+            << r.out;
+    }
+    const CliResult frame = runCli(solve + "--calibration-frame nan");
+    EXPECT_NE(frame.out.find("must be a whole number from -1 to 1e+09, got nan\n"),
+              std::string::npos)
+        << frame.out;
+}
+
 // The options given on the command line reach the sidecar under the same keys.
 TEST(OptionFlags, TheSidecarRecordsTheOptionsUnderTheFlagsNames) {
     const fs::path demo = freshTestDir("option-flags");
