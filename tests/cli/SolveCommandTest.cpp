@@ -589,6 +589,28 @@ TEST(DemoCommand, FramesIsACountInItsHelpAndItsRefusal) {
     EXPECT_FALSE(fs::exists(dir / "x"));
 }
 
+// 100,000 frames at detail 4 need about 2,200 GB. Before, the demo made every frame in memory and
+// wrote until the disk was full: 100,000 frames at detail 1 wrote 31 GB without a word. Under
+// ulimit -v, so that a demo that does not check runs out of its own memory, not the machine's.
+TEST(DemoCommand, ADemoItsFileSystemHasNoRoomForIsRefusedBeforeAnythingIsWritten) {
+    const fs::path dir = freshTestDir("demo-no-room"), out = dir / "x";
+    std::error_code ec;
+    const fs::space_info space = fs::space(dir, ec);
+    ASSERT_FALSE(ec) << ec.message();
+    if (space.available > (std::uintmax_t(2000) << 30)) GTEST_SKIP() << "2,000 GB free";
+    const CliResult r =
+        runShell("ulimit -v 1000000; " + std::string(BONELESS_CLI) + " demo --out " + out.string() +
+                 " --frames 100000 --detail 4 2>&1");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find(out.string() + ": the demo needs about "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("(100000 frames, each with its true pose as an OBJ), and its file system "
+                         "has "),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find(" GB free\n"), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(out));
+}
+
 // Every exported frame holds a neighbour's pose: no frame has a residual, so there is no mean.
 // The summary said 0.00 mm, a perfect fit.
 TEST(SolveCommand, ARangeOfHeldFramesOnlyHasNoResidualMeanRatherThanZero) {
