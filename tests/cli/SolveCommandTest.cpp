@@ -291,6 +291,30 @@ TEST(SolveCommand, WarnsOfTheEntriesStillMarkedForReviewAndSolvesAnyway) {
     EXPECT_TRUE(sidecar(demo / "solved")["complete"]);
 }
 
+// A map entry's subject prefix names its subject: "other:T10" is missing from a take whose only
+// subject, walker, wears T10, and the refusal names the take's subjects. It bound walker:T10 in
+// silence; the bare name and walker's own prefix still find it.
+TEST(SolveCommand, ALabelWhosePrefixNamesNoSubjectOfTheTakeIsNotFoundAndTheSubjectsAreNamed) {
+    const fs::path demo = makeDemo(3);
+    const fs::path mapFile = demo / "walker.map.json";
+    nlohmann::json map = nlohmann::json::parse(std::ifstream(mapFile));
+    for (auto& m : map["markers"])
+        if (m["label"] == "T10") m["label"] = "other:T10";
+    std::ofstream(mapFile) << map.dump(2);
+    const CliResult r = runCli(solveArgs(demo, demo / "solved") + " --quiet");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(
+        r.out.find(mapFile.string() + ": labels not found in " + (demo / "walker.c3d").string() +
+                   ": other:T10; the take's only subject is walker\n"),
+        std::string::npos)
+        << r.out;
+    EXPECT_FALSE(fs::exists(demo / "solved" / "walker.json"));
+    for (auto& m : map["markers"])
+        if (m["label"] == "other:T10") m["label"] = "walker:T10";
+    std::ofstream(mapFile) << map.dump(2);
+    EXPECT_EQ(runCli(solveArgs(demo, demo / "solved") + " --quiet --format pc2").exitCode, 0);
+}
+
 // The walker as group 'body' of an OBJ that also holds a helper group, and its map made on 'body'.
 fs::path makeGroupedDemo() {
     const fs::path demo = makeDemo(3);
