@@ -1,8 +1,10 @@
 // boneless-cli batch: many takes from one manifest, resumable and shardable (docs/batch.md).
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -160,7 +162,7 @@ std::vector<TakeJob> readManifest(const std::string& file) {
     if (const std::string why = notARegularFile(file, "batch manifest"); !why.empty())
         throw Error(file + ": " + why);
     std::ifstream in(file);
-    if (!in) throw Error(file + ": cannot open the batch manifest");
+    if (!in) throw Error(file + ": cannot open the batch manifest (" + std::strerror(errno) + ")");
     json m;
     try {
         m = json::parse(in);

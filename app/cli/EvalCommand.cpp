@@ -1,6 +1,8 @@
 // boneless-cli eval: reconstruct a ground-truth sequence from K of its vertices and measure it.
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -38,7 +40,7 @@ std::vector<int> readMarkerFile(const std::string& path, int vertexCount) {
     if (const std::string why = notARegularFile(path, "marker"); !why.empty())
         throw Error(path + ": " + why);
     std::ifstream in(path);
-    if (!in) throw Error(path + ": cannot open the marker file");
+    if (!in) throw Error(path + ": cannot open the marker file (" + std::strerror(errno) + ")");
     std::vector<int> ids;
     std::map<int, int> lineOf;  // each id's line, to name both lines of a repeated one
     std::string line;

@@ -30,7 +30,7 @@ nlohmann::json toJson(const boneless::C3dTake& t) {
     nlohmann::json j;
     j["file"] = t.file;
     j["frames"] = t.frameCount();
-    j["rate"] = t.rate;
+    j["fps"] = t.rate;  // the sidecar's name for it
     j["units"] = t.units;
     j["unit_to_mm"] = t.unitToMm;
     j["up"] = boneless::axisName(t.vertical);

@@ -4,10 +4,23 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 
 #include "boneless/TakeOptionsJson.h"
 
 using namespace boneless;
+
+namespace {
+
+// The flags that took their option's key as their name: the old flag, the key (eval's
+// --rigidity and --tolerance went with the methods that are gone and came back as the table's).
+const std::pair<const char*, const char*> kRenamedFlags[] = {{"--weight", "marker_weight"},
+                                                             {"--lowpass", "low_pass_hz"},
+                                                             {"--fill-gaps", "fill_gaps_s"},
+                                                             {"--rigidity", "fold_guard"},
+                                                             {"--tolerance", "relative_tolerance"}};
+
+}  // namespace
 
 void addOptionFlags(CLI::App* command, nlohmann::json& given, const nlohmann::json& defaults,
                     bool solverOnly) {
@@ -21,9 +34,8 @@ void addOptionFlags(CLI::App* command, nlohmann::json& given, const nlohmann::js
             optionFlag(o),
             [&given, o](const std::string& text) { given[o.key] = optionValueFromText(o, text); },
             help);
-        flag->check(CLI::Validator(
-            [o](std::string& text) { return checkOptionValue(o, optionValueFromText(o, text)); },
-            ""));
+        flag->check(
+            CLI::Validator([o](std::string& text) { return checkOptionText(o, text); }, ""));
         std::string type = o.kind == TakeOption::Kind::Integer ? "INT" : "NUMBER";
         if (o.kind == TakeOption::Kind::Choice) {
             type.clear();
@@ -51,4 +63,24 @@ CLI::Validator numberFrom(double low, double high, bool whole) {
             return ok ? std::string() : range + text;
         },
         "");
+}
+
+std::vector<std::string> renamedFlagHints(const CLI::App& app) {
+    std::vector<const CLI::App*> given;  // the commands given: `map suggest` is map and suggest
+    for (const CLI::App* command = &app; !command->get_subcommands().empty();)
+        given.push_back(command = command->get_subcommands().front());
+    std::vector<std::string> hints;
+    for (const std::string& argument : app.remaining(true)) {
+        const std::string flag = argument.substr(0, argument.find('='));  // --weight=5 too
+        for (const auto& [old, key] : kRenamedFlags) {
+            if (flag != old) continue;
+            const std::string now = optionFlag(*findTakeOption(key));
+            for (const CLI::App* command : given)
+                if (command->get_option_no_throw(now)) {
+                    hints.push_back(flag + " was renamed " + now);
+                    break;
+                }
+        }
+    }
+    return hints;
 }

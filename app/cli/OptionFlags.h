@@ -2,6 +2,8 @@
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 // One flag per option of core's table (TakeOptionsJson), named as its JSON key ("--fill-gaps-s"
 // for "fill_gaps_s"), its help the table's line with units and default; each value given goes
@@ -14,3 +16,8 @@ void addOptionFlags(CLI::App* command, nlohmann::json& given, const nlohmann::js
 // through unbounded checks. `whole` for a count: "must be a whole number from 1 to 100000, got
 // 10:20", where Range's help read "INT:INT in [1 - 100000]", like a range.
 CLI::Validator numberFrom(double low, double high, bool whole = false);
+
+// "--weight was renamed --marker-weight": a line for each flag the command line gave under the
+// name it had before it took its option's key (docs/options.md), where the command given has the
+// flag under its new name. CLI11 alone said only "The following argument was not expected".
+std::vector<std::string> renamedFlagHints(const CLI::App& app);

@@ -6,6 +6,7 @@
 #include <system_error>
 
 #include "Commands.h"
+#include "OptionFlags.h"
 #include "TakeJob.h"
 #include "boneless/Error.h"
 
@@ -33,6 +34,13 @@ int main(int argc, char** argv) {
         "'boneless-cli demo --out DIR' writes a generated example to try these on; "
         "'boneless-cli SUBCOMMAND --help' describes each one.");
     app.require_subcommand(1);
+    // An old flag's refusal names its new one, above the pointer to --help.
+    app.failure_message([](const CLI::App* parsed, const CLI::Error& e) {
+        std::string message = CLI::FailureMessage::simple(parsed, e);
+        std::string hints;
+        for (const std::string& hint : renamedFlagHints(*parsed)) hints += hint + "\n";
+        return message.insert(message.find('\n') + 1, hints);
+    });
     registerEvalCommand(app);
     registerDemoCommand(app);
     registerMapCommand(app);

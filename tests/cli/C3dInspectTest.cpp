@@ -60,7 +60,6 @@ TEST(C3dInspect, JsonDescribesTheTake) {
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto j = nlohmann::json::parse(r.out);
     EXPECT_EQ(j["frames"], 5);
-    EXPECT_EQ(j["rate"], 60.0);
     EXPECT_EQ(j["units"], "mm");
     EXPECT_EQ(j["processor"], "intel");
     EXPECT_EQ(j["storage"], "float");
@@ -75,6 +74,15 @@ TEST(C3dInspect, JsonDescribesTheTake) {
     EXPECT_EQ(j["points"][0]["missing_frames"], 1);
     EXPECT_EQ(j["points"][1]["kind"], "angle");
     EXPECT_EQ(j["points"][2]["subject"], "");
+}
+
+// The frame rate has one name, the sidecar's; inspect called it "rate".
+TEST(C3dInspect, JsonNamesTheFrameRateFpsAsTheSidecarDoes) {
+    const CliRun r = inspect(quoted(demoFile()) + " --json");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["fps"], 60.0);
+    EXPECT_FALSE(j.contains("rate")) << r.out;
 }
 
 TEST(C3dInspect, CsvHasOneRowPerSampleAndEmptyMissing) {

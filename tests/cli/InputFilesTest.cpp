@@ -2,6 +2,7 @@
 // they are, before opening them.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -95,4 +96,32 @@ TEST(InputFiles, AFifoOrADeviceIsRefusedBeforeItIsOpenedRatherThanWaitedOn) {
         {solve("/dev/null", take, map), "/dev/null: is not a regular file"},
         {"inspect /dev/null", "/dev/null: is not a regular file"},
     });
+}
+
+// A marker file or manifest that cannot be opened says why, as the other loaders do: a missing
+// one, one under a file and (not as root, whom permissions do not stop) an unreadable one all said
+// "cannot open the marker file".
+TEST(InputFiles, AMarkerFileOrManifestThatCannotBeOpenedSaysWhy) {
+    const fs::path dir = freshTestDir("unopened");
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frames 3").exitCode, 0);
+    const std::string missing = (dir / "missing.txt").string(),
+                      underAFile = (dir / "walker.obj" / "m.json").string(),
+                      unreadable = (dir / "unreadable.txt").string();
+    const std::string eval = "eval --sequence " + (dir / "truth").string() + " --markers-file ";
+    std::vector<Case> cases = {
+        {eval + missing, missing + ": cannot open the marker file (No such file or directory)"},
+        {eval + underAFile, underAFile + ": cannot open the marker file (Not a directory)"},
+        {"batch " + missing,
+         missing + ": cannot open the batch manifest (No such file or directory)"},
+        {"batch " + underAFile, underAFile + ": cannot open the batch manifest (Not a directory)"},
+    };
+    std::ofstream(unreadable) << "1\n";
+    fs::permissions(unreadable, fs::perms::none);
+    if (::geteuid() != 0) {
+        cases.push_back(
+            {eval + unreadable, unreadable + ": cannot open the marker file (Permission denied)"});
+        cases.push_back({"batch " + unreadable,
+                         unreadable + ": cannot open the batch manifest (Permission denied)"});
+    }
+    expectRefusals(cases);
 }

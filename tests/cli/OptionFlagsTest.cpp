@@ -68,6 +68,24 @@ TEST(OptionFlags, ABadFlagValueIsRefusedAsTheJsonReaderRefusesIt) {
         << e.out;
 }
 
+// A flag's number is echoed as typed, as the other flags' checks echo it (--offset-mm nan: "got
+// nan"). Through JSON, nan and inf read "got null", and -1 "got -1.0".
+TEST(OptionFlags, ABadNumberIsEchoedAsTyped) {
+    const std::string solve = "solve --mesh m.obj --c3d t.c3d --map m.json --out o ";
+    for (const char* typed : {"nan", "inf", "-1", "0"}) {
+        const CliResult r = runCli(solve + "--marker-weight " + typed);
+        EXPECT_EQ(r.exitCode, 1) << typed;
+        EXPECT_NE(r.out.find("--marker-weight: must be a number from 1e-09 to 1e+09, got " +
+                             std::string(typed) + "\n"),
+                  std::string::npos)
+            << r.out;
+    }
+    const CliResult frame = runCli(solve + "--calibration-frame nan");
+    EXPECT_NE(frame.out.find("must be a whole number from -1 to 1e+09, got nan\n"),
+              std::string::npos)
+        << frame.out;
+}
+
 // The options given on the command line reach the sidecar under the same keys.
 TEST(OptionFlags, TheSidecarRecordsTheOptionsUnderTheFlagsNames) {
     const fs::path demo = freshTestDir("option-flags");
@@ -94,4 +112,28 @@ TEST(OptionFlags, TheSidecarRecordsTheOptionsUnderTheFlagsNames) {
     EXPECT_EQ(o["relative_tolerance"], 0.01);
     EXPECT_EQ(o["solver"], "local-global");
     EXPECT_EQ(sidecar["alignment"]["calibration_frame"], 1);
+}
+
+// The flags that took their keys' names are refused naming the new one; CLI11 alone said "The
+// following arguments were not expected: 5 --weight". A command without the new flag (inspect)
+// gets no such line.
+TEST(OptionFlags, AnOldFlagIsRefusedNamingItsNewName) {
+    const std::string solve = "solve --mesh m.obj --c3d t.c3d --map m.json --out o ";
+    const std::pair<std::string, std::string> renamed[] = {
+        {solve + "--weight 5", "--weight was renamed --marker-weight"},
+        {solve + "--weight=5", "--weight was renamed --marker-weight"},
+        {solve + "--lowpass 6", "--lowpass was renamed --low-pass-hz"},
+        {solve + "--fill-gaps 0.1", "--fill-gaps was renamed --fill-gaps-s"},
+        {"eval --sequence x --markers 3 --rigidity 1", "--rigidity was renamed --fold-guard"},
+        {"eval --sequence x --markers 3 --tolerance 0.1",
+         "--tolerance was renamed --relative-tolerance"}};
+    for (const auto& [arguments, hint] : renamed) {
+        const CliResult r = runCli(arguments);
+        EXPECT_EQ(r.exitCode, 1) << arguments;
+        EXPECT_NE(r.out.find("not expected"), std::string::npos) << r.out;
+        EXPECT_NE(r.out.find(hint + "\n"), std::string::npos) << arguments << "\n" << r.out;
+    }
+    const CliResult inspect = runCli("inspect t.c3d --weight 5");
+    EXPECT_EQ(inspect.exitCode, 1);
+    EXPECT_EQ(inspect.out.find("renamed"), std::string::npos) << inspect.out;
 }

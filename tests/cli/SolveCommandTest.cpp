@@ -291,6 +291,30 @@ TEST(SolveCommand, WarnsOfTheEntriesStillMarkedForReviewAndSolvesAnyway) {
     EXPECT_TRUE(sidecar(demo / "solved")["complete"]);
 }
 
+// A map entry's subject prefix names its subject: "other:T10" is missing from a take whose only
+// subject, walker, wears T10, and the refusal names the take's subjects. It bound walker:T10 in
+// silence; the bare name and walker's own prefix still find it.
+TEST(SolveCommand, ALabelWhosePrefixNamesNoSubjectOfTheTakeIsNotFoundAndTheSubjectsAreNamed) {
+    const fs::path demo = makeDemo(3);
+    const fs::path mapFile = demo / "walker.map.json";
+    nlohmann::json map = nlohmann::json::parse(std::ifstream(mapFile));
+    for (auto& m : map["markers"])
+        if (m["label"] == "T10") m["label"] = "other:T10";
+    std::ofstream(mapFile) << map.dump(2);
+    const CliResult r = runCli(solveArgs(demo, demo / "solved") + " --quiet");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(
+        r.out.find(mapFile.string() + ": labels not found in " + (demo / "walker.c3d").string() +
+                   ": other:T10; the take's only subject is walker\n"),
+        std::string::npos)
+        << r.out;
+    EXPECT_FALSE(fs::exists(demo / "solved" / "walker.json"));
+    for (auto& m : map["markers"])
+        if (m["label"] == "other:T10") m["label"] = "walker:T10";
+    std::ofstream(mapFile) << map.dump(2);
+    EXPECT_EQ(runCli(solveArgs(demo, demo / "solved") + " --quiet --format pc2").exitCode, 0);
+}
+
 // The walker as group 'body' of an OBJ that also holds a helper group, and its map made on 'body'.
 fs::path makeGroupedDemo() {
     const fs::path demo = makeDemo(3);
@@ -587,6 +611,28 @@ TEST(DemoCommand, FramesIsACountInItsHelpAndItsRefusal) {
               std::string::npos)
         << r.out;
     EXPECT_FALSE(fs::exists(dir / "x"));
+}
+
+// 100,000 frames at detail 4 need about 2,200 GB. Before, the demo made every frame in memory and
+// wrote until the disk was full: 100,000 frames at detail 1 wrote 31 GB without a word. Under
+// ulimit -v, so that a demo that does not check runs out of its own memory, not the machine's.
+TEST(DemoCommand, ADemoItsFileSystemHasNoRoomForIsRefusedBeforeAnythingIsWritten) {
+    const fs::path dir = freshTestDir("demo-no-room"), out = dir / "x";
+    std::error_code ec;
+    const fs::space_info space = fs::space(dir, ec);
+    ASSERT_FALSE(ec) << ec.message();
+    if (space.available > (std::uintmax_t(2000) << 30)) GTEST_SKIP() << "2,000 GB free";
+    const CliResult r =
+        runShell("ulimit -v 1000000; " + std::string(BONELESS_CLI) + " demo --out " + out.string() +
+                 " --frames 100000 --detail 4 2>&1");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find(out.string() + ": the demo needs about "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("(100000 frames, each with its true pose as an OBJ), and its file system "
+                         "has "),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find(" GB free\n"), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(out));
 }
 
 // Every exported frame holds a neighbour's pose: no frame has a residual, so there is no mean.

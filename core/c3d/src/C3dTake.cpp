@@ -131,11 +131,16 @@ std::vector<std::size_t> C3dTake::pointsNamed(std::string_view label) const {
     for (std::size_t i = 0; i < points.size(); ++i)
         if (c3dNameEquals(trimView(points[i].label), label)) out.push_back(i);
     if (!out.empty()) return out;
-    // The caller may give "subject:NAME" for a file without prefixes, or "NAME" for one with.
+    // The caller may give "subject:NAME" for a file without prefixes, or "NAME" for one with;
+    // a prefix names its subject, and finds no other subject's NAME ("other:T10" bound
+    // walker:T10).
     std::string subject, name;
     splitC3dLabel(label, subject, name);
     for (std::size_t i = 0; i < points.size(); ++i)
-        if (c3dNameEquals(trimView(points[i].name), trimView(name))) out.push_back(i);
+        if (c3dNameEquals(trimView(points[i].name), trimView(name)) &&
+            (subject.empty() || points[i].subject.empty() ||
+             c3dNameEquals(trimView(points[i].subject), trimView(subject))))
+            out.push_back(i);
     return out;
 }
 
@@ -174,6 +179,16 @@ std::string C3dTake::sharedLabelText(const std::vector<std::size_t>& group) cons
         text += (k == 0 ? "" : k + 1 == listed.size() ? " and " : ", ") + listed[k];
     return text + (group.size() == 2 ? " are both labelled " : " are all labelled ") +
            points.at(group.front()).label;
+}
+
+std::vector<std::string> C3dTake::subjects() const {
+    std::vector<std::string> out;
+    for (const C3dPoint& p : points)
+        if (!p.subject.empty() && std::none_of(out.begin(), out.end(), [&](const std::string& s) {
+                return c3dNameEquals(s, p.subject);
+            }))
+            out.push_back(p.subject);
+    return out;
 }
 
 std::optional<std::size_t> C3dTake::findPoint(std::string_view label) const {

@@ -1,7 +1,9 @@
 #include "boneless/DemoFiles.h"
 
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <string>
 
 #include "DemoCreature.h"
 #include "DemoTake.h"
@@ -9,25 +11,69 @@
 #include "boneless/C3dWriter.h"
 #include "boneless/Error.h"
 #include "boneless/ObjWriter.h"
+#include "boneless/Text.h"
 
 namespace boneless {
+
+namespace {
+
+// About what one OBJ of a mesh this size takes: a line a vertex ("v" and three coordinates of
+// some 19 shortest round-trip digits; the walker's frames average 60 bytes) and a line a
+// triangle (three indices of up to the vertex count's digits), and the comment.
+std::uintmax_t objBytes(const TriMesh& mesh) {
+    const std::uintmax_t digits = std::to_string(mesh.vertexCount()).size();
+    return 100 + 62 * std::uintmax_t(mesh.vertexCount()) +
+           (2 + 3 * (1 + digits)) * std::uintmax_t(mesh.faceCount());
+}
+
+std::string gigabytes(std::uintmax_t bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f GB", double(bytes) / (1024.0 * 1024 * 1024));
+    return text;
+}
+
+// Refuses, before anything is made or written, a demo the folder's file system has no room for:
+// 100,000 frames of truth wrote 31 GB without a word, until the disk was full.
+void checkRoom(const std::string& folder, std::uintmax_t needed, int frames, bool withTruth) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    // The folder may not be there yet: its nearest existing parent's file system will hold it.
+    fs::path there = fs::absolute(folder, ec);
+    while (!ec && !fs::exists(there, ec) && there.has_relative_path()) there = there.parent_path();
+    const fs::space_info space = fs::space(there, ec);
+    if (ec || needed <= space.available) return;  // no figure: a failing write says why
+    throw Error(folder + ": the demo needs about " + gigabytes(needed) + " (" +
+                plural(frames, "frame") + (withTruth ? ", each with its true pose as an OBJ" : "") +
+                "), and its file system has " + gigabytes(space.available) + " free");
+}
+
+}  // namespace
 
 DemoFiles writeDemoFiles(const std::string& folder, int frames, double offsetMm, bool withTruth,
                          int detail, DemoSubject subject) {
     namespace fs = std::filesystem;
     const fs::path out(folder), truth = out / "truth";
+    if (detail < 1)
+        throw Error("demo detail must be at least 1 (got " + std::to_string(detail) + ")");
+    if (subject == DemoSubject::Walker && detail > 4)
+        throw Error("the walker's detail is at most 4 (got " + std::to_string(detail) + ")");
+    // The rest mesh alone first (its frames, all held in memory, come after the check): an OBJ
+    // of it for the rest and for each frame of truth, and the take's few bytes a marker a frame.
+    const TriMesh shape = subject == DemoSubject::Walker
+                              ? makeDemoWalker(0, 1 + detail).rest
+                              : makeDemoCreature(0, 48 * detail, 24 * detail).rest;
+    checkRoom(folder,
+              objBytes(shape) * (1 + (withTruth ? std::uintmax_t(frames) : 0)) +
+                  1024 * std::uintmax_t(frames) + 64 * 1024,
+              frames, withTruth);
     std::error_code ec;
     fs::create_directories(withTruth ? truth : out, ec);
     if (ec) throw Error(folder + ": cannot create the folder (" + ec.message() + ")");
-    if (detail < 1)
-        throw Error("demo detail must be at least 1 (got " + std::to_string(detail) + ")");
     TriMesh rest;
     std::vector<Positions> truthFrames;
     DemoTake take;
     std::string name, units;
     if (subject == DemoSubject::Walker) {
-        if (detail > 4)
-            throw Error("the walker's detail is at most 4 (got " + std::to_string(detail) + ")");
         DemoWalker walker = makeDemoWalker(frames, 1 + detail);
         take = makeDemoWalkerTake(walker, offsetMm);
         rest = std::move(walker.rest);

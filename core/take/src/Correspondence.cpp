@@ -1,5 +1,6 @@
 #include "boneless/Correspondence.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <climits>
 #include <cmath>
@@ -238,8 +239,21 @@ std::vector<std::size_t> Correspondence::resolve(const C3dTake& take) const {
                            " (a model output), not a marker");
         points.push_back(index);
     }
-    if (!unknown.empty()) fail(file, "labels not found in " + take.file + ": " + joined(unknown));
-    return points;
+    if (unknown.empty()) return points;
+    // A prefix that names no subject of the take ("other:T10" where walker wears T10) finds no
+    // other subject's marker: the take's subjects say which prefix to write.
+    const std::vector<std::string> subjects = take.subjects();
+    std::string said;
+    for (const std::string& label : unknown) {
+        std::string subject, name;
+        splitC3dLabel(label, subject, name);
+        if (!subject.empty() && !subjects.empty() &&
+            std::none_of(subjects.begin(), subjects.end(),
+                         [&](const std::string& s) { return c3dNameEquals(s, subject); }))
+            said = subjects.size() == 1 ? "; the take's only subject is " + subjects.front()
+                                        : "; the take's subjects are " + joined(subjects);
+    }
+    fail(file, "labels not found in " + take.file + ": " + joined(unknown) + said);
 }
 
 const MarkerMapping* Correspondence::find(const std::string& label) const {

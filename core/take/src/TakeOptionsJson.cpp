@@ -224,22 +224,36 @@ void fromJson(const json& object, SolverOptions& options, const std::string& whe
     options = o.solver;
 }
 
-std::string checkOptionValue(const TakeOption& option, const json& value) {
+namespace {
+
+// What is wrong with `value`, given as `got` says it.
+std::string check(const TakeOption& option, const json& value, const std::string& got) {
     if (option.kind == TakeOption::Kind::Choice) {
         const auto& c = option.choices;
         if (value.is_string() && std::find(c.begin(), c.end(), value.get<std::string>()) != c.end())
             return "";
-        return "must be one of " + joined(c) + ", got " + value.dump();
+        return "must be one of " + joined(c) + ", got " + got;
     }
     const bool integer = option.kind == TakeOption::Kind::Integer;
     const std::string wanted = std::string(integer ? "a whole number" : "a number") +
                                (option.units.empty() ? "" : " (" + option.units + ")") + " from " +
                                shown(option.low) + " to " + shown(option.high);
-    if (!value.is_number()) return "must be " + wanted + ", got " + value.dump();
+    if (!value.is_number()) return "must be " + wanted + ", got " + got;
     const double x = value.get<double>();
     if (!std::isfinite(x) || x < option.low || x > option.high || (integer && x != std::floor(x)))
-        return "must be " + wanted + ", got " + value.dump();
+        return "must be " + wanted + ", got " + got;
     return "";
+}
+
+}  // namespace
+
+std::string checkOptionValue(const TakeOption& option, const json& value) {
+    return check(option, value, value.dump());
+}
+
+std::string checkOptionText(const TakeOption& option, const std::string& text) {
+    const json value = optionValueFromText(option, text);
+    return check(option, value, value.is_number() ? text : value.dump());
 }
 
 json optionValueFromText(const TakeOption& option, const std::string& text) {

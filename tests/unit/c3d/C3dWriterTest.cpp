@@ -310,6 +310,18 @@ TEST(C3dTake, FindPointIgnoresSubjectPrefix) {
     EXPECT_FALSE(t.findPoint("LBHD").has_value());
 }
 
+// "other:T10" found walker:T10: a prefix the take has no subject for now finds only a point
+// without a prefix.
+TEST(C3dTake, APrefixNamingNoSubjectOfTheTakeFindsNoOtherSubjectsPoint) {
+    C3dTake t = syntheticTake(1, {"walker:T10", "Walker:C7", "RFHD"});
+    EXPECT_FALSE(t.findPoint("other:T10").has_value());
+    EXPECT_TRUE(t.pointsNamed("other:T10").empty());
+    EXPECT_EQ(t.findPoint("walker:T10"), 0u);
+    EXPECT_EQ(t.findPoint("WALKER:c7"), 1u);
+    EXPECT_EQ(t.findPoint("T10"), 0u);
+    EXPECT_EQ(t.findPoint("other:RFHD"), 2u);
+}
+
 TEST(C3dTake, ABareNameTwoSubjectsWearFindsNeitherAndShortLabelsKeepTheirSubject) {
     C3dTake t = syntheticTake(1, {"male:LFHD", "female:LFHD", "male:RFHD"});
     EXPECT_FALSE(t.findPoint("LFHD").has_value());

@@ -115,10 +115,15 @@ struct C3dTake {
     // The rate as messages give it: "120 Hz", "0 Hz", "not a number".
     std::string rateText() const;
     // The points `label` names (case-insensitive, surrounding spaces ignored): those whose full
-    // label equals it, else every one whose name without the subject prefix equals its name.
-    // More than one means two subjects wear the marker, and the label must say which, or that
-    // the take holds two points with one label (sharedLabels), which no label can tell apart.
+    // label equals it, else every one whose name without the subject prefix equals its name and
+    // whose subject is the label's, or either has none ("other:T10" finds T10, never
+    // walker:T10). More than one means two subjects wear the marker, and the label must say
+    // which, or that the take holds two points with one label (sharedLabels), which no label can
+    // tell apart.
     std::vector<std::size_t> pointsNamed(std::string_view label) const;
+    // The subject prefixes the points' labels carry ("walker"), each once, in the order of their
+    // first points.
+    std::vector<std::string> subjects() const;
     // The groups of points whose full labels are one label as pointsNamed compares them, each in
     // ascending order, in the order of their first points.
     std::vector<std::vector<std::size_t>> sharedLabels() const;

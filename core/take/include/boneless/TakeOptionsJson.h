@@ -47,6 +47,9 @@ void fromJson(const nlohmann::json& json, SolverOptions& options, const std::str
 std::string checkOptionValue(const TakeOption& option, const nlohmann::json& value);
 // The value a flag's text stands for (a number, or the name), unchecked.
 nlohmann::json optionValueFromText(const TakeOption& option, const std::string& text);
+// What is wrong with a flag's text as this option's value, as checkOptionValue says it, a number
+// as typed: "got nan" and "got -1", where the value in JSON is null and -1.0.
+std::string checkOptionText(const TakeOption& option, const std::string& text);
 
 // Throws Error "KEY ...what is wrong" naming the first option out of its range.
 void validate(const TakeSolveOptions& options);
