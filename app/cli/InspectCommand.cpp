@@ -30,7 +30,8 @@ nlohmann::json toJson(const boneless::C3dTake& t) {
     nlohmann::json j;
     j["file"] = t.file;
     j["frames"] = t.frameCount();
-    j["fps"] = t.rate;  // the sidecar's name for it
+    j["fps"] =
+        t.hasFrameRate() ? nlohmann::json(t.rate) : nlohmann::json(nullptr);  // as the sidecar
     j["units"] = t.units;
     j["unit_to_mm"] = t.unitToMm;
     j["up"] = boneless::axisName(t.vertical);

@@ -83,6 +83,14 @@ TEST(C3dInspect, JsonNamesTheFrameRateFpsAsTheSidecarDoes) {
     const auto j = nlohmann::json::parse(r.out);
     EXPECT_EQ(j["fps"], 60.0);
     EXPECT_FALSE(j.contains("rate")) << r.out;
+    // A take without a frame rate has none, as in the sidecar: not 0 frames a second.
+    C3dTake noRate = readC3d(demoFile());
+    noRate.rate = 0;
+    const std::string file = (c3dtest::workDir() / "inspect-no-rate.c3d").string();
+    writeC3d(noRate, file);
+    const CliRun none = inspect(quoted(file) + " --json");
+    ASSERT_EQ(none.exitCode, 0) << none.err;
+    EXPECT_TRUE(nlohmann::json::parse(none.out)["fps"].is_null()) << none.out;
 }
 
 TEST(C3dInspect, CsvHasOneRowPerSampleAndEmptyMissing) {
