@@ -22,6 +22,16 @@ std::set<int> marked(const std::vector<bool>& frames) {
     return out;
 }
 
+// A strip over its own solver and a timeline as long as the document's take.
+struct StripRig {
+    FrameSolver solver;
+    Timeline timeline;
+    TimelineStrip strip;
+    explicit StripRig(Document& document) : strip(&document, &solver, &timeline) {
+        timeline.setFrameCount(document.frameCount());
+    }
+};
+
 }  // namespace
 
 class TimelineStripTest : public QObject {
@@ -37,9 +47,8 @@ class TimelineStripTest : public QObject {
     }
 
     void eachMarkersGapsAreTheTakesMissingFrames() {
-        FrameSolver solver;
-        Timeline timeline;
-        TimelineStrip strip(&document_, &solver, &timeline);
+        StripRig rig(document_);
+        auto& [solver, timeline, strip] = rig;
         const C3dTake& take = document_.take();
         QCOMPARE(int(strip.gaps().size()), document_.markerCount());
         int gapFrames = 0;
@@ -61,10 +70,8 @@ class TimelineStripTest : public QObject {
     }
 
     void solvedFramesAreMarkedAsCached() {
-        FrameSolver solver;
-        Timeline timeline;
-        timeline.setFrameCount(document_.frameCount());
-        TimelineStrip strip(&document_, &solver, &timeline);
+        StripRig rig(document_);
+        auto& [solver, timeline, strip] = rig;
         QVERIFY(solver.setProblem(document_));
         QVERIFY(marked(strip.cachedFrames()).empty());
         QSignalSpy ready(&solver, &FrameSolver::frameReady);
@@ -78,10 +85,8 @@ class TimelineStripTest : public QObject {
     // A new problem (another take, a map that does not fit) has solved nothing yet, and no
     // problem has nothing solved: the marks of the old one went on showing as solved.
     void theSolvedMarksGoWhenTheProblemChanges() {
-        FrameSolver solver;
-        Timeline timeline;
-        timeline.setFrameCount(document_.frameCount());
-        TimelineStrip strip(&document_, &solver, &timeline);
+        StripRig rig(document_);
+        auto& [solver, timeline, strip] = rig;
         QVERIFY(solver.setProblem(document_));
         QSignalSpy ready(&solver, &FrameSolver::frameReady);
         solver.requestFrame(7);
@@ -103,10 +108,8 @@ class TimelineStripTest : public QObject {
     }
 
     void itPaintsTheSolvedFramesAndTheSelectedMarkersGapsAtTheirFrames() {
-        FrameSolver solver;
-        Timeline timeline;
-        timeline.setFrameCount(document_.frameCount());
-        TimelineStrip strip(&document_, &solver, &timeline);
+        StripRig rig(document_);
+        auto& [solver, timeline, strip] = rig;
         // The marker missing the most frames, so both its gaps and its visible frames are drawn.
         int selected = 0;
         for (int k = 0; k < document_.markerCount(); ++k)
@@ -167,10 +170,8 @@ class TimelineStripTest : public QObject {
     }
 
     void aClickOnTheStripScrubsThere() {
-        FrameSolver solver;
-        Timeline timeline;
-        timeline.setFrameCount(document_.frameCount());
-        TimelineStrip strip(&document_, &solver, &timeline);
+        StripRig rig(document_);
+        auto& [solver, timeline, strip] = rig;
         strip.resize(600, strip.sizeHint().height());
         strip.show();
         QVERIFY(QTest::qWaitForWindowExposed(&strip));
