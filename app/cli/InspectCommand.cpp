@@ -34,7 +34,7 @@ nlohmann::json toJson(const boneless::C3dTake& t) {
         t.hasFrameRate() ? nlohmann::json(t.rate) : nlohmann::json(nullptr);  // as the sidecar
     j["units"] = t.units;
     j["unit_to_mm"] = t.unitToMm;
-    j["up"] = boneless::axisName(t.vertical);
+    j["up_axis"] = boneless::axisName(t.vertical);  // the sidecar's up_axis.take
     j["processor"] = toString(t.processor);
     j["storage"] = toString(t.storage);
     j["scale"] = t.pointScale;
