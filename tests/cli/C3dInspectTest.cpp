@@ -188,7 +188,9 @@ TEST(C3dInspect, UnreadableFileExitsNonZeroWithOneLine) {
     EXPECT_NE(r.err.find(bad.string()), std::string::npos) << r.err;
     const CliRun missing = inspect(quoted((c3dtest::workDir() / "no-such.c3d").string()));
     EXPECT_NE(missing.exitCode, 0);
-    EXPECT_NE(missing.err.find("cannot open"), std::string::npos) << missing.err;
+    EXPECT_NE(missing.err.find("cannot open the take (No such file or directory)"),
+              std::string::npos)
+        << missing.err;
 }
 
 TEST(C3dInspect, RealFilesJson) {

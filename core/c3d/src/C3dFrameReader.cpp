@@ -18,7 +18,8 @@ using namespace c3d_detail;
 
 namespace {
 [[noreturn]] void failSystem(const std::string& path, const char* what) {
-    throw C3dError(path, C3dError::kNoOffset, std::string(what) + ": " + std::strerror(errno));
+    throw C3dError(path, C3dError::kNoOffset,
+                   std::string(what) + " (" + std::strerror(errno) + ")");
 }
 }  // namespace
 
@@ -27,7 +28,7 @@ C3dFrameReader::C3dFrameReader(const std::string& path, const C3dReadOptions& op
     if (const std::string why = notARegularFile(path, "C3D"); !why.empty())
         throw C3dError(path, C3dError::kNoOffset, why);
     fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd_ < 0) failSystem(path, "cannot open");
+    if (fd_ < 0) failSystem(path, "cannot open the take");
     try {
         struct stat st {};
         if (::fstat(fd_, &st) != 0) failSystem(path, "cannot determine the file size");

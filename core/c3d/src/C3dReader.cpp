@@ -81,7 +81,7 @@ C3dTake readC3d(const std::string& path, const C3dReadOptions& options) {
     std::ifstream in(path, std::ios::binary);
     if (!in)
         throw C3dError(path, C3dError::kNoOffset,
-                       std::string("cannot open: ") + std::strerror(errno));
+                       std::string("cannot open the take (") + std::strerror(errno) + ")");
     in.seekg(0, std::ios::end);
     const std::streamoff end = in.tellg();
     if (end < 0) throw C3dError(path, C3dError::kNoOffset, "cannot determine the file size");

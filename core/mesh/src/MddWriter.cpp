@@ -1,5 +1,6 @@
 #include "boneless/MddWriter.h"
 
+#include <cerrno>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -78,7 +79,7 @@ void MddWriter::finish() {
 
 std::vector<Positions> readMdd(const std::string& path, std::vector<double>* seconds) {
     std::FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) throw Error(path + ": cannot open the point cache");
+    if (!f) throw Error(path + ": cannot open the point cache (" + std::strerror(errno) + ")");
     std::uint32_t counts[2];
     if (std::fread(counts, 4, 2, f) != 2) {
         std::fclose(f);

@@ -19,7 +19,9 @@ namespace {
 
 std::string slurp(const std::string& path) {
     std::FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) throw MeshError(path, std::string("cannot open file: ") + std::strerror(errno));
+    if (!f)
+        throw MeshError(path,
+                        std::string("cannot open the mesh file (") + std::strerror(errno) + ")");
     std::string data;
     char buf[1 << 16];
     size_t n;

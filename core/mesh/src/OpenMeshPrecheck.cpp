@@ -35,7 +35,9 @@ Number classify(const std::string& t) {
 
 std::string readAll(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw MeshError(path, std::string("cannot open file: ") + std::strerror(errno));
+    if (!in)
+        throw MeshError(path,
+                        std::string("cannot open the mesh file (") + std::strerror(errno) + ")");
     std::ostringstream s;
     s << in.rdbuf();
     if (in.bad()) throw MeshError(path, "cannot read file");

@@ -83,7 +83,7 @@ void PointCacheWriter::finish() {
 
 std::vector<Positions> readPointCache(const std::string& path, double* startFrame) {
     std::FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) throw Error(path + ": cannot open the point cache");
+    if (!f) throw Error(path + ": cannot open the point cache (" + std::strerror(errno) + ")");
     char signature[12];
     std::int32_t version = 0, points = 0, samples = 0;
     float start = 0, rate = 0;

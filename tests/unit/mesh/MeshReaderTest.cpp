@@ -317,7 +317,7 @@ TEST(MeshReaderErrors, MissingFileAndUnknownExtension) {
     for (const std::string name : {"missing.obj", "missing.ply", "missing.stl"}) {
         const std::string path = workPath(name);
         fs::remove(path);
-        EXPECT_CONTAINS(errorOf(path), "cannot open file");
+        EXPECT_CONTAINS(errorOf(path), "cannot open the mesh file (");
     }
     const std::string xyz = writeFile("points.xyz", "1 2 3\n");
     EXPECT_CONTAINS(errorOf(xyz), "unknown mesh file extension 'xyz'");
