@@ -3,6 +3,7 @@
 // project, a damaged or hostile project file gives one message, offers the last autosave when it
 // was made from that project and is itself left alone, and closing asks before edits that no
 // project file holds are left behind.
+#include <sys/stat.h>
 #include <QFile>
 #include <QFileDialog>
 #include <QJsonArray>
@@ -352,6 +353,47 @@ class ProjectSessionTest : public QObject {
             said.startsWith(
                 QString("The take %1/walker.c3d named by lost.boneless is missing.").arg(moved)),
             qPrintable(said));
+    }
+
+    // A folder or a FIFO named as a project is refused as the core's loaders refuse them, by
+    // name: the project was read with QFile, which gave Qt's words for a folder ("file to open
+    // is a directory") and for a FIFO waited for a writer for ever (`--project` hung). The
+    // command line's files said that either "does not exist".
+    void aFolderOrAFifoGivenAsAProjectIsRefusedByName() {
+        const QString folder = folder_ + "/folder.boneless", fifo = folder_ + "/fifo.boneless",
+                      fifoTake = folder_ + "/fifo.c3d";
+        QDir(folder).removeRecursively();
+        QVERIFY(QDir().mkpath(folder));
+        for (const QString& path : {fifo, fifoTake}) {
+            QFile::remove(path);
+            QCOMPARE(::mkfifo(qPrintable(path), 0600), 0);
+        }
+        Document document;
+        QString error;
+        QVERIFY(!Project::load(document, folder, &error));
+        QCOMPARE(error, folder + ": is a directory, not a Boneless project file");
+
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        QSignalSpy errors(&window, &MainWindow::errorShown);
+        auto said = [&] { return errors.last().at(0).toString(); };
+        QVERIFY(!window.openProject(folder));  // as --project opens it
+        QVERIFY2(said().startsWith("folder.boneless is a directory, not a Boneless project file."),
+                 qPrintable(said()));
+        QVERIFY(!window.openFiles({folder}));  // as the command line's files open
+        QVERIFY2(said().startsWith("folder.boneless is a directory, not a Boneless project file."),
+                 qPrintable(said()));
+
+        QVERIFY(!Project::load(document, fifo, &error));
+        QCOMPARE(error, fifo + ": is not a regular file");
+        QVERIFY(!window.openProject(fifo));
+        QVERIFY2(said().startsWith("fifo.boneless is not a regular file."), qPrintable(said()));
+        QVERIFY(!window.openFiles({fifo}));
+        QVERIFY2(said().startsWith("fifo.boneless is not a regular file."), qPrintable(said()));
+        // A take's message reads its first bytes: not a FIFO's.
+        QVERIFY(!window.openFiles({fifoTake}));
+        QVERIFY2(said().startsWith("fifo.c3d is not a regular file."), qPrintable(said()));
+        QVERIFY(!window.document()->hasMesh());
     }
 
     // A take cut short opens with what the reader let through, where the user sees it, and a

@@ -21,6 +21,7 @@
 #include "Counted.h"
 #include "FrameDisplay.h"
 #include "boneless/Error.h"
+#include "boneless/InputFile.h"
 #include "boneless/MeshReader.h"
 #include "boneless/ui/DemoProject.h"
 #include "boneless/ui/Document.h"
@@ -45,6 +46,19 @@ FileKind kindOf(const QString& path) {
     return FileKind::Unknown;
 }
 
+// "walk.boneless is a directory, not a Boneless project file.": a folder, or a FIFO (whose opening
+// waits for a writer for ever), refused by name as the core's loaders refuse them. Empty for a
+// regular file, and for a path that cannot be looked at (opening it says why).
+QString notARegularFileSentence(const QString& path, FileKind kind) {
+    const char* name = kind == FileKind::Project ? "Boneless project"
+                       : kind == FileKind::Mesh  ? "mesh"
+                       : kind == FileKind::Take  ? "C3D"
+                                                 : "correspondence";
+    const std::string why = notARegularFile(path.toStdString(), name);
+    if (why.empty()) return {};
+    return QObject::tr("%1 %2.").arg(QFileInfo(path).fileName(), QString::fromStdString(why));
+}
+
 }  // namespace
 
 QString MainWindow::plainError(const QString& path) const {
@@ -67,10 +81,16 @@ QString MainWindow::plainError(const QString& path) const {
 }
 
 bool MainWindow::openFile(const QString& path) {
-    if (!QFileInfo(path).isFile()) {
+    if (!QFileInfo::exists(path)) {
         showError(tr("%1 does not exist.").arg(QFileInfo(path).fileName()),
                   tr("No such file: %1").arg(path));
         return false;
+    }
+    if (kindOf(path) != FileKind::Unknown) {  // else refused below by its extension
+        if (const QString why = notARegularFileSentence(path, kindOf(path)); !why.isEmpty()) {
+            showError(why, path);
+            return false;
+        }
     }
     // The document's own message (technical) goes under the plain sentence.
     opening_ = path;
@@ -143,6 +163,11 @@ void MainWindow::showOpened(const QString& path, const QStringList& notes) {
 }
 
 bool MainWindow::openProject(const QString& path) {
+    // Refused before asking about the work open now: nothing would replace it.
+    if (const QString why = notARegularFileSentence(path, FileKind::Project); !why.isEmpty()) {
+        showError(why, path);
+        return false;
+    }
     if (!keepUnsavedWork(false)) return false;
     const QScopedValueRollback<int> loading(loading_, loading_ + 1);
     QString error, missing;
