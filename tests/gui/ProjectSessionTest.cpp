@@ -432,6 +432,36 @@ class ProjectSessionTest : public QObject {
         QVERIFY2(window.frameSummary().contains("solved"), qPrintable(window.frameSummary()));
     }
 
+    // The title marks edits that no project file holds (Qt's [*]): an untitled or demo
+    // session's until Save As, a project's until the autosave has written them. It marked none.
+    void theTitleMarksEditsThatNoProjectFileHolds() {
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        window.autosave()->setDelay(60000);  // saved when the test says
+        QVERIFY(window.openFiles({folder_ + "/mine/walker.obj", folder_ + "/mine/walker.c3d",
+                                  folder_ + "/mine/walker.map.json"}));
+        QCOMPARE(window.windowTitle(), QString("untitled[*] — walker.obj — Boneless"));
+        QVERIFY(!window.isWindowModified());  // opening files is no edit
+        QVERIFY(window.document()->clearMapping(0));
+        QVERIFY(window.isWindowModified());
+        (void)window.autosave()->saveNow();  // the recovery file is no project file
+        QVERIFY(window.isWindowModified());
+        QVERIFY(window.saveProjectAs(folder_ + "/marked.boneless"));
+        QVERIFY(!window.isWindowModified());
+
+        QVERIFY(window.document()->clearMapping(1));
+        QVERIFY(window.isWindowModified());
+        QVERIFY(window.autosave()->saveNow());
+        QVERIFY(!window.isWindowModified());
+
+        QVERIFY(window.openDemo());
+        QVERIFY(!window.isWindowModified());
+        QVERIFY(window.document()->clearMapping(2));
+        (void)window.autosave()->saveNow();
+        QVERIFY(window.isWindowModified());
+        window.autosave()->discardPending();
+    }
+
     void closingAsksBeforeUntitledEditsAreLeftToTheAutosave() {
         MainWindow window;
         QVERIFY(window.openFile(folder_ + "/mine/walker.obj"));

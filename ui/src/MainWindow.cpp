@@ -412,11 +412,11 @@ void MainWindow::connectDocument() {
             Qt::DirectConnection);
     // What closing or opening another file must not drop unasked (keepUnsavedWork).
     const auto edited = [this] {
-        if (!loading_) unsavedEdits_ = true;
+        if (!loading_) setUnsavedEdits(true);
     };
     connect(document_->undoStack(), &QUndoStack::indexChanged, this, edited);
     connect(autosave_, &ProjectAutosave::saved, this, [this](const QString& path) {
-        if (!demo_ && path == projectPath_) unsavedEdits_ = false;
+        if (!demo_ && path == projectPath_) setUnsavedEdits(false);
     });
     connect(display_, &FrameDisplay::frameDisplayed, this, &MainWindow::frameDisplayed);
     connect(display_, &FrameDisplay::latencyMeasured, this, &MainWindow::latencyMeasured);
@@ -499,6 +499,11 @@ void MainWindow::applyViewSettings() {
     trailsAction_->setChecked(settings.value("trails").toBool());
     heatMapAction_->setChecked(settings.value("heatMap").toBool());
     followAction_->setChecked(settings.value("follow", true).toBool());
+}
+
+void MainWindow::setUnsavedEdits(bool edited) {
+    unsavedEdits_ = edited;
+    setWindowModified(edited);
 }
 
 void MainWindow::showStatus(const QString& message, const QString& detail, int timeoutMs) {

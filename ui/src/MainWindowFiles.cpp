@@ -204,7 +204,7 @@ bool MainWindow::openProject(const QString& path) {
     }
     projectPath_ = QFileInfo(path).absoluteFilePath();
     demo_ = DemoProject::isDemo(projectPath_);
-    unsavedEdits_ = false;
+    setUnsavedEdits(false);
     autosave_->setProjectPath(demo_ ? QString() : projectPath_);
     // The file holds what was just loaded: saving it again now would only overwrite the
     // recovery file with it (or, for the demo, with the demo).
@@ -259,7 +259,7 @@ bool MainWindow::openRecovery() {
         return false;
     }
     startUntitled();
-    unsavedEdits_ = true;  // untitled: only the autosave holds it, until Save As
+    setUnsavedEdits(true);  // untitled: only the autosave holds it, until Save As
     autosave_->discardPending();
     autosave_->claimRecovery();  // a crash now offers it again
     applyViewSettings();
@@ -332,7 +332,7 @@ bool MainWindow::saveProjectAs(const QString& path) {
     }
     projectPath_ = QFileInfo(path).absoluteFilePath();
     demo_ = false;
-    unsavedEdits_ = false;
+    setUnsavedEdits(false);
     autosave_->setProjectPath(projectPath_);
     autosave_->discardPending();
     RecentFiles::add(projectPath_);
@@ -446,6 +446,9 @@ void MainWindow::updateTitle() {
     QString name = projectPath_.isEmpty() ? tr("untitled")
                    : demo_                ? tr("demo (Save As to keep changes)")
                                           : QFileInfo(projectPath_).fileName();
+    // The project's mark ([*]), not the mesh's: it shows while the edits are in no project file
+    // (setUnsavedEdits).
+    name += "[*]";
     if (document_->hasMesh()) name += " — " + QFileInfo(document_->meshPath()).fileName();
     setWindowTitle(tr("%1 — Boneless").arg(name));
 }

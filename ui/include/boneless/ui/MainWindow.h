@@ -115,6 +115,8 @@ class MainWindow : public QMainWindow {
     void applyViewSettings();
     void rebuildRecentMenu();
     void updateTitle();
+    // unsavedEdits_, and the title's mark of edits no project file holds.
+    void setUnsavedEdits(bool edited);
     void syncTableSelection(int marker);
     void onVertexPicked(int vertex);
     void onTakeLoaded();
