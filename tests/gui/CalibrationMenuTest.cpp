@@ -217,7 +217,29 @@ class CalibrationMenuTest : public QObject {
         window_->findChild<QAction*>("actionRedo")->trigger();
         QCOMPARE(document->settings().calibrationFrame, 25);
         QCOMPARE(document->alignment()->frame, 25);
-        QCOMPARE(document->undoStack()->undoText(), QString("Calibrate at frame 25"));
+        QCOMPARE(document->undoStack()->undoText(), QString("Calibrate at Frame 25"));
+    }
+
+    // Undo and Redo name a calibration as the Edit menu does: "Redo Calibrate automatically"
+    // sat under the menu's "Calibrate Automatically", capitalised otherwise.
+    void undoAndRedoNameACalibrationAsItsMenuItemDoes() {
+        Document* document = window_->document();
+        QAction* undo = window_->findChild<QAction*>("actionUndo");
+        QAction* redo = window_->findChild<QAction*>("actionRedo");
+        window_->timeline()->scrubTo(25);
+        QVERIFY(test::waitForFrame(*window_));
+        QVERIFY(trigger(*window_, "calibrateAtFrame"));
+        QCOMPARE(undo->text(), QString("&Undo Calibrate at Frame 25"));
+        for (const char* name : {"calibrateNone", "calibrateAutomatically"}) {
+            QAction* item = window_->findChild<QAction*>(name);
+            QVERIFY(trigger(*window_, name));
+            const QString itemName = item->text().remove('&');
+            QCOMPARE(document->undoStack()->undoText(), itemName);
+            QCOMPARE(undo->text(), "&Undo " + itemName);
+            undo->trigger();
+            QCOMPARE(redo->text(), "&Redo " + itemName);
+            redo->trigger();
+        }
     }
 
     // The solver aligns and fits at one frame: Align must not move the user's calibration frame.

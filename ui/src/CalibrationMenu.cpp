@@ -26,7 +26,7 @@ void addCalibrationActions(QMenu* edit, QMenu* view, Document* document, Timelin
     QAction* none = edit->addAction(QObject::tr("&Do Not Calibrate"), document, [=] {
         TakeSolveOptions settings = document->settings();
         settings.calibrate = CalibrateMode::None;
-        document->setSettings(settings, QObject::tr("Do not calibrate"));
+        document->setSettings(settings, QObject::tr("Do Not Calibrate"));
     });
     none->setObjectName("calibrateNone");
     none->setStatusTip(

@@ -262,7 +262,8 @@ bool Document::calibrateAt(int frame) {
     if (alignment_ && !fitAlignment(frame, after)) return false;
     if (sameSettings(after.settings, settings_) && sameAlignment(after.alignment, alignment_))
         return true;
-    pushEdit(frame >= 0 ? tr("Calibrate at frame %1").arg(frame) : tr("Calibrate automatically"),
+    // Named as the Edit menu names them: Undo and Redo say "Undo Calibrate Automatically".
+    pushEdit(frame >= 0 ? tr("Calibrate at Frame %1").arg(frame) : tr("Calibrate Automatically"),
              std::move(after));
     return true;
 }
