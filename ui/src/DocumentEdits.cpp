@@ -70,6 +70,11 @@ void Document::pushEdit(const QString& text, EditState after) {
 bool Document::assign(int marker, int vertex) {
     if (!hasMesh_) return fail(tr("Load a mesh before mapping markers."));
     if (marker < 0 || marker >= markerCount()) return fail(tr("No marker is selected."));
+    // Its entry would name both points, and the solver refuses that (Correspondence::resolve).
+    if (const QString shared = sharedLabelText(marker); !shared.isEmpty())
+        return fail(tr("%1 cannot be mapped: in %2, %3, so no map label can say which; relabel one "
+                       "of them in the take.")
+                        .arg(markerLabel(marker), QFileInfo(takePath_).fileName(), shared));
     if (vertex < 0 || vertex >= mesh_.vertexCount())
         return fail(
             tr("Vertex %1 is not on the mesh (%2 vertices).").arg(vertex).arg(mesh_.vertexCount()));
@@ -307,13 +312,27 @@ bool Document::canSolve(QString* why, QString* detail) const {
     // Before the take: loading one would not help.
     if (const QString refusal = memoryRefusal(); !refusal.isEmpty()) return no(refusal);
     if (!hasTake_) return no(tr("No take is loaded."));
-    QStringList unknown;
+    QStringList unknown, shared;
     int resolved = 0;
     for (const auto& m : map_.markers) {
-        if (take_.findPoint(m.label))
+        const std::vector<std::size_t> named = take_.pointsNamed(m.label);
+        if (named.size() == 1)
             ++resolved;
+        else if (named.size() > 1 && take_.pointsNamed(take_.points[named.front()].label) == named)
+            shared << QString::fromStdString(take_.sharedLabelText(named));
         else
             unknown << QString::fromStdString(m.label);
+    }
+    // Two points with one full label, not two subjects: no label can say which (core refuses it).
+    shared.removeDuplicates();  // "LFWT" and "Male:LFWT" name one group
+    if (!shared.isEmpty()) {
+        if (detail) *detail = tr("In the take, %1.").arg(shared.join("; "));
+        return no(counted(shared.size(),
+                          tr("The map names %n label that points of the take share (%1): no map "
+                             "label can say which; relabel one of them in the take."),
+                          tr("The map names %n labels that points of the take share (%1): no map "
+                             "label can say which; relabel one of each in the take."))
+                      .arg(shared.first()));
     }
     if (!unknown.isEmpty()) {
         if (detail) *detail = tr("Not in the take: %1.").arg(unknown.join(", "));

@@ -72,7 +72,11 @@ class Document : public QObject {
     // --- markers ---------------------------------------------------------------------------
     int markerCount() const { return static_cast<int>(markers_.size()); }
     QString markerLabel(int marker) const;
-    int markerPoint(int marker) const;   // the take's point index, -1 without a take
+    int markerPoint(int marker) const;  // the take's point index, -1 without a take
+    // Core's words when another point of the take has this marker's full label, which no map
+    // label can tell apart ("points 1 and 3 are both labelled Male:LFWT"); empty otherwise. Such a
+    // marker cannot be mapped.
+    QString sharedLabelText(int marker) const;
     int mappedVertex(int marker) const;  // -1 when unmapped
     double markerOffsetMm(int marker) const;
     bool markerSuggested(int marker) const;  // the entry came from "suggest" and was not edited
