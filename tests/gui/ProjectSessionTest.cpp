@@ -584,6 +584,74 @@ class ProjectSessionTest : public QObject {
         QVERIFY(!next.offerRecovery());
     }
 
+    // `boneless --project walk.boneless --frame 40` after a crash, answered Reopen: the crash's
+    // work got frame 40, the window asked at once to save it, and walk then opened at its own
+    // frame. The question says what Reopen does with the files named; reopened, the work opens
+    // where it was left, alone; discarded, the files open as asked.
+    void reopeningACrashsWorkAtStartOpensItInsteadOfTheFilesNamed() {
+        const QString walk = folder_ + "/walk.boneless";
+        {
+            MainWindow window;
+            window.setMessageBoxesEnabled(false);
+            QVERIFY(window.openProject(project_));
+            window.timeline()->setFrame(7);
+            QVERIFY(window.saveProjectAs(walk));
+            window.close();
+        }
+        QFile::remove(ProjectAutosave::recoveryPath());
+        int mapped = 0;
+        {
+            MainWindow crashed;
+            crashed.setMessageBoxesEnabled(false);
+            QVERIFY(crashed.openFiles({folder_ + "/mine/walker.obj", folder_ + "/mine/walker.c3d",
+                                       folder_ + "/mine/walker.map.json"}));
+            crashed.timeline()->setFrame(12);
+            QVERIFY(crashed.document()->clearMapping(0));
+            mapped = crashed.document()->mappedCount();
+            QVERIFY(crashed.autosave()->saveNow());
+        }  // gone without closing, as in a crash
+
+        // Every question is counted; the recovery's is answered `recovery`, any other to go on.
+        QStringList asked;
+        QString recovery = "reopenButton";
+        QTimer answering;
+        connect(&answering, &QTimer::timeout, [&] {
+            auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+            if (!box) return;
+            asked << box->objectName() + ": " + box->informativeText();
+            box->findChild<QPushButton*>(box->objectName() == "recoveryQuestion" ? recovery
+                                                                                 : "discardButton")
+                ->click();
+        });
+        answering.start(100);
+        {
+            MainWindow window;
+            window.setStartFrame(40);
+            QVERIFY(window.openAtStart(walk, {}));
+            QCOMPARE(asked.size(), 1);
+            QVERIFY2(asked[0].startsWith("recoveryQuestion") &&
+                         asked[0].contains("it opens instead of walk.boneless"),
+                     qPrintable(asked[0]));
+            QVERIFY(window.projectPath().isEmpty());
+            QCOMPARE(window.document()->mappedCount(), mapped);
+            QCOMPARE(window.timeline()->frame(), 12);
+            QVERIFY2(window.statusBar()->currentMessage().contains("instead of walk.boneless"),
+                     qPrintable(window.statusBar()->currentMessage()));
+        }  // a crash again, with the work reopened
+
+        asked.clear();
+        recovery = "discardButton";
+        MainWindow window;
+        window.setStartFrame(40);
+        QVERIFY(window.openAtStart(walk, {}));
+        answering.stop();
+        QCOMPARE(asked.size(), 1);
+        QCOMPARE(window.projectPath(), walk);
+        QCOMPARE(window.timeline()->frame(), 40);
+        window.setMessageBoxesEnabled(false);
+        window.close();
+    }
+
     // A second Boneless started while the first runs: the first's work is live, not a crash's, and
     // must not be offered (nor kept from the second's autosave) until that process has ended.
     void theWorkOfABonelessStillRunningIsNotOfferedAsACrashs() {

@@ -59,6 +59,13 @@ QString notARegularFileSentence(const QString& path, FileKind kind) {
     return QObject::tr("%1 %2.").arg(QFileInfo(path).fileName(), QString::fromStdString(why));
 }
 
+// "walk.boneless, take.c3d": what the user named, without the folders.
+QString fileNames(const QStringList& paths) {
+    QStringList names;
+    for (const QString& path : paths) names << QFileInfo(path).fileName();
+    return names.join(", ");
+}
+
 }  // namespace
 
 QString MainWindow::plainError(const QString& path) const {
@@ -263,12 +270,13 @@ bool MainWindow::openRecovery() {
     autosave_->discardPending();
     autosave_->claimRecovery();  // a crash now offers it again
     applyViewSettings();
+    startFrame_ = -1;  // --frame is for the files named with it: this opens where it was left
     restoreSession();
     statusBar()->showMessage(tr("Opened the last autosave, untitled: Save As keeps it"), 10000);
     return true;
 }
 
-bool MainWindow::offerRecovery() {
+bool MainWindow::offerRecovery(const QStringList& named) {
     if (!messageBoxes_ || !autosave_->hasUnfinishedRecovery()) return false;
     const QFileInfo recovery(ProjectAutosave::recoveryPath());
     const QString from = ProjectAutosave::recoveredProject();
@@ -276,12 +284,18 @@ bool MainWindow::offerRecovery() {
                     tr("Boneless did not close normally. Reopen the work it autosaved?"),
                     QMessageBox::NoButton, this);
     box.setObjectName("recoveryQuestion");
-    box.setInformativeText(
-        tr("The last autosave, from %1, holds %2. Discarded, it stays under File → Recent Files "
-           "→ Last Autosave until the next change replaces it.")
+    QString holds =
+        tr("The last autosave, from %1, holds %2.")
             .arg(QLocale().toString(recovery.lastModified(), QLocale::ShortFormat),
                  from.isEmpty() ? tr("an untitled project")
-                                : tr("unsaved changes to %1").arg(QFileInfo(from).fileName())));
+                                : tr("unsaved changes to %1").arg(QFileInfo(from).fileName()));
+    if (!named.isEmpty())
+        holds +=
+            " " +
+            tr("Reopened, it opens instead of %1, which is then not opened.").arg(fileNames(named));
+    box.setInformativeText(holds + " " +
+                           tr("Discarded, it stays under File → Recent Files → Last Autosave "
+                              "until the next change replaces it."));
     QPushButton* reopen = box.addButton(tr("Reopen"), QMessageBox::AcceptRole);
     QPushButton* discard = box.addButton(tr("Discard"), QMessageBox::DestructiveRole);
     reopen->setObjectName("reopenButton");
@@ -292,6 +306,26 @@ bool MainWindow::offerRecovery() {
     // Discarded, or it would not open (openRecovery said why): this session autosaves again.
     autosave_->discardRecovery();
     return false;
+}
+
+bool MainWindow::openAtStart(const QString& project, const QStringList& files) {
+    QStringList named = files;
+    if (!project.isEmpty()) named.prepend(project);
+    // A crash's work first: a file opened, or the demo edited, before the question would autosave
+    // over it.
+    if (offerRecovery(named)) {
+        if (!named.isEmpty())
+            statusBar()->showMessage(
+                tr("Opened the last autosave, untitled (Save As keeps it), instead of %1")
+                    .arg(fileNames(named)),
+                15000);
+        return true;
+    }
+    bool opened = true;
+    if (!project.isEmpty()) opened = openProject(project);
+    if (!files.isEmpty()) opened = openFiles(files) && opened;
+    if (named.isEmpty()) opened = openDemo();
+    return opened;
 }
 
 void MainWindow::startUntitled() {
