@@ -181,22 +181,38 @@ bool Document::suggestMappings(int* suggested, int* toCheck, QStringList* offBod
     return true;
 }
 
-bool Document::fitAlignment(int frame, EditState& after) {
+std::optional<Calibration> Document::solverAlignment(const EditState& state, int frame,
+                                                     QString* error) const {
     QString why;
-    if (!canSolve(&why)) return fail(why);
+    if (!canSolve(&why)) {
+        if (error) *error = why;
+        return std::nullopt;
+    }
     try {
         // The solver's own calibration also corrects for the markers' offsets off the skin, so
         // a fixed alignment is exactly what an automatic solve would have used.
-        TakeSolveOptions options = after.settings;
+        TakeSolveOptions options = state.settings;
         options.alignment.reset();
         options.calibrationFrame = frame;
         options.calibrate = CalibrateMode::None;  // the alignment alone, not the fit
-        TakeSolver solver(mesh_, take_, after.map, options);
-        after.alignment = solver.calibration();
+        TakeSolver solver(mesh_, take_, state.map, options);
+        return solver.calibration();
     } catch (const std::exception& e) {
-        return fail(QString::fromStdString(e.what()));
+        if (error) *error = QString::fromStdString(e.what());
+        return std::nullopt;
     }
+}
+
+bool Document::fitAlignment(int frame, EditState& after) {
+    QString error;
+    const std::optional<Calibration> found = solverAlignment(after, frame, &error);
+    if (!found) return fail(error);
+    after.alignment = found;
     return true;
+}
+
+std::optional<Calibration> Document::alignmentAt(int frame) const {
+    return solverAlignment(editState(), frame, nullptr);
 }
 
 bool Document::align(int calibrationFrame) {

@@ -240,7 +240,9 @@ void MainWindow::buildMenus() {
     buildFileMenu();
     QMenu* edit = buildEditMenu();
     QMenu* view = buildViewMenu();
-    addCalibrationActions(edit, view, document_, timeline_, display_);
+    addCalibrationActions(
+        edit, view, document_, timeline_, display_,
+        [this](const QString& message, const QString& detail) { showError(message, detail); });
     buildHelpMenu();
 }
 

@@ -109,6 +109,10 @@ class Document : public QObject {
     // frame, calibration on, and a fixed alignment redone at that frame, since the solver aligns
     // and fits at one frame (solveOptions()). Refused when that alignment fails.
     bool calibrateAt(int frame);
+    // The alignment the solver would find at `frame` (-1: its automatic choice) for the map and
+    // settings as they are, changing nothing (no undo step, no error reported); empty when it
+    // finds none. It builds a solver: up to a second on a 13K-vertex mesh.
+    std::optional<Calibration> alignmentAt(int frame) const;
     // What the solver and the export use: settings() plus the fixed alignment, if any.
     TakeSolveOptions solveOptions() const;
     // Free-form view state the window keeps in the project (labels, trails, heat map, ...).
@@ -206,6 +210,10 @@ class Document : public QObject {
     void pushEdit(const QString& text, EditState after);
     // Fixes after.alignment from after's map and settings at `frame` (-1: automatic).
     bool fitAlignment(int frame, EditState& after);
+    // The alignment the solver finds at `frame` (-1: automatic) for `state`'s map and settings;
+    // empty with *error when none is found.
+    std::optional<Calibration> solverAlignment(const EditState& state, int frame,
+                                               QString* error) const;
     void rebuildMarkers();
     void startAfresh();
     bool fail(const QString& message);
