@@ -145,15 +145,7 @@ int main(int argc, char** argv) {
     QString openError;
     const auto openErrors = QObject::connect(&window, &boneless::ui::MainWindow::errorShown,
                                              [&](const QString& message) { openError = message; });
-    // A crash's work first: a file opened, or the demo edited, before the question would autosave
-    // over it.
-    const bool recovered = window.offerRecovery();
-    bool opened = true;
-    if (parser.isSet(project)) opened = window.openProject(parser.value(project));
-    if (!parser.positionalArguments().isEmpty())
-        opened = window.openFiles(parser.positionalArguments()) && opened;
-    if (!parser.isSet(project) && parser.positionalArguments().isEmpty() && !recovered)
-        opened = window.openDemo();
+    const bool opened = window.openAtStart(parser.value(project), parser.positionalArguments());
     if (batch && !opened) {
         fail(openError.isEmpty() ? window.statusBar()->currentMessage() : openError);
         return 1;

@@ -317,6 +317,55 @@ class DocumentTest : public QObject {
             QVERIFY2(labels.contains(QString::fromStdString(label)), qPrintable(labels.join(' ')));
     }
 
+    // Two points of a take with one full label (Male:LFWT twice): either row could be
+    // click-mapped, its entry never resolved, and the solve check called the label missing from
+    // the take. Core's words say the label is shared, mapping such a row is refused with them, and
+    // the marker list's tooltip says so.
+    void aLabelTwoPointsOfTheTakeShareIsSaidSoAndItsRowsCannotBeMapped() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        C3dTake twice = d.take();
+        const int first = d.markerPoint(2), second = d.markerPoint(5);
+        twice.points[second].label = twice.points[first].label;
+        twice.points[second].name = twice.points[first].name;
+        const QString path = work_ + "/twice.c3d";
+        writeC3d(twice, path.toStdString());
+        QVERIFY(d.loadTake(path));  // the demo's map stays, naming the shared label
+        const QString shared = QString::fromStdString(
+            twice.sharedLabelText({std::size_t(first), std::size_t(second)}));
+        QVERIFY2(shared.contains("both labelled"), qPrintable(shared));
+
+        QString why, detail;
+        QVERIFY(!d.canSolve(&why, &detail));
+        QVERIFY2(why.contains(shared) && !why.contains("does not have"), qPrintable(why));
+        QVERIFY2(detail.contains(shared), qPrintable(detail));
+
+        int rowFirst = -1, rowSecond = -1, other = -1;
+        for (int m = 0; m < d.markerCount(); ++m) {
+            if (d.markerPoint(m) == first) rowFirst = m;
+            if (d.markerPoint(m) == second) rowSecond = m;
+            if (d.markerPoint(m) != first && d.markerPoint(m) != second) other = m;
+        }
+        QVERIFY(rowFirst >= 0 && rowSecond >= 0 && other >= 0);
+        QVERIFY(d.clearAllMappings());
+        for (int row : {rowFirst, rowSecond}) {
+            QVERIFY(!d.assign(row, 0));
+            QVERIFY2(d.lastError().contains("cannot be mapped: in twice.c3d, " + shared),
+                     qPrintable(d.lastError()));
+            QVERIFY(d.correspondence().markers.empty());
+        }
+        QVERIFY(d.assign(other, 0));
+
+        MarkerListModel model(&d);
+        const QString tip =
+            model.index(rowFirst, MarkerListModel::LabelColumn).data(Qt::ToolTipRole).toString();
+        QVERIFY2(tip.contains(shared), qPrintable(tip));
+        QVERIFY(model.index(other, MarkerListModel::LabelColumn)
+                    .data(Qt::ToolTipRole)
+                    .toString()
+                    .isEmpty());
+    }
+
     void aSuggestionToReviewIsMarkedInTheMarkerList() {
         Document d;
         QVERIFY(test::loadDemo(d, demo_));

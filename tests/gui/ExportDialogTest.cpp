@@ -201,6 +201,43 @@ class ExportDialogTest : public QObject {
         QVERIFY(part<QPushButton>(dialog, "exportStart")->isEnabled());
     }
 
+    // After Cancel the bar went back to 0 at the next solved frame or playhead move, under the
+    // message that frames were written. It keeps how many were, and says cancelled, until the
+    // frames to write change.
+    void aCancelledExportKeepsShowingHowFarItGot() {
+        ExportDialog dialog(&document_, &solver_, &timeline_);
+        dialog.show();
+        dialog.setFormat(ExportFormat::Obj);
+        dialog.setRange(ExportDialog::Range::All);
+        connect(dialog.runner(), &ExportRunner::progress, &dialog, [&] { dialog.cancelExport(); });
+        QSignalSpy finished(&dialog, &ExportDialog::finished);
+        dialog.setFolder(work_ + "/keptCount");
+        QVERIFY(dialog.startExport());
+        QVERIFY(finished.wait(120000));
+        QVERIFY(dialog.runner()->result().cancelled);
+        const int written = dialog.runner()->result().framesWritten;
+        QVERIFY(written >= 1 && written < document_.frameCount());
+        auto* bar = part<QProgressBar>(dialog, "exportProgress");
+        const QString shown =
+            QString("%1 / %2 frames: cancelled").arg(written).arg(document_.frameCount());
+        QCOMPARE(bar->value(), written);
+        QCOMPARE(bar->text(), shown);
+
+        // The playhead moving and a frame solved leave it so.
+        QSignalSpy solved(&solver_, &FrameSolver::frameReady);
+        timeline_.setFrame((timeline_.frame() + 3) % timeline_.frameCount());
+        solver_.requestFrame(timeline_.frame());
+        QVERIFY(solved.wait(60000));
+        QCOMPARE(bar->text(), shown);
+        dialog.hide();
+        dialog.show();
+        QCOMPARE(bar->text(), shown);
+
+        // Other frames are another export: the bar counts them.
+        dialog.setInOut(0, 9);
+        QCOMPARE(bar->text(), QString("0 / 10 frames"));
+    }
+
     void aMissingFolderIsAMessageNotAnExport() {
         ExportDialog dialog(&document_, &solver_, &timeline_);
         dialog.setFolder("  ");

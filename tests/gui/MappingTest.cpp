@@ -69,6 +69,48 @@ class MappingTest : public QObject {
         QCOMPARE(d->mappedVertex(0), before);
     }
 
+    // With nothing loaded, Map Markers, Clear, Suggest and Align were enabled and did nothing (or
+    // said what was missing). Each is enabled once what it needs is loaded: Map Markers a mesh and
+    // markers, Clear a mapped marker selected, Clear All a mapping, Suggest and Align a mesh and
+    // a take.
+    void eachMarkerEditIsEnabledOnlyOnceWhatItNeedsIsThere() {
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        Document* d = window.document();
+        auto enabled = [&](const char* name) {
+            const QObject* item = window.findChild<QObject*>(name);
+            if (!item) qFatal("no %s in the window", name);
+            return item->property("enabled").toBool();
+        };
+        auto enabledOnes = [&] {
+            QStringList on;
+            for (const char* name :
+                 {"actionMapMarkers", "clearMarker", "actionClearMapping", "actionClearAllMappings",
+                  "suggestRest", "actionSuggestRest", "alignTake", "actionAlign"})
+                if (enabled(name)) on << name;
+            return on.join(' ');
+        };
+        QVERIFY(!enabled("actionMapMarkers"));
+        QVERIFY(!enabled("actionAlign"));
+        QCOMPARE(enabledOnes(), QString());
+        QVERIFY(window.openFile(folder_ + "/demo/walker.obj"));
+        QCOMPARE(enabledOnes(), QString());
+        QVERIFY(window.openFile(folder_ + "/demo/walker.c3d"));
+        QCOMPARE(enabledOnes(),
+                 QString("actionMapMarkers suggestRest actionSuggestRest alignTake actionAlign"));
+        QVERIFY(window.openFile(folder_ + "/demo/walker.map.json"));
+        QCOMPARE(enabledOnes(), QString("actionMapMarkers actionClearAllMappings suggestRest "
+                                        "actionSuggestRest alignTake actionAlign"));
+        d->setSelectedMarker(0);
+        QVERIFY(enabled("clearMarker") && enabled("actionClearMapping"));
+        QVERIFY(d->clearMapping(0));
+        QVERIFY(!enabled("clearMarker") && !enabled("actionClearMapping"));
+        d->undoStack()->undo();
+        QVERIFY(enabled("clearMarker") && enabled("actionClearMapping"));
+        QVERIFY(d->clearAllMappings());
+        QVERIFY(!enabled("actionClearAllMappings") && !enabled("clearMarker"));
+    }
+
     // A click to look at the body moves no marker: only Map Markers maps.
     void aClickOnTheMeshMapsTheSelectedMarkerOnlyInMapMarkersMode() {
         const auto shown = test::openShown(freshProject());

@@ -3,6 +3,7 @@
 // project, a damaged or hostile project file gives one message, offers the last autosave when it
 // was made from that project and is itself left alone, and closing asks before edits that no
 // project file holds are left behind.
+#include <sys/stat.h>
 #include <QFile>
 #include <QFileDialog>
 #include <QJsonArray>
@@ -354,6 +355,47 @@ class ProjectSessionTest : public QObject {
             qPrintable(said));
     }
 
+    // A folder or a FIFO named as a project is refused as the core's loaders refuse them, by
+    // name: the project was read with QFile, which gave Qt's words for a folder ("file to open
+    // is a directory") and for a FIFO waited for a writer for ever (`--project` hung). The
+    // command line's files said that either "does not exist".
+    void aFolderOrAFifoGivenAsAProjectIsRefusedByName() {
+        const QString folder = folder_ + "/folder.boneless", fifo = folder_ + "/fifo.boneless",
+                      fifoTake = folder_ + "/fifo.c3d";
+        QDir(folder).removeRecursively();
+        QVERIFY(QDir().mkpath(folder));
+        for (const QString& path : {fifo, fifoTake}) {
+            QFile::remove(path);
+            QCOMPARE(::mkfifo(qPrintable(path), 0600), 0);
+        }
+        Document document;
+        QString error;
+        QVERIFY(!Project::load(document, folder, &error));
+        QCOMPARE(error, folder + ": is a directory, not a Boneless project file");
+
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        QSignalSpy errors(&window, &MainWindow::errorShown);
+        auto said = [&] { return errors.last().at(0).toString(); };
+        QVERIFY(!window.openProject(folder));  // as --project opens it
+        QVERIFY2(said().startsWith("folder.boneless is a directory, not a Boneless project file."),
+                 qPrintable(said()));
+        QVERIFY(!window.openFiles({folder}));  // as the command line's files open
+        QVERIFY2(said().startsWith("folder.boneless is a directory, not a Boneless project file."),
+                 qPrintable(said()));
+
+        QVERIFY(!Project::load(document, fifo, &error));
+        QCOMPARE(error, fifo + ": is not a regular file");
+        QVERIFY(!window.openProject(fifo));
+        QVERIFY2(said().startsWith("fifo.boneless is not a regular file."), qPrintable(said()));
+        QVERIFY(!window.openFiles({fifo}));
+        QVERIFY2(said().startsWith("fifo.boneless is not a regular file."), qPrintable(said()));
+        // A take's message reads its first bytes: not a FIFO's.
+        QVERIFY(!window.openFiles({fifoTake}));
+        QVERIFY2(said().startsWith("fifo.c3d is not a regular file."), qPrintable(said()));
+        QVERIFY(!window.document()->hasMesh());
+    }
+
     // A take cut short opens with what the reader let through, where the user sees it, and a
     // calibration frame past its end goes back to automatic instead of failing every frame.
     void aTakeCutShortOpensWithItsNotesAndDropsACalibrationFrameItLacks() {
@@ -388,6 +430,36 @@ class ProjectSessionTest : public QObject {
         QVERIFY(test::showAndWait(window));
         QVERIFY(test::waitForFrame(window));
         QVERIFY2(window.frameSummary().contains("solved"), qPrintable(window.frameSummary()));
+    }
+
+    // The title marks edits that no project file holds (Qt's [*]): an untitled or demo
+    // session's until Save As, a project's until the autosave has written them. It marked none.
+    void theTitleMarksEditsThatNoProjectFileHolds() {
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        window.autosave()->setDelay(60000);  // saved when the test says
+        QVERIFY(window.openFiles({folder_ + "/mine/walker.obj", folder_ + "/mine/walker.c3d",
+                                  folder_ + "/mine/walker.map.json"}));
+        QCOMPARE(window.windowTitle(), QString("untitled[*] — walker.obj — Boneless"));
+        QVERIFY(!window.isWindowModified());  // opening files is no edit
+        QVERIFY(window.document()->clearMapping(0));
+        QVERIFY(window.isWindowModified());
+        (void)window.autosave()->saveNow();  // the recovery file is no project file
+        QVERIFY(window.isWindowModified());
+        QVERIFY(window.saveProjectAs(folder_ + "/marked.boneless"));
+        QVERIFY(!window.isWindowModified());
+
+        QVERIFY(window.document()->clearMapping(1));
+        QVERIFY(window.isWindowModified());
+        QVERIFY(window.autosave()->saveNow());
+        QVERIFY(!window.isWindowModified());
+
+        QVERIFY(window.openDemo());
+        QVERIFY(!window.isWindowModified());
+        QVERIFY(window.document()->clearMapping(2));
+        (void)window.autosave()->saveNow();
+        QVERIFY(window.isWindowModified());
+        window.autosave()->discardPending();
     }
 
     void closingAsksBeforeUntitledEditsAreLeftToTheAutosave() {
@@ -510,6 +582,74 @@ class ProjectSessionTest : public QObject {
         MainWindow next;
         QVERIFY(!next.autosave()->hasUnfinishedRecovery());
         QVERIFY(!next.offerRecovery());
+    }
+
+    // `boneless --project walk.boneless --frame 40` after a crash, answered Reopen: the crash's
+    // work got frame 40, the window asked at once to save it, and walk then opened at its own
+    // frame. The question says what Reopen does with the files named; reopened, the work opens
+    // where it was left, alone; discarded, the files open as asked.
+    void reopeningACrashsWorkAtStartOpensItInsteadOfTheFilesNamed() {
+        const QString walk = folder_ + "/walk.boneless";
+        {
+            MainWindow window;
+            window.setMessageBoxesEnabled(false);
+            QVERIFY(window.openProject(project_));
+            window.timeline()->setFrame(7);
+            QVERIFY(window.saveProjectAs(walk));
+            window.close();
+        }
+        QFile::remove(ProjectAutosave::recoveryPath());
+        int mapped = 0;
+        {
+            MainWindow crashed;
+            crashed.setMessageBoxesEnabled(false);
+            QVERIFY(crashed.openFiles({folder_ + "/mine/walker.obj", folder_ + "/mine/walker.c3d",
+                                       folder_ + "/mine/walker.map.json"}));
+            crashed.timeline()->setFrame(12);
+            QVERIFY(crashed.document()->clearMapping(0));
+            mapped = crashed.document()->mappedCount();
+            QVERIFY(crashed.autosave()->saveNow());
+        }  // gone without closing, as in a crash
+
+        // Every question is counted; the recovery's is answered `recovery`, any other to go on.
+        QStringList asked;
+        QString recovery = "reopenButton";
+        QTimer answering;
+        connect(&answering, &QTimer::timeout, [&] {
+            auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+            if (!box) return;
+            asked << box->objectName() + ": " + box->informativeText();
+            box->findChild<QPushButton*>(box->objectName() == "recoveryQuestion" ? recovery
+                                                                                 : "discardButton")
+                ->click();
+        });
+        answering.start(100);
+        {
+            MainWindow window;
+            window.setStartFrame(40);
+            QVERIFY(window.openAtStart(walk, {}));
+            QCOMPARE(asked.size(), 1);
+            QVERIFY2(asked[0].startsWith("recoveryQuestion") &&
+                         asked[0].contains("it opens instead of walk.boneless"),
+                     qPrintable(asked[0]));
+            QVERIFY(window.projectPath().isEmpty());
+            QCOMPARE(window.document()->mappedCount(), mapped);
+            QCOMPARE(window.timeline()->frame(), 12);
+            QVERIFY2(window.statusBar()->currentMessage().contains("instead of walk.boneless"),
+                     qPrintable(window.statusBar()->currentMessage()));
+        }  // a crash again, with the work reopened
+
+        asked.clear();
+        recovery = "discardButton";
+        MainWindow window;
+        window.setStartFrame(40);
+        QVERIFY(window.openAtStart(walk, {}));
+        answering.stop();
+        QCOMPARE(asked.size(), 1);
+        QCOMPARE(window.projectPath(), walk);
+        QCOMPARE(window.timeline()->frame(), 40);
+        window.setMessageBoxesEnabled(false);
+        window.close();
     }
 
     // A second Boneless started while the first runs: the first's work is live, not a crash's, and

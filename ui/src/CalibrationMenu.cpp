@@ -12,10 +12,52 @@
 
 namespace boneless::ui {
 
+namespace {
+
+// A frame whose pose is far from the rest's (a stride) can align the body turned against its
+// markers: CMU 85_02 at frame 300 on MakeHuman turned it about 90°, 104.6 mm (RMS) at the
+// automatic frame, 256.3 mm there, and only the status bar's figure said so. Warned when the
+// chosen frame's alignment residual is both this many times the automatic one and this much more:
+// a few millimetres more on a good take are no concern, nor a small share more on a poor one.
+constexpr double kWorseRatio = 1.5;
+constexpr double kWorseMm = 50.0;
+
+void warnIfWorseThanAutomatic(const Document* document, int frame,
+                              const std::function<void(const QString&, const QString&)>& warn) {
+    const std::optional<Calibration> automatic = document->alignmentAt(-1);
+    if (!automatic || automatic->frame == frame) return;
+    // A fixed alignment was refitted at the frame already (calibrateAt).
+    const std::optional<Calibration> chosen =
+        document->alignment() ? document->alignment() : document->alignmentAt(frame);
+    if (!chosen) return;
+    const double unitToMm = document->take().unitToMm;
+    const double chosenMm = chosen->residualMm(unitToMm);
+    const double automaticMm = automatic->residualMm(unitToMm);
+    if (chosenMm <= kWorseRatio * automaticMm || chosenMm - automaticMm <= kWorseMm) return;
+    warn(QObject::tr("Frame %1 aligns the take much worse than the automatic choice, frame %2: "
+                     "the mapped markers sit %3 mm (RMS) from their points on the mesh, against "
+                     "%4 mm. Edit → Calibrate Automatically goes back.")
+             .arg(frame)
+             .arg(automatic->frame)
+             .arg(chosenMm, 0, 'f', 1)
+             .arg(automaticMm, 0, 'f', 1),
+         QObject::tr("A pose far from the rest's (a stride, a crouch) can align the body turned "
+                     "against its markers, and the solve then bends the mesh to meet them. Said "
+                     "when the frame's alignment is more than %1 times and %2 mm worse than the "
+                     "automatic frame's. Undo (Ctrl+Z) goes back too.")
+             .arg(kWorseRatio)
+             .arg(kWorseMm));
+}
+
+}  // namespace
+
 void addCalibrationActions(QMenu* edit, QMenu* view, Document* document, Timeline* timeline,
-                           FrameDisplay* display) {
-    QAction* atFrame = edit->addAction(QObject::tr("Calibrate at &This Frame"), document,
-                                       [=] { document->calibrateAt(timeline->frame()); });
+                           FrameDisplay* display,
+                           const std::function<void(const QString&, const QString&)>& warn) {
+    QAction* atFrame = edit->addAction(QObject::tr("Calibrate at &This Frame"), document, [=] {
+        const int frame = timeline->frame();
+        if (document->calibrateAt(frame)) warnIfWorseThanAutomatic(document, frame, warn);
+    });
     atFrame->setObjectName("calibrateAtFrame");
     atFrame->setStatusTip(QObject::tr(
         "Fit the mesh to the actor at the frame on screen, and solve every frame against it"));
@@ -26,7 +68,7 @@ void addCalibrationActions(QMenu* edit, QMenu* view, Document* document, Timelin
     QAction* none = edit->addAction(QObject::tr("&Do Not Calibrate"), document, [=] {
         TakeSolveOptions settings = document->settings();
         settings.calibrate = CalibrateMode::None;
-        document->setSettings(settings, QObject::tr("Do not calibrate"));
+        document->setSettings(settings, QObject::tr("Do Not Calibrate"));
     });
     none->setObjectName("calibrateNone");
     none->setStatusTip(

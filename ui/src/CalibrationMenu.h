@@ -1,6 +1,9 @@
 #pragma once
 
+#include <functional>
+
 class QMenu;
+class QString;
 
 namespace boneless::ui {
 
@@ -10,7 +13,9 @@ class Timeline;
 
 // The app's side of actor calibration (docs/calibration.md):
 //  Edit → Calibrate at This Frame / Calibrate Automatically: the frame the take is aligned and
-//    the rest fitted at (the project's settings.calibration_frame), and calibration on;
+//    the rest fitted at (the project's settings.calibration_frame), and calibration on; a frame
+//    that aligns much worse than the automatic choice is warned about through `warn` (a message
+//    and its detail), naming both residuals and the way back;
 //  Edit → Do Not Calibrate: calibrate none, frames solved against the rest as given;
 //    of these three, the mode in use is checked (the document's settings, through undo);
 //  Edit → Mesh Up → Guessed from the Take / +X … -Z: the project's settings.mesh_up, checked;
@@ -19,6 +24,7 @@ class Timeline;
 // The actions' object names: calibrateAtFrame, calibrateAutomatically, calibrateNone, meshUpauto,
 // meshUp+x … meshUp-z, showFrame, showCalibratedRest, showRest.
 void addCalibrationActions(QMenu* edit, QMenu* view, Document* document, Timeline* timeline,
-                           FrameDisplay* display);
+                           FrameDisplay* display,
+                           const std::function<void(const QString&, const QString&)>& warn);
 
 }  // namespace boneless::ui

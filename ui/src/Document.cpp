@@ -329,6 +329,13 @@ int Document::mappedVertex(int marker) const {
     return map_.markers[markers_[marker].mapping].vertex;
 }
 
+QString Document::sharedLabelText(int marker) const {
+    const int point = markerPoint(marker);
+    if (point < 0) return {};
+    const std::vector<std::size_t> named = take_.pointsNamed(take_.points[point].label);
+    return named.size() > 1 ? QString::fromStdString(take_.sharedLabelText(named)) : QString();
+}
+
 double Document::markerOffsetMm(int marker) const {
     if (marker < 0 || marker >= markerCount() || markers_[marker].mapping < 0) return 0.0;
     return map_.markers[markers_[marker].mapping].offsetMm;

@@ -70,6 +70,11 @@ void Document::pushEdit(const QString& text, EditState after) {
 bool Document::assign(int marker, int vertex) {
     if (!hasMesh_) return fail(tr("Load a mesh before mapping markers."));
     if (marker < 0 || marker >= markerCount()) return fail(tr("No marker is selected."));
+    // Its entry would name both points, and the solver refuses that (Correspondence::resolve).
+    if (const QString shared = sharedLabelText(marker); !shared.isEmpty())
+        return fail(tr("%1 cannot be mapped: in %2, %3, so no map label can say which; relabel one "
+                       "of them in the take.")
+                        .arg(markerLabel(marker), QFileInfo(takePath_).fileName(), shared));
     if (vertex < 0 || vertex >= mesh_.vertexCount())
         return fail(
             tr("Vertex %1 is not on the mesh (%2 vertices).").arg(vertex).arg(mesh_.vertexCount()));
@@ -176,22 +181,38 @@ bool Document::suggestMappings(int* suggested, int* toCheck, QStringList* offBod
     return true;
 }
 
-bool Document::fitAlignment(int frame, EditState& after) {
+std::optional<Calibration> Document::solverAlignment(const EditState& state, int frame,
+                                                     QString* error) const {
     QString why;
-    if (!canSolve(&why)) return fail(why);
+    if (!canSolve(&why)) {
+        if (error) *error = why;
+        return std::nullopt;
+    }
     try {
         // The solver's own calibration also corrects for the markers' offsets off the skin, so
         // a fixed alignment is exactly what an automatic solve would have used.
-        TakeSolveOptions options = after.settings;
+        TakeSolveOptions options = state.settings;
         options.alignment.reset();
         options.calibrationFrame = frame;
         options.calibrate = CalibrateMode::None;  // the alignment alone, not the fit
-        TakeSolver solver(mesh_, take_, after.map, options);
-        after.alignment = solver.calibration();
+        TakeSolver solver(mesh_, take_, state.map, options);
+        return solver.calibration();
     } catch (const std::exception& e) {
-        return fail(QString::fromStdString(e.what()));
+        if (error) *error = QString::fromStdString(e.what());
+        return std::nullopt;
     }
+}
+
+bool Document::fitAlignment(int frame, EditState& after) {
+    QString error;
+    const std::optional<Calibration> found = solverAlignment(after, frame, &error);
+    if (!found) return fail(error);
+    after.alignment = found;
     return true;
+}
+
+std::optional<Calibration> Document::alignmentAt(int frame) const {
+    return solverAlignment(editState(), frame, nullptr);
 }
 
 bool Document::align(int calibrationFrame) {
@@ -262,7 +283,8 @@ bool Document::calibrateAt(int frame) {
     if (alignment_ && !fitAlignment(frame, after)) return false;
     if (sameSettings(after.settings, settings_) && sameAlignment(after.alignment, alignment_))
         return true;
-    pushEdit(frame >= 0 ? tr("Calibrate at frame %1").arg(frame) : tr("Calibrate automatically"),
+    // Named as the Edit menu names them: Undo and Redo say "Undo Calibrate Automatically".
+    pushEdit(frame >= 0 ? tr("Calibrate at Frame %1").arg(frame) : tr("Calibrate Automatically"),
              std::move(after));
     return true;
 }
@@ -306,13 +328,27 @@ bool Document::canSolve(QString* why, QString* detail) const {
     // Before the take: loading one would not help.
     if (const QString refusal = memoryRefusal(); !refusal.isEmpty()) return no(refusal);
     if (!hasTake_) return no(tr("No take is loaded."));
-    QStringList unknown;
+    QStringList unknown, shared;
     int resolved = 0;
     for (const auto& m : map_.markers) {
-        if (take_.findPoint(m.label))
+        const std::vector<std::size_t> named = take_.pointsNamed(m.label);
+        if (named.size() == 1)
             ++resolved;
+        else if (named.size() > 1 && take_.pointsNamed(take_.points[named.front()].label) == named)
+            shared << QString::fromStdString(take_.sharedLabelText(named));
         else
             unknown << QString::fromStdString(m.label);
+    }
+    // Two points with one full label, not two subjects: no label can say which (core refuses it).
+    shared.removeDuplicates();  // "LFWT" and "Male:LFWT" name one group
+    if (!shared.isEmpty()) {
+        if (detail) *detail = tr("In the take, %1.").arg(shared.join("; "));
+        return no(counted(shared.size(),
+                          tr("The map names %n label that points of the take share (%1): no map "
+                             "label can say which; relabel one of them in the take."),
+                          tr("The map names %n labels that points of the take share (%1): no map "
+                             "label can say which; relabel one of each in the take."))
+                      .arg(shared.first()));
     }
     if (!unknown.isEmpty()) {
         if (detail) *detail = tr("Not in the take: %1.").arg(unknown.join(", "));

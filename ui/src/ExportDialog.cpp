@@ -113,7 +113,6 @@ ExportDialog::ExportDialog(Document* document, FrameSolver* solver, Timeline* ti
     estimate_->setObjectName("exportEstimate");
     progress_ = new QProgressBar;
     progress_->setObjectName("exportProgress");
-    progress_->setFormat(tr("%v / %m frames"));
     progress_->setValue(0);
     progressText_ = new QLabel;
     progressText_->setObjectName("exportProgressText");
@@ -148,11 +147,15 @@ ExportDialog::ExportDialog(Document* document, FrameSolver* solver, Timeline* ti
             QFileDialog::getExistingDirectory(this, tr("Export Into"), folder_->text());
         if (!chosen.isEmpty()) setFolder(chosen);
     });
-    connect(rangeGroup_, &QButtonGroup::idClicked, this, &ExportDialog::updateEstimate);
+    connect(rangeGroup_, &QButtonGroup::idClicked, this, [this] {
+        forgetLastRun();
+        updateEstimate();
+    });
     // Editing the frames means exporting them.
     for (QSpinBox* box : {in_, out_})
         connect(box, &QSpinBox::valueChanged, this, [this] {
             inOut_->setChecked(true);
+            forgetLastRun();
             updateEstimate();
         });
     connect(timeline_, &Timeline::frameChanged, this, &ExportDialog::updateEstimate);
@@ -169,6 +172,7 @@ ExportDialog::ExportDialog(Document* document, FrameSolver* solver, Timeline* ti
     // The calibrated rest's box follows calibration being turned on or off.
     connect(document_, &Document::settingsChanged, this,
             [this] { setRunning(runner_->isRunning()); });
+    forgetLastRun();
     updateEstimate();
 }
 
@@ -176,6 +180,7 @@ ExportDialog::~ExportDialog() = default;
 
 void ExportDialog::setRange(Range range) {
     rangeGroup_->button(int(range))->setChecked(true);
+    forgetLastRun();
     updateEstimate();
 }
 
@@ -264,8 +269,9 @@ void ExportDialog::syncFromDocument() {
 void ExportDialog::updateEstimate() {
     current_->setText(tr("Current frame (%1)").arg(timeline_->frame()));
     const int frames = frameCountToWrite();
-    // Before a run, the bar counts the frames the chosen range would write (not Qt's 0 / 100).
-    if (!runner_->isRunning()) {
+    // Before a run, the bar counts the frames the chosen range would write (not Qt's 0 / 100);
+    // after one, how far it got.
+    if (!runner_->isRunning() && !lastRunShown_) {
         progress_->setRange(0, std::max(1, frames));
         progress_->setValue(0);
     }
@@ -301,6 +307,7 @@ bool ExportDialog::startExport() {
     }
     QSettings().setValue("export/folder", folder());
     QSettings().setValue("export/calibratedRest", calibratedRest_->isChecked());
+    forgetLastRun();
     progress_->setRange(0, std::max(1, frameCountToWrite()));
     progress_->setValue(0);
     progressText_->setText(tr("Preparing the solver…"));
@@ -330,8 +337,21 @@ void ExportDialog::onProgress(int done, int total) {
 
 void ExportDialog::onFinished(bool ok, const QString& message) {
     setRunning(false);
+    // The bar keeps how far the run got, the frames written, until the frames to write change or
+    // another run starts: reset to 0 by the next solved frame, it read as nothing written.
+    lastRunShown_ = true;
+    if (ok) progress_->setValue(runner_->result().framesWritten);
+    if (runner_->result().cancelled)
+        progress_->setFormat(tr("%v / %m frames: cancelled"));
+    else if (!ok)
+        progress_->setFormat(tr("%v / %m frames: failed"));
     progressText_->setText(message);
     emit finished(ok, message);
+}
+
+void ExportDialog::forgetLastRun() {
+    lastRunShown_ = false;
+    progress_->setFormat(tr("%v / %m frames"));
 }
 
 void ExportDialog::setRunning(bool running) {

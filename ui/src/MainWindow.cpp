@@ -43,6 +43,38 @@
 
 namespace boneless::ui {
 
+namespace {
+
+// What an edit needs before it can do anything: its button and menu item are enabled while the
+// document has it (enableWhile). Suggest and Align also need markers mapped (4, 3): clicked
+// before, they say so.
+bool hasMarkersToMap(const Document* d) {
+    return d->hasMesh() && d->markerCount() > 0;
+}
+bool hasSelectedMapping(const Document* d) {
+    return d->mappedVertex(d->selectedMarker()) >= 0;
+}
+bool hasMappings(const Document* d) {
+    return !d->correspondence().markers.empty();
+}
+bool hasMeshAndTake(const Document* d) {
+    return d->hasMesh() && d->hasTake();
+}
+
+// Enables `item` (an action or a button) while `ready` holds for the document, checked again at
+// each change of what it holds or selects.
+template <class Item>
+void enableWhile(Item* item, Document* document, bool (*ready)(const Document*)) {
+    const auto update = [item, document, ready] { item->setEnabled(ready(document)); };
+    for (auto changed :
+         {&Document::meshChanged, &Document::takeChanged, &Document::correspondenceChanged})
+        QObject::connect(document, changed, item, update);
+    QObject::connect(document, &Document::selectionChanged, item, update);
+    update();
+}
+
+}  // namespace
+
 MainWindow::MainWindow(QWidget* parent)
     : QMainWindow(parent),
       document_(new Document(this)),
@@ -153,12 +185,15 @@ void MainWindow::buildMarkerDock() {
 
     auto* buttons = new QHBoxLayout;
     auto* clear = new QPushButton(tr("Clear"));
+    clear->setObjectName("clearMarker");
     clear->setToolTip(tr("Unmap the selected marker"));
     auto* suggest = new QPushButton(tr("Suggest rest"));
+    suggest->setObjectName("suggestRest");
     suggest->setToolTip(
         tr("Map every unmapped marker where the mesh, fitted to the mapped ones, "
            "meets it (needs 4 mapped); doubtful ones are marked to check"));
     auto* align = new QPushButton(tr("Align"));
+    align->setObjectName("alignTake");
     align->setToolTip(tr("Fix the take's alignment onto the mesh from the mapped markers"));
     // Mapping holds the picture still, so that each mapping's re-solve does not move the
     // surface under the cursor; leaving shows the playhead's frame again.
@@ -189,6 +224,10 @@ void MainWindow::buildMarkerDock() {
     });
     connect(suggest, &QPushButton::clicked, this, &MainWindow::suggestMappings);
     connect(align, &QPushButton::clicked, this, &MainWindow::alignTake);
+    enableWhile(mappingAction_, document_, hasMarkersToMap);
+    enableWhile(clear, document_, hasSelectedMapping);
+    enableWhile(suggest, document_, hasMeshAndTake);
+    enableWhile(align, document_, hasMeshAndTake);
 
     auto* dock = new QDockWidget(tr("Markers"), this);
     dock->setObjectName("markerDock");
@@ -201,7 +240,9 @@ void MainWindow::buildMenus() {
     buildFileMenu();
     QMenu* edit = buildEditMenu();
     QMenu* view = buildViewMenu();
-    addCalibrationActions(edit, view, document_, timeline_, display_);
+    addCalibrationActions(
+        edit, view, document_, timeline_, display_,
+        [this](const QString& message, const QString& detail) { showError(message, detail); });
     buildHelpMenu();
 }
 
@@ -245,13 +286,21 @@ QMenu* MainWindow::buildEditMenu() {
     edit->addAction(redo);
     edit->addSeparator();
     edit->addAction(mappingAction_);
-    edit->addAction(tr("&Suggest Rest"), this, &MainWindow::suggestMappings);
-    edit->addAction(tr("&Align Take to Mesh"), this, &MainWindow::alignTake)
-        ->setObjectName("actionAlign");
-    edit->addAction(tr("&Clear Mapping"), this, [this] {
+    QAction* suggest = edit->addAction(tr("&Suggest Rest"), this, &MainWindow::suggestMappings);
+    suggest->setObjectName("actionSuggestRest");
+    QAction* align = edit->addAction(tr("&Align Take to Mesh"), this, &MainWindow::alignTake);
+    align->setObjectName("actionAlign");
+    QAction* clear = edit->addAction(tr("&Clear Mapping"), this, [this] {
         if (document_->selectedMarker() >= 0) document_->clearMapping(document_->selectedMarker());
     });
-    edit->addAction(tr("Clear &All Mappings"), document_, &Document::clearAllMappings);
+    clear->setObjectName("actionClearMapping");
+    QAction* clearAll =
+        edit->addAction(tr("Clear &All Mappings"), document_, &Document::clearAllMappings);
+    clearAll->setObjectName("actionClearAllMappings");
+    enableWhile(suggest, document_, hasMeshAndTake);
+    enableWhile(align, document_, hasMeshAndTake);
+    enableWhile(clear, document_, hasSelectedMapping);
+    enableWhile(clearAll, document_, hasMappings);
     return edit;
 }
 
@@ -412,11 +461,11 @@ void MainWindow::connectDocument() {
             Qt::DirectConnection);
     // What closing or opening another file must not drop unasked (keepUnsavedWork).
     const auto edited = [this] {
-        if (!loading_) unsavedEdits_ = true;
+        if (!loading_) setUnsavedEdits(true);
     };
     connect(document_->undoStack(), &QUndoStack::indexChanged, this, edited);
     connect(autosave_, &ProjectAutosave::saved, this, [this](const QString& path) {
-        if (!demo_ && path == projectPath_) unsavedEdits_ = false;
+        if (!demo_ && path == projectPath_) setUnsavedEdits(false);
     });
     connect(display_, &FrameDisplay::frameDisplayed, this, &MainWindow::frameDisplayed);
     connect(display_, &FrameDisplay::latencyMeasured, this, &MainWindow::latencyMeasured);
@@ -499,6 +548,11 @@ void MainWindow::applyViewSettings() {
     trailsAction_->setChecked(settings.value("trails").toBool());
     heatMapAction_->setChecked(settings.value("heatMap").toBool());
     followAction_->setChecked(settings.value("follow", true).toBool());
+}
+
+void MainWindow::setUnsavedEdits(bool edited) {
+    unsavedEdits_ = edited;
+    setWindowModified(edited);
 }
 
 void MainWindow::showStatus(const QString& message, const QString& detail, int timeoutMs) {

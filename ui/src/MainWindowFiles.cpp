@@ -21,6 +21,7 @@
 #include "Counted.h"
 #include "FrameDisplay.h"
 #include "boneless/Error.h"
+#include "boneless/InputFile.h"
 #include "boneless/MeshReader.h"
 #include "boneless/ui/DemoProject.h"
 #include "boneless/ui/Document.h"
@@ -45,6 +46,26 @@ FileKind kindOf(const QString& path) {
     return FileKind::Unknown;
 }
 
+// "walk.boneless is a directory, not a Boneless project file.": a folder, or a FIFO (whose opening
+// waits for a writer for ever), refused by name as the core's loaders refuse them. Empty for a
+// regular file, and for a path that cannot be looked at (opening it says why).
+QString notARegularFileSentence(const QString& path, FileKind kind) {
+    const char* name = kind == FileKind::Project ? "Boneless project"
+                       : kind == FileKind::Mesh  ? "mesh"
+                       : kind == FileKind::Take  ? "C3D"
+                                                 : "correspondence";
+    const std::string why = notARegularFile(path.toStdString(), name);
+    if (why.empty()) return {};
+    return QObject::tr("%1 %2.").arg(QFileInfo(path).fileName(), QString::fromStdString(why));
+}
+
+// "walk.boneless, take.c3d": what the user named, without the folders.
+QString fileNames(const QStringList& paths) {
+    QStringList names;
+    for (const QString& path : paths) names << QFileInfo(path).fileName();
+    return names.join(", ");
+}
+
 }  // namespace
 
 QString MainWindow::plainError(const QString& path) const {
@@ -67,10 +88,16 @@ QString MainWindow::plainError(const QString& path) const {
 }
 
 bool MainWindow::openFile(const QString& path) {
-    if (!QFileInfo(path).isFile()) {
+    if (!QFileInfo::exists(path)) {
         showError(tr("%1 does not exist.").arg(QFileInfo(path).fileName()),
                   tr("No such file: %1").arg(path));
         return false;
+    }
+    if (kindOf(path) != FileKind::Unknown) {  // else refused below by its extension
+        if (const QString why = notARegularFileSentence(path, kindOf(path)); !why.isEmpty()) {
+            showError(why, path);
+            return false;
+        }
     }
     // The document's own message (technical) goes under the plain sentence.
     opening_ = path;
@@ -143,6 +170,11 @@ void MainWindow::showOpened(const QString& path, const QStringList& notes) {
 }
 
 bool MainWindow::openProject(const QString& path) {
+    // Refused before asking about the work open now: nothing would replace it.
+    if (const QString why = notARegularFileSentence(path, FileKind::Project); !why.isEmpty()) {
+        showError(why, path);
+        return false;
+    }
     if (!keepUnsavedWork(false)) return false;
     const QScopedValueRollback<int> loading(loading_, loading_ + 1);
     QString error, missing;
@@ -179,7 +211,7 @@ bool MainWindow::openProject(const QString& path) {
     }
     projectPath_ = QFileInfo(path).absoluteFilePath();
     demo_ = DemoProject::isDemo(projectPath_);
-    unsavedEdits_ = false;
+    setUnsavedEdits(false);
     autosave_->setProjectPath(demo_ ? QString() : projectPath_);
     // The file holds what was just loaded: saving it again now would only overwrite the
     // recovery file with it (or, for the demo, with the demo).
@@ -234,16 +266,17 @@ bool MainWindow::openRecovery() {
         return false;
     }
     startUntitled();
-    unsavedEdits_ = true;  // untitled: only the autosave holds it, until Save As
+    setUnsavedEdits(true);  // untitled: only the autosave holds it, until Save As
     autosave_->discardPending();
     autosave_->claimRecovery();  // a crash now offers it again
     applyViewSettings();
+    startFrame_ = -1;  // --frame is for the files named with it: this opens where it was left
     restoreSession();
     statusBar()->showMessage(tr("Opened the last autosave, untitled: Save As keeps it"), 10000);
     return true;
 }
 
-bool MainWindow::offerRecovery() {
+bool MainWindow::offerRecovery(const QStringList& named) {
     if (!messageBoxes_ || !autosave_->hasUnfinishedRecovery()) return false;
     const QFileInfo recovery(ProjectAutosave::recoveryPath());
     const QString from = ProjectAutosave::recoveredProject();
@@ -251,12 +284,18 @@ bool MainWindow::offerRecovery() {
                     tr("Boneless did not close normally. Reopen the work it autosaved?"),
                     QMessageBox::NoButton, this);
     box.setObjectName("recoveryQuestion");
-    box.setInformativeText(
-        tr("The last autosave, from %1, holds %2. Discarded, it stays under File → Recent Files "
-           "→ Last Autosave until the next change replaces it.")
+    QString holds =
+        tr("The last autosave, from %1, holds %2.")
             .arg(QLocale().toString(recovery.lastModified(), QLocale::ShortFormat),
                  from.isEmpty() ? tr("an untitled project")
-                                : tr("unsaved changes to %1").arg(QFileInfo(from).fileName())));
+                                : tr("unsaved changes to %1").arg(QFileInfo(from).fileName()));
+    if (!named.isEmpty())
+        holds +=
+            " " +
+            tr("Reopened, it opens instead of %1, which is then not opened.").arg(fileNames(named));
+    box.setInformativeText(holds + " " +
+                           tr("Discarded, it stays under File → Recent Files → Last Autosave "
+                              "until the next change replaces it."));
     QPushButton* reopen = box.addButton(tr("Reopen"), QMessageBox::AcceptRole);
     QPushButton* discard = box.addButton(tr("Discard"), QMessageBox::DestructiveRole);
     reopen->setObjectName("reopenButton");
@@ -267,6 +306,26 @@ bool MainWindow::offerRecovery() {
     // Discarded, or it would not open (openRecovery said why): this session autosaves again.
     autosave_->discardRecovery();
     return false;
+}
+
+bool MainWindow::openAtStart(const QString& project, const QStringList& files) {
+    QStringList named = files;
+    if (!project.isEmpty()) named.prepend(project);
+    // A crash's work first: a file opened, or the demo edited, before the question would autosave
+    // over it.
+    if (offerRecovery(named)) {
+        if (!named.isEmpty())
+            statusBar()->showMessage(
+                tr("Opened the last autosave, untitled (Save As keeps it), instead of %1")
+                    .arg(fileNames(named)),
+                15000);
+        return true;
+    }
+    bool opened = true;
+    if (!project.isEmpty()) opened = openProject(project);
+    if (!files.isEmpty()) opened = openFiles(files) && opened;
+    if (named.isEmpty()) opened = openDemo();
+    return opened;
 }
 
 void MainWindow::startUntitled() {
@@ -307,7 +366,7 @@ bool MainWindow::saveProjectAs(const QString& path) {
     }
     projectPath_ = QFileInfo(path).absoluteFilePath();
     demo_ = false;
-    unsavedEdits_ = false;
+    setUnsavedEdits(false);
     autosave_->setProjectPath(projectPath_);
     autosave_->discardPending();
     RecentFiles::add(projectPath_);
@@ -421,6 +480,9 @@ void MainWindow::updateTitle() {
     QString name = projectPath_.isEmpty() ? tr("untitled")
                    : demo_                ? tr("demo (Save As to keep changes)")
                                           : QFileInfo(projectPath_).fileName();
+    // The project's mark ([*]), not the mesh's: it shows while the edits are in no project file
+    // (setUnsavedEdits).
+    name += "[*]";
     if (document_->hasMesh()) name += " — " + QFileInfo(document_->meshPath()).fileName();
     setWindowTitle(tr("%1 — Boneless").arg(name));
 }

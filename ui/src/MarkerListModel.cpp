@@ -105,6 +105,12 @@ QVariant MarkerListModel::data(const QModelIndex& index, int role) const {
                 return std::isfinite(residual) ? QString::number(residual, 'f', 2) : QString();
         }
     }
+    if (role == Qt::ToolTipRole && index.column() == LabelColumn) {
+        const QString shared = document_->sharedLabelText(m);
+        if (!shared.isEmpty())
+            return tr("In the take, %1: no map label can say which, so it cannot be mapped")
+                .arg(shared);
+    }
     if (role == Qt::ToolTipRole && index.column() == VertexColumn && vertex >= 0) {
         const QString offset =
             tr("Offset off the skin: %1 mm").arg(document_->markerOffsetMm(m), 0, 'f', 1);

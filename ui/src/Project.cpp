@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "boneless/Correspondence.h"
+#include "boneless/InputFile.h"
 #include "boneless/TakeOptionsJson.h"
 #include "boneless/ui/Document.h"
 
@@ -19,6 +20,7 @@ namespace boneless::ui::Project {
 namespace {
 
 const char* kFormat = "boneless-project";
+const char* kKind = "Boneless project";  // what notARegularFile calls such a file
 constexpr int kVersion = 1;
 
 QString relativeTo(const QDir& dir, const QString& path) {
@@ -151,6 +153,9 @@ bool load(Document& document, const QString& path, QString* error, QString* miss
         if (missing) *missing = sentence.arg(file, project);
         return true;
     };
+    // As the core's loaders refuse them: opening a FIFO would wait for a writer for ever.
+    if (const std::string why = notARegularFile(path.toStdString(), kKind); !why.empty())
+        return fail(QString::fromStdString(why));
     QFile file(path);
     if (!file.open(QIODevice::ReadOnly)) return fail(file.errorString());
     QJsonParseError parseError;

@@ -72,7 +72,11 @@ class Document : public QObject {
     // --- markers ---------------------------------------------------------------------------
     int markerCount() const { return static_cast<int>(markers_.size()); }
     QString markerLabel(int marker) const;
-    int markerPoint(int marker) const;   // the take's point index, -1 without a take
+    int markerPoint(int marker) const;  // the take's point index, -1 without a take
+    // Core's words when another point of the take has this marker's full label, which no map
+    // label can tell apart ("points 1 and 3 are both labelled Male:LFWT"); empty otherwise. Such a
+    // marker cannot be mapped.
+    QString sharedLabelText(int marker) const;
     int mappedVertex(int marker) const;  // -1 when unmapped
     double markerOffsetMm(int marker) const;
     bool markerSuggested(int marker) const;  // the entry came from "suggest" and was not edited
@@ -105,6 +109,10 @@ class Document : public QObject {
     // frame, calibration on, and a fixed alignment redone at that frame, since the solver aligns
     // and fits at one frame (solveOptions()). Refused when that alignment fails.
     bool calibrateAt(int frame);
+    // The alignment the solver would find at `frame` (-1: its automatic choice) for the map and
+    // settings as they are, changing nothing (no undo step, no error reported); empty when it
+    // finds none. It builds a solver: up to a second on a 13K-vertex mesh.
+    std::optional<Calibration> alignmentAt(int frame) const;
     // What the solver and the export use: settings() plus the fixed alignment, if any.
     TakeSolveOptions solveOptions() const;
     // Free-form view state the window keeps in the project (labels, trails, heat map, ...).
@@ -202,6 +210,10 @@ class Document : public QObject {
     void pushEdit(const QString& text, EditState after);
     // Fixes after.alignment from after's map and settings at `frame` (-1: automatic).
     bool fitAlignment(int frame, EditState& after);
+    // The alignment the solver finds at `frame` (-1: automatic) for `state`'s map and settings;
+    // empty with *error when none is found.
+    std::optional<Calibration> solverAlignment(const EditState& state, int frame,
+                                               QString* error) const;
     void rebuildMarkers();
     void startAfresh();
     bool fail(const QString& message);

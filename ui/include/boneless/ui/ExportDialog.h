@@ -28,7 +28,8 @@ class Timeline;
 // starting, then a progress bar with the time left and Cancel. The estimate comes from the solve
 // times of the frames the window solved (the dialog listens from the start); with none yet, showing
 // the dialog asks the solver for the current frame, a quick measurement. A cancelled export's
-// sidecar says "complete": false.
+// sidecar says "complete": false. After a run the bar keeps the frames it wrote ("12 / 60 frames:
+// cancelled") until the frames to write change or another run starts.
 class ExportDialog : public QDialog {
     Q_OBJECT
   public:
@@ -77,6 +78,8 @@ class ExportDialog : public QDialog {
     void updateEstimate();
     void onProgress(int done, int total);
     void onFinished(bool ok, const QString& message);
+    // The bar counts the frames to write again, not the last run's.
+    void forgetLastRun();
     void setRunning(bool running);
 
     Document* document_;
@@ -96,6 +99,7 @@ class ExportDialog : public QDialog {
     QLabel* estimate_;
     QProgressBar* progress_;
     QLabel* progressText_;
+    bool lastRunShown_ = false;  // the bar shows how far the last run got
     QPushButton *start_, *cancel_, *close_;
     QElapsedTimer clock_;
 };

@@ -62,9 +62,16 @@ class MainWindow : public QMainWindow {
     // Opens ProjectAutosave::recoveryPath() as an untitled project, this session's from then on.
     bool openRecovery();
     // At start-up: when the last session did not close and left work that no project file holds
-    // in the recovery file, asks Reopen or Discard (recoveryQuestion). True when reopened;
-    // without message boxes it asks nothing and leaves that work alone.
-    bool offerRecovery();
+    // in the recovery file, asks Reopen or Discard (recoveryQuestion), saying that reopened it
+    // opens instead of the files `named` (the command line's). True when reopened; without
+    // message boxes it asks nothing and leaves that work alone.
+    bool offerRecovery(const QStringList& named = {});
+    // What the command line asks for at start-up: a crash's work first (offerRecovery), then the
+    // project and files, or with none the demo. Reopened, the crash's work opens where it was
+    // left (the start frame is not its) instead of the files, which are not opened: the window
+    // holds one session, and opening them asked at once to save the work just reopened. True
+    // when what was chosen opened.
+    bool openAtStart(const QString& project, const QStringList& files);
     bool saveProject();  // Save As when untitled or the demo
     bool saveProjectAs(const QString& path);
     QString projectPath() const { return projectPath_; }
@@ -115,6 +122,8 @@ class MainWindow : public QMainWindow {
     void applyViewSettings();
     void rebuildRecentMenu();
     void updateTitle();
+    // unsavedEdits_, and the title's mark of edits no project file holds.
+    void setUnsavedEdits(bool edited);
     void syncTableSelection(int marker);
     void onVertexPicked(int vertex);
     void onTakeLoaded();
