@@ -96,6 +96,9 @@ void registerMapCommand(CLI::App& app) {
         if (!s.otherSubjects.empty())
             std::printf("  left unmapped, worn by a subject no mapped marker names: %s\n",
                         joined(s.otherSubjects).c_str());
+        if (!s.sharedLabels.empty())
+            std::printf("  left unmapped, each label worn by two points of the take: %s\n",
+                        joined(s.sharedLabels).c_str());
         for (const Proposal& p : s.proposals)
             if (p.needsReview)
                 std::printf("  review %s (vertex %d): %s\n", p.label.c_str(), p.vertex,

@@ -315,9 +315,16 @@ Suggestion suggestMappings(const TriMesh& rest, const C3dTake& take,
     std::set<std::string> subjects;
     for (std::size_t p : mapped) subjects.insert(take.points[p].subject);
     std::vector<std::size_t> wanted;  // unmapped markers the take shows at least once
-    std::vector<std::string> otherSubjects;
+    std::vector<std::string> otherSubjects, sharedLabels;
+    std::set<std::size_t> shared;
+    for (const std::vector<std::size_t>& group : take.sharedLabels()) {
+        sharedLabels.push_back(take.points[group.front()].label);
+        shared.insert(group.begin(), group.end());
+    }
     for (std::size_t p : take.markerIndices()) {
-        if (mappedPoints.count(p) || take.samples.missingFrames(p) == take.frameCount()) continue;
+        if (mappedPoints.count(p) || shared.count(p) ||
+            take.samples.missingFrames(p) == take.frameCount())
+            continue;
         if (subjects.count(take.points[p].subject))
             wanted.push_back(p);
         else
@@ -335,6 +342,7 @@ Suggestion suggestMappings(const TriMesh& rest, const C3dTake& take,
     Suggestion out;
     out.map = partial;
     out.otherSubjects = otherSubjects;
+    out.sharedLabels = sharedLabels;
     if (wanted.empty()) return out;  // every marker seen is mapped: nothing to fit the mesh for
     const MirrorPlane mirror(rest, sides);
     std::vector<std::size_t> offBody;

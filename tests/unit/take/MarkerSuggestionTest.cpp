@@ -323,6 +323,27 @@ TEST(MarkerSuggestion, OnATakeTwoSubjectsWearItWritesTheSubjectWhereTheBareNameI
     EXPECT_EQ(c.within, 33);
 }
 
+// Two points with one label (a take relabelled by hand): an entry for it could not say which, and
+// solve refuses it; Suggest gave both an entry, and the map it wrote could not be solved.
+TEST(MarkerSuggestion, ALabelTwoPointsOfTheTakeShareIsLeftUnmappedAndNamed) {
+    const DemoWalker walker = makeDemoWalker();
+    const DemoTake demo = makeDemoWalkerTake(walker);
+    C3dTake take = demo.take;
+    const std::size_t clav = *take.findPoint("CLAV"), strn = *take.findPoint("STRN");
+    take.points[strn].label = take.points[clav].label;
+    take.points[strn].name = take.points[clav].name;
+    Correspondence partial = demo.map;
+    partial.markers.clear();
+    for (const char* label : {"LFHD", "LASI", "LWRA", "RWRA", "LANK", "RANK"})
+        partial.markers.push_back(*demo.map.find(label));
+    const Suggestion s = suggestMappings(walker.rest, take, partial);
+    EXPECT_EQ(s.sharedLabels, std::vector<std::string>{take.points[clav].label});
+    for (const MarkerMapping& m : s.map.markers)
+        EXPECT_FALSE(take.pointsNamed(m.label).size() > 1) << m.label;
+    EXPECT_EQ(s.map.markers.size(), demo.map.markers.size() - 2);  // CLAV and STRN, both gone
+    EXPECT_NO_THROW(s.map.resolve(take));
+}
+
 namespace {
 
 struct CmuBody {

@@ -32,6 +32,9 @@ struct Suggestion {
     std::vector<std::string> offBody;
     // Markers of a subject no pick names ("B:LFHD" when the picks are A's), left unmapped.
     std::vector<std::string> otherSubjects;
+    // Labels two or more points of the take share (C3dTake::sharedLabels), once each, left
+    // unmapped: no entry could say which point it means, and solve refuses such an entry.
+    std::vector<std::string> sharedLabels;
 };
 
 // Proposes a vertex for every marker of the take that `partial` does not map. The take is
