@@ -280,9 +280,10 @@ class CalibrationMenuTest : public QObject {
         QCOMPARE(said.count(), 1);
         const QString warning = said.first().at(0).toString();
         const QRegularExpression figures(
-            "^Frame 30 aligns the take much worse than the automatic choice, frame (\\d+): the "
-            "mapped markers sit (\\d+\\.\\d) mm \\(RMS\\) from their points on the mesh, "
-            "against (\\d+\\.\\d) mm\\. Edit → Calibrate Automatically goes back\\.\n");
+            "^Frame 30 aligns the take much worse than the automatic choice, frame (\\d+): "
+            "alignment (\\d+\\.\\d) mm \\(RMS\\), against (\\d+\\.\\d) mm\\. Undo "
+            "\\(Ctrl\\+Z\\) goes back; Edit → Calibrate Automatically picks the automatic "
+            "frame\\.\n");
         const QRegularExpressionMatch match = figures.match(warning);
         QVERIFY2(match.hasMatch(), qPrintable(warning));
         QVERIFY(match.captured(1).toInt() != kShuffled);

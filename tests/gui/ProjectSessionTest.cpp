@@ -79,6 +79,18 @@ class ProjectSessionTest : public QObject {
   public:
     static void initMain() { setDefaultSurfaceFormat(); }
 
+  private:
+    // A session that opened the walker, unmapped a marker and was gone without closing, as in a
+    // crash: its work is in the recovery file (a load alone is no edit, and is not autosaved).
+    void leaveWorkAsACrashDoes() {
+        MainWindow crashed;
+        crashed.setMessageBoxesEnabled(false);
+        QVERIFY(crashed.openFiles({folder_ + "/mine/walker.obj", folder_ + "/mine/walker.c3d",
+                                   folder_ + "/mine/walker.map.json"}));
+        QVERIFY(crashed.document()->clearMapping(0));
+        QVERIFY(crashed.autosave()->saveNow());
+    }
+
   private slots:
     void initTestCase() {
         test::isolate("ProjectSessionTest");
@@ -652,16 +664,50 @@ class ProjectSessionTest : public QObject {
         window.close();
     }
 
+    // Discarded at start, a crash's work stays in the recovery file until an edit replaces it, as
+    // the question says: the files named on the command line, loaded, were autosaved over it.
+    void filesOpenedAfterACrashsWorkIsDiscardedDoNotReplaceIt() {
+        const QStringList files = {folder_ + "/mine/walker.obj", folder_ + "/mine/walker.c3d",
+                                   folder_ + "/mine/walker.map.json"};
+        int mapped = 0;
+        {
+            MainWindow crashed;
+            crashed.setMessageBoxesEnabled(false);
+            QVERIFY(crashed.openFiles(files));
+            QVERIFY(crashed.document()->clearMapping(0));
+            QVERIFY(crashed.document()->clearMapping(1));
+            mapped = crashed.document()->mappedCount();
+            QVERIFY(crashed.autosave()->saveNow());
+        }  // gone without closing, as in a crash
+        QTimer answering;
+        connect(&answering, &QTimer::timeout, [] {
+            if (auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget()))
+                box->findChild<QPushButton*>("discardButton")->click();
+        });
+        answering.start(100);
+        MainWindow window;
+        QVERIFY(window.openAtStart({}, files));
+        answering.stop();
+        QVERIFY(window.document()->hasTake());
+        QVERIFY(window.document()->mappedCount() > mapped);
+        QTest::qWait(1500);  // past the autosave's delay
+        Document recovered;
+        QVERIFY(Project::load(recovered, ProjectAutosave::recoveryPath()));
+        QCOMPARE(recovered.mappedCount(), mapped);
+        // An edit does replace it.
+        QVERIFY(window.document()->clearMapping(3));
+        QVERIFY(window.autosave()->saveNow());
+        QVERIFY(Project::load(recovered, ProjectAutosave::recoveryPath()));
+        QCOMPARE(recovered.mappedCount(), window.document()->mappedCount());
+        window.setMessageBoxesEnabled(false);
+        window.close();
+    }
+
     // A second Boneless started while the first runs: the first's work is live, not a crash's, and
     // must not be offered (nor kept from the second's autosave) until that process has ended.
     void theWorkOfABonelessStillRunningIsNotOfferedAsACrashs() {
         QFile::remove(ProjectAutosave::recoveryPath());
-        {
-            MainWindow window;
-            window.setMessageBoxesEnabled(false);
-            QVERIFY(window.openFile(folder_ + "/mine/walker.obj"));
-            QVERIFY(window.autosave()->saveNow());
-        }
+        leaveWorkAsACrashDoes();
         QProcess other;  // stands for the first Boneless
         other.start("sleep", {"60"});
         QVERIFY(other.waitForStarted());
@@ -682,12 +728,7 @@ class ProjectSessionTest : public QObject {
     // it is told so once, not left to believe its edits are kept.
     void anUntitledSessionThatCannotAutosaveIsToldSoOnce() {
         QFile::remove(ProjectAutosave::recoveryPath());
-        {
-            MainWindow crashed;
-            crashed.setMessageBoxesEnabled(false);
-            QVERIFY(crashed.openFile(folder_ + "/mine/walker.obj"));
-            QVERIFY(crashed.autosave()->saveNow());
-        }  // gone without closing, as in a crash
+        leaveWorkAsACrashDoes();
         MainWindow window;
         window.setMessageBoxesEnabled(false);
         QVERIFY(window.autosave()->hasUnfinishedRecovery());
@@ -706,12 +747,7 @@ class ProjectSessionTest : public QObject {
 
     void discardingACrashsWorkLetsTheNextSessionAutosave() {
         QFile::remove(ProjectAutosave::recoveryPath());
-        {
-            MainWindow window;
-            window.setMessageBoxesEnabled(false);
-            QVERIFY(window.openFile(folder_ + "/mine/walker.obj"));
-            QVERIFY(window.autosave()->saveNow());
-        }  // a crash
+        leaveWorkAsACrashDoes();
         MainWindow window;
         QTimer::singleShot(300, [] {
             auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());

@@ -35,8 +35,8 @@ void warnIfWorseThanAutomatic(const Document* document, int frame,
     const double automaticMm = automatic->residualMm(unitToMm);
     if (chosenMm <= kWorseRatio * automaticMm || chosenMm - automaticMm <= kWorseMm) return;
     warn(QObject::tr("Frame %1 aligns the take much worse than the automatic choice, frame %2: "
-                     "the mapped markers sit %3 mm (RMS) from their points on the mesh, against "
-                     "%4 mm. Edit → Calibrate Automatically goes back.")
+                     "alignment %3 mm (RMS), against %4 mm. Undo (Ctrl+Z) goes back; Edit → "
+                     "Calibrate Automatically picks the automatic frame.")
              .arg(frame)
              .arg(automatic->frame)
              .arg(chosenMm, 0, 'f', 1)

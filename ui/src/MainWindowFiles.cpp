@@ -59,6 +59,24 @@ QString notARegularFileSentence(const QString& path, FileKind kind) {
     return QObject::tr("%1 %2.").arg(QFileInfo(path).fileName(), QString::fromStdString(why));
 }
 
+// A load is no edit: the autosave it sets off (Document::changed) is dropped, unless an edit was
+// waiting already. Files opened after Discard at start were autosaved over the crash's work that
+// the question had said would stay until the next change.
+class LoadIsNoEdit {
+  public:
+    explicit LoadIsNoEdit(ProjectAutosave* autosave)
+        : autosave_(autosave), editWaiting_(autosave->isPending()) {}
+    ~LoadIsNoEdit() {
+        if (!editWaiting_) autosave_->discardPending();
+    }
+    LoadIsNoEdit(const LoadIsNoEdit&) = delete;
+    LoadIsNoEdit& operator=(const LoadIsNoEdit&) = delete;
+
+  private:
+    ProjectAutosave* autosave_;
+    bool editWaiting_;
+};
+
 // "walk.boneless, take.c3d": what the user named, without the folders.
 QString fileNames(const QStringList& paths) {
     QStringList names;
@@ -111,6 +129,7 @@ bool MainWindow::openFile(const QString& path) {
         case FileKind::Take: {
             if (!keepUnsavedWork(false)) return false;
             const QScopedValueRollback<int> loading(loading_, loading_ + 1);
+            const LoadIsNoEdit noEdit(autosave_);
             ok = document_->loadTake(path);
             if (ok) startUntitled();
             break;
@@ -121,6 +140,7 @@ bool MainWindow::openFile(const QString& path) {
             Document::MapLoad mode = Document::MapLoad::Replace;
             if (!askMapLoad(path, mode)) return false;
             const QScopedValueRollback<int> loading(loading_, loading_ + 1);
+            const LoadIsNoEdit noEdit(autosave_);
             int added = 0;
             ok = document_->loadCorrespondence(path, mode, &added);
             if (ok && mode == Document::MapLoad::Merge && added == 0) {
@@ -290,9 +310,10 @@ bool MainWindow::offerRecovery(const QStringList& named) {
                  from.isEmpty() ? tr("an untitled project")
                                 : tr("unsaved changes to %1").arg(QFileInfo(from).fileName()));
     if (!named.isEmpty())
-        holds +=
-            " " +
-            tr("Reopened, it opens instead of %1, which is then not opened.").arg(fileNames(named));
+        holds += " " + (named.size() == 1
+                            ? tr("Reopened, it opens instead of %1, which is then not opened.")
+                            : tr("Reopened, it opens instead of %1, which are then not opened."))
+                           .arg(fileNames(named));
     box.setInformativeText(holds + " " +
                            tr("Discarded, it stays under File → Recent Files → Last Autosave "
                               "until the next change replaces it."));
@@ -411,6 +432,7 @@ bool MainWindow::openMesh(const QString& path) {
     opening_ = path;
     const auto done = qScopeGuard([this] { opening_.clear(); });
     const QScopedValueRollback<int> loading(loading_, loading_ + 1);
+    const LoadIsNoEdit noEdit(autosave_);
     if (!document_->loadMesh(path, group)) return false;
     startUntitled();  // never into the project (or demo) open before
     RecentFiles::add(QFileInfo(path).absoluteFilePath());
