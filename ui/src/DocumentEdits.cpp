@@ -345,9 +345,11 @@ bool Document::canSolve(QString* why, QString* detail) const {
         if (detail) *detail = tr("In the take, %1.").arg(shared.join("; "));
         return no(counted(shared.size(),
                           tr("The map names %n label that points of the take share (%1): no map "
-                             "label can say which; relabel one of them in the take."),
+                             "label can say which; relabel one of them in the take, or open a "
+                             "map without it."),
                           tr("The map names %n labels that points of the take share (%1): no map "
-                             "label can say which; relabel one of each in the take."))
+                             "label can say which; relabel one of each in the take, or open a "
+                             "map without them."))
                       .arg(shared.first()));
     }
     if (!unknown.isEmpty()) {
