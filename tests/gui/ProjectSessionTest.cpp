@@ -80,15 +80,18 @@ class ProjectSessionTest : public QObject {
     static void initMain() { setDefaultSurfaceFormat(); }
 
   private:
-    // A session that opened the walker, unmapped a marker and was gone without closing, as in a
-    // crash: its work is in the recovery file (a load alone is no edit, and is not autosaved).
-    void leaveWorkAsACrashDoes() {
+    // A session that opened the walker, unmapped a marker (at `frame`, when given) and was gone
+    // without closing, as in a crash: its work is in the recovery file (a load alone is no edit,
+    // and is not autosaved). Returns how many markers that work maps; -1 when a step failed.
+    int leaveWorkAsACrashDoes(int frame = -1) {
         MainWindow crashed;
         crashed.setMessageBoxesEnabled(false);
-        QVERIFY(crashed.openFiles({folder_ + "/mine/walker.obj", folder_ + "/mine/walker.c3d",
-                                   folder_ + "/mine/walker.map.json"}));
-        QVERIFY(crashed.document()->clearMapping(0));
-        QVERIFY(crashed.autosave()->saveNow());
+        if (!crashed.openFiles({folder_ + "/mine/walker.obj", folder_ + "/mine/walker.c3d",
+                                folder_ + "/mine/walker.map.json"}))
+            return -1;
+        if (frame >= 0) crashed.timeline()->setFrame(frame);
+        if (!crashed.document()->clearMapping(0) || !crashed.autosave()->saveNow()) return -1;
+        return crashed.document()->mappedCount();
     }
 
   private slots:
@@ -527,17 +530,8 @@ class ProjectSessionTest : public QObject {
 
     void afterACrashTheLastAutosaveOpensFromTheRecentFilesMenu() {
         QFile::remove(ProjectAutosave::recoveryPath());
-        int mapped = 0;
-        {
-            MainWindow window;
-            window.setMessageBoxesEnabled(false);
-            QVERIFY(window.openFile(folder_ + "/mine/walker.obj"));
-            QVERIFY(window.openFile(folder_ + "/mine/walker.c3d"));
-            QVERIFY(window.openFile(folder_ + "/mine/walker.map.json"));
-            QVERIFY(window.document()->clearMapping(0));
-            mapped = window.document()->mappedCount();
-            QVERIFY(window.autosave()->saveNow());
-        }  // gone without closing, as in a crash
+        const int mapped = leaveWorkAsACrashDoes();
+        QVERIFY(mapped >= 0);
         MainWindow window;
         window.setMessageBoxesEnabled(false);
         QVERIFY(window.openDemo());
@@ -556,16 +550,8 @@ class ProjectSessionTest : public QObject {
     // work alone, and the next start asks to reopen it, once.
     void workLeftByACrashIsOfferedAtStartAndNotOverwrittenByTheDemo() {
         QFile::remove(ProjectAutosave::recoveryPath());
-        int mapped = 0;
-        {
-            MainWindow window;
-            window.setMessageBoxesEnabled(false);
-            QVERIFY(window.openFiles({folder_ + "/mine/walker.obj", folder_ + "/mine/walker.c3d",
-                                      folder_ + "/mine/walker.map.json"}));
-            QVERIFY(window.document()->clearMapping(0));
-            mapped = window.document()->mappedCount();
-            QVERIFY(window.autosave()->saveNow());
-        }  // gone without closing, as in a crash
+        const int mapped = leaveWorkAsACrashDoes();
+        QVERIFY(mapped >= 0);
         const QByteArray crashed = readAll(ProjectAutosave::recoveryPath());
         QVERIFY(!crashed.isEmpty());
         {
@@ -611,17 +597,8 @@ class ProjectSessionTest : public QObject {
             window.close();
         }
         QFile::remove(ProjectAutosave::recoveryPath());
-        int mapped = 0;
-        {
-            MainWindow crashed;
-            crashed.setMessageBoxesEnabled(false);
-            QVERIFY(crashed.openFiles({folder_ + "/mine/walker.obj", folder_ + "/mine/walker.c3d",
-                                       folder_ + "/mine/walker.map.json"}));
-            crashed.timeline()->setFrame(12);
-            QVERIFY(crashed.document()->clearMapping(0));
-            mapped = crashed.document()->mappedCount();
-            QVERIFY(crashed.autosave()->saveNow());
-        }  // gone without closing, as in a crash
+        const int mapped = leaveWorkAsACrashDoes(12);
+        QVERIFY(mapped >= 0);
 
         // Every question is counted; the recovery's is answered `recovery`, any other to go on.
         QStringList asked;
@@ -669,16 +646,8 @@ class ProjectSessionTest : public QObject {
     void filesOpenedAfterACrashsWorkIsDiscardedDoNotReplaceIt() {
         const QStringList files = {folder_ + "/mine/walker.obj", folder_ + "/mine/walker.c3d",
                                    folder_ + "/mine/walker.map.json"};
-        int mapped = 0;
-        {
-            MainWindow crashed;
-            crashed.setMessageBoxesEnabled(false);
-            QVERIFY(crashed.openFiles(files));
-            QVERIFY(crashed.document()->clearMapping(0));
-            QVERIFY(crashed.document()->clearMapping(1));
-            mapped = crashed.document()->mappedCount();
-            QVERIFY(crashed.autosave()->saveNow());
-        }  // gone without closing, as in a crash
+        const int mapped = leaveWorkAsACrashDoes();
+        QVERIFY(mapped >= 0);
         QTimer answering;
         connect(&answering, &QTimer::timeout, [] {
             if (auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget()))
@@ -707,7 +676,7 @@ class ProjectSessionTest : public QObject {
     // must not be offered (nor kept from the second's autosave) until that process has ended.
     void theWorkOfABonelessStillRunningIsNotOfferedAsACrashs() {
         QFile::remove(ProjectAutosave::recoveryPath());
-        leaveWorkAsACrashDoes();
+        QVERIFY(leaveWorkAsACrashDoes() >= 0);
         QProcess other;  // stands for the first Boneless
         other.start("sleep", {"60"});
         QVERIFY(other.waitForStarted());
@@ -728,7 +697,7 @@ class ProjectSessionTest : public QObject {
     // it is told so once, not left to believe its edits are kept.
     void anUntitledSessionThatCannotAutosaveIsToldSoOnce() {
         QFile::remove(ProjectAutosave::recoveryPath());
-        leaveWorkAsACrashDoes();
+        QVERIFY(leaveWorkAsACrashDoes() >= 0);
         MainWindow window;
         window.setMessageBoxesEnabled(false);
         QVERIFY(window.autosave()->hasUnfinishedRecovery());
@@ -747,7 +716,7 @@ class ProjectSessionTest : public QObject {
 
     void discardingACrashsWorkLetsTheNextSessionAutosave() {
         QFile::remove(ProjectAutosave::recoveryPath());
-        leaveWorkAsACrashDoes();
+        QVERIFY(leaveWorkAsACrashDoes() >= 0);
         MainWindow window;
         QTimer::singleShot(300, [] {
             auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
