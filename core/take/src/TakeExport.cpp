@@ -90,7 +90,13 @@ GltfPlacement gltfPlacement(const Similarity& takeToMesh, double takeUnitToMm, c
 }
 
 std::string exportStem(const ExportRequest& request) {
-    return fs::path(request.group.empty() ? request.meshPath : request.group).stem().string();
+    if (request.group.empty()) return fs::path(request.meshPath).stem().string();
+    // A group is a name, not a path: Blender's "Body.001" and "Body.002" keep their dots (a stem
+    // made both "Body"), and a separator cannot lead the files out of the folder.
+    std::string stem = request.group;
+    for (char& c : stem)
+        if (c == '/' || c == '\\' || c == ':' || static_cast<unsigned char>(c) < 32) c = '_';
+    return stem == "." || stem == ".." ? std::string(stem.size(), '_') : stem;
 }
 
 std::string objFrameFile(const std::string& stem, int frame) {

@@ -69,3 +69,19 @@ TEST(TakeExport, AGlbOfATakeWhoseRateIsNotANumberIsRefusedSayingSo) {
             << e.what();
     }
 }
+
+// Blender names a mesh's copies "Body.001" and "Body.002": the group's stem made both "Body", so
+// two groups solved into one folder replaced each other's files. A group is a name, not a path.
+TEST(TakeExport, AGroupNamesItsFilesWholeAndKeepsThemInTheFolder) {
+    ExportRequest request;
+    request.meshPath = "/data/two.obj";
+    EXPECT_EQ(exportStem(request), "two");
+    request.group = "Body.001";
+    EXPECT_EQ(exportStem(request), "Body.001");
+    request.group = "Body.002";
+    EXPECT_EQ(exportStem(request), "Body.002");
+    request.group = "../../evil";
+    EXPECT_EQ(exportStem(request), ".._.._evil");
+    request.group = "..";
+    EXPECT_EQ(exportStem(request), "__");
+}
