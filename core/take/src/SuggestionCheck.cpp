@@ -34,7 +34,8 @@ SuggestionCheck checkSuggestion(const TriMesh& rest, const C3dTake& take,
     check.compared = static_cast<int>(mm.size());
     if (!mm.empty()) {
         std::sort(mm.begin(), mm.end());
-        check.medianMm = mm[mm.size() / 2];
+        const std::size_t h = mm.size() / 2;
+        check.medianMm = mm.size() % 2 ? mm[h] : (mm[h - 1] + mm[h]) / 2;
     }
     return check;
 }

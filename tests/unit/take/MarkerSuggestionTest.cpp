@@ -428,3 +428,23 @@ TEST(MarkerSuggestion, NoEntryLandsFartherThanTheBoundFromTheBestFitOnTheCmuTake
             EXPECT_NE(take.findPoint(p.label), take.findPoint(label)) << label;
     EXPECT_EQ(s.suggested + s.offBody.size(), 37u);  // 41 markers, 4 picked
 }
+
+// Of an even count the median is the mean of the two middle distances: 1, 2, 4 and 9 mm gave 4.
+TEST(MarkerSuggestion, TheChecksMedianOfAnEvenCountIsMidwayBetweenItsMiddleTwo) {
+    TriMesh rest;
+    rest.V = Positions::Zero(5, 3);
+    for (int v = 1; v < 5; ++v) rest.V(v, 0) = std::vector<double>{1, 2, 4, 9}[v - 1];
+    Suggestion s;
+    s.calibration.takeToMesh.scale = 1.0;
+    Correspondence reference;
+    for (const char* label : {"A", "B", "C", "D"}) {
+        const int v = static_cast<int>(s.proposals.size()) + 1;
+        s.proposals.push_back({label, v});
+        s.map.markers.push_back({label, v, 0.0, "{}"});
+        reference.markers.push_back({label, 0, 0.0, "{}"});
+    }
+    const SuggestionCheck c = checkSuggestion(rest, C3dTake{}, s, reference, 3.0);
+    EXPECT_EQ(c.compared, 4);
+    EXPECT_EQ(c.within, 2);
+    EXPECT_DOUBLE_EQ(c.medianMm, 3.0);
+}
