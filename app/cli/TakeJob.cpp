@@ -127,6 +127,11 @@ void checkMapFitsMesh(const Correspondence& map, const TriMesh& mesh, const std:
         map.checkMesh(mesh.vertexCount(), meshPath, &mesh);
     } catch (const Error& e) {
         if (map.meshGroup.empty() || map.meshGroup == group) throw;
+        // The hint only where it helps: a mesh without the map's group would refuse it next.
+        const std::vector<ObjGroup> groups = objGroups(meshPath);
+        if (std::none_of(groups.begin(), groups.end(),
+                         [&](const ObjGroup& g) { return g.name == map.meshGroup; }))
+            throw;
         throw Error(std::string(e.what()) + "; open it with --group " + map.meshGroup);
     }
 }

@@ -105,6 +105,42 @@ TEST(MapSuggestCommand, AMapMadeOnAGroupNamesTheMeshFileAndTheFlagToOpenItWith) 
         << r.out;
 }
 
+// A map made on a group of another file names that group as the way out, but only when the mesh
+// has such a group: the koala (no groups) was told "open it with --group body", which then failed.
+TEST(MapSuggestCommand, AMapOfAGroupTheMeshLacksGetsNoGroupHint) {
+    const fs::path dir = freshTestDir("map-suggest-no-group");
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frames 3").exitCode, 0);
+    nlohmann::json map;
+    std::ifstream(dir / "walker.map.json") >> map;
+    map["mesh"]["group"] = "body";
+    map["mesh"]["vertices"] = 13380;
+    std::ofstream(dir / "body.map.json") << map.dump();
+    const CliResult r =
+        runCli("map suggest --mesh " + (dir / "walker.obj").string() + " --c3d " +
+               (dir / "walker.c3d").string() + " --map " + (dir / "body.map.json").string() +
+               " --out " + (dir / "full.json").string());
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("with 13380 vertices"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("--group"), std::string::npos) << r.out;
+}
+
+// --check compared the vertex numbers of a reference made for another mesh, which name other
+// places (or none: those were dropped), and printed a score that meant nothing.
+TEST(MapSuggestCommand, ACheckMapMadeForAnotherMeshIsRefusedBeforeTheMapIsWritten) {
+    const fs::path dir = freshTestDir("map-suggest-check-other");
+    const std::string command = suggestOnDemo(dir);
+    nlohmann::json map;
+    std::ifstream(dir / "walker.map.json") >> map;
+    map["mesh"]["vertices"] = 13380;
+    std::ofstream(dir / "other.json") << map.dump();
+    const CliResult r = runCli(command + " --check " + (dir / "other.json").string());
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("other.json"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("13380 vertices"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("within 30 mm"), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(dir / "full.json"));
+}
+
 TEST(MapSuggestCommand, AMissingCheckMapFailsBeforeTheMapIsWritten) {
     const fs::path dir = freshTestDir("map-suggest-check");
     const CliResult r = runCli(suggestOnDemo(dir) + " --check " + (dir / "nosuch.json").string());
