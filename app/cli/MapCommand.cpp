@@ -63,6 +63,8 @@ void registerMapCommand(CLI::App& app) {
             args->check.empty() ? std::nullopt
                                 : std::optional<Correspondence>(Correspondence::read(args->check));
         checkMapFitsMesh(partial, mesh, args->mesh, args->group);
+        // A reference made for another mesh compares vertex numbers that name other places.
+        if (truth) checkMapFitsMesh(*truth, mesh, args->mesh, args->group);
         Suggestion s = suggestMappings(mesh, take, partial);
         // The map records the mesh it was made on, as the app's maps do.
         if (s.map.meshFile.empty())
