@@ -90,7 +90,9 @@ int main(int argc, char** argv) {
     const QCommandLineOption noMsaa("no-msaa", "Render without multisampling.");
     const QCommandLineOption size("size", "With --screenshot: the view's size WxH (800x600).",
                                   "WxH", "800x600");
-    parser.addOptions({project, frame, screenshot, noMsaa, size});
+    const QCommandLineOption group(
+        "group", "Open group G of an OBJ among the files, without asking which.", "G");
+    parser.addOptions({project, frame, group, screenshot, noMsaa, size});
     parser.addPositionalArgument("files", "Projects, meshes, takes or maps to open.", "[FILE...]");
 
     // --help and --version are answered before the QApplication, which aborts without a display
@@ -139,6 +141,7 @@ int main(int argc, char** argv) {
     window.meshView()->setMultiSampling(parser.isSet(noMsaa) || batch ? 0 : samples);
     window.setMessageBoxesEnabled(!batch);
     window.setStartFrame(startFrame);
+    window.setStartGroup(parser.value(group));
     if (batch) window.meshView()->setFixedSize(viewSize);
 
     // What the error box's details would show: the status bar has only the first line.

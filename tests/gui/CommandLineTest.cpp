@@ -40,8 +40,8 @@ class CommandLineTest : public QObject {
             QVERIFY2(!run.crashed && run.exitCode == 0, qPrintable(exitText(arguments, run)));
             QVERIFY2(run.output.contains("Usage: ") && run.output.contains("boneless"),
                      qPrintable(run.output));
-            for (const char* option :
-                 {"--project", "--frame", "--screenshot", "--size", "--no-msaa", "--version"})
+            for (const char* option : {"--project", "--frame", "--group", "--screenshot", "--size",
+                                       "--no-msaa", "--version"})
                 QVERIFY2(run.output.contains(option), qPrintable(option + ("\n" + run.output)));
         }
     }

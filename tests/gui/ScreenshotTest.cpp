@@ -83,6 +83,35 @@ class ScreenshotTest : public QObject {
         QVERIFY2(failure.isEmpty(), qPrintable(failure));
     }
 
+    // An OBJ with groups asked which to open in a modal dialog that no one can answer in a
+    // screenshot run: it hung for ever. It now says to name the group, and --group opens it.
+    void aMeshWithGroupsIsOpenedByGroupOrRefusedNamingThem() {
+        const QString dir = QFileInfo(project_).absolutePath();
+        QFile walker(dir + "/walker.obj"), grouped(folder_ + "/grouped.obj");
+        QVERIFY(walker.open(QIODevice::ReadOnly) && grouped.open(QIODevice::WriteOnly));
+        grouped.write("g body\n" + walker.readAll() +
+                      "g prop\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n");
+        grouped.close();
+        const QStringList files{grouped.fileName(), dir + "/walker.c3d", dir + "/walker.map.json"};
+        const QString out = folder_ + "/grouped.png";
+        auto screenshot = [&](const QStringList& options) {
+            return test::runBoneless(files + options + QStringList{"--screenshot", out}, folder_,
+                                     QProcessEnvironment::systemEnvironment(), 60000);
+        };
+        test::AppRun run = screenshot({});
+        QVERIFY2(run.exitCode == 1, qPrintable(run.output));
+        QVERIFY2(run.output.contains("grouped.obj has 2 groups: name one with --group") &&
+                     run.output.contains("body, prop"),
+                 qPrintable(run.output));
+        QVERIFY(!QFileInfo::exists(out));
+        run = screenshot({"--group", "lid"});
+        QVERIFY2(run.exitCode == 1 && run.output.contains("grouped.obj has no group named lid"),
+                 qPrintable(run.output));
+        run = screenshot({"--group", "body", "--frame", "5"});
+        QVERIFY2(run.exitCode == 0, qPrintable(run.output));
+        QVERIFY(!QImage(out).isNull());
+    }
+
     void badProjectFailsWithMessage() {
         const QString out = folder_ + "/never.png";
         const test::AppRun run = test::runBoneless(

@@ -330,6 +330,7 @@ bool MainWindow::offerRecovery(const QStringList& named) {
 }
 
 bool MainWindow::openAtStart(const QString& project, const QStringList& files) {
+    const auto once = qScopeGuard([this] { startGroup_.clear(); });  // not for later opens
     QStringList named = files;
     if (!project.isEmpty()) named.prepend(project);
     // A crash's work first: a file opened, or the demo edited, before the question would autosave
@@ -414,14 +415,30 @@ void MainWindow::chooseMesh() {
     if (!path.isEmpty()) kindOf(path) == FileKind::Unknown ? openMesh(path) : openFile(path);
 }
 
-// An OBJ with groups asks which to open (the largest preselected), however it was opened.
+// An OBJ with groups asks which to open (the largest preselected), however it was opened, unless
+// --group named it. A run without message boxes (--screenshot) cannot ask: it says how to name it.
 bool MainWindow::openMesh(const QString& path) {
     if (!keepUnsavedWork(false)) return false;
     QString group;
     try {
         const std::vector<ObjGroup> groups = objGroups(path.toStdString());
-        if (groups.size() > 1) {
-            GroupChooser chooser(QFileInfo(path).fileName(), groups, this);
+        QStringList names;
+        for (const ObjGroup& g : groups) names << QString::fromStdString(g.name);
+        const QString name = QFileInfo(path).fileName();
+        if (!startGroup_.isEmpty()) {
+            if (!names.contains(startGroup_)) {
+                showError(
+                    tr("%1 has no group named %2.").arg(name, startGroup_),
+                    tr("Its groups: %1").arg(names.isEmpty() ? tr("none") : names.join(", ")));
+                return false;
+            }
+            group = startGroup_;
+        } else if (groups.size() > 1 && !messageBoxes_) {
+            showError(tr("%1 has %2 groups: name one with --group.").arg(name).arg(groups.size()),
+                      tr("Its groups: %1").arg(names.join(", ")));
+            return false;
+        } else if (groups.size() > 1) {
+            GroupChooser chooser(name, groups, this);
             if (chooser.exec() != QDialog::Accepted) return false;
             group = chooser.group();
         }

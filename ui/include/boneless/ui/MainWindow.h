@@ -86,6 +86,8 @@ class MainWindow : public QMainWindow {
 
     // The frame the timeline moves to once the next take is loaded (for --frame).
     void setStartFrame(int frame) { startFrame_ = frame; }
+    // --group: the OBJ group the files named at start open, without asking.
+    void setStartGroup(const QString& group) { startGroup_ = group; }
     // false: failures only go to the status bar and errorShown (batch use, screenshots).
     void setMessageBoxesEnabled(bool enabled) { messageBoxes_ = enabled; }
     // The frame on screen, and whether it is the timeline's frame, rendered.
@@ -189,6 +191,7 @@ class MainWindow : public QMainWindow {
     int loading_ = 0;         // > 0 while a file is being loaded
     bool workAsked_ = false;  // keepUnsavedWork was answered for the files being opened
     int startFrame_ = -1;
+    QString startGroup_;
     bool messageBoxes_ = true;
     // While keepUnsavedWork's question waits, error boxes are held (one over the question would
     // hide it); the answer shows them if the session stays, drops them if it is left.
