@@ -119,9 +119,9 @@ void run(const EvalArgs& args) {
     // Every marker missing in every frame: nothing to reconstruct from, and the summary would
     // read as a reconstruction.
     options.dropPercent = args.drop;
+    char drop[32];  // as typed: "94", not to_string's "94.000000"
+    std::snprintf(drop, sizeof drop, "%g", args.drop);
     if (options.droppedPerFrame() >= static_cast<int>(options.markers.size())) {
-        char drop[32];
-        std::snprintf(drop, sizeof drop, "%g", args.drop);
         throw Error(std::string("--drop ") + drop + " leaves none of the " +
                     std::to_string(options.markers.size()) +
                     " markers in any frame: there is nothing to reconstruct from");
@@ -144,13 +144,12 @@ void run(const EvalArgs& args) {
         methods.push_back(EvaluationOptions::Method::Arap);
 
     if (!args.json)
-        std::printf("%s: %zu frames, %d vertices, %d faces, %zu markers%s, %s solver\n",
-                    args.sequence.c_str(), sequence.frames.size(), sequence.rest.vertexCount(),
-                    sequence.rest.faceCount(), options.markers.size(),
-                    args.drop > 0
-                        ? (", " + std::to_string(args.drop) + " % dropped per frame").c_str()
-                        : "",
-                    methodName(options.solver.method));
+        std::printf(
+            "%s: %zu frames, %d vertices, %d faces, %zu markers%s, %s solver\n",
+            args.sequence.c_str(), sequence.frames.size(), sequence.rest.vertexCount(),
+            sequence.rest.faceCount(), options.markers.size(),
+            args.drop > 0 ? (", " + std::string(drop) + " % dropped per frame").c_str() : "",
+            methodName(options.solver.method));
     std::vector<Evaluation> results;
     for (auto method : methods) {
         options.method = method;
@@ -219,13 +218,19 @@ void registerEvalCommand(CLI::App& app) {
         ->check(CLI::IsMember({"boneless", "arap", "both"}));
     cmd->add_option("--drop", args->drop, "Percentage of markers missing in each frame (seeded)")
         ->check(numberFrom(0, 100));
-    cmd->add_option("--seed", args->seed, "Seed for --drop");
+    cmd->add_option("--seed", args->seed, "Seed for --drop")->needs("--drop");
     addOptionFlags(cmd, args->options, toJson(EvaluationOptions{}.solver), true);
     cmd->add_flag("--json", args->json, "Print one JSON object");
     cmd->add_flag("--quiet", args->quiet, "No per-frame lines");
-    cmd->callback([args, k, file] {
+    cmd->callback([args, k, file, cmd] {
         if (k->count() == 0 && file->count() == 0)
             throw CLI::RequiredError("--markers or --markers-file");
+        // The solver flags choose Boneless's solver: on ARAP alone they would change nothing.
+        for (const CLI::Option* o : cmd->get_options())
+            if (args->method == "arap" && o->count() > 0 && o->get_name() == "--solver")
+                throw CLI::ValidationError(o->get_name(),
+                                           "chooses Boneless's solver, and "
+                                           "--method arap runs ARAP alone");
         run(*args);
     });
 }

@@ -273,3 +273,22 @@ TEST(EvalCommand, ADropThatIsNotAPercentageIsRefusedNamingTheFlag) {
             << r.out;
     }
 }
+
+// Flags that cannot act are refused rather than taken silently: --seed seeds --drop alone, and
+// --solver chooses Boneless's solver, which --method arap does not run (its header said "exact").
+TEST(EvalCommand, FlagsThatCannotActAreRefusedNamingWhatTheyNeed) {
+    CliResult r = runCli("eval --sequence " + demoFolder() + " --markers 20 --seed 3");
+    EXPECT_NE(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("--seed requires --drop"), std::string::npos) << r.out;
+    r = runCli("eval --sequence " + demoFolder() + " --markers 20 --method arap --solver exact");
+    EXPECT_NE(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("--method arap runs ARAP alone"), std::string::npos) << r.out;
+}
+
+// The header gave the percentage as std::to_string writes it: "94.000000 % dropped per frame".
+TEST(EvalCommand, TheDropIsPrintedAsTyped) {
+    const CliResult r =
+        runCli("eval --sequence " + demoFolder() + " --markers 20 --frames 0:2 --drop 12.5");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("20 markers, 12.5 % dropped per frame"), std::string::npos) << r.out;
+}
