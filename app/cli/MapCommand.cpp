@@ -36,12 +36,13 @@ void registerMapCommand(CLI::App& app) {
     suggest->add_option("--c3d", args->c3d, "The take")->required();
     suggest->add_option("--map", args->map, "Partial map with at least 4 markers")->required();
     suggest->add_option("--out", args->out, "Where to write the completed map")->required();
-    suggest->add_option("--check", args->check,
-                        "A map known to be right: print how near the proposals land to it");
+    CLI::Option* check = suggest->add_option(
+        "--check", args->check, "A map known to be right: print how near the proposals land to it");
     suggest
         ->add_option("--tolerance-mm", args->toleranceMm,
                      "With --check: how near counts as landing (0.1 to 1000, default 30)")
-        ->check(numberFrom(0.1, 1000));
+        ->check(numberFrom(0.1, 1000))
+        ->needs(check);
     suggest->callback([args] {
         // `--out take.c3d` replaced the take, `--out ref.json --check ref.json` the map to check
         // against: refused before anything is read.

@@ -141,6 +141,15 @@ TEST(MapSuggestCommand, ACheckMapMadeForAnotherMeshIsRefusedBeforeTheMapIsWritte
     EXPECT_FALSE(fs::exists(dir / "full.json"));
 }
 
+// --tolerance-mm says how near counts for --check; without it, it was taken and did nothing.
+TEST(MapSuggestCommand, AToleranceWithoutACheckIsRefused) {
+    const fs::path dir = freshTestDir("map-suggest-tolerance");
+    const CliResult r = runCli(suggestOnDemo(dir) + " --tolerance-mm 5");
+    EXPECT_NE(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("--tolerance-mm requires --check"), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(dir / "full.json"));
+}
+
 TEST(MapSuggestCommand, AMissingCheckMapFailsBeforeTheMapIsWritten) {
     const fs::path dir = freshTestDir("map-suggest-check");
     const CliResult r = runCli(suggestOnDemo(dir) + " --check " + (dir / "nosuch.json").string());
