@@ -7,4 +7,9 @@ namespace boneless {
 // we may not signal.
 bool processIsGone(long pid);
 
+// When process `pid` started, in clock ticks since the machine booted (Linux: /proc/PID/stat's
+// starttime); 0 where that cannot be read. With the id it names one process: an id is given again
+// once its process has ended, a start time with it is not.
+unsigned long long processStartTime(long pid);
+
 }  // namespace boneless
