@@ -4,6 +4,8 @@
 // was made from that project and is itself left alone, and closing asks before edits that no
 // project file holds are left behind.
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <QFile>
 #include <QFileDialog>
 #include <QJsonArray>
@@ -22,6 +24,7 @@
 #include <cstdio>
 
 #include "ViewTestSupport.h"
+#include "boneless/Process.h"
 #include "boneless/ui/DemoProject.h"
 #include "boneless/ui/Document.h"
 #include "boneless/ui/FrameSolver.h"
@@ -752,6 +755,38 @@ class ProjectSessionTest : public QObject {
         QCOMPARE(discarded.mappedCount(), mine);
         next.setMessageBoxesEnabled(false);
         next.close();
+    }
+
+    // Started again within a second of kill -9, the killed Boneless can still be a zombie (its
+    // parent has not reaped it yet): its work counted as live, the question was not asked, and
+    // the new session said "Edits are not autosaved".
+    void theWorkOfABonelessKilledAMomentAgoIsOffered() {
+        const int mapped = leaveWorkAsACrashDoes();
+        QVERIFY(mapped >= 0);
+        const pid_t killed = ::fork();  // ended and not waited for: a zombie
+        QVERIFY(killed >= 0);
+        if (killed == 0) ::_exit(0);
+        const auto reap = qScopeGuard([killed] { ::waitpid(killed, nullptr, 0); });
+        QTest::qWait(200);
+        // The work is the killed Boneless's: in its file, under its record.
+        const QString instance =
+            QString("%1-%2").arg(killed).arg(boneless::processStartTime(killed));
+        const QString file = QFileInfo(ProjectAutosave::recoveryPath()).absolutePath() + "/" +
+                             instance + ".boneless";
+        QVERIFY(QFile::rename(ProjectAutosave::recoveryPath(), file));
+        QSettings().setValue("autosave/" + instance + "/session", "{killed} " + instance);
+        QSettings().setValue("autosave/" + instance + "/project", QString());
+        MainWindow window;
+        QVERIFY(window.autosave()->hasUnfinishedRecovery());
+        QTimer::singleShot(300, [] {
+            auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+            QVERIFY(box && box->objectName() == "recoveryQuestion");
+            box->findChild<QPushButton*>("reopenButton")->click();
+        });
+        QVERIFY(window.offerRecovery());
+        QCOMPARE(window.document()->mappedCount(), mapped);
+        window.setMessageBoxesEnabled(false);
+        window.close();
     }
 
     // An earlier Boneless kept every session in one recovery.boneless: a crash's work there is

@@ -48,8 +48,10 @@ QString sessionOf(const QString& path) {
 }
 
 bool instanceIsGone(const QString& instance) {
+    // A zombie (killed a moment ago), or another process given its id since, is gone too.
     const long pid = instance.section('-', 0, 0).toLong();
-    return instance != thisInstance() && (pid <= 0 || processIsGone(pid));
+    return instance != thisInstance() &&
+           (pid <= 0 || processIsGone(pid, instance.section('-', 1).toULongLong()));
 }
 
 // Before each Boneless had its own, all shared one recovery file, "recovery.boneless", whose record
