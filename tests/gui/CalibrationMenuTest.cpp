@@ -7,6 +7,7 @@
 #include <QFileInfo>
 #include <QJsonDocument>
 #include <QJsonObject>
+#include <QMenu>
 #include <QStatusBar>
 #include <QTableView>
 #include <QUndoStack>
@@ -241,6 +242,38 @@ class CalibrationMenuTest : public QObject {
             QCOMPARE(redo->text(), "&Redo " + itemName);
             redo->trigger();
         }
+    }
+
+    // Calibrate at This Frame aligns the mapped markers, and Mesh Up says where the take's
+    // vertical goes: both were enabled with nothing to act on, nothing mapped or nothing loaded.
+    void calibrateAtThisFrameAndMeshUpAreEnabledOnlyWhenTheyCanAct() {
+        MainWindow empty;
+        QVERIFY(!empty.findChild<QAction*>("calibrateAtFrame")->isEnabled());
+        QVERIFY(!empty.findChild<QMenu*>("meshUp")->menuAction()->isEnabled());
+
+        Document* document = window_->document();
+        QAction* atFrame = window_->findChild<QAction*>("calibrateAtFrame");
+        QAction* meshUp = window_->findChild<QMenu*>("meshUp")->menuAction();
+        QVERIFY(atFrame->isEnabled() && meshUp->isEnabled());
+        QVERIFY(document->clearAllMappings());
+        QVERIFY(!atFrame->isEnabled());
+        QVERIFY(meshUp->isEnabled());
+        QVERIFY(window_->findChild<QAction*>("calibrateAutomatically")->isEnabled());
+        document->undoStack()->undo();
+        QVERIFY(atFrame->isEnabled());
+    }
+
+    // Undo names a mesh up as the Edit menu does, "Undo Mesh Up +X", as it names a calibration;
+    // it said "Mesh up +X", and "Guess the mesh's up" for Guessed from the Take.
+    void undoNamesAMeshUpAsItsMenuItemDoes() {
+        Document* document = window_->document();
+        const QString menu = window_->findChild<QMenu*>("meshUp")->title().remove('&');
+        for (const char* name : {"meshUp-y", "meshUpauto"}) {
+            QAction* item = window_->findChild<QAction*>(name);
+            QVERIFY(trigger(*window_, name));
+            QCOMPARE(document->undoStack()->undoText(), menu + " " + item->text().remove('&'));
+        }
+        QCOMPARE(document->undoStack()->undoText(), QString("Mesh Up Guessed from the Take"));
     }
 
     // Calibrating at a frame whose pose the rest cannot meet (CMU 85_02 at frame 300 on

@@ -238,6 +238,27 @@ class ExportDialogTest : public QObject {
         QCOMPARE(bar->text(), QString("0 / 10 frames"));
     }
 
+    // The message under the bar did not wrap: a cancelled export's widened the dialog to about
+    // 770 px. It wraps within the width the dialog has.
+    void aLongMessageWrapsInsteadOfWideningTheDialog() {
+        ExportDialog dialog(&document_, &solver_, &timeline_);
+        dialog.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&dialog));
+        const int width = dialog.width();
+        connect(dialog.runner(), &ExportRunner::progress, &dialog, [&] { dialog.cancelExport(); });
+        QSignalSpy finished(&dialog, &ExportDialog::finished);
+        dialog.setFolder(work_ + "/wrapped");
+        QVERIFY(dialog.startExport());
+        QVERIFY(finished.wait(120000));
+        QVERIFY(dialog.runner()->result().cancelled);
+        QApplication::processEvents();
+        const QString message = progressText(dialog)->text();
+        QVERIFY2(progressText(dialog)->fontMetrics().horizontalAdvance(message) > width,
+                 qPrintable(message));  // longer than the dialog is wide
+        QVERIFY2(dialog.width() <= width,
+                 qPrintable(QString("%1 px wide, %2 before").arg(dialog.width()).arg(width)));
+    }
+
     void aMissingFolderIsAMessageNotAnExport() {
         ExportDialog dialog(&document_, &solver_, &timeline_);
         dialog.setFolder("  ");

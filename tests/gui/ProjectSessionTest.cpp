@@ -4,6 +4,8 @@
 // was made from that project and is itself left alone, and closing asks before edits that no
 // project file holds are left behind.
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <QFile>
 #include <QFileDialog>
 #include <QJsonArray>
@@ -19,8 +21,10 @@
 #include <QStatusBar>
 #include <QUndoStack>
 #include <QtTest>
+#include <cstdio>
 
 #include "ViewTestSupport.h"
+#include "boneless/Process.h"
 #include "boneless/ui/DemoProject.h"
 #include "boneless/ui/Document.h"
 #include "boneless/ui/FrameSolver.h"
@@ -79,7 +83,33 @@ class ProjectSessionTest : public QObject {
   public:
     static void initMain() { setDefaultSurfaceFormat(); }
 
+    // Run as another Boneless beside the test's (BONELESS_TEST_ANOTHER_BONELESS=folder): opens the
+    // walker from `folder`, unmaps two markers, autosaves, says "saved N" (N markers mapped) and
+    // runs until it is killed.
+    static int runAnotherBoneless(const QString& folder) {
+        test::isolate("ProjectSessionTest");
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        if (!window.openFiles({folder + "/mine/walker.obj", folder + "/mine/walker.c3d",
+                               folder + "/mine/walker.map.json"}) ||
+            !window.document()->clearMapping(0) || !window.document()->clearMapping(1) ||
+            !window.autosave()->saveNow())
+            return 1;
+        std::printf("saved %d\n", window.document()->mappedCount());
+        std::fflush(stdout);
+        QTimer::singleShot(120000, qApp, &QCoreApplication::quit);  // if the test is gone
+        return qApp->exec();
+    }
+
   private:
+    // Every recovery file, this Boneless's and any other's: a window destroyed without closing
+    // (a crash here) must not leave its work to the next test.
+    static void removeAutosaves() {
+        QDir folder = QFileInfo(ProjectAutosave::recoveryPath()).absoluteDir();
+        for (const QString& name : folder.entryList({"*.boneless"}, QDir::Files))
+            QFile::remove(folder.filePath(name));
+    }
+
     // A session that opened the walker, unmapped a marker (at `frame`, when given) and was gone
     // without closing, as in a crash: its work is in the recovery file (a load alone is no edit,
     // and is not autosaved). Returns how many markers that work maps; -1 when a step failed.
@@ -100,12 +130,12 @@ class ProjectSessionTest : public QObject {
         folder_ = test::freshFolder("ProjectSessionTest");
         project_ = test::writeDemoProject(folder_ + "/mine");
         QDir(DemoProject::defaultFolder()).removeRecursively();
-        QFile::remove(ProjectAutosave::recoveryPath());
+        removeAutosaves();
     }
 
     // A window destroyed without closing is a crash here: its autosave must not hold the next
     // test's recovery file.
-    void init() { QFile::remove(ProjectAutosave::recoveryPath()); }
+    void init() { removeAutosaves(); }
 
     void theDemoIsNeverWrittenAndOpensAsGenerated() {
         const QString demo = DemoProject::defaultFolder() + "/demo.boneless";
@@ -672,25 +702,118 @@ class ProjectSessionTest : public QObject {
         window.close();
     }
 
-    // A second Boneless started while the first runs: the first's work is live, not a crash's, and
-    // must not be offered (nor kept from the second's autosave) until that process has ended.
-    void theWorkOfABonelessStillRunningIsNotOfferedAsACrashs() {
-        QFile::remove(ProjectAutosave::recoveryPath());
-        QVERIFY(leaveWorkAsACrashDoes() >= 0);
-        QProcess other;  // stands for the first Boneless
-        other.start("sleep", {"60"});
+    // Two Boneless at once, each editing an untitled project, then both gone without closing (kill
+    // -9): the work of each is offered at the next start. They shared one recovery file, so the
+    // one that saved last had written over the other's work; a crash then lost it. While the other
+    // runs, its work is live, not a crash's, and is not offered.
+    void twoBonelessRunningAtOnceEachKeepTheirOwnWork() {
+        QProcess other;  // another Boneless: its window opens the walker and unmaps two markers
+        QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+        env.insert("BONELESS_TEST_ANOTHER_BONELESS", folder_);
+        other.setProcessEnvironment(env);
+        other.start(QCoreApplication::applicationFilePath(), {});
         QVERIFY(other.waitForStarted());
-        QSettings().setValue("autosave/unfinishedSession",
-                             QString("{first-session} %1").arg(other.processId()));
+        QByteArray said;
+        while (!said.contains('\n') && other.waitForReadyRead(60000)) said += other.readAll();
+        QVERIFY2(said.startsWith("saved "), said.constData());
+        const int othersMapped = said.mid(6).trimmed().toInt();
+        int mine = -1;
         {
-            MainWindow second;
-            QVERIFY(!second.autosave()->hasUnfinishedRecovery());
-            QVERIFY(!second.offerRecovery());  // no question box: it would wait for an answer
-        }
+            MainWindow window;
+            QVERIFY(!window.autosave()->hasUnfinishedRecovery());
+            QVERIFY(!window.offerRecovery());  // no question box: it would wait for an answer
+            window.setMessageBoxesEnabled(false);
+            QVERIFY(window.openFiles({folder_ + "/mine/walker.obj", folder_ + "/mine/walker.c3d",
+                                      folder_ + "/mine/walker.map.json"}));
+            QVERIFY(window.document()->clearMapping(5));
+            QVERIFY(window.autosave()->saveNow());
+            mine = window.document()->mappedCount();
+            QVERIFY(mine != othersMapped);
+        }  // gone without closing
         other.kill();
         QVERIFY(other.waitForFinished());
-        MainWindow afterIt;
-        QVERIFY(afterIt.autosave()->hasUnfinishedRecovery());
+
+        // Both are offered, the last saved first: this one's is discarded, the other's reopened.
+        QStringList asked;
+        QTimer answering;
+        connect(&answering, &QTimer::timeout, [&] {
+            auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+            if (!box) return;
+            asked << box->objectName();
+            box->findChild<QPushButton*>(asked.size() == 1 ? "discardButton" : "reopenButton")
+                ->click();
+        });
+        answering.start(100);
+        MainWindow next;
+        const bool reopened = next.offerRecovery();
+        answering.stop();
+        QCOMPARE(asked, QStringList({"recoveryQuestion", "recoveryQuestion"}));
+        QVERIFY(reopened);
+        QCOMPARE(next.document()->mappedCount(), othersMapped);
+        Document discarded;  // still the last autosave of this Boneless
+        QVERIFY(Project::load(discarded, ProjectAutosave::recoveryPath()));
+        QCOMPARE(discarded.mappedCount(), mine);
+        next.setMessageBoxesEnabled(false);
+        next.close();
+    }
+
+    // Started again within a second of kill -9, the killed Boneless can still be a zombie (its
+    // parent has not reaped it yet): its work counted as live, the question was not asked, and
+    // the new session said "Edits are not autosaved".
+    void theWorkOfABonelessKilledAMomentAgoIsOffered() {
+        const int mapped = leaveWorkAsACrashDoes();
+        QVERIFY(mapped >= 0);
+        const pid_t killed = ::fork();  // ended and not waited for: a zombie
+        QVERIFY(killed >= 0);
+        if (killed == 0) ::_exit(0);
+        const auto reap = qScopeGuard([killed] { ::waitpid(killed, nullptr, 0); });
+        QTest::qWait(200);
+        // The work is the killed Boneless's: in its file, under its record.
+        const QString instance =
+            QString("%1-%2").arg(killed).arg(boneless::processStartTime(killed));
+        const QString file = QFileInfo(ProjectAutosave::recoveryPath()).absolutePath() + "/" +
+                             instance + ".boneless";
+        QVERIFY(QFile::rename(ProjectAutosave::recoveryPath(), file));
+        QSettings().setValue("autosave/" + instance + "/session", "{killed} " + instance);
+        QSettings().setValue("autosave/" + instance + "/project", QString());
+        MainWindow window;
+        QVERIFY(window.autosave()->hasUnfinishedRecovery());
+        QTimer::singleShot(300, [] {
+            auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+            QVERIFY(box && box->objectName() == "recoveryQuestion");
+            box->findChild<QPushButton*>("reopenButton")->click();
+        });
+        QVERIFY(window.offerRecovery());
+        QCOMPARE(window.document()->mappedCount(), mapped);
+        window.setMessageBoxesEnabled(false);
+        window.close();
+    }
+
+    // An earlier Boneless kept every session in one recovery.boneless: a crash's work there is
+    // still offered after the update, once.
+    void aCrashsWorkInTheOneRecoveryFileOfEarlierVersionsIsStillOffered() {
+        const int mapped = leaveWorkAsACrashDoes();
+        QVERIFY(mapped >= 0);
+        const QString shared = QStandardPaths::writableLocation(QStandardPaths::AppDataLocation) +
+                               "/recovery.boneless";
+        QFile::remove(shared);
+        QVERIFY(QFile::rename(ProjectAutosave::recoveryPath(), shared));
+        // Its record: the session's process id is above any Linux's pid_max, so it is not running.
+        QSettings().setValue("autosave/unfinishedSession", "{an-earlier-boneless} 999999999");
+        QSettings().setValue("autosave/recoveredProject", QString());
+        MainWindow window;
+        QTimer::singleShot(300, [] {
+            auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+            QVERIFY(box && box->objectName() == "recoveryQuestion");
+            box->findChild<QPushButton*>("reopenButton")->click();
+        });
+        QVERIFY(window.offerRecovery());
+        QCOMPARE(window.document()->mappedCount(), mapped);
+        QVERIFY(!QFileInfo::exists(shared));
+        window.setMessageBoxesEnabled(false);
+        window.close();
+        MainWindow next;
+        QVERIFY(!next.autosave()->hasUnfinishedRecovery());
     }
 
     // While a crash's work holds the recovery file, an untitled session has nowhere to autosave:
@@ -825,5 +948,15 @@ class ProjectSessionTest : public QObject {
     QString folder_, project_;
 };
 
-QTEST_MAIN(ProjectSessionTest)
+int main(int argc, char** argv) {
+    ProjectSessionTest::initMain();
+    QApplication app(argc, argv);
+    if (qEnvironmentVariableIsSet("BONELESS_TEST_ANOTHER_BONELESS"))
+        return ProjectSessionTest::runAnotherBoneless(
+            qEnvironmentVariable("BONELESS_TEST_ANOTHER_BONELESS"));
+    app.setAttribute(Qt::AA_Use96Dpi, true);
+    ProjectSessionTest test;
+    QTEST_SET_MAIN_SOURCE_PATH
+    return QTest::qExec(&test, argc, argv);
+}
 #include "ProjectSessionTest.moc"

@@ -4,6 +4,7 @@
 #include <QActionGroup>
 #include <QMenu>
 
+#include "EnableWhile.h"
 #include "FrameDisplay.h"
 #include "boneless/Alignment.h"
 #include "boneless/TakeOptionsJson.h"
@@ -73,11 +74,9 @@ void addCalibrationActions(QMenu* edit, QMenu* view, Document* document, Timelin
     none->setObjectName("calibrateNone");
     none->setStatusTip(
         QObject::tr("Solve every frame against the rest as the mesh gives it (calibrate none)"));
-    auto enable = [=] {
-        for (QAction* action : {atFrame, automatic, none}) action->setEnabled(document->hasTake());
-    };
-    QObject::connect(document, &Document::takeChanged, atFrame, enable);
-    enable();
+    // Calibrating at a frame needs markers mapped to align; the modes are the take's settings.
+    enableWhile(atFrame, document, hasMeshTakeAndMappings);
+    for (QAction* action : {automatic, none}) enableWhile(action, document, hasTake);
     // The mode in use is checked, from the document's settings: a refused calibration, an undo
     // or a loaded project changes it without the menu.
     auto* modes = new QActionGroup(edit);
@@ -101,6 +100,7 @@ void addCalibrationActions(QMenu* edit, QMenu* view, Document* document, Timelin
     // never stands. The choices are the option's own, from the one table of options.
     QMenu* up = edit->addMenu(QObject::tr("Mesh &Up"));
     up->setObjectName("meshUp");
+    enableWhile(up->menuAction(), document, hasMeshAndTake);  // the take's vertical goes there
     auto* ups = new QActionGroup(up);
     for (const std::string& choice : findTakeOption("mesh_up")->choices) {
         const bool guess = choice == "auto";
@@ -112,8 +112,9 @@ void addCalibrationActions(QMenu* edit, QMenu* view, Document* document, Timelin
         QObject::connect(action, &QAction::triggered, document, [=] {
             TakeSolveOptions settings = document->settings();
             settings.meshUp = parseAxis(choice);
-            document->setSettings(settings, guess ? QObject::tr("Guess the mesh's up")
-                                                  : QObject::tr("Mesh up %1").arg(action->text()));
+            // Named as the menu names it: "Undo Mesh Up +X".
+            document->setSettings(settings,
+                                  QObject::tr("Mesh Up %1").arg(action->text().remove('&')));
         });
     }
     auto showUp = [=] {

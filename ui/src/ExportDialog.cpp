@@ -116,6 +116,10 @@ ExportDialog::ExportDialog(Document* document, FrameSolver* solver, Timeline* ti
     progress_->setValue(0);
     progressText_ = new QLabel;
     progressText_->setObjectName("exportProgressText");
+    // A run's message (a cancel's names the folder and the frames written) wraps: on one line
+    // it widened the dialog to about 770 px.
+    progressText_->setWordWrap(true);
+    estimate_->setWordWrap(true);
 
     auto* form = new QFormLayout;
     form->addRow(tr("Range:"), rangeBox);

@@ -25,6 +25,7 @@
 
 #include "CalibrationMenu.h"
 #include "Counted.h"
+#include "EnableWhile.h"
 #include "FrameDisplay.h"
 #include "OffsetRow.h"
 #include "ShortcutPassThrough.h"
@@ -42,38 +43,6 @@
 #include "boneless/ui/TimelineWidget.h"
 
 namespace boneless::ui {
-
-namespace {
-
-// What an edit needs before it can do anything: its button and menu item are enabled while the
-// document has it (enableWhile). Suggest and Align also need markers mapped (4, 3): clicked
-// before, they say so.
-bool hasMarkersToMap(const Document* d) {
-    return d->hasMesh() && d->markerCount() > 0;
-}
-bool hasSelectedMapping(const Document* d) {
-    return d->mappedVertex(d->selectedMarker()) >= 0;
-}
-bool hasMappings(const Document* d) {
-    return !d->correspondence().markers.empty();
-}
-bool hasMeshAndTake(const Document* d) {
-    return d->hasMesh() && d->hasTake();
-}
-
-// Enables `item` (an action or a button) while `ready` holds for the document, checked again at
-// each change of what it holds or selects.
-template <class Item>
-void enableWhile(Item* item, Document* document, bool (*ready)(const Document*)) {
-    const auto update = [item, document, ready] { item->setEnabled(ready(document)); };
-    for (auto changed :
-         {&Document::meshChanged, &Document::takeChanged, &Document::correspondenceChanged})
-        QObject::connect(document, changed, item, update);
-    QObject::connect(document, &Document::selectionChanged, item, update);
-    update();
-}
-
-}  // namespace
 
 MainWindow::MainWindow(QWidget* parent)
     : QMainWindow(parent),

@@ -208,15 +208,13 @@ bool MainWindow::openProject(const QString& path) {
                                     ? missing
                                     : tr("%1 could not be opened as a Boneless project.")
                                           .arg(QFileInfo(path).fileName());
-        const QString recovery = ProjectAutosave::recoveryPath();
-        const QString absolute = QFileInfo(path).absoluteFilePath();
+        const QString recovery = ProjectAutosave::autosaveOf(path);
         statusBar()->showMessage(message, 15000);
         emit errorShown(message + "\n" + error);
         if (!messageBoxes_) return false;
         QMessageBox* box = errorBox(message, error);
         box->setObjectName("projectErrorMessage");
-        if (QFileInfo::exists(recovery) && QFileInfo(recovery).absoluteFilePath() != absolute &&
-            ProjectAutosave::recoveredProject() == absolute) {
+        if (!recovery.isEmpty()) {
             box->setInformativeText(
                 tr("The file is left as it is. The last autosave, from %1, can be opened "
                    "instead.")
@@ -224,7 +222,8 @@ bool MainWindow::openProject(const QString& path) {
                                             QLocale::ShortFormat)));
             QPushButton* open = box->addButton(tr("Open Last Autosave"), QMessageBox::AcceptRole);
             open->setObjectName("openRecoveryButton");
-            connect(open, &QPushButton::clicked, this, [this] { openRecovery(); });
+            connect(open, &QPushButton::clicked, this,
+                    [this, recovery] { openRecovery(recovery); });
         }
         box->show();
         return false;
@@ -273,13 +272,14 @@ bool MainWindow::askMapLoad(const QString& path, Document::MapLoad& mode) {
     return true;
 }
 
-bool MainWindow::openRecovery() {
+bool MainWindow::openRecovery(const QString& path) {
+    const QString recovery = path.isEmpty() ? ProjectAutosave::lastAutosave() : path;
     const QScopedValueRollback<int> loading(loading_, loading_ + 1);
     QString error;
     bool loaded = false;
     {
         const QScopedValueRollback<bool> quiet(loadingProject_, true);
-        loaded = Project::load(*document_, ProjectAutosave::recoveryPath(), &error);
+        loaded = Project::load(*document_, recovery, &error);
     }
     if (!loaded) {
         showError(tr("The last autosave could not be opened either."), error);
@@ -288,7 +288,7 @@ bool MainWindow::openRecovery() {
     startUntitled();
     setUnsavedEdits(true);  // untitled: only the autosave holds it, until Save As
     autosave_->discardPending();
-    autosave_->claimRecovery();  // a crash now offers it again
+    autosave_->claimRecovery(recovery);  // a crash now offers it again
     applyViewSettings();
     startFrame_ = -1;  // --frame is for the files named with it: this opens where it was left
     restoreSession();
@@ -297,9 +297,16 @@ bool MainWindow::openRecovery() {
 }
 
 bool MainWindow::offerRecovery(const QStringList& named) {
-    if (!messageBoxes_ || !autosave_->hasUnfinishedRecovery()) return false;
-    const QFileInfo recovery(ProjectAutosave::recoveryPath());
-    const QString from = ProjectAutosave::recoveredProject();
+    if (!messageBoxes_) return false;
+    // One question for each Boneless that did not close, its last work first.
+    for (const QString& path : autosave_->unfinishedRecoveries())
+        if (offerRecovery(path, named)) return true;
+    return false;
+}
+
+bool MainWindow::offerRecovery(const QString& path, const QStringList& named) {
+    const QFileInfo recovery(path);
+    const QString from = ProjectAutosave::recoveredProject(path);
     QMessageBox box(QMessageBox::Question, tr("Boneless"),
                     tr("Boneless did not close normally. Reopen the work it autosaved?"),
                     QMessageBox::NoButton, this);
@@ -323,9 +330,9 @@ bool MainWindow::offerRecovery(const QStringList& named) {
     discard->setObjectName("discardButton");
     box.setDefaultButton(reopen);
     box.exec();  // answered before anything else opens (and autosaves over it)
-    if (box.clickedButton() == reopen && openRecovery()) return true;
-    // Discarded, or it would not open (openRecovery said why): this session autosaves again.
-    autosave_->discardRecovery();
+    if (box.clickedButton() == reopen && openRecovery(path)) return true;
+    // Discarded, or it would not open (openRecovery said why): a change may replace it.
+    autosave_->discardRecovery(path);
     return false;
 }
 
@@ -503,11 +510,15 @@ void MainWindow::rebuildRecentMenu() {
     if (files.isEmpty()) recentMenu_->addAction(tr("(none)"))->setEnabled(false);
     recentMenu_->addSeparator();
     // After a crash the last session, titled or not, is here until the next one changes something.
-    const QFileInfo recovery(ProjectAutosave::recoveryPath());
-    QAction* last = recentMenu_->addAction(tr("Last Autosave"), this, [this] { openRecovery(); });
+    const QString path = ProjectAutosave::lastAutosave();
+    const QFileInfo recovery(path);
+    QAction* last = recentMenu_->addAction(tr("Last Autosave"), this, [this, path] {
+        // Another Boneless's work replaces this session's: asked first, as any file opened is.
+        if (path == ProjectAutosave::recoveryPath() || keepUnsavedWork(false)) openRecovery(path);
+    });
     last->setObjectName("openLastAutosave");
-    last->setEnabled(recovery.exists());
-    if (recovery.exists()) {
+    last->setEnabled(!path.isEmpty() && recovery.exists());
+    if (last->isEnabled()) {
         last->setText(tr("Last Autosave (%1)")
                           .arg(QLocale().toString(recovery.lastModified(), QLocale::ShortFormat)));
         last->setToolTip(recovery.absoluteFilePath());

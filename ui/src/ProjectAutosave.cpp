@@ -1,5 +1,8 @@
+#include <algorithm>
+
 #include <QCoreApplication>
 #include <QDir>
+#include <QFile>
 #include <QFileInfo>
 #include <QSettings>
 #include <QStandardPaths>
@@ -12,12 +15,89 @@
 
 namespace boneless::ui {
 
+namespace {
+
+// This Boneless among those running: "PID-START", its process id and start time (processStartTime),
+// which tells it from a later process given the same id. Names its autosave and its sessions.
+QString thisInstance() {
+    static const QString instance = QString("%1-%2")
+                                        .arg(QCoreApplication::applicationPid())
+                                        .arg(processStartTime(QCoreApplication::applicationPid()));
+    return instance;
+}
+
+QString recoveryFolder() {
+    return QStandardPaths::writableLocation(QStandardPaths::AppDataLocation) + "/recovery";
+}
+
+// The Boneless that wrote the autosave `path`, and whose record it keeps in the settings.
+QString instanceOf(const QString& path) {
+    return QFileInfo(path).completeBaseName();
+}
+
+// An autosave's record: "autosave/PID-START/project", the project it was saved from (empty for an
+// untitled session), and ".../session", the session whose work it holds and no project file holds;
+// removed when that session ends cleanly or its work is reopened elsewhere or discarded.
+QString recordKey(const QString& path, const char* name) {
+    return QString("autosave/%1/%2").arg(instanceOf(path), name);
+}
+
+QString sessionOf(const QString& path) {
+    return QFileInfo::exists(path) ? QSettings().value(recordKey(path, "session")).toString()
+                                   : QString();
+}
+
+bool instanceIsGone(const QString& instance) {
+    // A zombie (killed a moment ago), or another process given its id since, is gone too.
+    const long pid = instance.section('-', 0, 0).toLong();
+    return instance != thisInstance() &&
+           (pid <= 0 || processIsGone(pid, instance.section('-', 1).toULongLong()));
+}
+
+// Before each Boneless had its own, all shared one recovery file, "recovery.boneless", whose record
+// was "autosave/recoveredProject" and "autosave/unfinishedSession" ("{UUID} PID"): moved into the
+// folder as that session's Boneless's, so that a crash's work from then is still offered.
+void moveSharedRecoveryFile() {
+    const QString shared =
+        QStandardPaths::writableLocation(QStandardPaths::AppDataLocation) + "/recovery.boneless";
+    if (!QFileInfo::exists(shared)) return;
+    QSettings settings;
+    const QString session = settings.value("autosave/unfinishedSession").toString();
+    const QString instance = QString("%1-0").arg(session.section(' ', 1).toLong());
+    const QString moved = recoveryFolder() + "/" + instance + ".boneless";
+    if (!QDir().mkpath(recoveryFolder()) || QFileInfo::exists(moved) ||
+        !QFile::rename(shared, moved))
+        return;
+    settings.setValue("autosave/" + instance + "/project",
+                      settings.value("autosave/recoveredProject"));
+    if (!session.isEmpty())
+        settings.setValue("autosave/" + instance + "/session",
+                          session.section(' ', 0, 0) + " " + instance);
+    settings.remove("autosave/recoveredProject");
+    settings.remove("autosave/unfinishedSession");
+}
+
+// Another running Boneless's: its own autosave, or one whose work it reopened. Live work, which
+// that Boneless keeps saving: neither offered nor written over here.
+bool isAnotherRunningBonelesss(const QString& path) {
+    const QString owner = instanceOf(path);
+    const QString session = sessionOf(path).section(' ', 1);
+    return (owner != thisInstance() && !instanceIsGone(owner)) ||
+           (!session.isEmpty() && session != thisInstance() && !instanceIsGone(session));
+}
+
+void removeAutosave(const QString& path) {
+    QFile::remove(path);
+    QSettings().remove("autosave/" + instanceOf(path));
+}
+
+}  // namespace
+
 ProjectAutosave::ProjectAutosave(Document* document, QObject* parent)
     : QObject(parent),
       document_(document),
-      // The process too: a session whose process still runs (a second window) has not crashed.
-      session_(QUuid::createUuid().toString() + " " +
-               QString::number(QCoreApplication::applicationPid())),
+      // The instance too: a session whose Boneless still runs (a second window) has not crashed.
+      session_(QUuid::createUuid().toString() + " " + thisInstance()),
       timer_(new QTimer(this)) {
     timer_->setSingleShot(true);
     timer_->setInterval(1000);
@@ -50,46 +130,80 @@ void ProjectAutosave::discardPending() {
 }
 
 QString ProjectAutosave::recoveryPath() {
-    return QStandardPaths::writableLocation(QStandardPaths::AppDataLocation) + "/recovery.boneless";
+    return recoveryFolder() + "/" + thisInstance() + ".boneless";
 }
 
-namespace {
-const char* kRecoveredProjectKey = "autosave/recoveredProject";
-// The session whose work the recovery file holds and no project file does; removed when that
-// session ends cleanly or its work is reopened elsewhere or discarded.
-const char* kSessionKey = "autosave/unfinishedSession";
-
-QString recoverySession() {
-    return QFileInfo::exists(ProjectAutosave::recoveryPath())
-               ? QSettings().value(kSessionKey).toString()
-               : QString();
+QStringList ProjectAutosave::recoveries() {
+    moveSharedRecoveryFile();
+    QStringList paths;
+    const QFileInfoList files =
+        QDir(recoveryFolder()).entryInfoList({"*.boneless"}, QDir::Files, QDir::Time);
+    for (const QFileInfo& file : files)
+        if (!isAnotherRunningBonelesss(file.absoluteFilePath())) paths << file.absoluteFilePath();
+    return paths;
 }
-}  // namespace
 
-QString ProjectAutosave::recoveredProject() {
-    return QSettings().value(kRecoveredProjectKey).toString();
+QString ProjectAutosave::lastAutosave() {
+    const QStringList all = recoveries();
+    return all.isEmpty() ? QString() : all.front();
+}
+
+QString ProjectAutosave::autosaveOf(const QString& project) {
+    const QString absolute = QFileInfo(project).absoluteFilePath();
+    for (const QString& path : recoveries())
+        if (path != absolute && recoveredProject(path) == absolute) return path;
+    return {};
+}
+
+QString ProjectAutosave::recoveredProject(const QString& path) {
+    return QSettings().value(recordKey(path, "project")).toString();
+}
+
+bool ProjectAutosave::sessionIsGone(const QString& session) const {
+    if (session.isEmpty() || session == session_) return false;
+    // Another of this process's sessions is a window that is gone (the app has one at a time);
+    // another running Boneless's is live work, which it keeps saving in its own autosave.
+    const QString instance = session.section(' ', 1);
+    return instance == thisInstance() || instanceIsGone(instance);
+}
+
+QStringList ProjectAutosave::unfinishedRecoveries() const {
+    QStringList paths = recoveries();
+    paths.erase(std::remove_if(paths.begin(), paths.end(),
+                               [this](const QString& p) { return !sessionIsGone(sessionOf(p)); }),
+                paths.end());
+    return paths;
 }
 
 bool ProjectAutosave::hasUnfinishedRecovery() const {
-    const QString session = recoverySession();
-    if (session.isEmpty() || session == session_) return false;
-    // Another of this process's sessions is a window that is gone (the app has one at a time);
-    // another running Boneless's is live work, which it keeps saving: the recovery file then holds
-    // whichever saved last, as it always did.
-    const qint64 pid = session.section(' ', 1).toLongLong();
-    return pid == QCoreApplication::applicationPid() || processIsGone(pid);
+    return !unfinishedRecoveries().isEmpty();
 }
 
-void ProjectAutosave::claimRecovery() {
-    QSettings().setValue(kSessionKey, session_);
+void ProjectAutosave::claimRecovery(const QString& path) {
+    QSettings().setValue(recordKey(path, "session"), session_);
+    // Another Boneless's: it goes once this session's own autosave holds it.
+    if (QFileInfo(path).absoluteFilePath() != QFileInfo(recoveryPath()).absoluteFilePath())
+        adopted_ = path;
 }
 
-void ProjectAutosave::discardRecovery() {
-    QSettings().remove(kSessionKey);
+void ProjectAutosave::discardRecovery(const QString& path) {
+    QSettings().remove(recordKey(path, "session"));
 }
 
 void ProjectAutosave::endSession() {
-    if (QSettings().value(kSessionKey).toString() == session_) QSettings().remove(kSessionKey);
+    for (const QString& path : {recoveryPath(), adopted_})
+        if (!path.isEmpty() && QSettings().value(recordKey(path, "session")).toString() == session_)
+            QSettings().remove(recordKey(path, "session"));
+}
+
+void ProjectAutosave::replaceFinishedAutosaves() {
+    // Reopened here, and now in this session's own autosave.
+    if (!adopted_.isEmpty() && sessionOf(adopted_) == session_) removeAutosave(adopted_);
+    adopted_.clear();
+    // Discarded, or left by a Boneless that closed: the last autosave until a change replaces it,
+    // which this one was.
+    for (const QString& path : recoveries())
+        if (instanceOf(path) != thisInstance() && sessionOf(path).isEmpty()) removeAutosave(path);
 }
 
 bool ProjectAutosave::saveNow() {
@@ -101,19 +215,19 @@ bool ProjectAutosave::saveNow() {
     emit aboutToSave();  // the window stores its session; that change is this save's
     timer_->stop();
     pending_ = false;
-    // The recovery file holds the last session saved, titled or not: it is what the window
+    // This Boneless's autosave holds its last session saved, titled or not: it is what the window
     // offers when a project file will not open, or at start after a crash. Another session's
-    // work there, not yet reopened or discarded, is not written over (the demo opened after a
-    // crash did, at its first edit).
+    // work there (a window of this process that is gone), not yet reopened or discarded, is not
+    // written over. Another running Boneless has an autosave of its own.
     // Every target is tried: a project that cannot be written (a read-only folder, a full
     // disk) must not keep the edits out of the recovery file too.
     QStringList targets;
-    if (!hasUnfinishedRecovery()) targets << recoveryPath();
+    if (!sessionIsGone(sessionOf(recoveryPath()))) targets << recoveryPath();
     if (!path_.isEmpty()) targets.prepend(path_);
     if (targets.isEmpty()) {
         pending_ = true;  // kept for a save once that work is reopened or discarded
-        // Said once: an untitled session left unsaved must know (a second Boneless running
-        // when the first crashed, or a crash's work that would not reopen).
+        // Said once: an untitled session left unsaved must know (a crash's work that would not
+        // reopen).
         if (!heldBackSaid_)
             emit failed(
                 tr("Edits are not autosaved: the recovery file holds the work of a "
@@ -134,12 +248,13 @@ bool ProjectAutosave::saveNow() {
     // Which project the recovery file holds: offered for another one, it would pass for it.
     if (path_.isEmpty()) kept = recovered;
     if (recovered) {
-        QSettings().setValue(kRecoveredProjectKey, path_);
+        QSettings().setValue(recordKey(recoveryPath(), "project"), path_);
         // Only work that no project file holds is offered after a crash.
         if (kept && !path_.isEmpty())
             endSession();
         else
             claimRecovery();
+        replaceFinishedAutosaves();
     }
     if (!errors.isEmpty()) {
         pending_ = true;  // try again after the next change

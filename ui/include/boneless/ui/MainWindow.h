@@ -59,12 +59,14 @@ class MainWindow : public QMainWindow {
     // autosave to the recovery file.
     bool openDemo();
     bool isDemoOpen() const { return demo_; }
-    // Opens ProjectAutosave::recoveryPath() as an untitled project, this session's from then on.
-    bool openRecovery();
-    // At start-up: when the last session did not close and left work that no project file holds
-    // in the recovery file, asks Reopen or Discard (recoveryQuestion), saying that reopened it
-    // opens instead of the files `named` (the command line's). True when reopened; without
-    // message boxes it asks nothing and leaves that work alone.
+    // Opens the recovery file `path` (by default ProjectAutosave::lastAutosave()) as an untitled
+    // project, this session's from then on.
+    bool openRecovery(const QString& path = {});
+    // At start-up: for each recovery file holding work that no project file holds, left by a
+    // session that did not close (ProjectAutosave::unfinishedRecoveries(), newest first), asks
+    // Reopen or Discard (recoveryQuestion), saying that reopened it opens instead of the files
+    // `named` (the command line's). True when one was reopened (the others are asked about at the
+    // next start); without message boxes it asks nothing and leaves that work alone.
     bool offerRecovery(const QStringList& named = {});
     // What the command line asks for at start-up: a crash's work first (offerRecovery), then the
     // project and files, or with none the demo. Reopened, the crash's work opens where it was
@@ -123,6 +125,8 @@ class MainWindow : public QMainWindow {
     void connectDocument();
     void applyViewSettings();
     void rebuildRecentMenu();
+    // The start-up question about one recovery file; true when it was reopened.
+    bool offerRecovery(const QString& path, const QStringList& named);
     void updateTitle();
     // unsavedEdits_, and the title's mark of edits no project file holds.
     void setUnsavedEdits(bool edited);

@@ -40,10 +40,11 @@ QByteArray toJson(const Document& document, const QString& path);
 // also goes to recoveryPath() (the only place it goes without a project path), which the window
 // offers to reopen when the project it was saved from will not open; a project that cannot be
 // written does not keep the change from it.
-// The recovery file belongs to one session at a time: while it holds work that no project file
-// holds, from a session that did not end (a crash), another session does not write over it until
-// that work is reopened (claimRecovery) or discarded (discardRecovery); the window offers both at
-// start-up.
+// Each running Boneless has a recovery file of its own, named by its process (id and start time):
+// a second Boneless beside the first neither writes over the first's nor offers it. The work of a
+// session that did not end (a crash), in a file that no project file holds, is offered at the next
+// start once its Boneless is no longer running: reopened (claimRecovery) it is that session's,
+// discarded (discardRecovery) it stays as the last autosave until a change replaces it.
 class ProjectAutosave : public QObject {
     Q_OBJECT
   public:
@@ -54,16 +55,27 @@ class ProjectAutosave : public QObject {
     QString projectPath() const { return path_; }
     void setDelay(int ms);  // default 1000
     bool isPending() const;
-    // Where an untitled session is kept (in the per-user data folder).
+    // Where this Boneless keeps an untitled session (in the per-user data folder's recovery/,
+    // PID-START.boneless).
     static QString recoveryPath();
-    // The project the recovery file was last saved from; empty for an untitled session.
-    static QString recoveredProject();
-    // The recovery file holds work that no project file holds, from a session that did not end.
+    // The recovery files no other running Boneless holds (this one's, and those of Boneless no
+    // longer running), newest first; lastAutosave() is the first, File → Recent Files → Last
+    // Autosave.
+    static QStringList recoveries();
+    static QString lastAutosave();
+    // The newest of them saved from `project`; empty when none was.
+    static QString autosaveOf(const QString& project);
+    // The project the recovery file `path` was last saved from; empty for an untitled session.
+    static QString recoveredProject(const QString& path = recoveryPath());
+    // The recovery files that hold work no project file holds, from a session that did not end,
+    // newest first.
+    QStringList unfinishedRecoveries() const;
     bool hasUnfinishedRecovery() const;
-    // This session takes the recovery file's work as its own (it reopened it).
-    void claimRecovery();
-    // The unfinished session's work is given up: the next save may write over it.
-    void discardRecovery();
+    // This session takes the work of the recovery file `path` as its own (it reopened it); another
+    // Boneless's file goes once this one's own holds that work.
+    void claimRecovery(const QString& path = recoveryPath());
+    // The unfinished session's work in `path` is given up: a change may replace it.
+    void discardRecovery(const QString& path = recoveryPath());
     // This session ended cleanly (the window closed): its recovery file is not offered at start.
     void endSession();
 
@@ -85,7 +97,15 @@ class ProjectAutosave : public QObject {
   private:
     QPointer<Document> document_;
     QString path_;
-    const QString session_;      // this session's id in the recovery file's record
+    // `session` did not end: another window of this process (gone, as the app has one at a
+    // time), or a session of a Boneless no longer running.
+    bool sessionIsGone(const QString& session) const;
+    // After a save into recoveryPath(): the recovery file reopened, and those discarded or left by
+    // a Boneless that closed, are replaced by it.
+    void replaceFinishedAutosaves();
+
+    const QString session_;      // this session's id in the recovery files' records
+    QString adopted_;            // another Boneless's recovery file reopened, until saved here
     bool heldBackSaid_ = false;  // failed() said the recovery file is another session's
     QTimer* timer_;
     bool pending_ = false;
