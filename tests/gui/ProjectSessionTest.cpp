@@ -60,6 +60,16 @@ void answerClose(const char* button, std::function<void()> first = {}) {
     });
 }
 
+// Answers the recovery question at start with `button` ("reopenButton" or "discardButton").
+void answerRecovery(const char* button) {
+    QTimer::singleShot(300, [button] {
+        auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+        QVERIFY(box);
+        QCOMPARE(box->objectName(), QString("recoveryQuestion"));
+        box->findChild<QPushButton*>(button)->click();
+    });
+}
+
 // Types `path` into the file dialog once it is up (it takes a moment to appear) and accepts it.
 void answerFileDialog(const QString& path, int tries = 50) {
     QTimer::singleShot(100, [path, tries] {
@@ -594,12 +604,7 @@ class ProjectSessionTest : public QObject {
             QCOMPARE(readAll(ProjectAutosave::recoveryPath()), crashed);
         }
         MainWindow window;
-        QTimer::singleShot(300, [] {
-            auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
-            QVERIFY(box);
-            QCOMPARE(box->objectName(), QString("recoveryQuestion"));
-            box->findChild<QPushButton*>("reopenButton")->click();
-        });
+        answerRecovery("reopenButton");
         QVERIFY(window.offerRecovery());
         QVERIFY(window.projectPath().isEmpty());
         QCOMPARE(window.document()->mappedCount(), mapped);
@@ -778,11 +783,7 @@ class ProjectSessionTest : public QObject {
         QSettings().setValue("autosave/" + instance + "/project", QString());
         MainWindow window;
         QVERIFY(window.autosave()->hasUnfinishedRecovery());
-        QTimer::singleShot(300, [] {
-            auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
-            QVERIFY(box && box->objectName() == "recoveryQuestion");
-            box->findChild<QPushButton*>("reopenButton")->click();
-        });
+        answerRecovery("reopenButton");
         QVERIFY(window.offerRecovery());
         QCOMPARE(window.document()->mappedCount(), mapped);
         window.setMessageBoxesEnabled(false);
@@ -802,11 +803,7 @@ class ProjectSessionTest : public QObject {
         QSettings().setValue("autosave/unfinishedSession", "{an-earlier-boneless} 999999999");
         QSettings().setValue("autosave/recoveredProject", QString());
         MainWindow window;
-        QTimer::singleShot(300, [] {
-            auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
-            QVERIFY(box && box->objectName() == "recoveryQuestion");
-            box->findChild<QPushButton*>("reopenButton")->click();
-        });
+        answerRecovery("reopenButton");
         QVERIFY(window.offerRecovery());
         QCOMPARE(window.document()->mappedCount(), mapped);
         QVERIFY(!QFileInfo::exists(shared));
@@ -841,11 +838,7 @@ class ProjectSessionTest : public QObject {
         QFile::remove(ProjectAutosave::recoveryPath());
         QVERIFY(leaveWorkAsACrashDoes() >= 0);
         MainWindow window;
-        QTimer::singleShot(300, [] {
-            auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
-            QVERIFY(box && box->objectName() == "recoveryQuestion");
-            box->findChild<QPushButton*>("discardButton")->click();
-        });
+        answerRecovery("discardButton");
         QVERIFY(!window.offerRecovery());
         QVERIFY(!window.document()->hasMesh());
         window.setMessageBoxesEnabled(false);
