@@ -190,6 +190,7 @@ std::vector<TakeJob> readManifest(const std::string& file) {
     if (m.contains("defaults")) applyKeys(m["defaults"], base, file + ": defaults", defaults);
     std::vector<TakeJob> jobs;
     std::vector<std::string> entries;  // what messages call each job
+    std::vector<std::string> empty;    // folders that hold no take, as messages call them
     const json takes = m.value("takes", json::array()), folders = m.value("folders", json::array());
     for (std::size_t i = 0; i < takes.size(); ++i) {
         const std::string where = file + ": takes[" + std::to_string(i) + "]";
@@ -217,6 +218,7 @@ std::vector<TakeJob> readManifest(const std::string& file) {
         }
         if (ec) throw Error(where + ": cannot list " + pattern.c3d + " (" + ec.message() + ")");
         std::sort(found.begin(), found.end());
+        if (found.empty()) empty.push_back(where + " (" + pattern.c3d + ")");
         for (const fs::path& take : found) {
             TakeJob job = pattern;
             job.c3d = take.string();
@@ -225,7 +227,13 @@ std::vector<TakeJob> readManifest(const std::string& file) {
             entries.push_back("folders[" + std::to_string(i) + "] (" + job.c3d + ")");
         }
     }
-    if (jobs.empty()) throw Error(file + ": the manifest lists no take");
+    // A folder without a take is a slip (a wrong path, an unmounted disk): named, not skipped.
+    const std::string none = " holds no .c3d take";
+    if (jobs.empty())
+        throw Error(empty.empty() ? file + ": the manifest lists no take"
+                                  : joined(empty, "; ") + none);
+    for (const std::string& folder : empty)
+        std::fprintf(stderr, "warning: %s%s\n", folder.c_str(), none.c_str());
     refuseSharedOutputs(file, jobs, entries);
     return jobs;
 }
@@ -429,7 +437,7 @@ void run(const BatchArgs& args) {
                 std::printf("  note: %s: %s\n", job.mesh.c_str(), w.c_str());
         std::fflush(stdout);
     }
-    std::printf("batch: %d of %zu entries in shard %d/%d: %d solved, %d skipped, %d failed\n", mine,
+    std::printf("batch: %d of %zu takes in shard %d/%d: %d solved, %d skipped, %d failed\n", mine,
                 jobs.size(), shard, shards, solved, skipped, failed);
     std::fflush(stdout);
     if (failed)

@@ -85,16 +85,16 @@ TEST(Batch, TwoShardsTogetherWriteExactlyWhatOneRunWrites) {
     const fs::path split = writeManifest(dir, "split.json", folderManifest("split"));
     const CliResult one = runCli("batch " + whole.string());
     ASSERT_EQ(one.exitCode, 0) << one.out;
-    EXPECT_NE(one.out.find("3 of 3 entries in shard 1/1: 3 solved, 0 skipped, 0 failed"),
+    EXPECT_NE(one.out.find("3 of 3 takes in shard 1/1: 3 solved, 0 skipped, 0 failed"),
               std::string::npos)
         << one.out;
     const CliResult first = runCli("batch " + split.string() + " --shard 1/2");
     const CliResult second = runCli("batch " + split.string() + " --shard 2/2");
     ASSERT_EQ(first.exitCode, 0) << first.out;
     ASSERT_EQ(second.exitCode, 0) << second.out;
-    EXPECT_NE(first.out.find("2 of 3 entries in shard 1/2: 2 solved"), std::string::npos)
+    EXPECT_NE(first.out.find("2 of 3 takes in shard 1/2: 2 solved"), std::string::npos)
         << first.out;
-    EXPECT_NE(second.out.find("1 of 3 entries in shard 2/2: 1 solved"), std::string::npos)
+    EXPECT_NE(second.out.find("1 of 3 takes in shard 2/2: 1 solved"), std::string::npos)
         << second.out;
 
     const auto a = contents(dir / "whole"), b = contents(dir / "split");
@@ -118,7 +118,7 @@ TEST(Batch, ARunAgainSkipsTheTakesItFinished) {
     const auto before = fs::last_write_time(dir / "out" / "walk_a" / "walker_0000.obj");
     const CliResult again = runCli("batch " + manifest.string());
     ASSERT_EQ(again.exitCode, 0) << again.out;
-    EXPECT_NE(again.out.find("3 of 3 entries in shard 1/1: 1 solved, 2 skipped, 0 failed"),
+    EXPECT_NE(again.out.find("3 of 3 takes in shard 1/1: 1 solved, 2 skipped, 0 failed"),
               std::string::npos)
         << again.out;
     EXPECT_NE(again.out.find("its sidecar says its run did not finish, solving again"),
@@ -264,7 +264,7 @@ TEST(Batch, AFailingTakeDoesNotStopTheOthersButFailsTheRun) {
     EXPECT_EQ(r.exitCode, 1) << r.out;
     EXPECT_NE(r.out.find("FAILED: "), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("broken.c3d"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("2 of 2 entries in shard 1/1: 1 solved, 0 skipped, 1 failed"),
+    EXPECT_NE(r.out.find("2 of 2 takes in shard 1/1: 1 solved, 0 skipped, 1 failed"),
               std::string::npos)
         << r.out;
     EXPECT_TRUE(fs::exists(dir / "out" / "walk_a" / "walker.pc2"));
@@ -525,13 +525,13 @@ TEST(Batch, ATakeWhoseNameIsNotUtf8IsSolvedAndThenSkippedLikeTheOthers) {
     const fs::path manifest = writeManifest(dir, "m.json", folderManifest("out"));
     const CliResult first = runCli("batch " + manifest.string());
     EXPECT_EQ(first.exitCode, 0) << first.out;
-    EXPECT_NE(first.out.find("4 of 4 entries in shard 1/1: 4 solved, 0 skipped, 0 failed"),
+    EXPECT_NE(first.out.find("4 of 4 takes in shard 1/1: 4 solved, 0 skipped, 0 failed"),
               std::string::npos)
         << first.out;
     const json sidecar = json::parse(std::ifstream(dir / "out" / "caf\xe9" / "walker.json"));
     EXPECT_EQ(sidecar["source"]["c3d"], (dir / "takes" / "caf\u00e9.c3d").string());
     const CliResult again = runCli("batch " + manifest.string());
-    EXPECT_NE(again.out.find("4 of 4 entries in shard 1/1: 0 solved, 4 skipped, 0 failed"),
+    EXPECT_NE(again.out.find("4 of 4 takes in shard 1/1: 0 solved, 4 skipped, 0 failed"),
               std::string::npos)
         << again.out;
 }
@@ -551,7 +551,7 @@ TEST(Batch, ATakeWhoseOutputIsMissingOrEmptyIsSolvedAgain) {
     EXPECT_NE(again.out.find("walker.pc2 is missing or empty, solving again: 4 frames"),
               std::string::npos)
         << again.out;
-    EXPECT_NE(again.out.find("3 of 3 entries in shard 1/1: 2 solved, 1 skipped, 0 failed"),
+    EXPECT_NE(again.out.find("3 of 3 takes in shard 1/1: 2 solved, 1 skipped, 0 failed"),
               std::string::npos)
         << again.out;
     EXPECT_GT(fs::file_size(dir / "caches" / "walk_b" / "walker.pc2"), 0u);
@@ -603,7 +603,7 @@ TEST(Batch, AFolderScanLeavesOutDotFilesAndFailsALinkToATakeThatIsGone) {
     const fs::path manifest = writeManifest(dir, "m.json", folderManifest("out"));
     const CliResult r = runCli("batch " + manifest.string());
     EXPECT_EQ(r.exitCode, 1) << r.out;
-    EXPECT_NE(r.out.find("4 of 4 entries in shard 1/1: 3 solved, 0 skipped, 1 failed"),
+    EXPECT_NE(r.out.find("4 of 4 takes in shard 1/1: 3 solved, 0 skipped, 1 failed"),
               std::string::npos)
         << r.out;
     EXPECT_NE(r.out.find((dir / "takes" / "walk_d.c3d").string() + " -> " +
@@ -749,4 +749,23 @@ TEST(Batch, ATakeSolvedFromAnyFolderIsSkippedAndOneFromOtherFilesIsSolvedAgainSa
               std::string::npos)
         << r.out;
     EXPECT_NE(r.out.find("1 solved, 0 skipped"), std::string::npos) << r.out;
+}
+
+// A folder entry with no take (a wrong path, a disk not mounted) said only "the manifest lists no
+// take", or nothing when another entry had takes. It is named, with the folder it read.
+TEST(Batch, AFolderWithNoTakeIsNamedWithItsPath) {
+    const fs::path dir = makeLibrary();
+    fs::create_directories(dir / "empty");
+    json manifest = folderManifest("out");
+    manifest["folders"][0]["c3d"] = "empty";
+    CliResult r = runCli("batch " + writeManifest(dir, "none.json", manifest).string());
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    const std::string named = "folders[0] (" + (dir / "empty").string() + ") holds no .c3d take";
+    EXPECT_NE(r.out.find(named), std::string::npos) << r.out;
+    manifest["folders"].push_back(folderManifest("out")["folders"][0]);
+    r = runCli("batch " + writeManifest(dir, "some.json", manifest).string());
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("warning: " + dir.string() + "/some.json: " + named), std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("3 of 3 takes in shard 1/1: 3 solved"), std::string::npos) << r.out;
 }
