@@ -115,7 +115,7 @@ void addTakeJobOptions(CLI::App* cmd, TakeJob& job) {
     for (const ExportFormatInfo& f : exportFormats())
         formats += std::string(formats.empty() ? "" : "; ") + f.name + ": " + f.description;
     cmd->add_option("--format", job.format, formats)->check(CLI::IsMember(formatNames()));
-    cmd->add_option("--frames", job.frames, "Frame range A:B (0-based, B excluded)");
+    cmd->add_option("--frames", job.frames, "Frame range A:B (0-based, B excluded; A: or :B)");
     addOptionFlags(cmd, job.options, toJson(TakeSolveOptions{}), false);
     cmd->add_flag("--write-calibrated-rest", job.writeCalibratedRest,
                   "Also write <stem>_calibrated_rest.obj, the rest fitted to the actor");

@@ -562,6 +562,14 @@ TEST(SolveCommand, HelpOffersEachFormatForTheApplicationsTheExportGuideNames) {
     EXPECT_EQ(offered.find("Maya"), std::string::npos) << offered;
 }
 
+// solve and batch read "3:" and ":3" as eval does; only eval's help said so.
+TEST(SolveCommand, HelpSaysAFrameRangeMayLeaveOutEitherEnd) {
+    for (const char* command : {"solve --help", "eval --help"}) {
+        const CliResult help = runCli(command);
+        EXPECT_NE(help.out.find("(0-based, B excluded; A: or :B)"), std::string::npos) << help.out;
+    }
+}
+
 TEST(DemoCommand, DetailRefinesTheSameWalker) {
     const fs::path dir = freshTestDir("demo-detail");
     const CliResult r = runCli("demo --out " + dir.string() + " --frames 2 --detail 2");
