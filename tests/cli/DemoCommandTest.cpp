@@ -1,0 +1,53 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include "CliRunner.h"
+
+using namespace boneless::testing;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string contentsOf(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
+
+}  // namespace
+
+// Before, a second demo into the folder replaced the map the user had edited there without a
+// word. The same demo again replaces its files by the same bytes; one that would change a file
+// is refused, naming it, until --force.
+TEST(DemoCommand, AFileItWouldChangeIsReplacedOnlyWithForce) {
+    const fs::path dir = freshTestDir("demo-again");
+    const std::string demo = "demo --out " + dir.string();
+    ASSERT_EQ(runCli(demo + " --frames 3").exitCode, 0);
+    const CliResult same = runCli(demo + " --frames 3");
+    EXPECT_EQ(same.exitCode, 0) << same.out;
+    const std::string written = contentsOf(dir / "walker.map.json");
+    std::ofstream(dir / "walker.map.json", std::ios::app) << " ";
+    const std::string edited = written + " ";
+    const CliResult refused = runCli(demo + " --frames 3");
+    EXPECT_EQ(refused.exitCode, 1) << refused.out;
+    EXPECT_NE(refused.out.find(dir.string() + ": walker.map.json differs from what this demo "
+                                              "writes (edited, or written with other --frames, "
+                                              "--offset-mm or --detail); nothing was written: "
+                                              "give --force to replace it, or another --out\n"),
+              std::string::npos)
+        << refused.out;
+    EXPECT_TRUE(contentsOf(dir / "walker.map.json") == edited) << "the edited map was replaced";
+    // A longer take: its C3D differs too; its first frames of truth do not.
+    const CliResult longer = runCli(demo + " --frames 4");
+    EXPECT_EQ(longer.exitCode, 1) << longer.out;
+    EXPECT_NE(longer.out.find(": walker.c3d, walker.map.json differ from what this demo writes"),
+              std::string::npos)
+        << longer.out;
+    EXPECT_FALSE(fs::exists(dir / "truth" / "walker_0003.obj"));
+    const CliResult forced = runCli(demo + " --frames 3 --force");
+    EXPECT_EQ(forced.exitCode, 0) << forced.out;
+    EXPECT_TRUE(contentsOf(dir / "walker.map.json") == written) << "the map was kept";
+}
