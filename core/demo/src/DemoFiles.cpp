@@ -7,8 +7,10 @@
 #include <fstream>
 #include <functional>
 #include <iterator>
+#include <memory>
 #include <string>
 
+#include "DemoCapture.h"
 #include "DemoCreature.h"
 #include "DemoTake.h"
 #include "DemoWalker.h"
@@ -76,44 +78,53 @@ std::string truthName(const std::string& name, int frame) {
     return file;
 }
 
-// Makes the demo's files, each handed to `sink`; the counts it returns name no files.
+// Makes the demo's files, each handed to `sink`, frame by frame: each frame's truth goes as it
+// is made, and only the take's samples are held (a 100,000-frame demo held 8 GB of frames).
+// The counts it returns name no files.
 DemoFiles makeDemoFiles(int frames, double offsetMm, bool withTruth, int detail,
                         DemoSubject subject, const DemoFileSink& sink) {
-    TriMesh rest;
-    std::vector<Positions> truthFrames;
-    DemoTake take;
     const std::string name = subjectName(subject);
+    TriMesh rest;
+    std::unique_ptr<DemoRecorder> recorder;
+    std::function<void(const std::function<void(int, const Positions&)>&)> makeFrames;
     std::string units;
     if (subject == DemoSubject::Walker) {
-        DemoWalker walker = makeDemoWalker(frames, 1 + detail);
-        take = makeDemoWalkerTake(walker, offsetMm);
-        rest = std::move(walker.rest);
-        truthFrames = std::move(walker.frames);
+        const DemoWalker walker = makeDemoWalker(0, 1 + detail);
+        rest = walker.rest;
+        recorder =
+            std::make_unique<DemoRecorder>(rest, demoWalkerCapture(walker), frames, offsetMm);
+        makeFrames = [&](const auto& onFrame) { makeDemoWalker(frames, 1 + detail, onFrame); };
         units = "metres";
     } else {
-        DemoCreature creature = makeDemoCreature(frames, 48 * detail, 24 * detail);
-        take = makeDemoTake(creature, 30, offsetMm);
-        rest = std::move(creature.rest);
-        truthFrames = std::move(creature.frames);
+        const DemoCreature creature = makeDemoCreature(0, 48 * detail, 24 * detail);
+        rest = creature.rest;
+        recorder = std::make_unique<DemoRecorder>(rest, demoCreatureCapture(creature, 30), frames,
+                                                  offsetMm);
+        makeFrames = [&](const auto& onFrame) {
+            makeDemoCreature(frames, 48 * detail, 24 * detail, onFrame);
+        };
         units = "decimetres";
     }
     sink(name + ".obj",
          objText(name + ".obj", rest.V, rest.F,
                  "Boneless generated demo " + name + ", rest pose (" + units + ", z up)"));
-    const std::vector<std::uint8_t> c3d = encodeC3d(take.take);
-    sink(name + ".c3d", std::string(c3d.begin(), c3d.end()));
-    sink(name + ".map.json", take.map.toJson());
-    if (withTruth)
-        for (int t = 0; t < static_cast<int>(truthFrames.size()); ++t)
-            sink(truthName(name, t), objText(truthName(name, t), truthFrames[t], rest.F,
+    sink(name + ".map.json", recorder->take.map.toJson());
+    makeFrames([&](int t, const Positions& pose) {
+        recorder->record(t, pose);
+        if (withTruth)
+            sink(truthName(name, t), objText(truthName(name, t), pose, rest.F,
                                              "Boneless generated demo " + name +
                                                  ", true pose of frame " + std::to_string(t)));
+    });
+    const C3dTake& take = recorder->take.take;
+    const std::vector<std::uint8_t> c3d = encodeC3d(take);
+    sink(name + ".c3d", std::string(c3d.begin(), c3d.end()));
     DemoFiles files;
     files.vertices = rest.vertexCount();
     files.faces = rest.faceCount();
-    files.markers = static_cast<int>(take.take.points.size());
-    files.frames = static_cast<int>(take.take.frameCount());
-    files.rate = take.take.rate;
+    files.markers = static_cast<int>(take.points.size());
+    files.frames = static_cast<int>(take.frameCount());
+    files.rate = take.rate;
     return files;
 }
 
@@ -124,8 +135,8 @@ DemoFiles writeDemoFiles(const std::string& folder, int frames, double offsetMm,
     namespace fs = std::filesystem;
     const fs::path out(folder), truth = out / "truth";
     checkDetail(detail, subject);
-    // The rest mesh alone first (its frames, all held in memory, come after the check): an OBJ
-    // of it for the rest and for each frame of truth, and the take's few bytes a marker a frame.
+    // The rest mesh alone first: an OBJ of it for the rest and for each frame of truth, and the
+    // take's few bytes a marker a frame.
     const TriMesh shape = subject == DemoSubject::Walker
                               ? makeDemoWalker(0, 1 + detail).rest
                               : makeDemoCreature(0, 48 * detail, 24 * detail).rest;
@@ -170,6 +181,9 @@ std::vector<std::string> demoFilesThatDiffer(const std::string& folder, int fram
                       const std::string there{std::istreambuf_iterator<char>(in), {}};
                       if (there != contents) differ.push_back(n);
                   });
+    // The take, made last, named with the map and the mesh before the frames of truth.
+    std::stable_partition(differ.begin(), differ.end(),
+                          [](const std::string& n) { return n.find('/') == std::string::npos; });
     return differ;
 }
 
