@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "boneless/TakeOptionsJson.h"
+#include "boneless/Text.h"
 
 using namespace boneless;
 
@@ -51,15 +52,10 @@ CLI::Validator numberFrom(double low, double high, bool whole) {
                   whole ? "whole " : "", low, high);
     return CLI::Validator(
         [low, high, whole, range = std::string(range)](std::string& text) -> std::string {
-            std::size_t used = 0;
+            // A count in digits alone: CLI11 reads "1e3" as no int, and "010" as octal 8.
             double x = NAN;
-            try {
-                x = whole ? static_cast<double>(std::stoll(text, &used)) : std::stod(text, &used);
-            } catch (const std::exception&) {
-                used = 0;
-            }
-            const bool ok =
-                used == text.size() && used > 0 && std::isfinite(x) && x >= low && x <= high;
+            const bool ok = readDecimal(text, x) && std::isfinite(x) && x >= low && x <= high &&
+                            (!whole || text.find_first_not_of("+-0123456789") == std::string::npos);
             return ok ? std::string() : range + text;
         },
         "");

@@ -86,6 +86,31 @@ TEST(OptionFlags, ABadNumberIsEchoedAsTyped) {
         << frame.out;
 }
 
+// strtod reads hexadecimal: "--max-iterations 0x10" solved with 16 steps, and CLI11 reads a
+// leading zero as octal: "demo --frames 010" wrote 8 frames. Numbers are decimal, as in JSON;
+// anything else is refused as the other words that are no number are.
+TEST(OptionFlags, ANumberInHexadecimalOrOctalIsRefused) {
+    const std::string solve = "solve --mesh m.obj --c3d t.c3d --map m.json --out o ";
+    for (const char* typed : {"0x10", "010", "0x1p4"}) {
+        const CliResult r = runCli(solve + "--max-iterations " + typed);
+        EXPECT_EQ(r.exitCode, 1) << typed;
+        EXPECT_NE(r.out.find("--max-iterations: must be a whole number from 1 to 10000, got \"" +
+                             std::string(typed) + "\"\n"),
+                  std::string::npos)
+            << r.out;
+    }
+    const fs::path dir = freshTestDir("demo-octal");
+    for (const char* typed : {"010", "0x10"}) {
+        const CliResult r = runCli("demo --out " + (dir / "x").string() + " --frames " + typed);
+        EXPECT_EQ(r.exitCode, 1) << typed;
+        EXPECT_NE(r.out.find("--frames: must be a whole number from 1 to 100000, got " +
+                             std::string(typed) + "\n"),
+                  std::string::npos)
+            << r.out;
+        EXPECT_FALSE(fs::exists(dir / "x")) << typed;
+    }
+}
+
 // The options given on the command line reach the sidecar under the same keys.
 TEST(OptionFlags, TheSidecarRecordsTheOptionsUnderTheFlagsNames) {
     const fs::path demo = freshTestDir("option-flags");

@@ -258,14 +258,8 @@ std::string checkOptionText(const TakeOption& option, const std::string& text) {
 
 json optionValueFromText(const TakeOption& option, const std::string& text) {
     if (option.kind == TakeOption::Kind::Choice) return text;
-    std::size_t used = 0;
     double x = 0;
-    try {
-        x = std::stod(text, &used);
-    } catch (const std::exception&) {
-        return text;  // a string: checkOptionValue says what is wrong
-    }
-    if (used != text.size()) return text;
+    if (!readDecimal(text, x)) return text;  // a string: checkOptionValue says what is wrong
     return option.kind == TakeOption::Kind::Integer && x == std::floor(x) && std::abs(x) < 2e9
                ? json(static_cast<long long>(x))
                : json(x);
