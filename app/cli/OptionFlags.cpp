@@ -54,7 +54,9 @@ CLI::Validator numberFrom(double low, double high, bool whole) {
         [low, high, whole, range = std::string(range)](std::string& text) -> std::string {
             // A count in digits alone: CLI11 reads "1e3" as no int, and "010" as octal 8.
             double x = NAN;
-            const bool ok = readDecimal(text, x) && std::isfinite(x) && x >= low && x <= high &&
+            const Decimal read = readDecimal(text, x);
+            if (read == Decimal::Underflow) return range + text + ", " + kUnderflowNote;
+            const bool ok = read == Decimal::Number && std::isfinite(x) && x >= low && x <= high &&
                             (!whole || text.find_first_not_of("+-0123456789") == std::string::npos);
             return ok ? std::string() : range + text;
         },

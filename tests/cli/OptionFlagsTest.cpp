@@ -111,6 +111,26 @@ TEST(OptionFlags, ANumberInHexadecimalOrOctalIsRefused) {
     }
 }
 
+// "--fill-gaps-s 1e-400" was refused as a word, `got "1e-400"`, and with a range that holds it:
+// it is a number, too close to 0 for a double. It is echoed as a number, saying so.
+TEST(OptionFlags, ANumberThatUnderflowsIsEchoedAsANumberSayingSo) {
+    const std::string note =
+        ", too close to 0 to be held (it underflows): give 0 or at least "
+        "1e-307\n";
+    const CliResult r =
+        runCli("solve --mesh m.obj --c3d t.c3d --map m.json --out o --fill-gaps-s 1e-400");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("--fill-gaps-s: must be a number (s) from 0 to 3600, got 1e-400" + note),
+              std::string::npos)
+        << r.out;
+    const fs::path dir = freshTestDir("demo-underflow");
+    const CliResult demo = runCli("demo --out " + dir.string() + " --offset-mm -1e-400");
+    EXPECT_EQ(demo.exitCode, 1) << demo.out;
+    EXPECT_NE(demo.out.find("--offset-mm: must be a number from 0 to 100, got -1e-400" + note),
+              std::string::npos)
+        << demo.out;
+}
+
 // The options given on the command line reach the sidecar under the same keys.
 TEST(OptionFlags, TheSidecarRecordsTheOptionsUnderTheFlagsNames) {
     const fs::path demo = freshTestDir("option-flags");
