@@ -131,6 +131,21 @@ TEST(OptionFlags, ANumberThatUnderflowsIsEchoedAsANumberSayingSo) {
         << demo.out;
 }
 
+// A bad --frames or --shard was quoted 'so', where a bad choice is quoted "so".
+TEST(OptionFlags, ABadRangeIsQuotedAsABadChoiceIs) {
+    const std::string solve = "solve --mesh m.obj --c3d t.c3d --map m.json --out o ";
+    const std::pair<std::string, std::string> refused[] = {
+        {solve + "--solver fast", "--solver: must be one of local-global, exact, got \"fast\"\n"},
+        {solve + "--frames 0-10",
+         "--frames expects A:B (0-based, not negative, B excluded), got \"0-10\"\n"},
+        {"batch m.json --shard 3/2", "--shard expects I/N with 1 <= I <= N, got \"3/2\"\n"}};
+    for (const auto& [arguments, message] : refused) {
+        const CliResult r = runCli(arguments);
+        EXPECT_EQ(r.exitCode, 1) << arguments;
+        EXPECT_NE(r.out.find(message), std::string::npos) << r.out;
+    }
+}
+
 // The options given on the command line reach the sidecar under the same keys.
 TEST(OptionFlags, TheSidecarRecordsTheOptionsUnderTheFlagsNames) {
     const fs::path demo = freshTestDir("option-flags");
