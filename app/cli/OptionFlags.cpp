@@ -13,13 +13,19 @@ using namespace boneless;
 
 namespace {
 
-// The flags that took their option's key as their name: the old flag, the key (eval's
-// --rigidity and --tolerance went with the methods that are gone and came back as the table's).
-const std::pair<const char*, const char*> kRenamedFlags[] = {{"--weight", "marker_weight"},
-                                                             {"--lowpass", "low_pass_hz"},
-                                                             {"--fill-gaps", "fill_gaps_s"},
-                                                             {"--rigidity", "fold_guard"},
-                                                             {"--tolerance", "relative_tolerance"}};
+// The flags that took their option's key as their name: the command that had the old flag, the
+// old flag, the key (eval's --rigidity and --tolerance went with the methods that are gone and
+// came back as the table's). solve's --rigidity never was: it gets no hint.
+struct RenamedFlag {
+    const char* command;
+    const char* old;
+    const char* key;
+};
+const RenamedFlag kRenamedFlags[] = {{"solve", "--weight", "marker_weight"},
+                                     {"solve", "--lowpass", "low_pass_hz"},
+                                     {"solve", "--fill-gaps", "fill_gaps_s"},
+                                     {"eval", "--rigidity", "fold_guard"},
+                                     {"eval", "--tolerance", "relative_tolerance"}};
 
 }  // namespace
 
@@ -70,11 +76,11 @@ std::vector<std::string> renamedFlagHints(const CLI::App& app) {
     std::vector<std::string> hints;
     for (const std::string& argument : app.remaining(true)) {
         const std::string flag = argument.substr(0, argument.find('='));  // --weight=5 too
-        for (const auto& [old, key] : kRenamedFlags) {
-            if (flag != old) continue;
-            const std::string now = optionFlag(*findTakeOption(key));
+        for (const RenamedFlag& renamed : kRenamedFlags) {
+            if (flag != renamed.old) continue;
+            const std::string now = optionFlag(*findTakeOption(renamed.key));
             for (const CLI::App* command : given)
-                if (command->get_option_no_throw(now)) {
+                if (command->get_name() == renamed.command && command->get_option_no_throw(now)) {
                     hints.push_back(flag + " was renamed " + now);
                     break;
                 }

@@ -197,3 +197,15 @@ TEST(OptionFlags, AnOldFlagIsRefusedNamingItsNewName) {
     EXPECT_EQ(inspect.exitCode, 1);
     EXPECT_EQ(inspect.out.find("renamed"), std::string::npos) << inspect.out;
 }
+
+// --rigidity and --tolerance were eval's flags: solve, which has --fold-guard and
+// --relative-tolerance, was told "--rigidity was renamed --fold-guard" of a flag it never had.
+TEST(OptionFlags, AnOldFlagIsNamedOnlyOnTheCommandThatHadIt) {
+    const std::string solve = "solve --mesh m.obj --c3d t.c3d --map m.json --out o ";
+    for (const std::string& arguments : {solve + "--rigidity 1", solve + "--tolerance 0.1"}) {
+        const CliResult r = runCli(arguments);
+        EXPECT_EQ(r.exitCode, 1) << arguments;
+        EXPECT_NE(r.out.find("not expected"), std::string::npos) << r.out;
+        EXPECT_EQ(r.out.find("renamed"), std::string::npos) << r.out;
+    }
+}
