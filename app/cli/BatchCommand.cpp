@@ -244,7 +244,7 @@ std::pair<int, int> parseShard(const std::string& text) {
     char slash = 0, extra = 0;
     if (std::sscanf(text.c_str(), "%d%c%d%c", &i, &slash, &n, &extra) != 3 || slash != '/' ||
         n < 1 || i < 1 || i > n)
-        throw Error("--shard expects I/N with 1 <= I <= N, got '" + text + "'");
+        throw Error("--shard expects I/N with 1 <= I <= N, got \"" + text + "\"");
     return {i, n};
 }
 

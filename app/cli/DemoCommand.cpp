@@ -1,11 +1,15 @@
 // boneless-cli demo: writes the project's generated demo (a walking body, its take, its map, its
 // truth).
+#include <algorithm>
 #include <cstdio>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "Commands.h"
 #include "OptionFlags.h"
 #include "boneless/DemoFiles.h"
+#include "boneless/Error.h"
 #include "boneless/Text.h"
 
 using namespace boneless;
@@ -16,6 +20,7 @@ void registerDemoCommand(CLI::App& app) {
         int frames = 60;
         int detail = 1;
         double offsetMm = 10.0;
+        bool force = false;
     };
     auto args = std::make_shared<Args>();
     CLI::App* cmd = app.add_subcommand(
@@ -34,7 +39,27 @@ void registerDemoCommand(CLI::App& app) {
     cmd->add_option("--detail", args->detail,
                     "Resolution, 1 to 4: each step up has 4 times the faces (1 = 6,848 faces)")
         ->check(numberFrom(1, 4, true));
+    cmd->add_flag("--force", args->force,
+                  "Replace the demo's files in --out that differ from the ones this run writes "
+                  "(an edited map, a take of another length)");
     cmd->callback([args] {
+        // A map the user edited there is not the demo's to replace unasked;
+        // files as this run would write them are replaced by the same bytes.
+        const std::vector<std::string> differ =
+            args->force ? std::vector<std::string>()
+                        : demoFilesThatDiffer(args->out, args->frames, args->offsetMm, true,
+                                              args->detail, DemoSubject::Walker);
+        if (!differ.empty()) {
+            constexpr std::size_t kListed = 5;
+            std::string named =
+                joined({differ.begin(), differ.begin() + std::min(kListed, differ.size())});
+            if (differ.size() > kListed)
+                named += " and " + plural(long(differ.size() - kListed), "more file", "more files");
+            throw Error(args->out + ": " + named + (differ.size() == 1 ? " differs" : " differ") +
+                        " from what this demo writes (edited, or written with other --frames, "
+                        "--offset-mm or --detail); nothing was written: give --force to replace " +
+                        (differ.size() == 1 ? "it" : "them") + ", or another --out");
+        }
         const DemoFiles demo = writeDemoFiles(args->out, args->frames, args->offsetMm, true,
                                               args->detail, DemoSubject::Walker);
         const std::string frames = plural(demo.frames, "frame");

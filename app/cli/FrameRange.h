@@ -9,7 +9,8 @@
 #include "boneless/Text.h"
 
 // "--frames A:B": 0-based, B excluded; "A:" and ":B" leave that end at its default. `name` is
-// what the error calls it (a manifest's entry says "m.json: takes[2]: 'frames'").
+// what the error calls it (a manifest's entry says "m.json: takes[2]: 'frames'"); the text is
+// quoted as the choice flags quote theirs: got "0-10".
 struct FrameRange {
     int first = 0;
     int end = -1;  // -1 = to the last frame
@@ -32,8 +33,8 @@ inline FrameRange parseFrameRange(const std::string& text, const std::string& na
         if (colon > 0) range.first = number(text.substr(0, colon));
         if (colon + 1 < text.size()) range.end = number(text.substr(colon + 1));
     } catch (const std::exception&) {
-        throw boneless::Error(name + " expects A:B (0-based, not negative, B excluded), got '" +
-                              text + "'");
+        throw boneless::Error(name + " expects A:B (0-based, not negative, B excluded), got \"" +
+                              text + "\"");
     }
     return range;
 }

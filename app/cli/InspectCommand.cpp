@@ -66,8 +66,13 @@ void printSummary(const boneless::C3dTake& t, std::ostream& out) {
     out << t.file << "\n";
     out << "  format    " << toString(t.processor) << ", " << toString(t.storage)
         << " (POINT:SCALE " << t.pointScale << ")\n";
-    out << "  frames    " << t.frameCount() << " @ " << t.rate << " Hz (header frames "
-        << t.firstFrameWord << ".." << t.lastFrameWord << ")\n";
+    // No rate is no "@ 0 Hz": the JSON's fps is null, as the sidecar's.
+    out << "  frames    " << t.frameCount();
+    if (t.hasFrameRate())
+        out << " @ " << t.rate << " Hz";
+    else
+        out << ", no frame rate";
+    out << " (header frames " << t.firstFrameWord << ".." << t.lastFrameWord << ")\n";
     out << "  units     " << t.units << " (x" << t.unitToMm << " to mm)\n";
     out << "  up        " << boneless::axisName(t.vertical) << "\n";
     out << "  analog    " << t.analogChannels << " channels @ " << t.analogRate << " Hz\n";

@@ -7,18 +7,25 @@
 #include <utility>
 
 #include "boneless/TakeOptionsJson.h"
+#include "boneless/Text.h"
 
 using namespace boneless;
 
 namespace {
 
-// The flags that took their option's key as their name: the old flag, the key (eval's
-// --rigidity and --tolerance went with the methods that are gone and came back as the table's).
-const std::pair<const char*, const char*> kRenamedFlags[] = {{"--weight", "marker_weight"},
-                                                             {"--lowpass", "low_pass_hz"},
-                                                             {"--fill-gaps", "fill_gaps_s"},
-                                                             {"--rigidity", "fold_guard"},
-                                                             {"--tolerance", "relative_tolerance"}};
+// The flags that took their option's key as their name: the command that had the old flag, the
+// old flag, the key (eval's --rigidity and --tolerance went with the methods that are gone and
+// came back as the table's). solve's --rigidity never was: it gets no hint.
+struct RenamedFlag {
+    const char* command;
+    const char* old;
+    const char* key;
+};
+const RenamedFlag kRenamedFlags[] = {{"solve", "--weight", "marker_weight"},
+                                     {"solve", "--lowpass", "low_pass_hz"},
+                                     {"solve", "--fill-gaps", "fill_gaps_s"},
+                                     {"eval", "--rigidity", "fold_guard"},
+                                     {"eval", "--tolerance", "relative_tolerance"}};
 
 }  // namespace
 
@@ -51,15 +58,12 @@ CLI::Validator numberFrom(double low, double high, bool whole) {
                   whole ? "whole " : "", low, high);
     return CLI::Validator(
         [low, high, whole, range = std::string(range)](std::string& text) -> std::string {
-            std::size_t used = 0;
+            // A count in digits alone: CLI11 reads "1e3" as no int, and "010" as octal 8.
             double x = NAN;
-            try {
-                x = whole ? static_cast<double>(std::stoll(text, &used)) : std::stod(text, &used);
-            } catch (const std::exception&) {
-                used = 0;
-            }
-            const bool ok =
-                used == text.size() && used > 0 && std::isfinite(x) && x >= low && x <= high;
+            const Decimal read = readDecimal(text, x);
+            if (read == Decimal::Underflow) return range + text + ", " + kUnderflowNote;
+            const bool ok = read == Decimal::Number && std::isfinite(x) && x >= low && x <= high &&
+                            (!whole || text.find_first_not_of("+-0123456789") == std::string::npos);
             return ok ? std::string() : range + text;
         },
         "");
@@ -72,11 +76,11 @@ std::vector<std::string> renamedFlagHints(const CLI::App& app) {
     std::vector<std::string> hints;
     for (const std::string& argument : app.remaining(true)) {
         const std::string flag = argument.substr(0, argument.find('='));  // --weight=5 too
-        for (const auto& [old, key] : kRenamedFlags) {
-            if (flag != old) continue;
-            const std::string now = optionFlag(*findTakeOption(key));
+        for (const RenamedFlag& renamed : kRenamedFlags) {
+            if (flag != renamed.old) continue;
+            const std::string now = optionFlag(*findTakeOption(renamed.key));
             for (const CLI::App* command : given)
-                if (command->get_option_no_throw(now)) {
+                if (command->get_name() == renamed.command && command->get_option_no_throw(now)) {
                     hints.push_back(flag + " was renamed " + now);
                     break;
                 }

@@ -18,6 +18,7 @@ void addOptionFlags(CLI::App* command, nlohmann::json& given, const nlohmann::js
 CLI::Validator numberFrom(double low, double high, bool whole = false);
 
 // "--weight was renamed --marker-weight": a line for each flag the command line gave under the
-// name it had before it took its option's key (docs/options.md), where the command given has the
-// flag under its new name. CLI11 alone said only "The following argument was not expected".
+// name it had before it took its option's key (docs/options.md), on the command that had it
+// (eval's --rigidity, never solve's). CLI11 alone said only "The following argument was not
+// expected".
 std::vector<std::string> renamedFlagHints(const CLI::App& app);

@@ -419,7 +419,8 @@ TEST(Batch, ABadFormatOrFrameRangeIsNamedBeforeAnythingIsSolved) {
         {{{"c3d", "takes/walk_b.c3d"}, {"out", "b"}, {"format", "fbx"}},
          "m.json: takes[1]: unknown format 'fbx' (expected obj, pc2, mdd, glb)"},
         {{{"c3d", "takes/walk_b.c3d"}, {"out", "b"}, {"frames", "2-4"}},
-         "m.json: takes[1]: 'frames' expects A:B (0-based, not negative, B excluded), got '2-4'"}};
+         "m.json: takes[1]: 'frames' expects A:B (0-based, not negative, B excluded), got "
+         "\"2-4\""}};
     for (const auto& [bad, message] : cases) {
         const json manifest = {{"defaults", {{"mesh", "walker.obj"}, {"map", "walker.map.json"}}},
                                {"takes", {good, bad}}};

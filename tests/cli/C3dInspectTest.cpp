@@ -93,6 +93,22 @@ TEST(C3dInspect, JsonNamesTheFrameRateFpsAsTheSidecarDoes) {
     EXPECT_TRUE(nlohmann::json::parse(none.out)["fps"].is_null()) << none.out;
 }
 
+// The summary said "5 @ 0 Hz" of a take whose JSON says "fps": null.
+TEST(C3dInspect, TheSummaryOfATakeWithoutAFrameRateSaysItHasNone) {
+    C3dTake noRate = readC3d(demoFile());
+    noRate.rate = 0;
+    const std::string file = (c3dtest::workDir() / "inspect-no-rate.c3d").string();
+    writeC3d(noRate, file);
+    const CliRun none = inspect(quoted(file));
+    ASSERT_EQ(none.exitCode, 0) << none.err;
+    EXPECT_NE(none.out.find("  frames    5, no frame rate (header frames 1..5)\n"),
+              std::string::npos)
+        << none.out;
+    const CliRun rated = inspect(quoted(demoFile()));
+    EXPECT_NE(rated.out.find("  frames    5 @ 60 Hz (header frames 1..5)\n"), std::string::npos)
+        << rated.out;
+}
+
 TEST(C3dInspect, CsvHasOneRowPerSampleAndEmptyMissing) {
     const auto csv = c3dtest::workDir() / "inspect-demo.csv";
     std::filesystem::remove(csv);

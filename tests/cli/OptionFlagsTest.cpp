@@ -86,6 +86,66 @@ TEST(OptionFlags, ABadNumberIsEchoedAsTyped) {
         << frame.out;
 }
 
+// strtod reads hexadecimal: "--max-iterations 0x10" solved with 16 steps, and CLI11 reads a
+// leading zero as octal: "demo --frames 010" wrote 8 frames. Numbers are decimal, as in JSON;
+// anything else is refused as the other words that are no number are.
+TEST(OptionFlags, ANumberInHexadecimalOrOctalIsRefused) {
+    const std::string solve = "solve --mesh m.obj --c3d t.c3d --map m.json --out o ";
+    for (const char* typed : {"0x10", "010", "0x1p4"}) {
+        const CliResult r = runCli(solve + "--max-iterations " + typed);
+        EXPECT_EQ(r.exitCode, 1) << typed;
+        EXPECT_NE(r.out.find("--max-iterations: must be a whole number from 1 to 10000, got \"" +
+                             std::string(typed) + "\"\n"),
+                  std::string::npos)
+            << r.out;
+    }
+    const fs::path dir = freshTestDir("demo-octal");
+    for (const char* typed : {"010", "0x10"}) {
+        const CliResult r = runCli("demo --out " + (dir / "x").string() + " --frames " + typed);
+        EXPECT_EQ(r.exitCode, 1) << typed;
+        EXPECT_NE(r.out.find("--frames: must be a whole number from 1 to 100000, got " +
+                             std::string(typed) + "\n"),
+                  std::string::npos)
+            << r.out;
+        EXPECT_FALSE(fs::exists(dir / "x")) << typed;
+    }
+}
+
+// "--fill-gaps-s 1e-400" was refused as a word, `got "1e-400"`, and with a range that holds it:
+// it is a number, too close to 0 for a double. It is echoed as a number, saying so.
+TEST(OptionFlags, ANumberThatUnderflowsIsEchoedAsANumberSayingSo) {
+    const std::string note =
+        ", too close to 0 to be held (it underflows): give 0 or at least "
+        "1e-307\n";
+    const CliResult r =
+        runCli("solve --mesh m.obj --c3d t.c3d --map m.json --out o --fill-gaps-s 1e-400");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("--fill-gaps-s: must be a number (s) from 0 to 3600, got 1e-400" + note),
+              std::string::npos)
+        << r.out;
+    const fs::path dir = freshTestDir("demo-underflow");
+    const CliResult demo = runCli("demo --out " + dir.string() + " --offset-mm -1e-400");
+    EXPECT_EQ(demo.exitCode, 1) << demo.out;
+    EXPECT_NE(demo.out.find("--offset-mm: must be a number from 0 to 100, got -1e-400" + note),
+              std::string::npos)
+        << demo.out;
+}
+
+// A bad --frames or --shard was quoted 'so', where a bad choice is quoted "so".
+TEST(OptionFlags, ABadRangeIsQuotedAsABadChoiceIs) {
+    const std::string solve = "solve --mesh m.obj --c3d t.c3d --map m.json --out o ";
+    const std::pair<std::string, std::string> refused[] = {
+        {solve + "--solver fast", "--solver: must be one of local-global, exact, got \"fast\"\n"},
+        {solve + "--frames 0-10",
+         "--frames expects A:B (0-based, not negative, B excluded), got \"0-10\"\n"},
+        {"batch m.json --shard 3/2", "--shard expects I/N with 1 <= I <= N, got \"3/2\"\n"}};
+    for (const auto& [arguments, message] : refused) {
+        const CliResult r = runCli(arguments);
+        EXPECT_EQ(r.exitCode, 1) << arguments;
+        EXPECT_NE(r.out.find(message), std::string::npos) << r.out;
+    }
+}
+
 // The options given on the command line reach the sidecar under the same keys.
 TEST(OptionFlags, TheSidecarRecordsTheOptionsUnderTheFlagsNames) {
     const fs::path demo = freshTestDir("option-flags");
@@ -136,4 +196,16 @@ TEST(OptionFlags, AnOldFlagIsRefusedNamingItsNewName) {
     const CliResult inspect = runCli("inspect t.c3d --weight 5");
     EXPECT_EQ(inspect.exitCode, 1);
     EXPECT_EQ(inspect.out.find("renamed"), std::string::npos) << inspect.out;
+}
+
+// --rigidity and --tolerance were eval's flags: solve, which has --fold-guard and
+// --relative-tolerance, was told "--rigidity was renamed --fold-guard" of a flag it never had.
+TEST(OptionFlags, AnOldFlagIsNamedOnlyOnTheCommandThatHadIt) {
+    const std::string solve = "solve --mesh m.obj --c3d t.c3d --map m.json --out o ";
+    for (const std::string& arguments : {solve + "--rigidity 1", solve + "--tolerance 0.1"}) {
+        const CliResult r = runCli(arguments);
+        EXPECT_EQ(r.exitCode, 1) << arguments;
+        EXPECT_NE(r.out.find("not expected"), std::string::npos) << r.out;
+        EXPECT_EQ(r.out.find("renamed"), std::string::npos) << r.out;
+    }
 }

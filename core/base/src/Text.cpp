@@ -1,6 +1,25 @@
 #include "boneless/Text.h"
 
+#include <cctype>
+#include <cerrno>
+#include <cstdlib>
+
 namespace boneless {
+
+Decimal readDecimal(const std::string& text, double& x) {
+    const std::size_t digits = !text.empty() && (text[0] == '-' || text[0] == '+') ? 1 : 0;
+    if (text.find_first_of("xX") != std::string::npos) return Decimal::NotANumber;  // hexadecimal
+    if (text.size() > digits + 1 && text[digits] == '0' &&
+        std::isdigit(static_cast<unsigned char>(text[digits + 1])))
+        return Decimal::NotANumber;  // a leading zero: octal to some
+    if (text.empty() || std::isspace(static_cast<unsigned char>(text[0])))
+        return Decimal::NotANumber;
+    char* end = nullptr;
+    errno = 0;
+    x = std::strtod(text.c_str(), &end);
+    if (end != text.c_str() + text.size()) return Decimal::NotANumber;
+    return errno == ERANGE && x == 0 ? Decimal::Underflow : Decimal::Number;
+}
 
 std::size_t utf8SequenceAt(std::string_view s, std::size_t i) {
     const auto at = [&](std::size_t k) { return static_cast<unsigned char>(s[k]); };

@@ -45,7 +45,8 @@ void spine(double s, double t, double amplitude, Eigen::Vector3d& point, Eigen::
 
 }  // namespace
 
-DemoCreature makeDemoCreature(int frameCount, int rings, int segments) {
+DemoCreature makeDemoCreature(int frameCount, int rings, int segments,
+                              const std::function<void(int, const Positions&)>& onFrame) {
     DemoCreature demo;
     const int capRings = segments / 4;
     // Axial coordinate (arclength along x) and radius of every ring, caps included.
@@ -113,8 +114,13 @@ DemoCreature makeDemoCreature(int frameCount, int rings, int segments) {
     for (size_t f = 0; f < faces.size(); ++f) demo.rest.F.row(f) = faces[f].transpose();
     // The rest pose is the straight body (amplitude 0); the swimming eases in over ten frames.
     demo.rest.V = pose(0.0, 0.0);
-    for (int t = 0; t < frameCount; ++t)
-        demo.frames.push_back(pose(t / demo.framesPerSecond, std::min(1.0, t / 10.0)));
+    for (int t = 0; t < frameCount; ++t) {
+        Positions frame = pose(t / demo.framesPerSecond, std::min(1.0, t / 10.0));
+        if (onFrame)
+            onFrame(t, frame);
+        else
+            demo.frames.push_back(std::move(frame));
+    }
     return demo;
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "boneless/TriMesh.h"
@@ -19,6 +20,8 @@ struct DemoCreature {
 
 // rings × segments controls the resolution: faces = 2 · segments · (rings + 2 · capRings − 2),
 // capRings = segments / 4 (2,784 faces by default).
-DemoCreature makeDemoCreature(int frameCount = 60, int rings = 48, int segments = 24);
+// With `onFrame`, each frame goes to it as it is made and `frames` stays empty.
+DemoCreature makeDemoCreature(int frameCount = 60, int rings = 48, int segments = 24,
+                              const std::function<void(int, const Positions&)>& onFrame = {});
 
 }  // namespace boneless

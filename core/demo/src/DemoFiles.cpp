@@ -1,10 +1,16 @@
 #include "boneless/DemoFiles.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <memory>
 #include <string>
 
+#include "DemoCapture.h"
 #include "DemoCreature.h"
 #include "DemoTake.h"
 #include "DemoWalker.h"
@@ -49,16 +55,88 @@ void checkRoom(const std::string& folder, std::uintmax_t needed, int frames, boo
 
 }  // namespace
 
-DemoFiles writeDemoFiles(const std::string& folder, int frames, double offsetMm, bool withTruth,
-                         int detail, DemoSubject subject) {
-    namespace fs = std::filesystem;
-    const fs::path out(folder), truth = out / "truth";
+namespace {
+
+// Where each of the demo's files goes as it is made: its name in the folder ("walker.obj",
+// "truth/walker_0003.obj") and its bytes.
+using DemoFileSink = std::function<void(const std::string& name, const std::string& contents)>;
+
+void checkDetail(int detail, DemoSubject subject) {
     if (detail < 1)
         throw Error("demo detail must be at least 1 (got " + std::to_string(detail) + ")");
     if (subject == DemoSubject::Walker && detail > 4)
         throw Error("the walker's detail is at most 4 (got " + std::to_string(detail) + ")");
-    // The rest mesh alone first (its frames, all held in memory, come after the check): an OBJ
-    // of it for the rest and for each frame of truth, and the take's few bytes a marker a frame.
+}
+
+std::string subjectName(DemoSubject subject) {
+    return subject == DemoSubject::Walker ? "walker" : "creature";
+}
+
+std::string truthName(const std::string& name, int frame) {
+    char file[64];
+    std::snprintf(file, sizeof file, "truth/%s_%04d.obj", name.c_str(), frame);
+    return file;
+}
+
+// Makes the demo's files, each handed to `sink`, frame by frame: each frame's truth goes as it
+// is made, and only the take's samples are held (a 100,000-frame demo held 8 GB of frames).
+// The counts it returns name no files.
+DemoFiles makeDemoFiles(int frames, double offsetMm, bool withTruth, int detail,
+                        DemoSubject subject, const DemoFileSink& sink) {
+    const std::string name = subjectName(subject);
+    TriMesh rest;
+    std::unique_ptr<DemoRecorder> recorder;
+    std::function<void(const std::function<void(int, const Positions&)>&)> makeFrames;
+    std::string units;
+    if (subject == DemoSubject::Walker) {
+        const DemoWalker walker = makeDemoWalker(0, 1 + detail);
+        rest = walker.rest;
+        recorder =
+            std::make_unique<DemoRecorder>(rest, demoWalkerCapture(walker), frames, offsetMm);
+        makeFrames = [&](const auto& onFrame) { makeDemoWalker(frames, 1 + detail, onFrame); };
+        units = "metres";
+    } else {
+        const DemoCreature creature = makeDemoCreature(0, 48 * detail, 24 * detail);
+        rest = creature.rest;
+        recorder = std::make_unique<DemoRecorder>(rest, demoCreatureCapture(creature, 30), frames,
+                                                  offsetMm);
+        makeFrames = [&](const auto& onFrame) {
+            makeDemoCreature(frames, 48 * detail, 24 * detail, onFrame);
+        };
+        units = "decimetres";
+    }
+    sink(name + ".obj",
+         objText(name + ".obj", rest.V, rest.F,
+                 "Boneless generated demo " + name + ", rest pose (" + units + ", z up)"));
+    sink(name + ".map.json", recorder->take.map.toJson());
+    makeFrames([&](int t, const Positions& pose) {
+        recorder->record(t, pose);
+        if (withTruth)
+            sink(truthName(name, t), objText(truthName(name, t), pose, rest.F,
+                                             "Boneless generated demo " + name +
+                                                 ", true pose of frame " + std::to_string(t)));
+    });
+    const C3dTake& take = recorder->take.take;
+    const std::vector<std::uint8_t> c3d = encodeC3d(take);
+    sink(name + ".c3d", std::string(c3d.begin(), c3d.end()));
+    DemoFiles files;
+    files.vertices = rest.vertexCount();
+    files.faces = rest.faceCount();
+    files.markers = static_cast<int>(take.points.size());
+    files.frames = static_cast<int>(take.frameCount());
+    files.rate = take.rate;
+    return files;
+}
+
+}  // namespace
+
+DemoFiles writeDemoFiles(const std::string& folder, int frames, double offsetMm, bool withTruth,
+                         int detail, DemoSubject subject) {
+    namespace fs = std::filesystem;
+    const fs::path out(folder), truth = out / "truth";
+    checkDetail(detail, subject);
+    // The rest mesh alone first: an OBJ of it for the rest and for each frame of truth, and the
+    // take's few bytes a marker a frame.
     const TriMesh shape = subject == DemoSubject::Walker
                               ? makeDemoWalker(0, 1 + detail).rest
                               : makeDemoCreature(0, 48 * detail, 24 * detail).rest;
@@ -69,51 +147,44 @@ DemoFiles writeDemoFiles(const std::string& folder, int frames, double offsetMm,
     std::error_code ec;
     fs::create_directories(withTruth ? truth : out, ec);
     if (ec) throw Error(folder + ": cannot create the folder (" + ec.message() + ")");
-    TriMesh rest;
-    std::vector<Positions> truthFrames;
-    DemoTake take;
-    std::string name, units;
-    if (subject == DemoSubject::Walker) {
-        DemoWalker walker = makeDemoWalker(frames, 1 + detail);
-        take = makeDemoWalkerTake(walker, offsetMm);
-        rest = std::move(walker.rest);
-        truthFrames = std::move(walker.frames);
-        name = "walker";
-        units = "metres";
-    } else {
-        DemoCreature creature = makeDemoCreature(frames, 48 * detail, 24 * detail);
-        take = makeDemoTake(creature, 30, offsetMm);
-        rest = std::move(creature.rest);
-        truthFrames = std::move(creature.frames);
-        name = "creature";
-        units = "decimetres";
-    }
-
-    DemoFiles files;
+    DemoFiles files = makeDemoFiles(frames, offsetMm, withTruth, detail, subject,
+                                    [&](const std::string& name, const std::string& contents) {
+                                        writeFileAtomically((out / name).string(), contents);
+                                    });
+    const std::string name = subjectName(subject);
     files.folder = folder;
     files.mesh = (out / (name + ".obj")).string();
     files.take = (out / (name + ".c3d")).string();
     files.map = (out / (name + ".map.json")).string();
-    writeObj(files.mesh, rest.V, rest.F,
-             "Boneless generated demo " + name + ", rest pose (" + units + ", z up)");
-    writeC3d(take.take, files.take);
-    take.map.write(files.map);
-    if (withTruth) {
-        files.truthFolder = truth.string();
-        for (int t = 0; t < static_cast<int>(truthFrames.size()); ++t) {
-            char file[64];
-            std::snprintf(file, sizeof file, "%s_%04d.obj", name.c_str(), t);
-            writeObj(
-                (truth / file).string(), truthFrames[t], rest.F,
-                "Boneless generated demo " + name + ", true pose of frame " + std::to_string(t));
-        }
-    }
-    files.vertices = rest.vertexCount();
-    files.faces = rest.faceCount();
-    files.markers = static_cast<int>(take.take.points.size());
-    files.frames = static_cast<int>(take.take.frameCount());
-    files.rate = take.take.rate;
+    if (withTruth) files.truthFolder = truth.string();
     return files;
+}
+
+std::vector<std::string> demoFilesThatDiffer(const std::string& folder, int frames, double offsetMm,
+                                             bool withTruth, int detail, DemoSubject subject) {
+    namespace fs = std::filesystem;
+    checkDetail(detail, subject);
+    // Made only when the folder holds one of the files: a new folder costs nothing.
+    const std::string name = subjectName(subject);
+    std::vector<std::string> names = {name + ".obj", name + ".c3d", name + ".map.json"};
+    for (int t = 0; withTruth && t < frames; ++t) names.push_back(truthName(name, t));
+    std::error_code ec;
+    if (std::none_of(names.begin(), names.end(),
+                     [&](const std::string& n) { return fs::exists(fs::path(folder) / n, ec); }))
+        return {};
+    std::vector<std::string> differ;
+    makeDemoFiles(frames, offsetMm, withTruth, detail, subject,
+                  [&](const std::string& n, const std::string& contents) {
+                      const fs::path path = fs::path(folder) / n;
+                      if (!fs::exists(path, ec)) return;  // made anew: nothing to lose
+                      std::ifstream in(path, std::ios::binary);
+                      const std::string there{std::istreambuf_iterator<char>(in), {}};
+                      if (there != contents) differ.push_back(n);
+                  });
+    // The take, made last, named with the map and the mesh before the frames of truth.
+    std::stable_partition(differ.begin(), differ.end(),
+                          [](const std::string& n) { return n.find('/') == std::string::npos; });
+    return differ;
 }
 
 }  // namespace boneless

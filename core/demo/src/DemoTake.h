@@ -17,4 +17,8 @@ struct DemoTake {
 
 DemoTake makeDemoTake(const DemoCreature& demo, int markerCount = 30, double offsetMm = 10.0);
 
+struct DemoCapture;
+// How that session sees the creature (DemoCapture.h), for recording it a frame at a time.
+DemoCapture demoCreatureCapture(const DemoCreature& demo, int markerCount = 30);
+
 }  // namespace boneless

@@ -366,7 +366,8 @@ std::vector<std::pair<std::string, Vec3>> markerProbes() {
 
 }  // namespace
 
-DemoWalker makeDemoWalker(int frameCount, int subdivisions) {
+DemoWalker makeDemoWalker(int frameCount, int subdivisions,
+                          const std::function<void(int, const Positions&)>& onFrame) {
     const Skeleton skeleton = restSkeleton();
     const Cage cage = makeCage();
     std::vector<Vec3> points;
@@ -383,7 +384,11 @@ DemoWalker makeDemoWalker(int frameCount, int subdivisions) {
             const CageVertex& v = cage.vertices[i];
             posed[i] = (1 - v.w2) * (pose[v.bone] * v.p) + v.w2 * (pose[v.bone2] * v.p);
         }
-        walker.frames.push_back(t == 0 ? walker.rest.V : subdivide(cage, posed, subdivisions).V);
+        Positions frame = t == 0 ? walker.rest.V : subdivide(cage, posed, subdivisions).V;
+        if (onFrame)
+            onFrame(t, frame);
+        else
+            walker.frames.push_back(std::move(frame));
     }
     for (const auto& [label, probe] : markerProbes()) {
         Eigen::Index nearest = 0;

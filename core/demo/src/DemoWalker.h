@@ -1,5 +1,6 @@
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -22,12 +23,18 @@ struct DemoWalker {
     std::vector<std::pair<std::string, int>> markerVertices;
 };
 
-// subdivisions: Catmull–Clark steps of the cage, each 4× the faces (2: 6,848 faces).
-DemoWalker makeDemoWalker(int frameCount = 60, int subdivisions = 2);
+// subdivisions: Catmull–Clark steps of the cage, each 4× the faces (2: 6,848 faces). With
+// `onFrame`, each frame goes to it as it is made and `frames` stays empty.
+DemoWalker makeDemoWalker(int frameCount = 60, int subdivisions = 2,
+                          const std::function<void(int, const Positions&)>& onFrame = {});
 
 // The walk as a capture session records it: the marker set `offsetMm` off the skin, in
 // millimetres, seen from a capture volume turned and shifted from the mesh's axes, with
 // occlusion gaps; and the correspondence file that maps it.
 DemoTake makeDemoWalkerTake(const DemoWalker& walker, double offsetMm = 10.0);
+
+struct DemoCapture;
+// How that session sees the walker (DemoCapture.h), for recording it a frame at a time.
+DemoCapture demoWalkerCapture(const DemoWalker& walker);
 
 }  // namespace boneless

@@ -89,8 +89,8 @@ void appendPolygons(std::string& text, const SourceFaces& source, const std::str
 
 }  // namespace
 
-void writeObj(const std::string& path, const Positions& positions, const Faces& faces,
-              const std::string& comment, const SourceFaces* source) {
+std::string objText(const std::string& path, const Positions& positions, const Faces& faces,
+                    const std::string& comment, const SourceFaces* source) {
     std::string text;
     text.reserve(static_cast<size_t>(positions.rows()) * 60 +
                  static_cast<size_t>(faces.rows()) * 24);
@@ -116,7 +116,12 @@ void writeObj(const std::string& path, const Positions& positions, const Faces& 
             text += '\n';
         }
     }
-    writeFileAtomically(path, text);
+    return text;
+}
+
+void writeObj(const std::string& path, const Positions& positions, const Faces& faces,
+              const std::string& comment, const SourceFaces* source) {
+    writeFileAtomically(path, objText(path, positions, faces, comment, source));
 }
 
 }  // namespace boneless

@@ -241,18 +241,25 @@ std::vector<std::size_t> Correspondence::resolve(const C3dTake& take) const {
     }
     if (unknown.empty()) return points;
     // A prefix that names no subject of the take ("other:T10" where walker wears T10) finds no
-    // other subject's marker: the take's subjects say which prefix to write.
+    // other subject's marker: the take's subjects say which prefix to write. One that names a
+    // subject who does not wear the marker ("Daphnee:gauche_ext", worn by boite) is told whose
+    // it is.
     const std::vector<std::string> subjects = take.subjects();
     std::string said;
+    std::vector<std::string> worn;  // the labels of other subjects' markers of the names
     for (const std::string& label : unknown) {
         std::string subject, name;
         splitC3dLabel(label, subject, name);
-        if (!subject.empty() && !subjects.empty() &&
-            std::none_of(subjects.begin(), subjects.end(),
+        if (subject.empty() || subjects.empty()) continue;
+        if (std::none_of(subjects.begin(), subjects.end(),
                          [&](const std::string& s) { return c3dNameEquals(s, subject); }))
             said = subjects.size() == 1 ? "; the take's only subject is " + subjects.front()
                                         : "; the take's subjects are " + joined(subjects);
+        else
+            for (std::size_t p : take.pointsNamed(name)) worn.push_back(take.points[p].label);
     }
+    if (!worn.empty())
+        said += "; " + joined(worn) + (worn.size() == 1 ? " is" : " are") + " in the take";
     fail(file, "labels not found in " + take.file + ": " + joined(unknown) + said);
 }
 

@@ -252,20 +252,18 @@ std::string checkOptionValue(const TakeOption& option, const json& value) {
 }
 
 std::string checkOptionText(const TakeOption& option, const std::string& text) {
+    double x = 0;
+    if (option.kind != TakeOption::Kind::Choice && readDecimal(text, x) == Decimal::Underflow)
+        return check(option, json(), text + ", " + kUnderflowNote);
     const json value = optionValueFromText(option, text);
     return check(option, value, value.is_number() ? text : value.dump());
 }
 
 json optionValueFromText(const TakeOption& option, const std::string& text) {
     if (option.kind == TakeOption::Kind::Choice) return text;
-    std::size_t used = 0;
     double x = 0;
-    try {
-        x = std::stod(text, &used);
-    } catch (const std::exception&) {
+    if (readDecimal(text, x) != Decimal::Number)
         return text;  // a string: checkOptionValue says what is wrong
-    }
-    if (used != text.size()) return text;
     return option.kind == TakeOption::Kind::Integer && x == std::floor(x) && std::abs(x) < 2e9
                ? json(static_cast<long long>(x))
                : json(x);

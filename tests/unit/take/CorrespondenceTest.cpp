@@ -221,3 +221,18 @@ TEST(Correspondence, ALabelTwoPointsOfTheTakeShareIsRefusedNamingBothPoints) {
     }
     EXPECT_EQ(mapOf("RFWT").resolve(take), (std::vector<std::size_t>{0, 2}));
 }
+
+// A prefix that names a subject of the take who does not wear the marker said only "not found":
+// the marker's wearer is named.
+TEST(Correspondence, ALabelPrefixedWithASubjectWhoDoesNotWearItNamesWhoDoes) {
+    const C3dTake take = takeOf("vicon.c3d", {"Daphnee:LFHD", "boite:gauche_ext", "boite:dos"});
+    const Correspondence map = Correspondence::fromJson(
+        R"({"format": "boneless-correspondence", "version": 1, "markers": [
+          {"label": "LFHD", "vertex": 1}, {"label": "Daphnee:gauche_ext", "vertex": 2}]})",
+        "vicon.json");
+    const std::string e = errorOf([&] { map.resolve(take); });
+    EXPECT_NE(e.find("vicon.json: labels not found in vicon.c3d: Daphnee:gauche_ext; "
+                     "boite:gauche_ext is in the take"),
+              std::string::npos)
+        << e;
+}

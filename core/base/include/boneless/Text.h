@@ -24,6 +24,15 @@ inline std::string plural(long long n, const std::string& word, const std::strin
     return std::to_string(n) + " " + (n == 1 ? word : words.empty() ? word + "s" : words);
 }
 
+// `text` as a number the way a command line gives one: decimal, as in JSON. NotANumber for
+// anything else, "0x10" (which strtod reads as 16) and "010" (octal 8 to C, 10 to strtod)
+// included; "nan" and "inf" are numbers, for a range to refuse by name. Underflow for a number
+// too close to 0 for a double ("1e-400"), which is no 0 either: a message says kUnderflowNote.
+enum class Decimal { Number, NotANumber, Underflow };
+Decimal readDecimal(const std::string& text, double& x);
+inline constexpr const char* kUnderflowNote =
+    "too close to 0 to be held (it underflows): give 0 or at least 1e-307";
+
 // Length of the well-formed UTF-8 sequence at text[i] (RFC 3629: no overlongs, no surrogates,
 // nothing past U+10FFFF), 0 when there is none.
 std::size_t utf8SequenceAt(std::string_view text, std::size_t i);

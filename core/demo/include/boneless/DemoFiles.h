@@ -1,6 +1,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace boneless {
 
@@ -19,12 +20,20 @@ struct DemoFiles {
     double rate = 0;
 };
 
-// Writes the demo into `folder` (created if missing). Throws Error naming the folder on failure.
-// detail = 1 is the shipped resolution, more is finer, for runs that need a mesh large enough
-// for the local/global method's coarse level: the creature has d² times the faces (2,784 at 1),
-// the walker 4^(d−1) times (6,848 at 1).
+// Writes the demo into `folder` (created if missing), replacing its files there (see
+// demoFilesThatDiffer). Throws Error naming the folder on failure. detail = 1 is the shipped
+// resolution, more is finer, for runs that need a mesh large enough for the local/global
+// method's coarse level: the creature has d² times the faces (2,784 at 1), the walker 4^(d−1)
+// times (6,848 at 1).
 DemoFiles writeDemoFiles(const std::string& folder, int frames = 60, double offsetMm = 10.0,
                          bool withTruth = true, int detail = 1,
                          DemoSubject subject = DemoSubject::Creature);
+
+// The files writeDemoFiles with these arguments would replace in `folder` with other bytes (a
+// map edited since, a take of another length), named as in the folder ("walker.map.json",
+// "truth/walker_0003.obj"); none when the folder holds none of the demo's files, or holds them
+// as this demo would write them.
+std::vector<std::string> demoFilesThatDiffer(const std::string& folder, int frames, double offsetMm,
+                                             bool withTruth, int detail, DemoSubject subject);
 
 }  // namespace boneless

@@ -16,6 +16,9 @@ namespace boneless {
 // frame. Throws Error naming the file when it cannot be written.
 void writeObj(const std::string& path, const Positions& positions, const Faces& faces,
               const std::string& comment = {}, const SourceFaces* source = nullptr);
+// The text writeObj writes to `path` (which names the material libraries relative to its folder).
+std::string objText(const std::string& path, const Positions& positions, const Faces& faces,
+                    const std::string& comment = {}, const SourceFaces* source = nullptr);
 
 // Writes `contents` to `path` through a temporary file (temporaryFor) and a rename: a write that
 // fails leaves the file `path` was and no temporary. Throws Error naming `path` and the system's

@@ -1,0 +1,68 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include "CliRunner.h"
+
+using namespace boneless::testing;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string contentsOf(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
+
+}  // namespace
+
+// Before, a second demo into the folder replaced the map the user had edited there without a
+// word. The same demo again replaces its files by the same bytes; one that would change a file
+// is refused, naming it, until --force.
+TEST(DemoCommand, AFileItWouldChangeIsReplacedOnlyWithForce) {
+    const fs::path dir = freshTestDir("demo-again");
+    const std::string demo = "demo --out " + dir.string();
+    ASSERT_EQ(runCli(demo + " --frames 3").exitCode, 0);
+    const CliResult same = runCli(demo + " --frames 3");
+    EXPECT_EQ(same.exitCode, 0) << same.out;
+    const std::string written = contentsOf(dir / "walker.map.json");
+    std::ofstream(dir / "walker.map.json", std::ios::app) << " ";
+    const std::string edited = written + " ";
+    const CliResult refused = runCli(demo + " --frames 3");
+    EXPECT_EQ(refused.exitCode, 1) << refused.out;
+    EXPECT_NE(refused.out.find(dir.string() + ": walker.map.json differs from what this demo "
+                                              "writes (edited, or written with other --frames, "
+                                              "--offset-mm or --detail); nothing was written: "
+                                              "give --force to replace it, or another --out\n"),
+              std::string::npos)
+        << refused.out;
+    EXPECT_TRUE(contentsOf(dir / "walker.map.json") == edited) << "the edited map was replaced";
+    // A longer take: its C3D differs too; its first frames of truth do not.
+    const CliResult longer = runCli(demo + " --frames 4");
+    EXPECT_EQ(longer.exitCode, 1) << longer.out;
+    EXPECT_NE(longer.out.find(": walker.map.json, walker.c3d differ from what this demo writes"),
+              std::string::npos)
+        << longer.out;
+    EXPECT_FALSE(fs::exists(dir / "truth" / "walker_0003.obj"));
+    const CliResult forced = runCli(demo + " --frames 3 --force");
+    EXPECT_EQ(forced.exitCode, 0) << forced.out;
+    EXPECT_TRUE(contentsOf(dir / "walker.map.json") == written) << "the map was kept";
+}
+
+// Before, the demo made every frame before writing the first: 100,000 frames at detail 1 (8 GB of
+// poses) passed the disk check, ran out of memory and left an empty truth/. Now each frame is
+// written as it is made. The demo needs some 220 MB of address space; under 300 MB, 2,000 frames
+// (160 MB of poses) ran out.
+TEST(DemoCommand, ATakeLongerThanMemoryCouldHoldIsWrittenFrameByFrame) {
+    const fs::path dir = freshTestDir("demo-long");
+    const CliResult r = runShell("ulimit -v 300000; timeout 120 " + std::string(BONELESS_CLI) +
+                                 " demo --out " + dir.string() + " --frames 2000 2>&1");
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("walker.c3d (39 markers, 2000 frames at 30 Hz)"), std::string::npos)
+        << r.out;
+    EXPECT_TRUE(fs::exists(dir / "truth" / "walker_1999.obj"));
+    fs::remove_all(dir);  // 600 MB
+}
