@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "C3dDetail.h"
+#include "boneless/Axis.h"
 
 namespace boneless::c3d_detail {
 
@@ -31,20 +32,11 @@ std::optional<Eigen::Vector3d> screenUp(const C3dParameters& parameters, std::st
     if (!screen) return std::nullopt;
     std::string axis;
     for (char c : screen->string())
-        if (!std::isspace(static_cast<unsigned char>(c))) axis += c;
-    const int k = axis.size() == 2 ? std::tolower(static_cast<unsigned char>(axis[1])) - 'x' : -1;
-    if (k < 0 || k > 2 || (axis[0] != '+' && axis[0] != '-')) {
-        unread = screen->string();
-        return std::nullopt;
-    }
-    return (axis[0] == '-' ? -1.0 : 1.0) * Eigen::Vector3d::Unit(k);
-}
-
-// "+z", as options and sidecars name an axis.
-std::string axisText(const Eigen::Vector3d& a) {
-    int k = 0;
-    a.cwiseAbs().maxCoeff(&k);
-    return std::string(a[k] < 0 ? "-" : "+") + char('x' + k);
+        if (!std::isspace(static_cast<unsigned char>(c)))
+            axis += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const std::optional<Eigen::Vector3d> up = parseAxis(axis);
+    if (!up) unread = screen->string();
+    return up;
 }
 
 // The spread of `v` between its 10th and 90th percentiles.
@@ -93,10 +85,10 @@ void setVertical(C3dTake& take, std::size_t frames,
     char share[16];
     std::snprintf(share, sizeof share, "%.0f%%", 100.0 * double(below) / double(above + below));
     take.warnings.push_back(
-        (claimed ? "POINT:Y_SCREEN says " + axisText(up) + " points up"
+        (claimed ? "POINT:Y_SCREEN says " + axisName(up) + " points up"
                  : "the file does not say which axis points up (POINT:Y_SCREEN), and +z would") +
         ", but " + share + " of the markers lie below the origin along it and their floor is " +
-        "at its top: taking " + axisText(-up) + " for the take's up");
+        "at its top: taking " + axisName(-up) + " for the take's up");
 }
 
 }  // namespace boneless::c3d_detail

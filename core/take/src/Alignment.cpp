@@ -23,18 +23,6 @@ Positions takeFrame(const C3dTake& take, const std::vector<std::size_t>& points,
     return P;
 }
 
-std::string axisName(const Vec3& axis) {
-    int k = 0;
-    axis.cwiseAbs().maxCoeff(&k);
-    return std::string(axis[k] < 0 ? "-" : "+") + "xyz"[k];
-}
-
-std::optional<Vec3> parseAxis(const std::string& name) {
-    if (name.size() != 2 || (name[0] != '+' && name[0] != '-') || name[1] < 'x' || name[1] > 'z')
-        return std::nullopt;
-    return (name[0] == '-' ? -1.0 : 1.0) * Vec3::Unit(name[1] - 'x');
-}
-
 int visibleRows(const Positions& P) {
     int seen = 0;
     for (Eigen::Index k = 0; k < P.rows(); ++k) seen += P.row(k).allFinite() ? 1 : 0;

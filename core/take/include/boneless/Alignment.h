@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "boneless/Axis.h"
 #include "boneless/RigidFit.h"
 #include "boneless/TriMesh.h"
 
@@ -56,11 +57,6 @@ Calibration roughAlignment(const C3dTake& take, const std::vector<std::size_t>& 
 // user can say where the mesh's up is. The result is `free` followed by a rigid motion.
 Similarity levelled(const Similarity& free, const Positions& take, const Positions& mesh,
                     const Vec3& takeUp, const std::optional<Vec3>& up = std::nullopt);
-
-// "+x", "-y", …: a signed coordinate axis as options and sidecars name it.
-std::string axisName(const Vec3& axis);
-// The signed coordinate axis `name` ("+x" … "-z") stands for, or nothing.
-std::optional<Vec3> parseAxis(const std::string& name);
 
 // The take's positions of `points` at `frame`, NaN rows where missing.
 Positions takeFrame(const C3dTake& take, const std::vector<std::size_t>& points, int frame);
