@@ -317,6 +317,51 @@ class DocumentTest : public QObject {
             QVERIFY2(labels.contains(QString::fromStdString(label)), qPrintable(labels.join(' ')));
     }
 
+    // A bare map label two subjects of the take wear (walker:X and second:X, the map's X): the
+    // solve check called it a marker the take does not have, where core refuses it for wanting
+    // the subject prefix. The check now says it in core's words, in its reason and its details.
+    void aBareLabelTwoSubjectsWearIsRefusedInCoresWordsNotCalledMissing() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        C3dTake two = d.take();
+        const std::size_t worn = d.markerPoint(0);
+        C3dPoint second = two.points[worn];
+        second.subject = "second";
+        second.label = "second:" + second.name;
+        two.points.push_back(second);
+        C3dSamples samples(two.samples.frames(), two.points.size());
+        for (std::size_t f = 0; f < samples.frames(); ++f)
+            for (std::size_t p = 0; p < two.points.size(); ++p)
+                if (const auto x = two.samples.position(f, p + 1 < two.points.size() ? p : worn))
+                    samples.set(f, p, x->x(), x->y(), x->z());
+        two.samples = samples;
+        const QString path = work_ + "/two-subjects.c3d";
+        writeC3d(two, path.toStdString());
+        QVERIFY(d.loadTake(path));  // the demo's map stays, naming the marker without a subject
+        QVERIFY(d.correspondence().find(second.name));
+
+        // What core says when the solve resolves this map.
+        std::string core;
+        try {
+            d.correspondence().resolve(d.take());
+        } catch (const std::exception& e) {
+            core = e.what();
+        }
+        QVERIFY2(core.find("is worn by more than one subject") != std::string::npos, core.c_str());
+
+        QString why, detail;
+        QVERIFY(!d.canSolve(&why, &detail));
+        QVERIFY2(!why.contains("does not have") && !detail.contains("Not in the take"),
+                 qPrintable(why + " | " + detail));
+        const QString expected = QString(
+                                     "marker %1 is worn by more than one subject in %2 "
+                                     "(walker:%1, second:%1); write the subject prefix")
+                                     .arg(QString::fromStdString(second.name), path);
+        QCOMPARE(why, expected + ".");
+        QCOMPARE(detail, expected + ".");
+        QVERIFY2(QString::fromStdString(core).endsWith(expected), core.c_str());
+    }
+
     // Two points of a take with one full label (Male:LFWT twice): either row could be
     // click-mapped, its entry never resolved, and the solve check called the label missing from
     // the take. Core's words say the label is shared, mapping such a row is refused with them, and

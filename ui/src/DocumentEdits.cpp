@@ -328,16 +328,19 @@ bool Document::canSolve(QString* why, QString* detail) const {
     // Before the take: loading one would not help.
     if (const QString refusal = memoryRefusal(); !refusal.isEmpty()) return no(refusal);
     if (!hasTake_) return no(tr("No take is loaded."));
-    QStringList unknown, shared;
+    QStringList unknown, shared, refused;
     int resolved = 0;
     for (const auto& m : map_.markers) {
         const std::vector<std::size_t> named = take_.pointsNamed(m.label);
-        if (named.size() == 1)
-            ++resolved;
+        if (named.empty())
+            unknown << QString::fromStdString(m.label);
         else if (named.size() > 1 && take_.pointsNamed(take_.points[named.front()].label) == named)
             shared << QString::fromStdString(take_.sharedLabelText(named));
+        else if (const std::string problem = Correspondence::labelProblem(take_, m.label);
+                 !problem.empty())
+            refused << QString::fromStdString(problem);  // two subjects wear it, a model output
         else
-            unknown << QString::fromStdString(m.label);
+            ++resolved;
     }
     // Two points with one full label, not two subjects: no label can say which (core refuses it).
     shared.removeDuplicates();  // "LFWT" and "Male:LFWT" name one group
@@ -351,6 +354,16 @@ bool Document::canSolve(QString* why, QString* detail) const {
                              "label can say which; relabel one of each in the take, or open a "
                              "map without them."))
                       .arg(shared.first()));
+    }
+    // Core's words, as the solve would refuse the map: the first, and every one in the details.
+    if (!refused.isEmpty()) {
+        if (detail) *detail = refused.join(".\n") + ".";
+        return no(refused.size() == 1
+                      ? refused.first() + "."
+                      : counted(refused.size() - 1,
+                                tr("%1; and %n more label of the map cannot be solved."),
+                                tr("%1; and %n more labels of the map cannot be solved."))
+                            .arg(refused.first()));
     }
     if (!unknown.isEmpty()) {
         if (detail) *detail = tr("Not in the take: %1.").arg(unknown.join(", "));

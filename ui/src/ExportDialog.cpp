@@ -31,7 +31,8 @@ namespace boneless::ui {
 
 namespace {
 
-constexpr std::size_t kSamples = 32;  // recent enough to follow a new mesh or take
+constexpr std::size_t kSamples = 32;
+constexpr int kTimedFrames = 3;  // timed each time the problem changes while the dialog shows
 
 // "about 45 s", "about 3 min 20 s", "under a second".
 QString duration(double ms) {
@@ -163,11 +164,16 @@ ExportDialog::ExportDialog(Document* document, FrameSolver* solver, Timeline* ti
             updateEstimate();
         });
     connect(timeline_, &Timeline::frameChanged, this, &ExportDialog::updateEstimate);
-    connect(solver_, &FrameSolver::frameReady, this, [this](const FrameResult& result) {
-        // A cached frame still carries the time of its solve.
-        if (result.report.milliseconds <= 0) return;
-        solveMs_.push_back(result.report.milliseconds);
+    // Frames solved as the export solves them, not the preview's: see FrameSolver::timeFrames.
+    connect(solver_, &FrameSolver::frameTimed, this, [this](int, double ms, quint64 generation) {
+        if (generation != solver_->generation() || ms <= 0) return;
+        solveMs_.push_back(ms);
         if (solveMs_.size() > kSamples) solveMs_.pop_front();
+        updateEstimate();
+    });
+    connect(solver_, &FrameSolver::problemChanged, this, [this] {
+        solveMs_.clear();  // another mesh, take, map or settings: another time a frame
+        if (isVisible()) timeFrames();
         updateEstimate();
     });
     connect(runner_, &ExportRunner::progress, this,
@@ -250,7 +256,7 @@ double ExportDialog::measuredMsPerFrame() const {
 }
 
 double ExportDialog::estimatedMs() const {
-    // The export solves on every core at once, each frame as long as one solved here.
+    // The export solves a frame on each core at once, each as long as a frame timed alone on one.
     const int frames = frameCountToWrite();
     const int workers = std::max(1, std::min(solverThreadCount(), frames));
     return frames * measuredMsPerFrame() / workers;
@@ -285,15 +291,29 @@ void ExportDialog::updateEstimate() {
         estimate_->setText(tr("%1; measuring the time a frame takes…").arg(frameCount));
         return;
     }
-    estimate_->setText(tr("%1, %2 (%3 ms a frame as solved here)")
+    const int workers = std::max(1, std::min(solverThreadCount(), frames));
+    estimate_->setText(counted(workers, tr("%1, %2 (%3 ms a frame on one core)"),
+                               tr("%1, %2 (%3 ms a frame on one core, %n at once)"))
                            .arg(frameCount, duration(estimatedMs()))
                            .arg(ms, 0, 'f', 0));
 }
 
+void ExportDialog::timeFrames() {
+    // A few frames across the take, which are not all as quick: a quick measurement (a tenth
+    // of a second on MakeHuman's body), and requests come first.
+    const int frames = document_->frameCount();
+    if (!solver_->hasProblem() || frames <= 0) return;
+    std::vector<int> timed;
+    for (int k = 0; k < kTimedFrames; ++k)
+        timed.push_back(frames * (2 * k + 1) / (2 * kTimedFrames));
+    solver_->timeFrames(timed);
+}
+
 void ExportDialog::showEvent(QShowEvent* event) {
     syncFromDocument();
-    // A quick measurement: the current frame, solved (or its cached solve time) once more.
-    if (solveMs_.empty() && solver_->hasProblem()) solver_->requestFrame(timeline_->frame());
+    // Timed again at each showing: the machine may be busier, or quieter, than it was.
+    solveMs_.clear();
+    timeFrames();
     updateEstimate();
     QDialog::showEvent(event);
 }

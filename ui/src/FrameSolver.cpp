@@ -7,12 +7,14 @@
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
+#include <deque>
 #include <limits>
 #include <mutex>
 #include <optional>
 #include <thread>
 
 #include "boneless/MeshTopology.h"
+#include "boneless/Parallel.h"
 #include "boneless/ShapeEncoding.h"
 #include "boneless/ui/Document.h"
 #include "boneless/ui/FrameCache.h"
@@ -56,6 +58,7 @@ struct FrameSolver::Shared {
     double lastSolveMs = 0;       // how long the last frame took, for how far along this one is
     bool lastSuperseded = false;  // the last solve was stopped by a request: this one finishes
     bool shapeError = false;
+    std::deque<int> toTime;          // timeFrames()'s frames not yet timed
     std::optional<int> lastRequest;  // where read-ahead starts
     int readAhead = 0;
     bool wrap = false;
@@ -145,7 +148,8 @@ struct WorkerState {
     quint64 generation = 0, failedGeneration = 0;
 
     std::shared_ptr<FrameResult> solve(const Problem& p, quint64 gen, int frame,
-                                       bool wantShapeError, const std::atomic<bool>* stop) {
+                                       bool wantShapeError, const std::atomic<bool>* stop,
+                                       bool serially = false) {
         if (generation != gen) {
             solver.reset();
             encoding.reset();
@@ -158,7 +162,10 @@ struct WorkerState {
             topology = std::make_unique<MeshTopology>(p.mesh);
             encoding = std::make_unique<ShapeEncoding>(p.mesh, *topology);
         }
+        std::optional<RunSerially> oneCore;
+        if (serially) oneCore.emplace();
         auto result = solveOne(*solver, p, frame, wantShapeError ? encoding.get() : nullptr, stop);
+        oneCore.reset();
         if (!result) return nullptr;
         result->generation = gen;
         result->rest = rest;
@@ -181,11 +188,16 @@ void FrameSolver::run(Shared* sh, FrameSolver* self) {
     WorkerState state;
     for (;;) {
         std::unique_lock lock(sh->mutex);
-        sh->wake.wait(
-            lock, [&] { return sh->stop || (sh->problem && (sh->pending || sh->nextAhead())); });
+        sh->wake.wait(lock, [&] {
+            return sh->stop ||
+                   (sh->problem && (sh->pending || !sh->toTime.empty() || sh->nextAhead()));
+        });
         if (sh->stop) return;
         const bool requested = sh->pending.has_value();
-        const int frame = requested ? *sh->pending : *sh->nextAhead();
+        // Timed after the requests, before reading ahead, which would find them cached.
+        const bool timed = !requested && !sh->toTime.empty();
+        const int frame = requested ? *sh->pending : timed ? sh->toTime.front() : *sh->nextAhead();
+        if (timed) sh->toTime.pop_front();
         const quint64 request = requested ? sh->pendingRequest : 0;
         sh->pending.reset();
         const quint64 generation = sh->generation;
@@ -196,7 +208,7 @@ void FrameSolver::run(Shared* sh, FrameSolver* self) {
             QMetaObject::invokeMethod(self, [self] { self->updateBusy(); });
             continue;
         }
-        if (auto hit = sh->cache.use(frame)) {  // solved since it was asked for
+        if (auto hit = timed ? nullptr : sh->cache.use(frame)) {  // solved since it was asked for
             if (requested) self->deliverHit(*hit, request);
             continue;
         }
@@ -209,7 +221,8 @@ void FrameSolver::run(Shared* sh, FrameSolver* self) {
         std::shared_ptr<FrameResult> result;
         QString error;
         try {
-            result = state.solve(*problem, generation, frame, wantShapeError, &sh->stopSolve);
+            result =
+                state.solve(*problem, generation, frame, wantShapeError, &sh->stopSolve, timed);
         } catch (const std::exception& e) {
             error = QString::fromStdString(e.what());
             state.fail(generation);
@@ -219,6 +232,7 @@ void FrameSolver::run(Shared* sh, FrameSolver* self) {
         sh->solving = false;
         sh->inFlight.reset();
         if (!result && error.isEmpty()) {  // stopped for a newer request: nothing to keep
+            if (timed && generation == sh->generation) sh->toTime.push_front(frame);  // later
             QMetaObject::invokeMethod(self, [self] { self->updateBusy(); });
             continue;
         }
@@ -233,6 +247,11 @@ void FrameSolver::run(Shared* sh, FrameSolver* self) {
         if (generation == sh->generation) sh->cache.insert(result);
         if (requested)  // read-ahead frames only go to the cache
             QMetaObject::invokeMethod(self, [self, result] { self->deliver(result); });
+        if (timed)
+            QMetaObject::invokeMethod(self,
+                                      [self, frame, ms = result->report.milliseconds, generation] {
+                                          emit self->frameTimed(frame, ms, generation);
+                                      });
     }
 }
 
@@ -281,6 +300,7 @@ bool FrameSolver::setProblem(const Document& document, QString* why) {
         ++shared_->generation;
         shared_->problem = p;
         shared_->pending.reset();
+        shared_->toTime.clear();
         shared_->lastRequest.reset();
         shared_->stopSolve = true;  // a frame of the old problem is of no use
         shared_->cache.clear();
@@ -297,11 +317,24 @@ void FrameSolver::clearProblem() {
         ++shared_->generation;
         shared_->problem.reset();
         shared_->pending.reset();
+        shared_->toTime.clear();
         shared_->lastRequest.reset();
         shared_->stopSolve = true;
         shared_->cache.clear();
     }
     emit problemChanged(false, {});
+}
+
+void FrameSolver::timeFrames(const std::vector<int>& frames) {
+    {
+        std::lock_guard lock(shared_->mutex);
+        shared_->toTime.clear();
+        if (!shared_->problem) return;
+        for (int frame : frames)
+            if (frame >= 0 && frame < int(shared_->problem->take.frameCount()))
+                shared_->toTime.push_back(frame);
+    }
+    shared_->wake.notify_one();
 }
 
 bool FrameSolver::hasProblem() const {

@@ -205,6 +205,30 @@ void Correspondence::checkMesh(int vertexCount, const std::string& meshPath,
     }
 }
 
+std::string Correspondence::labelProblem(const C3dTake& take, const std::string& label) {
+    const std::vector<std::size_t> named = take.pointsNamed(label);
+    if (named.empty()) return {};
+    // Two points with one full label: no label can say which, the subject prefix included.
+    if (named.size() > 1 && take.pointsNamed(take.points[named.front()].label) == named)
+        return "marker " + label + ": in " + take.file + ", " + take.sharedLabelText(named) +
+               ": two points with one label, not two subjects, so no map label can say which; "
+               "relabel one of them in the take";
+    // A bare name two subjects wear would bind to whichever the file lists first.
+    if (named.size() > 1) {
+        std::vector<std::string> labels;
+        for (std::size_t p : named) labels.push_back(take.points[p].label);
+        return "marker " + label + " is worn by more than one subject in " + take.file + " (" +
+               joined(labels) + "); write the subject prefix";
+    }
+    // A model's output (a joint angle, a force, a segment axis) is stored as a point too, but
+    // its numbers are no place on the body: pulled to, they fling the mesh about.
+    const C3dPoint& point = take.points[named.front()];
+    if (point.kind != C3dPointKind::Marker)
+        return "marker " + label + " names " + (point.kind == C3dPointKind::Angle ? "an " : "a ") +
+               toString(point.kind) + " point of " + take.file + " (a model output), not a marker";
+    return {};
+}
+
 std::vector<std::size_t> Correspondence::resolve(const C3dTake& take) const {
     const std::string file = source_.empty() ? "correspondence" : source_;
     std::vector<std::size_t> points;
@@ -215,29 +239,9 @@ std::vector<std::size_t> Correspondence::resolve(const C3dTake& take) const {
             unknown.push_back(m.label);
             continue;
         }
-        // Two points with one full label: no label can say which, the subject prefix included.
-        if (named.size() > 1 && take.pointsNamed(take.points[named.front()].label) == named)
-            fail(file, "marker " + m.label + ": in " + take.file + ", " +
-                           take.sharedLabelText(named) +
-                           ": two points with one label, not two subjects, so no map label can "
-                           "say which; relabel one of them in the take");
-        // A bare name two subjects wear would bind to whichever the file lists first.
-        if (named.size() > 1) {
-            std::vector<std::string> labels;
-            for (std::size_t p : named) labels.push_back(take.points[p].label);
-            fail(file, "marker " + m.label + " is worn by more than one subject in " + take.file +
-                           " (" + joined(labels) + "); write the subject prefix");
-        }
-        const auto index = named.front();
-        // A model's output (a joint angle, a force, a segment axis) is stored as a point too, but
-        // its numbers are no place on the body: pulled to, they fling the mesh about.
-        const C3dPoint& point = take.points[index];
-        if (point.kind != C3dPointKind::Marker)
-            fail(file, "marker " + m.label + " names " +
-                           (point.kind == C3dPointKind::Angle ? "an " : "a ") +
-                           toString(point.kind) + " point of " + take.file +
-                           " (a model output), not a marker");
-        points.push_back(index);
+        if (const std::string problem = labelProblem(take, m.label); !problem.empty())
+            fail(file, problem);
+        points.push_back(named.front());
     }
     if (unknown.empty()) return points;
     // A prefix that names no subject of the take ("other:T10" where walker wears T10) finds no

@@ -60,6 +60,11 @@ class Correspondence {
     // The take's point index for each marker, in order; throws Error listing unknown labels, or
     // naming a label whose point is no marker (an angle, a force, a virtual point).
     std::vector<std::size_t> resolve(const C3dTake& take) const;
+    // Why `label` names no one marker of `take`, in resolve's words without the map's file name:
+    // two points share its full label, two subjects wear it ("marker LFHD is worn by more than
+    // one subject in pair.c3d (A:LFHD, B:LFHD); write the subject prefix"), or it names a model
+    // output. "" when it names one marker, or no point (resolve lists those together).
+    static std::string labelProblem(const C3dTake& take, const std::string& label);
 
     const MarkerMapping* find(const std::string& label) const;
     const std::string& source() const { return source_; }  // the file read, or "" if none

@@ -25,9 +25,11 @@ class Timeline;
 
 // File → Export: which frames (all, in–out, the current one), the format (core's table), the
 // folder, whether to write the calibrated rest beside the frames, an estimate of the time before
-// starting, then a progress bar with the time left and Cancel. The estimate comes from the solve
-// times of the frames the window solved (the dialog listens from the start); with none yet, showing
-// the dialog asks the solver for the current frame, a quick measurement. A cancelled export's
+// starting, then a progress bar with the time left and Cancel. The estimate comes from a few
+// frames across the take solved as the export solves them, on one core each
+// (FrameSolver::timeFrames), timed each time the dialog shows and when the problem changes; the
+// preview's frames are no measure (their loops share the cores with the drawing). A cancelled
+// export's
 // sidecar says "complete": false. After a run the bar keeps the frames it wrote ("12 / 60 frames:
 // cancelled") until the frames to write change or another run starts.
 class ExportDialog : public QDialog {
@@ -51,7 +53,7 @@ class ExportDialog : public QDialog {
     // What Export would start: the document's request for the folder, format and frames.
     ExportRequest request() const;
     int frameCountToWrite() const;
-    // Median solve milliseconds of the frames measured so far; 0 when none.
+    // Median milliseconds of the frames timed for this problem; 0 when none.
     double measuredMsPerFrame() const;
     // The estimate for the chosen frames in milliseconds; 0 when nothing is measured yet.
     double estimatedMs() const;
@@ -75,6 +77,7 @@ class ExportDialog : public QDialog {
 
   private:
     void syncFromDocument();
+    void timeFrames();  // asks the solver to time a few frames for the estimate
     void updateEstimate();
     void onProgress(int done, int total);
     void onFinished(bool ok, const QString& message);
@@ -86,7 +89,7 @@ class ExportDialog : public QDialog {
     FrameSolver* solver_;
     Timeline* timeline_;
     ExportRunner* runner_;
-    std::deque<double> solveMs_;  // the latest frames' solve times
+    std::deque<double> solveMs_;  // the timed frames' solve times, this problem's
 
     QButtonGroup* rangeGroup_;
     QRadioButton *all_, *inOut_, *current_;

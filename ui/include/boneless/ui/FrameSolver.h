@@ -92,10 +92,19 @@ class FrameSolver : public QObject {
     // against the cache cap. 0, the default, turns it off (scrubbing wants the worker free).
     void setReadAhead(int frames, bool wrap = false);
 
+    // Times `frames` solved as an export solves each of its frames: on the worker alone, its
+    // loops on one core (RunSerially), while the export runs a solver per core. A preview frame's
+    // time is no measure of that: its loops share the cores, with each other and with the
+    // drawing. Requests come first; each timed frame is cached, not delivered, and
+    // frameTimed() follows. Replaces the frames still to time; a new problem drops them.
+    void timeFrames(const std::vector<int>& frames);
+
     static std::size_t defaultCacheLimit();  // from QSettings
 
   signals:
     void frameReady(const boneless::ui::FrameResult& result);
+    // A frame timeFrames() asked for: its solve's milliseconds on one core, and its problem.
+    void frameTimed(int frame, double milliseconds, quint64 generation);
     // Building the solver for a generation failed (bad map for this take, ...): the message.
     void failed(const QString& message);
     void busyChanged(bool busy);
