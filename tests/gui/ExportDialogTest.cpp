@@ -10,6 +10,7 @@
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QLabel>
+#include <QMessageBox>
 #include <QProgressBar>
 #include <QPushButton>
 #include <QSettings>
@@ -182,6 +183,43 @@ class ExportDialogTest : public QObject {
         QCOMPARE(objFiles(current), QStringList{"walker_0012.obj"});
         sidecar = readJson(current + "/walker.json");
         QCOMPARE(sidecar["frame_range"].toArray(), (QJsonArray{12, 13}));
+    }
+
+    // An export into a folder that held another replaced its files without a word and left its
+    // frames beside the new ones, which the new sidecar does not describe. It asks; Replace
+    // leaves the folder with this export alone, Cancel leaves it as it was.
+    void anEarlierExportInTheFolderIsReplacedOnlyWhenTheUserSaysSo() {
+        ExportDialog dialog(&document_, &solver_, &timeline_);
+        dialog.show();
+        dialog.setFormat(ExportFormat::Obj);
+        const QString out = work_ + "/again";
+        timeline_.setFrame(12);
+        dialog.setRange(ExportDialog::Range::Current);
+        QVERIFY(exportInto(dialog, out));  // a fresh folder: nothing to ask
+        QString asked;
+        auto answer = [&asked](bool replace) {
+            QTimer::singleShot(300, [&asked, replace] {
+                auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+                QVERIFY(box && box->objectName() == "replaceExportQuestion");
+                asked = box->text();
+                (replace ? box->findChild<QPushButton*>("replaceButton")
+                         : box->button(QMessageBox::Cancel))
+                    ->click();
+            });
+        };
+        timeline_.setFrame(3);
+        dialog.setRange(ExportDialog::Range::Current);
+        dialog.setFolder(out);
+        answer(false);
+        QVERIFY(!dialog.startExport());
+        QVERIFY2(asked.contains("walker.json") && asked.contains("walker_0012.obj"),
+                 qPrintable(asked));
+        QCOMPARE(objFiles(out), QStringList{"walker_0012.obj"});
+        QCOMPARE(readJson(out + "/walker.json")["frame_range"].toArray(), (QJsonArray{12, 13}));
+        answer(true);
+        QVERIFY(exportInto(dialog, out));
+        QCOMPARE(objFiles(out), QStringList{"walker_0003.obj"});
+        QCOMPARE(readJson(out + "/walker.json")["frame_range"].toArray(), (QJsonArray{3, 4}));
     }
 
     void theCalibratedRestIsWrittenBesideTheFramesWhenAsked() {

@@ -4,12 +4,14 @@
 #include <QCheckBox>
 #include <QComboBox>
 #include <QDialogButtonBox>
+#include <QDir>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QFormLayout>
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QLineEdit>
+#include <QMessageBox>
 #include <QProgressBar>
 #include <QPushButton>
 #include <QRadioButton>
@@ -18,6 +20,7 @@
 #include <QStandardPaths>
 #include <QVBoxLayout>
 #include <algorithm>
+#include <set>
 #include <vector>
 
 #include "Counted.h"
@@ -324,11 +327,21 @@ bool ExportDialog::startExport() {
         progressText_->setText(tr("Choose a folder to export into."));
         return false;
     }
+    // An earlier export's files are the user's: replaced only when they say so, and then all of
+    // them, so that the folder holds the one export its sidecar describes.
+    const ExportRequest r = request();
+    const std::vector<std::string> earlier = exportFilesIn(r.outDir, exportStem(r));
+    if (!earlier.empty() && !askToReplace(earlier)) {
+        progressText_->setText(tr("Not exported: the folder keeps its earlier export."));
+        return false;
+    }
     QString error;
-    if (!runner_->start(*document_, request(), &error)) {
+    if (!runner_->start(*document_, r, &error)) {
         progressText_->setText(error);
         return false;
     }
+    replaced_ = earlier;
+    running_ = r;
     QSettings().setValue("export/folder", folder());
     QSettings().setValue("export/calibratedRest", calibratedRest_->isChecked());
     forgetLastRun();
@@ -359,8 +372,48 @@ void ExportDialog::onProgress(int done, int total) {
     progressText_->setText(tr("%1 left").arg(duration(msPerFrame * (total - done))));
 }
 
+bool ExportDialog::askToReplace(const std::vector<std::string>& names) {
+    QStringList listed;
+    for (std::size_t i = 0; i < names.size() && i < 3; ++i)
+        listed << QString::fromStdString(names[i]);
+    QString text = listed.join(", ");
+    if (names.size() > 3)
+        text = counted(int(names.size() - 3), tr("%1 and %n more file"), tr("%1 and %n more files"))
+                   .arg(text);
+    QMessageBox box(QMessageBox::Question, tr("Export"),
+                    tr("%1 holds an earlier export (%2). Replace it?").arg(folder(), text),
+                    QMessageBox::Cancel, this);
+    box.setObjectName("replaceExportQuestion");
+    box.setInformativeText(
+        tr("Its files are removed once this export is written, so that the "
+           "folder holds this export alone. Choose another folder to keep it."));
+    QPushButton* replace = box.addButton(tr("Replace"), QMessageBox::AcceptRole);
+    replace->setObjectName("replaceButton");
+    box.setDefaultButton(QMessageBox::Cancel);
+    box.exec();
+    return box.clickedButton() == replace;
+}
+
+void ExportDialog::removeReplaced(const ExportRequest& r, const ExportResult& result) {
+    const std::string stem = exportStem(r);
+    std::set<std::string> written{stem + ".json"};
+    if (r.format != ExportFormat::Obj) written.insert(stem + exportFormatInfo(r.format).extension);
+    if (r.writeCalibratedRest) written.insert(stem + "_calibrated_rest.obj");
+    if (r.format == ExportFormat::Obj)
+        for (int f = result.first; f < result.first + result.framesWritten; ++f)
+            written.insert(objFrameFile(stem, f));
+    for (const std::string& name : replaced_)
+        if (!written.count(name))
+            QFile::remove(
+                QDir(QString::fromStdString(r.outDir)).filePath(QString::fromStdString(name)));
+    replaced_.clear();
+}
+
 void ExportDialog::onFinished(bool ok, const QString& message) {
     setRunning(false);
+    // A cancelled or failed run leaves the earlier export's files beside the frames it wrote.
+    if (ok && !runner_->result().cancelled) removeReplaced(running_, runner_->result());
+    replaced_.clear();
     // The bar keeps how far the run got, the frames written, until the frames to write change or
     // another run starts: reset to 0 by the next solved frame, it read as nothing written.
     lastRunShown_ = true;

@@ -131,6 +131,22 @@ std::vector<int> objFramesIn(const std::string& outDir, const std::string& stem)
     return frames;
 }
 
+std::vector<std::string> exportFilesIn(const std::string& outDir, const std::string& stem) {
+    std::vector<std::string> names{stem + ".json", stem + "_calibrated_rest.obj"};
+    for (const ExportFormatInfo& f : exportFormats())
+        if (f.format != ExportFormat::Obj) names.push_back(stem + f.extension);
+    std::error_code ec;
+    names.erase(std::remove_if(names.begin(), names.end(),
+                               [&](const std::string& n) {
+                                   return !fs::is_regular_file(fs::path(outDir) / n, ec);
+                               }),
+                names.end());
+    std::vector<int> frames = objFramesIn(outDir, stem);
+    std::sort(frames.begin(), frames.end());
+    for (int frame : frames) names.push_back(objFrameFile(stem, frame));
+    return names;
+}
+
 bool sameFile(const std::string& a, const std::string& b) {
     std::error_code ec;
     if (fs::equivalent(a, b, ec)) return true;

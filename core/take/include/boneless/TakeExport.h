@@ -53,6 +53,10 @@ std::string exportStem(const ExportRequest& request);
 std::string objFrameFile(const std::string& stem, int frame);
 // The frames of `stem`'s OBJ sequence that `outDir` holds, in no particular order.
 std::vector<int> objFramesIn(const std::string& outDir, const std::string& stem);
+// The files an export of `stem` writes that `outDir` already holds, whichever format and frames
+// wrote them (its sidecar, a point cache or glb, the calibrated rest, OBJ frames in frame order):
+// file names, not paths.
+std::vector<std::string> exportFilesIn(const std::string& outDir, const std::string& stem);
 
 // Whether `a` and `b` name one file however each is spelled (relative, through "..", a symbolic or
 // hard link); a path that does not exist yet is compared by where it would be.

@@ -76,6 +76,8 @@ class ExportDialog : public QDialog {
     void showEvent(QShowEvent* event) override;
 
   private:
+    std::vector<std::string> replaced_;  // an earlier export's files the running one replaces
+    ExportRequest running_;              // what the running export writes
     void syncFromDocument();
     void timeFrames();  // asks the solver to time a few frames for the estimate
     void updateEstimate();
@@ -83,6 +85,10 @@ class ExportDialog : public QDialog {
     void onFinished(bool ok, const QString& message);
     // The bar counts the frames to write again, not the last run's.
     void forgetLastRun();
+    // Asks whether to replace the earlier export's files `names` in the folder.
+    bool askToReplace(const std::vector<std::string>& names);
+    // After a run: the earlier export's files it did not write again, which would pass for its.
+    void removeReplaced(const ExportRequest& request, const ExportResult& result);
     void setRunning(bool running);
 
     Document* document_;
