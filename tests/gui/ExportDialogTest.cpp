@@ -331,6 +331,36 @@ class ExportDialogTest : public QObject {
         QCOMPARE(bar->text(), QString("0 / 10 frames"));
     }
 
+    // "Exported 3 frames to …" stayed under a full bar once the folder shown was another, the
+    // frames to write others, or the map cleared (with "Cannot export: …" beneath it). A run's
+    // message and count go once the folder, the format or what is solved change.
+    void aRunsMessageGoesOnceTheFolderTheFormatOrTheProblemChange() {
+        ExportDialog dialog(&document_, &solver_, &timeline_);
+        dialog.show();
+        dialog.setFormat(ExportFormat::Obj);
+        dialog.setInOut(0, 2);
+        auto* bar = part<QProgressBar>(dialog, "exportProgress");
+        auto exported = [&](const QString& folder) {
+            return exportInto(dialog, work_ + "/" + folder) && bar->value() == 3 &&
+                   progressText(dialog)->text().contains(folder);
+        };
+        QVERIFY(exported("message-a"));
+        dialog.setFolder(work_ + "/elsewhere");
+        QCOMPARE(progressText(dialog)->text(), QString());
+        QCOMPARE(bar->value(), 0);
+        QVERIFY(exported("message-b"));
+        dialog.setFormat(ExportFormat::Pc2);
+        QCOMPARE(progressText(dialog)->text(), QString());
+        QCOMPARE(bar->value(), 0);
+        dialog.setFormat(ExportFormat::Obj);
+        QVERIFY(exported("message-c"));
+        QSignalSpy changed(&solver_, &FrameSolver::problemChanged);
+        QVERIFY(solver_.setProblem(document_));  // as a map edit sets it again
+        QVERIFY(changed.count() > 0);
+        QCOMPARE(progressText(dialog)->text(), QString());
+        QCOMPARE(bar->value(), 0);
+    }
+
     // The message under the bar did not wrap: a cancelled export's widened the dialog to about
     // 770 px. It wraps within the width the dialog has.
     void aLongMessageWrapsInsteadOfWideningTheDialog() {

@@ -101,6 +101,15 @@ ExportDialog::ExportDialog(Document* document, FrameSolver* solver, Timeline* ti
     folder_ = new QLineEdit;
     folder_->setObjectName("exportFolder");
     connect(folder_, &QLineEdit::textEdited, this, [this] { folderChosen_ = true; });
+    // The last run's message and count describe what it wrote, where: not another folder's.
+    connect(folder_, &QLineEdit::textChanged, this, [this] {
+        forgetLastRun();
+        updateEstimate();
+    });
+    connect(format_, &QComboBox::currentIndexChanged, this, [this] {
+        forgetLastRun();
+        updateEstimate();
+    });
     auto* browse = new QPushButton(tr("Browse…"));
     auto* folderRow = new QHBoxLayout;
     folderRow->addWidget(folder_, 1);
@@ -176,6 +185,7 @@ ExportDialog::ExportDialog(Document* document, FrameSolver* solver, Timeline* ti
     });
     connect(solver_, &FrameSolver::problemChanged, this, [this] {
         solveMs_.clear();  // another mesh, take, map or settings: another time a frame
+        if (!runner_->isRunning()) forgetLastRun();  // and other frames than the last run wrote
         if (isVisible()) timeFrames();
         updateEstimate();
     });
@@ -322,7 +332,8 @@ void ExportDialog::showEvent(QShowEvent* event) {
 }
 
 bool ExportDialog::startExport() {
-    progressText_->clear();
+    forgetLastRun();  // a refusal below is not said under the last run's full bar
+    updateEstimate();
     if (folder().isEmpty()) {
         progressText_->setText(tr("Choose a folder to export into."));
         return false;
@@ -427,6 +438,7 @@ void ExportDialog::onFinished(bool ok, const QString& message) {
 }
 
 void ExportDialog::forgetLastRun() {
+    progressText_->clear();
     lastRunShown_ = false;
     progress_->setFormat(tr("%v / %m frames"));
 }
