@@ -184,6 +184,7 @@ class DocumentTest : public QObject {
         QVERIFY(d.clearMapping(1));
         QVERIFY(d.assign(1, mine));
         QVERIFY2(d.loadCorrespondence(path, Document::MapLoad::Merge), qPrintable(d.lastError()));
+        QCOMPARE(d.undoStack()->undoText(), QString("Merge Correspondence"));
         QCOMPARE(d.mappedVertex(1), mine);  // not overridden by "its" entry in the file
         QVERIFY(d.mappedVertex(0) >= 0);    // the unmapped one taken from the file
         QCOMPARE(d.mappedCount(), all);
@@ -428,6 +429,8 @@ class DocumentTest : public QObject {
         const QString path = demo_ + "/review.map.json";
         map.write(path.toStdString());
         QVERIFY2(d.loadCorrespondence(path), qPrintable(d.lastError()));
+        // Undo names it as File → Open Correspondence… does ("Load correspondence" before).
+        QCOMPARE(d.undoStack()->undoText(), QString("Open Correspondence"));
         const QModelIndex vertex = model.index(3, MarkerListModel::VertexColumn);
         QVERIFY(vertex.data().toString().contains("check"));
         QVERIFY(

@@ -125,6 +125,34 @@ class ProjectTest : public QObject {
     // default then, never chosen on purpose) or "iterative". Both open as local/global, with the
     // keys of those methods ignored; "exact" opens as exact. They name it "method", and the fold
     // guard "rigidity_weight". A method nobody wrote is refused, naming the key.
+    // A project whose take was cut short since (a truncated copy) opened without a word of it,
+    // and its calibration frame, now past the take's end, failed every frame. It says what the
+    // take says, and calibrates automatically, as opening the take alone does.
+    void aProjectWhoseTakeWasCutShortSaysSoAndCalibratesAutomatically() {
+        const QString folder = work_ + "/cut-short";
+        copyFolder(demo_, folder);
+        const QString path = folder + "/demo.boneless";
+        QJsonObject root = readJson(path);
+        QJsonObject settings = root["settings"].toObject();
+        settings["calibration_frame"] = 50;
+        root["settings"] = settings;
+        QFile project(path);
+        QVERIFY(project.open(QIODevice::WriteOnly | QIODevice::Truncate));
+        project.write(QJsonDocument(root).toJson());
+        project.close();
+        QFile take(folder + "/walker.c3d");
+        QVERIFY(take.resize(take.size() / 2));
+        Document d;
+        QString error;
+        QVERIFY2(Project::load(d, path, &error), qPrintable(error));
+        QVERIFY(d.frameCount() > 0 && d.frameCount() < 50);
+        QCOMPARE(d.settings().calibrationFrame, -1);
+        const QString notes = d.takeNotes().join("\n");
+        QVERIFY2(d.takeNotes().size() >= 2 &&
+                     notes.contains("The calibration frame 50 is past this take's"),
+                 qPrintable(notes));
+    }
+
     void anOldProjectOpensWithLocalGlobalUnlessItAsksForExact() {
         const QString folder = work_ + "/old-methods";
         copyFolder(demo_, folder);

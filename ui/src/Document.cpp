@@ -124,16 +124,7 @@ bool Document::loadTake(const QString& path) {
     hasTake_ = true;
     take_ = std::move(s.take);
     takePath_ = path;
-    takeNotes_.clear();
-    for (const auto& w : take_.warnings) takeNotes_ << QString::fromStdString(w);
-    const bool pastEnd = settings_.calibrationFrame >= frameCount();
-    if (pastEnd) {  // every frame would fail on it
-        takeNotes_ << tr("The calibration frame %1 is past this take's %2 frames: the take is "
-                         "calibrated automatically.")
-                          .arg(settings_.calibrationFrame)
-                          .arg(frameCount());
-        settings_.calibrationFrame = -1;
-    }
+    const bool pastEnd = noteTake();
     alignment_.reset();
     undoStack_->clear();
     selected_ = -1;
@@ -171,7 +162,7 @@ bool Document::loadCorrespondence(const QString& path, MapLoad mode, int* added)
         after.map = std::move(file);
         after.mapPath = path;
         savedMapJson_ = after.map.toJson();
-        pushEdit(tr("Load correspondence"), std::move(after));
+        pushEdit(tr("Open Correspondence"), std::move(after));  // as File names it
         return true;
     }
     for (const MarkerMapping& m : file.markers) {
@@ -189,7 +180,7 @@ bool Document::loadCorrespondence(const QString& path, MapLoad mode, int* added)
     if (added) *added = merged;
     if (merged == 0) return true;  // an empty undo step would undo nothing
     if (after.mapPath.isEmpty()) after.mapPath = path;
-    pushEdit(tr("Merge correspondence"), std::move(after));
+    pushEdit(tr("Merge Correspondence"), std::move(after));
     return true;
 }
 
@@ -244,7 +235,6 @@ bool Document::restoreState(State state) {
     hasTake_ = state.hasTake;
     take_ = std::move(state.take);
     takePath_ = state.takePath;
-    takeNotes_.clear();
     map_ = std::move(state.map);
     if (map_.markers.empty()) map_ = emptyMap();
     mapPath_ = state.mapPath;
@@ -259,8 +249,23 @@ bool Document::restoreState(State state) {
     alignment_ = state.alignment;
     settings_ = state.settings;
     settings_.alignment.reset();
+    // A project whose take was cut short since (a truncated copy) says so, as the take would.
+    if (noteTake()) alignment_.reset();
     viewSettings_ = state.viewSettings;
     startAfresh();
+    return true;
+}
+
+bool Document::noteTake() {
+    takeNotes_.clear();
+    for (const auto& w : take_.warnings) takeNotes_ << QString::fromStdString(w);
+    if (!hasTake_ || settings_.calibrationFrame < frameCount()) return false;
+    // Every frame would fail on it.
+    takeNotes_ << tr("The calibration frame %1 is past this take's %2 frames: the take is "
+                     "calibrated automatically.")
+                      .arg(settings_.calibrationFrame)
+                      .arg(frameCount());
+    settings_.calibrationFrame = -1;
     return true;
 }
 

@@ -239,7 +239,7 @@ bool MainWindow::openProject(const QString& path) {
     applyViewSettings();
     restoreSession();
     updateTitle();
-    statusBar()->showMessage(tr("Opened %1").arg(QFileInfo(path).fileName()), 5000);
+    showOpened(path, document_->takeNotes());  // a take cut short since, as the take says
     return true;
 }
 

@@ -216,6 +216,9 @@ class Document : public QObject {
                                                QString* error) const;
     void rebuildMarkers();
     void startAfresh();
+    // takeNotes_ from the take's warnings, and a calibration frame past its end set back to
+    // automatic with a note (true then).
+    bool noteTake();
     bool fail(const QString& message);
     Correspondence emptyMap() const;
     // The map names this mesh: its file, group and vertex count.
