@@ -11,6 +11,7 @@
 #include <QSettings>
 #include <QSlider>
 #include <QStandardPaths>
+#include <QStatusBar>
 #include <QUrl>
 #include <QtTest>
 #include <map>
@@ -197,6 +198,18 @@ class MainWindowTest : public QObject {
         window_->timeline()->scrubTo(25);
         QVERIFY(test::waitForFrame(*window_));
         QCOMPARE(window_->displayedFrame(), 25);
+    }
+
+    // The frame's figures on the right cut a long status message short ("…more than 300 r"):
+    // the bar's tooltip holds it whole while it is up.
+    void aStatusMessageCutShortReadsWholeInTheBarsTooltip() {
+        const QString message =
+            "Frame 25 aligns the take much worse than the automatic choice (256.3 mm against "
+            "104.6 mm). Undo (Ctrl+Z) goes back; Edit → Calibrate Automatically picks it.";
+        window_->statusBar()->showMessage(message);
+        QCOMPARE(window_->statusBar()->toolTip(), message);
+        window_->statusBar()->clearMessage();
+        QCOMPARE(window_->statusBar()->toolTip(), QString());
     }
 
     void droppedFilesOpen() {

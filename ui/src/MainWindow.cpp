@@ -388,9 +388,10 @@ void MainWindow::buildStatusBar() {
                 solveLabel_->setToolTip(solveDetail);
                 residualLabel_->setText(residual);
             });
-    // A message's whole list, while the message is up.
+    // A message's whole list while the message is up, else the message itself: the frame's
+    // figures on the right cut a long one short, and its tooltip reads whole.
     connect(statusBar(), &QStatusBar::messageChanged, this, [this](const QString& message) {
-        if (message.isEmpty() || message != detailedMessage_) statusBar()->setToolTip({});
+        if (message.isEmpty() || message != detailedMessage_) statusBar()->setToolTip(message);
     });
 }
 
