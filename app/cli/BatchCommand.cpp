@@ -16,6 +16,7 @@
 
 #include "Commands.h"
 #include "FrameRange.h"
+#include "OptionFlags.h"
 #include "TakeJob.h"
 #include "boneless/C3dFrameReader.h"
 #include "boneless/Error.h"
@@ -111,6 +112,24 @@ void applyKeys(const json& object, const fs::path& base, const std::string& wher
     }
 }
 
+// An entry's options that the exact solver alone reads, refused without "solver": "exact" (flags
+// and keys alike, OptionFlags' rule), each named as the entry or its defaults wrote it.
+void refuseUnusedExactOptions(const TakeJob& job, const json& entry, const json& defaults,
+                              const std::string& where) {
+    const auto written = [&](const std::string& key, const std::string& value) {
+        for (const json* object : {&entry, &defaults})
+            for (const auto& item : object->items()) {
+                const std::string& name = item.key();
+                if (findTakeOption(underscored(name)) == findTakeOption(key) &&
+                    !outranked(*object, *findTakeOption(key), name))
+                    return "\"" + name + "\" " + value +
+                           (object == &defaults ? " (from defaults)" : "");
+            }
+        return "\"" + key + "\" " + value;
+    };
+    ::refuseUnusedExactOptions(job.options, TakeSolveOptions{}.solver, where, written);
+}
+
 void requireKeys(const TakeJob& job, const std::string& where) {
     for (const auto& [key, value] : {std::pair<const char*, const std::string*>{"mesh", &job.mesh},
                                      {"c3d", &job.c3d},
@@ -197,6 +216,7 @@ std::vector<TakeJob> readManifest(const std::string& file) {
         TakeJob job = defaults;
         applyKeys(takes[i], base, where, job);
         requireKeys(job, where);
+        refuseUnusedExactOptions(job, takes[i], m.value("defaults", json::object()), where);
         jobs.push_back(job);
         entries.push_back("takes[" + std::to_string(i) + "] (" + job.c3d + ")");
     }
@@ -205,6 +225,7 @@ std::vector<TakeJob> readManifest(const std::string& file) {
         TakeJob pattern = defaults;
         applyKeys(folders[i], base, where, pattern);
         requireKeys(pattern, where);
+        refuseUnusedExactOptions(pattern, folders[i], m.value("defaults", json::object()), where);
         std::error_code ec;
         std::vector<fs::path> found;
         for (const auto& e : fs::directory_iterator(pattern.c3d, ec)) {

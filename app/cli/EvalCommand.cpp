@@ -231,6 +231,7 @@ void registerEvalCommand(CLI::App& app) {
                 throw CLI::ValidationError(o->get_name(),
                                            "chooses Boneless's solver, and "
                                            "--method arap runs ARAP alone");
+        refuseUnusedExactOptions(args->options, EvaluationOptions{}.solver);
         run(*args);
     });
 }

@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "boneless/Error.h"
 #include "boneless/TakeOptionsJson.h"
 #include "boneless/Text.h"
 
@@ -87,4 +88,29 @@ std::vector<std::string> renamedFlagHints(const CLI::App& app) {
         }
     }
     return hints;
+}
+
+void refuseUnusedExactOptions(
+    const nlohmann::json& given, const SolverOptions& defaults, const std::string& where,
+    const std::function<std::string(const std::string& key, const std::string& value)>& written) {
+    const std::vector<const TakeOption*> unused = unusedExactOptions(given, defaults);
+    if (unused.empty()) return;
+    std::vector<std::string> named;
+    for (const TakeOption* o : unused) {
+        const std::string value = given.at(o->key).dump();
+        if (where.empty())
+            named.push_back(optionFlag(*o) + " " + value);
+        else
+            named.push_back(written ? written(o->key, value) : "\"" + o->key + "\" " + value);
+    }
+    SolverOptions solver = defaults;
+    fromJson(given, solver, "options");
+    const std::string list =
+        named.size() == 1 ? named[0]
+                          : joined({named.begin(), named.end() - 1}) + " and " + named.back();
+    throw Error((where.empty() ? "" : where + ": ") + list +
+                (named.size() == 1 ? " changes" : " change") + " nothing with the " +
+                methodName(solver.method) +
+                " solver: " + (named.size() == 1 ? "it applies" : "they apply") + " to " +
+                (where.empty() ? "--solver exact" : "\"solver\": \"exact\"") + " only");
 }

@@ -1,9 +1,12 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include "boneless/TakeSolver.h"
 
 // One flag per option of core's table (TakeOptionsJson), named as its JSON key ("--fill-gaps-s"
 // for "fill_gaps_s"), its help the table's line with units and default; each value given goes
@@ -22,3 +25,15 @@ CLI::Validator numberFrom(double low, double high, bool whole = false);
 // (eval's --rigidity, never solve's). CLI11 alone said only "The following argument was not
 // expected".
 std::vector<std::string> renamedFlagHints(const CLI::App& app);
+
+// Refuses the options of `given` that the exact solver alone reads (--fold-guard, ...), set away
+// from `defaults` while the solver is not the exact one: they changed nothing, yet the sidecar
+// recorded them, and batch solved a take again whenever one changed. `where` empty: they are named
+// as flags, "--fold-guard 0.5 changes nothing with the local-global solver: it applies to --solver
+// exact only"; else as keys of `where` (a manifest's entry), "...: it applies to "solver": "exact"
+// only", each as `written` names it with its value (the entry's old name; "(from defaults)").
+void refuseUnusedExactOptions(
+    const nlohmann::json& given, const boneless::SolverOptions& defaults,
+    const std::string& where = "",
+    const std::function<std::string(const std::string& key, const std::string& value)>& written =
+        nullptr);

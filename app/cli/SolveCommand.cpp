@@ -2,7 +2,9 @@
 #include <memory>
 
 #include "Commands.h"
+#include "OptionFlags.h"
 #include "TakeJob.h"
+#include "boneless/TakeSolver.h"
 
 void registerSolveCommand(CLI::App& app) {
     struct SolveArgs {
@@ -18,5 +20,8 @@ void registerSolveCommand(CLI::App& app) {
     cmd->add_option("--out", args->job.out, "Output folder")->required();
     addTakeJobOptions(cmd, args->job);
     cmd->add_flag("--quiet", args->quiet, "No progress on stderr");
-    cmd->callback([args] { runTakeJob(args->job, args->quiet); });
+    cmd->callback([args] {
+        refuseUnusedExactOptions(args->job.options, boneless::TakeSolveOptions{}.solver);
+        runTakeJob(args->job, args->quiet);
+    });
 }

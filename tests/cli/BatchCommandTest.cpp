@@ -293,6 +293,44 @@ TEST(Batch, AnOptionOutOfItsRangeIsNamedBeforeAnythingIsSolved) {
         << r.out;
 }
 
+// A key the exact solver alone reads ("exact only" in docs/options.md), given without "solver":
+// "exact", changed nothing yet was recorded, and a take was solved again whenever it changed. It is
+// refused as solve's flag is, named as written, before anything is solved; with the exact solver
+// it is taken.
+TEST(Batch, AnExactOnlyKeyWithoutTheExactSolverIsNamedBeforeAnythingIsSolved) {
+    const fs::path dir = makeLibrary();
+    const json take = {{"c3d", "takes/walk_a.c3d"},
+                       {"mesh", "walker.obj"},
+                       {"map", "walker.map.json"},
+                       {"format", "pc2"}};
+    json first = take, second = take;
+    first["out"] = "first";
+    second["out"] = "second";
+    second["rigidity"] = 0.5;
+    json manifest = {{"defaults", {{"max_iterations", 4}}}, {"takes", {first, second}}};
+    CliResult r = runCli("batch " + writeManifest(dir, "m.json", manifest).string());
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(
+        r.out.find("m.json: takes[0]: \"max_iterations\" 4 (from defaults) changes nothing "
+                   "with the local-global solver: it applies to \"solver\": \"exact\" only\n"),
+        std::string::npos)
+        << r.out;
+    manifest["takes"][0]["solver"] = "exact";
+    r = runCli("batch " + writeManifest(dir, "m.json", manifest).string());
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("m.json: takes[1]: \"rigidity\" 0.5 and \"max_iterations\" 4 (from "
+                         "defaults) change nothing"),
+              std::string::npos)
+        << r.out;
+    EXPECT_FALSE(fs::exists(dir / "first")) << r.out;
+    manifest["defaults"]["solver"] = "exact";
+    r = runCli("batch " + writeManifest(dir, "m.json", manifest).string());
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    const json options = json::parse(std::ifstream(dir / "second" / "walker.json"))["options"];
+    EXPECT_EQ(options["fold_guard"], 0.5);
+    EXPECT_EQ(options["max_iterations"], 4);
+}
+
 TEST(Batch, TheOldDashedKeysOfAManifestStillRead) {
     const fs::path dir = makeLibrary();
     const json manifest = {{"defaults", {{"fill-gaps", 0.1}, {"weight", 60}, {"lowpass", 9}}},

@@ -156,8 +156,8 @@ TEST(OptionFlags, TheSidecarRecordsTheOptionsUnderTheFlagsNames) {
                (demo / "walker.c3d").string() + " --map " + (demo / "walker.map.json").string() +
                " --out " + out.string() +
                " --format pc2 --marker-weight 40 --fill-gaps-s 0.1 --low-pass-hz 8 "
-               "--calibrate none --calibration-frame 1 --fold-guard 0.02 --max-iterations 4 "
-               "--relative-tolerance 0.01");
+               "--calibrate none --calibration-frame 1 --solver exact --fold-guard 0.02 "
+               "--max-iterations 4 --relative-tolerance 0.01");
     ASSERT_EQ(r.exitCode, 0) << r.out;
     const auto sidecar = nlohmann::json::parse(std::ifstream(out / "walker.json"));
     const nlohmann::json& o = sidecar.at("options");
@@ -170,8 +170,38 @@ TEST(OptionFlags, TheSidecarRecordsTheOptionsUnderTheFlagsNames) {
     EXPECT_EQ(o["fold_guard"], 0.02);
     EXPECT_EQ(o["max_iterations"], 4);
     EXPECT_EQ(o["relative_tolerance"], 0.01);
-    EXPECT_EQ(o["solver"], "local-global");
+    EXPECT_EQ(o["solver"], "exact");
     EXPECT_EQ(sidecar["alignment"]["calibration_frame"], 1);
+}
+
+// "solve --fold-guard 0.5" (help: "exact only") was taken with the default local-global solver:
+// it changed nothing, yet the sidecar recorded it, and batch solved the take again whenever it
+// changed. Solve and eval refuse it, naming the flag, before reading any file; with --solver exact,
+// or at its default value, it is taken.
+TEST(OptionFlags, AnExactOnlyFlagWithoutTheExactSolverIsRefusedNamingIt) {
+    const std::string solve = "solve --mesh m.obj --c3d t.c3d --map m.json --out o ";
+    const std::pair<std::string, std::string> refused[] = {
+        {solve + "--fold-guard 0.5",
+         "--fold-guard 0.5 changes nothing with the local-global solver: it applies to --solver "
+         "exact only\n"},
+        {solve + "--solver local-global --orientation-guard 0 --max-iterations 4",
+         "--orientation-guard 0.0 and --max-iterations 4 change nothing with the local-global "
+         "solver: they apply to --solver exact only\n"},
+        {"eval --sequence s --markers 3 --relative-tolerance 0.01",
+         "--relative-tolerance 0.01 changes nothing with the local-global solver"}};
+    for (const auto& [arguments, message] : refused) {
+        const CliResult r = runCli(arguments);
+        EXPECT_EQ(r.exitCode, 1) << arguments;
+        EXPECT_NE(r.out.find(message), std::string::npos) << r.out;
+    }
+    // Taken: past the options, the missing mesh or sequence is what is refused.
+    for (const std::string& arguments :
+         {solve + "--solver exact --fold-guard 0.5", solve + "--fold-guard 0.01",
+          std::string("eval --sequence s --markers 3 --solver exact --max-iterations 4")}) {
+        const CliResult r = runCli(arguments);
+        EXPECT_EQ(r.out.find("changes nothing"), std::string::npos) << arguments << r.out;
+        EXPECT_NE(r.out.find(arguments[0] == 's' ? "m.obj" : "s:"), std::string::npos) << r.out;
+    }
 }
 
 // The flags that took their keys' names are refused naming the new one; CLI11 alone said "The
