@@ -1,6 +1,8 @@
 // boneless-cli map suggest: complete a partial marker-to-vertex map from the take.
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -11,6 +13,7 @@
 #include "boneless/ActorCalibration.h"
 #include "boneless/C3dReader.h"
 #include "boneless/Error.h"
+#include "boneless/InputFile.h"
 #include "boneless/MarkerSuggestion.h"
 #include "boneless/MeshReader.h"
 #include "boneless/SuggestionCheck.h"
@@ -23,6 +26,7 @@ void registerMapCommand(CLI::App& app) {
     struct Args {
         std::string mesh, group, c3d, map, out, check;
         double toleranceMm = 30;
+        bool force = false;
     };
     auto args = std::make_shared<Args>();
     CLI::App* map = app.add_subcommand("map", "Author marker-to-vertex correspondence files");
@@ -43,6 +47,9 @@ void registerMapCommand(CLI::App& app) {
                      "With --check: how near counts as landing (0.1 to 1000, default 30)")
         ->check(numberFrom(0.1, 1000))
         ->needs(check);
+    suggest->add_flag("--force", args->force,
+                      "Replace an --out that differs from the map this run writes (a map reviewed "
+                      "by hand)");
     suggest->callback([args] {
         // `--out take.c3d` replaced the take, `--out ref.json --check ref.json` the map to check
         // against: refused before anything is read.
@@ -54,6 +61,26 @@ void registerMapCommand(CLI::App& app) {
             if (!input->empty() && sameFile(args->out, *input))
                 throw Error(args->out + ": the completed map would replace the " + what + " " +
                             *input + "; give --out another file");
+        // A map reviewed by hand, given as --out by mistake, is not replaced unasked (as demo
+        // keeps an edited map); the same map again is. Refused before the fit when it cannot be
+        // what this run writes (no map at all), else once the map is made, before it is written.
+        const bool keep = !args->force && std::filesystem::exists(args->out);
+        const auto refuse = [&] {
+            return Error(args->out +
+                         ": differs from the map this run suggests (reviewed by hand, or suggested "
+                         "from other inputs); nothing was written: give --force to replace it, or "
+                         "another --out");
+        };
+        if (const std::string why = notARegularFile(args->out, "map");
+            std::filesystem::exists(args->out) && !why.empty())
+            throw Error(args->out + ": " + why);
+        if (keep) {
+            try {
+                Correspondence::read(args->out);
+            } catch (const Error&) {
+                throw refuse();
+            }
+        }
         MeshReadOptions options;
         options.group = args->group;
         const TriMesh mesh = readMesh(args->mesh, options).mesh;
@@ -72,6 +99,11 @@ void registerMapCommand(CLI::App& app) {
             s.map.meshFile = std::filesystem::path(args->mesh).filename().string();
         if (s.map.meshGroup.empty()) s.map.meshGroup = args->group;
         if (s.map.meshVertices == 0) s.map.meshVertices = mesh.vertexCount();
+        if (keep) {
+            std::ifstream in(args->out, std::ios::binary);
+            if (std::string{std::istreambuf_iterator<char>(in), {}} != s.map.toJson())
+                throw refuse();
+        }
         s.map.write(args->out);
         // Nothing fitted, no alignment worth a figure: "aligned at frame -1" said nothing.
         if (s.proposals.empty() && s.offBody.empty() && s.fittedFrame < 0) {
