@@ -25,6 +25,12 @@ struct InspectOptions {
     bool keepZero = false;
 };
 
+// The number of the last frame the take holds (of one that holds any): a truncated copy's, not
+// the header's.
+std::int64_t lastFrame(const boneless::C3dTake& t) {
+    return t.firstFrame + static_cast<std::int64_t>(t.frameCount()) - 1;
+}
+
 nlohmann::json toJson(const boneless::C3dTake& t) {
     using boneless::toString;
     nlohmann::json j;
@@ -38,9 +44,10 @@ nlohmann::json toJson(const boneless::C3dTake& t) {
     j["processor"] = toString(t.processor);
     j["storage"] = toString(t.storage);
     j["scale"] = t.pointScale;
-    j["first_frame"] = t.firstFrameWord;
-    j["last_frame"] = t.lastFrameWord;
-    j["first_frame_number"] = t.firstFrame;
+    // The frames held, by their numbers; the header's words apart (a truncated copy's say more).
+    j["first_frame"] = t.firstFrame;
+    j["last_frame"] = t.frameCount() ? nlohmann::json(lastFrame(t)) : nlohmann::json(nullptr);
+    j["header_frames"] = {t.firstFrameWord, t.lastFrameWord};
     j["analog_channels"] = t.analogChannels;
     j["analog_rate"] = t.analogRate;
     j["points"] = nlohmann::json::array();
@@ -72,6 +79,7 @@ void printSummary(const boneless::C3dTake& t, std::ostream& out) {
         out << " @ " << t.rate << " Hz";
     else
         out << ", no frame rate";
+    if (t.frameCount()) out << ", numbered " << t.firstFrame << ".." << lastFrame(t);
     out << " (header frames " << t.firstFrameWord << ".." << t.lastFrameWord << ")\n";
     out << "  units     " << t.units << " (x" << t.unitToMm << " to mm)\n";
     out << "  up        " << boneless::axisName(t.vertical) << "\n";
