@@ -472,6 +472,7 @@ void registerBatchCommand(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "batch", "Solve every take a manifest lists, skipping those already complete");
     cmd->add_option("MANIFEST", args->manifest, "Batch manifest (JSON; see docs/batch.md)")
+        ->check(aPath())
         ->required();
     cmd->add_option("--shard", args->shard,
                     "I/N: only every N-th entry, starting at the I-th (for job arrays)");

@@ -28,7 +28,9 @@ void registerDemoCommand(CLI::App& app) {
         "Write the generated demo, a human body walking: walker.obj (rest pose), walker.c3d (a "
         "39-marker Plug-in Gait style set, with gaps), walker.map.json (the correspondence) and "
         "truth/ (the true motion, one OBJ per frame)");
-    cmd->add_option("--out", args->out, "Output folder (created if missing)")->required();
+    cmd->add_option("--out", args->out, "Output folder (created if missing)")
+        ->required()
+        ->check(aPath());
     cmd->add_option("--frames", args->frames, "How many frames the take has (1 to 100000)")
         ->check(numberFrom(1, 100000, true));
     // Markers sit on the skin or a few centimetres off it (a bulky suit); beyond 10 cm a marker

@@ -206,12 +206,14 @@ void registerEvalCommand(CLI::App& app) {
         "Reconstruct a ground-truth mesh sequence from K of its vertices and measure the error");
     cmd->add_option("--sequence", args->sequence,
                     "Folder with one OBJ per frame (first = rest pose)")
-        ->required();
+        ->required()
+        ->check(aPath());
     auto* k = cmd->add_option("--markers", args->markers,
                               "Number of marker vertices (farthest-point sampled from vertex 0)")
                   ->check(numberFrom(1, 1e9, true));
     auto* file = cmd->add_option("--markers-file", args->markersFile,
-                                 "File with one marker vertex id per line (instead of --markers)");
+                                 "File with one marker vertex id per line (instead of --markers)")
+                     ->check(aPath());
     k->excludes(file);
     cmd->add_option("--frames", args->frames, "Frame range A:B (0-based, B excluded; A: or :B)");
     cmd->add_option("--method", args->method, "boneless, arap, or both (side by side)")

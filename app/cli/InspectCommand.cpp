@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "Commands.h"
+#include "OptionFlags.h"
 #include "boneless/Alignment.h"
 #include "boneless/C3dReader.h"
 #include "boneless/ObjWriter.h"
@@ -151,11 +152,12 @@ void registerInspectCommand(CLI::App& app) {
     auto opts = std::make_shared<InspectOptions>();
     CLI::App* cmd = app.add_subcommand(
         "inspect", "Summarise a C3D take: format, frames, rate, units, points and their gaps");
-    cmd->add_option("take", opts->take, "C3D file")->required();
+    cmd->add_option("take", opts->take, "C3D file")->required()->check(aPath());
     cmd->add_flag("--json", opts->json, "print one JSON object instead of the summary");
     cmd->add_option("--csv", opts->csv,
                     "write frame,label,x,y,z,valid rows (frame 0-based, file units, empty x/y/z "
-                    "where missing)");
+                    "where missing)")
+        ->check(aPath());
     cmd->add_flag("--keep-zero", opts->keepZero,
                   "keep samples at exactly (0,0,0) instead of treating them as missing");
     cmd->callback([opts]() {

@@ -35,13 +35,22 @@ void registerMapCommand(CLI::App& app) {
         "suggest",
         "Fit the mesh to the take from the mapped markers and propose a vertex for every other "
         "marker, flagging the ones to review");
-    suggest->add_option("--mesh", args->mesh, "Rest mesh (OBJ, PLY, OFF, STL)")->required();
+    suggest->add_option("--mesh", args->mesh, "Rest mesh (OBJ, PLY, OFF, STL)")
+        ->required()
+        ->check(aPath());
     suggest->add_option("--group", args->group, "OBJ group to use as the mesh");
-    suggest->add_option("--c3d", args->c3d, "The take")->required();
-    suggest->add_option("--map", args->map, "Partial map with at least 4 markers")->required();
-    suggest->add_option("--out", args->out, "Where to write the completed map")->required();
-    CLI::Option* check = suggest->add_option(
-        "--check", args->check, "A map known to be right: print how near the proposals land to it");
+    suggest->add_option("--c3d", args->c3d, "The take")->required()->check(aPath());
+    suggest->add_option("--map", args->map, "Partial map with at least 4 markers")
+        ->required()
+        ->check(aPath());
+    suggest->add_option("--out", args->out, "Where to write the completed map")
+        ->required()
+        ->check(aPath());
+    CLI::Option* check =
+        suggest
+            ->add_option("--check", args->check,
+                         "A map known to be right: print how near the proposals land to it")
+            ->check(aPath());
     suggest
         ->add_option("--tolerance-mm", args->toleranceMm,
                      "With --check: how near counts as landing (0.1 to 1000, default 30)")

@@ -70,6 +70,11 @@ CLI::Validator numberFrom(double low, double high, bool whole) {
         "");
 }
 
+CLI::Validator aPath() {
+    return CLI::Validator(
+        [](std::string& text) { return text.empty() ? "must be a path, got \"\"" : ""; }, "");
+}
+
 std::vector<std::string> renamedFlagHints(const CLI::App& app) {
     std::vector<const CLI::App*> given;  // the commands given: `map suggest` is map and suggest
     for (const CLI::App* command = &app; !command->get_subcommands().empty();)

@@ -20,6 +20,11 @@ void addOptionFlags(CLI::App* command, nlohmann::json& given, const nlohmann::js
 // 10:20", where Range's help read "INT:INT in [1 - 100000]", like a range.
 CLI::Validator numberFrom(double low, double high, bool whole = false);
 
+// A path's flag (--out, --mesh, --csv, ...): an empty one is refused naming the flag, `--out: must
+// be a path, got ""`, where it failed later without it (": cannot create the folder", "unknown
+// mesh file extension ''") or, as inspect's --csv, was taken as no flag at all.
+CLI::Validator aPath();
+
 // "--weight was renamed --marker-weight": a line for each flag the command line gave under the
 // name it had before it took its option's key (docs/options.md), on the command that had it
 // (eval's --rigidity, never solve's). CLI11 alone said only "The following argument was not

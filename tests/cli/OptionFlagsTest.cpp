@@ -146,6 +146,39 @@ TEST(OptionFlags, ABadRangeIsQuotedAsABadChoiceIs) {
     }
 }
 
+// An empty path failed later without the flag's name ("solve --out ''" said ": cannot create the
+// folder (Invalid argument)", "--mesh ''" ": unknown mesh file extension ''"), or was taken as no
+// flag (inspect's --csv). Each path flag refuses it, naming itself, before anything is read.
+TEST(OptionFlags, AnEmptyPathIsRefusedNamingTheFlag) {
+    const std::string flags[] = {"--mesh", "--c3d", "--map", "--out"};
+    for (const std::string command : {"solve", "map suggest"})
+        for (const std::string& empty : flags) {
+            std::string arguments = command;
+            for (const std::string& flag : flags)
+                arguments += " " + flag + " " + (flag == empty ? "''" : "x");
+            const CliResult r = runCli(arguments);
+            EXPECT_EQ(r.exitCode, 1) << arguments;
+            EXPECT_NE(r.out.find(empty + ": must be a path, got \"\"\n"), std::string::npos)
+                << arguments << "\n"
+                << r.out;
+        }
+    const std::pair<std::string, std::string> refused[] = {
+        {"inspect t.c3d --csv ''", "--csv"},
+        {"inspect ''", "take"},
+        {"demo --out ''", "--out"},  // wrote the demo into the current folder
+        {"eval --sequence '' --markers 3", "--sequence"},
+        {"eval --sequence s --markers-file ''", "--markers-file"},
+        {"map suggest --mesh m.obj --c3d t.c3d --map m.json --out o --check ''", "--check"},
+        {"batch ''", "MANIFEST"}};
+    for (const auto& [command, flag] : refused) {
+        const CliResult r = runCli(command);
+        EXPECT_EQ(r.exitCode, 1) << command;
+        EXPECT_NE(r.out.find(flag + ": must be a path, got \"\"\n"), std::string::npos)
+            << command << "\n"
+            << r.out;
+    }
+}
+
 // The options given on the command line reach the sidecar under the same keys.
 TEST(OptionFlags, TheSidecarRecordsTheOptionsUnderTheFlagsNames) {
     const fs::path demo = freshTestDir("option-flags");
