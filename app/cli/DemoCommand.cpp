@@ -31,15 +31,18 @@ void registerDemoCommand(CLI::App& app) {
     cmd->add_option("--out", args->out, "Output folder (created if missing)")
         ->required()
         ->check(aPath());
-    cmd->add_option("--frames", args->frames, "How many frames the take has (1 to 100000)")
+    cmd->add_option("--frames", args->frames,
+                    withDefault("How many frames the take has (1 to 100000)", args->frames))
         ->check(numberFrom(1, 100000, true));
     // Markers sit on the skin or a few centimetres off it (a bulky suit); beyond 10 cm a marker
     // is no longer the body's.
     cmd->add_option("--offset-mm", args->offsetMm,
-                    "How far the markers sit off the skin (0 to 100)")
+                    withDefault("How far the markers sit off the skin (0 to 100)", args->offsetMm))
         ->check(numberFrom(0, 100));
     cmd->add_option("--detail", args->detail,
-                    "Resolution, 1 to 4: each step up has 4 times the faces (1 = 6,848 faces)")
+                    withDefault("Resolution, 1 to 4: each step up has 4 times the faces (1 = 6,848 "
+                                "faces)",
+                                args->detail))
         ->check(numberFrom(1, 4, true));
     cmd->add_flag("--force", args->force,
                   "Replace the demo's files in --out that differ from the ones this run writes "

@@ -216,11 +216,14 @@ void registerEvalCommand(CLI::App& app) {
                      ->check(aPath());
     k->excludes(file);
     cmd->add_option("--frames", args->frames, "Frame range A:B (0-based, B excluded; A: or :B)");
-    cmd->add_option("--method", args->method, "boneless, arap, or both (side by side)")
+    cmd->add_option("--method", args->method,
+                    withDefault("boneless, arap, or both (side by side)", args->method))
         ->check(CLI::IsMember({"boneless", "arap", "both"}));
-    cmd->add_option("--drop", args->drop, "Percentage of markers missing in each frame (seeded)")
+    cmd->add_option("--drop", args->drop,
+                    withDefault("Percentage of markers missing in each frame (seeded)", args->drop))
         ->check(numberFrom(0, 100));
-    cmd->add_option("--seed", args->seed, "Seed for --drop")->needs("--drop");
+    cmd->add_option("--seed", args->seed, withDefault("Seed for --drop", args->seed))
+        ->needs("--drop");
     addOptionFlags(cmd, args->options, toJson(EvaluationOptions{}.solver), true);
     cmd->add_flag("--json", args->json, "Print one JSON object");
     cmd->add_flag("--quiet", args->quiet, "No per-frame lines");

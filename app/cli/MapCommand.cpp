@@ -53,7 +53,8 @@ void registerMapCommand(CLI::App& app) {
             ->check(aPath());
     suggest
         ->add_option("--tolerance-mm", args->toleranceMm,
-                     "With --check: how near counts as landing (0.1 to 1000, default 30)")
+                     withDefault("With --check: how near counts as landing (0.1 to 1000)",
+                                 args->toleranceMm))
         ->check(numberFrom(0.1, 1000))
         ->needs(check);
     suggest->add_flag("--force", args->force,

@@ -37,11 +37,10 @@ void addOptionFlags(CLI::App* command, nlohmann::json& given, const nlohmann::js
         std::string help = o.doc;
         help[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(help[0])));
         if (!o.units.empty()) help += " (" + o.units + ")";
-        help += " [" + defaults.at(o.key).dump() + "]";
         CLI::Option* flag = command->add_option_function<std::string>(
             optionFlag(o),
             [&given, o](const std::string& text) { given[o.key] = optionValueFromText(o, text); },
-            help);
+            withDefault(help, defaults.at(o.key)));
         flag->check(
             CLI::Validator([o](std::string& text) { return checkOptionText(o, text); }, ""));
         std::string type = o.kind == TakeOption::Kind::Integer ? "INT" : "NUMBER";

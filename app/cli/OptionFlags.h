@@ -14,6 +14,13 @@
 void addOptionFlags(CLI::App* command, nlohmann::json& given, const nlohmann::json& defaults,
                     bool solverOnly);
 
+// A flag's help with its default, as the table's flags give theirs: "... (1 to 100000) [60]",
+// "[10.0]", "["boneless"]" (the value as JSON writes it).
+template <class T>
+std::string withDefault(const std::string& help, const T& value) {
+    return help + " [" + nlohmann::json(value).dump() + "]";
+}
+
 // A number from low to high, as the option tables say it: "must be a number from 0 to 100, got
 // nan". CLI11's Range lets NaN through (every comparison with it is false), and inf and 1e308
 // through unbounded checks. `whole` for a count: "must be a whole number from 1 to 100000, got

@@ -66,3 +66,22 @@ TEST(DemoCommand, ATakeLongerThanMemoryCouldHoldIsWrittenFrameByFrame) {
     EXPECT_TRUE(fs::exists(dir / "truth" / "walker_1999.obj"));
     fs::remove_all(dir);  // 600 MB
 }
+
+// solve --help gives each option's default ("[0.2]"); demo's gave none of 60 frames, detail 1 and
+// 10 mm, nor eval's of its method, drop and seed. Each is given as solve's are.
+TEST(DemoCommand, TheHelpGivesEachDefaultAsSolvesDoes) {
+    const std::pair<std::string, std::string> helped[] = {
+        {"demo", "How many frames the take has (1 to 100000) [60]\n"},
+        {"demo", "How far the markers sit off the skin (0 to 100) [10.0]\n"},
+        {"demo", "(1 = 6,848 faces) [1]\n"},
+        {"eval", "boneless, arap, or both (side by side) [\"boneless\"]\n"},
+        {"eval", "Percentage of markers missing in each frame (seeded) [0.0]\n"},
+        {"eval", "Seed for --drop [1]\n"},
+        {"map suggest", "how near counts as landing (0.1 to 1000) [30.0]\n"},
+        {"solve", "longer gaps stay missing; 0 = off (s) [0.2]\n"}};
+    for (const auto& [command, line] : helped) {
+        const CliResult r = runCli(command + " --help");
+        EXPECT_EQ(r.exitCode, 0) << r.out;
+        EXPECT_NE(r.out.find(line), std::string::npos) << command << ": " << r.out;
+    }
+}
