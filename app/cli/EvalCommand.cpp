@@ -223,6 +223,7 @@ void registerEvalCommand(CLI::App& app) {
                     withDefault("Percentage of markers missing in each frame (seeded)", args->drop))
         ->check(numberFrom(0, 100));
     cmd->add_option("--seed", args->seed, withDefault("Seed for --drop", args->seed))
+        ->check(numberFrom(0, 4294967295.0, true))  // CLI11 read 010 as octal 8, 0x10 as 16
         ->needs("--drop");
     addOptionFlags(cmd, args->options, toJson(EvaluationOptions{}.solver), true);
     cmd->add_flag("--json", args->json, "Print one JSON object");

@@ -54,8 +54,11 @@ void addOptionFlags(CLI::App* command, nlohmann::json& given, const nlohmann::js
 
 CLI::Validator numberFrom(double low, double high, bool whole) {
     char range[64];
-    std::snprintf(range, sizeof range, "must be a %snumber from %g to %g, got ",
-                  whole ? "whole " : "", low, high);
+    // A whole number's bounds in digits, as it must be typed: "to 4294967295", not "4.29497e+09".
+    std::snprintf(range, sizeof range,
+                  whole ? "must be a whole number from %.0f to %.0f, got "
+                        : "must be a number from %g to %g, got ",
+                  low, high);
     return CLI::Validator(
         [low, high, whole, range = std::string(range)](std::string& text) -> std::string {
             // A count in digits alone: CLI11 reads "1e3" as no int, and "010" as octal 8.
