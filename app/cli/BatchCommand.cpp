@@ -91,12 +91,12 @@ void applyKeys(const json& object, const fs::path& base, const std::string& wher
                 if (!findExportFormat(job.format)) {
                     std::vector<std::string> names;
                     for (const ExportFormatInfo& f : exportFormats()) names.push_back(f.name);
-                    throw Error(where + ": unknown format '" + job.format + "' (expected " +
+                    throw Error(where + ": unknown format \"" + job.format + "\" (expected " +
                                 joined(names) + ")");
                 }
             } else if (key == "frames") {
                 job.frames = value.get<std::string>();
-                parseFrameRange(job.frames, where + ": '" + written + "'");
+                parseFrameRange(job.frames, where + ": \"" + written + "\"");
             } else if (key == "write_calibrated_rest")
                 job.writeCalibratedRest = value.get<bool>();
             else if (const TakeOption* option = findTakeOption(key)) {
@@ -105,9 +105,9 @@ void applyKeys(const json& object, const fs::path& base, const std::string& wher
                 if (outranked(object, *option, written)) continue;
                 job.options[option->key] = value;
             } else
-                throw Error(where + ": unknown key '" + written + "'");
+                throw Error(where + ": unknown key \"" + written + "\"");
         } catch (const json::exception&) {
-            throw Error(where + ": '" + written + "' has the wrong type (" + value.dump() + ")");
+            throw Error(where + ": \"" + written + "\" has the wrong type (" + value.dump() + ")");
         }
     }
 }
@@ -135,7 +135,7 @@ void requireKeys(const TakeJob& job, const std::string& where) {
                                      {"c3d", &job.c3d},
                                      {"map", &job.map},
                                      {"out", &job.out}})
-        if (value->empty()) throw Error(where + ": '" + key + "' is missing");
+        if (value->empty()) throw Error(where + ": \"" + key + "\" is missing");
 }
 
 // Two entries that write one sidecar (sessA/walk.c3d and sessB/walk.c3d into one "out") would
@@ -153,7 +153,7 @@ void refuseSharedOutputs(const std::string& file, const std::vector<TakeJob>& jo
         const auto [it, first] = writers.emplace(canonical(sidecar), k);
         if (!first)
             throw Error(file + ": " + entries[it->second] + " and " + entries[k] + " both write " +
-                        sidecar + " and the outputs beside it; give each its own 'out'");
+                        sidecar + " and the outputs beside it; give each its own \"out\"");
     }
     // An entry's sidecar over another entry's input (its map kept as <stem>.json in that "out")
     // would destroy it before that entry is solved. A writer whose own inputs hold that file is
@@ -172,7 +172,7 @@ void refuseSharedOutputs(const std::string& file, const std::vector<TakeJob>& jo
             if (!refusedOnItsOwn)
                 throw Error(file + ": the sidecar of " + entries[writer->second] + ", " + input +
                             ", would replace the " + what + " of " + entries[j] +
-                            "; give it another 'out'");
+                            "; give it another \"out\"");
         }
 }
 
@@ -195,12 +195,12 @@ std::vector<TakeJob> readManifest(const std::string& file) {
     TakeJob defaults;
     for (const auto& [key, value] : m.items())
         if (key != "defaults" && key != "takes" && key != "folders")
-            throw Error(file + ": unknown key '" + key + "' (expected defaults, takes, folders)");
+            throw Error(file + ": unknown key \"" + key + "\" (expected defaults, takes, folders)");
     // Checked before they are indexed: json's own type_error would be an "internal error".
     for (const char* key : {"takes", "folders"})
         if (m.contains(key) && !m[key].is_array()) {
             const std::string type = m[key].type_name();
-            throw Error(file + ": '" + key + "' is an array of entries, not " +
+            throw Error(file + ": \"" + key + "\" is an array of entries, not " +
                         (type == "null"     ? ""
                          : type == "object" ? "an "
                                             : "a ") +

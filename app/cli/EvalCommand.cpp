@@ -57,8 +57,8 @@ std::vector<int> readMarkerFile(const std::string& path, int vertexCount) {
             used = 0;
         }
         if (used == 0 || line.find_first_not_of(" \t\r", first + used) != std::string::npos)
-            throw Error(path + ":" + std::to_string(lineNo) + ": expected one vertex id, got '" +
-                        text + "'");
+            throw Error(path + ":" + std::to_string(lineNo) + ": expected one vertex id, got \"" +
+                        text + "\"");
         if (id < 0 || id >= vertexCount)
             throw Error(path + ":" + std::to_string(lineNo) + ": vertex " + std::to_string(id) +
                         " is out of range (the mesh has " + std::to_string(vertexCount) +

@@ -310,3 +310,15 @@ TEST(EvalCommand, ASeedIsReadAsADecimalNumberOnly) {
                                " --markers 20 --frames 0:2 --drop 10 --seed 4294967295");
     EXPECT_EQ(r.exitCode, 0) << r.out;
 }
+
+// A marker file's bad line was quoted 'so', where flags and their values are quoted "so".
+TEST(EvalCommand, AMarkerFilesBadLineIsQuotedAsAFlagsValueIs) {
+    const fs::path file = fs::path(BONELESS_TEST_WORK_DIR) / "worded-markers.txt";
+    std::ofstream(file) << "0\n12 the hip\n";
+    const CliResult r =
+        runCli("eval --sequence " + demoFolder() + " --markers-file " + file.string());
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("worded-markers.txt:2: expected one vertex id, got \"12 the hip\"\n"),
+              std::string::npos)
+        << r.out;
+}
