@@ -85,3 +85,28 @@ TEST(DemoCommand, TheHelpGivesEachDefaultAsSolvesDoes) {
         EXPECT_NE(r.out.find(line), std::string::npos) << command << ": " << r.out;
     }
 }
+
+// Under ulimit -v 150000 the demo wrote every file and printed its line, then spun at full CPU
+// for ever: exiting, OpenBLAS joined its worker thread, which retries its 128 MB buffer until it
+// gets it. solve did the same after writing its frames. Both end at once now, having done their
+// work (0) or run out of memory saying so (3), whichever the limit allows (the worker and the
+// program race for the address space).
+TEST(DemoCommand, UnderATightAddressSpaceLimitTheDemoAndASolveEndPromptly) {
+    const fs::path dir = freshTestDir("demo-tight");
+    ASSERT_EQ(runCli("demo --frames 3 --out " + (dir / "made").string()).exitCode, 0);
+    const fs::path made = dir / "made";
+    const std::string solve = "solve --quiet --mesh " + (made / "walker.obj").string() + " --c3d " +
+                              (made / "walker.c3d").string() + " --map " +
+                              (made / "walker.map.json").string() + " --out " +
+                              (dir / "solved").string();
+    for (const std::string& command : {"demo --frames 3 --out " + (dir / "demo").string(), solve})
+        for (const char* limit : {"150000", "170000"}) {
+            const CliResult r = runShell("ulimit -v " + std::string(limit) + "; timeout 20 " +
+                                         std::string(BONELESS_CLI) + " " + command + " 2>&1");
+            ASSERT_NE(r.exitCode, 124) << limit << " " << command << ": " << r.out;  // the timeout
+            const bool saidSo = r.out.find("out of memory") != std::string::npos ||
+                                r.out.find("the system refused") != std::string::npos;
+            EXPECT_TRUE(r.exitCode == 0 || (r.exitCode == 3 && saidSo))
+                << limit << " " << command << ": " << r.exitCode << " " << r.out;
+        }
+}
