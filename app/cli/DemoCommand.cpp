@@ -44,9 +44,10 @@ void registerDemoCommand(CLI::App& app) {
                                 "faces)",
                                 args->detail))
         ->check(numberFrom(1, 4, true));
-    cmd->add_flag("--force", args->force,
-                  "Replace the demo's files in --out that differ from the ones this run writes "
-                  "(an edited map, a take of another length)");
+    cmd->add_flag(
+        "--force", args->force,
+        "Replace the demo's files in --out that differ from the ones this run writes "
+        "(an edited map, a take of another length), and remove its truth frames past --frames");
     cmd->callback([args] {
         // A map the user edited there is not the demo's to replace unasked;
         // files as this run would write them are replaced by the same bytes.

@@ -110,3 +110,21 @@ TEST(DemoCommand, UnderATightAddressSpaceLimitTheDemoAndASolveEndPromptly) {
                 << limit << " " << command << ": " << r.exitCode << " " << r.out;
         }
 }
+
+// demo --force with fewer frames than the demo there left that one's truth past the new count
+// (truth/walker_0004.obj of 5 after a demo of 3), which a tool reading truth/ by pattern plays as
+// the take's. They are removed; files the demo does not name so are the user's and stay.
+TEST(DemoCommand, AShorterDemoForcedOverALongerOneLeavesNoTruthPastItsFrames) {
+    const fs::path dir = freshTestDir("demo-shorter");
+    const std::string demo = "demo --out " + dir.string();
+    ASSERT_EQ(runCli(demo + " --frames 5").exitCode, 0);
+    for (const char* theirs : {"walker_0004.obj.bak", "walker_04.obj", "other_0004.obj"})
+        std::ofstream(dir / "truth" / theirs) << "mine\n";
+    const CliResult r = runCli(demo + " --frames 3 --force");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_TRUE(fs::exists(dir / "truth" / "walker_0002.obj"));
+    EXPECT_FALSE(fs::exists(dir / "truth" / "walker_0003.obj"));
+    EXPECT_FALSE(fs::exists(dir / "truth" / "walker_0004.obj"));
+    for (const char* theirs : {"walker_0004.obj.bak", "walker_04.obj", "other_0004.obj"})
+        EXPECT_TRUE(fs::exists(dir / "truth" / theirs)) << theirs;
+}
