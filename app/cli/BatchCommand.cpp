@@ -16,6 +16,7 @@
 
 #include "Commands.h"
 #include "FrameRange.h"
+#include "OptionFlags.h"
 #include "TakeJob.h"
 #include "boneless/C3dFrameReader.h"
 #include "boneless/Error.h"
@@ -90,12 +91,12 @@ void applyKeys(const json& object, const fs::path& base, const std::string& wher
                 if (!findExportFormat(job.format)) {
                     std::vector<std::string> names;
                     for (const ExportFormatInfo& f : exportFormats()) names.push_back(f.name);
-                    throw Error(where + ": unknown format '" + job.format + "' (expected " +
+                    throw Error(where + ": unknown format \"" + job.format + "\" (expected " +
                                 joined(names) + ")");
                 }
             } else if (key == "frames") {
                 job.frames = value.get<std::string>();
-                parseFrameRange(job.frames, where + ": '" + written + "'");
+                parseFrameRange(job.frames, where + ": \"" + written + "\"");
             } else if (key == "write_calibrated_rest")
                 job.writeCalibratedRest = value.get<bool>();
             else if (const TakeOption* option = findTakeOption(key)) {
@@ -104,11 +105,29 @@ void applyKeys(const json& object, const fs::path& base, const std::string& wher
                 if (outranked(object, *option, written)) continue;
                 job.options[option->key] = value;
             } else
-                throw Error(where + ": unknown key '" + written + "'");
+                throw Error(where + ": unknown key \"" + written + "\"");
         } catch (const json::exception&) {
-            throw Error(where + ": '" + written + "' has the wrong type (" + value.dump() + ")");
+            throw Error(where + ": \"" + written + "\" has the wrong type (" + value.dump() + ")");
         }
     }
+}
+
+// An entry's options that the exact solver alone reads, refused without "solver": "exact" (flags
+// and keys alike, OptionFlags' rule), each named as the entry or its defaults wrote it.
+void refuseUnusedExactOptions(const TakeJob& job, const json& entry, const json& defaults,
+                              const std::string& where) {
+    const auto written = [&](const std::string& key, const std::string& value) {
+        for (const json* object : {&entry, &defaults})
+            for (const auto& item : object->items()) {
+                const std::string& name = item.key();
+                if (findTakeOption(underscored(name)) == findTakeOption(key) &&
+                    !outranked(*object, *findTakeOption(key), name))
+                    return "\"" + name + "\" " + value +
+                           (object == &defaults ? " (from defaults)" : "");
+            }
+        return "\"" + key + "\" " + value;
+    };
+    ::refuseUnusedExactOptions(job.options, TakeSolveOptions{}.solver, where, written);
 }
 
 void requireKeys(const TakeJob& job, const std::string& where) {
@@ -116,7 +135,7 @@ void requireKeys(const TakeJob& job, const std::string& where) {
                                      {"c3d", &job.c3d},
                                      {"map", &job.map},
                                      {"out", &job.out}})
-        if (value->empty()) throw Error(where + ": '" + key + "' is missing");
+        if (value->empty()) throw Error(where + ": \"" + key + "\" is missing");
 }
 
 // Two entries that write one sidecar (sessA/walk.c3d and sessB/walk.c3d into one "out") would
@@ -134,7 +153,7 @@ void refuseSharedOutputs(const std::string& file, const std::vector<TakeJob>& jo
         const auto [it, first] = writers.emplace(canonical(sidecar), k);
         if (!first)
             throw Error(file + ": " + entries[it->second] + " and " + entries[k] + " both write " +
-                        sidecar + " and the outputs beside it; give each its own 'out'");
+                        sidecar + " and the outputs beside it; give each its own \"out\"");
     }
     // An entry's sidecar over another entry's input (its map kept as <stem>.json in that "out")
     // would destroy it before that entry is solved. A writer whose own inputs hold that file is
@@ -153,7 +172,7 @@ void refuseSharedOutputs(const std::string& file, const std::vector<TakeJob>& jo
             if (!refusedOnItsOwn)
                 throw Error(file + ": the sidecar of " + entries[writer->second] + ", " + input +
                             ", would replace the " + what + " of " + entries[j] +
-                            "; give it another 'out'");
+                            "; give it another \"out\"");
         }
 }
 
@@ -176,12 +195,12 @@ std::vector<TakeJob> readManifest(const std::string& file) {
     TakeJob defaults;
     for (const auto& [key, value] : m.items())
         if (key != "defaults" && key != "takes" && key != "folders")
-            throw Error(file + ": unknown key '" + key + "' (expected defaults, takes, folders)");
+            throw Error(file + ": unknown key \"" + key + "\" (expected defaults, takes, folders)");
     // Checked before they are indexed: json's own type_error would be an "internal error".
     for (const char* key : {"takes", "folders"})
         if (m.contains(key) && !m[key].is_array()) {
             const std::string type = m[key].type_name();
-            throw Error(file + ": '" + key + "' is an array of entries, not " +
+            throw Error(file + ": \"" + key + "\" is an array of entries, not " +
                         (type == "null"     ? ""
                          : type == "object" ? "an "
                                             : "a ") +
@@ -197,6 +216,7 @@ std::vector<TakeJob> readManifest(const std::string& file) {
         TakeJob job = defaults;
         applyKeys(takes[i], base, where, job);
         requireKeys(job, where);
+        refuseUnusedExactOptions(job, takes[i], m.value("defaults", json::object()), where);
         jobs.push_back(job);
         entries.push_back("takes[" + std::to_string(i) + "] (" + job.c3d + ")");
     }
@@ -205,6 +225,7 @@ std::vector<TakeJob> readManifest(const std::string& file) {
         TakeJob pattern = defaults;
         applyKeys(folders[i], base, where, pattern);
         requireKeys(pattern, where);
+        refuseUnusedExactOptions(pattern, folders[i], m.value("defaults", json::object()), where);
         std::error_code ec;
         std::vector<fs::path> found;
         for (const auto& e : fs::directory_iterator(pattern.c3d, ec)) {
@@ -451,6 +472,7 @@ void registerBatchCommand(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "batch", "Solve every take a manifest lists, skipping those already complete");
     cmd->add_option("MANIFEST", args->manifest, "Batch manifest (JSON; see docs/batch.md)")
+        ->check(aPath())
         ->required();
     cmd->add_option("--shard", args->shard,
                     "I/N: only every N-th entry, starting at the I-th (for job arrays)");

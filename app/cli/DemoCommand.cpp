@@ -28,20 +28,26 @@ void registerDemoCommand(CLI::App& app) {
         "Write the generated demo, a human body walking: walker.obj (rest pose), walker.c3d (a "
         "39-marker Plug-in Gait style set, with gaps), walker.map.json (the correspondence) and "
         "truth/ (the true motion, one OBJ per frame)");
-    cmd->add_option("--out", args->out, "Output folder (created if missing)")->required();
-    cmd->add_option("--frames", args->frames, "How many frames the take has (1 to 100000)")
+    cmd->add_option("--out", args->out, "Output folder (created if missing)")
+        ->required()
+        ->check(aPath());
+    cmd->add_option("--frames", args->frames,
+                    withDefault("How many frames the take has (1 to 100000)", args->frames))
         ->check(numberFrom(1, 100000, true));
     // Markers sit on the skin or a few centimetres off it (a bulky suit); beyond 10 cm a marker
     // is no longer the body's.
     cmd->add_option("--offset-mm", args->offsetMm,
-                    "How far the markers sit off the skin (0 to 100)")
+                    withDefault("How far the markers sit off the skin (0 to 100)", args->offsetMm))
         ->check(numberFrom(0, 100));
     cmd->add_option("--detail", args->detail,
-                    "Resolution, 1 to 4: each step up has 4 times the faces (1 = 6,848 faces)")
+                    withDefault("Resolution, 1 to 4: each step up has 4 times the faces (1 = 6,848 "
+                                "faces)",
+                                args->detail))
         ->check(numberFrom(1, 4, true));
-    cmd->add_flag("--force", args->force,
-                  "Replace the demo's files in --out that differ from the ones this run writes "
-                  "(an edited map, a take of another length)");
+    cmd->add_flag(
+        "--force", args->force,
+        "Replace the demo's files in --out that differ from the ones this run writes "
+        "(an edited map, a take of another length), and remove its truth frames past --frames");
     cmd->callback([args] {
         // A map the user edited there is not the demo's to replace unasked;
         // files as this run would write them are replaced by the same bytes.

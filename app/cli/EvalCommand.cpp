@@ -57,8 +57,8 @@ std::vector<int> readMarkerFile(const std::string& path, int vertexCount) {
             used = 0;
         }
         if (used == 0 || line.find_first_not_of(" \t\r", first + used) != std::string::npos)
-            throw Error(path + ":" + std::to_string(lineNo) + ": expected one vertex id, got '" +
-                        text + "'");
+            throw Error(path + ":" + std::to_string(lineNo) + ": expected one vertex id, got \"" +
+                        text + "\"");
         if (id < 0 || id >= vertexCount)
             throw Error(path + ":" + std::to_string(lineNo) + ": vertex " + std::to_string(id) +
                         " is out of range (the mesh has " + std::to_string(vertexCount) +
@@ -206,19 +206,25 @@ void registerEvalCommand(CLI::App& app) {
         "Reconstruct a ground-truth mesh sequence from K of its vertices and measure the error");
     cmd->add_option("--sequence", args->sequence,
                     "Folder with one OBJ per frame (first = rest pose)")
-        ->required();
+        ->required()
+        ->check(aPath());
     auto* k = cmd->add_option("--markers", args->markers,
                               "Number of marker vertices (farthest-point sampled from vertex 0)")
                   ->check(numberFrom(1, 1e9, true));
     auto* file = cmd->add_option("--markers-file", args->markersFile,
-                                 "File with one marker vertex id per line (instead of --markers)");
+                                 "File with one marker vertex id per line (instead of --markers)")
+                     ->check(aPath());
     k->excludes(file);
     cmd->add_option("--frames", args->frames, "Frame range A:B (0-based, B excluded; A: or :B)");
-    cmd->add_option("--method", args->method, "boneless, arap, or both (side by side)")
+    cmd->add_option("--method", args->method,
+                    withDefault("boneless, arap, or both (side by side)", args->method))
         ->check(CLI::IsMember({"boneless", "arap", "both"}));
-    cmd->add_option("--drop", args->drop, "Percentage of markers missing in each frame (seeded)")
+    cmd->add_option("--drop", args->drop,
+                    withDefault("Percentage of markers missing in each frame (seeded)", args->drop))
         ->check(numberFrom(0, 100));
-    cmd->add_option("--seed", args->seed, "Seed for --drop")->needs("--drop");
+    cmd->add_option("--seed", args->seed, withDefault("Seed for --drop", args->seed))
+        ->check(numberFrom(0, 4294967295.0, true))  // CLI11 read 010 as octal 8, 0x10 as 16
+        ->needs("--drop");
     addOptionFlags(cmd, args->options, toJson(EvaluationOptions{}.solver), true);
     cmd->add_flag("--json", args->json, "Print one JSON object");
     cmd->add_flag("--quiet", args->quiet, "No per-frame lines");
@@ -231,6 +237,7 @@ void registerEvalCommand(CLI::App& app) {
                 throw CLI::ValidationError(o->get_name(),
                                            "chooses Boneless's solver, and "
                                            "--method arap runs ARAP alone");
+        refuseUnusedExactOptions(args->options, EvaluationOptions{}.solver);
         run(*args);
     });
 }

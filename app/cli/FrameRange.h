@@ -9,7 +9,7 @@
 #include "boneless/Text.h"
 
 // "--frames A:B": 0-based, B excluded; "A:" and ":B" leave that end at its default. `name` is
-// what the error calls it (a manifest's entry says "m.json: takes[2]: 'frames'"); the text is
+// what the error calls it (a manifest's entry says "m.json: takes[2]: \"frames\""); the text is
 // quoted as the choice flags quote theirs: got "0-10".
 struct FrameRange {
     int first = 0;

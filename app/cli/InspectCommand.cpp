@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "Commands.h"
+#include "OptionFlags.h"
 #include "boneless/Alignment.h"
 #include "boneless/C3dReader.h"
 #include "boneless/ObjWriter.h"
@@ -25,6 +26,12 @@ struct InspectOptions {
     bool keepZero = false;
 };
 
+// The number of the last frame the take holds (of one that holds any): a truncated copy's, not
+// the header's.
+std::int64_t lastFrame(const boneless::C3dTake& t) {
+    return t.firstFrame + static_cast<std::int64_t>(t.frameCount()) - 1;
+}
+
 nlohmann::json toJson(const boneless::C3dTake& t) {
     using boneless::toString;
     nlohmann::json j;
@@ -38,9 +45,10 @@ nlohmann::json toJson(const boneless::C3dTake& t) {
     j["processor"] = toString(t.processor);
     j["storage"] = toString(t.storage);
     j["scale"] = t.pointScale;
-    j["first_frame"] = t.firstFrameWord;
-    j["last_frame"] = t.lastFrameWord;
-    j["first_frame_number"] = t.firstFrame;
+    // The frames held, by their numbers; the header's words apart (a truncated copy's say more).
+    j["first_frame"] = t.firstFrame;
+    j["last_frame"] = t.frameCount() ? nlohmann::json(lastFrame(t)) : nlohmann::json(nullptr);
+    j["header_frames"] = {t.firstFrameWord, t.lastFrameWord};
     j["analog_channels"] = t.analogChannels;
     j["analog_rate"] = t.analogRate;
     j["points"] = nlohmann::json::array();
@@ -72,6 +80,7 @@ void printSummary(const boneless::C3dTake& t, std::ostream& out) {
         out << " @ " << t.rate << " Hz";
     else
         out << ", no frame rate";
+    if (t.frameCount()) out << ", numbered " << t.firstFrame << ".." << lastFrame(t);
     out << " (header frames " << t.firstFrameWord << ".." << t.lastFrameWord << ")\n";
     out << "  units     " << t.units << " (x" << t.unitToMm << " to mm)\n";
     out << "  up        " << boneless::axisName(t.vertical) << "\n";
@@ -143,11 +152,12 @@ void registerInspectCommand(CLI::App& app) {
     auto opts = std::make_shared<InspectOptions>();
     CLI::App* cmd = app.add_subcommand(
         "inspect", "Summarise a C3D take: format, frames, rate, units, points and their gaps");
-    cmd->add_option("take", opts->take, "C3D file")->required();
+    cmd->add_option("take", opts->take, "C3D file")->required()->check(aPath());
     cmd->add_flag("--json", opts->json, "print one JSON object instead of the summary");
     cmd->add_option("--csv", opts->csv,
                     "write frame,label,x,y,z,valid rows (frame 0-based, file units, empty x/y/z "
-                    "where missing)");
+                    "where missing)")
+        ->check(aPath());
     cmd->add_flag("--keep-zero", opts->keepZero,
                   "keep samples at exactly (0,0,0) instead of treating them as missing");
     cmd->callback([opts]() {

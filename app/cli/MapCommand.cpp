@@ -1,6 +1,8 @@
 // boneless-cli map suggest: complete a partial marker-to-vertex map from the take.
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -11,6 +13,7 @@
 #include "boneless/ActorCalibration.h"
 #include "boneless/C3dReader.h"
 #include "boneless/Error.h"
+#include "boneless/InputFile.h"
 #include "boneless/MarkerSuggestion.h"
 #include "boneless/MeshReader.h"
 #include "boneless/SuggestionCheck.h"
@@ -23,6 +26,7 @@ void registerMapCommand(CLI::App& app) {
     struct Args {
         std::string mesh, group, c3d, map, out, check;
         double toleranceMm = 30;
+        bool force = false;
     };
     auto args = std::make_shared<Args>();
     CLI::App* map = app.add_subcommand("map", "Author marker-to-vertex correspondence files");
@@ -31,18 +35,31 @@ void registerMapCommand(CLI::App& app) {
         "suggest",
         "Fit the mesh to the take from the mapped markers and propose a vertex for every other "
         "marker, flagging the ones to review");
-    suggest->add_option("--mesh", args->mesh, "Rest mesh (OBJ, PLY, OFF, STL)")->required();
+    suggest->add_option("--mesh", args->mesh, "Rest mesh (OBJ, PLY, OFF, STL)")
+        ->required()
+        ->check(aPath());
     suggest->add_option("--group", args->group, "OBJ group to use as the mesh");
-    suggest->add_option("--c3d", args->c3d, "The take")->required();
-    suggest->add_option("--map", args->map, "Partial map with at least 4 markers")->required();
-    suggest->add_option("--out", args->out, "Where to write the completed map")->required();
-    CLI::Option* check = suggest->add_option(
-        "--check", args->check, "A map known to be right: print how near the proposals land to it");
+    suggest->add_option("--c3d", args->c3d, "The take")->required()->check(aPath());
+    suggest->add_option("--map", args->map, "Partial map with at least 4 markers")
+        ->required()
+        ->check(aPath());
+    suggest->add_option("--out", args->out, "Where to write the completed map")
+        ->required()
+        ->check(aPath());
+    CLI::Option* check =
+        suggest
+            ->add_option("--check", args->check,
+                         "A map known to be right: print how near the proposals land to it")
+            ->check(aPath());
     suggest
         ->add_option("--tolerance-mm", args->toleranceMm,
-                     "With --check: how near counts as landing (0.1 to 1000, default 30)")
+                     withDefault("With --check: how near counts as landing (0.1 to 1000)",
+                                 args->toleranceMm))
         ->check(numberFrom(0.1, 1000))
         ->needs(check);
+    suggest->add_flag("--force", args->force,
+                      "Replace an --out that differs from the map this run writes (a map reviewed "
+                      "by hand)");
     suggest->callback([args] {
         // `--out take.c3d` replaced the take, `--out ref.json --check ref.json` the map to check
         // against: refused before anything is read.
@@ -54,6 +71,26 @@ void registerMapCommand(CLI::App& app) {
             if (!input->empty() && sameFile(args->out, *input))
                 throw Error(args->out + ": the completed map would replace the " + what + " " +
                             *input + "; give --out another file");
+        // A map reviewed by hand, given as --out by mistake, is not replaced unasked (as demo
+        // keeps an edited map); the same map again is. Refused before the fit when it cannot be
+        // what this run writes (no map at all), else once the map is made, before it is written.
+        const bool keep = !args->force && std::filesystem::exists(args->out);
+        const auto refuse = [&] {
+            return Error(args->out +
+                         ": differs from the map this run suggests (reviewed by hand, or suggested "
+                         "from other inputs); nothing was written: give --force to replace it, or "
+                         "another --out");
+        };
+        if (const std::string why = notARegularFile(args->out, "map");
+            std::filesystem::exists(args->out) && !why.empty())
+            throw Error(args->out + ": " + why);
+        if (keep) {
+            try {
+                Correspondence::read(args->out);
+            } catch (const Error&) {
+                throw refuse();
+            }
+        }
         MeshReadOptions options;
         options.group = args->group;
         const TriMesh mesh = readMesh(args->mesh, options).mesh;
@@ -72,6 +109,11 @@ void registerMapCommand(CLI::App& app) {
             s.map.meshFile = std::filesystem::path(args->mesh).filename().string();
         if (s.map.meshGroup.empty()) s.map.meshGroup = args->group;
         if (s.map.meshVertices == 0) s.map.meshVertices = mesh.vertexCount();
+        if (keep) {
+            std::ifstream in(args->out, std::ios::binary);
+            if (std::string{std::istreambuf_iterator<char>(in), {}} != s.map.toJson())
+                throw refuse();
+        }
         s.map.write(args->out);
         // Nothing fitted, no alignment worth a figure: "aligned at frame -1" said nothing.
         if (s.proposals.empty() && s.offBody.empty() && s.fittedFrame < 0) {

@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "boneless/Error.h"
 #include "boneless/TakeOptionsJson.h"
 #include "boneless/Text.h"
 
@@ -36,11 +37,10 @@ void addOptionFlags(CLI::App* command, nlohmann::json& given, const nlohmann::js
         std::string help = o.doc;
         help[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(help[0])));
         if (!o.units.empty()) help += " (" + o.units + ")";
-        help += " [" + defaults.at(o.key).dump() + "]";
         CLI::Option* flag = command->add_option_function<std::string>(
             optionFlag(o),
             [&given, o](const std::string& text) { given[o.key] = optionValueFromText(o, text); },
-            help);
+            withDefault(help, defaults.at(o.key)));
         flag->check(
             CLI::Validator([o](std::string& text) { return checkOptionText(o, text); }, ""));
         std::string type = o.kind == TakeOption::Kind::Integer ? "INT" : "NUMBER";
@@ -54,8 +54,11 @@ void addOptionFlags(CLI::App* command, nlohmann::json& given, const nlohmann::js
 
 CLI::Validator numberFrom(double low, double high, bool whole) {
     char range[64];
-    std::snprintf(range, sizeof range, "must be a %snumber from %g to %g, got ",
-                  whole ? "whole " : "", low, high);
+    // A whole number's bounds in digits, as it must be typed: "to 4294967295", not "4.29497e+09".
+    std::snprintf(range, sizeof range,
+                  whole ? "must be a whole number from %.0f to %.0f, got "
+                        : "must be a number from %g to %g, got ",
+                  low, high);
     return CLI::Validator(
         [low, high, whole, range = std::string(range)](std::string& text) -> std::string {
             // A count in digits alone: CLI11 reads "1e3" as no int, and "010" as octal 8.
@@ -67,6 +70,11 @@ CLI::Validator numberFrom(double low, double high, bool whole) {
             return ok ? std::string() : range + text;
         },
         "");
+}
+
+CLI::Validator aPath() {
+    return CLI::Validator(
+        [](std::string& text) { return text.empty() ? "must be a path, got \"\"" : ""; }, "");
 }
 
 std::vector<std::string> renamedFlagHints(const CLI::App& app) {
@@ -87,4 +95,29 @@ std::vector<std::string> renamedFlagHints(const CLI::App& app) {
         }
     }
     return hints;
+}
+
+void refuseUnusedExactOptions(
+    const nlohmann::json& given, const SolverOptions& defaults, const std::string& where,
+    const std::function<std::string(const std::string& key, const std::string& value)>& written) {
+    const std::vector<const TakeOption*> unused = unusedExactOptions(given, defaults);
+    if (unused.empty()) return;
+    std::vector<std::string> named;
+    for (const TakeOption* o : unused) {
+        const std::string value = given.at(o->key).dump();
+        if (where.empty())
+            named.push_back(optionFlag(*o) + " " + value);
+        else
+            named.push_back(written ? written(o->key, value) : "\"" + o->key + "\" " + value);
+    }
+    SolverOptions solver = defaults;
+    fromJson(given, solver, "options");
+    const std::string list =
+        named.size() == 1 ? named[0]
+                          : joined({named.begin(), named.end() - 1}) + " and " + named.back();
+    throw Error((where.empty() ? "" : where + ": ") + list +
+                (named.size() == 1 ? " changes" : " change") + " nothing with the " +
+                methodName(solver.method) +
+                " solver: " + (named.size() == 1 ? "it applies" : "they apply") + " to " +
+                (where.empty() ? "--solver exact" : "\"solver\": \"exact\"") + " only");
 }

@@ -2,7 +2,9 @@
 #include <memory>
 
 #include "Commands.h"
+#include "OptionFlags.h"
 #include "TakeJob.h"
+#include "boneless/TakeSolver.h"
 
 void registerSolveCommand(CLI::App& app) {
     struct SolveArgs {
@@ -11,12 +13,19 @@ void registerSolveCommand(CLI::App& app) {
     };
     auto args = std::make_shared<SolveArgs>();
     CLI::App* cmd = app.add_subcommand("solve", "Animate a mesh from a C3D take");
-    cmd->add_option("--mesh", args->job.mesh, "Rest mesh (OBJ, PLY, OFF, STL)")->required();
+    cmd->add_option("--mesh", args->job.mesh, "Rest mesh (OBJ, PLY, OFF, STL)")
+        ->required()
+        ->check(aPath());
     cmd->add_option("--group", args->job.group, "OBJ group to use as the mesh");
-    cmd->add_option("--c3d", args->job.c3d, "The take")->required();
-    cmd->add_option("--map", args->job.map, "Correspondence file (JSON)")->required();
-    cmd->add_option("--out", args->job.out, "Output folder")->required();
+    cmd->add_option("--c3d", args->job.c3d, "The take")->required()->check(aPath());
+    cmd->add_option("--map", args->job.map, "Correspondence file (JSON)")
+        ->required()
+        ->check(aPath());
+    cmd->add_option("--out", args->job.out, "Output folder")->required()->check(aPath());
     addTakeJobOptions(cmd, args->job);
     cmd->add_flag("--quiet", args->quiet, "No progress on stderr");
-    cmd->callback([args] { runTakeJob(args->job, args->quiet); });
+    cmd->callback([args] {
+        refuseUnusedExactOptions(args->job.options, boneless::TakeSolveOptions{}.solver);
+        runTakeJob(args->job, args->quiet);
+    });
 }

@@ -183,7 +183,7 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
                         std::vector<std::string>* takeWarnings, std::string* mapWarning) {
     ExportRequest request;
     const auto format = findExportFormat(job.format);
-    if (!format) throw Error("unknown output format '" + job.format + "'");
+    if (!format) throw Error("unknown output format \"" + job.format + "\"");
     request.format = *format;
     const FrameRange range = parseFrameRange(job.frames);
     request.first = range.first;

@@ -12,12 +12,22 @@
 
 namespace {
 
-// A failed run exits at once: its files were closed as the error unwound, and under a tight
-// ulimit -v a BLAS thread that could not get its buffer would hold up a normal exit for ever.
-[[noreturn]] void fail(int code, const std::string& message) {
-    std::cerr << "boneless-cli: " << message << std::endl;
+// Every run, failed or not, --help too, exits at once once its output is flushed: its files were
+// closed as it returned or the error unwound. A normal exit runs OpenBLAS's library destructor,
+// which joins its worker threads; under a tight ulimit -v (150 MB here) a worker that could not
+// map its 128 MB buffer retries for ever (blas_memory_alloc in OpenBLAS's driver/others/memory.c
+// loops until an allocator succeeds), so a demo or solve that had written everything spun at full
+// CPU without end instead of exiting.
+[[noreturn]] void leave(int code) {
+    std::cout.flush();
+    std::cerr.flush();
     std::fflush(nullptr);
     std::_Exit(code);
+}
+
+[[noreturn]] void fail(int code, const std::string& message) {
+    std::cerr << "boneless-cli: " << message << std::endl;
+    leave(code);
 }
 
 }  // namespace
@@ -51,7 +61,7 @@ int main(int argc, char** argv) {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         // --help is 0; a bad flag is bad input, 1 as every other, not CLI11's own 105 or 109.
-        return app.exit(e) == 0 ? 0 : 1;
+        leave(app.exit(e) == 0 ? 0 : 1);
     } catch (const TakeJobInterrupted& e) {
         fail(128 + e.signal, e.what());  // what a shell reports for a job a signal ended
     } catch (const boneless::Error& e) {
@@ -64,5 +74,5 @@ int main(int argc, char** argv) {
     } catch (const std::exception& e) {
         fail(2, std::string("internal error: ") + e.what());
     }
-    return 0;
+    leave(0);
 }

@@ -275,7 +275,20 @@ TEST(Batch, AManifestMistakeNamesTheFileAndTheEntry) {
     const json manifest = {{"takes", {{{"c3d", "a.c3d"}, {"mesh", "m.obj"}, {"ouput", "x"}}}}};
     const CliResult r = runCli("batch " + writeManifest(dir, "m.json", manifest).string());
     EXPECT_EQ(r.exitCode, 1) << r.out;
-    EXPECT_NE(r.out.find("m.json: takes[0]: unknown key 'ouput'"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("m.json: takes[0]: unknown key \"ouput\""), std::string::npos) << r.out;
+    // Quoted as flags and option keys are ("fill_gaps_s" must be ...), not 'so'.
+    const std::pair<json, std::string> quoted[] = {
+        {{{"takes", {{{"c3d", "a.c3d"}, {"mesh", "m.obj"}, {"map", "x"}}}}},
+         "m.json: takes[0]: \"out\" is missing\n"},
+        {{{"takes", {{{"c3d", "a.c3d"}, {"mesh", 3}}}}},
+         "m.json: takes[0]: \"mesh\" has the wrong type (3)\n"},
+        {{{"take", json::array()}},
+         "m.json: unknown key \"take\" (expected defaults, takes, folders)\n"}};
+    for (const auto& [wrong, message] : quoted) {
+        const CliResult q = runCli("batch " + writeManifest(dir, "m.json", wrong).string());
+        EXPECT_EQ(q.exitCode, 1) << q.out;
+        EXPECT_NE(q.out.find(message), std::string::npos) << q.out;
+    }
     EXPECT_NE(runCli("batch " + (dir / "m.json").string() + " --shard 3/2").out.find("--shard"),
               std::string::npos);
 }
@@ -291,6 +304,44 @@ TEST(Batch, AnOptionOutOfItsRangeIsNamedBeforeAnythingIsSolved) {
     EXPECT_NE(r.out.find("m.json: defaults: \"fill_gaps_s\" must be a number (s) from 0 to 3600"),
               std::string::npos)
         << r.out;
+}
+
+// A key the exact solver alone reads ("exact only" in docs/options.md), given without "solver":
+// "exact", changed nothing yet was recorded, and a take was solved again whenever it changed. It is
+// refused as solve's flag is, named as written, before anything is solved; with the exact solver
+// it is taken.
+TEST(Batch, AnExactOnlyKeyWithoutTheExactSolverIsNamedBeforeAnythingIsSolved) {
+    const fs::path dir = makeLibrary();
+    const json take = {{"c3d", "takes/walk_a.c3d"},
+                       {"mesh", "walker.obj"},
+                       {"map", "walker.map.json"},
+                       {"format", "pc2"}};
+    json first = take, second = take;
+    first["out"] = "first";
+    second["out"] = "second";
+    second["rigidity"] = 0.5;
+    json manifest = {{"defaults", {{"max_iterations", 4}}}, {"takes", {first, second}}};
+    CliResult r = runCli("batch " + writeManifest(dir, "m.json", manifest).string());
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(
+        r.out.find("m.json: takes[0]: \"max_iterations\" 4 (from defaults) changes nothing "
+                   "with the local-global solver: it applies to \"solver\": \"exact\" only\n"),
+        std::string::npos)
+        << r.out;
+    manifest["takes"][0]["solver"] = "exact";
+    r = runCli("batch " + writeManifest(dir, "m.json", manifest).string());
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("m.json: takes[1]: \"rigidity\" 0.5 and \"max_iterations\" 4 (from "
+                         "defaults) change nothing"),
+              std::string::npos)
+        << r.out;
+    EXPECT_FALSE(fs::exists(dir / "first")) << r.out;
+    manifest["defaults"]["solver"] = "exact";
+    r = runCli("batch " + writeManifest(dir, "m.json", manifest).string());
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    const json options = json::parse(std::ifstream(dir / "second" / "walker.json"))["options"];
+    EXPECT_EQ(options["fold_guard"], 0.5);
+    EXPECT_EQ(options["max_iterations"], 4);
 }
 
 TEST(Batch, TheOldDashedKeysOfAManifestStillRead) {
@@ -397,8 +448,8 @@ TEST(Batch, TheSameManifestNamedByAnotherPathSkipsTheTakesItFinished) {
 TEST(Batch, AManifestOfTheWrongShapeNamesTheFileAndTheKey) {
     const fs::path dir = freshTestDir("shape");
     const std::pair<json, std::string> cases[] = {
-        {{{"takes", {{"c3d", "a"}}}}, "m.json: 'takes' is an array of entries, not an object"},
-        {{{"folders", "takes"}}, "m.json: 'folders' is an array of entries, not a string"},
+        {{{"takes", {{"c3d", "a"}}}}, "m.json: \"takes\" is an array of entries, not an object"},
+        {{{"folders", "takes"}}, "m.json: \"folders\" is an array of entries, not a string"},
         {{{"takes", {1}}}, "m.json: takes[0]: an entry is a JSON object"},
         {{{"defaults", json::array()}, {"takes", {{{"c3d", "a"}}}}},
          "m.json: defaults: an entry is a JSON object"}};
@@ -417,9 +468,9 @@ TEST(Batch, ABadFormatOrFrameRangeIsNamedBeforeAnythingIsSolved) {
     const json good = {{"c3d", "takes/walk_a.c3d"}, {"out", "a"}};
     const std::pair<json, std::string> cases[] = {
         {{{"c3d", "takes/walk_b.c3d"}, {"out", "b"}, {"format", "fbx"}},
-         "m.json: takes[1]: unknown format 'fbx' (expected obj, pc2, mdd, glb)"},
+         "m.json: takes[1]: unknown format \"fbx\" (expected obj, pc2, mdd, glb)"},
         {{{"c3d", "takes/walk_b.c3d"}, {"out", "b"}, {"frames", "2-4"}},
-         "m.json: takes[1]: 'frames' expects A:B (0-based, not negative, B excluded), got "
+         "m.json: takes[1]: \"frames\" expects A:B (0-based, not negative, B excluded), got "
          "\"2-4\""}};
     for (const auto& [bad, message] : cases) {
         const json manifest = {{"defaults", {{"mesh", "walker.obj"}, {"map", "walker.map.json"}}},

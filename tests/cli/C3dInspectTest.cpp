@@ -101,11 +101,12 @@ TEST(C3dInspect, TheSummaryOfATakeWithoutAFrameRateSaysItHasNone) {
     writeC3d(noRate, file);
     const CliRun none = inspect(quoted(file));
     ASSERT_EQ(none.exitCode, 0) << none.err;
-    EXPECT_NE(none.out.find("  frames    5, no frame rate (header frames 1..5)\n"),
+    EXPECT_NE(none.out.find("  frames    5, no frame rate, numbered 1..5 (header frames 1..5)\n"),
               std::string::npos)
         << none.out;
     const CliRun rated = inspect(quoted(demoFile()));
-    EXPECT_NE(rated.out.find("  frames    5 @ 60 Hz (header frames 1..5)\n"), std::string::npos)
+    EXPECT_NE(rated.out.find("  frames    5 @ 60 Hz, numbered 1..5 (header frames 1..5)\n"),
+              std::string::npos)
         << rated.out;
 }
 
@@ -225,6 +226,33 @@ TEST(C3dInspect, RealFilesJson) {
     EXPECT_EQ(e.exitCode, 1);
     EXPECT_NE(e.err.find("Empty.c3d"), std::string::npos);
     EXPECT_NE(e.err.find("empty"), std::string::npos);
+}
+
+// "first_frame" and "first_frame_number" were both there, and a truncated copy's "last_frame" was
+// the header's where "frames" counted those it holds. The first and last frames are those held,
+// by number, as the summary's "numbered"; the header's words are "header_frames".
+TEST(C3dInspect, TheFirstAndLastFramesAreThoseTheTakeHoldsAndTheHeadersApart) {
+    C3dTake t = c3dtest::syntheticTake(40, {"LFHD", "RFHD", "LBHD"});
+    t.rate = 100.0;
+    t.firstFrame = 101;
+    const std::string path = (c3dtest::workDir() / "inspect-cut.c3d").string();
+    writeC3d(t, path);
+    std::filesystem::resize_file(path, std::filesystem::file_size(path) - 1200);
+    const CliRun r = inspect(quoted(path) + " --json");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    const int frames = j["frames"];
+    ASSERT_LT(frames, 40);
+    ASSERT_GT(frames, 0);
+    EXPECT_EQ(j["first_frame"], 101);
+    EXPECT_EQ(j["last_frame"], 100 + frames);
+    EXPECT_EQ(j["header_frames"], nlohmann::json::array({101, 140}));
+    EXPECT_FALSE(j.contains("first_frame_number"));
+    const CliRun text = inspect(quoted(path));
+    EXPECT_NE(text.out.find("  frames    " + std::to_string(frames) + " @ 100 Hz, numbered 101.." +
+                            std::to_string(100 + frames) + " (header frames 101..140)\n"),
+              std::string::npos)
+        << text.out;
 }
 
 // Two points with one label: no map can name either, and inspect says so before a solve does.

@@ -66,3 +66,65 @@ TEST(DemoCommand, ATakeLongerThanMemoryCouldHoldIsWrittenFrameByFrame) {
     EXPECT_TRUE(fs::exists(dir / "truth" / "walker_1999.obj"));
     fs::remove_all(dir);  // 600 MB
 }
+
+// solve --help gives each option's default ("[0.2]"); demo's gave none of 60 frames, detail 1 and
+// 10 mm, nor eval's of its method, drop and seed. Each is given as solve's are.
+TEST(DemoCommand, TheHelpGivesEachDefaultAsSolvesDoes) {
+    const std::pair<std::string, std::string> helped[] = {
+        {"demo", "How many frames the take has (1 to 100000) [60]\n"},
+        {"demo", "How far the markers sit off the skin (0 to 100) [10.0]\n"},
+        {"demo", "(1 = 6,848 faces) [1]\n"},
+        {"eval", "boneless, arap, or both (side by side) [\"boneless\"]\n"},
+        {"eval", "Percentage of markers missing in each frame (seeded) [0.0]\n"},
+        {"eval", "Seed for --drop [1]\n"},
+        {"map suggest", "how near counts as landing (0.1 to 1000) [30.0]\n"},
+        {"solve", "longer gaps stay missing; 0 = off (s) [0.2]\n"}};
+    for (const auto& [command, line] : helped) {
+        const CliResult r = runCli(command + " --help");
+        EXPECT_EQ(r.exitCode, 0) << r.out;
+        EXPECT_NE(r.out.find(line), std::string::npos) << command << ": " << r.out;
+    }
+}
+
+// Under ulimit -v 150000 the demo wrote every file and printed its line, then spun at full CPU
+// for ever: exiting, OpenBLAS joined its worker thread, which retries its 128 MB buffer until it
+// gets it. solve did the same after writing its frames. Both end at once now, having done their
+// work (0) or run out of memory saying so (3), whichever the limit allows (the worker and the
+// program race for the address space).
+TEST(DemoCommand, UnderATightAddressSpaceLimitTheDemoAndASolveEndPromptly) {
+    const fs::path dir = freshTestDir("demo-tight");
+    ASSERT_EQ(runCli("demo --frames 3 --out " + (dir / "made").string()).exitCode, 0);
+    const fs::path made = dir / "made";
+    const std::string solve = "solve --quiet --mesh " + (made / "walker.obj").string() + " --c3d " +
+                              (made / "walker.c3d").string() + " --map " +
+                              (made / "walker.map.json").string() + " --out " +
+                              (dir / "solved").string();
+    for (const std::string& command : {"demo --frames 3 --out " + (dir / "demo").string(), solve})
+        for (const char* limit : {"150000", "170000"}) {
+            const CliResult r = runShell("ulimit -v " + std::string(limit) + "; timeout 20 " +
+                                         std::string(BONELESS_CLI) + " " + command + " 2>&1");
+            ASSERT_NE(r.exitCode, 124) << limit << " " << command << ": " << r.out;  // the timeout
+            const bool saidSo = r.out.find("out of memory") != std::string::npos ||
+                                r.out.find("the system refused") != std::string::npos;
+            EXPECT_TRUE(r.exitCode == 0 || (r.exitCode == 3 && saidSo))
+                << limit << " " << command << ": " << r.exitCode << " " << r.out;
+        }
+}
+
+// demo --force with fewer frames than the demo there left that one's truth past the new count
+// (truth/walker_0004.obj of 5 after a demo of 3), which a tool reading truth/ by pattern plays as
+// the take's. They are removed; files the demo does not name so are the user's and stay.
+TEST(DemoCommand, AShorterDemoForcedOverALongerOneLeavesNoTruthPastItsFrames) {
+    const fs::path dir = freshTestDir("demo-shorter");
+    const std::string demo = "demo --out " + dir.string();
+    ASSERT_EQ(runCli(demo + " --frames 5").exitCode, 0);
+    for (const char* theirs : {"walker_0004.obj.bak", "walker_04.obj", "other_0004.obj"})
+        std::ofstream(dir / "truth" / theirs) << "mine\n";
+    const CliResult r = runCli(demo + " --frames 3 --force");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_TRUE(fs::exists(dir / "truth" / "walker_0002.obj"));
+    EXPECT_FALSE(fs::exists(dir / "truth" / "walker_0003.obj"));
+    EXPECT_FALSE(fs::exists(dir / "truth" / "walker_0004.obj"));
+    for (const char* theirs : {"walker_0004.obj.bak", "walker_04.obj", "other_0004.obj"})
+        EXPECT_TRUE(fs::exists(dir / "truth" / theirs)) << theirs;
+}

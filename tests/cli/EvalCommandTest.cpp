@@ -292,3 +292,33 @@ TEST(EvalCommand, TheDropIsPrintedAsTyped) {
     ASSERT_EQ(r.exitCode, 0) << r.out;
     EXPECT_NE(r.out.find("20 markers, 12.5 % dropped per frame"), std::string::npos) << r.out;
 }
+
+// CLI11 read "--seed 010" as octal 8 and "0x10" as 16, where every other number of the command
+// line is decimal, as in JSON: they are refused as --markers refuses them; any unsigned seed is
+// still taken.
+TEST(EvalCommand, ASeedIsReadAsADecimalNumberOnly) {
+    for (const char* typed : {"010", "0x10", "-1", "4294967296"}) {
+        const CliResult r =
+            runCli("eval --sequence s --markers 3 --drop 10 --seed " + std::string(typed));
+        EXPECT_EQ(r.exitCode, 1) << typed;
+        EXPECT_NE(r.out.find("--seed: must be a whole number from 0 to 4294967295, got " +
+                             std::string(typed) + "\n"),
+                  std::string::npos)
+            << r.out;
+    }
+    const CliResult r = runCli("eval --sequence " + demoFolder() +
+                               " --markers 20 --frames 0:2 --drop 10 --seed 4294967295");
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+}
+
+// A marker file's bad line was quoted 'so', where flags and their values are quoted "so".
+TEST(EvalCommand, AMarkerFilesBadLineIsQuotedAsAFlagsValueIs) {
+    const fs::path file = fs::path(BONELESS_TEST_WORK_DIR) / "worded-markers.txt";
+    std::ofstream(file) << "0\n12 the hip\n";
+    const CliResult r =
+        runCli("eval --sequence " + demoFolder() + " --markers-file " + file.string());
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("worded-markers.txt:2: expected one vertex id, got \"12 the hip\"\n"),
+              std::string::npos)
+        << r.out;
+}

@@ -312,3 +312,54 @@ TEST(MapSuggestCommand, GivesTheAlignmentResidualInMillimetres) {
     EXPECT_NE(r.out.find(" mm, scale "), std::string::npos) << r.out;
     EXPECT_EQ(r.out.find("mesh units"), std::string::npos) << r.out;
 }
+
+// "map suggest --out MAP.json" replaced an existing MAP.json without a word: a map reviewed by
+// hand, given by mistake, was lost. As demo keeps an edited map, it is kept unless --force, naming
+// it; the same map again is written, and a file that is no map is refused before the fit.
+TEST(MapSuggestCommand, AnExistingOutThatDiffersIsKeptUnlessForced) {
+    const fs::path dir = freshTestDir("map-suggest-keep");
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frames 5").exitCode, 0);
+    nlohmann::json map;
+    std::ifstream(dir / "walker.map.json") >> map;
+    map["markers"] = nlohmann::json::array(
+        {map["markers"][0], map["markers"][5], map["markers"][12], map["markers"][20]});
+    std::ofstream(dir / "partial.json") << map.dump();
+    const fs::path out = dir / "full.json";
+    const std::string suggest = "map suggest --mesh " + (dir / "walker.obj").string() + " --c3d " +
+                                (dir / "walker.c3d").string() + " --map " +
+                                (dir / "partial.json").string() + " --out " + out.string();
+    ASSERT_EQ(runCli(suggest).exitCode, 0);
+    CliResult r = runCli(suggest);
+    EXPECT_EQ(r.exitCode, 0) << "the same map again: " << r.out;
+    nlohmann::json reviewed;
+    std::ifstream(out) >> reviewed;
+    reviewed["markers"][7]["vertex"] = reviewed["markers"][7]["vertex"].get<int>() + 1;
+    reviewed["markers"][7].erase("suggested");
+    const std::string edited = reviewed.dump(2);
+    std::ofstream(out) << edited;
+    r = runCli(suggest);
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find(out.string() +
+                         ": differs from the map this run suggests (reviewed by hand, or suggested "
+                         "from other inputs); nothing was written: give --force to replace it, or "
+                         "another --out\n"),
+              std::string::npos)
+        << r.out;
+    std::ostringstream kept;
+    kept << std::ifstream(out).rdbuf();
+    EXPECT_EQ(kept.str(), edited);
+    r = runCli(suggest + " --force");
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    std::ostringstream replaced;
+    replaced << std::ifstream(out).rdbuf();
+    EXPECT_NE(replaced.str(), edited);
+    // No map at all: refused before the fit, which prints the map's line.
+    const fs::path notes = dir / "notes.txt";
+    std::ofstream(notes) << "review LKNE\n";
+    r = runCli(suggest.substr(0, suggest.find(" --out ")) + " --out " + notes.string());
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find(notes.string() + ": differs from the map this run suggests"),
+              std::string::npos)
+        << r.out;
+    EXPECT_EQ(r.out.find("markers ("), std::string::npos) << r.out;
+}

@@ -146,6 +146,39 @@ TEST(OptionFlags, ABadRangeIsQuotedAsABadChoiceIs) {
     }
 }
 
+// An empty path failed later without the flag's name ("solve --out ''" said ": cannot create the
+// folder (Invalid argument)", "--mesh ''" ": unknown mesh file extension ''"), or was taken as no
+// flag (inspect's --csv). Each path flag refuses it, naming itself, before anything is read.
+TEST(OptionFlags, AnEmptyPathIsRefusedNamingTheFlag) {
+    const std::string flags[] = {"--mesh", "--c3d", "--map", "--out"};
+    for (const std::string command : {"solve", "map suggest"})
+        for (const std::string& empty : flags) {
+            std::string arguments = command;
+            for (const std::string& flag : flags)
+                arguments += " " + flag + " " + (flag == empty ? "''" : "x");
+            const CliResult r = runCli(arguments);
+            EXPECT_EQ(r.exitCode, 1) << arguments;
+            EXPECT_NE(r.out.find(empty + ": must be a path, got \"\"\n"), std::string::npos)
+                << arguments << "\n"
+                << r.out;
+        }
+    const std::pair<std::string, std::string> refused[] = {
+        {"inspect t.c3d --csv ''", "--csv"},
+        {"inspect ''", "take"},
+        {"demo --out ''", "--out"},  // wrote the demo into the current folder
+        {"eval --sequence '' --markers 3", "--sequence"},
+        {"eval --sequence s --markers-file ''", "--markers-file"},
+        {"map suggest --mesh m.obj --c3d t.c3d --map m.json --out o --check ''", "--check"},
+        {"batch ''", "MANIFEST"}};
+    for (const auto& [command, flag] : refused) {
+        const CliResult r = runCli(command);
+        EXPECT_EQ(r.exitCode, 1) << command;
+        EXPECT_NE(r.out.find(flag + ": must be a path, got \"\"\n"), std::string::npos)
+            << command << "\n"
+            << r.out;
+    }
+}
+
 // The options given on the command line reach the sidecar under the same keys.
 TEST(OptionFlags, TheSidecarRecordsTheOptionsUnderTheFlagsNames) {
     const fs::path demo = freshTestDir("option-flags");
@@ -156,8 +189,8 @@ TEST(OptionFlags, TheSidecarRecordsTheOptionsUnderTheFlagsNames) {
                (demo / "walker.c3d").string() + " --map " + (demo / "walker.map.json").string() +
                " --out " + out.string() +
                " --format pc2 --marker-weight 40 --fill-gaps-s 0.1 --low-pass-hz 8 "
-               "--calibrate none --calibration-frame 1 --fold-guard 0.02 --max-iterations 4 "
-               "--relative-tolerance 0.01");
+               "--calibrate none --calibration-frame 1 --solver exact --fold-guard 0.02 "
+               "--max-iterations 4 --relative-tolerance 0.01");
     ASSERT_EQ(r.exitCode, 0) << r.out;
     const auto sidecar = nlohmann::json::parse(std::ifstream(out / "walker.json"));
     const nlohmann::json& o = sidecar.at("options");
@@ -170,8 +203,38 @@ TEST(OptionFlags, TheSidecarRecordsTheOptionsUnderTheFlagsNames) {
     EXPECT_EQ(o["fold_guard"], 0.02);
     EXPECT_EQ(o["max_iterations"], 4);
     EXPECT_EQ(o["relative_tolerance"], 0.01);
-    EXPECT_EQ(o["solver"], "local-global");
+    EXPECT_EQ(o["solver"], "exact");
     EXPECT_EQ(sidecar["alignment"]["calibration_frame"], 1);
+}
+
+// "solve --fold-guard 0.5" (help: "exact only") was taken with the default local-global solver:
+// it changed nothing, yet the sidecar recorded it, and batch solved the take again whenever it
+// changed. Solve and eval refuse it, naming the flag, before reading any file; with --solver exact,
+// or at its default value, it is taken.
+TEST(OptionFlags, AnExactOnlyFlagWithoutTheExactSolverIsRefusedNamingIt) {
+    const std::string solve = "solve --mesh m.obj --c3d t.c3d --map m.json --out o ";
+    const std::pair<std::string, std::string> refused[] = {
+        {solve + "--fold-guard 0.5",
+         "--fold-guard 0.5 changes nothing with the local-global solver: it applies to --solver "
+         "exact only\n"},
+        {solve + "--solver local-global --orientation-guard 0 --max-iterations 4",
+         "--orientation-guard 0.0 and --max-iterations 4 change nothing with the local-global "
+         "solver: they apply to --solver exact only\n"},
+        {"eval --sequence s --markers 3 --relative-tolerance 0.01",
+         "--relative-tolerance 0.01 changes nothing with the local-global solver"}};
+    for (const auto& [arguments, message] : refused) {
+        const CliResult r = runCli(arguments);
+        EXPECT_EQ(r.exitCode, 1) << arguments;
+        EXPECT_NE(r.out.find(message), std::string::npos) << r.out;
+    }
+    // Taken: past the options, the missing mesh or sequence is what is refused.
+    for (const std::string& arguments :
+         {solve + "--solver exact --fold-guard 0.5", solve + "--fold-guard 0.01",
+          std::string("eval --sequence s --markers 3 --solver exact --max-iterations 4")}) {
+        const CliResult r = runCli(arguments);
+        EXPECT_EQ(r.out.find("changes nothing"), std::string::npos) << arguments << r.out;
+        EXPECT_NE(r.out.find(arguments[0] == 's' ? "m.obj" : "s:"), std::string::npos) << r.out;
+    }
 }
 
 // The flags that took their keys' names are refused naming the new one; CLI11 alone said "The

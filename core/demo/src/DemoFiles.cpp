@@ -17,6 +17,7 @@
 #include "boneless/C3dWriter.h"
 #include "boneless/Error.h"
 #include "boneless/ObjWriter.h"
+#include "boneless/TakeExport.h"
 #include "boneless/Text.h"
 
 namespace boneless {
@@ -152,6 +153,11 @@ DemoFiles writeDemoFiles(const std::string& folder, int frames, double offsetMm,
                                         writeFileAtomically((out / name).string(), contents);
                                     });
     const std::string name = subjectName(subject);
+    // A demo of fewer frames than the one it replaces (--force) leaves none of that one's truth
+    // past its count, which a tool reading truth/ by pattern would play as this take's. Only the
+    // files this demo names so are removed.
+    for (int frame : withTruth ? objFramesIn(truth.string(), name) : std::vector<int>())
+        if (frame >= files.frames) fs::remove(truth / objFrameFile(name, frame), ec);
     files.folder = folder;
     files.mesh = (out / (name + ".obj")).string();
     files.take = (out / (name + ".c3d")).string();

@@ -51,6 +51,12 @@ TakeOption choice(std::string key, std::vector<std::string> choices, std::string
             solver};
 }
 
+// An option the exact solver alone reads.
+TakeOption exactOnly(TakeOption option) {
+    option.exactOnly = true;
+    return option;
+}
+
 const std::vector<Entry>& entries() {
     using M = SolverOptions::Method;
     static const std::vector<Entry> table = {
@@ -103,29 +109,29 @@ const std::vector<Entry>& entries() {
                 {"lowpass"}),
          [](const TakeSolveOptions& o) { return json(o.lowPassHz); },
          [](TakeSolveOptions& o, const json& v) { o.lowPassHz = v.get<double>(); }},
-        {number("fold_guard", 0, 1e9, "",
-                "exact only: weight of the as-rigid-as-possible term that keeps flat and thin "
-                "parts from folding; 0 = the paper's energy alone",
-                {"rigidity_weight", "rigidity"}, true),
+        {exactOnly(number("fold_guard", 0, 1e9, "",
+                          "exact only: weight of the as-rigid-as-possible term that keeps flat "
+                          "and thin parts from folding; 0 = the paper's energy alone",
+                          {"rigidity_weight", "rigidity"}, true)),
          [](const TakeSolveOptions& o) { return json(o.solver.foldGuard); },
          [](TakeSolveOptions& o, const json& v) { o.solver.foldGuard = v.get<double>(); }},
-        {number("orientation_guard", 0, 1e9, "",
-                "exact only: weight of the penalty on faces that shrink below a fifth of their "
-                "rest area or turn over; 0 = off",
-                {"orientation_weight"}, true),
+        {exactOnly(number("orientation_guard", 0, 1e9, "",
+                          "exact only: weight of the penalty on faces that shrink below a fifth "
+                          "of their rest area or turn over; 0 = off",
+                          {"orientation_weight"}, true)),
          [](const TakeSolveOptions& o) { return json(o.solver.orientationGuard); },
          [](TakeSolveOptions& o, const json& v) { o.solver.orientationGuard = v.get<double>(); }},
-        {integer("max_iterations", 1, 1e4, "exact only: Gauss-Newton steps per frame, at most",
-                 true),
+        {exactOnly(integer("max_iterations", 1, 1e4,
+                           "exact only: Gauss-Newton steps per frame, at most", true)),
          [](const TakeSolveOptions& o) { return json(o.solver.maxIterations); },
          [](TakeSolveOptions& o, const json& v) {
              o.solver.maxIterations = static_cast<int>(v.get<double>());
          }},
-        {number("relative_tolerance", 0, 1, "",
-                "exact only: a frame stops once a step lowers its energy by less than this "
-                "fraction of it; 0 = it runs until max_iterations, or until no step lowers the "
-                "energy",
-                {}, true),
+        {exactOnly(number("relative_tolerance", 0, 1, "",
+                          "exact only: a frame stops once a step lowers its energy by less than "
+                          "this fraction of it; 0 = it runs until max_iterations, or until no "
+                          "step lowers the energy",
+                          {}, true)),
          [](const TakeSolveOptions& o) { return json(o.solver.relativeTolerance); },
          [](TakeSolveOptions& o, const json& v) { o.solver.relativeTolerance = v.get<double>(); }},
     };
@@ -267,6 +273,20 @@ json optionValueFromText(const TakeOption& option, const std::string& text) {
     return option.kind == TakeOption::Kind::Integer && x == std::floor(x) && std::abs(x) < 2e9
                ? json(static_cast<long long>(x))
                : json(x);
+}
+
+std::vector<const TakeOption*> unusedExactOptions(const json& given,
+                                                  const SolverOptions& defaults) {
+    TakeSolveOptions read, unchanged;
+    read.solver = unchanged.solver = defaults;
+    fromJson(given, read.solver, "options");
+    std::vector<const TakeOption*> unused;
+    if (read.solver.method == SolverOptions::Method::Exact) return unused;
+    const std::vector<TakeOption>& options = takeOptions();
+    for (std::size_t i = 0; i < options.size(); ++i)
+        if (options[i].exactOnly && entries()[i].get(read) != entries()[i].get(unchanged))
+            unused.push_back(&options[i]);
+    return unused;
 }
 
 void validate(const TakeSolveOptions& options) {

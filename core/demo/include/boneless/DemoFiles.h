@@ -21,7 +21,8 @@ struct DemoFiles {
 };
 
 // Writes the demo into `folder` (created if missing), replacing its files there (see
-// demoFilesThatDiffer). Throws Error naming the folder on failure. detail = 1 is the shipped
+// demoFilesThatDiffer) and removing its truth frames past `frames` (truth/<name>_NNNN.obj) that a
+// longer demo left. Throws Error naming the folder on failure. detail = 1 is the shipped
 // resolution, more is finer, for runs that need a mesh large enough for the local/global
 // method's coarse level: the creature has d² times the faces (2,784 at 1), the walker 4^(d−1)
 // times (6,848 at 1).

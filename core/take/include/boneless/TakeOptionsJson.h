@@ -22,7 +22,8 @@ struct TakeOption {
     std::string doc;                   // one line
     // Keys earlier versions wrote for this option; they are read as this one.
     std::vector<std::string> oldKeys;
-    bool solver = false;  // a field of SolverOptions (also an option of eval)
+    bool solver = false;     // a field of SolverOptions (also an option of eval)
+    bool exactOnly = false;  // read by the exact solver alone ("exact only:" in its doc)
 };
 
 const std::vector<TakeOption>& takeOptions();
@@ -50,6 +51,14 @@ nlohmann::json optionValueFromText(const TakeOption& option, const std::string& 
 // What is wrong with a flag's text as this option's value, as checkOptionValue says it, a number
 // as typed: "got nan" and "got -1", where the value in JSON is null and -1.0.
 std::string checkOptionText(const TakeOption& option, const std::string& text);
+
+// The options `given` sets (under their keys, read over `defaults`) that the exact solver alone
+// reads, each away from its value in `defaults`, when the solver given (or else the default's) is
+// not the exact one: they would change nothing, yet be recorded as options of the solve. Empty
+// when there are none, or when `given` chooses the exact solver. `given` is read unchecked: check
+// its values first.
+std::vector<const TakeOption*> unusedExactOptions(const nlohmann::json& given,
+                                                  const SolverOptions& defaults);
 
 // Throws Error "KEY ...what is wrong" naming the first option out of its range.
 void validate(const TakeSolveOptions& options);
