@@ -23,6 +23,23 @@ int vertexInMap(const Document& d, const Correspondence& map, int marker) {
     return -1;
 }
 
+// `take` with a second subject ("second") wearing the marker at point `worn` too, moving as it
+// does, written to `path`; the point added.
+C3dPoint writeWithASecondSubject(C3dTake take, std::size_t worn, const QString& path) {
+    C3dPoint second = take.points[worn];
+    second.subject = "second";
+    second.label = "second:" + second.name;
+    take.points.push_back(second);
+    C3dSamples samples(take.samples.frames(), take.points.size());
+    for (std::size_t f = 0; f < samples.frames(); ++f)
+        for (std::size_t p = 0; p < take.points.size(); ++p)
+            if (const auto x = take.samples.position(f, p + 1 < take.points.size() ? p : worn))
+                samples.set(f, p, x->x(), x->y(), x->z());
+    take.samples = samples;
+    writeC3d(take, path.toStdString());
+    return second;
+}
+
 }  // namespace
 
 class DocumentTest : public QObject {
@@ -296,25 +313,15 @@ class DocumentTest : public QObject {
         }
         // A second actor wearing one of the same markers: the bare name finds neither, so both
         // show their full labels; every other marker keeps its bare name.
-        C3dTake two = d.take();
+        const C3dTake one = d.take();
         const std::size_t shared = d.markerPoint(0), alone = d.markerPoint(1);
-        C3dPoint second = two.points[shared];
-        second.subject = "second";
-        second.label = "second:" + second.name;
-        two.points.push_back(second);
-        C3dSamples samples(two.samples.frames(), two.points.size());
-        for (std::size_t f = 0; f < samples.frames(); ++f)
-            for (std::size_t p = 0; p < two.points.size(); ++p)
-                if (const auto x = two.samples.position(f, p + 1 < two.points.size() ? p : shared))
-                    samples.set(f, p, x->x(), x->y(), x->z());
-        two.samples = samples;
         const QString path = work_ + "/two-actors.c3d";
-        writeC3d(two, path.toStdString());
+        const C3dPoint second = writeWithASecondSubject(one, shared, path);
         QVERIFY(d.loadTake(path));
         QStringList labels;
         for (int m = 0; m < d.markerCount(); ++m) labels << d.markerLabel(m);
         for (const std::string& label :
-             {two.points[shared].label, second.label, two.points[alone].name})
+             {one.points[shared].label, second.label, one.points[alone].name})
             QVERIFY2(labels.contains(QString::fromStdString(label)), qPrintable(labels.join(' ')));
     }
 
@@ -324,20 +331,8 @@ class DocumentTest : public QObject {
     void aBareLabelTwoSubjectsWearIsRefusedInCoresWordsNotCalledMissing() {
         Document d;
         QVERIFY(test::loadDemo(d, demo_));
-        C3dTake two = d.take();
-        const std::size_t worn = d.markerPoint(0);
-        C3dPoint second = two.points[worn];
-        second.subject = "second";
-        second.label = "second:" + second.name;
-        two.points.push_back(second);
-        C3dSamples samples(two.samples.frames(), two.points.size());
-        for (std::size_t f = 0; f < samples.frames(); ++f)
-            for (std::size_t p = 0; p < two.points.size(); ++p)
-                if (const auto x = two.samples.position(f, p + 1 < two.points.size() ? p : worn))
-                    samples.set(f, p, x->x(), x->y(), x->z());
-        two.samples = samples;
         const QString path = work_ + "/two-subjects.c3d";
-        writeC3d(two, path.toStdString());
+        const C3dPoint second = writeWithASecondSubject(d.take(), d.markerPoint(0), path);
         QVERIFY(d.loadTake(path));  // the demo's map stays, naming the marker without a subject
         QVERIFY(d.correspondence().find(second.name));
 
