@@ -51,9 +51,10 @@ TakeOption choice(std::string key, std::vector<std::string> choices, std::string
             solver};
 }
 
-// An option the exact solver alone reads.
+// An option the exact solver alone reads: marked, and its doc says so.
 TakeOption exactOnly(TakeOption option) {
     option.exactOnly = true;
+    option.doc = "exact only: " + option.doc;
     return option;
 }
 
@@ -110,25 +111,25 @@ const std::vector<Entry>& entries() {
          [](const TakeSolveOptions& o) { return json(o.lowPassHz); },
          [](TakeSolveOptions& o, const json& v) { o.lowPassHz = v.get<double>(); }},
         {exactOnly(number("fold_guard", 0, 1e9, "",
-                          "exact only: weight of the as-rigid-as-possible term that keeps flat "
+                          "weight of the as-rigid-as-possible term that keeps flat "
                           "and thin parts from folding; 0 = the paper's energy alone",
                           {"rigidity_weight", "rigidity"}, true)),
          [](const TakeSolveOptions& o) { return json(o.solver.foldGuard); },
          [](TakeSolveOptions& o, const json& v) { o.solver.foldGuard = v.get<double>(); }},
         {exactOnly(number("orientation_guard", 0, 1e9, "",
-                          "exact only: weight of the penalty on faces that shrink below a fifth "
+                          "weight of the penalty on faces that shrink below a fifth "
                           "of their rest area or turn over; 0 = off",
                           {"orientation_weight"}, true)),
          [](const TakeSolveOptions& o) { return json(o.solver.orientationGuard); },
          [](TakeSolveOptions& o, const json& v) { o.solver.orientationGuard = v.get<double>(); }},
-        {exactOnly(integer("max_iterations", 1, 1e4,
-                           "exact only: Gauss-Newton steps per frame, at most", true)),
+        {exactOnly(
+             integer("max_iterations", 1, 1e4, "Gauss-Newton steps per frame, at most", true)),
          [](const TakeSolveOptions& o) { return json(o.solver.maxIterations); },
          [](TakeSolveOptions& o, const json& v) {
              o.solver.maxIterations = static_cast<int>(v.get<double>());
          }},
         {exactOnly(number("relative_tolerance", 0, 1, "",
-                          "exact only: a frame stops once a step lowers its energy by less than "
+                          "a frame stops once a step lowers its energy by less than "
                           "this fraction of it; 0 = it runs until max_iterations, or until no "
                           "step lowers the energy",
                           {}, true)),

@@ -23,7 +23,7 @@ struct TakeOption {
     // Keys earlier versions wrote for this option; they are read as this one.
     std::vector<std::string> oldKeys;
     bool solver = false;     // a field of SolverOptions (also an option of eval)
-    bool exactOnly = false;  // read by the exact solver alone ("exact only:" in its doc)
+    bool exactOnly = false;  // read by the exact solver alone (exactOnly() adds "exact only:")
 };
 
 const std::vector<TakeOption>& takeOptions();
