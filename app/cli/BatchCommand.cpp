@@ -67,13 +67,15 @@ bool outranked(const json& object, const TakeOption& option, const std::string& 
 // '_' for '-' (the options of core's table: their JSON keys). Dashed keys, which manifests held
 // before, read the same.
 void applyKeys(const json& object, const fs::path& base, const std::string& where, TakeJob& job) {
-    auto path = [&](const json& v) {
-        const fs::path p(v.get<std::string>());
-        return (p.is_absolute() ? p : base / p).lexically_normal().string();
-    };
     if (!object.is_object()) throw Error(where + ": an entry is a JSON object");
     for (const auto& [written, value] : object.items()) {
         const std::string key = underscored(written);
+        // As a path flag refuses "": it named the manifest's own folder ("out": "" solved into it).
+        auto path = [&](const json& v) {
+            const fs::path p(v.get<std::string>());
+            if (p.empty()) throw Error(where + ": \"" + written + "\" must be a path, got \"\"");
+            return (p.is_absolute() ? p : base / p).lexically_normal().string();
+        };
         try {
             if (key == "mesh")
                 job.mesh = path(value);

@@ -282,6 +282,9 @@ TEST(Batch, AManifestMistakeNamesTheFileAndTheEntry) {
          "m.json: takes[0]: \"out\" is missing\n"},
         {{{"takes", {{{"c3d", "a.c3d"}, {"mesh", 3}}}}},
          "m.json: takes[0]: \"mesh\" has the wrong type (3)\n"},
+        // As a path flag refuses "": it named the manifest's folder, and solved into it.
+        {{{"takes", {{{"c3d", "a.c3d"}, {"mesh", "m.obj"}, {"map", "x"}, {"out", ""}}}}},
+         "m.json: takes[0]: \"out\" must be a path, got \"\"\n"},
         {{{"take", json::array()}},
          "m.json: unknown key \"take\" (expected defaults, takes, folders)\n"}};
     for (const auto& [wrong, message] : quoted) {
