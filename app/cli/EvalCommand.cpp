@@ -228,15 +228,14 @@ void registerEvalCommand(CLI::App& app) {
     addOptionFlags(cmd, args->options, toJson(EvaluationOptions{}.solver), true);
     cmd->add_flag("--json", args->json, "Print one JSON object");
     cmd->add_flag("--quiet", args->quiet, "No per-frame lines");
-    cmd->callback([args, k, file, cmd] {
+    cmd->callback([args, k, file] {
         if (k->count() == 0 && file->count() == 0)
             throw CLI::RequiredError("--markers or --markers-file");
-        // The solver flags choose Boneless's solver: on ARAP alone they would change nothing.
-        for (const CLI::Option* o : cmd->get_options())
-            if (args->method == "arap" && o->count() > 0 && o->get_name() == "--solver")
-                throw CLI::ValidationError(o->get_name(),
-                                           "chooses Boneless's solver, and "
-                                           "--method arap runs ARAP alone");
+        // The solver flags set how Boneless solves: on ARAP alone they would change nothing.
+        if (args->method == "arap" && !args->options.empty())
+            throw CLI::ValidationError(optionFlag(*findTakeOption(args->options.begin().key())),
+                                       "sets how Boneless solves, and --method arap runs ARAP "
+                                       "alone");
         refuseUnusedExactOptions(args->options, EvaluationOptions{}.solver);
         run(*args);
     });

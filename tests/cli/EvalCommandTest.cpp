@@ -280,9 +280,14 @@ TEST(EvalCommand, FlagsThatCannotActAreRefusedNamingWhatTheyNeed) {
     CliResult r = runCli("eval --sequence " + demoFolder() + " --markers 20 --seed 3");
     EXPECT_NE(r.exitCode, 0) << r.out;
     EXPECT_NE(r.out.find("--seed requires --drop"), std::string::npos) << r.out;
-    r = runCli("eval --sequence " + demoFolder() + " --markers 20 --method arap --solver exact");
-    EXPECT_NE(r.exitCode, 0) << r.out;
-    EXPECT_NE(r.out.find("--method arap runs ARAP alone"), std::string::npos) << r.out;
+    for (const char* flag : {"--solver exact", "--fold-guard 1"}) {
+        r = runCli("eval --sequence " + demoFolder() + " --markers 20 --method arap " + flag);
+        EXPECT_NE(r.exitCode, 0) << r.out;
+        EXPECT_NE(r.out.find(std::string(flag).substr(0, std::string(flag).find(' ')) +
+                             ": sets how Boneless solves, and --method arap runs ARAP alone"),
+                  std::string::npos)
+            << r.out;
+    }
 }
 
 // The header gave the percentage as std::to_string writes it: "94.000000 % dropped per frame".
