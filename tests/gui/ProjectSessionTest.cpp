@@ -508,12 +508,21 @@ class ProjectSessionTest : public QObject {
         QVERIFY(window.isWindowModified());
         QVERIFY(window.autosave()->saveNow());
         QVERIFY(!window.isWindowModified());
+        // Undo goes past what the file holds, redo back to it.
+        QUndoStack* undo = window.document()->undoStack();
+        undo->undo();
+        QVERIFY(window.isWindowModified());
+        undo->redo();
+        QVERIFY(!window.isWindowModified());
 
         QVERIFY(window.openDemo());
         QVERIFY(!window.isWindowModified());
         QVERIFY(window.document()->clearMapping(2));
         (void)window.autosave()->saveNow();
         QVERIFY(window.isWindowModified());
+        // Undone back to the demo as opened, there is nothing to keep (Ctrl+Q asked to save it).
+        undo->undo();
+        QVERIFY(!window.isWindowModified());
         window.autosave()->discardPending();
     }
 
@@ -608,6 +617,13 @@ class ProjectSessionTest : public QObject {
         QVERIFY(window.offerRecovery());
         QVERIFY(window.projectPath().isEmpty());
         QCOMPARE(window.document()->mappedCount(), mapped);
+        // The work is the autosave's alone: an edit undone leaves it so.
+        QVERIFY(window.isWindowModified());
+        int mappedMarker = 0;
+        while (window.document()->mappedVertex(mappedMarker) < 0) ++mappedMarker;
+        QVERIFY(window.document()->clearMapping(mappedMarker));
+        window.document()->undoStack()->undo();
+        QVERIFY(window.isWindowModified());
         // Reopened, it is this session's; closed cleanly, there is nothing to offer.
         QVERIFY(!window.autosave()->hasUnfinishedRecovery());
         window.setMessageBoxesEnabled(false);

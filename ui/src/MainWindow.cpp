@@ -429,13 +429,16 @@ void MainWindow::connectDocument() {
             [this](const QString& message) { showError(message); });
     connect(autosave_, &ProjectAutosave::aboutToSave, this, &MainWindow::storeSession,
             Qt::DirectConnection);
-    // What closing or opening another file must not drop unasked (keepUnsavedWork).
+    // What closing or opening another file must not drop unasked (keepUnsavedWork): edits since
+    // the state opened or saved, which undoing back to it takes away.
     const auto edited = [this] {
-        if (!loading_) setUnsavedEdits(true);
+        if (!loading_) setUnsavedEdits(!document_->undoStack()->isClean());
     };
     connect(document_->undoStack(), &QUndoStack::indexChanged, this, edited);
     connect(autosave_, &ProjectAutosave::saved, this, [this](const QString& path) {
-        if (!demo_ && path == projectPath_) setUnsavedEdits(false);
+        if (demo_ || path != projectPath_) return;
+        document_->undoStack()->setClean();  // the project file holds this state
+        setUnsavedEdits(false);
     });
     connect(display_, &FrameDisplay::frameDisplayed, this, &MainWindow::frameDisplayed);
     connect(display_, &FrameDisplay::latencyMeasured, this, &MainWindow::latencyMeasured);

@@ -16,6 +16,7 @@
 #include <QScopeGuard>
 #include <QScopedValueRollback>
 #include <QStatusBar>
+#include <QUndoStack>
 #include <QUrl>
 
 #include "Counted.h"
@@ -286,7 +287,8 @@ bool MainWindow::openRecovery(const QString& path) {
         return false;
     }
     startUntitled();
-    setUnsavedEdits(true);  // untitled: only the autosave holds it, until Save As
+    setUnsavedEdits(true);                 // untitled: only the autosave holds it, until Save As
+    document_->undoStack()->resetClean();  // so no undo makes it look held elsewhere
     autosave_->discardPending();
     autosave_->claimRecovery(recovery);  // a crash now offers it again
     applyViewSettings();
@@ -395,6 +397,7 @@ bool MainWindow::saveProjectAs(const QString& path) {
     }
     projectPath_ = QFileInfo(path).absoluteFilePath();
     demo_ = false;
+    document_->undoStack()->setClean();
     setUnsavedEdits(false);
     autosave_->setProjectPath(projectPath_);
     autosave_->discardPending();
