@@ -38,4 +38,12 @@ void DemoRecorder::record(int t, const Positions& pose) {
         if (t >= g.first && t < g.end) take.take.samples.setMissing(t, g.marker);
 }
 
+DemoTake recordDemoTake(const TriMesh& rest, const std::vector<Positions>& frames,
+                        DemoCapture capture, double offsetMm) {
+    const int count = static_cast<int>(frames.size());
+    DemoRecorder recorder(rest, std::move(capture), count, offsetMm);
+    for (int t = 0; t < count; ++t) recorder.record(t, frames[t]);
+    return std::move(recorder.take);
+}
+
 }  // namespace boneless

@@ -46,4 +46,8 @@ class DemoRecorder {
     double offset_;  // in mesh units
 };
 
+// Every frame of `frames` recorded as `capture` says: the take of a demo held whole in memory.
+DemoTake recordDemoTake(const TriMesh& rest, const std::vector<Positions>& frames,
+                        DemoCapture capture, double offsetMm);
+
 }  // namespace boneless

@@ -32,10 +32,7 @@ DemoCapture demoCreatureCapture(const DemoCreature& demo, int markerCount) {
 }
 
 DemoTake makeDemoTake(const DemoCreature& demo, int markerCount, double offsetMm) {
-    const int frames = static_cast<int>(demo.frames.size());
-    DemoRecorder recorder(demo.rest, demoCreatureCapture(demo, markerCount), frames, offsetMm);
-    for (int t = 0; t < frames; ++t) recorder.record(t, demo.frames[t]);
-    return std::move(recorder.take);
+    return recordDemoTake(demo.rest, demo.frames, demoCreatureCapture(demo, markerCount), offsetMm);
 }
 
 }  // namespace boneless

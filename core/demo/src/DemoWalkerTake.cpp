@@ -29,10 +29,7 @@ DemoCapture demoWalkerCapture(const DemoWalker& walker) {
 }
 
 DemoTake makeDemoWalkerTake(const DemoWalker& walker, double offsetMm) {
-    const int frames = static_cast<int>(walker.frames.size());
-    DemoRecorder recorder(walker.rest, demoWalkerCapture(walker), frames, offsetMm);
-    for (int t = 0; t < frames; ++t) recorder.record(t, walker.frames[t]);
-    return std::move(recorder.take);
+    return recordDemoTake(walker.rest, walker.frames, demoWalkerCapture(walker), offsetMm);
 }
 
 }  // namespace boneless
