@@ -22,9 +22,6 @@ void chooseStorage(const Source& src, const HeaderWords& h, double scale, PointL
                              "float) is unknown");
         scale = -1.0;
     }
-    if (h.scale != 0.0f && std::isfinite(h.scale) && (h.scale < 0) != (scale < 0))
-        take.warnings.push_back(
-            "header scale and POINT:SCALE disagree on the storage; using POINT:SCALE");
     L.storage = scale < 0 ? C3dStorage::Float : C3dStorage::Int16;
     L.scale = scale;
     take.storage = L.storage;
@@ -54,6 +51,35 @@ std::size_t chooseDataStart(const Source& src, const C3dParameters& ps, const He
     if (dataStart == 0 && (L.points > 0 || L.analogWords > 0))
         src.fail(16, "the 3D data start block is 0");
     return dataStart;
+}
+
+void reconcileStorage(const Source& src, const HeaderWords& h, std::size_t declaredFrames,
+                      PointLayout& L, C3dTake& take) {
+    // The header's scale and POINT:SCALE may disagree on the storage (the sign); POINT:SCALE wins
+    // unless only the header's storage fits the file's size: read as floats, an int16 file gave
+    // half its frames, and those garbage.
+    if (h.scale == 0.0f || !std::isfinite(h.scale) || (h.scale < 0) == (L.scale < 0)) return;
+    PointLayout alt = L;
+    alt.storage = h.scale < 0 ? C3dStorage::Float : C3dStorage::Int16;
+    alt.scale = h.scale;
+    const auto fits = [&](const PointLayout& l) {
+        return l.frameBytes() == 0 || declaredFrames <= dataBytes(src, l) / l.frameBytes();
+    };
+    const auto name = [](const PointLayout& l) {
+        return l.storage == C3dStorage::Int16 ? std::string("int16") : std::string("float");
+    };
+    const std::string both = "the header's point scale (" + fmt(h.scale) + ", " + name(alt) +
+                             ") and POINT:SCALE (" + fmt(L.scale) + ", " + name(L) +
+                             ") disagree on the storage; ";
+    if (!fits(L) && fits(alt)) {
+        take.warnings.push_back(both + "only the header's fits the file's size, using it");
+        L.storage = alt.storage;
+        L.scale = alt.scale;
+        take.storage = L.storage;
+        take.pointScale = L.scale;
+    } else {
+        take.warnings.push_back(both + "using POINT:SCALE");
+    }
 }
 
 void reconcileAnalogWords(const Source& src, const HeaderWords& h, const AnalogFrame& analog,

@@ -39,6 +39,7 @@ PointLayout readTakeLayout(const Source& src, const C3dReadOptions& options, C3d
     L.analogWords = analog.words();
     chooseStorage(src, h, scale, L, take);
     L.dataStart = chooseDataStart(src, ps, h, start.headerDataStart, L, warn);
+    reconcileStorage(src, h, declaredFrames, L, take);
     reconcileAnalogWords(src, h, analog, declaredFrames, L, warn);
     keepCompleteFrames(src, declaredFrames, L, warn);
 

@@ -60,6 +60,9 @@ void chooseStorage(const Source& src, const HeaderWords& h, double scale, PointL
 std::size_t chooseDataStart(const Source& src, const C3dParameters& ps, const HeaderWords& h,
                             std::size_t headerDataStart, const PointLayout& L,
                             std::vector<std::string>& warn);
+// After chooseDataStart: the header's storage when POINT:SCALE's does not fit the file and it does.
+void reconcileStorage(const Source& src, const HeaderWords& h, std::size_t declaredFrames,
+                      PointLayout& L, C3dTake& take);
 void reconcileAnalogWords(const Source& src, const HeaderWords& h, const AnalogFrame& analog,
                           std::size_t declaredFrames, PointLayout& L,
                           std::vector<std::string>& warn);

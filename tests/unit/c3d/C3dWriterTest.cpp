@@ -216,6 +216,30 @@ TEST(C3dWriter, Int16StorageIsScaled) {
         }
 }
 
+TEST(C3dWriter, APointScaleWhoseStorageTheFileCannotHoldGivesWayToTheHeaders) {
+    const C3dTake t = syntheticTake(20, {"A", "B", "C"});
+    auto bytes = toInt16(encodeC3d(t), 0.125f, 20);
+    c3d::putF32(&bytes[valueOffset(bytes, "POINT", "SCALE")], -0.125f);  // float, by its sign
+    const C3dTake r = readC3dMemory(bytes.data(), bytes.size(), "signs.c3d");
+    EXPECT_EQ(r.storage, C3dStorage::Int16);
+    EXPECT_DOUBLE_EQ(r.pointScale, 0.125);
+    EXPECT_TRUE(hasWarning(r, "only the header's fits the file's size"))
+        << ::testing::PrintToString(r.warnings);
+    ASSERT_EQ(r.frameCount(), 20u);
+    for (std::size_t f = 0; f < 20; ++f)
+        for (std::size_t k = 0; k < 3; ++k) {
+            ASSERT_EQ(r.samples.valid(f, k), t.samples.valid(f, k));
+            if (t.samples.valid(f, k))
+                EXPECT_LE((*r.samples.position(f, k) - *t.samples.position(f, k)).norm(), 0.2);
+        }
+    // A float file holds int16's frames too: there POINT:SCALE keeps its word, with a warning.
+    auto floats = encodeC3d(t);
+    c3d::putF32(&floats[12], 0.125f);
+    const C3dTake f = readC3dMemory(floats.data(), floats.size(), "header.c3d");
+    EXPECT_EQ(f.storage, C3dStorage::Float);
+    EXPECT_TRUE(hasWarning(f, "using POINT:SCALE")) << ::testing::PrintToString(f.warnings);
+}
+
 TEST(C3dWriter, ZeroSamplesAreMissingUnlessKept) {
     C3dTake t = syntheticTake(3, {"A", "B"});
     t.samples.set(1, 0, 0.0, 0.0, 0.0, 0.5f);
