@@ -72,7 +72,8 @@ double pointScale(const C3dParameters& ps, const HeaderWords& h, std::vector<std
     double scale = h.scale;
     if (auto s = paramNumber(ps, "POINT", "SCALE")) {
         if (std::isfinite(*s) && *s != 0.0) {
-            if (std::isfinite(h.scale) && h.scale != 0.0f &&
+            // Opposite signs are a disagreement on the storage, which reconcileStorage names.
+            if (std::isfinite(h.scale) && h.scale != 0.0f && (h.scale < 0) == (*s < 0) &&
                 std::fabs(*s - h.scale) > 1e-4 * std::fabs(*s))
                 warn.push_back("header scale " + fmt(h.scale) + " differs from POINT:SCALE " +
                                fmt(*s) + "; using POINT:SCALE");

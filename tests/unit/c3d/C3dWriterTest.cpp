@@ -225,6 +225,7 @@ TEST(C3dWriter, APointScaleWhoseStorageTheFileCannotHoldGivesWayToTheHeaders) {
     EXPECT_DOUBLE_EQ(r.pointScale, 0.125);
     EXPECT_TRUE(hasWarning(r, "only the header's fits the file's size"))
         << ::testing::PrintToString(r.warnings);
+    EXPECT_FALSE(hasWarning(r, "; using POINT:SCALE")) << ::testing::PrintToString(r.warnings);
     ASSERT_EQ(r.frameCount(), 20u);
     for (std::size_t f = 0; f < 20; ++f)
         for (std::size_t k = 0; k < 3; ++k) {
