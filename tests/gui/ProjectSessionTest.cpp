@@ -526,6 +526,39 @@ class ProjectSessionTest : public QObject {
         window.autosave()->discardPending();
     }
 
+    // Opening the map is an undo step ("Open Correspondence"): the files as opened were past the
+    // stack's clean state, so undoing an edit back to them still counted as an edit.
+    void undoingBackToTheFilesAsOpenedIsNoEdit() {
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        window.autosave()->setDelay(60000);  // saved when the test says
+        const QString map = folder_ + "/mine/walker.map.json";
+        QVERIFY(
+            window.openFiles({folder_ + "/mine/walker.obj", folder_ + "/mine/walker.c3d", map}));
+        Document* d = window.document();
+        const int all = d->mappedCount();
+        QVERIFY(!window.isWindowModified());
+        QVERIFY(d->clearMapping(0));
+        QVERIFY(window.isWindowModified());
+        d->undoStack()->undo();
+        QCOMPARE(d->mappedCount(), all);
+        QVERIFY(!window.isWindowModified());
+
+        // A map opened over hand edits is still undone back to them, which are still edits.
+        QVERIFY(d->clearMapping(0));
+        QVERIFY(window.openFile(map));  // without message boxes: Replace
+        QCOMPARE(d->mappedCount(), all);
+        QVERIFY(window.isWindowModified());
+        QCOMPARE(d->undoStack()->undoText(), QString("Open Correspondence"));
+        d->undoStack()->undo();
+        QCOMPARE(d->mappedCount(), all - 1);
+        QVERIFY(window.isWindowModified());
+        d->undoStack()->undo();
+        QCOMPARE(d->mappedCount(), all);
+        QVERIFY(!window.isWindowModified());
+        window.autosave()->discardPending();
+    }
+
     void closingAsksBeforeUntitledEditsAreLeftToTheAutosave() {
         MainWindow window;
         QVERIFY(window.openFile(folder_ + "/mine/walker.obj"));

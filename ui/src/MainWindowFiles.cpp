@@ -140,10 +140,16 @@ bool MainWindow::openFile(const QString& path) {
             if (!document_->checkCorrespondence(path)) return false;
             Document::MapLoad mode = Document::MapLoad::Replace;
             if (!askMapLoad(path, mode)) return false;
+            // Into files opened untitled and not edited since, the map is what its file holds:
+            // the state opened, which undoing back to is no edit. Over edits it stays an undo
+            // step back to them.
+            const bool asOpened = mode == Document::MapLoad::Replace && projectPath_.isEmpty() &&
+                                  !unsavedEdits_ && document_->undoStack()->isClean();
             const QScopedValueRollback<int> loading(loading_, loading_ + 1);
             const LoadIsNoEdit noEdit(autosave_);
             int added = 0;
             ok = document_->loadCorrespondence(path, mode, &added);
+            if (ok && asOpened) document_->undoStack()->setClean();
             if (ok && mode == Document::MapLoad::Merge && added == 0) {
                 RecentFiles::add(QFileInfo(path).absoluteFilePath());
                 statusBar()->showMessage(
