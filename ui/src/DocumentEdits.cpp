@@ -67,6 +67,17 @@ void Document::pushEdit(const QString& text, EditState after) {
     undoStack_->push(new EditCommand(this, text, editState(), std::move(after)));
 }
 
+void Document::discardEdits(const QString& text) {
+    if (undoStack_->cleanIndex() >= 0) {
+        undoStack_->setIndex(undoStack_->cleanIndex());
+        return;
+    }
+    EditState none{emptyMap(), {}, std::nullopt, TakeSolveOptions()};
+    if (map_.toJson() == none.map.toJson() && !alignment_ && sameSettings(settings_, none.settings))
+        return;
+    pushEdit(text, std::move(none));
+}
+
 bool Document::assign(int marker, int vertex) {
     if (!hasMesh_) return fail(tr("Load a mesh before mapping markers."));
     if (marker < 0 || marker >= markerCount()) return fail(tr("No marker is selected."));

@@ -624,6 +624,14 @@ bool MainWindow::keepUnsavedWork(bool closing) {
     const bool goOn =
         box.clickedButton() == discard || (box.clickedButton() == saveAs && chooseSaveProjectAs());
     asking_ = false;
+    if (!closing && box.clickedButton() == discard) {
+        // Not saved, so not kept: the file opens into the session as it was opened or saved, and
+        // nothing is left to ask about. Kept, the edited map went on with a take opened, and
+        // closing asked about it again. The last autosave keeps the edits, as the question says.
+        document_->discardEdits(tr("Open Without Saving"));
+        setUnsavedEdits(false);
+        autosave_->discardPending();
+    }
     for (const auto& [message, detail] : std::exchange(heldErrors_, {}))
         if (!goOn) errorBox(message, detail)->show();
     return goOn;

@@ -49,6 +49,11 @@ class Document : public QObject {
     bool saveCorrespondence(const QString& path);
     // Back to an empty session: no mesh, no take, empty map, default settings, empty undo stack.
     void reset();
+    // Drops the edits since the state opened or saved: undoes back to the undo stack's clean
+    // state, which redo reaches again; when that state cannot be reached (work reopened from an
+    // autosave), the map, the alignment and the settings go back to none and the defaults in one
+    // undo step named `text`.
+    void discardEdits(const QString& text);
 
     bool hasMesh() const { return hasMesh_; }
     const TriMesh& mesh() const { return mesh_; }
