@@ -147,6 +147,11 @@ class Document : public QObject {
     bool align(int calibrationFrame = -1);
     bool clearAlignment();
     QUndoStack* undoStack() const { return undoStack_; }
+    // While an export runs, which solves the map, alignment and settings it started with, the
+    // window holds the edits: each is refused with `reason` (empty: edits go ahead again). Loading
+    // a file, which the export does not read either, is no edit.
+    void holdEdits(const QString& reason);
+    bool editsHeld() const { return !heldBecause_.isEmpty(); }
 
     // --- solving and export ----------------------------------------------------------------
     // True when a frame can be solved: mesh, take, at least 3 mapped markers, and memory for
@@ -197,6 +202,7 @@ class Document : public QObject {
     void settingsChanged();
     void viewSettingsChanged();
     void selectionChanged(int marker);
+    void editsHeldChanged(bool held);
     // Anything the project file stores changed: the autosave listens to this one.
     void changed();
     void errorOccurred(const QString& message);
@@ -225,6 +231,8 @@ class Document : public QObject {
     // automatic with a note (true then).
     bool noteTake();
     bool fail(const QString& message);
+    // True (and errorOccurred) while edits are held.
+    bool refusedWhileHeld();
     Correspondence emptyMap() const;
     // The map names this mesh: its file, group and vertex count.
     void stampMesh(Correspondence& map) const;
@@ -246,6 +254,7 @@ class Document : public QObject {
     int selected_ = -1;
     QUndoStack* undoStack_;
     QString lastError_;
+    QString heldBecause_;  // why edits are held; empty when they are not
 
     struct Marker {
         QString label;
