@@ -323,7 +323,9 @@ bool Document::calibrateAt(int frame) {
 }
 
 TakeSolveOptions Document::solveOptions() const {
-    TakeSolveOptions options = settings_;
+    // A project may keep a fold guard for the exact solver; local-global reads none, and an
+    // export's sidecar recorded it as an option it was solved with.
+    TakeSolveOptions options = withoutUnusedExactOptions(settings_);
     options.alignment.reset();
     if (alignment_) {
         options.alignment = alignment_->takeToMesh;

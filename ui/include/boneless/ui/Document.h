@@ -118,7 +118,8 @@ class Document : public QObject {
     // settings as they are, changing nothing (no undo step, no error reported); empty when it
     // finds none. It builds a solver: up to a second on a 13K-vertex mesh.
     std::optional<Calibration> alignmentAt(int frame) const;
-    // What the solver and the export use: settings() plus the fixed alignment, if any.
+    // What the solver and the export use: settings() plus the fixed alignment, if any, without
+    // the options only the exact solver reads when it is not the one chosen (their defaults).
     TakeSolveOptions solveOptions() const;
     // Free-form view state the window keeps in the project (labels, trails, heat map, ...).
     QVariantMap viewSettings() const { return viewSettings_; }
