@@ -382,6 +382,32 @@ class ExportDialogTest : public QObject {
                  qPrintable(QString("%1 px wide, %2 before").arg(dialog.width()).arg(width)));
     }
 
+    // The fold guard and the Gauss-Newton options are read by the exact solver alone (the CLI
+    // refuses them without --solver exact), yet a project's changed fold guard went into a
+    // local-global export's sidecar as an option it was solved with. The sidecar says what was
+    // solved: their defaults; the project keeps them for the exact solver.
+    void aSidecarRecordsNoExactOnlyOptionTheSolverDidNotRead() {
+        QCOMPARE(settings_.solver.method, SolverOptions::Method::LocalGlobal);
+        TakeSolveOptions changed = settings_;
+        changed.solver.foldGuard = 0.5;
+        changed.solver.maxIterations = 7;
+        document_.setSettings(changed);
+        ExportDialog dialog(&document_, &solver_, &timeline_);
+        dialog.setRange(ExportDialog::Range::Current);
+        const QString out = work_ + "/localGlobalOptions";
+        QVERIFY(exportInto(dialog, out));
+        const QJsonObject options = readJson(out + "/walker.json")["options"].toObject();
+        QCOMPARE(options["solver"].toString(), QString("local-global"));
+        QCOMPARE(options["fold_guard"].toDouble(), SolverOptions().foldGuard);
+        QCOMPARE(options["max_iterations"].toInt(), SolverOptions().maxIterations);
+        QCOMPARE(document_.settings().solver.foldGuard, 0.5);
+
+        changed.solver.method = SolverOptions::Method::Exact;
+        document_.setSettings(changed);
+        QCOMPARE(dialog.request().options.solver.foldGuard, 0.5);
+        QCOMPARE(dialog.request().options.solver.maxIterations, 7);
+    }
+
     void aMissingFolderIsAMessageNotAnExport() {
         ExportDialog dialog(&document_, &solver_, &timeline_);
         dialog.setFolder("  ");

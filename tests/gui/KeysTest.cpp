@@ -96,16 +96,24 @@ class KeysTest : public QObject {
         QCOMPARE(document->markerOffsetMm(0), before);
     }
 
-    void theCountIsTheNumberOfFrames() {
+    // Frames are numbered from 0, as --frame, the export's range and its files number them: a
+    // 60-frame take's last frame read "59 / 60", as if one were left. The timeline and the status
+    // bar give the last frame's number: "59 / 59".
+    void theLastFrameReadsAsTheLastInTheTimelineAndTheStatusBar() {
         const int frames = window_->timeline()->frameCount();
         QCOMPARE(frames, 60);
-        bool found = false;
+        QStringList texts;
         for (auto* label : window_->timelineWidget()->findChildren<QLabel*>())
-            found = found || label->text() == "/ 60";
-        QVERIFY(found);
+            texts << label->text();
+        QVERIFY2(texts.contains("/ 59"), qPrintable(texts.join(" | ")));
         window_->timeline()->goToLast();
         QVERIFY(test::waitForFrame(*window_));
-        QVERIFY2(window_->frameSummary().startsWith("Frame 59 / 60"),
+        QCOMPARE(window_->timelineWidget()->findChild<QSpinBox*>("frameBox")->value(), 59);
+        QVERIFY2(window_->frameSummary().startsWith("Frame 59 / 59"),
+                 qPrintable(window_->frameSummary()));
+        window_->timeline()->goToFirst();
+        QVERIFY(test::waitForFrame(*window_));
+        QVERIFY2(window_->frameSummary().startsWith("Frame 0 / 59"),
                  qPrintable(window_->frameSummary()));
     }
 

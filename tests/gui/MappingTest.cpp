@@ -10,8 +10,10 @@
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QLabel>
+#include <QMenu>
 #include <QMessageBox>
 #include <QPushButton>
+#include <QSignalSpy>
 #include <QStatusBar>
 #include <QTableView>
 #include <QUndoStack>
@@ -20,6 +22,7 @@
 #include "ViewTestSupport.h"
 #include "boneless/Correspondence.h"
 #include "boneless/ui/Document.h"
+#include "boneless/ui/ExportDialog.h"
 #include "boneless/ui/FrameSolver.h"
 #include "boneless/ui/MainWindow.h"
 #include "boneless/ui/MarkerListModel.h"
@@ -392,6 +395,60 @@ class MappingTest : public QObject {
         QVERIFY(test::waitForFrame(window));
         QCOMPARE(window.displayedFrame(), 45);
         QVERIFY((view->positions() - held).cwiseAbs().maxCoeff() > 1e-6);
+    }
+
+    // An export solves the map, alignment and settings it started with: an edit made while it ran
+    // was not in what it wrote, yet every edit stayed enabled. They wait for it to end, and Map
+    // Markers is left.
+    void theMapIsNotEditedWhileAnExportSolvesIt() {
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        QVERIFY(window.openProject(freshProject()));
+        QVERIFY(test::showAndWait(window));
+        Document* d = window.document();
+        d->setSelectedMarker(0);
+        QVERIFY(d->setOffsetMm({0}, 12.0));  // something to undo
+        auto* mapping = window.findChild<QAction*>("actionMapMarkers");
+        mapping->trigger();
+        QVERIFY(mapping->isChecked());
+        const char* const edits[] = {"actionMapMarkers",
+                                     "clearMarker",
+                                     "actionClearMapping",
+                                     "actionClearAllMappings",
+                                     "suggestRest",
+                                     "actionSuggestRest",
+                                     "alignTake",
+                                     "actionAlign",
+                                     "calibrateAtFrame",
+                                     "calibrateAutomatically",
+                                     "calibrateNone",
+                                     "offsetSpin",
+                                     "offsetAll",
+                                     "actionUndo",
+                                     "actionOpenCorrespondence"};
+        auto enabledOnes = [&] {
+            QStringList on;
+            for (const char* name : edits) {
+                const QObject* item = window.findChild<QObject*>(name);
+                if (!item || item->property("enabled").toBool()) on << name;
+            }
+            if (window.findChild<QMenu*>("meshUp")->menuAction()->isEnabled()) on << "meshUp";
+            return on.join(' ');
+        };
+        const QString before = enabledOnes();
+        QVERIFY2(before.contains("actionUndo") && before.contains("calibrateAtFrame"),
+                 qPrintable(before));
+
+        ExportDialog* dialog = window.exportDialog();
+        QSignalSpy finished(dialog, &ExportDialog::finished);
+        dialog->setFolder(folder_ + "/exportWhileEditing");
+        dialog->setRange(ExportDialog::Range::All);
+        QVERIFY(dialog->startExport());
+        QCOMPARE(enabledOnes(), QString());
+        QVERIFY(!mapping->isChecked());  // a click maps nothing
+        QVERIFY(finished.wait(120000));
+        QVERIFY(finished.at(0).at(0).toBool());
+        QCOMPARE(enabledOnes(), before);
     }
 
     void openingAMeshOrTakeLeavesMappingMode() {

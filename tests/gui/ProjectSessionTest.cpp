@@ -526,6 +526,39 @@ class ProjectSessionTest : public QObject {
         window.autosave()->discardPending();
     }
 
+    // Opening the map is an undo step ("Open Correspondence"): the files as opened were past the
+    // stack's clean state, so undoing an edit back to them still counted as an edit.
+    void undoingBackToTheFilesAsOpenedIsNoEdit() {
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        window.autosave()->setDelay(60000);  // saved when the test says
+        const QString map = folder_ + "/mine/walker.map.json";
+        QVERIFY(
+            window.openFiles({folder_ + "/mine/walker.obj", folder_ + "/mine/walker.c3d", map}));
+        Document* d = window.document();
+        const int all = d->mappedCount();
+        QVERIFY(!window.isWindowModified());
+        QVERIFY(d->clearMapping(0));
+        QVERIFY(window.isWindowModified());
+        d->undoStack()->undo();
+        QCOMPARE(d->mappedCount(), all);
+        QVERIFY(!window.isWindowModified());
+
+        // A map opened over hand edits is still undone back to them, which are still edits.
+        QVERIFY(d->clearMapping(0));
+        QVERIFY(window.openFile(map));  // without message boxes: Replace
+        QCOMPARE(d->mappedCount(), all);
+        QVERIFY(window.isWindowModified());
+        QCOMPARE(d->undoStack()->undoText(), QString("Open Correspondence"));
+        d->undoStack()->undo();
+        QCOMPARE(d->mappedCount(), all - 1);
+        QVERIFY(window.isWindowModified());
+        d->undoStack()->undo();
+        QCOMPARE(d->mappedCount(), all);
+        QVERIFY(!window.isWindowModified());
+        window.autosave()->discardPending();
+    }
+
     void closingAsksBeforeUntitledEditsAreLeftToTheAutosave() {
         MainWindow window;
         QVERIFY(window.openFile(folder_ + "/mine/walker.obj"));
@@ -540,11 +573,9 @@ class ProjectSessionTest : public QObject {
         answerClose("cancelButton");
         window.close();
         QVERIFY(window.isVisible());
-        // Opening another take asks too; going on keeps the edit, and closing still asks.
+        // Opening another take asks too; cancelled, the edit stays.
         answerClose("cancelButton");
         QVERIFY(!window.openFile(folder_ + "/mine/walker.c3d"));
-        answerClose("discardButton");
-        QVERIFY(window.openFile(folder_ + "/mine/walker.c3d"));
         QCOMPARE(window.document()->mappedCount(), window.document()->markerCount() - 1);
         // A take and a mesh opened together (dropped, or named on the command line): one
         // question for both, and the mesh first.
@@ -561,6 +592,14 @@ class ProjectSessionTest : public QObject {
         answering.stop();
         QCOMPARE(asked, 1);
         QVERIFY(window.document()->hasMesh() && window.document()->hasTake());
+        // Going on dropped the edit: closing has nothing to ask.
+        QCOMPARE(window.document()->mappedCount(), window.document()->markerCount());
+        window.close();
+        QVERIFY(!window.isVisible());
+
+        // Close Without Saving closes.
+        window.show();
+        QVERIFY(window.document()->clearMapping(0));
         answerClose("discardButton");
         window.close();
         QVERIFY(!window.isVisible());
@@ -575,6 +614,41 @@ class ProjectSessionTest : public QObject {
         Document kept;
         QVERIFY(Project::load(kept, path));
         QCOMPARE(kept.mappedCount(), window.document()->markerCount() - 1);
+    }
+
+    // "Open Without Saving" kept the edited map with the take opened, and closing asked again
+    // about the edits it had said would not be saved. Going on drops them, for a take as for a
+    // mesh: the map is back as it was opened, and there is nothing left to ask about.
+    void openingATakeOrMeshWithoutSavingDropsTheEdits() {
+        {
+            MainWindow window;
+            QVERIFY(window.openFiles({folder_ + "/mine/walker.obj", folder_ + "/mine/walker.c3d",
+                                      folder_ + "/mine/walker.map.json"}));
+            QVERIFY(test::showAndWait(window));
+            Document* d = window.document();
+            const int all = d->mappedCount();
+            for (const char* file : {"walker.c3d", "walker.obj"}) {
+                QVERIFY(d->clearMapping(0));
+                QVERIFY(d->clearMapping(1));
+                QVERIFY(window.isWindowModified());
+                answerClose("discardButton");
+                QVERIFY(window.openFile(folder_ + "/mine/" + file));
+                QCOMPARE(d->mappedCount(), all);
+                QVERIFY(!window.isWindowModified());
+            }
+            window.close();  // no question: nothing is left unsaved
+            QVERIFY(!window.isVisible());
+        }
+        // Work reopened from an autosave is all unsaved: none of its map goes on.
+        QVERIFY(leaveWorkAsACrashDoes() >= 0);
+        MainWindow window;
+        QVERIFY(window.openRecovery());
+        QVERIFY(window.document()->mappedCount() > 0);
+        QVERIFY(window.isWindowModified());
+        answerClose("discardButton");
+        QVERIFY(window.openFile(folder_ + "/mine/walker.c3d"));
+        QCOMPARE(window.document()->mappedCount(), 0);
+        QVERIFY(!window.isWindowModified());
     }
 
     void afterACrashTheLastAutosaveOpensFromTheRecentFilesMenu() {

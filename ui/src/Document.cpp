@@ -139,6 +139,7 @@ bool Document::loadTake(const QString& path) {
 }
 
 bool Document::checkCorrespondence(const QString& path) {
+    if (refusedWhileHeld()) return false;
     try {
         const Correspondence file = Correspondence::read(std8(path));
         if (hasMesh_) file.checkMesh(mesh_.vertexCount(), std8(meshPath_));
@@ -149,6 +150,7 @@ bool Document::checkCorrespondence(const QString& path) {
 }
 
 bool Document::loadCorrespondence(const QString& path, MapLoad mode, int* added) {
+    if (refusedWhileHeld()) return false;
     EditState after = editState();
     Correspondence file;
     try {

@@ -67,7 +67,32 @@ void Document::pushEdit(const QString& text, EditState after) {
     undoStack_->push(new EditCommand(this, text, editState(), std::move(after)));
 }
 
+void Document::holdEdits(const QString& reason) {
+    if (reason == heldBecause_) return;
+    const bool was = editsHeld();
+    heldBecause_ = reason;
+    if (editsHeld() != was) emit editsHeldChanged(editsHeld());
+}
+
+bool Document::refusedWhileHeld() {
+    if (!editsHeld()) return false;
+    fail(heldBecause_);
+    return true;
+}
+
+void Document::discardEdits(const QString& text) {
+    if (undoStack_->cleanIndex() >= 0) {
+        undoStack_->setIndex(undoStack_->cleanIndex());
+        return;
+    }
+    EditState none{emptyMap(), {}, std::nullopt, TakeSolveOptions()};
+    if (map_.toJson() == none.map.toJson() && !alignment_ && sameSettings(settings_, none.settings))
+        return;
+    pushEdit(text, std::move(none));
+}
+
 bool Document::assign(int marker, int vertex) {
+    if (refusedWhileHeld()) return false;
     if (!hasMesh_) return fail(tr("Load a mesh before mapping markers."));
     if (marker < 0 || marker >= markerCount()) return fail(tr("No marker is selected."));
     // Its entry would name both points, and the solver refuses that (Correspondence::resolve).
@@ -123,6 +148,7 @@ bool Document::assign(int marker, int vertex) {
 }
 
 bool Document::clearMapping(int marker) {
+    if (refusedWhileHeld()) return false;
     if (marker < 0 || marker >= markerCount()) return fail(tr("No marker is selected."));
     const int mapping = markers_[marker].mapping;
     if (mapping < 0) return true;
@@ -133,6 +159,7 @@ bool Document::clearMapping(int marker) {
 }
 
 bool Document::setOffsetMm(const std::vector<int>& markers, double mm) {
+    if (refusedWhileHeld()) return false;
     if (!(mm >= Correspondence::kMinOffsetMm && mm <= Correspondence::kMaxOffsetMm))
         return fail(tr("An offset off the skin of %1 mm is not a marker's: from %2 to %3 mm.")
                         .arg(mm)
@@ -154,6 +181,7 @@ bool Document::setOffsetMm(const std::vector<int>& markers, double mm) {
 }
 
 bool Document::clearAllMappings() {
+    if (refusedWhileHeld()) return false;
     if (map_.markers.empty()) return true;
     EditState after = editState();
     after.map.markers.clear();
@@ -162,6 +190,7 @@ bool Document::clearAllMappings() {
 }
 
 bool Document::suggestMappings(int* suggested, int* toCheck, QStringList* offBody) {
+    if (refusedWhileHeld()) return false;
     if (!hasMesh_ || !hasTake_) return fail(tr("Suggesting needs a mesh and a take."));
     EditState after = editState();
     Suggestion s;
@@ -216,6 +245,7 @@ std::optional<Calibration> Document::alignmentAt(int frame) const {
 }
 
 bool Document::align(int calibrationFrame) {
+    if (refusedWhileHeld()) return false;
     EditState after = editState();
     if (!fitAlignment(calibrationFrame, after)) return false;
     pushEdit(tr("Align take"), std::move(after));
@@ -223,6 +253,7 @@ bool Document::align(int calibrationFrame) {
 }
 
 bool Document::clearAlignment() {
+    if (refusedWhileHeld()) return false;
     if (!alignment_) return true;
     EditState after = editState();
     after.alignment.reset();
@@ -264,6 +295,7 @@ Calibration Document::displayAlignment() const {
 }
 
 void Document::setSettings(const TakeSolveOptions& settings, const QString& text) {
+    if (refusedWhileHeld()) return;
     EditState after = editState();
     after.settings = settings;
     after.settings.alignment.reset();
@@ -277,6 +309,7 @@ void Document::setSettings(const TakeSolveOptions& settings, const QString& text
 }
 
 bool Document::calibrateAt(int frame) {
+    if (refusedWhileHeld()) return false;
     EditState after = editState();
     after.settings.calibrationFrame = frame;
     after.settings.calibrate = CalibrateMode::Shape;
@@ -290,7 +323,9 @@ bool Document::calibrateAt(int frame) {
 }
 
 TakeSolveOptions Document::solveOptions() const {
-    TakeSolveOptions options = settings_;
+    // A project may keep a fold guard for the exact solver; local-global reads none, and an
+    // export's sidecar recorded it as an option it was solved with.
+    TakeSolveOptions options = withoutUnusedExactOptions(settings_);
     options.alignment.reset();
     if (alignment_) {
         options.alignment = alignment_->takeToMesh;

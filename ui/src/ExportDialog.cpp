@@ -361,6 +361,7 @@ bool ExportDialog::startExport() {
     progressText_->setText(tr("Preparing the solver…"));
     clock_.start();
     setRunning(true);
+    emit runningChanged(true);
     return true;
 }
 
@@ -422,6 +423,7 @@ void ExportDialog::removeReplaced(const ExportRequest& r, const ExportResult& re
 
 void ExportDialog::onFinished(bool ok, const QString& message) {
     setRunning(false);
+    emit runningChanged(false);
     // A cancelled or failed run leaves the earlier export's files beside the frames it wrote.
     if (ok && !runner_->result().cancelled) removeReplaced(running_, runner_->result());
     replaced_.clear();

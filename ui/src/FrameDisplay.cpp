@@ -301,9 +301,9 @@ void FrameDisplay::updateTrails(int frame) {
 
 void FrameDisplay::emitStatus() {
     const int playhead = timeline_->frame();
-    // The count, not the last index: a 60-frame take shows "Frame 59 / 60" at its end.
+    // Over the last frame's number, as the timeline: a 60-frame take ends at "Frame 59 / 59".
     QString frame = document_->hasTake()
-                        ? tr("Frame %1 / %2").arg(displayedFrame_).arg(document_->frameCount())
+                        ? tr("Frame %1 / %2").arg(displayedFrame_).arg(document_->frameCount() - 1)
                         : tr("No take");
     if (frozen_)
         frame += tr(" (held while mapping; playhead at %1)").arg(playhead);

@@ -176,6 +176,10 @@ void MainWindow::buildMarkerDock() {
     });
     for (auto changed : {&Document::meshChanged, &Document::takeChanged})
         connect(document_, changed, mappingAction_, [this] { mappingAction_->setChecked(false); });
+    // Left when edits are held too: a click would map nothing.
+    connect(document_, &Document::editsHeldChanged, mappingAction_, [this](bool held) {
+        if (held) mappingAction_->setChecked(false);
+    });
     auto* map = new QToolButton;
     map->setDefaultAction(mappingAction_);
     buttons->addWidget(map);
@@ -224,7 +228,10 @@ void MainWindow::buildFileMenu() {
     file->addAction(tr("Open &Take…"), QKeySequence(Qt::CTRL | Qt::Key_T), this,
                     &MainWindow::chooseTake)
         ->setObjectName("actionOpenTake");
-    file->addAction(tr("Open &Correspondence…"), this, &MainWindow::chooseCorrespondence);
+    QAction* openMap =
+        file->addAction(tr("Open &Correspondence…"), this, &MainWindow::chooseCorrespondence);
+    openMap->setObjectName("actionOpenCorrespondence");
+    enableWhile(openMap, document_, always);  // a map opened is an edit
     file->addAction(tr("Open &Demo"), this, &MainWindow::openDemo);
     recentMenu_ = file->addMenu(tr("&Recent Files"));
     recentMenu_->setObjectName("recentMenu");
@@ -251,6 +258,15 @@ QMenu* MainWindow::buildEditMenu() {
     QAction* redo = document_->undoStack()->createRedoAction(this, tr("&Redo"));
     redo->setObjectName("actionRedo");
     redo->setShortcut(undoRedoKeys()[1]);
+    // Undo and redo are edits too: held while an export runs (after the stack's own enabling).
+    QUndoStack* stack = document_->undoStack();
+    const auto holdUndo = [this, stack, undo, redo] {
+        undo->setEnabled(!document_->editsHeld() && stack->canUndo());
+        redo->setEnabled(!document_->editsHeld() && stack->canRedo());
+    };
+    connect(stack, &QUndoStack::canUndoChanged, undo, holdUndo);
+    connect(stack, &QUndoStack::canRedoChanged, redo, holdUndo);
+    connect(document_, &Document::editsHeldChanged, undo, holdUndo);
     edit->addAction(undo);
     edit->addAction(redo);
     edit->addSeparator();
@@ -453,6 +469,13 @@ void MainWindow::connectDocument() {
                                            .arg(document_->markerLabel(selected))
                                      : tr("The click missed the mesh"),
                                  8000);
+    });
+    // An export solves the map, alignment and settings it started with: an edit made meanwhile
+    // would not be in what it writes, so edits wait for it.
+    connect(exportDialog_, &ExportDialog::runningChanged, document_, [this](bool running) {
+        document_->holdEdits(
+            running ? tr("An export is running: edits wait until it ends or is cancelled.")
+                    : QString());
     });
     connect(exportDialog_, &ExportDialog::finished, this, [this](bool ok, const QString& message) {
         if (ok)

@@ -60,24 +60,6 @@ QString notARegularFileSentence(const QString& path, FileKind kind) {
     return QObject::tr("%1 %2.").arg(QFileInfo(path).fileName(), QString::fromStdString(why));
 }
 
-// A load is no edit: the autosave it sets off (Document::changed) is dropped, unless an edit was
-// waiting already. Files opened after Discard at start were autosaved over the crash's work that
-// the question had said would stay until the next change.
-class LoadIsNoEdit {
-  public:
-    explicit LoadIsNoEdit(ProjectAutosave* autosave)
-        : autosave_(autosave), editWaiting_(autosave->isPending()) {}
-    ~LoadIsNoEdit() {
-        if (!editWaiting_) autosave_->discardPending();
-    }
-    LoadIsNoEdit(const LoadIsNoEdit&) = delete;
-    LoadIsNoEdit& operator=(const LoadIsNoEdit&) = delete;
-
-  private:
-    ProjectAutosave* autosave_;
-    bool editWaiting_;
-};
-
 // "walk.boneless, take.c3d": what the user named, without the folders.
 QString fileNames(const QStringList& paths) {
     QStringList names;
@@ -86,6 +68,27 @@ QString fileNames(const QStringList& paths) {
 }
 
 }  // namespace
+
+// A load is no edit: while it runs (loading_), the title's mark is left alone, and the autosave it
+// sets off (Document::changed) is dropped at its end, unless an edit was waiting already. Files
+// opened after Discard at start were autosaved over the crash's work that the question had said
+// would stay until the next change.
+class MainWindow::Loading {
+  public:
+    explicit Loading(MainWindow* window)
+        : window_(window), editWaiting_(window->loading_ > 0 || window->autosave_->isPending()) {
+        ++window_->loading_;
+    }
+    ~Loading() {
+        if (--window_->loading_ == 0 && !editWaiting_) window_->autosave_->discardPending();
+    }
+    Loading(const Loading&) = delete;
+    Loading& operator=(const Loading&) = delete;
+
+  private:
+    MainWindow* window_;
+    bool editWaiting_;  // or an outer load ends it
+};
 
 QString MainWindow::plainError(const QString& path) const {
     const QString name = QFileInfo(path).fileName();
@@ -129,8 +132,7 @@ bool MainWindow::openFile(const QString& path) {
             return openMesh(path);
         case FileKind::Take: {
             if (!keepUnsavedWork(false)) return false;
-            const QScopedValueRollback<int> loading(loading_, loading_ + 1);
-            const LoadIsNoEdit noEdit(autosave_);
+            const Loading loading(this);
             ok = document_->loadTake(path);
             if (ok) startUntitled();
             break;
@@ -140,10 +142,15 @@ bool MainWindow::openFile(const QString& path) {
             if (!document_->checkCorrespondence(path)) return false;
             Document::MapLoad mode = Document::MapLoad::Replace;
             if (!askMapLoad(path, mode)) return false;
-            const QScopedValueRollback<int> loading(loading_, loading_ + 1);
-            const LoadIsNoEdit noEdit(autosave_);
+            // Into files opened untitled and not edited since, the map is what its file holds:
+            // the state opened, which undoing back to is no edit. Over edits it stays an undo
+            // step back to them.
+            const bool asOpened = mode == Document::MapLoad::Replace && projectPath_.isEmpty() &&
+                                  !unsavedEdits_ && document_->undoStack()->isClean();
+            const Loading loading(this);
             int added = 0;
             ok = document_->loadCorrespondence(path, mode, &added);
+            if (ok && asOpened) document_->undoStack()->setClean();
             if (ok && mode == Document::MapLoad::Merge && added == 0) {
                 RecentFiles::add(QFileInfo(path).absoluteFilePath());
                 statusBar()->showMessage(
@@ -197,7 +204,7 @@ bool MainWindow::openProject(const QString& path) {
         return false;
     }
     if (!keepUnsavedWork(false)) return false;
-    const QScopedValueRollback<int> loading(loading_, loading_ + 1);
+    const Loading loading(this);
     QString error, missing;
     bool loaded = false;
     {
@@ -275,7 +282,7 @@ bool MainWindow::askMapLoad(const QString& path, Document::MapLoad& mode) {
 
 bool MainWindow::openRecovery(const QString& path) {
     const QString recovery = path.isEmpty() ? ProjectAutosave::lastAutosave() : path;
-    const QScopedValueRollback<int> loading(loading_, loading_ + 1);
+    const Loading loading(this);
     QString error;
     bool loaded = false;
     {
@@ -458,8 +465,7 @@ bool MainWindow::openMesh(const QString& path) {
     }
     opening_ = path;
     const auto done = qScopeGuard([this] { opening_.clear(); });
-    const QScopedValueRollback<int> loading(loading_, loading_ + 1);
-    const LoadIsNoEdit noEdit(autosave_);
+    const Loading loading(this);
     if (!document_->loadMesh(path, group)) return false;
     startUntitled();  // never into the project (or demo) open before
     RecentFiles::add(QFileInfo(path).absoluteFilePath());
@@ -618,6 +624,14 @@ bool MainWindow::keepUnsavedWork(bool closing) {
     const bool goOn =
         box.clickedButton() == discard || (box.clickedButton() == saveAs && chooseSaveProjectAs());
     asking_ = false;
+    if (!closing && box.clickedButton() == discard) {
+        // Not saved, so not kept: the file opens into the session as it was opened or saved, and
+        // nothing is left to ask about. Kept, the edited map went on with a take opened, and
+        // closing asked about it again. The last autosave keeps the edits, as the question says.
+        document_->discardEdits(tr("Open Without Saving"));
+        setUnsavedEdits(false);
+        autosave_->discardPending();
+    }
     for (const auto& [message, detail] : std::exchange(heldErrors_, {}))
         if (!goOn) errorBox(message, detail)->show();
     return goOn;

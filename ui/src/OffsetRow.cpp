@@ -30,12 +30,13 @@ QLayout* makeOffsetRow(Document* document) {
         const int marker = document->selectedMarker();
         const bool mapped = marker >= 0 && document->mappedVertex(marker) >= 0;
         const QSignalBlocker quiet(spin);
-        spin->setEnabled(mapped);
+        spin->setEnabled(mapped && !document->editsHeld());
         if (mapped) spin->setValue(document->markerOffsetMm(marker));
-        all->setEnabled(document->mappedCount() > 0);
+        all->setEnabled(document->mappedCount() > 0 && !document->editsHeld());
     };
     QObject::connect(document, &Document::selectionChanged, spin, show);
     QObject::connect(document, &Document::correspondenceChanged, spin, show);
+    QObject::connect(document, &Document::editsHeldChanged, spin, show);
     QObject::connect(spin, &QDoubleSpinBox::valueChanged, document, [=](double mm) {
         if (document->selectedMarker() >= 0)
             document->setOffsetMm({document->selectedMarker()}, mm);

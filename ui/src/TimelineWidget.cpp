@@ -130,7 +130,14 @@ void TimelineWidget::syncRange(int frames) {
         frameBox_->setRange(0, std::max(0, frames - 1));
         slider_->setPageStep(std::max(1, frames / 20));
     }
-    countLabel_->setText(tr("/ %1").arg(frames));  // the count: frames 0 to 59 of 60
+    // The last frame's number, as the status bar gives it: frames are numbered from 0, as
+    // --frame, the export's range and its files number them, so a 60-frame take ends at "59 / 59"
+    // (the count read "59 / 60" there, as if a frame were left).
+    const int last = std::max(0, frames - 1);
+    countLabel_->setText(tr("/ %1").arg(last));
+    countLabel_->setToolTip(
+        frames > 0 ? tr("The last frame: %1 frames, numbered 0 to %2").arg(frames).arg(last)
+                   : QString());
     setEnabled(frames > 0);
     syncFrame(timeline_->frame());
 }

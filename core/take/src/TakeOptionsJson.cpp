@@ -290,6 +290,14 @@ std::vector<const TakeOption*> unusedExactOptions(const json& given,
     return unused;
 }
 
+TakeSolveOptions withoutUnusedExactOptions(TakeSolveOptions options) {
+    if (options.solver.method == SolverOptions::Method::Exact) return options;
+    const TakeSolveOptions defaults;
+    for (const Entry& e : entries())
+        if (e.option.exactOnly) e.set(options, e.get(defaults));
+    return options;
+}
+
 void validate(const TakeSolveOptions& options) {
     for (const Entry& e : entries())
         if (const std::string why = checkOptionValue(e.option, e.get(options)); !why.empty())

@@ -214,3 +214,15 @@ TEST(TakeOptionsJson, TheOptionsPageListsEveryOptionWithItsLine) {
             EXPECT_NE(page.find("`\"" + old + "\"`"), std::string::npos) << old;
     }
 }
+
+// Local-global reads no exact-only option: as it records them, they are the defaults, and the
+// others are kept; the exact solver keeps them all.
+TEST(TakeOptionsJson, WithoutUnusedExactOptionsSetsOnlyTheExactOnesBackAndOnlyWithoutExact) {
+    const TakeSolveOptions given = unusual(SolverOptions::Method::LocalGlobal, CalibrateMode::None);
+    const json solved = toJson(withoutUnusedExactOptions(given));
+    const json defaults = toJson(TakeSolveOptions{}), asGiven = toJson(given);
+    for (const TakeOption& o : takeOptions())
+        EXPECT_EQ(solved[o.key], o.exactOnly ? defaults[o.key] : asGiven[o.key]) << o.key;
+    const TakeSolveOptions exact = unusual(SolverOptions::Method::Exact, CalibrateMode::None);
+    EXPECT_EQ(toJson(withoutUnusedExactOptions(exact)), toJson(exact));
+}

@@ -60,6 +60,12 @@ std::string checkOptionText(const TakeOption& option, const std::string& text);
 std::vector<const TakeOption*> unusedExactOptions(const nlohmann::json& given,
                                                   const SolverOptions& defaults);
 
+// `options` as their solver reads them: when it is not the exact one, the options the exact
+// solver alone reads (exactOnly) back at their defaults. What a solve records of its options (a
+// sidecar's "options") then says what was solved, as the command line, which refuses them without
+// --solver exact, never records them changed.
+TakeSolveOptions withoutUnusedExactOptions(TakeSolveOptions options);
+
 // Throws Error "KEY ...what is wrong" naming the first option out of its range.
 void validate(const TakeSolveOptions& options);
 

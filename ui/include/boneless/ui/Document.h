@@ -49,6 +49,11 @@ class Document : public QObject {
     bool saveCorrespondence(const QString& path);
     // Back to an empty session: no mesh, no take, empty map, default settings, empty undo stack.
     void reset();
+    // Drops the edits since the state opened or saved: undoes back to the undo stack's clean
+    // state, which redo reaches again; when that state cannot be reached (work reopened from an
+    // autosave), the map, the alignment and the settings go back to none and the defaults in one
+    // undo step named `text`.
+    void discardEdits(const QString& text);
 
     bool hasMesh() const { return hasMesh_; }
     const TriMesh& mesh() const { return mesh_; }
@@ -113,7 +118,8 @@ class Document : public QObject {
     // settings as they are, changing nothing (no undo step, no error reported); empty when it
     // finds none. It builds a solver: up to a second on a 13K-vertex mesh.
     std::optional<Calibration> alignmentAt(int frame) const;
-    // What the solver and the export use: settings() plus the fixed alignment, if any.
+    // What the solver and the export use: settings() plus the fixed alignment, if any, without
+    // the options only the exact solver reads when it is not the one chosen (their defaults).
     TakeSolveOptions solveOptions() const;
     // Free-form view state the window keeps in the project (labels, trails, heat map, ...).
     QVariantMap viewSettings() const { return viewSettings_; }
@@ -142,6 +148,11 @@ class Document : public QObject {
     bool align(int calibrationFrame = -1);
     bool clearAlignment();
     QUndoStack* undoStack() const { return undoStack_; }
+    // While an export runs, which solves the map, alignment and settings it started with, the
+    // window holds the edits: each is refused with `reason` (empty: edits go ahead again). Loading
+    // a file, which the export does not read either, is no edit.
+    void holdEdits(const QString& reason);
+    bool editsHeld() const { return !heldBecause_.isEmpty(); }
 
     // --- solving and export ----------------------------------------------------------------
     // True when a frame can be solved: mesh, take, at least 3 mapped markers, and memory for
@@ -192,6 +203,7 @@ class Document : public QObject {
     void settingsChanged();
     void viewSettingsChanged();
     void selectionChanged(int marker);
+    void editsHeldChanged(bool held);
     // Anything the project file stores changed: the autosave listens to this one.
     void changed();
     void errorOccurred(const QString& message);
@@ -220,6 +232,8 @@ class Document : public QObject {
     // automatic with a note (true then).
     bool noteTake();
     bool fail(const QString& message);
+    // True (and errorOccurred) while edits are held.
+    bool refusedWhileHeld();
     Correspondence emptyMap() const;
     // The map names this mesh: its file, group and vertex count.
     void stampMesh(Correspondence& map) const;
@@ -241,6 +255,7 @@ class Document : public QObject {
     int selected_ = -1;
     QUndoStack* undoStack_;
     QString lastError_;
+    QString heldBecause_;  // why edits are held; empty when they are not
 
     struct Marker {
         QString label;

@@ -71,6 +71,8 @@ class ExportDialog : public QDialog {
   signals:
     // As ExportRunner::finished: the message names the folder or the reason.
     void finished(bool ok, const QString& message);
+    // An export started (true) or ended, finished, cancelled or failed (false).
+    void runningChanged(bool running);
 
   protected:
     void showEvent(QShowEvent* event) override;

@@ -192,7 +192,9 @@ class MainWindow : public QMainWindow {
     bool loadingProject_ = false;
     // An edit (each one undoable) since the project was opened or saved; loading a file is none.
     bool unsavedEdits_ = false;
-    int loading_ = 0;         // > 0 while a file is being loaded
+    // > 0 while a file is being loaded, in a Loading's scope: what it changes is no edit.
+    class Loading;
+    int loading_ = 0;
     bool workAsked_ = false;  // keepUnsavedWork was answered for the files being opened
     int startFrame_ = -1;
     QString startGroup_;
