@@ -24,7 +24,7 @@ fs::path makeLibrary() {
     for (int i = 0; i < 3; ++i) {
         const fs::path demo = dir / ("demo" + std::to_string(i));
         const CliResult r =
-            runCli("demo --out " + demo.string() + " --frames " + std::to_string(4 + i));
+            runCli("demo --out " + demo.string() + " --frame-count " + std::to_string(4 + i));
         EXPECT_EQ(r.exitCode, 0) << r.out;
         fs::copy_file(demo / "walker.c3d", dir / "takes" / (std::string(names[i]) + ".c3d"));
         if (i == 0) {
@@ -627,7 +627,7 @@ TEST(Batch, ATakeWhoseOutputIsMissingOrEmptyIsSolvedAgain) {
 // MDD's spool file (megabytes) left for good. It stops the take as Ctrl-C does.
 TEST(Batch, SigtermStopsTheTakeAsCtrlCDoesLeavingNoSpoolFile) {
     const fs::path dir = freshTestDir("sigterm");
-    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frames 3000").exitCode, 0);
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frame-count 3000").exitCode, 0);
     const fs::path manifest = writeManifest(dir, "m.json",
                                             {{"takes",
                                               {{{"mesh", "walker.obj"},

@@ -22,7 +22,7 @@ namespace {
 
 fs::path makeDemo(int frames, double offsetMm = 10) {
     const fs::path dir = freshTestDir("demo");
-    const CliResult r = runCli("demo --out " + dir.string() + " --frames " +
+    const CliResult r = runCli("demo --out " + dir.string() + " --frame-count " +
                                std::to_string(frames) + " --offset-mm " + std::to_string(offsetMm));
     EXPECT_EQ(r.exitCode, 0) << r.out;
     return dir;
@@ -572,7 +572,7 @@ TEST(SolveCommand, HelpSaysAFrameRangeMayLeaveOutEitherEnd) {
 
 TEST(DemoCommand, DetailRefinesTheSameWalker) {
     const fs::path dir = freshTestDir("demo-detail");
-    const CliResult r = runCli("demo --out " + dir.string() + " --frames 2 --detail 2");
+    const CliResult r = runCli("demo --out " + dir.string() + " --frame-count 2 --detail 2");
     ASSERT_EQ(r.exitCode, 0) << r.out;
     const TriMesh fine = readMesh((dir / "walker.obj").string()).mesh;
     // One more Catmull–Clark step: 4 times the quads, each two triangles.
@@ -593,7 +593,7 @@ TEST(DemoCommand, AnOffsetThatIsNoSensibleDistanceIsRefusedNamingTheFlag) {
     const fs::path dir = freshTestDir("demo-offset");
     for (const char* offset : {"nan", "inf", "1e308", "-5", "101"}) {
         const CliResult r =
-            runCli("demo --out " + (dir / "x").string() + " --frames 2 --offset-mm " + offset);
+            runCli("demo --out " + (dir / "x").string() + " --frame-count 2 --offset-mm " + offset);
         EXPECT_EQ(r.exitCode, 1) << offset;  // bad input, as a bad file is
         EXPECT_NE(
             r.out.find("--offset-mm: must be a number from 0 to 100, got " + std::string(offset)),
@@ -601,21 +601,22 @@ TEST(DemoCommand, AnOffsetThatIsNoSensibleDistanceIsRefusedNamingTheFlag) {
             << r.out;
         EXPECT_FALSE(fs::exists(dir / "x")) << offset;
     }
-    EXPECT_EQ(runCli("demo --out " + (dir / "x").string() + " --frames 2 --offset-mm 100").exitCode,
-              0);
+    EXPECT_EQ(
+        runCli("demo --out " + (dir / "x").string() + " --frame-count 2 --offset-mm 100").exitCode,
+        0);
 }
 
 // "--frames INT:INT in [1 - 100000]" read like a range, and "--frames 10:20" was refused with
-// "Value 10:20 not in range": it is a count.
-TEST(DemoCommand, FramesIsACountInItsHelpAndItsRefusal) {
+// "Value 10:20 not in range": it is a count (now --frame-count).
+TEST(DemoCommand, TheFrameCountIsACountInItsHelpAndItsRefusal) {
     const CliResult help = runCli("demo --help");
     EXPECT_EQ(help.out.find("INT:INT"), std::string::npos) << help.out;
     EXPECT_NE(help.out.find("How many frames the take has (1 to 100000)"), std::string::npos)
         << help.out;
     const fs::path dir = freshTestDir("demo-frames");
-    const CliResult r = runCli("demo --out " + (dir / "x").string() + " --frames 10:20");
+    const CliResult r = runCli("demo --out " + (dir / "x").string() + " --frame-count 10:20");
     EXPECT_EQ(r.exitCode, 1) << r.out;
-    EXPECT_NE(r.out.find("--frames: must be a whole number from 1 to 100000, got 10:20"),
+    EXPECT_NE(r.out.find("--frame-count: must be a whole number from 1 to 100000, got 10:20"),
               std::string::npos)
         << r.out;
     EXPECT_FALSE(fs::exists(dir / "x"));
@@ -632,7 +633,7 @@ TEST(DemoCommand, ADemoItsFileSystemHasNoRoomForIsRefusedBeforeAnythingIsWritten
     if (space.available > (std::uintmax_t(2000) << 30)) GTEST_SKIP() << "2,000 GB free";
     const CliResult r =
         runShell("ulimit -v 1000000; " + std::string(BONELESS_CLI) + " demo --out " + out.string() +
-                 " --frames 100000 --detail 4 2>&1");
+                 " --frame-count 100000 --detail 4 2>&1");
     EXPECT_EQ(r.exitCode, 1) << r.out;
     EXPECT_NE(r.out.find(out.string() + ": the demo needs about "), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("(100000 frames, each with its true pose as an OBJ), and its file system "
