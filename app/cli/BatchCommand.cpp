@@ -34,6 +34,7 @@ namespace {
 struct BatchArgs {
     std::string manifest, shard;
     bool quiet = false;
+    bool force = false;  // each take's job.force
 };
 
 // A manifest key as written ("fill-gaps", from manifests of before) under its JSON name.
@@ -405,7 +406,8 @@ Sidecar sidecarState(const TakeJob& job, Fingerprints& known, std::string& why) 
 
 void run(const BatchArgs& args) {
     const auto [shard, shards] = args.shard.empty() ? std::pair{1, 1} : parseShard(args.shard);
-    const std::vector<TakeJob> jobs = readManifest(args.manifest);
+    std::vector<TakeJob> jobs = readManifest(args.manifest);
+    for (TakeJob& job : jobs) job.force = args.force;
     int mine = 0, solved = 0, skipped = 0, failed = 0;
     for (std::size_t k = 0; k < jobs.size(); ++k)
         if (static_cast<int>(k % shards) == shard - 1) ++mine;
@@ -478,5 +480,8 @@ void registerBatchCommand(CLI::App& app) {
         ->required();
     cmd->add_option("--shard", args->shard,
                     "I/N: only every N-th entry, starting at the I-th (for job arrays)");
+    cmd->add_flag("--force", args->force,
+                  "Let a take replace files in its \"out\" of its outputs' names that no Boneless "
+                  "export wrote (another tool's OBJ frames); complete takes are still skipped");
     cmd->callback([args] { run(*args); });
 }

@@ -177,6 +177,23 @@ void warnOfOtherFrames(const std::string& out, const std::string& stem, const Ex
                  others.size() == 1 ? "frame" : "frames", listed.c_str(), stem.c_str());
 }
 
+// Files of the outputs' names that no Boneless export wrote are the user's: refused unless forced,
+// naming the first few, before anything is solved or written.
+void refuseToReplaceOthersFiles(const ExportRequest& request, int end) {
+    const std::vector<std::string> foreign = filesNoExportWrote(request, end);
+    if (foreign.empty()) return;
+    constexpr std::size_t kListed = 3;
+    std::string named =
+        joined({foreign.begin(), foreign.begin() + std::min(kListed, foreign.size())});
+    if (foreign.size() > kListed)
+        named += " and " + plural(long(foreign.size() - kListed), "more file", "more files");
+    const bool one = foreign.size() == 1;
+    throw Error(request.outDir + ": " + named + (one ? " was" : " were") +
+                " not written by a Boneless export, and this solve would replace " +
+                (one ? "it" : "them") + "; nothing was written: give --force to replace " +
+                (one ? "it" : "them") + ", or another output folder");
+}
+
 }  // namespace
 
 ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>* meshWarnings,
@@ -229,8 +246,14 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
             std::fprintf(stderr, "warning: %s\n", warning.c_str());
     }
     // Refused or noted before the solver is prepared (the export would cut the range itself).
-    withinFrames(range, job.frames, static_cast<int>(take.frameCount()), job.c3d, "solving",
-                 takeWarnings);
+    const FrameRange within = withinFrames(range, job.frames, static_cast<int>(take.frameCount()),
+                                           job.c3d, "solving", takeWarnings);
+    // A folder's OBJ frames of the same stem that no solve wrote (the demo's truth/) were
+    // replaced, with only a note about those outside the range; an earlier export's are replaced
+    // as before, by the run that follows it.
+    if (!job.force)
+        refuseToReplaceOthersFiles(
+            request, within.end < 0 ? static_cast<int>(take.frameCount()) : within.end);
 
     auto announce = [&](const Calibration& c) {
         if (quiet) return;

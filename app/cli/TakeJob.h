@@ -20,6 +20,9 @@ struct TakeJobInterrupted : boneless::Error {
 struct TakeJob {
     std::string mesh, group, c3d, map, out, format = "obj", frames;
     bool writeCalibratedRest = false;
+    // Replace files of the outputs' names in `out` that no Boneless export wrote (the demo's
+    // truth/, another tool's frames): without it, such files refuse the job before it solves.
+    bool force = false;
     // The solve options given (core's table, TakeOptionsJson: flags and manifest keys alike);
     // the others keep TakeSolveOptions' defaults.
     nlohmann::json options = nlohmann::json::object();

@@ -181,6 +181,33 @@ TEST(Batch, ARangePastTheTakesEndIsNotedUnderTheTakesLine) {
     EXPECT_GT(note, r.out.find(line)) << r.out;
 }
 
+// As solve: an entry whose "out" holds frames of its stem that no Boneless export wrote (the
+// demo's truth/) fails naming them, the others solved, until --force; then it is a take like the
+// others, skipped once complete.
+TEST(Batch, AnOutHoldingFramesNoBonelessExportWroteFailsItsTakeUntilForce) {
+    const fs::path dir = makeLibrary();
+    const fs::path path =
+        writeManifest(dir, "m.json",
+                      {{"defaults", {{"mesh", "walker.obj"}, {"map", "walker.map.json"}}},
+                       {"takes",
+                        {{{"c3d", "takes/walk_a.c3d"}, {"out", "demo0/truth"}},
+                         {{"c3d", "takes/walk_b.c3d"}, {"out", "b"}}}}});
+    const CliResult r = runCli("batch " + path.string());
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("FAILED: " + (dir / "demo0" / "truth").string() +
+                         ": walker_0000.obj, walker_0001.obj, walker_0002.obj and 1 more file "
+                         "were not written by a Boneless export"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("1 solved, 0 skipped, 1 failed"), std::string::npos) << r.out;
+    const CliResult forced = runCli("batch --force " + path.string());
+    EXPECT_EQ(forced.exitCode, 0) << forced.out;
+    EXPECT_NE(forced.out.find("1 solved, 1 skipped, 0 failed"), std::string::npos) << forced.out;
+    const CliResult again = runCli("batch " + path.string());
+    EXPECT_EQ(again.exitCode, 0) << again.out;
+    EXPECT_NE(again.out.find("0 solved, 2 skipped, 0 failed"), std::string::npos) << again.out;
+}
+
 // The user corrects the map and runs the manifest again: before, every take was skipped, since
 // its sidecar said complete, and the frames solved with the wrong map stayed.
 TEST(Batch, ATakeWhoseMapMeshOrFileChangedIsSolvedAgainSayingWhich) {

@@ -35,12 +35,13 @@ std::set<std::string> flagKeys(const std::string& command) {
 }  // namespace
 
 // One name per option: `solve`'s flags are core's table (TakeOptionsJson) keys, with '-' for '_',
-// or the paths and output choices a batch manifest names the same way; every option of the table
-// is a flag of solve, and the solver's own are flags of eval.
+// or the paths and output choices a batch manifest names the same way (and --quiet, and --force,
+// a flag of batch too); every option of the table is a flag of solve, and the solver's own are
+// flags of eval.
 TEST(OptionFlags, EverySolveFlagIsNamedAsItsJsonKey) {
     const std::set<std::string> jobKeys = {"mesh",  "group",  "c3d",    "map",
                                            "out",   "format", "frames", "write_calibrated_rest",
-                                           "quiet", "help"};
+                                           "quiet", "force",  "help"};
     const std::set<std::string> solve = flagKeys("solve");
     for (const std::string& key : solve) {
         const TakeOption* option = findTakeOption(key);

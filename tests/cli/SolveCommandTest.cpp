@@ -455,6 +455,63 @@ TEST(SolveCommand, TheNoteOfEarlierFramesSaysWhichAreLeftAndCountsReadRight) {
     EXPECT_NE(r.out.find("walker_*.obj: 1 frame, "), std::string::npos) << r.out;
 }
 
+// Solved into the demo's truth/, whose frames share the walker's stem, solve replaced the true
+// motion with its answer, noting nothing (every frame was one it wrote). Files of the outputs'
+// names that no Boneless export wrote are refused, named, until --force; an earlier export's,
+// its sidecar gone or not, are replaced as before.
+TEST(SolveCommand, FramesNoBonelessExportWroteAreReplacedOnlyWithForce) {
+    const fs::path demo = makeDemo(4);
+    const fs::path truth = demo / "truth";
+    const auto firstLine = [](const fs::path& file) {
+        std::string line;
+        std::getline(std::ifstream(file), line);
+        return line;
+    };
+    const std::string trueFrame = firstLine(truth / "walker_0001.obj");
+    CliResult r = runCli(solveArgs(demo, truth) + " --quiet");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find(truth.string() +
+                         ": walker_0000.obj, walker_0001.obj, walker_0002.obj and 1 more file "
+                         "were not written by a Boneless export, and this solve would replace "
+                         "them; nothing was written: give --force to replace them, or another "
+                         "output folder\n"),
+              std::string::npos)
+        << r.out;
+    EXPECT_EQ(firstLine(truth / "walker_0001.obj"), trueFrame);
+    EXPECT_FALSE(fs::exists(truth / "walker.json"));
+    // Frames outside the range are not replaced: only those inside are named.
+    r = runCli(solveArgs(demo, truth) + " --quiet --frames 3:4");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find(": walker_0003.obj was not written by a Boneless export, and this solve "
+                         "would replace it"),
+              std::string::npos)
+        << r.out;
+
+    // A point cache of the stem that no sidecar records is another's too.
+    const fs::path caches = demo / "caches";
+    fs::create_directories(caches);
+    std::ofstream(caches / "walker.pc2") << "mine";
+    r = runCli(solveArgs(demo, caches) + " --quiet --format pc2");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find(": walker.pc2 was not written by a Boneless export"), std::string::npos)
+        << r.out;
+    r = runCli(solveArgs(demo, caches) + " --quiet --format pc2 --force");
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    r = runCli(solveArgs(demo, caches) + " --quiet --format pc2");  // its own, now
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+
+    // An earlier export is replaced without --force, its sidecar there or not.
+    const fs::path out = demo / "x";
+    ASSERT_EQ(runCli(solveArgs(demo, out) + " --quiet").exitCode, 0);
+    fs::remove(out / "walker.json");
+    r = runCli(solveArgs(demo, out) + " --quiet");
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+
+    r = runCli(solveArgs(demo, truth) + " --quiet --force");
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_EQ(firstLine(truth / "walker_0001.obj").rfind("# Boneless: ", 0), 0u);
+}
+
 // A range wholly past the take's end is refused; the note that the range was cut to the take must
 // not come first, saying it would solve "9:6".
 TEST(SolveCommand, ARangeStartingPastTheTakesEndIsRefusedWithoutANoteOfSolvingIt) {
