@@ -432,8 +432,10 @@ void run(const BatchArgs& args) {
         std::vector<std::string> meshWarnings;  // filled once the mesh is read
         std::vector<std::string> takeWarnings;  // and the take's once it is opened
         std::string mapWarning;                 // and the map's once it is read
+        std::vector<std::string> takeNotes;     // and a note on its "frames"
         try {
-            const ExportResult r = runTakeJob(job, true, &meshWarnings, &takeWarnings, &mapWarning);
+            const ExportResult r =
+                runTakeJob(job, true, &meshWarnings, &takeWarnings, &mapWarning, &takeNotes);
             std::printf(
                 "%s in %.1f s\n", plural(r.framesWritten, "frame").c_str(),
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
@@ -453,6 +455,8 @@ void run(const BatchArgs& args) {
         std::fflush(stdout);
         for (const std::string& w : takeWarnings)
             std::fprintf(stderr, "  warning: %s: %s\n", job.c3d.c_str(), w.c_str());
+        // As solve says it, a note: "frames" 2:100 is cut to the take, not a fault of it.
+        for (const std::string& n : takeNotes) std::fprintf(stderr, "  note: %s\n", n.c_str());
         // Said once per map, as the mesh's notes: a library's takes share a few maps.
         if (!mapWarning.empty() && notedMaps.insert(job.map).second)
             std::fprintf(stderr, "  warning: %s\n", mapWarning.c_str());

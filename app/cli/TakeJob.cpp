@@ -197,7 +197,8 @@ void refuseToReplaceOthersFiles(const ExportRequest& request, int end) {
 }  // namespace
 
 ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>* meshWarnings,
-                        std::vector<std::string>* takeWarnings, std::string* mapWarning) {
+                        std::vector<std::string>* takeWarnings, std::string* mapWarning,
+                        std::vector<std::string>* takeNotes) {
     ExportRequest request;
     const auto format = findExportFormat(job.format);
     if (!format) throw Error("unknown output format \"" + job.format + "\"");
@@ -246,8 +247,9 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
             std::fprintf(stderr, "warning: %s\n", warning.c_str());
     }
     // Refused or noted before the solver is prepared (the export would cut the range itself).
-    const FrameRange within = withinFrames(range, job.frames, static_cast<int>(take.frameCount()),
-                                           job.c3d, "solving", takeWarnings);
+    const FrameRange within =
+        withinFrames(range, job.frames, static_cast<int>(take.frameCount()), job.c3d, "solving",
+                     takeNotes, takeNotes ? "\"frames\"" : "--frames");
     // A folder's OBJ frames of the same stem that no solve wrote (the demo's truth/) were
     // replaced, with only a note about those outside the range; an earlier export's are replaced
     // as before, by the run that follows it.

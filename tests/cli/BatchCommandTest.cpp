@@ -175,10 +175,38 @@ TEST(Batch, ARangePastTheTakesEndIsNotedUnderTheTakesLine) {
     ASSERT_EQ(r.exitCode, 0) << r.out;
     const std::string line = ": 4 frames in ";
     ASSERT_NE(r.out.find(line), std::string::npos) << r.out;
-    const std::size_t note =
-        r.out.find(": frames 2:100 run past its end (6 frames): solving 2:6\n");
+    const std::size_t note = r.out.find(" runs past the end of ");
     ASSERT_NE(note, std::string::npos) << r.out;
     EXPECT_GT(note, r.out.find(line)) << r.out;
+}
+
+// batch said "  warning: walk_c.c3d: frames 2:100 run past its end (6 frames): solving 2:6" where
+// solve said "note: --frames 2:100 runs past the end of walk_c.c3d (6 frames): solving 2:6" of
+// the same range: a range cut to the take is no fault of the take. Both say it as a note, in the
+// same words, each naming the range as it was given.
+TEST(Batch, ARangePastTheTakesEndIsANoteInSolvesWords) {
+    const fs::path dir = makeLibrary();
+    const std::string take = (dir / "takes" / "walk_c.c3d").string();
+    const fs::path path = writeManifest(dir, "m.json",
+                                        {{"takes",
+                                          {{{"mesh", "walker.obj"},
+                                            {"map", "walker.map.json"},
+                                            {"c3d", "takes/walk_c.c3d"},
+                                            {"out", "one"},
+                                            {"frames", "2:100"}}}}});
+    const CliResult batch = runCli("batch " + path.string());
+    ASSERT_EQ(batch.exitCode, 0) << batch.out;
+    EXPECT_NE(batch.out.find("\n  note: \"frames\" 2:100 runs past the end of " + take +
+                             " (6 frames): solving 2:6\n"),
+              std::string::npos)
+        << batch.out;
+    EXPECT_EQ(batch.out.find("warning"), std::string::npos) << batch.out;
+    const CliResult solve = runCli("solve --quiet --mesh " + (dir / "walker.obj").string() +
+                                   " --map " + (dir / "walker.map.json").string() + " --c3d " +
+                                   take + " --out " + (dir / "two").string() + " --frames 2:100");
+    ASSERT_EQ(solve.exitCode, 0) << solve.out;
+    EXPECT_EQ(solve.out,
+              "note: --frames 2:100 runs past the end of " + take + " (6 frames): solving 2:6\n");
 }
 
 // As solve: an entry whose "out" holds frames of its stem that no Boneless export wrote (the
