@@ -431,11 +431,11 @@ void run(const BatchArgs& args) {
         const auto start = std::chrono::steady_clock::now();
         std::vector<std::string> meshWarnings;  // filled once the mesh is read
         std::vector<std::string> takeWarnings;  // and the take's once it is opened
-        std::string mapWarning;                 // and the map's once it is read
+        std::vector<std::string> mapWarnings;   // and the map's once it is read
         std::vector<std::string> takeNotes;     // and a note on its "frames"
         try {
             const ExportResult r =
-                runTakeJob(job, true, &meshWarnings, &takeWarnings, &mapWarning, &takeNotes);
+                runTakeJob(job, true, &meshWarnings, &takeWarnings, &mapWarnings, &takeNotes);
             std::printf(
                 "%s in %.1f s\n", plural(r.framesWritten, "frame").c_str(),
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
@@ -458,8 +458,9 @@ void run(const BatchArgs& args) {
         // As solve says it, a note: "frames" 2:100 is cut to the take, not a fault of it.
         for (const std::string& n : takeNotes) std::fprintf(stderr, "  note: %s\n", n.c_str());
         // Said once per map, as the mesh's notes: a library's takes share a few maps.
-        if (!mapWarning.empty() && notedMaps.insert(job.map).second)
-            std::fprintf(stderr, "  warning: %s\n", mapWarning.c_str());
+        if (!mapWarnings.empty() && notedMaps.insert(job.map).second)
+            for (const std::string& w : mapWarnings)
+                std::fprintf(stderr, "  warning: %s\n", w.c_str());
         // A library of takes shares a few meshes: what one lacks is said once, solved or not.
         if (!meshWarnings.empty() && notedMeshes.insert(job.mesh + "\n" + job.group).second)
             for (const std::string& w : meshWarnings)

@@ -197,7 +197,8 @@ void refuseToReplaceOthersFiles(const ExportRequest& request, int end) {
 }  // namespace
 
 ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>* meshWarnings,
-                        std::vector<std::string>* takeWarnings, std::string* mapWarning,
+                        std::vector<std::string>* takeWarnings,
+                        std::vector<std::string>* mapWarnings,
                         std::vector<std::string>* takeNotes) {
     ExportRequest request;
     const auto format = findExportFormat(job.format);
@@ -234,6 +235,13 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
             std::fprintf(stderr, "warning: %s: %s\n", job.c3d.c_str(), w.c_str());
     const Correspondence map = Correspondence::read(job.map);
     checkMapFitsMesh(map, mesh, job.mesh, job.group);
+    const auto warnOfMap = [&](const std::string& warning) {
+        if (mapWarnings)
+            mapWarnings->push_back(warning);
+        else
+            std::fprintf(stderr, "warning: %s\n", warning.c_str());
+    };
+    for (const std::string& w : map.warnings) warnOfMap(w);  // a version 1 entry's "face"
     // Not an error: the user may have looked and accepted them; but a suggestion on a prop or
     // the wrong limb pulls the mesh there, and nothing else would say so.
     if (const std::vector<std::string> review = labelsToReview(map); !review.empty()) {
@@ -241,10 +249,7 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
             job.map + ": " + std::to_string(review.size()) +
             (review.size() == 1 ? " suggested entry is" : " suggested entries are") +
             " still marked for review: " + joined(review);
-        if (mapWarning)
-            *mapWarning = warning;
-        else
-            std::fprintf(stderr, "warning: %s\n", warning.c_str());
+        warnOfMap(warning);
     }
     // Refused or noted before the solver is prepared (the export would cut the range itself).
     const FrameRange within =

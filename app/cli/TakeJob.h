@@ -44,7 +44,8 @@ std::string takeJobSidecar(const TakeJob& job);
 // `quiet`; with `meshWarnings`, the warnings go there instead. The take's warnings (a truncated
 // file, ...) go to stderr, quiet or not, or to `takeWarnings` when given; the sidecar records them
 // too. A map with entries `map suggest` marked for review is solved as it is, with a warning
-// naming them, on stderr, quiet or not, or in `mapWarning` when given. A note on the job's frames
+// naming them, on stderr, quiet or not, or in `mapWarnings` when given, as are the map's own
+// warnings (a version 1 entry's "face"). A note on the job's frames
 // (a range cut at the take's end) goes to stderr as solve's "note: ...", or to `takeNotes` when
 // given, in the same words. Ctrl-C or SIGTERM stops
 // after the frames being solved and throws TakeJobInterrupted (the frames written are valid, and
@@ -53,5 +54,5 @@ std::string takeJobSidecar(const TakeJob& job);
 boneless::ExportResult runTakeJob(const TakeJob& job, bool quiet,
                                   std::vector<std::string>* meshWarnings = nullptr,
                                   std::vector<std::string>* takeWarnings = nullptr,
-                                  std::string* mapWarning = nullptr,
+                                  std::vector<std::string>* mapWarnings = nullptr,
                                   std::vector<std::string>* takeNotes = nullptr);

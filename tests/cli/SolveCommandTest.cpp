@@ -512,6 +512,35 @@ TEST(SolveCommand, FramesNoBonelessExportWroteAreReplacedOnlyWithForce) {
     EXPECT_EQ(firstLine(truth / "walker_0001.obj").rfind("# Boneless: ", 0), 0u);
 }
 
+// A version 1 map whose entry has a face number solved with the entry on its vertex, and nothing
+// said so; solve, batch and map suggest now warn, naming the map and the entry.
+TEST(SolveCommand, WarnsOfAVersion1EntrysFaceThatOnlyVersion2Reads) {
+    const fs::path demo = makeDemo(2);
+    nlohmann::json map = nlohmann::json::parse(std::ifstream(demo / "walker.map.json"));
+    ASSERT_EQ(map["version"], 1);
+    map["markers"][0]["face"] = 5;
+    const std::string label = map["markers"][0]["label"];
+    std::ofstream(demo / "walker.map.json") << map.dump(2);
+    const CliResult r = runCli(solveArgs(demo, demo / "x") + " --quiet");
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("warning: " + (demo / "walker.map.json").string() + ": marker " + label +
+                         " has \"face\": 5, which only \"version\": 2 reads: this file says "
+                         "\"version\": 1, so it sits on its \"vertex\""),
+              std::string::npos)
+        << r.out;
+    std::ofstream(demo / "m.json") << nlohmann::json{{"takes",
+                                                      {{{"mesh", "walker.obj"},
+                                                        {"c3d", "walker.c3d"},
+                                                        {"map", "walker.map.json"},
+                                                        {"out", "y"}}}}};
+    const CliResult batch = runCli("batch " + (demo / "m.json").string());
+    EXPECT_EQ(batch.exitCode, 0) << batch.out;
+    EXPECT_NE(batch.out.find("  warning: " + (demo / "walker.map.json").string() + ": marker " +
+                             label + " has \"face\": 5"),
+              std::string::npos)
+        << batch.out;
+}
+
 // A range wholly past the take's end is refused; the note that the range was cut to the take must
 // not come first, saying it would solve "9:6".
 TEST(SolveCommand, ARangeStartingPastTheTakesEndIsRefusedWithoutANoteOfSolvingIt) {

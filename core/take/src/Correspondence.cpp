@@ -99,6 +99,7 @@ Correspondence Correspondence::fromJson(const std::string& text, const std::stri
     c.meshGroup = mesh.contains("group") ? get<std::string>(mesh, "group", path, "\"mesh\"") : "";
     if (!doc.contains("markers") || !doc["markers"].is_array())
         fail(path, "has no \"markers\" list");
+    std::vector<std::string> unreadFaces;       // version 1 entries with a face point's keys
     std::map<std::string, std::size_t> labels;  // each label and vertex, and the entry that has it
     std::map<int, std::size_t> vertices;
     const json& list = doc["markers"];
@@ -129,6 +130,10 @@ Correspondence Correspondence::fromJson(const std::string& text, const std::stri
                                ": \"barycentric\" must be three numbers, none negative, that "
                                "sum to 1");
         }
+        // Version 1 files keep "face" and "barycentric" as keys of their own, unread; a "face"
+        // that is a face number was meant as a point of it, and the marker sits on its vertex.
+        if (version < 2 && m.contains("face") && m["face"].is_number_integer())
+            unreadFaces.push_back(where + " has \"face\": " + m["face"].dump());
         // Version 1 files keep "face" and "barycentric" as keys of their own, unread.
         mapping.extraJson =
             (version >= 2 ? withoutKeys(m, {"label", "vertex", "offset_mm", "face", "barycentric"})
@@ -144,6 +149,14 @@ Correspondence Correspondence::fromJson(const std::string& text, const std::stri
             fail(path, where + ": vertex " + std::to_string(mapping.vertex) + " already carries " +
                            entryName(c.markers[at->second].label, at->second));
         c.markers.push_back(std::move(mapping));
+    }
+    if (!unreadFaces.empty()) {
+        const bool one = unreadFaces.size() == 1;
+        c.warnings.push_back(
+            path + ": " + joined(unreadFaces, "; ") + ", which only \"version\": 2 " +
+            "reads: this file says \"version\": 1, so " +
+            (one ? "it sits on its \"vertex\"" : "they sit on their \"vertex\"") +
+            " (write \"version\": 2 to place " + (one ? "it" : "them") + " on the face)");
     }
     json extra = withoutKeys(doc, {"format", "version", "markers"});
     if (extra.contains("mesh"))

@@ -123,6 +123,31 @@ TEST(Correspondence, EveryMessageNamesAnEntryByItsLabel) {
               "far.json: marker T10: vertex 40 is out of range (body.obj has 10 vertices)");
 }
 
+// "face" and "barycentric" are read from version 2 on. A version 1 file that gave an entry a face
+// number (written by hand, or by a tool that did not raise the version) loaded with it ignored in
+// silence: the marker sat on its vertex. It still does, as version 1 promises, and the map says
+// so, naming the file and the entries; a "face" that is no face number is a key of its own.
+TEST(Correspondence, AVersion1EntryWithAFaceNumberIsReadWithAWarningNamingIt) {
+    const std::string path = writeTestFile("v1face.json", R"({"format": "boneless-correspondence",
+      "version": 1, "markers": [{"label": "A", "vertex": 3, "face": 12,
+                                 "barycentric": [0.5, 0.5, 0]},
+                                {"label": "B", "vertex": 4, "face": "left"},
+                                {"label": "T10", "vertex": 5, "face": 7}]})");
+    const Correspondence c = Correspondence::read(path);
+    EXPECT_EQ(c.markers[0].face, -1);
+    ASSERT_EQ(c.warnings.size(), 1u);
+    EXPECT_EQ(c.warnings[0], path +
+                                 ": marker A has \"face\": 12; marker T10 has \"face\": 7, which "
+                                 "only \"version\": 2 reads: this file says \"version\": 1, so "
+                                 "they sit on their \"vertex\" (write \"version\": 2 to place "
+                                 "them on the face)");
+    const Correspondence left = Correspondence::fromJson(
+        R"({"format": "boneless-correspondence", "version": 1,
+            "markers": [{"label": "A", "vertex": 3, "face": "left"}]})",
+        "left.json");
+    EXPECT_TRUE(left.warnings.empty());
+}
+
 TEST(Correspondence, ChecksTheMeshAndTheTake) {
     const Correspondence c = Correspondence::read(writeTestFile("valid2.json", kValid));
     EXPECT_NO_THROW(c.checkMesh(100, "body.obj"));
