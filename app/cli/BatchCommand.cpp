@@ -34,6 +34,7 @@ namespace {
 struct BatchArgs {
     std::string manifest, shard;
     bool quiet = false;
+    bool force = false;  // each take's job.force
 };
 
 // A manifest key as written ("fill-gaps", from manifests of before) under its JSON name.
@@ -405,7 +406,8 @@ Sidecar sidecarState(const TakeJob& job, Fingerprints& known, std::string& why) 
 
 void run(const BatchArgs& args) {
     const auto [shard, shards] = args.shard.empty() ? std::pair{1, 1} : parseShard(args.shard);
-    const std::vector<TakeJob> jobs = readManifest(args.manifest);
+    std::vector<TakeJob> jobs = readManifest(args.manifest);
+    for (TakeJob& job : jobs) job.force = args.force;
     int mine = 0, solved = 0, skipped = 0, failed = 0;
     for (std::size_t k = 0; k < jobs.size(); ++k)
         if (static_cast<int>(k % shards) == shard - 1) ++mine;
@@ -429,9 +431,11 @@ void run(const BatchArgs& args) {
         const auto start = std::chrono::steady_clock::now();
         std::vector<std::string> meshWarnings;  // filled once the mesh is read
         std::vector<std::string> takeWarnings;  // and the take's once it is opened
-        std::string mapWarning;                 // and the map's once it is read
+        std::vector<std::string> mapWarnings;   // and the map's once it is read
+        std::vector<std::string> takeNotes;     // and a note on its "frames"
         try {
-            const ExportResult r = runTakeJob(job, true, &meshWarnings, &takeWarnings, &mapWarning);
+            const ExportResult r =
+                runTakeJob(job, true, &meshWarnings, &takeWarnings, &mapWarnings, &takeNotes);
             std::printf(
                 "%s in %.1f s\n", plural(r.framesWritten, "frame").c_str(),
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
@@ -451,9 +455,12 @@ void run(const BatchArgs& args) {
         std::fflush(stdout);
         for (const std::string& w : takeWarnings)
             std::fprintf(stderr, "  warning: %s: %s\n", job.c3d.c_str(), w.c_str());
+        // As solve says it, a note: "frames" 2:100 is cut to the take, not a fault of it.
+        for (const std::string& n : takeNotes) std::fprintf(stderr, "  note: %s\n", n.c_str());
         // Said once per map, as the mesh's notes: a library's takes share a few maps.
-        if (!mapWarning.empty() && notedMaps.insert(job.map).second)
-            std::fprintf(stderr, "  warning: %s\n", mapWarning.c_str());
+        if (!mapWarnings.empty() && notedMaps.insert(job.map).second)
+            for (const std::string& w : mapWarnings)
+                std::fprintf(stderr, "  warning: %s\n", w.c_str());
         // A library of takes shares a few meshes: what one lacks is said once, solved or not.
         if (!meshWarnings.empty() && notedMeshes.insert(job.mesh + "\n" + job.group).second)
             for (const std::string& w : meshWarnings)
@@ -478,5 +485,8 @@ void registerBatchCommand(CLI::App& app) {
         ->required();
     cmd->add_option("--shard", args->shard,
                     "I/N: only every N-th entry, starting at the I-th (for job arrays)");
+    cmd->add_flag("--force", args->force,
+                  "Let a take replace files in its \"out\" of its outputs' names that no Boneless "
+                  "export wrote (another tool's OBJ frames); complete takes are still skipped");
     cmd->callback([args] { run(*args); });
 }

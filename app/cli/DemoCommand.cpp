@@ -31,7 +31,9 @@ void registerDemoCommand(CLI::App& app) {
     cmd->add_option("--out", args->out, "Output folder (created if missing)")
         ->required()
         ->check(aPath());
-    cmd->add_option("--frames", args->frames,
+    // A count, named apart from the range A:B that solve, eval and batch call --frames (which
+    // demo's old name for it now hints at).
+    cmd->add_option("--frame-count", args->frames,
                     withDefault("How many frames the take has (1 to 100000)", args->frames))
         ->check(numberFrom(1, 100000, true));
     // Markers sit on the skin or a few centimetres off it (a bulky suit); beyond 10 cm a marker
@@ -44,10 +46,10 @@ void registerDemoCommand(CLI::App& app) {
                                 "faces)",
                                 args->detail))
         ->check(numberFrom(1, 4, true));
-    cmd->add_flag(
-        "--force", args->force,
-        "Replace the demo's files in --out that differ from the ones this run writes "
-        "(an edited map, a take of another length), and remove its truth frames past --frames");
+    cmd->add_flag("--force", args->force,
+                  "Replace the demo's files in --out that differ from the ones this run writes "
+                  "(an edited map, a take of another length), and remove its truth frames past "
+                  "--frame-count");
     cmd->callback([args] {
         // A map the user edited there is not the demo's to replace unasked;
         // files as this run would write them are replaced by the same bytes.
@@ -62,7 +64,7 @@ void registerDemoCommand(CLI::App& app) {
             if (differ.size() > kListed)
                 named += " and " + plural(long(differ.size() - kListed), "more file", "more files");
             throw Error(args->out + ": " + named + (differ.size() == 1 ? " differs" : " differ") +
-                        " from what this demo writes (edited, or written with other --frames, "
+                        " from what this demo writes (edited, or written with other --frame-count, "
                         "--offset-mm or --detail); nothing was written: give --force to replace " +
                         (differ.size() == 1 ? "it" : "them") + ", or another --out");
         }

@@ -40,22 +40,25 @@ inline FrameRange parseFrameRange(const std::string& text, const std::string& na
 }
 
 // `range` (parsed from `text`) within the `frames` frames of `source`: refused when it selects no
-// frame, cut at the end with a note ("solving 100:810") when it runs past it: on stderr, or into
-// `notes` for a caller that says it under its own line (batch).
+// frame, cut at the end with a note when it runs past it, in one wording for solve and batch
+// ("--frames 2:100 runs past the end of walk.c3d (6 frames): solving 2:6"; `name` is what the
+// range is called, a manifest's "frames" for batch): on stderr as "note: ...", or into `notes`
+// for a caller that says it under its own line (batch, which said it as a warning before).
 inline FrameRange withinFrames(FrameRange range, const std::string& text, int frames,
                                const std::string& source, const char* doing,
-                               std::vector<std::string>* notes = nullptr) {
+                               std::vector<std::string>* notes = nullptr,
+                               const std::string& name = "--frames") {
     if (range.first >= (range.end < 0 ? frames : std::min(range.end, frames)))
         throw boneless::Error("frames " + text + " select no frame of " + source + " (" +
                               boneless::plural(frames, "frame") + ")");
     if (range.end > frames) {
-        const std::string cut = " (" + boneless::plural(frames, "frame") + "): " + doing + " " +
-                                std::to_string(range.first) + ":" + std::to_string(frames);
-        if (notes)  // said under a line that names the take, for a manifest's "frames"
-            notes->push_back("frames " + text + " run past its end" + cut);
+        const std::string note = name + " " + text + " runs past the end of " + source + " (" +
+                                 boneless::plural(frames, "frame") + "): " + doing + " " +
+                                 std::to_string(range.first) + ":" + std::to_string(frames);
+        if (notes)
+            notes->push_back(note);
         else
-            std::fprintf(stderr, "note: --frames %s runs past the end of %s%s\n", text.c_str(),
-                         source.c_str(), cut.c_str());
+            std::fprintf(stderr, "note: %s\n", note.c_str());
         range.end = frames;
     }
     return range;

@@ -101,6 +101,9 @@ void registerMapCommand(CLI::App& app) {
             args->check.empty() ? std::nullopt
                                 : std::optional<Correspondence>(Correspondence::read(args->check));
         checkMapFitsMesh(partial, mesh, args->mesh, args->group);
+        for (const Correspondence* map : {&partial, truth ? &*truth : nullptr})
+            for (const std::string& w : map ? map->warnings : std::vector<std::string>())
+                std::fprintf(stderr, "warning: %s\n", w.c_str());
         // A reference made for another mesh compares vertex numbers that name other places.
         if (truth) checkMapFitsMesh(*truth, mesh, args->mesh, args->group);
         Suggestion s = suggestMappings(mesh, take, partial);

@@ -16,17 +16,20 @@ namespace {
 
 // The flags that took their option's key as their name: the command that had the old flag, the
 // old flag, the key (eval's --rigidity and --tolerance went with the methods that are gone and
-// came back as the table's). solve's --rigidity never was: it gets no hint.
+// came back as the table's). solve's --rigidity never was: it gets no hint. A flag of a command's
+// own, outside the table, names its new flag instead of a key: demo's --frames, a count where
+// solve, eval and batch read a range A:B, became --frame-count.
 struct RenamedFlag {
     const char* command;
     const char* old;
-    const char* key;
+    const char* key;        // the table's option, or null
+    const char* flag = "";  // the new flag when `key` is null
 };
-const RenamedFlag kRenamedFlags[] = {{"solve", "--weight", "marker_weight"},
-                                     {"solve", "--lowpass", "low_pass_hz"},
-                                     {"solve", "--fill-gaps", "fill_gaps_s"},
-                                     {"eval", "--rigidity", "fold_guard"},
-                                     {"eval", "--tolerance", "relative_tolerance"}};
+const RenamedFlag kRenamedFlags[] = {
+    {"solve", "--weight", "marker_weight"},        {"solve", "--lowpass", "low_pass_hz"},
+    {"solve", "--fill-gaps", "fill_gaps_s"},       {"eval", "--rigidity", "fold_guard"},
+    {"eval", "--tolerance", "relative_tolerance"}, {"demo", "--frames", nullptr, "--frame-count"},
+};
 
 }  // namespace
 
@@ -86,7 +89,8 @@ std::vector<std::string> renamedFlagHints(const CLI::App& app) {
         const std::string flag = argument.substr(0, argument.find('='));  // --weight=5 too
         for (const RenamedFlag& renamed : kRenamedFlags) {
             if (flag != renamed.old) continue;
-            const std::string now = optionFlag(*findTakeOption(renamed.key));
+            const std::string now =
+                renamed.key ? optionFlag(*findTakeOption(renamed.key)) : renamed.flag;
             for (const CLI::App* command : given)
                 if (command->get_name() == renamed.command && command->get_option_no_throw(now)) {
                     hints.push_back(flag + " was renamed " + now);

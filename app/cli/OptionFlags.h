@@ -34,8 +34,8 @@ CLI::Validator aPath();
 
 // "--weight was renamed --marker-weight": a line for each flag the command line gave under the
 // name it had before it took its option's key (docs/options.md), on the command that had it
-// (eval's --rigidity, never solve's). CLI11 alone said only "The following argument was not
-// expected".
+// (eval's --rigidity, never solve's), and demo's --frames, now --frame-count. CLI11 alone said
+// only "The following argument was not expected".
 std::vector<std::string> renamedFlagHints(const CLI::App& app);
 
 // Refuses the options of `given` that the exact solver alone reads (--fold-guard, ...), set away

@@ -24,6 +24,10 @@ void registerSolveCommand(CLI::App& app) {
     cmd->add_option("--out", args->job.out, "Output folder")->required()->check(aPath());
     addTakeJobOptions(cmd, args->job);
     cmd->add_flag("--quiet", args->quiet, "No progress on stderr");
+    cmd->add_flag("--force", args->job.force,
+                  "Replace files in --out of the outputs' names that no Boneless export wrote "
+                  "(another tool's OBJ frames, the demo's truth/); an earlier export's are "
+                  "replaced without it");
     cmd->callback([args] {
         refuseUnusedExactOptions(args->job.options, boneless::TakeSolveOptions{}.solver);
         runTakeJob(args->job, args->quiet);

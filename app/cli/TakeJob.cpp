@@ -177,10 +177,29 @@ void warnOfOtherFrames(const std::string& out, const std::string& stem, const Ex
                  others.size() == 1 ? "frame" : "frames", listed.c_str(), stem.c_str());
 }
 
+// Files of the outputs' names that no Boneless export wrote are the user's: refused unless forced,
+// naming the first few, before anything is solved or written.
+void refuseToReplaceOthersFiles(const ExportRequest& request, int end) {
+    const std::vector<std::string> foreign = filesNoExportWrote(request, end);
+    if (foreign.empty()) return;
+    constexpr std::size_t kListed = 3;
+    std::string named =
+        joined({foreign.begin(), foreign.begin() + std::min(kListed, foreign.size())});
+    if (foreign.size() > kListed)
+        named += " and " + plural(long(foreign.size() - kListed), "more file", "more files");
+    const bool one = foreign.size() == 1;
+    throw Error(request.outDir + ": " + named + (one ? " was" : " were") +
+                " not written by a Boneless export, and this solve would replace " +
+                (one ? "it" : "them") + "; nothing was written: give --force to replace " +
+                (one ? "it" : "them") + ", or another output folder");
+}
+
 }  // namespace
 
 ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>* meshWarnings,
-                        std::vector<std::string>* takeWarnings, std::string* mapWarning) {
+                        std::vector<std::string>* takeWarnings,
+                        std::vector<std::string>* mapWarnings,
+                        std::vector<std::string>* takeNotes) {
     ExportRequest request;
     const auto format = findExportFormat(job.format);
     if (!format) throw Error("unknown output format \"" + job.format + "\"");
@@ -216,6 +235,13 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
             std::fprintf(stderr, "warning: %s: %s\n", job.c3d.c_str(), w.c_str());
     const Correspondence map = Correspondence::read(job.map);
     checkMapFitsMesh(map, mesh, job.mesh, job.group);
+    const auto warnOfMap = [&](const std::string& warning) {
+        if (mapWarnings)
+            mapWarnings->push_back(warning);
+        else
+            std::fprintf(stderr, "warning: %s\n", warning.c_str());
+    };
+    for (const std::string& w : map.warnings) warnOfMap(w);  // a version 1 entry's "face"
     // Not an error: the user may have looked and accepted them; but a suggestion on a prop or
     // the wrong limb pulls the mesh there, and nothing else would say so.
     if (const std::vector<std::string> review = labelsToReview(map); !review.empty()) {
@@ -223,14 +249,18 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
             job.map + ": " + std::to_string(review.size()) +
             (review.size() == 1 ? " suggested entry is" : " suggested entries are") +
             " still marked for review: " + joined(review);
-        if (mapWarning)
-            *mapWarning = warning;
-        else
-            std::fprintf(stderr, "warning: %s\n", warning.c_str());
+        warnOfMap(warning);
     }
     // Refused or noted before the solver is prepared (the export would cut the range itself).
-    withinFrames(range, job.frames, static_cast<int>(take.frameCount()), job.c3d, "solving",
-                 takeWarnings);
+    const FrameRange within =
+        withinFrames(range, job.frames, static_cast<int>(take.frameCount()), job.c3d, "solving",
+                     takeNotes, takeNotes ? "\"frames\"" : "--frames");
+    // A folder's OBJ frames of the same stem that no solve wrote (the demo's truth/) were
+    // replaced, with only a note about those outside the range; an earlier export's are replaced
+    // as before, by the run that follows it.
+    if (!job.force)
+        refuseToReplaceOthersFiles(
+            request, within.end < 0 ? static_cast<int>(take.frameCount()) : within.end);
 
     auto announce = [&](const Calibration& c) {
         if (quiet) return;

@@ -20,6 +20,9 @@ struct TakeJobInterrupted : boneless::Error {
 struct TakeJob {
     std::string mesh, group, c3d, map, out, format = "obj", frames;
     bool writeCalibratedRest = false;
+    // Replace files of the outputs' names in `out` that no Boneless export wrote (the demo's
+    // truth/, another tool's frames): without it, such files refuse the job before it solves.
+    bool force = false;
     // The solve options given (core's table, TakeOptionsJson: flags and manifest keys alike);
     // the others keep TakeSolveOptions' defaults.
     nlohmann::json options = nlohmann::json::object();
@@ -41,11 +44,15 @@ std::string takeJobSidecar(const TakeJob& job);
 // `quiet`; with `meshWarnings`, the warnings go there instead. The take's warnings (a truncated
 // file, ...) go to stderr, quiet or not, or to `takeWarnings` when given; the sidecar records them
 // too. A map with entries `map suggest` marked for review is solved as it is, with a warning
-// naming them, on stderr, quiet or not, or in `mapWarning` when given. Ctrl-C or SIGTERM stops
+// naming them, on stderr, quiet or not, or in `mapWarnings` when given, as are the map's own
+// warnings (a version 1 entry's "face"). A note on the job's frames
+// (a range cut at the take's end) goes to stderr as solve's "note: ...", or to `takeNotes` when
+// given, in the same words. Ctrl-C or SIGTERM stops
 // after the frames being solved and throws TakeJobInterrupted (the frames written are valid, and
 // the sidecar records the take as incomplete). Throws Error naming the file or option for bad
 // input.
 boneless::ExportResult runTakeJob(const TakeJob& job, bool quiet,
                                   std::vector<std::string>* meshWarnings = nullptr,
                                   std::vector<std::string>* takeWarnings = nullptr,
-                                  std::string* mapWarning = nullptr);
+                                  std::vector<std::string>* mapWarnings = nullptr,
+                                  std::vector<std::string>* takeNotes = nullptr);

@@ -24,7 +24,7 @@ fs::path makeLibrary() {
     for (int i = 0; i < 3; ++i) {
         const fs::path demo = dir / ("demo" + std::to_string(i));
         const CliResult r =
-            runCli("demo --out " + demo.string() + " --frames " + std::to_string(4 + i));
+            runCli("demo --out " + demo.string() + " --frame-count " + std::to_string(4 + i));
         EXPECT_EQ(r.exitCode, 0) << r.out;
         fs::copy_file(demo / "walker.c3d", dir / "takes" / (std::string(names[i]) + ".c3d"));
         if (i == 0) {
@@ -175,10 +175,65 @@ TEST(Batch, ARangePastTheTakesEndIsNotedUnderTheTakesLine) {
     ASSERT_EQ(r.exitCode, 0) << r.out;
     const std::string line = ": 4 frames in ";
     ASSERT_NE(r.out.find(line), std::string::npos) << r.out;
-    const std::size_t note =
-        r.out.find(": frames 2:100 run past its end (6 frames): solving 2:6\n");
+    const std::size_t note = r.out.find(" runs past the end of ");
     ASSERT_NE(note, std::string::npos) << r.out;
     EXPECT_GT(note, r.out.find(line)) << r.out;
+}
+
+// batch said "  warning: walk_c.c3d: frames 2:100 run past its end (6 frames): solving 2:6" where
+// solve said "note: --frames 2:100 runs past the end of walk_c.c3d (6 frames): solving 2:6" of
+// the same range: a range cut to the take is no fault of the take. Both say it as a note, in the
+// same words, each naming the range as it was given.
+TEST(Batch, ARangePastTheTakesEndIsANoteInSolvesWords) {
+    const fs::path dir = makeLibrary();
+    const std::string take = (dir / "takes" / "walk_c.c3d").string();
+    const fs::path path = writeManifest(dir, "m.json",
+                                        {{"takes",
+                                          {{{"mesh", "walker.obj"},
+                                            {"map", "walker.map.json"},
+                                            {"c3d", "takes/walk_c.c3d"},
+                                            {"out", "one"},
+                                            {"frames", "2:100"}}}}});
+    const CliResult batch = runCli("batch " + path.string());
+    ASSERT_EQ(batch.exitCode, 0) << batch.out;
+    EXPECT_NE(batch.out.find("\n  note: \"frames\" 2:100 runs past the end of " + take +
+                             " (6 frames): solving 2:6\n"),
+              std::string::npos)
+        << batch.out;
+    EXPECT_EQ(batch.out.find("warning"), std::string::npos) << batch.out;
+    const CliResult solve = runCli("solve --quiet --mesh " + (dir / "walker.obj").string() +
+                                   " --map " + (dir / "walker.map.json").string() + " --c3d " +
+                                   take + " --out " + (dir / "two").string() + " --frames 2:100");
+    ASSERT_EQ(solve.exitCode, 0) << solve.out;
+    EXPECT_EQ(solve.out,
+              "note: --frames 2:100 runs past the end of " + take + " (6 frames): solving 2:6\n");
+}
+
+// As solve: an entry whose "out" holds frames of its stem that no Boneless export wrote (the
+// demo's truth/) fails naming them, the others solved, until --force; then it is a take like the
+// others, skipped once complete.
+TEST(Batch, AnOutHoldingFramesNoBonelessExportWroteFailsItsTakeUntilForce) {
+    const fs::path dir = makeLibrary();
+    const fs::path path =
+        writeManifest(dir, "m.json",
+                      {{"defaults", {{"mesh", "walker.obj"}, {"map", "walker.map.json"}}},
+                       {"takes",
+                        {{{"c3d", "takes/walk_a.c3d"}, {"out", "demo0/truth"}},
+                         {{"c3d", "takes/walk_b.c3d"}, {"out", "b"}}}}});
+    const CliResult r = runCli("batch " + path.string());
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("FAILED: " + (dir / "demo0" / "truth").string() +
+                         ": walker_0000.obj, walker_0001.obj, walker_0002.obj and 1 more file "
+                         "were not written by a Boneless export"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("1 solved, 0 skipped, 1 failed"), std::string::npos) << r.out;
+    const CliResult forced = runCli("batch --force " + path.string());
+    EXPECT_EQ(forced.exitCode, 0) << forced.out;
+    EXPECT_NE(forced.out.find("1 solved, 1 skipped, 0 failed"), std::string::npos) << forced.out;
+    const CliResult again = runCli("batch " + path.string());
+    EXPECT_EQ(again.exitCode, 0) << again.out;
+    EXPECT_NE(again.out.find("0 solved, 2 skipped, 0 failed"), std::string::npos) << again.out;
 }
 
 // The user corrects the map and runs the manifest again: before, every take was skipped, since
@@ -627,7 +682,7 @@ TEST(Batch, ATakeWhoseOutputIsMissingOrEmptyIsSolvedAgain) {
 // MDD's spool file (megabytes) left for good. It stops the take as Ctrl-C does.
 TEST(Batch, SigtermStopsTheTakeAsCtrlCDoesLeavingNoSpoolFile) {
     const fs::path dir = freshTestDir("sigterm");
-    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frames 3000").exitCode, 0);
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frame-count 3000").exitCode, 0);
     const fs::path manifest = writeManifest(dir, "m.json",
                                             {{"takes",
                                               {{{"mesh", "walker.obj"},

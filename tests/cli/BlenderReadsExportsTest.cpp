@@ -23,7 +23,7 @@ bool haveBlender() {
 void checkInBlender(const std::string& format) {
     if (!haveBlender()) GTEST_SKIP() << "blender is not installed (scripts/install-deps.sh)";
     const fs::path dir = freshTestDir("blender-" + format);
-    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frames 12").exitCode, 0);
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frame-count 12").exitCode, 0);
     auto solve = [&](const std::string& f) {
         const CliResult r =
             runCli("solve --quiet --frames 2:12 --format " + f + " --mesh " +
@@ -94,7 +94,7 @@ TEST(BlenderReads, ObjFramesAsTheInputsQuadsWithTheirUvs) {
 TEST(BlenderReads, TheGlbWithTheObjsMaterialAndItsTexture) {
     if (!haveBlender()) GTEST_SKIP() << "blender is not installed (scripts/install-deps.sh)";
     const fs::path dir = freshTestDir("blender-glb-material");
-    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frames 3").exitCode, 0);
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frame-count 3").exitCode, 0);
     addTextureCoordinatesAndMaterial((dir / "walker.obj").string(), "walker.mtl", "skin");
     std::ofstream(dir / "walker.mtl")
         << "newmtl skin\nKd 0.8 0.6 0.5\nmap_Kd skin.png\nNs 250\nmap_Bump -bm 0.5 skin.png\n";

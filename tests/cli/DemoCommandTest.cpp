@@ -25,29 +25,30 @@ std::string contentsOf(const fs::path& path) {
 TEST(DemoCommand, AFileItWouldChangeIsReplacedOnlyWithForce) {
     const fs::path dir = freshTestDir("demo-again");
     const std::string demo = "demo --out " + dir.string();
-    ASSERT_EQ(runCli(demo + " --frames 3").exitCode, 0);
-    const CliResult same = runCli(demo + " --frames 3");
+    ASSERT_EQ(runCli(demo + " --frame-count 3").exitCode, 0);
+    const CliResult same = runCli(demo + " --frame-count 3");
     EXPECT_EQ(same.exitCode, 0) << same.out;
     const std::string written = contentsOf(dir / "walker.map.json");
     std::ofstream(dir / "walker.map.json", std::ios::app) << " ";
     const std::string edited = written + " ";
-    const CliResult refused = runCli(demo + " --frames 3");
+    const CliResult refused = runCli(demo + " --frame-count 3");
     EXPECT_EQ(refused.exitCode, 1) << refused.out;
-    EXPECT_NE(refused.out.find(dir.string() + ": walker.map.json differs from what this demo "
-                                              "writes (edited, or written with other --frames, "
-                                              "--offset-mm or --detail); nothing was written: "
-                                              "give --force to replace it, or another --out\n"),
-              std::string::npos)
+    EXPECT_NE(
+        refused.out.find(dir.string() + ": walker.map.json differs from what this demo "
+                                        "writes (edited, or written with other --frame-count, "
+                                        "--offset-mm or --detail); nothing was written: "
+                                        "give --force to replace it, or another --out\n"),
+        std::string::npos)
         << refused.out;
     EXPECT_TRUE(contentsOf(dir / "walker.map.json") == edited) << "the edited map was replaced";
     // A longer take: its C3D differs too; its first frames of truth do not.
-    const CliResult longer = runCli(demo + " --frames 4");
+    const CliResult longer = runCli(demo + " --frame-count 4");
     EXPECT_EQ(longer.exitCode, 1) << longer.out;
     EXPECT_NE(longer.out.find(": walker.map.json, walker.c3d differ from what this demo writes"),
               std::string::npos)
         << longer.out;
     EXPECT_FALSE(fs::exists(dir / "truth" / "walker_0003.obj"));
-    const CliResult forced = runCli(demo + " --frames 3 --force");
+    const CliResult forced = runCli(demo + " --frame-count 3 --force");
     EXPECT_EQ(forced.exitCode, 0) << forced.out;
     EXPECT_TRUE(contentsOf(dir / "walker.map.json") == written) << "the map was kept";
 }
@@ -59,7 +60,7 @@ TEST(DemoCommand, AFileItWouldChangeIsReplacedOnlyWithForce) {
 TEST(DemoCommand, ATakeLongerThanMemoryCouldHoldIsWrittenFrameByFrame) {
     const fs::path dir = freshTestDir("demo-long");
     const CliResult r = runShell("ulimit -v 300000; timeout 120 " + std::string(BONELESS_CLI) +
-                                 " demo --out " + dir.string() + " --frames 2000 2>&1");
+                                 " demo --out " + dir.string() + " --frame-count 2000 2>&1");
     EXPECT_EQ(r.exitCode, 0) << r.out;
     EXPECT_NE(r.out.find("walker.c3d (39 markers, 2000 frames at 30 Hz)"), std::string::npos)
         << r.out;
@@ -93,13 +94,14 @@ TEST(DemoCommand, TheHelpGivesEachDefaultAsSolvesDoes) {
 // program race for the address space).
 TEST(DemoCommand, UnderATightAddressSpaceLimitTheDemoAndASolveEndPromptly) {
     const fs::path dir = freshTestDir("demo-tight");
-    ASSERT_EQ(runCli("demo --frames 3 --out " + (dir / "made").string()).exitCode, 0);
+    ASSERT_EQ(runCli("demo --frame-count 3 --out " + (dir / "made").string()).exitCode, 0);
     const fs::path made = dir / "made";
     const std::string solve = "solve --quiet --mesh " + (made / "walker.obj").string() + " --c3d " +
                               (made / "walker.c3d").string() + " --map " +
                               (made / "walker.map.json").string() + " --out " +
                               (dir / "solved").string();
-    for (const std::string& command : {"demo --frames 3 --out " + (dir / "demo").string(), solve})
+    for (const std::string& command :
+         {"demo --frame-count 3 --out " + (dir / "demo").string(), solve})
         for (const char* limit : {"150000", "170000"}) {
             const CliResult r = runShell("ulimit -v " + std::string(limit) + "; timeout 20 " +
                                          std::string(BONELESS_CLI) + " " + command + " 2>&1");
@@ -117,14 +119,32 @@ TEST(DemoCommand, UnderATightAddressSpaceLimitTheDemoAndASolveEndPromptly) {
 TEST(DemoCommand, AShorterDemoForcedOverALongerOneLeavesNoTruthPastItsFrames) {
     const fs::path dir = freshTestDir("demo-shorter");
     const std::string demo = "demo --out " + dir.string();
-    ASSERT_EQ(runCli(demo + " --frames 5").exitCode, 0);
+    ASSERT_EQ(runCli(demo + " --frame-count 5").exitCode, 0);
     for (const char* theirs : {"walker_0004.obj.bak", "walker_04.obj", "other_0004.obj"})
         std::ofstream(dir / "truth" / theirs) << "mine\n";
-    const CliResult r = runCli(demo + " --frames 3 --force");
+    const CliResult r = runCli(demo + " --frame-count 3 --force");
     ASSERT_EQ(r.exitCode, 0) << r.out;
     EXPECT_TRUE(fs::exists(dir / "truth" / "walker_0002.obj"));
     EXPECT_FALSE(fs::exists(dir / "truth" / "walker_0003.obj"));
     EXPECT_FALSE(fs::exists(dir / "truth" / "walker_0004.obj"));
     for (const char* theirs : {"walker_0004.obj.bak", "walker_04.obj", "other_0004.obj"})
         EXPECT_TRUE(fs::exists(dir / "truth" / theirs)) << theirs;
+}
+
+// demo's --frames was a count of frames, where solve, eval and batch read --frames as a range A:B:
+// "demo --frames 0:30" was refused as no whole number, and "solve --frames 30" as no range. The
+// count is --frame-count; the old name is refused, saying the new one, and writes nothing.
+TEST(DemoCommand, TheOldFramesFlagIsRefusedNamingFrameCount) {
+    const fs::path dir = freshTestDir("demo-frame-count");
+    const CliResult old = runCli("demo --out " + (dir / "old").string() + " --frames 3");
+    EXPECT_EQ(old.exitCode, 1) << old.out;
+    EXPECT_NE(old.out.find("not expected"), std::string::npos) << old.out;
+    EXPECT_NE(old.out.find("--frames was renamed --frame-count\n"), std::string::npos) << old.out;
+    EXPECT_FALSE(fs::exists(dir / "old"));
+    const CliResult r = runCli("demo --out " + (dir / "new").string() + " --frame-count 3");
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("walker.c3d (39 markers, 3 frames at 30 Hz)"), std::string::npos) << r.out;
+    const CliResult help = runCli("demo --help");
+    EXPECT_NE(help.out.find("--frame-count"), std::string::npos) << help.out;
+    EXPECT_EQ(help.out.find("--frames "), std::string::npos) << help.out;
 }

@@ -20,7 +20,7 @@ namespace {
 const std::string& demoFolder() {
     static const std::string dir = [] {
         const fs::path d = freshTestDir("eval-demo");
-        const CliResult r = runCli("demo --out " + d.string() + " --frames 16");
+        const CliResult r = runCli("demo --out " + d.string() + " --frame-count 16");
         EXPECT_EQ(r.exitCode, 0) << r.out;
         return (d / "truth").string();
     }();

@@ -41,7 +41,7 @@ void expectRefusals(const std::vector<Case>& cases) {
 // `eval --markers-file somedir` "no vertex ids in the marker file".
 TEST(InputFiles, AFolderGivenForAFileIsRefusedAsAFolderByEveryLoader) {
     const fs::path dir = freshTestDir("folders");
-    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frames 3").exitCode, 0);
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frame-count 3").exitCode, 0);
     for (const char* folder : {"somedir", "d.obj", "d.ply"}) fs::create_directory(dir / folder);
     const std::string somedir = (dir / "somedir").string(), mesh = (dir / "walker.obj").string(),
                       take = (dir / "walker.c3d").string(),
@@ -72,7 +72,7 @@ TEST(InputFiles, AFolderGivenForAFileIsRefusedAsAFolderByEveryLoader) {
 // device (/dev/null) read as an empty file or went by its name's extension.
 TEST(InputFiles, AFifoOrADeviceIsRefusedBeforeItIsOpenedRatherThanWaitedOn) {
     const fs::path dir = freshTestDir("fifos");
-    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frames 3").exitCode, 0);
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frame-count 3").exitCode, 0);
     for (const char* name : {"fifo.obj", "fifo.c3d", "fifo.json", "fifo.txt"})
         ASSERT_EQ(::mkfifo((dir / name).c_str(), 0600), 0) << name;
     const std::string mesh = (dir / "walker.obj").string(), take = (dir / "walker.c3d").string(),
@@ -103,7 +103,7 @@ TEST(InputFiles, AFifoOrADeviceIsRefusedBeforeItIsOpenedRatherThanWaitedOn) {
 // "cannot open the marker file".
 TEST(InputFiles, AMarkerFileOrManifestThatCannotBeOpenedSaysWhy) {
     const fs::path dir = freshTestDir("unopened");
-    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frames 3").exitCode, 0);
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frame-count 3").exitCode, 0);
     const std::string missing = (dir / "missing.txt").string(),
                       underAFile = (dir / "walker.obj" / "m.json").string(),
                       unreadable = (dir / "unreadable.txt").string();

@@ -14,7 +14,7 @@ namespace fs = std::filesystem;
 TEST(LargeMesh, AMeshTooLargeForTheMemoryLimitIsRefusedUpFrontNamingItsSize) {
     const fs::path demo = freshTestDir("demo"), out = freshTestDir("out");
     // The walker at detail 3: 109,568 faces, about 430 MB to solve by the estimate.
-    CliResult r = runCli("demo --out " + demo.string() + " --frames 2 --detail 3");
+    CliResult r = runCli("demo --out " + demo.string() + " --frame-count 2 --detail 3");
     ASSERT_EQ(r.exitCode, 0) << r.out;
     const std::string mesh = (demo / "walker.obj").string();
     const std::string solve = std::string(BONELESS_CLI) + " solve --mesh " + mesh + " --c3d " +

@@ -15,7 +15,7 @@ namespace fs = std::filesystem;
 
 TEST(MapSuggestCommand, CompletesAPartialMapAndChecksItAgainstTheTrueOne) {
     const fs::path dir = freshTestDir("map-suggest");
-    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frames 20").exitCode, 0);
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frame-count 20").exitCode, 0);
     nlohmann::json map;
     std::ifstream(dir / "walker.map.json") >> map;
     nlohmann::json picks = nlohmann::json::array();
@@ -45,7 +45,7 @@ TEST(MapSuggestCommand, CompletesAPartialMapAndChecksItAgainstTheTrueOne) {
 
 TEST(MapSuggestCommand, MistakesNameTheFileAndTheReason) {
     const fs::path dir = freshTestDir("map-suggest-mistakes");
-    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frames 5").exitCode, 0);
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frame-count 5").exitCode, 0);
     nlohmann::json map;
     std::ifstream(dir / "walker.map.json") >> map;
     map["markers"] =
@@ -73,7 +73,7 @@ namespace {
 
 // `map suggest` on a fresh demo, completing its own map (the command line without --check).
 std::string suggestOnDemo(const fs::path& dir) {
-    EXPECT_EQ(runCli("demo --out " + dir.string() + " --frames 5").exitCode, 0);
+    EXPECT_EQ(runCli("demo --out " + dir.string() + " --frame-count 5").exitCode, 0);
     return "map suggest --mesh " + (dir / "walker.obj").string() + " --c3d " +
            (dir / "walker.c3d").string() + " --map " + (dir / "walker.map.json").string() +
            " --out " + (dir / "full.json").string();
@@ -84,7 +84,7 @@ std::string suggestOnDemo(const fs::path& dir) {
 // --check's map is read before the completed map is written: a run that fails leaves nothing.
 TEST(MapSuggestCommand, AMapMadeOnAGroupNamesTheMeshFileAndTheFlagToOpenItWith) {
     const fs::path dir = freshTestDir("map-suggest-group");
-    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frames 3").exitCode, 0);
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frame-count 3").exitCode, 0);
     std::ostringstream obj;
     obj << std::ifstream(dir / "walker.obj").rdbuf();
     std::ofstream(dir / "walker.obj")
@@ -109,7 +109,7 @@ TEST(MapSuggestCommand, AMapMadeOnAGroupNamesTheMeshFileAndTheFlagToOpenItWith) 
 // has such a group: the koala (no groups) was told "open it with --group body", which then failed.
 TEST(MapSuggestCommand, AMapOfAGroupTheMeshLacksGetsNoGroupHint) {
     const fs::path dir = freshTestDir("map-suggest-no-group");
-    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frames 3").exitCode, 0);
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frame-count 3").exitCode, 0);
     nlohmann::json map;
     std::ifstream(dir / "walker.map.json") >> map;
     map["mesh"]["group"] = "body";
@@ -164,7 +164,7 @@ TEST(MapSuggestCommand, AMissingCheckMapFailsBeforeTheMapIsWritten) {
 // link), is refused before anything is read, naming both, and the input is left as it was.
 TEST(MapSuggestCommand, AnOutputThatWouldReplaceAnInputIsRefusedBeforeAnyWorkNamingBoth) {
     const fs::path dir = freshTestDir("map-suggest-over-input");
-    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frames 3").exitCode, 0);
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frame-count 3").exitCode, 0);
     const fs::path mesh = dir / "walker.obj", take = dir / "walker.c3d",
                    map = dir / "walker.map.json", ref = dir / "ref.json";
     fs::copy_file(map, ref);
@@ -298,7 +298,7 @@ TEST(MapSuggestCommand, AMapOfThePropsMarkersAloneSaysPlainlyThatNothingIsSugges
 // Every other figure the command prints is in millimetres; the residual was in mesh units.
 TEST(MapSuggestCommand, GivesTheAlignmentResidualInMillimetres) {
     const fs::path dir = freshTestDir("map-suggest-residual");
-    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frames 5").exitCode, 0);
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frame-count 5").exitCode, 0);
     nlohmann::json map;
     std::ifstream(dir / "walker.map.json") >> map;
     map["markers"] = nlohmann::json::array(
@@ -318,7 +318,7 @@ TEST(MapSuggestCommand, GivesTheAlignmentResidualInMillimetres) {
 // it; the same map again is written, and a file that is no map is refused before the fit.
 TEST(MapSuggestCommand, AnExistingOutThatDiffersIsKeptUnlessForced) {
     const fs::path dir = freshTestDir("map-suggest-keep");
-    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frames 5").exitCode, 0);
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frame-count 5").exitCode, 0);
     nlohmann::json map;
     std::ifstream(dir / "walker.map.json") >> map;
     map["markers"] = nlohmann::json::array(

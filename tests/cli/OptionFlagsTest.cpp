@@ -35,12 +35,13 @@ std::set<std::string> flagKeys(const std::string& command) {
 }  // namespace
 
 // One name per option: `solve`'s flags are core's table (TakeOptionsJson) keys, with '-' for '_',
-// or the paths and output choices a batch manifest names the same way; every option of the table
-// is a flag of solve, and the solver's own are flags of eval.
+// or the paths and output choices a batch manifest names the same way (and --quiet, and --force,
+// a flag of batch too); every option of the table is a flag of solve, and the solver's own are
+// flags of eval.
 TEST(OptionFlags, EverySolveFlagIsNamedAsItsJsonKey) {
     const std::set<std::string> jobKeys = {"mesh",  "group",  "c3d",    "map",
                                            "out",   "format", "frames", "write_calibrated_rest",
-                                           "quiet", "help"};
+                                           "quiet", "force",  "help"};
     const std::set<std::string> solve = flagKeys("solve");
     for (const std::string& key : solve) {
         const TakeOption* option = findTakeOption(key);
@@ -87,7 +88,7 @@ TEST(OptionFlags, ABadNumberIsEchoedAsTyped) {
 }
 
 // strtod reads hexadecimal: "--max-iterations 0x10" solved with 16 steps, and CLI11 reads a
-// leading zero as octal: "demo --frames 010" wrote 8 frames. Numbers are decimal, as in JSON;
+// leading zero as octal: "demo --frame-count 010" wrote 8 frames. Numbers are decimal, as in JSON;
 // anything else is refused as the other words that are no number are.
 TEST(OptionFlags, ANumberInHexadecimalOrOctalIsRefused) {
     const std::string solve = "solve --mesh m.obj --c3d t.c3d --map m.json --out o ";
@@ -101,9 +102,10 @@ TEST(OptionFlags, ANumberInHexadecimalOrOctalIsRefused) {
     }
     const fs::path dir = freshTestDir("demo-octal");
     for (const char* typed : {"010", "0x10"}) {
-        const CliResult r = runCli("demo --out " + (dir / "x").string() + " --frames " + typed);
+        const CliResult r =
+            runCli("demo --out " + (dir / "x").string() + " --frame-count " + typed);
         EXPECT_EQ(r.exitCode, 1) << typed;
-        EXPECT_NE(r.out.find("--frames: must be a whole number from 1 to 100000, got " +
+        EXPECT_NE(r.out.find("--frame-count: must be a whole number from 1 to 100000, got " +
                              std::string(typed) + "\n"),
                   std::string::npos)
             << r.out;
@@ -182,7 +184,7 @@ TEST(OptionFlags, AnEmptyPathIsRefusedNamingTheFlag) {
 // The options given on the command line reach the sidecar under the same keys.
 TEST(OptionFlags, TheSidecarRecordsTheOptionsUnderTheFlagsNames) {
     const fs::path demo = freshTestDir("option-flags");
-    ASSERT_EQ(runCli("demo --frames 3 --out " + demo.string()).exitCode, 0);
+    ASSERT_EQ(runCli("demo --frame-count 3 --out " + demo.string()).exitCode, 0);
     const fs::path out = demo / "solved";
     const CliResult r =
         runCli("solve --quiet --mesh " + (demo / "walker.obj").string() + " --c3d " +

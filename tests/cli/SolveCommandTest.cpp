@@ -22,7 +22,7 @@ namespace {
 
 fs::path makeDemo(int frames, double offsetMm = 10) {
     const fs::path dir = freshTestDir("demo");
-    const CliResult r = runCli("demo --out " + dir.string() + " --frames " +
+    const CliResult r = runCli("demo --out " + dir.string() + " --frame-count " +
                                std::to_string(frames) + " --offset-mm " + std::to_string(offsetMm));
     EXPECT_EQ(r.exitCode, 0) << r.out;
     return dir;
@@ -455,6 +455,92 @@ TEST(SolveCommand, TheNoteOfEarlierFramesSaysWhichAreLeftAndCountsReadRight) {
     EXPECT_NE(r.out.find("walker_*.obj: 1 frame, "), std::string::npos) << r.out;
 }
 
+// Solved into the demo's truth/, whose frames share the walker's stem, solve replaced the true
+// motion with its answer, noting nothing (every frame was one it wrote). Files of the outputs'
+// names that no Boneless export wrote are refused, named, until --force; an earlier export's,
+// its sidecar gone or not, are replaced as before.
+TEST(SolveCommand, FramesNoBonelessExportWroteAreReplacedOnlyWithForce) {
+    const fs::path demo = makeDemo(4);
+    const fs::path truth = demo / "truth";
+    const auto firstLine = [](const fs::path& file) {
+        std::string line;
+        std::getline(std::ifstream(file), line);
+        return line;
+    };
+    const std::string trueFrame = firstLine(truth / "walker_0001.obj");
+    CliResult r = runCli(solveArgs(demo, truth) + " --quiet");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find(truth.string() +
+                         ": walker_0000.obj, walker_0001.obj, walker_0002.obj and 1 more file "
+                         "were not written by a Boneless export, and this solve would replace "
+                         "them; nothing was written: give --force to replace them, or another "
+                         "output folder\n"),
+              std::string::npos)
+        << r.out;
+    EXPECT_EQ(firstLine(truth / "walker_0001.obj"), trueFrame);
+    EXPECT_FALSE(fs::exists(truth / "walker.json"));
+    // Frames outside the range are not replaced: only those inside are named.
+    r = runCli(solveArgs(demo, truth) + " --quiet --frames 3:4");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find(": walker_0003.obj was not written by a Boneless export, and this solve "
+                         "would replace it"),
+              std::string::npos)
+        << r.out;
+
+    // A point cache of the stem that no sidecar records is another's too.
+    const fs::path caches = demo / "caches";
+    fs::create_directories(caches);
+    std::ofstream(caches / "walker.pc2") << "mine";
+    r = runCli(solveArgs(demo, caches) + " --quiet --format pc2");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find(": walker.pc2 was not written by a Boneless export"), std::string::npos)
+        << r.out;
+    r = runCli(solveArgs(demo, caches) + " --quiet --format pc2 --force");
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    r = runCli(solveArgs(demo, caches) + " --quiet --format pc2");  // its own, now
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+
+    // An earlier export is replaced without --force, its sidecar there or not.
+    const fs::path out = demo / "x";
+    ASSERT_EQ(runCli(solveArgs(demo, out) + " --quiet").exitCode, 0);
+    fs::remove(out / "walker.json");
+    r = runCli(solveArgs(demo, out) + " --quiet");
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+
+    r = runCli(solveArgs(demo, truth) + " --quiet --force");
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_EQ(firstLine(truth / "walker_0001.obj").rfind("# Boneless: ", 0), 0u);
+}
+
+// A version 1 map whose entry has a face number solved with the entry on its vertex, and nothing
+// said so; solve, batch and map suggest now warn, naming the map and the entry.
+TEST(SolveCommand, WarnsOfAVersion1EntrysFaceThatOnlyVersion2Reads) {
+    const fs::path demo = makeDemo(2);
+    nlohmann::json map = nlohmann::json::parse(std::ifstream(demo / "walker.map.json"));
+    ASSERT_EQ(map["version"], 1);
+    map["markers"][0]["face"] = 5;
+    const std::string label = map["markers"][0]["label"];
+    std::ofstream(demo / "walker.map.json") << map.dump(2);
+    const CliResult r = runCli(solveArgs(demo, demo / "x") + " --quiet");
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("warning: " + (demo / "walker.map.json").string() + ": marker " + label +
+                         " has \"face\": 5, which only \"version\": 2 reads: this file says "
+                         "\"version\": 1, so it sits on its \"vertex\""),
+              std::string::npos)
+        << r.out;
+    std::ofstream(demo / "m.json") << nlohmann::json{{"takes",
+                                                      {{{"mesh", "walker.obj"},
+                                                        {"c3d", "walker.c3d"},
+                                                        {"map", "walker.map.json"},
+                                                        {"out", "y"}}}}};
+    const CliResult batch = runCli("batch " + (demo / "m.json").string());
+    EXPECT_EQ(batch.exitCode, 0) << batch.out;
+    EXPECT_NE(batch.out.find("  warning: " + (demo / "walker.map.json").string() + ": marker " +
+                             label + " has \"face\": 5"),
+              std::string::npos)
+        << batch.out;
+}
+
 // A range wholly past the take's end is refused; the note that the range was cut to the take must
 // not come first, saying it would solve "9:6".
 TEST(SolveCommand, ARangeStartingPastTheTakesEndIsRefusedWithoutANoteOfSolvingIt) {
@@ -572,7 +658,7 @@ TEST(SolveCommand, HelpSaysAFrameRangeMayLeaveOutEitherEnd) {
 
 TEST(DemoCommand, DetailRefinesTheSameWalker) {
     const fs::path dir = freshTestDir("demo-detail");
-    const CliResult r = runCli("demo --out " + dir.string() + " --frames 2 --detail 2");
+    const CliResult r = runCli("demo --out " + dir.string() + " --frame-count 2 --detail 2");
     ASSERT_EQ(r.exitCode, 0) << r.out;
     const TriMesh fine = readMesh((dir / "walker.obj").string()).mesh;
     // One more Catmull–Clark step: 4 times the quads, each two triangles.
@@ -593,7 +679,7 @@ TEST(DemoCommand, AnOffsetThatIsNoSensibleDistanceIsRefusedNamingTheFlag) {
     const fs::path dir = freshTestDir("demo-offset");
     for (const char* offset : {"nan", "inf", "1e308", "-5", "101"}) {
         const CliResult r =
-            runCli("demo --out " + (dir / "x").string() + " --frames 2 --offset-mm " + offset);
+            runCli("demo --out " + (dir / "x").string() + " --frame-count 2 --offset-mm " + offset);
         EXPECT_EQ(r.exitCode, 1) << offset;  // bad input, as a bad file is
         EXPECT_NE(
             r.out.find("--offset-mm: must be a number from 0 to 100, got " + std::string(offset)),
@@ -601,21 +687,22 @@ TEST(DemoCommand, AnOffsetThatIsNoSensibleDistanceIsRefusedNamingTheFlag) {
             << r.out;
         EXPECT_FALSE(fs::exists(dir / "x")) << offset;
     }
-    EXPECT_EQ(runCli("demo --out " + (dir / "x").string() + " --frames 2 --offset-mm 100").exitCode,
-              0);
+    EXPECT_EQ(
+        runCli("demo --out " + (dir / "x").string() + " --frame-count 2 --offset-mm 100").exitCode,
+        0);
 }
 
 // "--frames INT:INT in [1 - 100000]" read like a range, and "--frames 10:20" was refused with
-// "Value 10:20 not in range": it is a count.
-TEST(DemoCommand, FramesIsACountInItsHelpAndItsRefusal) {
+// "Value 10:20 not in range": it is a count (now --frame-count).
+TEST(DemoCommand, TheFrameCountIsACountInItsHelpAndItsRefusal) {
     const CliResult help = runCli("demo --help");
     EXPECT_EQ(help.out.find("INT:INT"), std::string::npos) << help.out;
     EXPECT_NE(help.out.find("How many frames the take has (1 to 100000)"), std::string::npos)
         << help.out;
     const fs::path dir = freshTestDir("demo-frames");
-    const CliResult r = runCli("demo --out " + (dir / "x").string() + " --frames 10:20");
+    const CliResult r = runCli("demo --out " + (dir / "x").string() + " --frame-count 10:20");
     EXPECT_EQ(r.exitCode, 1) << r.out;
-    EXPECT_NE(r.out.find("--frames: must be a whole number from 1 to 100000, got 10:20"),
+    EXPECT_NE(r.out.find("--frame-count: must be a whole number from 1 to 100000, got 10:20"),
               std::string::npos)
         << r.out;
     EXPECT_FALSE(fs::exists(dir / "x"));
@@ -632,7 +719,7 @@ TEST(DemoCommand, ADemoItsFileSystemHasNoRoomForIsRefusedBeforeAnythingIsWritten
     if (space.available > (std::uintmax_t(2000) << 30)) GTEST_SKIP() << "2,000 GB free";
     const CliResult r =
         runShell("ulimit -v 1000000; " + std::string(BONELESS_CLI) + " demo --out " + out.string() +
-                 " --frames 100000 --detail 4 2>&1");
+                 " --frame-count 100000 --detail 4 2>&1");
     EXPECT_EQ(r.exitCode, 1) << r.out;
     EXPECT_NE(r.out.find(out.string() + ": the demo needs about "), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("(100000 frames, each with its true pose as an OBJ), and its file system "

@@ -31,8 +31,11 @@ bool hasRepeatedCorner(const int* c, int n) {
     return false;
 }
 
-// Every face's corners must be vertices of the file; a face that repeats one is dropped.
-void checkFaces(const std::string& path, const PolygonSoup& soup, std::vector<int>& kept,
+// Every face's corners must be vertices of the file; a face that repeats one is dropped. A corner
+// past the file's vertices is named as the file writes it: an OBJ's 1-based, at its line (it was
+// "vertex 8 ... (0-based) (face 1 (line 5))" for "f 1 3 9", where no number is 8 or face 1);
+// OFF's and PLY's 0-based, with the face's 0-based number.
+void checkFaces(const std::string& path, const PolygonSoup& soup, bool obj, std::vector<int>& kept,
                 std::vector<int>& dropped) {
     const int nv = soup.vertexCount();
     for (int f = 0; f < soup.faceCount(); ++f) {
@@ -40,11 +43,17 @@ void checkFaces(const std::string& path, const PolygonSoup& soup, std::vector<in
         const int n = soup.faceStart[f + 1] - soup.faceStart[f];
         if (n < 3) throw MeshError(path, "face with " + plural(n, "corner"), faceWhere(soup, f));
         for (int i = 0; i < n; ++i) {
-            if (c[i] < 0 || c[i] >= nv)
+            if (c[i] >= 0 && c[i] < nv) continue;
+            const std::string vertices = plural(nv, "vertex", "vertices");
+            if (obj && f < static_cast<int>(soup.faceLine.size()))
                 throw MeshError(path,
-                                "face uses vertex " + std::to_string(c[i]) + " but the file has " +
-                                    plural(nv, "vertex", "vertices") + " (0-based)",
-                                faceWhere(soup, f));
+                                "face uses vertex " + std::to_string(c[i] + 1) +
+                                    " but the file has " + vertices + " (OBJ indices start at 1)",
+                                "line " + std::to_string(soup.faceLine[f]));
+            throw MeshError(path,
+                            "face uses vertex " + std::to_string(c[i]) + " but the file has " +
+                                vertices + " (0-based)",
+                            faceWhere(soup, f));
         }
         (hasRepeatedCorner(c, n) ? dropped : kept).push_back(f);
     }
@@ -176,7 +185,7 @@ MeshReadResult readMesh(const std::string& path, const MeshReadOptions& options)
     const int nv = soup.vertexCount();
 
     std::vector<int> kept, dropped;
-    checkFaces(path, soup, kept, dropped);
+    checkFaces(path, soup, obj, kept, dropped);
 
     // Whole file: every vertex, so that vertex i stays file vertex i. Group: the vertices its
     // faces use, in file order.

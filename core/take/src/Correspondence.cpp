@@ -7,8 +7,8 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
-#include <set>
 #include <sstream>
 #include <type_traits>
 
@@ -46,6 +46,14 @@ T get(const json& object, const char* key, const std::string& file, const std::s
     } catch (const json::exception&) {
         fail(file, where + ": \"" + key + "\" has the wrong type");
     }
+}
+
+// What every message calls a map entry: "marker T10", by its label, the name the user gave it
+// and looks for; "markers[3]" (0-based in the file's "markers" list) while it has none to give.
+// It was "marker 3:", "marker 3 (T10):" and "marker T10:" by turns, and "marker 3" could be read
+// as a label.
+std::string entryName(const std::string& label, std::size_t index) {
+    return label.empty() ? "markers[" + std::to_string(index) + "]" : "marker " + label;
 }
 
 json withoutKeys(json object, std::initializer_list<const char*> keys) {
@@ -91,16 +99,17 @@ Correspondence Correspondence::fromJson(const std::string& text, const std::stri
     c.meshGroup = mesh.contains("group") ? get<std::string>(mesh, "group", path, "\"mesh\"") : "";
     if (!doc.contains("markers") || !doc["markers"].is_array())
         fail(path, "has no \"markers\" list");
-    std::set<std::string> labels;
-    std::set<int> vertices;
+    std::vector<std::string> unreadFaces;       // version 1 entries with a face point's keys
+    std::map<std::string, std::size_t> labels;  // each label and vertex, and the entry that has it
+    std::map<int, std::size_t> vertices;
     const json& list = doc["markers"];
     for (size_t i = 0; i < list.size(); ++i) {
-        const std::string where = "marker " + std::to_string(i);
         const json& m = list[i];
-        if (!m.is_object()) fail(path, where + " is not an object");
+        if (!m.is_object()) fail(path, entryName("", i) + " is not an object");
         MarkerMapping mapping;
-        mapping.label = get<std::string>(m, "label", path, where);
-        mapping.vertex = get<int>(m, "vertex", path, where + " (" + mapping.label + ")");
+        mapping.label = get<std::string>(m, "label", path, entryName("", i));
+        const std::string where = entryName(mapping.label, i);
+        mapping.vertex = get<int>(m, "vertex", path, where);
         mapping.offsetMm = m.contains("offset_mm") ? get<double>(m, "offset_mm", path, where) : 0.0;
         if (!(mapping.offsetMm >= Correspondence::kMinOffsetMm &&
               mapping.offsetMm <= Correspondence::kMaxOffsetMm)) {
@@ -108,33 +117,46 @@ Correspondence Correspondence::fromJson(const std::string& text, const std::stri
             std::snprintf(
                 value, sizeof value, "%g is out of range (a marker sits %g to %g mm off the skin)",
                 mapping.offsetMm, Correspondence::kMinOffsetMm, Correspondence::kMaxOffsetMm);
-            fail(path, where + " (" + mapping.label + "): \"offset_mm\" " + value);
+            fail(path, where + ": \"offset_mm\" " + value);
         }
         if (version >= 2 && m.contains("face")) {
-            const std::string at = where + " (" + mapping.label + ")";
-            mapping.face = get<int>(m, "face", path, at);
-            mapping.barycentric = get<std::array<double, 3>>(m, "barycentric", path, at);
+            mapping.face = get<int>(m, "face", path, where);
+            mapping.barycentric = get<std::array<double, 3>>(m, "barycentric", path, where);
             if (mapping.face < 0)
-                fail(path, at + ": face " + std::to_string(mapping.face) + " is negative");
+                fail(path, where + ": face " + std::to_string(mapping.face) + " is negative");
             const auto& b = mapping.barycentric;
             if (!(b[0] >= 0 && b[1] >= 0 && b[2] >= 0) || std::abs(b[0] + b[1] + b[2] - 1) > 1e-6)
-                fail(path, at + ": \"barycentric\" must be three numbers, none negative, that "
-                                "sum to 1");
+                fail(path, where +
+                               ": \"barycentric\" must be three numbers, none negative, that "
+                               "sum to 1");
         }
+        // Version 1 files keep "face" and "barycentric" as keys of their own, unread; a "face"
+        // that is a face number was meant as a point of it, and the marker sits on its vertex.
+        if (version < 2 && m.contains("face") && m["face"].is_number_integer())
+            unreadFaces.push_back(where + " has \"face\": " + m["face"].dump());
         // Version 1 files keep "face" and "barycentric" as keys of their own, unread.
         mapping.extraJson =
             (version >= 2 ? withoutKeys(m, {"label", "vertex", "offset_mm", "face", "barycentric"})
                           : withoutKeys(m, {"label", "vertex", "offset_mm"}))
                 .dump();
         if (mapping.vertex < 0)
-            fail(path, where + " (" + mapping.label + "): vertex " +
-                           std::to_string(mapping.vertex) + " is negative");
-        if (!labels.insert(mapping.label).second)
-            fail(path, where + ": label " + mapping.label + " is mapped twice");
-        if (!vertices.insert(mapping.vertex).second)
-            fail(path, where + " (" + mapping.label + "): vertex " +
-                           std::to_string(mapping.vertex) + " already carries another marker");
+            fail(path, where + ": vertex " + std::to_string(mapping.vertex) + " is negative");
+        // Two entries of one label: the index is what tells them apart.
+        if (const auto [at, added] = labels.emplace(mapping.label, i); !added)
+            fail(path, where + " is mapped twice (" + entryName("", at->second) + " and " +
+                           entryName("", i) + ")");
+        if (const auto [at, added] = vertices.emplace(mapping.vertex, i); !added)
+            fail(path, where + ": vertex " + std::to_string(mapping.vertex) + " already carries " +
+                           entryName(c.markers[at->second].label, at->second));
         c.markers.push_back(std::move(mapping));
+    }
+    if (!unreadFaces.empty()) {
+        const bool one = unreadFaces.size() == 1;
+        c.warnings.push_back(
+            path + ": " + joined(unreadFaces, "; ") + ", which only \"version\": 2 " +
+            "reads: this file says \"version\": 1, so " +
+            (one ? "it sits on its \"vertex\"" : "they sit on their \"vertex\"") +
+            " (write \"version\": 2 to place " + (one ? "it" : "them") + " on the face)");
     }
     json extra = withoutKeys(doc, {"format", "version", "markers"});
     if (extra.contains("mesh"))

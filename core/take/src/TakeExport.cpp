@@ -147,6 +147,63 @@ std::vector<std::string> exportFilesIn(const std::string& outDir, const std::str
     return names;
 }
 
+namespace {
+
+// Whether the OBJ `path` starts as a solve writes one: "# Boneless: <take> frame N", "# Boneless:
+// <mesh> fitted to <take> ..." (objText's comment line).
+bool writtenBySolve(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string line(12, '\0');
+    in.read(line.data(), static_cast<std::streamsize>(line.size()));
+    return in && line == "# Boneless: ";
+}
+
+// The "output" of `stem`'s sidecar in `outDir` ("pc2"; "" if it records none), or nothing when
+// there is no sidecar, or what is there is no Boneless sidecar.
+std::optional<std::string> sidecarOutput(const fs::path& outDir, const std::string& stem) {
+    std::ifstream in(outDir / (stem + ".json"));
+    if (!in) return std::nullopt;
+    try {
+        const json s = json::parse(in);
+        if (s.is_object() && s.value("format", json()) == "boneless-solve") {
+            const json output = s.value("output", json());
+            return output.is_string() ? output.get<std::string>() : "";
+        }
+    } catch (const json::exception&) {
+    }
+    return std::nullopt;
+}
+
+}  // namespace
+
+std::vector<std::string> filesNoExportWrote(const ExportRequest& request, int end) {
+    const fs::path out(request.outDir);
+    const std::string stem = exportStem(request);
+    std::error_code ec;
+    if (!fs::is_directory(out, ec)) return {};
+    const std::optional<std::string> output = sidecarOutput(out, stem);
+    std::vector<std::string> foreign;
+    for (const std::string& name : exportFilesIn(request.outDir, stem)) {
+        const fs::path path = out / name;
+        // An input there (a map kept as <stem>.json) is exportTake's to refuse, naming both.
+        if (sameFile(path.string(), request.meshPath) || sameFile(path.string(), request.c3dPath) ||
+            sameFile(path.string(), request.mapPath))
+            continue;
+        if (name == stem + ".json") {
+            if (!output) foreign.push_back(name);  // any Boneless sidecar is replaced
+        } else if (name == stem + "_calibrated_rest.obj") {
+            if (request.writeCalibratedRest && !writtenBySolve(path)) foreign.push_back(name);
+        } else if (const std::optional<int> frame = objFrameOf(path, stem)) {
+            if (request.format == ExportFormat::Obj && *frame >= request.first && *frame < end &&
+                !writtenBySolve(path))
+                foreign.push_back(name);
+        } else if (name == stem + exportFormatInfo(request.format).extension &&
+                   output != exportFormatInfo(request.format).name)
+            foreign.push_back(name);
+    }
+    return foreign;
+}
+
 bool sameFile(const std::string& a, const std::string& b) {
     std::error_code ec;
     if (fs::equivalent(a, b, ec)) return true;

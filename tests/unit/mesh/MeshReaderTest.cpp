@@ -372,10 +372,6 @@ TEST(MeshReaderErrors, NonFiniteCoordinates) {
 }
 
 TEST(MeshReaderErrors, FaceReferencesMissingVertex) {
-    const std::string obj =
-        errorOf(writeFile("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 3 9\n"));
-    EXPECT_CONTAINS(obj, "face uses vertex 8 but the file has 3 vertices");
-    EXPECT_CONTAINS(obj, "face 1 (line 5)");
     EXPECT_CONTAINS(errorOf(writeFile("relative.obj", "v 0 0 0\nv 1 0 0\nf -1 -2 -3\n")),
                     "relative index -3 points before the first vertex");
     EXPECT_CONTAINS(errorOf(writeFile("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n")),
@@ -386,6 +382,29 @@ TEST(MeshReaderErrors, FaceReferencesMissingVertex) {
     EXPECT_CONTAINS(off, "face uses vertex 7");
     EXPECT_CONTAINS(off, "face 2");
     EXPECT_CONTAINS(errorOf(writeFile("range.ply", plyBinary(tentV(), P))), "face uses vertex 7");
+}
+
+// "f 1 3 9" over three vertices was "face uses vertex 8 but the file has 3 vertices (0-based)
+// (face 1 (line 5))": 8 and face 1 were numbers the file does not have (it counts from 1), beside
+// its line's. The vertex is named as the face line writes it, at that line; an OFF, which counts
+// from 0, keeps its own numbers.
+TEST(MeshReaderErrors, AnObjFaceIndexPastTheVerticesIsNamedAsTheFileWritesIt) {
+    const std::string obj = writeFile("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 3 9\n");
+    EXPECT_EQ(errorOf(obj), obj +
+                                ": face uses vertex 9 but the file has 3 vertices (OBJ indices "
+                                "start at 1) (line 5)");
+    const std::string group =
+        writeFile("range-group.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\ng a\nf 1 2 3\ng b\nf 3 2 4\n");
+    MeshReadOptions b;
+    b.group = "b";
+    EXPECT_EQ(errorOf(group, [&] { readMesh(group, b); }),
+              group +
+                  ": face uses vertex 4 but the file has 3 vertices (OBJ indices start at 1) "
+                  "(line 7)");
+    Polygons P = tentP;
+    P[2][1] = 7;
+    const std::string off = writeFile("range-own.off", offText(tentV(), P));
+    EXPECT_CONTAINS(errorOf(off), "face uses vertex 7 but the file has 5 vertices (0-based)");
 }
 
 TEST(MeshReaderErrors, MalformedTextThatOpenMeshWouldAccept) {

@@ -36,6 +36,10 @@ class Correspondence {
     std::string meshGroup;  // the OBJ group it was made on; "" = the whole file, or not recorded
     int meshVertices = 0;
     std::vector<MarkerMapping> markers;
+    // What the file says that this read leaves unused, for the caller to say (not written back):
+    // a version 1 file's entries whose "face" is a face number, which version 2 alone reads
+    // ("map.json: marker T10 has \"face\": 12, which only \"version\": 2 reads; ...").
+    std::vector<std::string> warnings;
 
     // Markers sit 0 to 30 mm off the skin (a sphere on its base, a bulky suit); a little below
     // zero fits a mesh whose surface is clothing, and 200 mm leaves room for a standoff or a
