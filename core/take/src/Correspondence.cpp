@@ -33,18 +33,21 @@ constexpr int kVersion = 2;  // read: 1 and 2; written: 1 unless a marker names 
 }
 
 template <typename T>
+// `where` names the object holding `key`; empty for the file's own keys ("version").
 T get(const json& object, const char* key, const std::string& file, const std::string& where) {
-    if (!object.contains(key)) fail(file, where + " has no \"" + key + "\"");
+    const std::string at = where.empty() ? "" : where + ": ";
+    if (!object.contains(key))
+        fail(file, (where.empty() ? "" : where + " ") + "has no \"" + key + "\"");
     try {
         const json& value = object.at(key);
         if constexpr (std::is_same_v<T, int>) {
             // get<int> would wrap 3e9 and cast 1e30 (undefined): only integers that fit.
             if (!value.is_number_integer() || value < json(INT_MIN) || value > json(INT_MAX))
-                fail(file, where + ": \"" + key + "\" is not a whole number in the int range");
+                fail(file, at + "\"" + key + "\" is not a whole number in the int range");
         }
         return value.get<T>();
     } catch (const json::exception&) {
-        fail(file, where + ": \"" + key + "\" has the wrong type");
+        fail(file, at + "\"" + key + "\" has the wrong type");
     }
 }
 
@@ -86,7 +89,7 @@ Correspondence Correspondence::fromJson(const std::string& text, const std::stri
     if (!doc.contains("format") || !doc["format"].is_string() || doc["format"] != kFormat)
         fail(path, std::string("is not a Boneless correspondence file (\"format\" must be \"") +
                        kFormat + "\")");
-    const int version = get<int>(doc, "version", path, "the file");
+    const int version = get<int>(doc, "version", path, "");
     if (version < 1 || version > kVersion)
         fail(path, "has version " + std::to_string(version) +
                        "; this Boneless reads versions 1 to " + std::to_string(kVersion));
@@ -108,6 +111,7 @@ Correspondence Correspondence::fromJson(const std::string& text, const std::stri
         if (!m.is_object()) fail(path, entryName("", i) + " is not an object");
         MarkerMapping mapping;
         mapping.label = get<std::string>(m, "label", path, entryName("", i));
+        if (mapping.label.empty()) fail(path, entryName("", i) + ": \"label\" is empty");
         const std::string where = entryName(mapping.label, i);
         mapping.vertex = get<int>(m, "vertex", path, where);
         mapping.offsetMm = m.contains("offset_mm") ? get<double>(m, "offset_mm", path, where) : 0.0;
@@ -119,8 +123,16 @@ Correspondence Correspondence::fromJson(const std::string& text, const std::stri
                 mapping.offsetMm, Correspondence::kMinOffsetMm, Correspondence::kMaxOffsetMm);
             fail(path, where + ": \"offset_mm\" " + value);
         }
+        if (version >= 2 && m.contains("barycentric") && !m.contains("face"))
+            fail(path, where + ": \"barycentric\" places it on a face, and it names no \"face\"");
         if (version >= 2 && m.contains("face")) {
             mapping.face = get<int>(m, "face", path, where);
+            // get<std::array> would take the first three of a longer list, and drop the rest.
+            if (m.contains("barycentric") &&
+                (!m["barycentric"].is_array() || m["barycentric"].size() != 3))
+                fail(path, where +
+                               ": \"barycentric\" must be three numbers, none negative, that "
+                               "sum to 1");
             mapping.barycentric = get<std::array<double, 3>>(m, "barycentric", path, where);
             if (mapping.face < 0)
                 fail(path, where + ": face " + std::to_string(mapping.face) + " is negative");
@@ -134,7 +146,6 @@ Correspondence Correspondence::fromJson(const std::string& text, const std::stri
         // that is a face number was meant as a point of it, and the marker sits on its vertex.
         if (version < 2 && m.contains("face") && m["face"].is_number_integer())
             unreadFaces.push_back(where + " has \"face\": " + m["face"].dump());
-        // Version 1 files keep "face" and "barycentric" as keys of their own, unread.
         mapping.extraJson =
             (version >= 2 ? withoutKeys(m, {"label", "vertex", "offset_mm", "face", "barycentric"})
                           : withoutKeys(m, {"label", "vertex", "offset_mm"}))
@@ -255,6 +266,7 @@ std::vector<std::size_t> Correspondence::resolve(const C3dTake& take) const {
     const std::string file = source_.empty() ? "correspondence" : source_;
     std::vector<std::size_t> points;
     std::vector<std::string> unknown;
+    std::map<std::size_t, std::string> bound;  // each point of the take, and the label naming it
     for (const auto& m : markers) {
         const std::vector<std::size_t> named = take.pointsNamed(m.label);
         if (named.empty()) {
@@ -263,6 +275,10 @@ std::vector<std::size_t> Correspondence::resolve(const C3dTake& take) const {
         }
         if (const std::string problem = labelProblem(take, m.label); !problem.empty())
             fail(file, problem);
+        // "LFHD" and "walker:LFHD" are one marker: two entries would pull two vertices to it.
+        if (const auto [at, added] = bound.emplace(named.front(), m.label); !added)
+            fail(file, "marker " + at->second + " and marker " + m.label + " both name " +
+                           take.points[named.front()].label + " of " + take.file + ": map it once");
         points.push_back(named.front());
     }
     if (unknown.empty()) return points;

@@ -299,3 +299,53 @@ TEST(Correspondence, ALabelPrefixedWithASubjectWhoDoesNotWearItNamesWhoDoes) {
               std::string::npos)
         << e;
 }
+
+// "LFHD" and "walker:lfhd" name one marker of the take: both entries bound to it, so one marker
+// pulled two vertices and the sidecar counted 40 markers of a 39-marker take.
+TEST(Correspondence, TwoEntriesNamingOneMarkerOfTheTakeAreRefusedNamingBoth) {
+    const C3dTake take = takeOf("walk.c3d", {"walker:LFHD", "walker:RFHD"});
+    const auto mapOf = [](const char* second) {
+        return Correspondence::fromJson(std::string(R"({"format": "boneless-correspondence",
+          "version": 1, "markers": [{"label": "LFHD", "vertex": 1}, {"label": ")") +
+                                            second + R"(", "vertex": 2}]})",
+                                        "walk.json");
+    };
+    for (const char* second : {"walker:LFHD", "lfhd"}) {
+        const std::string e = errorOf([&] { mapOf(second).resolve(take); });
+        EXPECT_NE(e.find(std::string("walk.json: marker LFHD and marker ") + second +
+                         " both name walker:LFHD of walk.c3d"),
+                  std::string::npos)
+            << e;
+    }
+    EXPECT_EQ(mapOf("RFHD").resolve(take), (std::vector<std::size_t>{0, 1}));
+}
+
+// A fourth barycentric number was dropped on rewrite, a "barycentric" without "face" was read as
+// nothing and dropped too, an empty label named nothing ("labels not found in walk.c3d: "), and
+// a version of the wrong type was "the file: ...".
+TEST(Correspondence, AFacePointOrLabelThatSaysNothingWholeIsRefused) {
+    const auto error = [](const std::string& version, const std::string& entry) {
+        return errorOf([&] {
+            Correspondence::fromJson(R"({"format": "boneless-correspondence", "version": )" +
+                                         version + R"(, "markers": [)" + entry + "]}",
+                                     "m.json");
+        });
+    };
+    EXPECT_NE(error("2", R"({"label": "A", "vertex": 1, "face": 0,
+                             "barycentric": [0.2, 0.2, 0.6, 5]})")
+                  .find("m.json: marker A: \"barycentric\" must be three numbers"),
+              std::string::npos);
+    EXPECT_NE(error("2", R"({"label": "A", "vertex": 1, "barycentric": [0.2, 0.2, 0.6]})")
+                  .find("m.json: marker A: \"barycentric\" places it on a face, and it names no "
+                        "\"face\""),
+              std::string::npos);
+    EXPECT_NE(
+        error("1", R"({"label": "", "vertex": 1})").find("m.json: markers[0]: \"label\" is empty"),
+        std::string::npos);
+    EXPECT_NE(error("\"1\"", "").find("m.json: \"version\" is not a whole number"),
+              std::string::npos)
+        << error("\"1\"", "");
+    EXPECT_EQ(
+        error("2", R"({"label": "A", "vertex": 1, "face": 0, "barycentric": [0.2, 0.2, 0.6]})"),
+        "");
+}
