@@ -408,6 +408,55 @@ class ExportDialogTest : public QObject {
         QCOMPARE(dialog.request().options.solver.maxIterations, 7);
     }
 
+    // Close, Esc and the window's close button cancelled a running export with no more than a
+    // passing status message. They ask first; Keep Exporting leaves the run and the dialog be.
+    void closingWhileExportingAsksBeforeStoppingTheExport() {
+        ExportDialog dialog(&document_, &solver_, &timeline_);
+        dialog.show();
+        dialog.setFormat(ExportFormat::Obj);
+        dialog.setRange(ExportDialog::Range::All);
+        QString asked;
+        auto answer = [&asked](const char* button) {
+            QTimer::singleShot(0, [&asked, button] {
+                QVERIFY(QTest::qWaitFor([] { return QApplication::activeModalWidget(); }, 5000));
+                auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+                QVERIFY(box && box->objectName() == "stopExportQuestion");
+                asked = box->text();
+                box->findChild<QPushButton*>(button)->click();
+            });
+        };
+        const char* button = "keepExportingButton";  // the answer to closing at the first frame
+        connect(dialog.runner(), &ExportRunner::progress, &dialog, [&] {
+            if (!button) return;
+            answer(button);
+            button = nullptr;
+            dialog.reject();
+        });
+        QSignalSpy finished(&dialog, &ExportDialog::finished);
+        dialog.setFolder(work_ + "/closeKeep");
+        QVERIFY(dialog.startExport());
+        QVERIFY(finished.wait(120000));
+        QVERIFY2(asked.contains("Stop the export"), qPrintable(asked));
+        QVERIFY(dialog.isVisible());
+        QVERIFY(!dialog.runner()->result().cancelled);
+        QCOMPARE(dialog.runner()->result().framesWritten, document_.frameCount());
+
+        // Stop Export stops it and closes.
+        asked.clear();
+        button = "stopExportButton";
+        finished.clear();
+        dialog.setFolder(work_ + "/closeStop");
+        QVERIFY(dialog.startExport());
+        QVERIFY(finished.wait(120000));
+        QVERIFY(!asked.isEmpty());
+        QVERIFY(dialog.runner()->result().cancelled);
+        QVERIFY(!dialog.isVisible());
+        // Not running: Close closes without a word.
+        dialog.show();
+        dialog.reject();
+        QVERIFY(!dialog.isVisible());
+    }
+
     void aMissingFolderIsAMessageNotAnExport() {
         ExportDialog dialog(&document_, &solver_, &timeline_);
         dialog.setFolder("  ");

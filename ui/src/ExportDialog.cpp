@@ -372,8 +372,31 @@ void ExportDialog::cancelExport() {
 }
 
 void ExportDialog::reject() {
+    // Close, Esc and the window's close button: a running export is the user's work, stopped
+    // only when they say so. An export that ends while they are asked needs no answer.
+    if (runner_->isRunning() && !askToStop() && runner_->isRunning()) return;
     cancelExport();
     QDialog::reject();
+}
+
+bool ExportDialog::askToStop() {
+    QMessageBox box(QMessageBox::Question, tr("Export"), tr("Stop the export?"),
+                    QMessageBox::NoButton, this);
+    box.setObjectName("stopExportQuestion");
+    box.setInformativeText(tr("The frames written so far are kept in %1, and its sidecar records "
+                              "the take as incomplete.")
+                               .arg(QString::fromStdString(running_.outDir)));
+    QPushButton* stop = box.addButton(tr("Stop Export"), QMessageBox::DestructiveRole);
+    QPushButton* keep = box.addButton(tr("Keep Exporting"), QMessageBox::RejectRole);
+    stop->setObjectName("stopExportButton");
+    keep->setObjectName("keepExportingButton");
+    box.setDefaultButton(keep);
+    box.setEscapeButton(keep);
+    const QMetaObject::Connection ended =
+        connect(runner_, &ExportRunner::finished, &box, [&box, keep] { keep->click(); });
+    box.exec();
+    disconnect(ended);
+    return box.clickedButton() == stop;
 }
 
 void ExportDialog::onProgress(int done, int total) {

@@ -66,7 +66,8 @@ class ExportDialog : public QDialog {
     // Starts writing (false with the reason in the dialog when refused).
     bool startExport();
     void cancelExport();
-    void reject() override;  // closing while writing cancels first
+    // Closing while writing asks whether to stop the export (Stop Export / Keep Exporting).
+    void reject() override;
 
   signals:
     // As ExportRunner::finished: the message names the folder or the reason.
@@ -91,6 +92,8 @@ class ExportDialog : public QDialog {
     bool askToReplace(const std::vector<std::string>& names);
     // After a run: the earlier export's files it did not write again, which would pass for its.
     void removeReplaced(const ExportRequest& request, const ExportResult& result);
+    // Asks whether to stop the running export; true for Stop Export.
+    bool askToStop();
     void setRunning(bool running);
 
     Document* document_;
