@@ -222,6 +222,48 @@ class ExportDialogTest : public QObject {
         QCOMPARE(readJson(out + "/walker.json")["frame_range"].toArray(), (QJsonArray{3, 4}));
     }
 
+    // A glb export, then an MDD one into its folder, Replace, and Cancel part-way: the old
+    // walker.glb stayed beside a partial walker.mdd, and the sidecar it shared was already the
+    // cancelled run's, so the glb had none. Once Replace is said, a cancelled run removes the
+    // earlier files it did not write again too, and says so.
+    void aCancelledReplaceLeavesTheFolderHoldingOneExport() {
+        ExportDialog dialog(&document_, &solver_, &timeline_);
+        dialog.show();
+        part<QCheckBox>(dialog, "exportCalibratedRest")->setChecked(true);
+        dialog.setFormat(ExportFormat::Glb);
+        timeline_.setFrame(2);
+        dialog.setRange(ExportDialog::Range::Current);
+        const QString out = work_ + "/replacedThenCancelled";
+        QVERIFY(exportInto(dialog, out));
+        QVERIFY(QFile::exists(out + "/walker.glb"));
+        QVERIFY(QFile::exists(out + "/walker_calibrated_rest.obj"));
+
+        part<QCheckBox>(dialog, "exportCalibratedRest")->setChecked(false);
+        dialog.setFormat(ExportFormat::Mdd);
+        dialog.setRange(ExportDialog::Range::All);
+        QTimer::singleShot(300, [] {
+            auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+            QVERIFY(box && box->objectName() == "replaceExportQuestion");
+            box->findChild<QPushButton*>("replaceButton")->click();
+        });
+        connect(dialog.runner(), &ExportRunner::progress, &dialog, [&] { dialog.cancelExport(); });
+        QSignalSpy finished(&dialog, &ExportDialog::finished);
+        QVERIFY(dialog.startExport());
+        QVERIFY(finished.wait(120000));
+        QVERIFY(finished.first().at(0).toBool());
+        QVERIFY(dialog.runner()->result().cancelled);
+        QCOMPARE(QDir(out).entryList(QDir::Files, QDir::Name),
+                 (QStringList{"walker.json", "walker.mdd"}));
+        const QJsonObject sidecar = readJson(out + "/walker.json");
+        QCOMPARE(sidecar["complete"].toBool(), false);
+        QCOMPARE(sidecar["output"].toString(), QString("mdd"));
+        const QString said = finished.first().at(1).toString();
+        QVERIFY2(said.contains("walker.glb") && said.contains("walker_calibrated_rest.obj") &&
+                     said.contains("removed"),
+                 qPrintable(said));
+        QCOMPARE(progressText(dialog)->text(), said);
+    }
+
     void theCalibratedRestIsWrittenBesideTheFramesWhenAsked() {
         {
             ExportDialog dialog(&document_, &solver_, &timeline_);

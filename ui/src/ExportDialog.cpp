@@ -420,8 +420,8 @@ bool ExportDialog::askToReplace(const std::vector<std::string>& names) {
                     QMessageBox::Cancel, this);
     box.setObjectName("replaceExportQuestion");
     box.setInformativeText(
-        tr("Its files are removed once this export is written, so that the "
-           "folder holds this export alone. Choose another folder to keep it."));
+        tr("Its files are removed once this export is written, or stopped part-way, so that "
+           "the folder holds this export alone. Choose another folder to keep it."));
     QPushButton* replace = box.addButton(tr("Replace"), QMessageBox::AcceptRole);
     replace->setObjectName("replaceButton");
     box.setDefaultButton(QMessageBox::Cancel);
@@ -429,7 +429,7 @@ bool ExportDialog::askToReplace(const std::vector<std::string>& names) {
     return box.clickedButton() == replace;
 }
 
-void ExportDialog::removeReplaced(const ExportRequest& r, const ExportResult& result) {
+QStringList ExportDialog::removeReplaced(const ExportRequest& r, const ExportResult& result) {
     const std::string stem = exportStem(r);
     std::set<std::string> written{stem + ".json"};
     if (r.format != ExportFormat::Obj) written.insert(stem + exportFormatInfo(r.format).extension);
@@ -437,29 +437,50 @@ void ExportDialog::removeReplaced(const ExportRequest& r, const ExportResult& re
     if (r.format == ExportFormat::Obj)
         for (int f = result.first; f < result.first + result.framesWritten; ++f)
             written.insert(objFrameFile(stem, f));
+    QStringList removed;
     for (const std::string& name : replaced_)
-        if (!written.count(name))
+        if (!written.count(name) &&
             QFile::remove(
-                QDir(QString::fromStdString(r.outDir)).filePath(QString::fromStdString(name)));
+                QDir(QString::fromStdString(r.outDir)).filePath(QString::fromStdString(name))))
+            removed << QString::fromStdString(name);
     replaced_.clear();
+    return removed;
 }
 
 void ExportDialog::onFinished(bool ok, const QString& message) {
     setRunning(false);
     emit runningChanged(false);
-    // A cancelled or failed run leaves the earlier export's files beside the frames it wrote.
-    if (ok && !runner_->result().cancelled) removeReplaced(running_, runner_->result());
+    // Replace was said and the run wrote its sidecar, finished or cancelled: the earlier export's
+    // files it did not write again go, or a cancelled run would leave them beside its own frames,
+    // with the shared names (the sidecar, the calibrated rest) already this run's. A failed run
+    // removes nothing more.
+    const ExportResult& result = runner_->result();
+    QString said = message;
+    if (ok) {
+        const QStringList removed = removeReplaced(running_, result);
+        if (result.cancelled && !removed.isEmpty()) {
+            const int n = int(removed.size());
+            QString names = QStringList(removed.mid(0, 3)).join(", ");
+            if (n > 3) names = tr("%1 and %2 more").arg(names).arg(n - 3);
+            said += " " + counted(n,
+                                  tr("The earlier export's file it did not write again was "
+                                     "removed (%1): the folder holds this export alone."),
+                                  tr("The earlier export's %n files it did not write again were "
+                                     "removed (%1): the folder holds this export alone."))
+                              .arg(names);
+        }
+    }
     replaced_.clear();
     // The bar keeps how far the run got, the frames written, until the frames to write change or
     // another run starts: reset to 0 by the next solved frame, it read as nothing written.
     lastRunShown_ = true;
-    if (ok) progress_->setValue(runner_->result().framesWritten);
-    if (runner_->result().cancelled)
+    if (ok) progress_->setValue(result.framesWritten);
+    if (result.cancelled)
         progress_->setFormat(tr("%v / %m frames: cancelled"));
     else if (!ok)
         progress_->setFormat(tr("%v / %m frames: failed"));
-    progressText_->setText(message);
-    emit finished(ok, message);
+    progressText_->setText(said);
+    emit finished(ok, said);
 }
 
 void ExportDialog::forgetLastRun() {

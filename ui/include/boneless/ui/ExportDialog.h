@@ -2,6 +2,7 @@
 
 #include <QDialog>
 #include <QElapsedTimer>
+#include <QStringList>
 #include <deque>
 
 #include "boneless/TakeExport.h"
@@ -90,10 +91,11 @@ class ExportDialog : public QDialog {
     void forgetLastRun();
     // Asks whether to replace the earlier export's files `names` in the folder.
     bool askToReplace(const std::vector<std::string>& names);
-    // After a run: the earlier export's files it did not write again, which would pass for its.
-    void removeReplaced(const ExportRequest& request, const ExportResult& result);
     // Asks whether to stop the running export; true for Stop Export.
     bool askToStop();
+    // After a run, finished or cancelled: removes the earlier export's files it did not write
+    // again, which would pass for its, and returns their names.
+    QStringList removeReplaced(const ExportRequest& request, const ExportResult& result);
     void setRunning(bool running);
 
     Document* document_;
