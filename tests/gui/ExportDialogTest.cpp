@@ -450,6 +450,24 @@ class ExportDialogTest : public QObject {
         QCOMPARE(dialog.request().options.solver.maxIterations, 7);
     }
 
+    // Browse… stayed enabled while the folder box was not: the folder shown could change while
+    // the run wrote into the one it started with.
+    void theFolderCannotBeBrowsedAwayWhileExporting() {
+        ExportDialog dialog(&document_, &solver_, &timeline_);
+        dialog.show();
+        dialog.setFormat(ExportFormat::Obj);
+        timeline_.setFrame(4);
+        dialog.setRange(ExportDialog::Range::Current);
+        auto* browse = part<QPushButton>(dialog, "exportBrowse");
+        QVERIFY(browse->isEnabled());
+        QSignalSpy finished(&dialog, &ExportDialog::finished);
+        dialog.setFolder(work_ + "/browse");
+        QVERIFY(dialog.startExport());
+        QVERIFY(!browse->isEnabled());
+        QVERIFY(finished.wait(120000));
+        QVERIFY(browse->isEnabled());
+    }
+
     // Close, Esc and the window's close button cancelled a running export with no more than a
     // passing status message. They ask first; Keep Exporting leaves the run and the dialog be.
     void closingWhileExportingAsksBeforeStoppingTheExport() {

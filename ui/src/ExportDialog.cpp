@@ -110,10 +110,11 @@ ExportDialog::ExportDialog(Document* document, FrameSolver* solver, Timeline* ti
         forgetLastRun();
         updateEstimate();
     });
-    auto* browse = new QPushButton(tr("Browse…"));
+    browse_ = new QPushButton(tr("Browse…"));
+    browse_->setObjectName("exportBrowse");
     auto* folderRow = new QHBoxLayout;
     folderRow->addWidget(folder_, 1);
-    folderRow->addWidget(browse);
+    folderRow->addWidget(browse_);
 
     // The rest the frames were solved against: what a user needs to rebuild the rig elsewhere,
     // in the input's vertex order, beside the frames (as solve --write-calibrated-rest).
@@ -159,7 +160,7 @@ ExportDialog::ExportDialog(Document* document, FrameSolver* solver, Timeline* ti
     connect(start_, &QPushButton::clicked, this, &ExportDialog::startExport);
     connect(cancel_, &QPushButton::clicked, this, &ExportDialog::cancelExport);
     connect(close_, &QPushButton::clicked, this, &ExportDialog::reject);
-    connect(browse, &QPushButton::clicked, this, [this] {
+    connect(browse_, &QPushButton::clicked, this, [this] {
         const QString chosen =
             QFileDialog::getExistingDirectory(this, tr("Export Into"), folder_->text());
         if (!chosen.isEmpty()) setFolder(chosen);
@@ -492,8 +493,9 @@ void ExportDialog::forgetLastRun() {
 void ExportDialog::setRunning(bool running) {
     start_->setEnabled(!running);
     cancel_->setEnabled(running);
-    for (QWidget* w :
-         std::initializer_list<QWidget*>{all_, inOut_, current_, in_, out_, format_, folder_})
+    // The folder shown is the one being written into: Browse… cannot change it meanwhile.
+    for (QWidget* w : std::initializer_list<QWidget*>{all_, inOut_, current_, in_, out_, format_,
+                                                      folder_, browse_})
         w->setEnabled(!running);
     // Without calibration the rest is the input mesh: nothing to write.
     const bool calibrates = document_->settings().calibrate != CalibrateMode::None;

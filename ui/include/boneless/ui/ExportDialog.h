@@ -60,7 +60,7 @@ class ExportDialog : public QDialog {
     double estimatedMs() const;
 
     // The widgets have object names for tests: exportFormat, exportCalibratedRest, exportEstimate,
-    // exportProgress, exportProgressText, exportStart, exportCancel.
+    // exportProgress, exportProgressText, exportStart, exportCancel, exportBrowse.
     ExportRunner* runner() const { return runner_; }
 
   public slots:
@@ -109,6 +109,7 @@ class ExportDialog : public QDialog {
     QSpinBox *in_, *out_;
     QComboBox* format_;
     QLineEdit* folder_;
+    QPushButton* browse_;
     QString projectPath_;
     bool folderChosen_ = false;  // by the user, for this project: not replaced by the default
     QCheckBox* calibratedRest_;
