@@ -559,6 +559,46 @@ class ProjectSessionTest : public QObject {
         window.autosave()->discardPending();
     }
 
+    // "The take …/walker.c3d named by walk.boneless is missing." and nothing opened: the map
+    // kept only in the project was out of reach but by editing its JSON. Locate… asks where the
+    // file is now and opens the project with it, as an edit that the project saves.
+    void aProjectWhoseTakeWasRenamedOpensOnceTheTakeIsLocated() {
+        const QString project = test::writeDemoProject(folder_ + "/renamed");
+        const QString take = folder_ + "/renamed/walker.c3d";
+        const QString renamed = folder_ + "/renamed/walker-take2.c3d";
+        QVERIFY(QFile::rename(take, renamed));
+        MainWindow window;
+        window.autosave()->setDelay(60000);  // saved when the test says
+        QVERIFY(!window.openProject(project));
+        auto* box = window.findChild<QMessageBox*>("projectErrorMessage");
+        QVERIFY(box);
+        QVERIFY2(box->text().contains(take), qPrintable(box->text()));
+        auto* locate = box->findChild<QPushButton*>("locateButton");
+        QVERIFY(locate);
+        bool asked = false;
+        QTimer::singleShot(0, [&] {
+            QVERIFY(QTest::qWaitFor(
+                [] { return qobject_cast<QFileDialog*>(QApplication::activeModalWidget()); },
+                5000));
+            auto* dialog = qobject_cast<QFileDialog*>(QApplication::activeModalWidget());
+            QCOMPARE(dialog->objectName(), QString("locateDialog"));
+            asked = true;
+            dialog->selectFile(renamed);
+            QMetaObject::invokeMethod(dialog, "accept");
+        });
+        locate->click();
+        QVERIFY(asked);
+        QCOMPARE(window.projectPath(), QFileInfo(project).absoluteFilePath());
+        QCOMPARE(window.document()->takePath(), renamed);
+        QVERIFY(window.document()->mappedCount() > 0);
+        QVERIFY(window.isWindowModified());
+        QVERIFY(window.autosave()->isPending());
+        QVERIFY(window.autosave()->saveNow());
+        const QJsonObject saved = QJsonDocument::fromJson(readAll(project)).object();
+        QCOMPARE(saved["take"].toObject()["file"].toString(), QString("walker-take2.c3d"));
+        for (auto* shown : window.findChildren<QMessageBox*>()) shown->close();
+    }
+
     void closingAsksBeforeUntitledEditsAreLeftToTheAutosave() {
         MainWindow window;
         QVERIFY(window.openFile(folder_ + "/mine/walker.obj"));

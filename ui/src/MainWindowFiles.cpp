@@ -9,6 +9,7 @@
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QLocale>
+#include <QMap>
 #include <QMenu>
 #include <QMessageBox>
 #include <QMimeData>
@@ -18,6 +19,7 @@
 #include <QStatusBar>
 #include <QUndoStack>
 #include <QUrl>
+#include <optional>
 
 #include "Counted.h"
 #include "FrameDisplay.h"
@@ -197,19 +199,19 @@ void MainWindow::showOpened(const QString& path, const QStringList& notes) {
     box->show();
 }
 
-bool MainWindow::openProject(const QString& path) {
+bool MainWindow::openProject(const QString& path, const QMap<QString, QString>& located) {
     // Refused before asking about the work open now: nothing would replace it.
     if (const QString why = notARegularFileSentence(path, FileKind::Project); !why.isEmpty()) {
         showError(why, path);
         return false;
     }
     if (!keepUnsavedWork(false)) return false;
-    const Loading loading(this);
-    QString error, missing;
+    std::optional<Loading> loading(std::in_place, this);
+    QString error, missing, missingFile;
     bool loaded = false;
     {
         const QScopedValueRollback<bool> quiet(loadingProject_, true);
-        loaded = Project::load(*document_, path, &error, &missing);
+        loaded = Project::load(*document_, path, &error, &missing, &missingFile, located);
     }
     if (!loaded) {
         const QString message = !missing.isEmpty()
@@ -233,6 +235,23 @@ bool MainWindow::openProject(const QString& path) {
             connect(open, &QPushButton::clicked, this,
                     [this, recovery] { openRecovery(recovery); });
         }
+        // A take or mesh renamed or moved: the map that lives only in the project is reached by
+        // saying where the file is now.
+        if (!missingFile.isEmpty()) {
+            if (recovery.isEmpty())
+                box->setInformativeText(
+                    tr("The file is left as it is. Locate… opens it with %1 where it is now.")
+                        .arg(QFileInfo(missingFile).fileName()));
+            QPushButton* locateButton = box->addButton(tr("Locate…"), QMessageBox::ActionRole);
+            locateButton->setObjectName("locateButton");
+            connect(locateButton, &QPushButton::clicked, this, [this, path, missingFile, located] {
+                const QString chosen = locate(missingFile);
+                if (chosen.isEmpty()) return;
+                QMap<QString, QString> next = located;
+                next[missingFile] = QFileInfo(chosen).absoluteFilePath();
+                openProject(path, next);
+            });
+        }
         box->show();
         return false;
     }
@@ -248,7 +267,37 @@ bool MainWindow::openProject(const QString& path) {
     restoreSession();
     updateTitle();
     showOpened(path, document_->takeNotes());  // a take cut short since, as the take says
+    if (!located.isEmpty()) {
+        // The project names the files located: an edit, marked and saved into it (once the
+        // load's own autosave is dropped).
+        loading.reset();
+        setUnsavedEdits(true);
+        autosave_->schedule();
+        QStringList names;
+        for (const QString& file : located) names << QFileInfo(file).fileName();
+        statusBar()->showMessage(tr("Opened %1 with %2 in place of the missing file; the project "
+                                    "names it from now on")
+                                     .arg(QFileInfo(path).fileName(), names.join(", ")),
+                                 10000);
+    }
     return true;
+}
+
+QString MainWindow::locate(const QString& file) {
+    const QFileInfo missing(file);
+    // Where the project said it was, or the nearest folder still there.
+    QDir start = missing.absoluteDir();
+    while (!start.exists() && start.cdUp()) {
+    }
+    QFileDialog dialog(this, tr("Locate %1").arg(missing.fileName()), start.absolutePath());
+    dialog.setObjectName("locateDialog");
+    dialog.setFileMode(QFileDialog::ExistingFile);
+    const QString suffix = missing.suffix();
+    if (!suffix.isEmpty())
+        dialog.setNameFilters(
+            {tr("%1 files (*.%2)").arg(suffix.toUpper(), suffix), tr("All files (*)")});
+    if (dialog.exec() != QDialog::Accepted || dialog.selectedFiles().isEmpty()) return {};
+    return dialog.selectedFiles().first();
 }
 
 bool MainWindow::askMapLoad(const QString& path, Document::MapLoad& mode) {
