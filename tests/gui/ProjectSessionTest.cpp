@@ -24,6 +24,7 @@
 #include <cstdio>
 
 #include "ViewTestSupport.h"
+#include "boneless/Correspondence.h"
 #include "boneless/Process.h"
 #include "boneless/ui/DemoProject.h"
 #include "boneless/ui/Document.h"
@@ -597,6 +598,37 @@ class ProjectSessionTest : public QObject {
         const QJsonObject saved = QJsonDocument::fromJson(readAll(project)).object();
         QCOMPARE(saved["take"].toObject()["file"].toString(), QString("walker-take2.c3d"));
         for (auto* shown : window.findChildren<QMessageBox*>()) shown->close();
+    }
+
+    // A map opened into a saved project went in as a load: the title was not marked and its
+    // autosave was dropped, so closing without another change left the project with its old map,
+    // unasked. It is an edit like any other: marked, autosaved into the project.
+    void aMapOpenedIntoASavedProjectIsSavedWithIt() {
+        const QString project = test::writeDemoProject(folder_ + "/mapInto");
+        const QString other = folder_ + "/mapInto/fewer.map.json";
+        boneless::Correspondence fewer =
+            boneless::Correspondence::read((folder_ + "/mapInto/walker.map.json").toStdString());
+        const int all = int(fewer.markers.size());
+        fewer.markers.pop_back();
+        fewer.write(other.toStdString());
+        {
+            MainWindow window;
+            window.setMessageBoxesEnabled(false);
+            window.autosave()->setDelay(60000);  // saved when the test says
+            QVERIFY(window.openProject(project));
+            QCOMPARE(window.document()->mappedCount(), all);
+            QVERIFY(!window.isWindowModified());
+            QVERIFY(window.openFile(other));  // without message boxes: Replace
+            QCOMPARE(window.document()->mappedCount(), all - 1);
+            QVERIFY(window.isWindowModified());
+            QVERIFY(window.autosave()->isPending());
+            QVERIFY(window.autosave()->saveNow());
+            QVERIFY(!window.isWindowModified());
+        }
+        MainWindow again;
+        again.setMessageBoxesEnabled(false);
+        QVERIFY(again.openProject(project));
+        QCOMPARE(again.document()->mappedCount(), all - 1);
     }
 
     void closingAsksBeforeUntitledEditsAreLeftToTheAutosave() {

@@ -149,9 +149,12 @@ bool MainWindow::openFile(const QString& path) {
             // step back to them.
             const bool asOpened = mode == Document::MapLoad::Replace && projectPath_.isEmpty() &&
                                   !unsavedEdits_ && document_->undoStack()->isClean();
-            const Loading loading(this);
             int added = 0;
             ok = document_->loadCorrespondence(path, mode, &added);
+            // Otherwise it is an edit like any other, marked and autosaved: as a load, a map
+            // opened into a saved project was neither, and the project kept its old map.
+            std::optional<Loading> loading;
+            if (asOpened) loading.emplace(this);
             if (ok && asOpened) document_->undoStack()->setClean();
             if (ok && mode == Document::MapLoad::Merge && added == 0) {
                 RecentFiles::add(QFileInfo(path).absoluteFilePath());
