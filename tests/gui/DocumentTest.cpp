@@ -138,6 +138,22 @@ class DocumentTest : public QObject {
         QVERIFY(d.canSolve());
     }
 
+    // The first marker mapped by clicking took offset 0 (the median of none), and so every later
+    // one too: a reviewer's 7 clicks and 34 suggestions all said 0, where markers sit 10 to 15 mm
+    // off the skin. The first takes 10 mm; the next the median of those mapped.
+    void theFirstMarkerMappedSitsOffTheSkin() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        QVERIFY(d.clearAllMappings());
+        QVERIFY(d.assign(0, 0));
+        QCOMPARE(d.correspondence().markers.size(), std::size_t(1));
+        QCOMPARE(d.correspondence().markers[0].offsetMm, Document::kFirstOffsetMm);
+        QCOMPARE(Document::kFirstOffsetMm, 10.0);
+        QVERIFY(d.setOffsetMm({0}, 14));
+        QVERIFY(d.assign(1, 1));
+        QCOMPARE(d.correspondence().markers[1].offsetMm, 14.0);
+    }
+
     void assignUndoRedo() {
         Document d;
         QVERIFY(test::loadDemo(d, demo_));

@@ -131,6 +131,10 @@ class Document : public QObject {
     void setSelectedMarker(int marker);  // -1 = none
 
     // --- edits: each one undo command; false (and errorOccurred) when refused ---------------
+    // How far off the skin the first marker mapped sits (mm) when none is mapped: a marker's
+    // base, ball and the skin's give keep it 10 to 15 mm off (the generated demo's sit at 10).
+    // Later ones take the median of those mapped; the offset row changes either.
+    static constexpr double kFirstOffsetMm = 10.0;
     // Maps `marker` to `vertex`. Refused when another marker already sits on that vertex.
     bool assign(int marker, int vertex);
     bool clearMapping(int marker);
