@@ -741,6 +741,36 @@ class ProjectSessionTest : public QObject {
         QCOMPARE(window.document()->mappedCount(), mapped);
     }
 
+    // Two p1.boneless of different folders read alike in Recent Files, and the tooltip with
+    // the path never showed. A name two entries share also names its folder; tooltips show.
+    void recentFilesOfOneNameInDifferentFoldersCanBeToldApart() {
+        const QString a = folder_ + "/recentA/proj", b = folder_ + "/recentB/proj";
+        QVERIFY(QDir().mkpath(a) && QDir().mkpath(b));
+        for (const QString& path : {a + "/p1.boneless", b + "/p1.boneless", a + "/p2.boneless"}) {
+            QFile file(path);
+            QVERIFY(file.open(QIODevice::WriteOnly));
+        }
+        RecentFiles::clear();
+        RecentFiles::add(a + "/p1.boneless");
+        RecentFiles::add(a + "/p2.boneless");
+        RecentFiles::add(b + "/p1.boneless");
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        auto* menu = window.findChild<QMenu*>("recentMenu");
+        QVERIFY(menu);
+        emit menu->aboutToShow();
+        QVERIFY(menu->toolTipsVisible());
+        QStringList texts, tips;
+        for (QAction* action : menu->actions().mid(0, 3)) {
+            texts << action->text();
+            tips << action->toolTip();
+        }
+        QCOMPARE(texts, (QStringList{"p1.boneless — " + QDir::toNativeSeparators(b), "p2.boneless",
+                                     "p1.boneless — " + QDir::toNativeSeparators(a)}));
+        QCOMPARE(tips[1], QDir::toNativeSeparators(a + "/p2.boneless"));
+        RecentFiles::clear();
+    }
+
     // kill -9 after untitled edits, then `boneless` with no file: the demo's edits leave that
     // work alone, and the next start asks to reopen it, once.
     void workLeftByACrashIsOfferedAtStartAndNotOverwrittenByTheDemo() {

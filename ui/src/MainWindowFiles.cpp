@@ -3,6 +3,7 @@
 #include <utility>
 
 #include <QCloseEvent>
+#include <QDir>
 #include <QDragEnterEvent>
 #include <QDropEvent>
 #include <QFile>
@@ -564,10 +565,21 @@ void MainWindow::chooseSaveCorrespondence() {
 
 void MainWindow::rebuildRecentMenu() {
     recentMenu_->clear();
+    // Each file's full path is its tooltip; a name two entries share also names its folder, or
+    // two p1.boneless of different folders read alike.
+    recentMenu_->setToolTipsVisible(true);
     const QStringList files = RecentFiles::list();
-    for (const QString& path : files)
-        recentMenu_->addAction(QFileInfo(path).fileName(), this, [this, path] { openFile(path); })
-            ->setToolTip(path);
+    QMap<QString, int> named;
+    for (const QString& path : files) ++named[QFileInfo(path).fileName()];
+    for (const QString& path : files) {
+        const QFileInfo file(path);
+        const QString text =
+            named[file.fileName()] > 1
+                ? tr("%1 — %2").arg(file.fileName(), QDir::toNativeSeparators(file.absolutePath()))
+                : file.fileName();
+        recentMenu_->addAction(text, this, [this, path] { openFile(path); })
+            ->setToolTip(QDir::toNativeSeparators(path));
+    }
     if (files.isEmpty()) recentMenu_->addAction(tr("(none)"))->setEnabled(false);
     recentMenu_->addSeparator();
     // After a crash the last session, titled or not, is here until the next one changes something.
