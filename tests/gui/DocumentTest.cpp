@@ -154,6 +154,44 @@ class DocumentTest : public QObject {
         QCOMPARE(d.correspondence().markers[1].offsetMm, 14.0);
     }
 
+    // Merge (Keep Mine) kept suggestions still marked for review as if they were the user's, so a
+    // known-good map merged over them added nothing. Its mappings replace those; a hand-made
+    // mapping stays.
+    void aMergeReplacesSuggestionsStillToReviewButKeepsTheUsersOwn() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        const Correspondence good =
+            Correspondence::read((demo_ + "/walker.map.json").toStdString());
+        Correspondence guessed = good;
+        const int vertices = d.mesh().vertexCount();
+        for (MarkerMapping& m : guessed.markers) {
+            m.vertex = (m.vertex + vertices / 2) % vertices;
+            m.extraJson = R"({"suggested": true, "needs_review": true, "review_reason": "far"})";
+        }
+        guessed.markers[0].extraJson = "{}";  // mapped by hand
+        const QString guesses = work_ + "/guessed.map.json";
+        guessed.write(guesses.toStdString());
+        QVERIFY(d.loadCorrespondence(guesses));
+        const int all = int(good.markers.size());
+
+        int added = -1, replaced = -1;
+        QVERIFY(d.loadCorrespondence(work_ + "/demo/walker.map.json", Document::MapLoad::Merge,
+                                     &added, &replaced));
+        QCOMPARE(added, 0);
+        QCOMPARE(replaced, all - 1);
+        QCOMPARE(d.mappedCount(), all);
+        QCOMPARE(d.correspondence().markers.size(), std::size_t(all));
+        for (const MarkerMapping& m : d.correspondence().markers) {
+            const auto& expected =
+                m.label == guessed.markers[0].label
+                    ? guessed.markers[0]
+                    : *std::find_if(good.markers.begin(), good.markers.end(),
+                                    [&](const MarkerMapping& g) { return g.label == m.label; });
+            QCOMPARE(m.vertex, expected.vertex);
+        }
+        QCOMPARE(d.undoStack()->undoText(), QString("Merge Correspondence"));
+    }
+
     void assignUndoRedo() {
         Document d;
         QVERIFY(test::loadDemo(d, demo_));

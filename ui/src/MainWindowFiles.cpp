@@ -150,13 +150,26 @@ bool MainWindow::openFile(const QString& path) {
             // step back to them.
             const bool asOpened = mode == Document::MapLoad::Replace && projectPath_.isEmpty() &&
                                   !unsavedEdits_ && document_->undoStack()->isClean();
-            int added = 0;
-            ok = document_->loadCorrespondence(path, mode, &added);
             // Otherwise it is an edit like any other, marked and autosaved: as a load, a map
             // opened into a saved project was neither, and the project kept its old map.
             std::optional<Loading> loading;
             if (asOpened) loading.emplace(this);
+            int added = 0, replaced = 0;
+            ok = document_->loadCorrespondence(path, mode, &added, &replaced);
             if (ok && asOpened) document_->undoStack()->setClean();
+            if (ok && mode == Document::MapLoad::Merge && replaced > 0) {
+                RecentFiles::add(QFileInfo(path).absoluteFilePath());
+                statusBar()->showMessage(
+                    counted(replaced,
+                            tr("Merged %1: %2 added, and %n suggestion still to review "
+                               "replaced by its mapping"),
+                            tr("Merged %1: %2 added, and %n suggestions still to review "
+                               "replaced by its mappings"))
+                        .arg(QFileInfo(path).fileName(),
+                             counted(added, tr("%n marker"), tr("%n markers"))),
+                    10000);
+                return true;
+            }
             if (ok && mode == Document::MapLoad::Merge && added == 0) {
                 RecentFiles::add(QFileInfo(path).absoluteFilePath());
                 statusBar()->showMessage(
