@@ -138,6 +138,60 @@ class DocumentTest : public QObject {
         QVERIFY(d.canSolve());
     }
 
+    // The first marker mapped by clicking took offset 0 (the median of none), and so every later
+    // one too: a reviewer's 7 clicks and 34 suggestions all said 0, where markers sit 10 to 15 mm
+    // off the skin. The first takes 10 mm; the next the median of those mapped.
+    void theFirstMarkerMappedSitsOffTheSkin() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        QVERIFY(d.clearAllMappings());
+        QVERIFY(d.assign(0, 0));
+        QCOMPARE(d.correspondence().markers.size(), std::size_t(1));
+        QCOMPARE(d.correspondence().markers[0].offsetMm, Document::kFirstOffsetMm);
+        QCOMPARE(Document::kFirstOffsetMm, 10.0);
+        QVERIFY(d.setOffsetMm({0}, 14));
+        QVERIFY(d.assign(1, 1));
+        QCOMPARE(d.correspondence().markers[1].offsetMm, 14.0);
+    }
+
+    // Merge (Keep Mine) kept suggestions still marked for review as if they were the user's, so a
+    // known-good map merged over them added nothing. Its mappings replace those; a hand-made
+    // mapping stays.
+    void aMergeReplacesSuggestionsStillToReviewButKeepsTheUsersOwn() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        const Correspondence good =
+            Correspondence::read((demo_ + "/walker.map.json").toStdString());
+        Correspondence guessed = good;
+        const int vertices = d.mesh().vertexCount();
+        for (MarkerMapping& m : guessed.markers) {
+            m.vertex = (m.vertex + vertices / 2) % vertices;
+            m.extraJson = R"({"suggested": true, "needs_review": true, "review_reason": "far"})";
+        }
+        guessed.markers[0].extraJson = "{}";  // mapped by hand
+        const QString guesses = work_ + "/guessed.map.json";
+        guessed.write(guesses.toStdString());
+        QVERIFY(d.loadCorrespondence(guesses));
+        const int all = int(good.markers.size());
+
+        int added = -1, replaced = -1;
+        QVERIFY(d.loadCorrespondence(work_ + "/demo/walker.map.json", Document::MapLoad::Merge,
+                                     &added, &replaced));
+        QCOMPARE(added, 0);
+        QCOMPARE(replaced, all - 1);
+        QCOMPARE(d.mappedCount(), all);
+        QCOMPARE(d.correspondence().markers.size(), std::size_t(all));
+        for (const MarkerMapping& m : d.correspondence().markers) {
+            const auto& expected =
+                m.label == guessed.markers[0].label
+                    ? guessed.markers[0]
+                    : *std::find_if(good.markers.begin(), good.markers.end(),
+                                    [&](const MarkerMapping& g) { return g.label == m.label; });
+            QCOMPARE(m.vertex, expected.vertex);
+        }
+        QCOMPARE(d.undoStack()->undoText(), QString("Merge Correspondence"));
+    }
+
     void assignUndoRedo() {
         Document d;
         QVERIFY(test::loadDemo(d, demo_));

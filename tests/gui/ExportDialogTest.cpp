@@ -222,6 +222,48 @@ class ExportDialogTest : public QObject {
         QCOMPARE(readJson(out + "/walker.json")["frame_range"].toArray(), (QJsonArray{3, 4}));
     }
 
+    // A glb export, then an MDD one into its folder, Replace, and Cancel part-way: the old
+    // walker.glb stayed beside a partial walker.mdd, and the sidecar it shared was already the
+    // cancelled run's, so the glb had none. Once Replace is said, a cancelled run removes the
+    // earlier files it did not write again too, and says so.
+    void aCancelledReplaceLeavesTheFolderHoldingOneExport() {
+        ExportDialog dialog(&document_, &solver_, &timeline_);
+        dialog.show();
+        part<QCheckBox>(dialog, "exportCalibratedRest")->setChecked(true);
+        dialog.setFormat(ExportFormat::Glb);
+        timeline_.setFrame(2);
+        dialog.setRange(ExportDialog::Range::Current);
+        const QString out = work_ + "/replacedThenCancelled";
+        QVERIFY(exportInto(dialog, out));
+        QVERIFY(QFile::exists(out + "/walker.glb"));
+        QVERIFY(QFile::exists(out + "/walker_calibrated_rest.obj"));
+
+        part<QCheckBox>(dialog, "exportCalibratedRest")->setChecked(false);
+        dialog.setFormat(ExportFormat::Mdd);
+        dialog.setRange(ExportDialog::Range::All);
+        QTimer::singleShot(300, [] {
+            auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+            QVERIFY(box && box->objectName() == "replaceExportQuestion");
+            box->findChild<QPushButton*>("replaceButton")->click();
+        });
+        connect(dialog.runner(), &ExportRunner::progress, &dialog, [&] { dialog.cancelExport(); });
+        QSignalSpy finished(&dialog, &ExportDialog::finished);
+        QVERIFY(dialog.startExport());
+        QVERIFY(finished.wait(120000));
+        QVERIFY(finished.first().at(0).toBool());
+        QVERIFY(dialog.runner()->result().cancelled);
+        QCOMPARE(QDir(out).entryList(QDir::Files, QDir::Name),
+                 (QStringList{"walker.json", "walker.mdd"}));
+        const QJsonObject sidecar = readJson(out + "/walker.json");
+        QCOMPARE(sidecar["complete"].toBool(), false);
+        QCOMPARE(sidecar["output"].toString(), QString("mdd"));
+        const QString said = finished.first().at(1).toString();
+        QVERIFY2(said.contains("walker.glb") && said.contains("walker_calibrated_rest.obj") &&
+                     said.contains("removed"),
+                 qPrintable(said));
+        QCOMPARE(progressText(dialog)->text(), said);
+    }
+
     void theCalibratedRestIsWrittenBesideTheFramesWhenAsked() {
         {
             ExportDialog dialog(&document_, &solver_, &timeline_);
@@ -406,6 +448,73 @@ class ExportDialogTest : public QObject {
         document_.setSettings(changed);
         QCOMPARE(dialog.request().options.solver.foldGuard, 0.5);
         QCOMPARE(dialog.request().options.solver.maxIterations, 7);
+    }
+
+    // Browse… stayed enabled while the folder box was not: the folder shown could change while
+    // the run wrote into the one it started with.
+    void theFolderCannotBeBrowsedAwayWhileExporting() {
+        ExportDialog dialog(&document_, &solver_, &timeline_);
+        dialog.show();
+        dialog.setFormat(ExportFormat::Obj);
+        timeline_.setFrame(4);
+        dialog.setRange(ExportDialog::Range::Current);
+        auto* browse = part<QPushButton>(dialog, "exportBrowse");
+        QVERIFY(browse->isEnabled());
+        QSignalSpy finished(&dialog, &ExportDialog::finished);
+        dialog.setFolder(work_ + "/browse");
+        QVERIFY(dialog.startExport());
+        QVERIFY(!browse->isEnabled());
+        QVERIFY(finished.wait(120000));
+        QVERIFY(browse->isEnabled());
+    }
+
+    // Close, Esc and the window's close button cancelled a running export with no more than a
+    // passing status message. They ask first; Keep Exporting leaves the run and the dialog be.
+    void closingWhileExportingAsksBeforeStoppingTheExport() {
+        ExportDialog dialog(&document_, &solver_, &timeline_);
+        dialog.show();
+        dialog.setFormat(ExportFormat::Obj);
+        dialog.setRange(ExportDialog::Range::All);
+        QString asked;
+        auto answer = [&asked](const char* button) {
+            QTimer::singleShot(0, [&asked, button] {
+                QVERIFY(QTest::qWaitFor([] { return QApplication::activeModalWidget(); }, 5000));
+                auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+                QVERIFY(box && box->objectName() == "stopExportQuestion");
+                asked = box->text();
+                box->findChild<QPushButton*>(button)->click();
+            });
+        };
+        const char* button = "keepExportingButton";  // the answer to closing at the first frame
+        connect(dialog.runner(), &ExportRunner::progress, &dialog, [&] {
+            if (!button) return;
+            answer(button);
+            button = nullptr;
+            dialog.reject();
+        });
+        QSignalSpy finished(&dialog, &ExportDialog::finished);
+        dialog.setFolder(work_ + "/closeKeep");
+        QVERIFY(dialog.startExport());
+        QVERIFY(finished.wait(120000));
+        QVERIFY2(asked.contains("Stop the export"), qPrintable(asked));
+        QVERIFY(dialog.isVisible());
+        QVERIFY(!dialog.runner()->result().cancelled);
+        QCOMPARE(dialog.runner()->result().framesWritten, document_.frameCount());
+
+        // Stop Export stops it and closes.
+        asked.clear();
+        button = "stopExportButton";
+        finished.clear();
+        dialog.setFolder(work_ + "/closeStop");
+        QVERIFY(dialog.startExport());
+        QVERIFY(finished.wait(120000));
+        QVERIFY(!asked.isEmpty());
+        QVERIFY(dialog.runner()->result().cancelled);
+        QVERIFY(!dialog.isVisible());
+        // Not running: Close closes without a word.
+        dialog.show();
+        dialog.reject();
+        QVERIFY(!dialog.isVisible());
     }
 
     void aMissingFolderIsAMessageNotAnExport() {

@@ -58,17 +58,43 @@ class MappingTest : public QObject {
         project_ = test::writeDemoProject(folder_ + "/demo");
     }
 
-    void aClickBesideTheMeshSaysNothingWasMapped() {
-        MainWindow window;
-        window.setMessageBoxesEnabled(false);
-        QVERIFY(window.openProject(project_));
-        QVERIFY(test::showAndWait(window));
+    // Outside Map Markers, a click beside the body with a marker selected said "The click missed
+    // the mesh: nothing was mapped to RWRA", and a click on it with none selected "select a
+    // marker in the list, then click the mesh to map it", as if mapping. They say nothing of
+    // mapping there but Map Markers, the way to map; in Map Markers a miss says what it missed.
+    void aClickSpeaksOfMappingOnlyInMapMarkersMode() {
+        const auto shown = test::openShown(freshProject());
+        QVERIFY(shown);
+        MainWindow& window = *shown;
+        QVERIFY(test::waitForFrame(window));
         Document* d = window.document();
+        MeshView* view = window.meshView();
+        const auto said = [&] { return window.statusBar()->currentMessage(); };
         d->setSelectedMarker(0);
         const int before = d->mappedVertex(0);
-        QTest::mouseClick(window.meshView(), Qt::LeftButton, {}, QPoint(3, 3));
-        QVERIFY2(window.statusBar()->currentMessage().contains("missed the mesh"),
-                 qPrintable(window.statusBar()->currentMessage()));
+        window.statusBar()->clearMessage();
+        QTest::mouseClick(view, Qt::LeftButton, {}, QPoint(3, 3));
+        QVERIFY2(!said().contains("mapped"), qPrintable(said()));
+        QCOMPARE(d->mappedVertex(0), before);
+
+        QPoint at;
+        for (int y = view->height() / 3; y < 2 * view->height() / 3 && at.isNull(); y += 7)
+            for (int x = view->width() / 3; x < 2 * view->width() / 3 && at.isNull(); x += 7) {
+                const int v = view->pickVertex(QPoint(x, y));
+                if (v >= 0 && d->markerForVertex(v) < 0) at = QPoint(x, y);
+            }
+        QVERIFY(!at.isNull());
+        d->setSelectedMarker(-1);
+        QTest::mouseClick(view, Qt::LeftButton, {}, at);
+        QVERIFY2(!said().contains("select a marker") && said().contains("Map Markers"),
+                 qPrintable(said()));
+
+        window.findChild<QAction*>("actionMapMarkers")->trigger();
+        QTest::mouseClick(view, Qt::LeftButton, {}, at);
+        QVERIFY2(said().contains("select a marker"), qPrintable(said()));
+        d->setSelectedMarker(0);
+        QTest::mouseClick(view, Qt::LeftButton, {}, QPoint(3, 3));
+        QVERIFY2(said().contains("missed the mesh: nothing was mapped to"), qPrintable(said()));
         QCOMPARE(d->mappedVertex(0), before);
     }
 

@@ -24,6 +24,7 @@
 #include <cstdio>
 
 #include "ViewTestSupport.h"
+#include "boneless/Correspondence.h"
 #include "boneless/Process.h"
 #include "boneless/ui/DemoProject.h"
 #include "boneless/ui/Document.h"
@@ -559,6 +560,77 @@ class ProjectSessionTest : public QObject {
         window.autosave()->discardPending();
     }
 
+    // "The take …/walker.c3d named by walk.boneless is missing." and nothing opened: the map
+    // kept only in the project was out of reach but by editing its JSON. Locate… asks where the
+    // file is now and opens the project with it, as an edit that the project saves.
+    void aProjectWhoseTakeWasRenamedOpensOnceTheTakeIsLocated() {
+        const QString project = test::writeDemoProject(folder_ + "/renamed");
+        const QString take = folder_ + "/renamed/walker.c3d";
+        const QString renamed = folder_ + "/renamed/walker-take2.c3d";
+        QVERIFY(QFile::rename(take, renamed));
+        MainWindow window;
+        window.autosave()->setDelay(60000);  // saved when the test says
+        QVERIFY(!window.openProject(project));
+        auto* box = window.findChild<QMessageBox*>("projectErrorMessage");
+        QVERIFY(box);
+        QVERIFY2(box->text().contains(take), qPrintable(box->text()));
+        auto* locate = box->findChild<QPushButton*>("locateButton");
+        QVERIFY(locate);
+        bool asked = false;
+        QTimer::singleShot(0, [&] {
+            QVERIFY(QTest::qWaitFor(
+                [] { return qobject_cast<QFileDialog*>(QApplication::activeModalWidget()); },
+                5000));
+            auto* dialog = qobject_cast<QFileDialog*>(QApplication::activeModalWidget());
+            QCOMPARE(dialog->objectName(), QString("locateDialog"));
+            asked = true;
+            dialog->selectFile(renamed);
+            QMetaObject::invokeMethod(dialog, "accept");
+        });
+        locate->click();
+        QVERIFY(asked);
+        QCOMPARE(window.projectPath(), QFileInfo(project).absoluteFilePath());
+        QCOMPARE(window.document()->takePath(), renamed);
+        QVERIFY(window.document()->mappedCount() > 0);
+        QVERIFY(window.isWindowModified());
+        QVERIFY(window.autosave()->isPending());
+        QVERIFY(window.autosave()->saveNow());
+        const QJsonObject saved = QJsonDocument::fromJson(readAll(project)).object();
+        QCOMPARE(saved["take"].toObject()["file"].toString(), QString("walker-take2.c3d"));
+        for (auto* shown : window.findChildren<QMessageBox*>()) shown->close();
+    }
+
+    // A map opened into a saved project went in as a load: the title was not marked and its
+    // autosave was dropped, so closing without another change left the project with its old map,
+    // unasked. It is an edit like any other: marked, autosaved into the project.
+    void aMapOpenedIntoASavedProjectIsSavedWithIt() {
+        const QString project = test::writeDemoProject(folder_ + "/mapInto");
+        const QString other = folder_ + "/mapInto/fewer.map.json";
+        boneless::Correspondence fewer =
+            boneless::Correspondence::read((folder_ + "/mapInto/walker.map.json").toStdString());
+        const int all = int(fewer.markers.size());
+        fewer.markers.pop_back();
+        fewer.write(other.toStdString());
+        {
+            MainWindow window;
+            window.setMessageBoxesEnabled(false);
+            window.autosave()->setDelay(60000);  // saved when the test says
+            QVERIFY(window.openProject(project));
+            QCOMPARE(window.document()->mappedCount(), all);
+            QVERIFY(!window.isWindowModified());
+            QVERIFY(window.openFile(other));  // without message boxes: Replace
+            QCOMPARE(window.document()->mappedCount(), all - 1);
+            QVERIFY(window.isWindowModified());
+            QVERIFY(window.autosave()->isPending());
+            QVERIFY(window.autosave()->saveNow());
+            QVERIFY(!window.isWindowModified());
+        }
+        MainWindow again;
+        again.setMessageBoxesEnabled(false);
+        QVERIFY(again.openProject(project));
+        QCOMPARE(again.document()->mappedCount(), all - 1);
+    }
+
     void closingAsksBeforeUntitledEditsAreLeftToTheAutosave() {
         MainWindow window;
         QVERIFY(window.openFile(folder_ + "/mine/walker.obj"));
@@ -667,6 +739,36 @@ class ProjectSessionTest : public QObject {
         QVERIFY(window.projectPath().isEmpty());
         QVERIFY(!window.isDemoOpen());
         QCOMPARE(window.document()->mappedCount(), mapped);
+    }
+
+    // Two p1.boneless of different folders read alike in Recent Files, and the tooltip with
+    // the path never showed. A name two entries share also names its folder; tooltips show.
+    void recentFilesOfOneNameInDifferentFoldersCanBeToldApart() {
+        const QString a = folder_ + "/recentA/proj", b = folder_ + "/recentB/proj";
+        QVERIFY(QDir().mkpath(a) && QDir().mkpath(b));
+        for (const QString& path : {a + "/p1.boneless", b + "/p1.boneless", a + "/p2.boneless"}) {
+            QFile file(path);
+            QVERIFY(file.open(QIODevice::WriteOnly));
+        }
+        RecentFiles::clear();
+        RecentFiles::add(a + "/p1.boneless");
+        RecentFiles::add(a + "/p2.boneless");
+        RecentFiles::add(b + "/p1.boneless");
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        auto* menu = window.findChild<QMenu*>("recentMenu");
+        QVERIFY(menu);
+        emit menu->aboutToShow();
+        QVERIFY(menu->toolTipsVisible());
+        QStringList texts, tips;
+        for (QAction* action : menu->actions().mid(0, 3)) {
+            texts << action->text();
+            tips << action->toolTip();
+        }
+        QCOMPARE(texts, (QStringList{"p1.boneless — " + QDir::toNativeSeparators(b), "p2.boneless",
+                                     "p1.boneless — " + QDir::toNativeSeparators(a)}));
+        QCOMPARE(tips[1], QDir::toNativeSeparators(a + "/p2.boneless"));
+        RecentFiles::clear();
     }
 
     // kill -9 after untitled edits, then `boneless` with no file: the demo's edits leave that

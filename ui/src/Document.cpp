@@ -149,7 +149,7 @@ bool Document::checkCorrespondence(const QString& path) {
     return true;
 }
 
-bool Document::loadCorrespondence(const QString& path, MapLoad mode, int* added) {
+bool Document::loadCorrespondence(const QString& path, MapLoad mode, int* added, int* replaced) {
     if (refusedWhileHeld()) return false;
     EditState after = editState();
     Correspondence file;
@@ -159,6 +159,7 @@ bool Document::loadCorrespondence(const QString& path, MapLoad mode, int* added)
     } catch (const std::exception& e) {
         return fail(QString::fromStdString(e.what()));
     }
+    if (replaced) *replaced = 0;
     if (mode == MapLoad::Replace) {
         if (added) *added = int(file.markers.size());
         after.map = std::move(file);
@@ -167,20 +168,32 @@ bool Document::loadCorrespondence(const QString& path, MapLoad mode, int* added)
         pushEdit(tr("Open Correspondence"), std::move(after));  // as File names it
         return true;
     }
+    // A suggestion still marked for review is no one's word yet: the file's mapping replaces it.
+    // A hand-made or reviewed mapping is the user's, kept.
+    const auto toReview = [](const MarkerMapping& mine) {
+        return suggestionMark(mine).needsReview;
+    };
+    int addedHere = 0, replacedHere = 0;
     for (const MarkerMapping& m : file.markers) {
         // A label the take resolves to a marker mapped already ("lfhd", "actor:LFHD" for
         // "LFHD") is that marker: adding it would map it twice, and the file's would win.
         const auto point = hasTake_ ? take_.findPoint(m.label) : std::nullopt;
-        const bool taken = std::any_of(
-            after.map.markers.begin(), after.map.markers.end(), [&](const MarkerMapping& mine) {
-                return mine.vertex == m.vertex || mine.label == m.label ||
-                       (point && take_.findPoint(mine.label) == point);
-            });
-        if (!taken) after.map.markers.push_back(m);
+        const auto clashes = [&](const MarkerMapping& mine) {
+            return mine.vertex == m.vertex || mine.label == m.label ||
+                   (point && take_.findPoint(mine.label) == point);
+        };
+        auto& mine = after.map.markers;
+        if (std::any_of(mine.begin(), mine.end(),
+                        [&](const MarkerMapping& x) { return clashes(x) && !toReview(x); }))
+            continue;
+        const std::size_t before = mine.size();
+        mine.erase(std::remove_if(mine.begin(), mine.end(), clashes), mine.end());
+        ++(mine.size() < before ? replacedHere : addedHere);
+        mine.push_back(m);
     }
-    const int merged = int(after.map.markers.size() - map_.markers.size());
-    if (added) *added = merged;
-    if (merged == 0) return true;  // an empty undo step would undo nothing
+    if (added) *added = addedHere;
+    if (replaced) *replaced = replacedHere;
+    if (addedHere + replacedHere == 0) return true;  // an empty undo step would undo nothing
     if (after.mapPath.isEmpty()) after.mapPath = path;
     pushEdit(tr("Merge Correspondence"), std::move(after));
     return true;

@@ -134,7 +134,9 @@ bool Document::assign(int marker, int vertex) {
         m.label = markers_[marker].label.toStdString();
         m.vertex = vertex;
         m.extraJson = "{}";
-        // Markers of one set sit alike off the skin: a new one takes the median of those mapped.
+        // Markers of one set sit alike off the skin: a new one takes the median of those mapped,
+        // the first kFirstOffsetMm (at 0 every later one stayed 0, the skin pulled out to them).
+        m.offsetMm = kFirstOffsetMm;
         std::vector<double> offsets;
         for (const auto& mapped : after.map.markers) offsets.push_back(mapped.offsetMm);
         if (!offsets.empty()) {

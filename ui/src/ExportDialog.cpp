@@ -110,10 +110,11 @@ ExportDialog::ExportDialog(Document* document, FrameSolver* solver, Timeline* ti
         forgetLastRun();
         updateEstimate();
     });
-    auto* browse = new QPushButton(tr("Browse…"));
+    browse_ = new QPushButton(tr("Browse…"));
+    browse_->setObjectName("exportBrowse");
     auto* folderRow = new QHBoxLayout;
     folderRow->addWidget(folder_, 1);
-    folderRow->addWidget(browse);
+    folderRow->addWidget(browse_);
 
     // The rest the frames were solved against: what a user needs to rebuild the rig elsewhere,
     // in the input's vertex order, beside the frames (as solve --write-calibrated-rest).
@@ -159,7 +160,7 @@ ExportDialog::ExportDialog(Document* document, FrameSolver* solver, Timeline* ti
     connect(start_, &QPushButton::clicked, this, &ExportDialog::startExport);
     connect(cancel_, &QPushButton::clicked, this, &ExportDialog::cancelExport);
     connect(close_, &QPushButton::clicked, this, &ExportDialog::reject);
-    connect(browse, &QPushButton::clicked, this, [this] {
+    connect(browse_, &QPushButton::clicked, this, [this] {
         const QString chosen =
             QFileDialog::getExistingDirectory(this, tr("Export Into"), folder_->text());
         if (!chosen.isEmpty()) setFolder(chosen);
@@ -372,8 +373,31 @@ void ExportDialog::cancelExport() {
 }
 
 void ExportDialog::reject() {
+    // Close, Esc and the window's close button: a running export is the user's work, stopped
+    // only when they say so. An export that ends while they are asked needs no answer.
+    if (runner_->isRunning() && !askToStop() && runner_->isRunning()) return;
     cancelExport();
     QDialog::reject();
+}
+
+bool ExportDialog::askToStop() {
+    QMessageBox box(QMessageBox::Question, tr("Export"), tr("Stop the export?"),
+                    QMessageBox::NoButton, this);
+    box.setObjectName("stopExportQuestion");
+    box.setInformativeText(tr("The frames written so far are kept in %1, and its sidecar records "
+                              "the take as incomplete.")
+                               .arg(QString::fromStdString(running_.outDir)));
+    QPushButton* stop = box.addButton(tr("Stop Export"), QMessageBox::DestructiveRole);
+    QPushButton* keep = box.addButton(tr("Keep Exporting"), QMessageBox::RejectRole);
+    stop->setObjectName("stopExportButton");
+    keep->setObjectName("keepExportingButton");
+    box.setDefaultButton(keep);
+    box.setEscapeButton(keep);
+    const QMetaObject::Connection ended =
+        connect(runner_, &ExportRunner::finished, &box, [&box, keep] { keep->click(); });
+    box.exec();
+    disconnect(ended);
+    return box.clickedButton() == stop;
 }
 
 void ExportDialog::onProgress(int done, int total) {
@@ -397,8 +421,8 @@ bool ExportDialog::askToReplace(const std::vector<std::string>& names) {
                     QMessageBox::Cancel, this);
     box.setObjectName("replaceExportQuestion");
     box.setInformativeText(
-        tr("Its files are removed once this export is written, so that the "
-           "folder holds this export alone. Choose another folder to keep it."));
+        tr("Its files are removed once this export is written, or stopped part-way, so that "
+           "the folder holds this export alone. Choose another folder to keep it."));
     QPushButton* replace = box.addButton(tr("Replace"), QMessageBox::AcceptRole);
     replace->setObjectName("replaceButton");
     box.setDefaultButton(QMessageBox::Cancel);
@@ -406,7 +430,7 @@ bool ExportDialog::askToReplace(const std::vector<std::string>& names) {
     return box.clickedButton() == replace;
 }
 
-void ExportDialog::removeReplaced(const ExportRequest& r, const ExportResult& result) {
+QStringList ExportDialog::removeReplaced(const ExportRequest& r, const ExportResult& result) {
     const std::string stem = exportStem(r);
     std::set<std::string> written{stem + ".json"};
     if (r.format != ExportFormat::Obj) written.insert(stem + exportFormatInfo(r.format).extension);
@@ -414,29 +438,50 @@ void ExportDialog::removeReplaced(const ExportRequest& r, const ExportResult& re
     if (r.format == ExportFormat::Obj)
         for (int f = result.first; f < result.first + result.framesWritten; ++f)
             written.insert(objFrameFile(stem, f));
+    QStringList removed;
     for (const std::string& name : replaced_)
-        if (!written.count(name))
+        if (!written.count(name) &&
             QFile::remove(
-                QDir(QString::fromStdString(r.outDir)).filePath(QString::fromStdString(name)));
+                QDir(QString::fromStdString(r.outDir)).filePath(QString::fromStdString(name))))
+            removed << QString::fromStdString(name);
     replaced_.clear();
+    return removed;
 }
 
 void ExportDialog::onFinished(bool ok, const QString& message) {
     setRunning(false);
     emit runningChanged(false);
-    // A cancelled or failed run leaves the earlier export's files beside the frames it wrote.
-    if (ok && !runner_->result().cancelled) removeReplaced(running_, runner_->result());
+    // Replace was said and the run wrote its sidecar, finished or cancelled: the earlier export's
+    // files it did not write again go, or a cancelled run would leave them beside its own frames,
+    // with the shared names (the sidecar, the calibrated rest) already this run's. A failed run
+    // removes nothing more.
+    const ExportResult& result = runner_->result();
+    QString said = message;
+    if (ok) {
+        const QStringList removed = removeReplaced(running_, result);
+        if (result.cancelled && !removed.isEmpty()) {
+            const int n = int(removed.size());
+            QString names = QStringList(removed.mid(0, 3)).join(", ");
+            if (n > 3) names = tr("%1 and %2 more").arg(names).arg(n - 3);
+            said += " " + counted(n,
+                                  tr("The earlier export's file it did not write again was "
+                                     "removed (%1): the folder holds this export alone."),
+                                  tr("The earlier export's %n files it did not write again were "
+                                     "removed (%1): the folder holds this export alone."))
+                              .arg(names);
+        }
+    }
     replaced_.clear();
     // The bar keeps how far the run got, the frames written, until the frames to write change or
     // another run starts: reset to 0 by the next solved frame, it read as nothing written.
     lastRunShown_ = true;
-    if (ok) progress_->setValue(runner_->result().framesWritten);
-    if (runner_->result().cancelled)
+    if (ok) progress_->setValue(result.framesWritten);
+    if (result.cancelled)
         progress_->setFormat(tr("%v / %m frames: cancelled"));
     else if (!ok)
         progress_->setFormat(tr("%v / %m frames: failed"));
-    progressText_->setText(message);
-    emit finished(ok, message);
+    progressText_->setText(said);
+    emit finished(ok, said);
 }
 
 void ExportDialog::forgetLastRun() {
@@ -448,8 +493,9 @@ void ExportDialog::forgetLastRun() {
 void ExportDialog::setRunning(bool running) {
     start_->setEnabled(!running);
     cancel_->setEnabled(running);
-    for (QWidget* w :
-         std::initializer_list<QWidget*>{all_, inOut_, current_, in_, out_, format_, folder_})
+    // The folder shown is the one being written into: Browse… cannot change it meanwhile.
+    for (QWidget* w : std::initializer_list<QWidget*>{all_, inOut_, current_, in_, out_, format_,
+                                                      folder_, browse_})
         w->setEnabled(!running);
     // Without calibration the rest is the input mesh: nothing to write.
     const bool calibrates = document_->settings().calibrate != CalibrateMode::None;

@@ -463,6 +463,8 @@ void MainWindow::connectDocument() {
     connect(document_, &Document::meshChanged, this, &MainWindow::updateTitle);
     connect(view_, &MeshView::vertexPicked, this, &MainWindow::onVertexPicked);
     connect(view_, &MeshView::pickMissed, this, [this] {
+        // Outside Map Markers a click beside the body is no attempt to map: nothing to say.
+        if (!mappingAction_->isChecked()) return;
         const int selected = document_->selectedMarker();
         statusBar()->showMessage(selected >= 0
                                      ? tr("The click missed the mesh: nothing was mapped to %1")
@@ -600,7 +602,10 @@ void MainWindow::onVertexPicked(int vertex) {
         return;
     }
     statusBar()->showMessage(
-        tr("Vertex %1 — select a marker in the list, then click the mesh to map it").arg(vertex),
+        mappingAction_->isChecked()
+            ? tr("Vertex %1 — select a marker in the list, then click the mesh to map it")
+                  .arg(vertex)
+            : tr("Vertex %1 — Edit → Map Markers maps a marker by clicking").arg(vertex),
         8000);
 }
 

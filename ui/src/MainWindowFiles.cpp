@@ -3,12 +3,14 @@
 #include <utility>
 
 #include <QCloseEvent>
+#include <QDir>
 #include <QDragEnterEvent>
 #include <QDropEvent>
 #include <QFile>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QLocale>
+#include <QMap>
 #include <QMenu>
 #include <QMessageBox>
 #include <QMimeData>
@@ -18,6 +20,7 @@
 #include <QStatusBar>
 #include <QUndoStack>
 #include <QUrl>
+#include <optional>
 
 #include "Counted.h"
 #include "FrameDisplay.h"
@@ -147,10 +150,26 @@ bool MainWindow::openFile(const QString& path) {
             // step back to them.
             const bool asOpened = mode == Document::MapLoad::Replace && projectPath_.isEmpty() &&
                                   !unsavedEdits_ && document_->undoStack()->isClean();
-            const Loading loading(this);
-            int added = 0;
-            ok = document_->loadCorrespondence(path, mode, &added);
+            // Otherwise it is an edit like any other, marked and autosaved: as a load, a map
+            // opened into a saved project was neither, and the project kept its old map.
+            std::optional<Loading> loading;
+            if (asOpened) loading.emplace(this);
+            int added = 0, replaced = 0;
+            ok = document_->loadCorrespondence(path, mode, &added, &replaced);
             if (ok && asOpened) document_->undoStack()->setClean();
+            if (ok && mode == Document::MapLoad::Merge && replaced > 0) {
+                RecentFiles::add(QFileInfo(path).absoluteFilePath());
+                statusBar()->showMessage(
+                    counted(replaced,
+                            tr("Merged %1: %2 added, and %n suggestion still to review "
+                               "replaced by its mapping"),
+                            tr("Merged %1: %2 added, and %n suggestions still to review "
+                               "replaced by its mappings"))
+                        .arg(QFileInfo(path).fileName(),
+                             counted(added, tr("%n marker"), tr("%n markers"))),
+                    10000);
+                return true;
+            }
             if (ok && mode == Document::MapLoad::Merge && added == 0) {
                 RecentFiles::add(QFileInfo(path).absoluteFilePath());
                 statusBar()->showMessage(
@@ -197,19 +216,19 @@ void MainWindow::showOpened(const QString& path, const QStringList& notes) {
     box->show();
 }
 
-bool MainWindow::openProject(const QString& path) {
+bool MainWindow::openProject(const QString& path, const QMap<QString, QString>& located) {
     // Refused before asking about the work open now: nothing would replace it.
     if (const QString why = notARegularFileSentence(path, FileKind::Project); !why.isEmpty()) {
         showError(why, path);
         return false;
     }
     if (!keepUnsavedWork(false)) return false;
-    const Loading loading(this);
-    QString error, missing;
+    std::optional<Loading> loading(std::in_place, this);
+    QString error, missing, missingFile;
     bool loaded = false;
     {
         const QScopedValueRollback<bool> quiet(loadingProject_, true);
-        loaded = Project::load(*document_, path, &error, &missing);
+        loaded = Project::load(*document_, path, &error, &missing, &missingFile, located);
     }
     if (!loaded) {
         const QString message = !missing.isEmpty()
@@ -233,6 +252,23 @@ bool MainWindow::openProject(const QString& path) {
             connect(open, &QPushButton::clicked, this,
                     [this, recovery] { openRecovery(recovery); });
         }
+        // A take or mesh renamed or moved: the map that lives only in the project is reached by
+        // saying where the file is now.
+        if (!missingFile.isEmpty()) {
+            if (recovery.isEmpty())
+                box->setInformativeText(
+                    tr("The file is left as it is. Locate… opens it with %1 where it is now.")
+                        .arg(QFileInfo(missingFile).fileName()));
+            QPushButton* locateButton = box->addButton(tr("Locate…"), QMessageBox::ActionRole);
+            locateButton->setObjectName("locateButton");
+            connect(locateButton, &QPushButton::clicked, this, [this, path, missingFile, located] {
+                const QString chosen = locate(missingFile);
+                if (chosen.isEmpty()) return;
+                QMap<QString, QString> next = located;
+                next[missingFile] = QFileInfo(chosen).absoluteFilePath();
+                openProject(path, next);
+            });
+        }
         box->show();
         return false;
     }
@@ -248,7 +284,37 @@ bool MainWindow::openProject(const QString& path) {
     restoreSession();
     updateTitle();
     showOpened(path, document_->takeNotes());  // a take cut short since, as the take says
+    if (!located.isEmpty()) {
+        // The project names the files located: an edit, marked and saved into it (once the
+        // load's own autosave is dropped).
+        loading.reset();
+        setUnsavedEdits(true);
+        autosave_->schedule();
+        QStringList names;
+        for (const QString& file : located) names << QFileInfo(file).fileName();
+        statusBar()->showMessage(tr("Opened %1 with %2 in place of the missing file; the project "
+                                    "names it from now on")
+                                     .arg(QFileInfo(path).fileName(), names.join(", ")),
+                                 10000);
+    }
     return true;
+}
+
+QString MainWindow::locate(const QString& file) {
+    const QFileInfo missing(file);
+    // Where the project said it was, or the nearest folder still there.
+    QDir start = missing.absoluteDir();
+    while (!start.exists() && start.cdUp()) {
+    }
+    QFileDialog dialog(this, tr("Locate %1").arg(missing.fileName()), start.absolutePath());
+    dialog.setObjectName("locateDialog");
+    dialog.setFileMode(QFileDialog::ExistingFile);
+    const QString suffix = missing.suffix();
+    if (!suffix.isEmpty())
+        dialog.setNameFilters(
+            {tr("%1 files (*.%2)").arg(suffix.toUpper(), suffix), tr("All files (*)")});
+    if (dialog.exec() != QDialog::Accepted || dialog.selectedFiles().isEmpty()) return {};
+    return dialog.selectedFiles().first();
 }
 
 bool MainWindow::askMapLoad(const QString& path, Document::MapLoad& mode) {
@@ -512,10 +578,21 @@ void MainWindow::chooseSaveCorrespondence() {
 
 void MainWindow::rebuildRecentMenu() {
     recentMenu_->clear();
+    // Each file's full path is its tooltip; a name two entries share also names its folder, or
+    // two p1.boneless of different folders read alike.
+    recentMenu_->setToolTipsVisible(true);
     const QStringList files = RecentFiles::list();
-    for (const QString& path : files)
-        recentMenu_->addAction(QFileInfo(path).fileName(), this, [this, path] { openFile(path); })
-            ->setToolTip(path);
+    QMap<QString, int> named;
+    for (const QString& path : files) ++named[QFileInfo(path).fileName()];
+    for (const QString& path : files) {
+        const QFileInfo file(path);
+        const QString text =
+            named[file.fileName()] > 1
+                ? tr("%1 — %2").arg(file.fileName(), QDir::toNativeSeparators(file.absolutePath()))
+                : file.fileName();
+        recentMenu_->addAction(text, this, [this, path] { openFile(path); })
+            ->setToolTip(QDir::toNativeSeparators(path));
+    }
     if (files.isEmpty()) recentMenu_->addAction(tr("(none)"))->setEnabled(false);
     recentMenu_->addSeparator();
     // After a crash the last session, titled or not, is here until the next one changes something.

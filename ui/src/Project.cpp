@@ -140,7 +140,8 @@ bool save(const Document& document, const QString& path, QString* error) {
     return true;
 }
 
-bool load(Document& document, const QString& path, QString* error, QString* missing) {
+bool load(Document& document, const QString& path, QString* error, QString* missing,
+          QString* missingFile, const QMap<QString, QString>& located) {
     auto fail = [&](const QString& why) {
         if (error) *error = path + ": " + why;
         return false;
@@ -151,6 +152,7 @@ bool load(Document& document, const QString& path, QString* error, QString* miss
     auto gone = [&](const QString& file, const QString& sentence) {
         if (QFileInfo::exists(file)) return false;
         if (missing) *missing = sentence.arg(file, project);
+        if (missingFile) *missingFile = file;
         return true;
     };
     // As the core's loaders refuse them: opening a FIFO would wait for a writer for ever.
@@ -177,18 +179,21 @@ bool load(Document& document, const QString& path, QString* error, QString* miss
     Document::State state;
     QString why;
     const QJsonObject mesh = root["mesh"].toObject();
-    if (const QString m = resolve(dir, mesh["file"].toString()); !m.isEmpty()) {
+    // A file the user located elsewhere is read, and saved next, in place of the one named.
+    const auto at = [&located](const QString& file) { return located.value(file, file); };
+    if (const QString m = at(resolve(dir, mesh["file"].toString())); !m.isEmpty()) {
         if (gone(m, QObject::tr("The mesh %1 named by %2 is missing.")))
             return fail(QObject::tr("no such mesh file: %1").arg(m));
         if (!Document::readMeshFile(m, mesh["group"].toString(), state, &why)) return fail(why);
     }
-    if (const QString t = resolve(dir, root["take"].toObject()["file"].toString()); !t.isEmpty()) {
+    if (const QString t = at(resolve(dir, root["take"].toObject()["file"].toString()));
+        !t.isEmpty()) {
         if (gone(t, QObject::tr("The take %1 named by %2 is missing.")))
             return fail(QObject::tr("no such take file: %1").arg(t));
         if (!Document::readTakeFile(t, state, &why)) return fail(why);
     }
     const QJsonObject correspondence = root["correspondence"].toObject();
-    state.mapPath = resolve(dir, correspondence["file"].toString());
+    state.mapPath = at(resolve(dir, correspondence["file"].toString()));
     if (correspondence["map"].isObject()) {
         if (!readEmbeddedMap(correspondence["map"].toObject(), state.map, &why)) return fail(why);
     } else if (!state.mapPath.isEmpty()) {

@@ -102,10 +102,12 @@ ProjectAutosave::ProjectAutosave(Document* document, QObject* parent)
     timer_->setSingleShot(true);
     timer_->setInterval(1000);
     connect(timer_, &QTimer::timeout, this, &ProjectAutosave::saveNow);
-    connect(document, &Document::changed, this, [this] {
-        pending_ = true;
-        timer_->start();  // restarts: a burst of edits is one save
-    });
+    connect(document, &Document::changed, this, &ProjectAutosave::schedule);
+}
+
+void ProjectAutosave::schedule() {
+    pending_ = true;
+    timer_->start();  // restarts: a burst of edits is one save
 }
 
 ProjectAutosave::~ProjectAutosave() {

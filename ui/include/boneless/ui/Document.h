@@ -37,11 +37,13 @@ class Document : public QObject {
     bool loadTake(const QString& path);
     // Replaces the map (one undo step). Entries that do not fit the mesh are an error.
     // Replace: the file's map instead of this one. Merge: this map plus the file's mappings of
-    // markers not mapped here (unless their vertex is taken). One undo step either way.
-    // *added (when given): the mappings the file added; a merge that adds none is no edit.
+    // markers not mapped here (unless their vertex is taken), and in place of suggestions still
+    // marked for review (needs_review): those are no one's word yet. One undo step either way.
+    // *added (when given): the mappings the file added; *replaced: the suggestions it replaced;
+    // a merge that does neither is no edit.
     enum class MapLoad { Replace, Merge };
     bool loadCorrespondence(const QString& path, MapLoad mode = MapLoad::Replace,
-                            int* added = nullptr);
+                            int* added = nullptr, int* replaced = nullptr);
     // Whether the file is a correspondence that fits the mesh, as loadCorrespondence checks it
     // (errorOccurred says why not), leaving the map alone: checked before asking how to load it.
     bool checkCorrespondence(const QString& path);
@@ -131,6 +133,10 @@ class Document : public QObject {
     void setSelectedMarker(int marker);  // -1 = none
 
     // --- edits: each one undo command; false (and errorOccurred) when refused ---------------
+    // How far off the skin the first marker mapped sits (mm) when none is mapped: a marker's
+    // base, ball and the skin's give keep it 10 to 15 mm off (the generated demo's sit at 10).
+    // Later ones take the median of those mapped; the offset row changes either.
+    static constexpr double kFirstOffsetMm = 10.0;
     // Maps `marker` to `vertex`. Refused when another marker already sits on that vertex.
     bool assign(int marker, int vertex);
     bool clearMapping(int marker);

@@ -2,6 +2,7 @@
 
 #include <QDialog>
 #include <QElapsedTimer>
+#include <QStringList>
 #include <deque>
 
 #include "boneless/TakeExport.h"
@@ -59,14 +60,15 @@ class ExportDialog : public QDialog {
     double estimatedMs() const;
 
     // The widgets have object names for tests: exportFormat, exportCalibratedRest, exportEstimate,
-    // exportProgress, exportProgressText, exportStart, exportCancel.
+    // exportProgress, exportProgressText, exportStart, exportCancel, exportBrowse.
     ExportRunner* runner() const { return runner_; }
 
   public slots:
     // Starts writing (false with the reason in the dialog when refused).
     bool startExport();
     void cancelExport();
-    void reject() override;  // closing while writing cancels first
+    // Closing while writing asks whether to stop the export (Stop Export / Keep Exporting).
+    void reject() override;
 
   signals:
     // As ExportRunner::finished: the message names the folder or the reason.
@@ -89,8 +91,11 @@ class ExportDialog : public QDialog {
     void forgetLastRun();
     // Asks whether to replace the earlier export's files `names` in the folder.
     bool askToReplace(const std::vector<std::string>& names);
-    // After a run: the earlier export's files it did not write again, which would pass for its.
-    void removeReplaced(const ExportRequest& request, const ExportResult& result);
+    // Asks whether to stop the running export; true for Stop Export.
+    bool askToStop();
+    // After a run, finished or cancelled: removes the earlier export's files it did not write
+    // again, which would pass for its, and returns their names.
+    QStringList removeReplaced(const ExportRequest& request, const ExportResult& result);
     void setRunning(bool running);
 
     Document* document_;
@@ -104,6 +109,7 @@ class ExportDialog : public QDialog {
     QSpinBox *in_, *out_;
     QComboBox* format_;
     QLineEdit* folder_;
+    QPushButton* browse_;
     QString projectPath_;
     bool folderChosen_ = false;  // by the user, for this project: not replaced by the default
     QCheckBox* calibratedRest_;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <QMainWindow>
+#include <QMap>
 #include <QString>
 #include <utility>
 #include <vector>
@@ -54,7 +55,11 @@ class MainWindow : public QMainWindow {
     bool openMesh(const QString& path);
     // A project that will not open leaves the window as it was and the file untouched, and the
     // message offers the recovery autosave (openRecovery()) when it was made from that project.
-    bool openProject(const QString& path);
+    // A file it names that is missing can be located (Locate…): the project then opens with the
+    // file chosen, as an edit, saved into the project next.
+    bool openProject(const QString& path) { return openProject(path, {}); }
+    // `located`: files the project names (resolved) that are read from elsewhere.
+    bool openProject(const QString& path, const QMap<QString, QString>& located);
     // Writes the demo afresh and opens it. The demo is never saved into: Save goes to Save As,
     // autosave to the recovery file.
     bool openDemo();
@@ -114,6 +119,8 @@ class MainWindow : public QMainWindow {
     void closeEvent(QCloseEvent* event) override;
 
   private:
+    // Asks where the missing file `file` is now; empty when not chosen.
+    QString locate(const QString& file);
     void buildMenus();
     void buildFileMenu();
     QMenu* buildEditMenu();  // returned for the calibration actions

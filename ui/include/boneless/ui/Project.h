@@ -1,5 +1,6 @@
 #pragma once
 
+#include <QMap>
 #include <QObject>
 #include <QPointer>
 #include <QString>
@@ -28,8 +29,11 @@ bool save(const Document& document, const QString& path, QString* error = nullpt
 // document is left as it was and *error holds a message naming the project and the cause.
 // When it failed because a file the project names is not there, *missing (if given) says which,
 // in a plain sentence: "The mesh /data/walker.obj named by walk.boneless is missing."
+// *missingFile (if given) is that file's path. `located` gives files found elsewhere (Locate…):
+// a path the project names, resolved, to the one read instead (and saved next).
 bool load(Document& document, const QString& path, QString* error = nullptr,
-          QString* missing = nullptr);
+          QString* missing = nullptr, QString* missingFile = nullptr,
+          const QMap<QString, QString>& located = {});
 // The project's JSON text (what save() writes), for tests and comparisons.
 QByteArray toJson(const Document& document, const QString& path);
 
@@ -55,6 +59,9 @@ class ProjectAutosave : public QObject {
     QString projectPath() const { return path_; }
     void setDelay(int ms);  // default 1000
     bool isPending() const;
+    // A change the document did not signal (a file the project names, located elsewhere):
+    // saved as an edit is.
+    void schedule();
     // Where this Boneless keeps an untitled session (in the per-user data folder's recovery/,
     // PID-START.boneless).
     static QString recoveryPath();
