@@ -36,10 +36,12 @@ bool isBlank(char c) {
     return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
 }
 
-// Walks logical lines: a line ending in '\' continues on the next physical line.
+// Walks logical lines: a line ending in '\' continues on the next physical line. Lines end in
+// LF, CR LF or a lone CR (old Mac files); a UTF-8 byte-order mark (Windows editors) is skipped.
 class LineReader {
   public:
-    explicit LineReader(const std::string& data) : data_(data) {}
+    explicit LineReader(const std::string& data)
+        : data_(data), pos_(data.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0) {}
 
     bool next(std::string_view& line, int& lineNumber) {
         if (pos_ >= data_.size()) return false;
@@ -63,9 +65,10 @@ class LineReader {
 
   private:
     std::string_view physicalLine() {
-        const size_t end = std::min(data_.find('\n', pos_), data_.size());
+        size_t end = pos_;
+        while (end < data_.size() && data_[end] != '\n' && data_[end] != '\r') ++end;
         std::string_view part(data_.data() + pos_, end - pos_);
-        pos_ = end + 1;
+        pos_ = end + (data_.compare(end, 2, "\r\n") == 0 ? 2 : 1);
         return part;
     }
     static std::string_view trimmedRight(std::string_view s) {
@@ -78,7 +81,7 @@ class LineReader {
     }
 
     const std::string& data_;
-    size_t pos_ = 0;
+    size_t pos_;
     int physical_ = 0;
     std::string joined_;
 };

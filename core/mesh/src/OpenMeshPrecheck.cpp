@@ -72,6 +72,16 @@ void requireNumbers(const std::string& path, const std::vector<std::string>& tok
     }
 }
 
+bool startsWithByteOrderMark(const std::string& text) {
+    return text.compare(0, 3, "\xEF\xBB\xBF") == 0;
+}
+
+std::string byteOrderMarkRefused(const std::string& format) {
+    return "starts with a UTF-8 byte-order mark (bytes EF BB BF, invisible in most editors), "
+           "which " +
+           format + " does not allow: save the file without it";
+}
+
 std::vector<std::pair<int, std::string>> contentLines(const std::string& text, char comment) {
     std::vector<std::pair<int, std::string>> out;
     std::istringstream in(text);
@@ -137,7 +147,10 @@ Precheck checkBinaryOff(const std::string& path, const std::string& data,
 }
 
 Precheck checkOff(const std::string& path) {
-    const std::string data = readAll(path);
+    // Text OFF is read here in full, so a byte-order mark (Windows editors write one) is skipped.
+    std::string data = readAll(path);
+    const bool byteOrderMark = startsWithByteOrderMark(data);
+    if (byteOrderMark) data.erase(0, 3);
     const auto lines = contentLines(data, '#');
     if (lines.empty()) throw MeshError(path, "empty OFF file");
     auto head = tokens(lines[0].second);
@@ -154,8 +167,10 @@ Precheck checkOff(const std::string& path) {
     // took for binary would reach OpenMesh's unchecked text parser (found by fuzzing).
     const size_t k = keyword.size();
     if (data.compare(0, k, keyword) == 0 && data.size() >= k + 7 && data[k] != '\n' &&
-        data.compare(k + 1, 6, "BINARY") == 0)
+        data.compare(k + 1, 6, "BINARY") == 0) {
+        if (byteOrderMark) throw MeshError(path, byteOrderMarkRefused("binary OFF"));
         return checkBinaryOff(path, data, keyword);
+    }
     size_t next = 1;
     std::vector<std::string> counts(head.begin() + 1, head.end());
     if (counts.empty()) {

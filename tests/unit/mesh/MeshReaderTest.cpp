@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -302,6 +303,38 @@ TEST(MeshReaderFormats, OffWithCommentsAndCountsOnTheKeywordLine) {
     EXPECT_EQ(r.mesh.vertexCount(), 4);
     EXPECT_EQ(r.mesh.V.row(2), Eigen::RowVector3d(1, 1, 0));
     EXPECT_EQ(r.mesh.F, F);
+}
+
+// A byte-order mark made the first line an unknown keyword: vertex 0 was lost, every later one
+// shifted by one, and the mesh read scrambled. Old Mac files (CR alone) read as one line.
+TEST(MeshReaderFormats, ObjWithAByteOrderMarkOrOldMacLineEndsReadsEveryVertex) {
+    const Positions V = tentV();
+    const std::string obj = objText(V, tentP);
+    std::string mac = obj;
+    std::replace(mac.begin(), mac.end(), '\n', '\r');
+    for (const std::string& bytes : {"\xEF\xBB\xBF" + obj, mac, "\xEF\xBB\xBF" + mac}) {
+        const MeshReadResult r = readMesh(writeFile("marked.obj", bytes));
+        EXPECT_EQ(r.mesh.V, V);
+        EXPECT_EQ(r.mesh.F, toFaces(tentP));
+        EXPECT_TRUE(r.warnings.size() == 1 && anyWarningContains(r, "open surface"))
+            << r.warnings.front();
+    }
+    // Line numbers count lone CRs too.
+    EXPECT_CONTAINS(errorOf(writeFile("mac.obj", "v 0 0 0\rv 1 0 0\r\nv 0 x 0\r")), "(line 3)");
+}
+
+// OFF is read here in full and takes the mark; PLY goes to OpenMesh, which does not, so the
+// refusal names it (it said "not a PLY file", the culprit invisible).
+TEST(MeshReaderFormats, OffWithAByteOrderMarkReadsAndPlyWithOneSaysSo) {
+    const Positions V = tentV();
+    const MeshReadResult r = readMesh(writeFile("marked.off", "\xEF\xBB\xBF" + offText(V, tentP)));
+    EXPECT_EQ(r.mesh.V, V);
+    EXPECT_EQ(r.mesh.F, toFaces(tentP));
+    for (const std::string& bytes : {plyAscii(V, tentP), plyBinary(V, tentP)})
+        EXPECT_CONTAINS(errorOf(writeFile("marked.ply", "\xEF\xBB\xBF" + bytes)),
+                        "starts with a UTF-8 byte-order mark");
+    EXPECT_CONTAINS(errorOf(writeFile("marked_binary.off", "\xEF\xBB\xBF" + offBinary(V, tentP))),
+                    "starts with a UTF-8 byte-order mark");
 }
 
 TEST(MeshReaderFormats, ObjKeepsDoublePrecision) {
