@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <map>
 #include <string_view>
 #include <unordered_map>
@@ -127,8 +128,7 @@ class ObjParser {
             } else if (key == "usemtl") {
                 material_ = useMaterial(rest);
             } else if (key == "mtllib") {
-                for (auto t = nextToken(rest); !t.empty(); t = nextToken(rest))
-                    soup_.materialLibraries.emplace_back(t);
+                materialLibraries(rest);
             } else if (key == "f") {
                 if (namesOnly)
                     countGroupFace(rest);
@@ -212,6 +212,25 @@ class ObjParser {
             if ((k == 0 || !t.empty()) && !parseDouble(t, value)) uvBroken_ = true;
             soup_.uv.push_back(value);
         }
+    }
+
+    // "mtllib my mat.mtl" as Blender reads it: the rest of the line (quotes around it removed)
+    // is one library when it names a file beside the OBJ; otherwise its words are libraries.
+    void materialLibraries(std::string_view rest) {
+        std::string_view whole = rest;
+        while (!whole.empty() && isBlank(whole.front())) whole.remove_prefix(1);
+        while (!whole.empty() && isBlank(whole.back())) whole.remove_suffix(1);
+        if (whole.size() > 2 && whole.front() == '"' && whole.back() == '"')
+            whole = whole.substr(1, whole.size() - 2);
+        std::error_code ec;
+        if (!whole.empty() &&
+            std::filesystem::is_regular_file(
+                std::filesystem::path(path_).parent_path() / std::string(whole), ec)) {
+            soup_.materialLibraries.emplace_back(whole);
+            return;
+        }
+        for (auto t = nextToken(rest); !t.empty(); t = nextToken(rest))
+            soup_.materialLibraries.emplace_back(t);
     }
 
     // The name is the rest of the line: "usemtl Material 1" is one material.
