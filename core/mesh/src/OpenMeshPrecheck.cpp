@@ -143,6 +143,11 @@ Precheck checkBinaryOff(const std::string& path, const std::string& data,
                                       " corners, more than the file holds");
         at += 4 * size_t(corners);
     }
+    // OpenMesh stops after the announced faces: more after them would be dropped silently.
+    if (data.find_first_not_of(" \t\r\n\v\f", at) != std::string::npos)
+        throw MeshError(path, std::to_string(data.size() - at) + " bytes follow the " +
+                                  std::to_string(p.declaredFaces) +
+                                  " faces the header announces: does it count too few?");
     return p;
 }
 
@@ -220,6 +225,13 @@ Precheck checkOff(const std::string& path) {
         soup.endFace();  // what follows the corners (a colour) is not kept
         soup.faceLine.push_back(line);
     }
+    if (next < lines.size())
+        throw MeshError(path,
+                        "more lines than the header announces (" +
+                            std::to_string(p.declaredVertices) + " vertices, " +
+                            std::to_string(p.declaredFaces) + " faces): '" +
+                            tokens(lines[next].second)[0] + "' follows the last face",
+                        at(lines[next].first));
     return p;
 }
 

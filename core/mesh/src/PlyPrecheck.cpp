@@ -109,6 +109,19 @@ uint64_t plyListLength(const std::string& data, size_t at, int bytes, bool bigEn
     return n;
 }
 
+// "3426 vertex, 6847 face": what the header announces, for messages.
+std::string announced(const std::vector<PlyElement>& elements) {
+    std::string s;
+    for (const PlyElement& e : elements)
+        s += (s.empty() ? "" : ", ") + std::to_string(e.count) + " " + e.name;
+    return s.empty() ? "no elements" : s;
+}
+
+// Bytes no writer means as data: a newline or spaces after the last element.
+bool onlyWhitespace(const std::string& text, size_t from) {
+    return text.find_first_not_of(" \t\r\n\v\f", from) == std::string::npos;
+}
+
 // Ascii PLY as OpenMesh reads it: word after word with >>, whatever the lines. A word that does
 // not parse leaves its stream failed and its loops running on stale counts.
 void checkPlyAscii(const std::string& path, const std::string& text, size_t bodyStart,
@@ -143,6 +156,18 @@ void checkPlyAscii(const std::string& path, const std::string& text, size_t body
                 for (long long v = 0; v < values; ++v) next(what, p.integer);
             }
         }
+    // OpenMesh stops after the announced elements: more after them (a header counting one face
+    // too few) would be dropped silently. Comment lines at the end are no data.
+    while (k < words.size()) {
+        const auto& [w, n] = words[k];
+        const bool lineStart = k == 0 || words[k - 1].second != n;
+        if (!(lineStart && (w == "comment" || w[0] == '#')))
+            throw MeshError(path,
+                            "more data than the header announces (" + announced(elements) + "): '" +
+                                w + "' follows the last element",
+                            at(n));
+        while (k < words.size() && words[k].second == n) ++k;
+    }
 }
 
 // Binary PLY: OpenMesh reads a list length the file cannot hold as that many stale values
@@ -166,6 +191,10 @@ void checkPlyBinary(const std::string& path, const std::string& text, size_t bod
                 pos += values * p.valueBytes;
             }
         }
+    if (!onlyWhitespace(text, pos))
+        throw MeshError(path, std::to_string(text.size() - pos) +
+                                  " bytes follow the elements the header announces (" +
+                                  announced(elements) + "): does it count too few?");
 }
 
 }  // namespace

@@ -448,6 +448,44 @@ TEST(MeshReaderErrors, MalformedTextThatOpenMeshWouldAccept) {
     EXPECT_CONTAINS(errorOf(writeFile("formfeed.off", "\f\n\f\nfil")), "fil");
 }
 
+// A header counting one face too few dropped the last face silently (OpenMesh stops reading at
+// the count): ascii and binary PLY, text and binary OFF.
+TEST(MeshReaderErrors, DataAfterTheElementsTheHeaderAnnouncesIsRefused) {
+    const Positions V = tentV();
+    const Polygons three(tentP.begin(), tentP.begin() + 3);
+    const auto undercount = [](std::string bytes, const std::string& from, const std::string& to) {
+        return bytes.replace(bytes.find(from), from.size(), to);
+    };
+    const std::string ascii =
+        errorOf(writeFile("extra.ply", undercount(plyAscii(V, tentP), "face 4", "face 3")));
+    EXPECT_CONTAINS(ascii, "more data than the header announces (5 vertex, 3 face)");
+    EXPECT_CONTAINS(ascii, "'3' follows the last element (line 20)");
+    const std::string binary =
+        errorOf(writeFile("extra_binary.ply", undercount(plyBinary(V, tentP), "face 4", "face 3")));
+    EXPECT_CONTAINS(binary, "13 bytes follow the elements the header announces (5 vertex, 3 face)");
+    const std::string off =
+        errorOf(writeFile("extra.off", undercount(offText(V, tentP), "5 4 0", "5 3 0")));
+    EXPECT_CONTAINS(off, "more lines than the header announces (5 vertices, 3 faces)");
+    EXPECT_CONTAINS(off, "(line 12)");
+    std::string offBytes = offBinary(V, tentP);
+    offBytes[15] = 3;  // the face count
+    EXPECT_CONTAINS(errorOf(writeFile("extra_binary.off", offBytes)),
+                    "16 bytes follow the 3 faces the header announces");
+
+    // What is no data is not refused: an element after the faces, comments and blank lines at the
+    // end of an ascii file, a newline after a binary one.
+    std::string edges = plyAscii(V, three);
+    edges.replace(edges.find("end_header"), 10,
+                  "element edge 1\nproperty int vertex1\nproperty int vertex2\nend_header");
+    edges += "0 1\n\ncomment written by hand\n  \n";
+    EXPECT_EQ(readMesh(writeFile("edges.ply", edges)).mesh.faceCount(), 3);
+    EXPECT_CONTAINS(errorOf(writeFile("edges2.ply", edges + "2 3\n")),
+                    "'2' follows the last element");
+    EXPECT_EQ(readMesh(writeFile("newline.ply", plyBinary(V, three) + "\n")).mesh.faceCount(), 3);
+    EXPECT_EQ(readMesh(writeFile("comment.off", offText(V, three) + "# end\n\n")).mesh.faceCount(),
+              3);
+}
+
 // Found by fuzzing: OpenMesh read a corner count of 2^32-1 as that many stale indices.
 TEST(MeshReaderErrors, BinaryOffCountsTheFileCannotHold) {
     const std::string good = offBinary(tentV(), tentP);
