@@ -14,6 +14,7 @@
 
 #include "PrecheckText.h"
 #include "boneless/Error.h"
+#include "boneless/Text.h"
 
 namespace boneless::detail {
 
@@ -252,9 +253,9 @@ bool isBinaryStl(const std::string& path, const std::string& data) {
     std::memcpy(&n, data.data() + 80, 4);  // little-endian, as on every platform we build for
     const uint64_t size = 84 + 50 * uint64_t(n);
     if (data.size() == size) return true;  // the rule OpenMesh applies
-    // OpenMesh would parse a cut binary file as text and find no faces; shorter than its header
-    // says and not text, it is binary, and checkStl reports it truncated.
-    return data.size() < size && !isText(data);
+    // OpenMesh would parse a cut or padded binary file as text and find no faces; not text, it is
+    // binary, and checkStl reports it truncated or its extra bytes.
+    return !isText(data);
 }
 
 Precheck checkStl(const std::string& path) {
@@ -271,6 +272,15 @@ Precheck checkStl(const std::string& path) {
             throw MeshError(path, "binary STL file is truncated: the header announces " +
                                       std::to_string(n) + " triangles, the file holds " +
                                       std::to_string((data.size() - 84) / 50));
+        // OpenMesh reads a binary file only when its size is exactly this.
+        if (data.size() > 84 + 50 * uint64_t(n))
+            throw MeshError(
+                path,
+                "binary STL file has " +
+                    plural(static_cast<long long>(data.size() - 84 - 50 * uint64_t(n)), "byte") +
+                    " more than the " + std::to_string(n) +
+                    " triangles its header announces (84 + 50 x " + std::to_string(n) + " = " +
+                    std::to_string(84 + 50 * uint64_t(n)) + " bytes)");
         for (uint32_t t = 0; t < n; ++t) {
             float xyz[9];
             std::memcpy(xyz, data.data() + 84 + 50 * size_t(t) + 12, sizeof xyz);

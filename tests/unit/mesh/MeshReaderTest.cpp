@@ -379,6 +379,21 @@ TEST(MeshReaderErrors, ACutBinaryStlIsReportedAsTruncatedWithTheTrianglesItHolds
                     "50 bytes, shorter than the 84-byte header");
 }
 
+// A binary file with a few bytes after its triangles was parsed as text (its size no longer
+// 84 + 50 n) and reported as having no faces.
+TEST(MeshReaderErrors, ABinaryStlWithBytesAfterItsTrianglesSaysHowMany) {
+    const std::string whole = stlBinary(tentV(), toFaces(tentP));
+    for (int extra = 1; extra <= 4; ++extra)
+        for (const std::string& bytes : {whole, "solid tent" + whole.substr(10)}) {
+            const std::string msg =
+                errorOf(writeFile("padded.stl", bytes + std::string(size_t(extra), '\0')));
+            EXPECT_CONTAINS(msg, "binary STL file has " + std::to_string(extra) +
+                                     (extra == 1 ? " byte" : " bytes") +
+                                     " more than the 4 triangles its header announces");
+            EXPECT_CONTAINS(msg, "84 + 50 x 4 = 284 bytes");
+        }
+}
+
 TEST(MeshReaderErrors, NonFiniteCoordinates) {
     const std::string obj = writeFile("nan.obj", "v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n");
     const std::string msg = errorOf(obj);
