@@ -229,13 +229,15 @@ MeshReadResult readMesh(const std::string& path, const MeshReadOptions& options)
     r.components = topo.components;
     r.isolatedVertices = topo.isolatedVertices;
 
-    const double diagonal = boundingBoxDiagonal(V);
-    std::vector<int> flat;
+    // Scaled by the vertices faces use: an isolated one far away made every triangle flat.
+    const double diagonal = boundingBoxDiagonal(V, r.mesh.F);
+    std::vector<int> flat;  // the polygons they come from, each once (its triangles are adjacent)
     for (int t = 0; t < r.mesh.faceCount(); ++t)
         if (zeroArea(V.row(r.mesh.F(t, 0)), V.row(r.mesh.F(t, 1)), V.row(r.mesh.F(t, 2)),
                      diagonal)) {
             ++r.zeroAreaFaces;
-            if (flat.size() < 5) flat.push_back(triFace[t]);
+            if (flat.size() < 6 && (flat.empty() || flat.back() != triFace[t]))
+                flat.push_back(triFace[t]);
         }
 
     addWarnings(r, soup, dropped, flat, topo);

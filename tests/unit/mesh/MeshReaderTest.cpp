@@ -681,6 +681,23 @@ TEST(MeshReaderWarnings, SeveralComponentsIsolatedVerticesZeroAreaAndRepeatedCor
     EXPECT_TRUE(anyWarningContains(r, "dropped 1 face with a repeated vertex: face 2 (line 10)"));
 }
 
+// One unused vertex far away set the scale of "no area": every triangle of the mesh was
+// reported zero-area (and the solver's tolerances grew with it). A polygon split into several
+// flat triangles was listed once per triangle.
+TEST(MeshReaderWarnings, ZeroAreaIsJudgedByTheVerticesFacesUseAndListsEachPolygonOnce) {
+    const MeshReadResult far =
+        readMesh(writeFile("far.obj", objText(tentV(), tentP) + "v 1e7 0 0\n"));
+    EXPECT_EQ(far.isolatedVertices, 1);
+    EXPECT_EQ(far.zeroAreaFaces, 0);
+    EXPECT_FALSE(anyWarningContains(far, "zero-area"));
+
+    const MeshReadResult flat = readMesh(writeFile("flat.obj",
+                                                   "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 3 0 0\nv 0 1 0\n"
+                                                   "f 1 2 3 4\nf 1 4 5\n"));
+    EXPECT_EQ(flat.zeroAreaFaces, 2);
+    EXPECT_EQ(flat.warnings.back(), "2 zero-area triangles, from face 0 (line 6)");
+}
+
 // ---- Triangulation ---------------------------------------------------------------------------
 
 namespace {
