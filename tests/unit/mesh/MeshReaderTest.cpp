@@ -419,6 +419,25 @@ TEST(MeshReaderErrors, NonFiniteCoordinates) {
     EXPECT_CONTAINS(stl, "triangle 1");
 }
 
+// A corner at 1e300 was read (the solver works in doubles) and written to a glb as infinity, its
+// accessor bounds null: invalid glTF. The README's "NaN coordinates are errors" extends to it.
+TEST(MeshReaderErrors, CoordinatesBeyondTheRangeOfAFloatAreRefusedWithTheirLine) {
+    const std::string obj =
+        errorOf(writeFile("huge.obj", "v 0 0 0\nv 1 0 0\nv 0 1 -1e300\nf 1 2 3\n"));
+    EXPECT_CONTAINS(obj, "vertex coordinate -1e+300 is beyond the range of a float");
+    EXPECT_CONTAINS(obj, "vertex 2 (line 3)");
+    EXPECT_CONTAINS(
+        errorOf(writeFile("huge_unused.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 4e38 0 0\nf 1 2 3\n")),
+        "vertex 3 (line 4)");
+    Positions V = tentV();
+    V(1, 0) = 1e39;
+    EXPECT_CONTAINS(errorOf(writeFile("huge.off", offText(V, tentP))),
+                    "vertex coordinate 1e+39 is beyond the range of a float");
+    // The largest float itself is fine.
+    V(1, 0) = double(std::numeric_limits<float>::max());
+    EXPECT_EQ(readMesh(writeFile("largest.off", offText(V, tentP))).mesh.V(1, 0), V(1, 0));
+}
+
 TEST(MeshReaderErrors, FaceReferencesMissingVertex) {
     const std::string obj =
         errorOf(writeFile("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 3 9\n"));
