@@ -189,6 +189,13 @@ Precheck checkOff(const std::string& path) {
     Precheck p;
     p.declaredVertices = std::stoll(counts[0]);
     p.declaredFaces = std::stoll(counts[1]);
+    for (const auto& [count, what] :
+         {std::pair{p.declaredVertices, "vertex"}, {p.declaredFaces, "face"}})
+        if (count < 0)
+            throw MeshError(path,
+                            "OFF header: the " + std::string(what) + " count " +
+                                std::to_string(count) + " is negative",
+                            at(lines[next - 1].first));
     PolygonSoup& soup = p.offSoup.emplace();
     for (long long v = 0; v < p.declaredVertices; ++v, ++next) {
         if (next >= lines.size())
@@ -209,11 +216,16 @@ Precheck checkOff(const std::string& path) {
         const auto toks = tokens(lines[next].second);
         const std::string what = "face " + std::to_string(f);
         const int line = lines[next].first;
+        // A bad first face is most likely one more vertex than the header counts.
+        const std::string hint = f == 0 ? ": is the header's vertex count (" +
+                                              std::to_string(p.declaredVertices) + ") too small?"
+                                        : "";
         if (!isInteger(toks[0]))
-            throw MeshError(path, what + ": bad corner count '" + toks[0] + "'", at(line));
+            throw MeshError(path, what + ": bad corner count '" + toks[0] + "'" + hint, at(line));
         const long long k = std::stoll(toks[0]);
         if (k < 3 || static_cast<long long>(toks.size()) < k + 1)
-            throw MeshError(path, what + " lists fewer than 3 corners or fewer than announced",
+            throw MeshError(path,
+                            what + " lists fewer than 3 corners or fewer than announced" + hint,
                             at(line));
         for (long long i = 1; i <= k; ++i) {
             int index;

@@ -131,17 +131,27 @@ void checkPlyAscii(const std::string& path, const std::string& text, size_t body
     for (const auto& [n, content] : contentLines(text.substr(bodyStart), 0))
         for (const std::string& w : tokens(content)) words.emplace_back(w, line + n);
     size_t k = 0;
+    // At an element's first item: a wrong word there most likely belongs to the element before,
+    // whose count in the header is too small.
+    std::string hint;
     const auto next = [&](const std::string& what, bool integer) {
-        if (k >= words.size()) throw MeshError(path, "file ends in " + what);
+        if (k >= words.size())
+            throw MeshError(path, "file ends in " + what + " (the header announces " +
+                                      announced(elements) + ")");
         const auto& [w, n] = words[k++];
         requireNumbers(path, {w}, n, what);
         if (integer && !isInteger(w))
-            throw MeshError(path, what + ": '" + w + "' is not an integer", at(n));
+            throw MeshError(path, what + ": '" + w + "' is not an integer" + hint, at(n));
         return w;
     };
-    for (const PlyElement& e : elements)
-        for (long long i = 0; i < e.count; ++i) {
+    for (size_t ei = 0; ei < elements.size(); ++ei)
+        for (long long i = 0; i < elements[ei].count; ++i) {
+            const PlyElement& e = elements[ei];
             const std::string what = e.name + " " + std::to_string(i);
+            hint = i == 0 && ei > 0
+                       ? ": is the header's count of " + elements[ei - 1].name + " elements (" +
+                             std::to_string(elements[ei - 1].count) + ") too small?"
+                       : "";
             for (const PlyProperty& p : e.properties) {
                 long long values = 1;
                 if (p.countBytes) {

@@ -520,6 +520,30 @@ TEST(MeshReaderErrors, DataAfterTheElementsTheHeaderAnnouncesIsRefused) {
               3);
 }
 
+// A header counting one vertex too few made the last vertex face 0: "face 0: '-0.12' is not an
+// integer", and OFF "-8 6 0" "face 0 lists fewer than 3 corners"; neither named the header.
+TEST(MeshReaderErrors, AWrongVertexCountInTheHeaderIsNamedAsTheLikelyCause) {
+    Positions V = tentV();
+    V(4, 0) = 0.25;
+    std::string ply = plyAscii(V, tentP);
+    ply.replace(ply.find("vertex 5"), 8, "vertex 4");
+    const std::string short_ = errorOf(writeFile("short_count.ply", ply));
+    EXPECT_CONTAINS(short_,
+                    "face 0: '0.25' is not an integer: is the header's count of vertex "
+                    "elements (4) too small? (line 16)");
+    ply.replace(ply.find("vertex 4"), 8, "vertex 6");
+    EXPECT_CONTAINS(errorOf(writeFile("long_count.ply", ply)),
+                    "file ends in face 3 (the header announces 6 vertex, 4 face)");
+
+    std::string off = offText(V, tentP);
+    off.replace(off.find("5 4 0"), 5, "4 4 0");
+    EXPECT_CONTAINS(errorOf(writeFile("short_count.off", off)),
+                    "face 0: bad corner count '0.25': is the header's vertex count (4) too small?");
+    off.replace(off.find("4 4 0"), 5, "-8 4 0");
+    EXPECT_CONTAINS(errorOf(writeFile("negative.off", off)),
+                    "OFF header: the vertex count -8 is negative (line 3)");
+}
+
 // Found by fuzzing: OpenMesh read a corner count of 2^32-1 as that many stale indices.
 TEST(MeshReaderErrors, BinaryOffCountsTheFileCannotHold) {
     const std::string good = offBinary(tentV(), tentP);
