@@ -101,8 +101,21 @@ std::string_view nextToken(std::string_view& rest) {
     return token;
 }
 
+// "1#c": a comment straight after a number ends the line there, as one after a space does.
+std::string_view beforeComment(std::string_view t, std::string_view& rest) {
+    const size_t hash = t.find('#');
+    if (hash == std::string_view::npos) return t;
+    rest = {};
+    return t.substr(0, hash);
+}
+
+// Where from_chars may start: after a '+' sign, which it does not take ("+-1" stays refused).
+const char* afterPlus(std::string_view t) {
+    return t.data() + (t.size() > 1 && t[0] == '+' && t[1] != '-');
+}
+
 bool parseDouble(std::string_view t, double& value) {
-    if (!t.empty() && t[0] == '+') t.remove_prefix(1);
+    t.remove_prefix(size_t(afterPlus(t) - t.data()));
     const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
     return ec == std::errc() && end == t.data() + t.size();
 }
@@ -193,7 +206,7 @@ class ObjParser {
 
     void vertex(std::string_view rest) {
         for (int k = 0; k < 3; ++k) {
-            const std::string_view t = nextToken(rest);
+            const std::string_view t = beforeComment(nextToken(rest), rest);
             double value;
             if (t.empty())
                 fail("vertex " + std::to_string(vertexCount_) + " has fewer than 3 coordinates");
@@ -207,7 +220,7 @@ class ObjParser {
     // coordinates at all (they are only carried to the output, so a bad one must not stop a solve).
     void textureCoordinate(std::string_view rest) {
         for (int k = 0; k < 2; ++k) {
-            const std::string_view t = nextToken(rest);
+            const std::string_view t = beforeComment(nextToken(rest), rest);
             double value = 0;
             if ((k == 0 || !t.empty()) && !parseDouble(t, value)) uvBroken_ = true;
             soup_.uv.push_back(value);
@@ -252,7 +265,8 @@ class ObjParser {
     int uvReference(const char* from, const char* end) {
         if (from == end || *from != '/' || from + 1 == end || from[1] == '/') return -1;
         int index = 0;
-        const auto [stop, ec] = std::from_chars(from + 1, end, index);
+        const auto [stop, ec] = std::from_chars(
+            afterPlus(std::string_view(from + 1, size_t(end - from - 1))), end, index);
         const int resolved = index > 0 ? index - 1 : uvCount_ + index;
         if (ec != std::errc() || (stop != end && *stop != '/') || index == 0 || resolved < 0)
             uvBroken_ = true;
@@ -262,10 +276,12 @@ class ObjParser {
     void face(std::string_view rest) {
         const size_t first = soup_.faceIndex.size();
         for (auto t = nextToken(rest); !t.empty(); t = nextToken(rest)) {
+            t = beforeComment(t, rest);
+            if (t.empty()) break;
             // The position index, then the texture coordinate's: "7", "7/1", "7//3", "7/1/3".
             int index = 0;
             const char* end = t.data() + t.size();
-            const auto [stop, ec] = std::from_chars(t.data(), end, index);
+            const auto [stop, ec] = std::from_chars(afterPlus(t), end, index);
             if (ec != std::errc() || (stop != end && *stop != '/'))
                 fail("invalid vertex reference '" + std::string(t) + "'");
             soup_.uvOf.push_back(uvReference(stop, end));
@@ -291,7 +307,7 @@ class ObjParser {
         corners_.clear();
         for (auto t = nextToken(rest); !t.empty(); t = nextToken(rest)) {
             int index = 0;
-            std::from_chars(t.data(), t.data() + t.size(), index);
+            std::from_chars(afterPlus(t), t.data() + t.size(), index);
             if (index != 0) corners_.push_back(index > 0 ? index - 1 : vertexCount_ + index);
         }
         for (size_t g : activeGroups_)

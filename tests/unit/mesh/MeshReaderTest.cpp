@@ -292,6 +292,21 @@ TEST(MeshReaderFormats, ObjSyntaxVariants) {
     EXPECT_TRUE(anyWarningContains(r, "'curv'"));
 }
 
+// "v +1 0 0" was read but "f +1 2 3" refused, and "v 1 1 1#c" refused for its comment.
+TEST(MeshReaderFormats, ObjTakesAPlusSignOnIndicesAndACommentStraightAfterANumber) {
+    const MeshReadResult r = readMesh(writeFile(
+        "signs.obj", "v 0 0 0#origin\nv +1 0 0\nv 0 1 0 1#w\nvt 0 0#uv\nf +1/+1 2 +3#face\n"));
+    Positions V(3, 3);
+    V << 0, 0, 0, 1, 0, 0, 0, 1, 0;
+    EXPECT_EQ(r.mesh.V, V);
+    EXPECT_EQ(r.mesh.F, (Faces(1, 3) << 0, 1, 2).finished());
+    EXPECT_EQ(r.warnings, std::vector<std::string>{"open surface: 3 boundary edges in 1 loop"});
+    EXPECT_CONTAINS(errorOf(writeFile("plusminus.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf +-1 2 3\n")),
+                    "invalid vertex reference '+-1'");
+    EXPECT_CONTAINS(errorOf(writeFile("plusminus_v.obj", "v +-1 0 0\n")),
+                    "invalid coordinate '+-1'");
+}
+
 TEST(MeshReaderFormats, OffWithCommentsAndCountsOnTheKeywordLine) {
     // OpenMesh's OFF reader alone reads garbage counts from both of these.
     const std::string path = writeFile("comments.off",
