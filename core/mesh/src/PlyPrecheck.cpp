@@ -47,6 +47,7 @@ struct PlyElement {
 struct PlyHeader {
     std::string format;  // ascii, binary_little_endian, binary_big_endian
     std::vector<PlyElement> elements;
+    std::vector<std::string> objInfoWords;
 };
 PlyHeader readPlyHeader(const std::string& path, const std::string& text) {
     size_t at = text.find('\n');
@@ -76,6 +77,11 @@ PlyHeader readPlyHeader(const std::string& path, const std::string& text) {
     for (std::string w = word(); w != "end_header"; w = word()) {
         if (w == "comment") {
             at = std::min(text.find('\n', at), text.size());
+        } else if (w == "obj_info") {
+            // Walked on word by word, as OpenMesh does; its words noted to keep it quiet on them.
+            header.objInfoWords.push_back(w);
+            for (const std::string& t : tokens(text.substr(at, text.find('\n', at) - at)))
+                header.objInfoWords.push_back(t);
         } else if (w == "element") {
             const std::string name = word(), count = word();
             if (!isCount(count))
@@ -218,6 +224,7 @@ Precheck checkPly(const std::string& path) {
     const PlyHeader header = readPlyHeader(path, text);
     const std::vector<PlyElement>& elements = header.elements;
     Precheck p;
+    p.objInfoWords = header.objInfoWords;
     for (const PlyElement& e : elements) {
         if (e.name == "vertex") p.declaredVertices = e.count;
         if (e.name == "face") p.declaredFaces = e.count;

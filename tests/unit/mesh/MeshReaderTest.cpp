@@ -653,6 +653,16 @@ TEST(MeshReaderErrors, OpenMeshMessagesEndUpInTheErrorNotOnTheConsole) {
     EXPECT_EQ(console, "");
 }
 
+// OpenMesh parses a PLY header twice and said each thing twice; "obj_info" is a standard PLY
+// header line, not worth a note.
+TEST(MeshReaderWarnings, OpenMeshNotesComeOnceAndObjInfoIsNoNote) {
+    std::string ply = plyAscii(tentV(), tentP);
+    ply.insert(ply.find("element"), "obj_info scanned 2026\nfoo\n");
+    const MeshReadResult r = readMesh(writeFile("obj_info.ply", ply));
+    EXPECT_EQ(r.warnings, (std::vector<std::string>{"OpenMesh: Unsupported keyword : foo",
+                                                    "open surface: 4 boundary edges in 1 loop"}));
+}
+
 TEST(MeshReaderErrors, EdgeSharedByThreeFaces) {
     const std::string path = writeFile("fin.obj",
                                        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\n"
