@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <limits>
 
 #include "MtlReader.h"
 #include "OpenMeshPrecheck.h"
@@ -22,6 +24,12 @@ std::string faceList(const PolygonSoup& soup, const std::vector<int>& faces) {
     for (size_t i = 0; i < faces.size() && i < 5; ++i)
         s += (i ? ", " : "") + faceWhere(soup, faces[i]);
     return faces.size() > 5 ? s + ", ..." : s;
+}
+
+std::string shortNumber(double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.6g", x);
+    return text;
 }
 
 bool hasRepeatedCorner(const int* c, int n) {
@@ -208,6 +216,14 @@ MeshReadResult readMesh(const std::string& path, const MeshReadOptions& options)
         for (int k = 0; k < 3; ++k) V(i, k) = soup.xyz[3 * size_t(v) + k];
         if (!V.row(i).allFinite())
             throw MeshError(path, "non-finite vertex coordinate", vertexWhere(soup, v));
+        // Every output but OBJ stores floats: beyond their range it would hold infinities.
+        for (int k = 0; k < 3; ++k)
+            if (std::abs(V(i, k)) > std::numeric_limits<float>::max())
+                throw MeshError(path,
+                                "vertex coordinate " + shortNumber(V(i, k)) +
+                                    " is beyond the range of a float (3.4e38), which glTF, MDD "
+                                    "and PC2 store",
+                                vertexWhere(soup, v));
     }
 
     std::vector<int> tris, polygon, triFace;  // triFace: soup face of each triangle
@@ -238,13 +254,15 @@ MeshReadResult readMesh(const std::string& path, const MeshReadOptions& options)
     r.components = topo.components;
     r.isolatedVertices = topo.isolatedVertices;
 
-    const double diagonal = boundingBoxDiagonal(V);
-    std::vector<int> flat;
+    // Scaled by the vertices faces use: an isolated one far away made every triangle flat.
+    const double diagonal = boundingBoxDiagonal(V, r.mesh.F);
+    std::vector<int> flat;  // the polygons they come from, each once (its triangles are adjacent)
     for (int t = 0; t < r.mesh.faceCount(); ++t)
         if (zeroArea(V.row(r.mesh.F(t, 0)), V.row(r.mesh.F(t, 1)), V.row(r.mesh.F(t, 2)),
                      diagonal)) {
             ++r.zeroAreaFaces;
-            if (flat.size() < 5) flat.push_back(triFace[t]);
+            if (flat.size() < 6 && (flat.empty() || flat.back() != triFace[t]))
+                flat.push_back(triFace[t]);
         }
 
     addWarnings(r, soup, dropped, flat, topo);

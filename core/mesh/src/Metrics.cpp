@@ -57,7 +57,7 @@ std::vector<Vec3> carriedRestNormals(const Faces& F, const Positions& V, const P
 
 std::vector<int> foldedFaces(const Faces& F, const Positions& V, const Positions& rest) {
     const std::vector<Vec3> carried = carriedRestNormals(F, V, rest);
-    const double diagonal = boundingBoxDiagonal(rest);
+    const double diagonal = boundingBoxDiagonal(rest, F);
     std::vector<int> folded;
     for (int f = 0; f < F.rows(); ++f)
         // A face with no area at rest has no side to turn over: its normal is rounding noise.

@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <map>
 #include <string_view>
 #include <unordered_map>
@@ -36,10 +37,12 @@ bool isBlank(char c) {
     return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
 }
 
-// Walks logical lines: a line ending in '\' continues on the next physical line.
+// Walks logical lines: a line ending in '\' continues on the next physical line. Lines end in
+// LF, CR LF or a lone CR (old Mac files); a UTF-8 byte-order mark (Windows editors) is skipped.
 class LineReader {
   public:
-    explicit LineReader(const std::string& data) : data_(data) {}
+    explicit LineReader(const std::string& data)
+        : data_(data), pos_(data.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0) {}
 
     bool next(std::string_view& line, int& lineNumber) {
         if (pos_ >= data_.size()) return false;
@@ -63,9 +66,10 @@ class LineReader {
 
   private:
     std::string_view physicalLine() {
-        const size_t end = std::min(data_.find('\n', pos_), data_.size());
+        size_t end = pos_;
+        while (end < data_.size() && data_[end] != '\n' && data_[end] != '\r') ++end;
         std::string_view part(data_.data() + pos_, end - pos_);
-        pos_ = end + 1;
+        pos_ = end + (data_.compare(end, 2, "\r\n") == 0 ? 2 : 1);
         return part;
     }
     static std::string_view trimmedRight(std::string_view s) {
@@ -78,7 +82,7 @@ class LineReader {
     }
 
     const std::string& data_;
-    size_t pos_ = 0;
+    size_t pos_;
     int physical_ = 0;
     std::string joined_;
 };
@@ -97,8 +101,21 @@ std::string_view nextToken(std::string_view& rest) {
     return token;
 }
 
+// "1#c": a comment straight after a number ends the line there, as one after a space does.
+std::string_view beforeComment(std::string_view t, std::string_view& rest) {
+    const size_t hash = t.find('#');
+    if (hash == std::string_view::npos) return t;
+    rest = {};
+    return t.substr(0, hash);
+}
+
+// Where from_chars may start: after a '+' sign, which it does not take ("+-1" stays refused).
+const char* afterPlus(std::string_view t) {
+    return t.data() + (t.size() > 1 && t[0] == '+' && t[1] != '-');
+}
+
 bool parseDouble(std::string_view t, double& value) {
-    if (!t.empty() && t[0] == '+') t.remove_prefix(1);
+    t.remove_prefix(size_t(afterPlus(t) - t.data()));
     const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
     return ec == std::errc() && end == t.data() + t.size();
 }
@@ -124,8 +141,7 @@ class ObjParser {
             } else if (key == "usemtl") {
                 material_ = useMaterial(rest);
             } else if (key == "mtllib") {
-                for (auto t = nextToken(rest); !t.empty(); t = nextToken(rest))
-                    soup_.materialLibraries.emplace_back(t);
+                materialLibraries(rest);
             } else if (key == "f") {
                 if (namesOnly)
                     countGroupFace(rest);
@@ -190,7 +206,7 @@ class ObjParser {
 
     void vertex(std::string_view rest) {
         for (int k = 0; k < 3; ++k) {
-            const std::string_view t = nextToken(rest);
+            const std::string_view t = beforeComment(nextToken(rest), rest);
             double value;
             if (t.empty())
                 fail("vertex " + std::to_string(vertexCount_) + " has fewer than 3 coordinates");
@@ -204,11 +220,30 @@ class ObjParser {
     // coordinates at all (they are only carried to the output, so a bad one must not stop a solve).
     void textureCoordinate(std::string_view rest) {
         for (int k = 0; k < 2; ++k) {
-            const std::string_view t = nextToken(rest);
+            const std::string_view t = beforeComment(nextToken(rest), rest);
             double value = 0;
             if ((k == 0 || !t.empty()) && !parseDouble(t, value)) uvBroken_ = true;
             soup_.uv.push_back(value);
         }
+    }
+
+    // "mtllib my mat.mtl" as Blender reads it: the rest of the line (quotes around it removed)
+    // is one library when it names a file beside the OBJ; otherwise its words are libraries.
+    void materialLibraries(std::string_view rest) {
+        std::string_view whole = rest;
+        while (!whole.empty() && isBlank(whole.front())) whole.remove_prefix(1);
+        while (!whole.empty() && isBlank(whole.back())) whole.remove_suffix(1);
+        if (whole.size() > 2 && whole.front() == '"' && whole.back() == '"')
+            whole = whole.substr(1, whole.size() - 2);
+        std::error_code ec;
+        if (!whole.empty() &&
+            std::filesystem::is_regular_file(
+                std::filesystem::path(path_).parent_path() / std::string(whole), ec)) {
+            soup_.materialLibraries.emplace_back(whole);
+            return;
+        }
+        for (auto t = nextToken(rest); !t.empty(); t = nextToken(rest))
+            soup_.materialLibraries.emplace_back(t);
     }
 
     // The name is the rest of the line: "usemtl Material 1" is one material.
@@ -230,7 +265,8 @@ class ObjParser {
     int uvReference(const char* from, const char* end) {
         if (from == end || *from != '/' || from + 1 == end || from[1] == '/') return -1;
         int index = 0;
-        const auto [stop, ec] = std::from_chars(from + 1, end, index);
+        const auto [stop, ec] = std::from_chars(
+            afterPlus(std::string_view(from + 1, size_t(end - from - 1))), end, index);
         const int resolved = index > 0 ? index - 1 : uvCount_ + index;
         if (ec != std::errc() || (stop != end && *stop != '/') || index == 0 || resolved < 0)
             uvBroken_ = true;
@@ -240,10 +276,12 @@ class ObjParser {
     void face(std::string_view rest) {
         const size_t first = soup_.faceIndex.size();
         for (auto t = nextToken(rest); !t.empty(); t = nextToken(rest)) {
+            t = beforeComment(t, rest);
+            if (t.empty()) break;
             // The position index, then the texture coordinate's: "7", "7/1", "7//3", "7/1/3".
             int index = 0;
             const char* end = t.data() + t.size();
-            const auto [stop, ec] = std::from_chars(t.data(), end, index);
+            const auto [stop, ec] = std::from_chars(afterPlus(t), end, index);
             if (ec != std::errc() || (stop != end && *stop != '/'))
                 fail("invalid vertex reference '" + std::string(t) + "'");
             soup_.uvOf.push_back(uvReference(stop, end));
@@ -269,7 +307,7 @@ class ObjParser {
         corners_.clear();
         for (auto t = nextToken(rest); !t.empty(); t = nextToken(rest)) {
             int index = 0;
-            std::from_chars(t.data(), t.data() + t.size(), index);
+            std::from_chars(afterPlus(t), t.data() + t.size(), index);
             if (index != 0) corners_.push_back(index > 0 ? index - 1 : vertexCount_ + index);
         }
         for (size_t g : activeGroups_)

@@ -14,6 +14,7 @@
 
 #include "PrecheckText.h"
 #include "boneless/Error.h"
+#include "boneless/Text.h"
 
 namespace boneless::detail {
 
@@ -70,6 +71,16 @@ void requireNumbers(const std::string& path, const std::vector<std::string>& tok
         if (n == Number::Invalid)
             throw MeshError(path, what + ": '" + t + "' is not a number", at(line));
     }
+}
+
+bool startsWithByteOrderMark(const std::string& text) {
+    return text.compare(0, 3, "\xEF\xBB\xBF") == 0;
+}
+
+std::string byteOrderMarkRefused(const std::string& format) {
+    return "starts with a UTF-8 byte-order mark (bytes EF BB BF, invisible in most editors), "
+           "which " +
+           format + " does not allow: save the file without it";
 }
 
 std::vector<std::pair<int, std::string>> contentLines(const std::string& text, char comment) {
@@ -133,11 +144,19 @@ Precheck checkBinaryOff(const std::string& path, const std::string& data,
                                       " corners, more than the file holds");
         at += 4 * size_t(corners);
     }
+    // OpenMesh stops after the announced faces: more after them would be dropped silently.
+    if (data.find_first_not_of(" \t\r\n\v\f", at) != std::string::npos)
+        throw MeshError(path, std::to_string(data.size() - at) + " bytes follow the " +
+                                  std::to_string(p.declaredFaces) +
+                                  " faces the header announces: does it count too few?");
     return p;
 }
 
 Precheck checkOff(const std::string& path) {
-    const std::string data = readAll(path);
+    // Text OFF is read here in full, so a byte-order mark (Windows editors write one) is skipped.
+    std::string data = readAll(path);
+    const bool byteOrderMark = startsWithByteOrderMark(data);
+    if (byteOrderMark) data.erase(0, 3);
     const auto lines = contentLines(data, '#');
     if (lines.empty()) throw MeshError(path, "empty OFF file");
     auto head = tokens(lines[0].second);
@@ -154,8 +173,10 @@ Precheck checkOff(const std::string& path) {
     // took for binary would reach OpenMesh's unchecked text parser (found by fuzzing).
     const size_t k = keyword.size();
     if (data.compare(0, k, keyword) == 0 && data.size() >= k + 7 && data[k] != '\n' &&
-        data.compare(k + 1, 6, "BINARY") == 0)
+        data.compare(k + 1, 6, "BINARY") == 0) {
+        if (byteOrderMark) throw MeshError(path, byteOrderMarkRefused("binary OFF"));
         return checkBinaryOff(path, data, keyword);
+    }
     size_t next = 1;
     std::vector<std::string> counts(head.begin() + 1, head.end());
     if (counts.empty()) {
@@ -168,6 +189,13 @@ Precheck checkOff(const std::string& path) {
     Precheck p;
     p.declaredVertices = std::stoll(counts[0]);
     p.declaredFaces = std::stoll(counts[1]);
+    for (const auto& [count, what] :
+         {std::pair{p.declaredVertices, "vertex"}, {p.declaredFaces, "face"}})
+        if (count < 0)
+            throw MeshError(path,
+                            "OFF header: the " + std::string(what) + " count " +
+                                std::to_string(count) + " is negative",
+                            at(lines[next - 1].first));
     PolygonSoup& soup = p.offSoup.emplace();
     for (long long v = 0; v < p.declaredVertices; ++v, ++next) {
         if (next >= lines.size())
@@ -188,11 +216,16 @@ Precheck checkOff(const std::string& path) {
         const auto toks = tokens(lines[next].second);
         const std::string what = "face " + std::to_string(f);
         const int line = lines[next].first;
+        // A bad first face is most likely one more vertex than the header counts.
+        const std::string hint = f == 0 ? ": is the header's vertex count (" +
+                                              std::to_string(p.declaredVertices) + ") too small?"
+                                        : "";
         if (!isInteger(toks[0]))
-            throw MeshError(path, what + ": bad corner count '" + toks[0] + "'", at(line));
+            throw MeshError(path, what + ": bad corner count '" + toks[0] + "'" + hint, at(line));
         const long long k = std::stoll(toks[0]);
         if (k < 3 || static_cast<long long>(toks.size()) < k + 1)
-            throw MeshError(path, what + " lists fewer than 3 corners or fewer than announced",
+            throw MeshError(path,
+                            what + " lists fewer than 3 corners or fewer than announced" + hint,
                             at(line));
         for (long long i = 1; i <= k; ++i) {
             int index;
@@ -205,6 +238,13 @@ Precheck checkOff(const std::string& path) {
         soup.endFace();  // what follows the corners (a colour) is not kept
         soup.faceLine.push_back(line);
     }
+    if (next < lines.size())
+        throw MeshError(path,
+                        "more lines than the header announces (" +
+                            std::to_string(p.declaredVertices) + " vertices, " +
+                            std::to_string(p.declaredFaces) + " faces): '" +
+                            tokens(lines[next].second)[0] + "' follows the last face",
+                        at(lines[next].first));
     return p;
 }
 
@@ -225,9 +265,9 @@ bool isBinaryStl(const std::string& path, const std::string& data) {
     std::memcpy(&n, data.data() + 80, 4);  // little-endian, as on every platform we build for
     const uint64_t size = 84 + 50 * uint64_t(n);
     if (data.size() == size) return true;  // the rule OpenMesh applies
-    // OpenMesh would parse a cut binary file as text and find no faces; shorter than its header
-    // says and not text, it is binary, and checkStl reports it truncated.
-    return data.size() < size && !isText(data);
+    // OpenMesh would parse a cut or padded binary file as text and find no faces; not text, it is
+    // binary, and checkStl reports it truncated or its extra bytes.
+    return !isText(data);
 }
 
 Precheck checkStl(const std::string& path) {
@@ -244,6 +284,15 @@ Precheck checkStl(const std::string& path) {
             throw MeshError(path, "binary STL file is truncated: the header announces " +
                                       std::to_string(n) + " triangles, the file holds " +
                                       std::to_string((data.size() - 84) / 50));
+        // OpenMesh reads a binary file only when its size is exactly this.
+        if (data.size() > 84 + 50 * uint64_t(n))
+            throw MeshError(
+                path,
+                "binary STL file has " +
+                    plural(static_cast<long long>(data.size() - 84 - 50 * uint64_t(n)), "byte") +
+                    " more than the " + std::to_string(n) +
+                    " triangles its header announces (84 + 50 x " + std::to_string(n) + " = " +
+                    std::to_string(84 + 50 * uint64_t(n)) + " bytes)");
         for (uint32_t t = 0; t < n; ++t) {
             float xyz[9];
             std::memcpy(xyz, data.data() + 84 + 50 * size_t(t) + 12, sizeof xyz);

@@ -2,6 +2,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "PolygonSoup.h"
 
@@ -20,6 +21,9 @@ struct Precheck {
     // neither comments nor "OFF nv nf ne", and read from a stream it parses with the header flags
     // (binary, colours, normals) of the previous file it opened; it only reads binary OFF.
     std::optional<PolygonSoup> offSoup;
+    // PLY: the words of its "obj_info" lines, a standard header line OpenMesh does not know and
+    // reports word by word ("Unsupported keyword : obj_info"), which is no news to the user.
+    std::vector<std::string> objInfoWords;
 };
 
 Precheck precheckForOpenMesh(const std::string& path);

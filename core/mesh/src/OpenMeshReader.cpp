@@ -165,7 +165,17 @@ PolygonSoup readWithOpenMesh(const std::string& path) {
         throw MeshError(path, "OpenMesh could not read the file",
                         messages.empty() ? std::string() : joined(messages));
     }
-    for (const auto& m : messages) soup.warnings.push_back("OpenMesh: " + m);
+    // OpenMesh parses a PLY header twice (once to see whether it can read the file), saying the
+    // same things twice; "obj_info" is a standard PLY header line it merely does not know.
+    for (size_t i = 0; i < messages.size(); ++i) {
+        const std::string& m = messages[i];
+        const bool objInfo =
+            std::any_of(facts.objInfoWords.begin(), facts.objInfoWords.end(),
+                        [&](const std::string& w) { return m == "Unsupported keyword : " + w; });
+        if (!objInfo &&
+            std::find(messages.begin(), messages.begin() + i, m) == messages.begin() + i)
+            soup.warnings.push_back("OpenMesh: " + m);
+    }
     if (facts.stl && facts.triangles > soup.faceCount()) {
         soup.warnings.push_back(
             std::to_string(facts.triangles - soup.faceCount()) +

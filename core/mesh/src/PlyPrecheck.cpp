@@ -47,6 +47,7 @@ struct PlyElement {
 struct PlyHeader {
     std::string format;  // ascii, binary_little_endian, binary_big_endian
     std::vector<PlyElement> elements;
+    std::vector<std::string> objInfoWords;
 };
 PlyHeader readPlyHeader(const std::string& path, const std::string& text) {
     size_t at = text.find('\n');
@@ -76,6 +77,11 @@ PlyHeader readPlyHeader(const std::string& path, const std::string& text) {
     for (std::string w = word(); w != "end_header"; w = word()) {
         if (w == "comment") {
             at = std::min(text.find('\n', at), text.size());
+        } else if (w == "obj_info") {
+            // Walked on word by word, as OpenMesh does; its words noted to keep it quiet on them.
+            header.objInfoWords.push_back(w);
+            for (const std::string& t : tokens(text.substr(at, text.find('\n', at) - at)))
+                header.objInfoWords.push_back(t);
         } else if (w == "element") {
             const std::string name = word(), count = word();
             if (!isCount(count))
@@ -109,6 +115,19 @@ uint64_t plyListLength(const std::string& data, size_t at, int bytes, bool bigEn
     return n;
 }
 
+// "3426 vertex, 6847 face": what the header announces, for messages.
+std::string announced(const std::vector<PlyElement>& elements) {
+    std::string s;
+    for (const PlyElement& e : elements)
+        s += (s.empty() ? "" : ", ") + std::to_string(e.count) + " " + e.name;
+    return s.empty() ? "no elements" : s;
+}
+
+// Bytes no writer means as data: a newline or spaces after the last element.
+bool onlyWhitespace(const std::string& text, size_t from) {
+    return text.find_first_not_of(" \t\r\n\v\f", from) == std::string::npos;
+}
+
 // Ascii PLY as OpenMesh reads it: word after word with >>, whatever the lines. A word that does
 // not parse leaves its stream failed and its loops running on stale counts.
 void checkPlyAscii(const std::string& path, const std::string& text, size_t bodyStart,
@@ -118,17 +137,27 @@ void checkPlyAscii(const std::string& path, const std::string& text, size_t body
     for (const auto& [n, content] : contentLines(text.substr(bodyStart), 0))
         for (const std::string& w : tokens(content)) words.emplace_back(w, line + n);
     size_t k = 0;
+    // At an element's first item: a wrong word there most likely belongs to the element before,
+    // whose count in the header is too small.
+    std::string hint;
     const auto next = [&](const std::string& what, bool integer) {
-        if (k >= words.size()) throw MeshError(path, "file ends in " + what);
+        if (k >= words.size())
+            throw MeshError(path, "file ends in " + what + " (the header announces " +
+                                      announced(elements) + ")");
         const auto& [w, n] = words[k++];
         requireNumbers(path, {w}, n, what);
         if (integer && !isInteger(w))
-            throw MeshError(path, what + ": '" + w + "' is not an integer", at(n));
+            throw MeshError(path, what + ": '" + w + "' is not an integer" + hint, at(n));
         return w;
     };
-    for (const PlyElement& e : elements)
-        for (long long i = 0; i < e.count; ++i) {
+    for (size_t ei = 0; ei < elements.size(); ++ei)
+        for (long long i = 0; i < elements[ei].count; ++i) {
+            const PlyElement& e = elements[ei];
             const std::string what = e.name + " " + std::to_string(i);
+            hint = i == 0 && ei > 0
+                       ? ": is the header's count of " + elements[ei - 1].name + " elements (" +
+                             std::to_string(elements[ei - 1].count) + ") too small?"
+                       : "";
             for (const PlyProperty& p : e.properties) {
                 long long values = 1;
                 if (p.countBytes) {
@@ -143,6 +172,18 @@ void checkPlyAscii(const std::string& path, const std::string& text, size_t body
                 for (long long v = 0; v < values; ++v) next(what, p.integer);
             }
         }
+    // OpenMesh stops after the announced elements: more after them (a header counting one face
+    // too few) would be dropped silently. Comment lines at the end are no data.
+    while (k < words.size()) {
+        const auto& [w, n] = words[k];
+        const bool lineStart = k == 0 || words[k - 1].second != n;
+        if (!(lineStart && (w == "comment" || w[0] == '#')))
+            throw MeshError(path,
+                            "more data than the header announces (" + announced(elements) + "): '" +
+                                w + "' follows the last element",
+                            at(n));
+        while (k < words.size() && words[k].second == n) ++k;
+    }
 }
 
 // Binary PLY: OpenMesh reads a list length the file cannot hold as that many stale values
@@ -166,18 +207,24 @@ void checkPlyBinary(const std::string& path, const std::string& text, size_t bod
                 pos += values * p.valueBytes;
             }
         }
+    if (!onlyWhitespace(text, pos))
+        throw MeshError(path, std::to_string(text.size() - pos) +
+                                  " bytes follow the elements the header announces (" +
+                                  announced(elements) + "): does it count too few?");
 }
 
 }  // namespace
 
 Precheck checkPly(const std::string& path) {
     const std::string text = readAll(path);
+    if (startsWithByteOrderMark(text)) throw MeshError(path, byteOrderMarkRefused("PLY"));
     const size_t headerEnd = text.find("end_header");
     if (text.compare(0, 3, "ply") != 0 || headerEnd == std::string::npos)
         throw MeshError(path, "not a PLY file (no 'ply' ... 'end_header' header)");
     const PlyHeader header = readPlyHeader(path, text);
     const std::vector<PlyElement>& elements = header.elements;
     Precheck p;
+    p.objInfoWords = header.objInfoWords;
     for (const PlyElement& e : elements) {
         if (e.name == "vertex") p.declaredVertices = e.count;
         if (e.name == "face") p.declaredFaces = e.count;

@@ -18,6 +18,9 @@ std::string at(int line);  // "line 12", for messages
 // Checks the tokens of a line that must all be numbers; `what` names the element for messages.
 void requireNumbers(const std::string& path, const std::vector<std::string>& toks, int line,
                     const std::string& what);
+// Whether the text starts with a UTF-8 byte-order mark (EF BB BF), and the message refusing it.
+bool startsWithByteOrderMark(const std::string& text);
+std::string byteOrderMarkRefused(const std::string& format);
 // Content lines (comments and blank lines removed) with their 1-based line numbers.
 std::vector<std::pair<int, std::string>> contentLines(const std::string& text, char comment);
 

@@ -13,7 +13,7 @@ ArapEnergy::ArapEnergy(const TriMesh& rest) : rest_(&rest) {
     cotangent_.resize(rest.faceCount(), 3);
     restEdge_.resize(3 * static_cast<size_t>(rest.faceCount()));
     cornerOffsets_.assign(n + 1, 0);
-    const double diagonal = boundingBoxDiagonal(rest.V);
+    const double diagonal = boundingBoxDiagonal(rest.V, rest.F);
     for (int f = 0; f < rest.faceCount(); ++f) {
         // A zero-area face has no angles to keep; it contributes nothing. Its cotangents, rounding
         // noise over a rounding-noise sine, would otherwise reach ±1e15 and swamp the others.

@@ -89,7 +89,7 @@ SolveResult Reconstruction::Impl::solveExact(const Positions& targets, const Pos
 
     Eigen::VectorXd gradient;
     const auto build = [&](GuardHessian kind) { buildSystem(kind, V, targets, pinned, gradient); };
-    const double still = 1e-10 * boundingBoxDiagonal(rest.V);
+    const double still = 1e-10 * boundingBoxDiagonal(rest.V, rest.F);
     double E = linearise(V, targets);
     result.report.energyBefore = E;
     result.report.energies.push_back(E);

@@ -32,7 +32,7 @@ FoldRepair::FoldRepair(const TriMesh& rest, const RingFit& rings) : rest_(rest),
     std::vector<int> fill(cornerStart_.begin(), cornerStart_.end() - 1);
     restNormal_.resize(faces);
     double total = 0;
-    const double diagonal = boundingBoxDiagonal(rest.V);
+    const double diagonal = boundingBoxDiagonal(rest.V, rest.F);
     for (int f = 0; f < faces; ++f) {
         for (int c = 0; c < 3; ++c) cornerFace_[fill[rest.F(f, c)]++] = f;
         // A face with no area has no side to fold over: a zero normal leaves it out.

@@ -136,7 +136,7 @@ LocalGlobalSolver::LocalGlobalSolver(const TriMesh& rest, const MeshTopology& to
     }
     if (!factorised) throw SolverError("the local/global system could not be factorised");
     correction_.assign(K, Eigen::VectorXd());
-    diagonal_ = boundingBoxDiagonal(rest.V);
+    diagonal_ = boundingBoxDiagonal(rest.V, rest.F);
     if (settings_.repairFolds) repair_ = std::make_unique<FoldRepair>(rest, rings_);
 }
 

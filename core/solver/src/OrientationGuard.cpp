@@ -18,7 +18,7 @@ OrientationGuard::OrientationGuard(const TriMesh& rest, double weight, double th
     const int faces = rest.faceCount();
     restArea2_.resize(faces);
     double total = 0;
-    const double diagonal = boundingBoxDiagonal(rest.V);
+    const double diagonal = boundingBoxDiagonal(rest.V, rest.F);
     // A face with no area has no orientation to guard: an area of 0 leaves it out.
     for (int f = 0; f < faces; ++f)
         total += restArea2_[f] = zeroArea(rest.V.row(rest.F(f, 0)), rest.V.row(rest.F(f, 1)),

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -291,6 +292,21 @@ TEST(MeshReaderFormats, ObjSyntaxVariants) {
     EXPECT_TRUE(anyWarningContains(r, "'curv'"));
 }
 
+// "v +1 0 0" was read but "f +1 2 3" refused, and "v 1 1 1#c" refused for its comment.
+TEST(MeshReaderFormats, ObjTakesAPlusSignOnIndicesAndACommentStraightAfterANumber) {
+    const MeshReadResult r = readMesh(writeFile(
+        "signs.obj", "v 0 0 0#origin\nv +1 0 0\nv 0 1 0 1#w\nvt 0 0#uv\nf +1/+1 2 +3#face\n"));
+    Positions V(3, 3);
+    V << 0, 0, 0, 1, 0, 0, 0, 1, 0;
+    EXPECT_EQ(r.mesh.V, V);
+    EXPECT_EQ(r.mesh.F, (Faces(1, 3) << 0, 1, 2).finished());
+    EXPECT_EQ(r.warnings, std::vector<std::string>{"open surface: 3 boundary edges in 1 loop"});
+    EXPECT_CONTAINS(errorOf(writeFile("plusminus.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf +-1 2 3\n")),
+                    "invalid vertex reference '+-1'");
+    EXPECT_CONTAINS(errorOf(writeFile("plusminus_v.obj", "v +-1 0 0\n")),
+                    "invalid coordinate '+-1'");
+}
+
 TEST(MeshReaderFormats, OffWithCommentsAndCountsOnTheKeywordLine) {
     // OpenMesh's OFF reader alone reads garbage counts from both of these.
     const std::string path = writeFile("comments.off",
@@ -302,6 +318,38 @@ TEST(MeshReaderFormats, OffWithCommentsAndCountsOnTheKeywordLine) {
     EXPECT_EQ(r.mesh.vertexCount(), 4);
     EXPECT_EQ(r.mesh.V.row(2), Eigen::RowVector3d(1, 1, 0));
     EXPECT_EQ(r.mesh.F, F);
+}
+
+// A byte-order mark made the first line an unknown keyword: vertex 0 was lost, every later one
+// shifted by one, and the mesh read scrambled. Old Mac files (CR alone) read as one line.
+TEST(MeshReaderFormats, ObjWithAByteOrderMarkOrOldMacLineEndsReadsEveryVertex) {
+    const Positions V = tentV();
+    const std::string obj = objText(V, tentP);
+    std::string mac = obj;
+    std::replace(mac.begin(), mac.end(), '\n', '\r');
+    for (const std::string& bytes : {"\xEF\xBB\xBF" + obj, mac, "\xEF\xBB\xBF" + mac}) {
+        const MeshReadResult r = readMesh(writeFile("marked.obj", bytes));
+        EXPECT_EQ(r.mesh.V, V);
+        EXPECT_EQ(r.mesh.F, toFaces(tentP));
+        EXPECT_TRUE(r.warnings.size() == 1 && anyWarningContains(r, "open surface"))
+            << r.warnings.front();
+    }
+    // Line numbers count lone CRs too.
+    EXPECT_CONTAINS(errorOf(writeFile("mac.obj", "v 0 0 0\rv 1 0 0\r\nv 0 x 0\r")), "(line 3)");
+}
+
+// OFF is read here in full and takes the mark; PLY goes to OpenMesh, which does not, so the
+// refusal names it (it said "not a PLY file", the culprit invisible).
+TEST(MeshReaderFormats, OffWithAByteOrderMarkReadsAndPlyWithOneSaysSo) {
+    const Positions V = tentV();
+    const MeshReadResult r = readMesh(writeFile("marked.off", "\xEF\xBB\xBF" + offText(V, tentP)));
+    EXPECT_EQ(r.mesh.V, V);
+    EXPECT_EQ(r.mesh.F, toFaces(tentP));
+    for (const std::string& bytes : {plyAscii(V, tentP), plyBinary(V, tentP)})
+        EXPECT_CONTAINS(errorOf(writeFile("marked.ply", "\xEF\xBB\xBF" + bytes)),
+                        "starts with a UTF-8 byte-order mark");
+    EXPECT_CONTAINS(errorOf(writeFile("marked_binary.off", "\xEF\xBB\xBF" + offBinary(V, tentP))),
+                    "starts with a UTF-8 byte-order mark");
 }
 
 TEST(MeshReaderFormats, ObjKeepsDoublePrecision) {
@@ -346,6 +394,21 @@ TEST(MeshReaderErrors, ACutBinaryStlIsReportedAsTruncatedWithTheTrianglesItHolds
                     "50 bytes, shorter than the 84-byte header");
 }
 
+// A binary file with a few bytes after its triangles was parsed as text (its size no longer
+// 84 + 50 n) and reported as having no faces.
+TEST(MeshReaderErrors, ABinaryStlWithBytesAfterItsTrianglesSaysHowMany) {
+    const std::string whole = stlBinary(tentV(), toFaces(tentP));
+    for (int extra = 1; extra <= 4; ++extra)
+        for (const std::string& bytes : {whole, "solid tent" + whole.substr(10)}) {
+            const std::string msg =
+                errorOf(writeFile("padded.stl", bytes + std::string(size_t(extra), '\0')));
+            EXPECT_CONTAINS(msg, "binary STL file has " + std::to_string(extra) +
+                                     (extra == 1 ? " byte" : " bytes") +
+                                     " more than the 4 triangles its header announces");
+            EXPECT_CONTAINS(msg, "84 + 50 x 4 = 284 bytes");
+        }
+}
+
 TEST(MeshReaderErrors, NonFiniteCoordinates) {
     const std::string obj = writeFile("nan.obj", "v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n");
     const std::string msg = errorOf(obj);
@@ -369,6 +432,25 @@ TEST(MeshReaderErrors, NonFiniteCoordinates) {
     const std::string stl = errorOf(writeFile("nan_binary.stl", stlBinary(V, toFaces(tentP))));
     EXPECT_CONTAINS(stl, "non-finite");
     EXPECT_CONTAINS(stl, "triangle 1");
+}
+
+// A corner at 1e300 was read (the solver works in doubles) and written to a glb as infinity, its
+// accessor bounds null: invalid glTF. The README's "NaN coordinates are errors" extends to it.
+TEST(MeshReaderErrors, CoordinatesBeyondTheRangeOfAFloatAreRefusedWithTheirLine) {
+    const std::string obj =
+        errorOf(writeFile("huge.obj", "v 0 0 0\nv 1 0 0\nv 0 1 -1e300\nf 1 2 3\n"));
+    EXPECT_CONTAINS(obj, "vertex coordinate -1e+300 is beyond the range of a float");
+    EXPECT_CONTAINS(obj, "vertex 2 (line 3)");
+    EXPECT_CONTAINS(
+        errorOf(writeFile("huge_unused.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 4e38 0 0\nf 1 2 3\n")),
+        "vertex 3 (line 4)");
+    Positions V = tentV();
+    V(1, 0) = 1e39;
+    EXPECT_CONTAINS(errorOf(writeFile("huge.off", offText(V, tentP))),
+                    "vertex coordinate 1e+39 is beyond the range of a float");
+    // The largest float itself is fine.
+    V(1, 0) = double(std::numeric_limits<float>::max());
+    EXPECT_EQ(readMesh(writeFile("largest.off", offText(V, tentP))).mesh.V(1, 0), V(1, 0));
 }
 
 TEST(MeshReaderErrors, FaceReferencesMissingVertex) {
@@ -432,6 +514,68 @@ TEST(MeshReaderErrors, MalformedTextThatOpenMeshWouldAccept) {
     const std::string tabbed = "solid x\n\v\n" + stlAscii(tentV(), toFaces(tentP)).substr(11);
     EXPECT_EQ(readMesh(writeFile("vtab.stl", tabbed)).mesh.F.rows(), toFaces(tentP).rows());
     EXPECT_CONTAINS(errorOf(writeFile("formfeed.off", "\f\n\f\nfil")), "fil");
+}
+
+// A header counting one face too few dropped the last face silently (OpenMesh stops reading at
+// the count): ascii and binary PLY, text and binary OFF.
+TEST(MeshReaderErrors, DataAfterTheElementsTheHeaderAnnouncesIsRefused) {
+    const Positions V = tentV();
+    const Polygons three(tentP.begin(), tentP.begin() + 3);
+    const auto undercount = [](std::string bytes, const std::string& from, const std::string& to) {
+        return bytes.replace(bytes.find(from), from.size(), to);
+    };
+    const std::string ascii =
+        errorOf(writeFile("extra.ply", undercount(plyAscii(V, tentP), "face 4", "face 3")));
+    EXPECT_CONTAINS(ascii, "more data than the header announces (5 vertex, 3 face)");
+    EXPECT_CONTAINS(ascii, "'3' follows the last element (line 20)");
+    const std::string binary =
+        errorOf(writeFile("extra_binary.ply", undercount(plyBinary(V, tentP), "face 4", "face 3")));
+    EXPECT_CONTAINS(binary, "13 bytes follow the elements the header announces (5 vertex, 3 face)");
+    const std::string off =
+        errorOf(writeFile("extra.off", undercount(offText(V, tentP), "5 4 0", "5 3 0")));
+    EXPECT_CONTAINS(off, "more lines than the header announces (5 vertices, 3 faces)");
+    EXPECT_CONTAINS(off, "(line 12)");
+    std::string offBytes = offBinary(V, tentP);
+    offBytes[15] = 3;  // the face count
+    EXPECT_CONTAINS(errorOf(writeFile("extra_binary.off", offBytes)),
+                    "16 bytes follow the 3 faces the header announces");
+
+    // What is no data is not refused: an element after the faces, comments and blank lines at the
+    // end of an ascii file, a newline after a binary one.
+    std::string edges = plyAscii(V, three);
+    edges.replace(edges.find("end_header"), 10,
+                  "element edge 1\nproperty int vertex1\nproperty int vertex2\nend_header");
+    edges += "0 1\n\ncomment written by hand\n  \n";
+    EXPECT_EQ(readMesh(writeFile("edges.ply", edges)).mesh.faceCount(), 3);
+    EXPECT_CONTAINS(errorOf(writeFile("edges2.ply", edges + "2 3\n")),
+                    "'2' follows the last element");
+    EXPECT_EQ(readMesh(writeFile("newline.ply", plyBinary(V, three) + "\n")).mesh.faceCount(), 3);
+    EXPECT_EQ(readMesh(writeFile("comment.off", offText(V, three) + "# end\n\n")).mesh.faceCount(),
+              3);
+}
+
+// A header counting one vertex too few made the last vertex face 0: "face 0: '-0.12' is not an
+// integer", and OFF "-8 6 0" "face 0 lists fewer than 3 corners"; neither named the header.
+TEST(MeshReaderErrors, AWrongVertexCountInTheHeaderIsNamedAsTheLikelyCause) {
+    Positions V = tentV();
+    V(4, 0) = 0.25;
+    std::string ply = plyAscii(V, tentP);
+    ply.replace(ply.find("vertex 5"), 8, "vertex 4");
+    const std::string short_ = errorOf(writeFile("short_count.ply", ply));
+    EXPECT_CONTAINS(short_,
+                    "face 0: '0.25' is not an integer: is the header's count of vertex "
+                    "elements (4) too small? (line 16)");
+    ply.replace(ply.find("vertex 4"), 8, "vertex 6");
+    EXPECT_CONTAINS(errorOf(writeFile("long_count.ply", ply)),
+                    "file ends in face 3 (the header announces 6 vertex, 4 face)");
+
+    std::string off = offText(V, tentP);
+    off.replace(off.find("5 4 0"), 5, "4 4 0");
+    EXPECT_CONTAINS(errorOf(writeFile("short_count.off", off)),
+                    "face 0: bad corner count '0.25': is the header's vertex count (4) too small?");
+    off.replace(off.find("4 4 0"), 5, "-8 4 0");
+    EXPECT_CONTAINS(errorOf(writeFile("negative.off", off)),
+                    "OFF header: the vertex count -8 is negative (line 3)");
 }
 
 // Found by fuzzing: OpenMesh read a corner count of 2^32-1 as that many stale indices.
@@ -528,6 +672,16 @@ TEST(MeshReaderErrors, OpenMeshMessagesEndUpInTheErrorNotOnTheConsole) {
     EXPECT_EQ(console, "");
 }
 
+// OpenMesh parses a PLY header twice and said each thing twice; "obj_info" is a standard PLY
+// header line, not worth a note.
+TEST(MeshReaderWarnings, OpenMeshNotesComeOnceAndObjInfoIsNoNote) {
+    std::string ply = plyAscii(tentV(), tentP);
+    ply.insert(ply.find("element"), "obj_info scanned 2026\nfoo\n");
+    const MeshReadResult r = readMesh(writeFile("obj_info.ply", ply));
+    EXPECT_EQ(r.warnings, (std::vector<std::string>{"OpenMesh: Unsupported keyword : foo",
+                                                    "open surface: 4 boundary edges in 1 loop"}));
+}
+
 TEST(MeshReaderErrors, EdgeSharedByThreeFaces) {
     const std::string path = writeFile("fin.obj",
                                        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\n"
@@ -612,6 +766,23 @@ TEST(MeshReaderWarnings, SeveralComponentsIsolatedVerticesZeroAreaAndRepeatedCor
     EXPECT_TRUE(anyWarningContains(r, "1 isolated vertex (kept, used by no face): 3"));
     EXPECT_TRUE(anyWarningContains(r, "1 zero-area triangle, from face 1 (line 9)"));
     EXPECT_TRUE(anyWarningContains(r, "dropped 1 face with a repeated vertex: face 2 (line 10)"));
+}
+
+// One unused vertex far away set the scale of "no area": every triangle of the mesh was
+// reported zero-area (and the solver's tolerances grew with it). A polygon split into several
+// flat triangles was listed once per triangle.
+TEST(MeshReaderWarnings, ZeroAreaIsJudgedByTheVerticesFacesUseAndListsEachPolygonOnce) {
+    const MeshReadResult far =
+        readMesh(writeFile("far.obj", objText(tentV(), tentP) + "v 1e7 0 0\n"));
+    EXPECT_EQ(far.isolatedVertices, 1);
+    EXPECT_EQ(far.zeroAreaFaces, 0);
+    EXPECT_FALSE(anyWarningContains(far, "zero-area"));
+
+    const MeshReadResult flat = readMesh(writeFile("flat.obj",
+                                                   "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 3 0 0\nv 0 1 0\n"
+                                                   "f 1 2 3 4\nf 1 4 5\n"));
+    EXPECT_EQ(flat.zeroAreaFaces, 2);
+    EXPECT_EQ(flat.warnings.back(), "2 zero-area triangles, from face 0 (line 6)");
 }
 
 // ---- Triangulation ---------------------------------------------------------------------------

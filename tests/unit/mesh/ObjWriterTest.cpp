@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <array>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
@@ -162,6 +163,45 @@ TEST(ObjWriter, TheMaterialLibraryIsFoundFromAFolderNamedWithDotDot) {
     const TriMesh back = readMesh(frame.string()).mesh;
     ASSERT_NE(back.sourceFaces, nullptr);
     EXPECT_EQ(back.sourceFaces->materialLibraries, cube.sourceFaces->materialLibraries);
+}
+
+// "mtllib my mat.mtl" was read as the libraries "my" and "mat.mtl": the materials were lost and
+// every frame written got two broken mtllib lines. The name is the rest of the line when that
+// names a file (as Blender reads it), and a frame in another folder names it so again.
+TEST(ObjWriter, AMaterialLibraryWithASpaceInItsNameIsOneLibraryAndWrittenBackSo) {
+    const fs::path dir = freshTestDir("obj-writer-space");
+    fs::create_directories(dir / "src dir");
+    std::ofstream(dir / "src dir" / "my mat.mtl")
+        << "newmtl red\nKd 1 0 0\nnewmtl blue\nKd 0 0 1\n";
+    std::string obj = cubeObj();
+    obj.replace(0, obj.find('\n'), "mtllib my mat.mtl  ");
+    std::ofstream(dir / "src dir" / "cube.obj") << obj;
+    const MeshReadResult read = readMesh((dir / "src dir" / "cube.obj").string());
+    for (const std::string& w : read.warnings) ADD_FAILURE() << w;
+    const SourceFaces& in = *read.mesh.sourceFaces;
+    ASSERT_EQ(in.materialLibraries.size(), 1u);
+    EXPECT_EQ(fs::path(in.materialLibraries[0]), fs::absolute(dir / "src dir" / "my mat.mtl"));
+    EXPECT_EQ(in.materialDefinitions.at(0).colour, (std::array<double, 3>{1, 0, 0}));
+
+    fs::create_directories(dir / "out");
+    const fs::path frame = dir / "out" / "cube_0001.obj";
+    writeObj(frame.string(), read.mesh.V, read.mesh.F, "frame", &in);
+    std::ifstream text(frame);
+    std::vector<std::string> libraries;
+    for (std::string line; std::getline(text, line);)
+        if (line.rfind("mtllib", 0) == 0) libraries.push_back(line);
+    EXPECT_EQ(libraries, std::vector<std::string>{"mtllib ../src dir/my mat.mtl"});
+    const MeshReadResult back = readMesh(frame.string());
+    for (const std::string& w : back.warnings) ADD_FAILURE() << w;
+    EXPECT_EQ(back.mesh.sourceFaces->materialLibraries, in.materialLibraries);
+    EXPECT_EQ(materialRuns(*back.mesh.sourceFaces), materialRuns(in));
+
+    // Names that are no file beside the OBJ are still separate libraries.
+    std::ofstream(dir / "src dir" / "two.obj")
+        << "mtllib a.mtl b.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n";
+    EXPECT_EQ(
+        readMesh((dir / "src dir" / "two.obj").string()).mesh.sourceFaces->materialLibraries.size(),
+        2u);
 }
 
 TEST(ObjWriter, OddButLegalTextureLinesKeepTheirCoordinates) {

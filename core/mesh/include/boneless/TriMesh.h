@@ -58,6 +58,9 @@ struct TriMesh {
 
 // Length of the diagonal of the axis-aligned bounding box (0 for an empty mesh).
 double boundingBoxDiagonal(const Positions& V);
+// The same over the vertices the faces F use: what tolerances scale with, since one isolated
+// vertex far away would otherwise make every triangle "zero-area" and every step "still".
+double boundingBoxDiagonal(const Positions& V, const Faces& F);
 
 // Whether the triangle (a, b, c) has no area, relative to a model of bounding-box diagonal
 // `diagonal`: corners on a line up to rounding count, since their angles are rounding noise.
