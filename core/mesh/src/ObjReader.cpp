@@ -127,6 +127,12 @@ class ObjParser {
 
     PolygonSoup parse(bool namesOnly) {
         const std::string data = slurp(path_);
+        // A NUL byte is in no text file: a binary file (an STL, a .blend) named .obj was read as
+        // lines of unknown keywords and said "no faces".
+        if (const std::size_t nul = data.find('\0'); nul != std::string::npos)
+            throw MeshError(path_,
+                            "is not a text OBJ file: byte " + std::to_string(nul) +
+                                " is a NUL, which no text holds (a binary file named .obj?)");
         LineReader lines(data);
         std::string_view line;
         while (lines.next(line, line_)) {

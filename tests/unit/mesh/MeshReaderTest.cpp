@@ -380,6 +380,15 @@ TEST(MeshReaderErrors, EmptyMesh) {
                     "no usable faces");
 }
 
+// A binary file named .obj was read as lines of unknown keywords and said "no faces".
+TEST(MeshReaderErrors, ABinaryFileNamedObjIsSaidNotToBeText) {
+    const std::string stl = stlBinary(tentV(), toFaces(tentP));
+    EXPECT_CONTAINS(errorOf(writeFile("binary.obj", stl)), "is not a text OBJ file: byte ");
+    EXPECT_CONTAINS(errorOf(writeFile("late.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n" +
+                                                      std::string(1, '\0') + "f 1 2 3\n")),
+                    "byte 24 is a NUL");
+}
+
 // A cut binary file was parsed as text (its size no longer 84 + 50 n) and reported as having no
 // faces; exporters often begin the binary header with "solid" too.
 TEST(MeshReaderErrors, ACutBinaryStlIsReportedAsTruncatedWithTheTrianglesItHolds) {
