@@ -177,6 +177,35 @@ void warnOfOtherFrames(const std::string& out, const std::string& stem, const Ex
                  others.size() == 1 ? "frame" : "frames", listed.c_str(), stem.c_str());
 }
 
+// An earlier export of another format (or its calibrated rest) stays beside this one, under a
+// sidecar that now describes this one alone: the user's to remove, so named. OBJ frames in an OBJ
+// run are warnOfOtherFrames' to name, by frame.
+void warnOfOtherOutputs(const ExportRequest& request) {
+    namespace fs = std::filesystem;
+    const std::string stem = exportStem(request);
+    std::vector<std::string> others;
+    for (const ExportFormatInfo& f : exportFormats())
+        if (f.format != ExportFormat::Obj && f.format != request.format &&
+            fs::is_regular_file(fs::path(request.outDir) / (stem + f.extension)))
+            others.push_back(stem + f.extension);
+    if (!request.writeCalibratedRest &&
+        fs::is_regular_file(fs::path(request.outDir) / (stem + "_calibrated_rest.obj")))
+        others.push_back(stem + "_calibrated_rest.obj");
+    if (request.format != ExportFormat::Obj)
+        if (const std::size_t frames = objFramesIn(request.outDir, stem).size())
+            others.push_back(plural(long(frames), "OBJ frame") + " (" + stem + "_*.obj)");
+    if (others.empty()) return;
+    const std::string listed =
+        others.size() == 1 ? others[0]
+                           : joined({others.begin(), others.end() - 1}) + " and " + others.back();
+    std::fprintf(
+        stderr,
+        "note: %s also holds an earlier export's %s, which %s.json no longer describes; "
+        "remove %s, or solve into another folder\n",
+        request.outDir.c_str(), listed.c_str(), stem.c_str(),
+        others.size() == 1 && others[0].find("OBJ frames") == std::string::npos ? "it" : "them");
+}
+
 // Files of the outputs' names that no Boneless export wrote are the user's: refused unless forced,
 // naming the first few, before anything is solved or written.
 void refuseToReplaceOthersFiles(const ExportRequest& request, int end) {
@@ -299,6 +328,7 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
     }
     if (request.format == ExportFormat::Obj)
         warnOfOtherFrames(job.out, exportStem(request), result);
+    warnOfOtherOutputs(request);
     warnOfHeldFrames(job.c3d, result);
     if (!quiet) {
         namespace fs = std::filesystem;

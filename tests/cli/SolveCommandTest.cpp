@@ -432,6 +432,36 @@ TEST(SolveCommand, SaysWhenTheRangeRunsPastTheTakeOrOldFramesStayBeside) {
     EXPECT_EQ(r.out.find("also holds"), std::string::npos) << r.out;
 }
 
+// Solved as OBJ, then glb, then pc2 into one folder, the folder held all three beside one sidecar
+// that described the last alone, and nothing said so.
+TEST(SolveCommand, AnEarlierExportOfAnotherFormatLeftBesideIsNamed) {
+    const fs::path demo = makeDemo(3);
+    const fs::path out = demo / "x";
+    ASSERT_EQ(runCli(solveArgs(demo, out) + " --quiet --write-calibrated-rest").exitCode, 0);
+    CliResult r = runCli(solveArgs(demo, out) + " --quiet --format glb");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("also holds an earlier export's walker_calibrated_rest.obj and 3 OBJ "
+                         "frames (walker_*.obj), which walker.json no longer describes; remove "
+                         "them"),
+              std::string::npos)
+        << r.out;
+    r = runCli(solveArgs(demo, out) + " --quiet --format pc2");
+    EXPECT_NE(
+        r.out.find("earlier export's walker.glb, walker_calibrated_rest.obj and 3 OBJ frames"),
+        std::string::npos)
+        << r.out;
+    for (const char* name : {"walker.glb", "walker_calibrated_rest.obj", "walker_0002.obj"})
+        EXPECT_TRUE(fs::exists(out / name)) << name;  // the user's to remove, not ours
+    r = runCli(solveArgs(demo, out) + " --quiet --format pc2 --write-calibrated-rest");
+    EXPECT_NE(r.out.find("earlier export's walker.glb and 3 OBJ frames"), std::string::npos)
+        << r.out;
+    // The same export again names nothing.
+    const fs::path alone = demo / "alone";
+    ASSERT_EQ(runCli(solveArgs(demo, alone) + " --quiet --format mdd").exitCode, 0);
+    r = runCli(solveArgs(demo, alone) + " --quiet --format mdd");
+    EXPECT_EQ(r.out.find("earlier export"), std::string::npos) << r.out;
+}
+
 // Frames 3:6 solved into a folder that held 0..9 said "frames 0 to 9" were left, naming the three
 // it had just written; and a single frame was "1 frames".
 TEST(SolveCommand, TheNoteOfEarlierFramesSaysWhichAreLeftAndCountsReadRight) {
