@@ -181,19 +181,21 @@ void warnOfOtherFrames(const std::string& out, const std::string& stem, const Ex
 // sidecar that now describes this one alone: the user's to remove, so named. OBJ frames in an OBJ
 // run are warnOfOtherFrames' to name, by frame.
 void warnOfOtherOutputs(const ExportRequest& request) {
-    namespace fs = std::filesystem;
     const std::string stem = exportStem(request);
     std::vector<std::string> others;
-    for (const ExportFormatInfo& f : exportFormats())
-        if (f.format != ExportFormat::Obj && f.format != request.format &&
-            fs::is_regular_file(fs::path(request.outDir) / (stem + f.extension)))
-            others.push_back(stem + f.extension);
-    if (!request.writeCalibratedRest &&
-        fs::is_regular_file(fs::path(request.outDir) / (stem + "_calibrated_rest.obj")))
-        others.push_back(stem + "_calibrated_rest.obj");
-    if (request.format != ExportFormat::Obj)
-        if (const std::size_t frames = objFramesIn(request.outDir, stem).size())
-            others.push_back(plural(long(frames), "OBJ frame") + " (" + stem + "_*.obj)");
+    std::size_t frames = 0;
+    for (const std::string& name : exportFilesIn(request.outDir, stem)) {
+        if (name == stem + ".json" || name == stem + exportFormatInfo(request.format).extension)
+            continue;
+        if (name == stem + "_calibrated_rest.obj") {
+            if (!request.writeCalibratedRest) others.push_back(name);
+        } else if (name.size() > 4 && name.compare(name.size() - 4, 4, ".obj") == 0) {
+            if (request.format != ExportFormat::Obj) ++frames;  // an OBJ run's: warnOfOtherFrames
+        } else {
+            others.push_back(name);
+        }
+    }
+    if (frames) others.push_back(plural(long(frames), "OBJ frame") + " (" + stem + "_*.obj)");
     if (others.empty()) return;
     const std::string listed =
         others.size() == 1 ? others[0]

@@ -447,7 +447,7 @@ TEST(SolveCommand, AnEarlierExportOfAnotherFormatLeftBesideIsNamed) {
         << r.out;
     r = runCli(solveArgs(demo, out) + " --quiet --format pc2");
     EXPECT_NE(
-        r.out.find("earlier export's walker.glb, walker_calibrated_rest.obj and 3 OBJ frames"),
+        r.out.find("earlier export's walker_calibrated_rest.obj, walker.glb and 3 OBJ frames"),
         std::string::npos)
         << r.out;
     for (const char* name : {"walker.glb", "walker_calibrated_rest.obj", "walker_0002.obj"})

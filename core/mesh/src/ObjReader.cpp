@@ -12,6 +12,7 @@
 #include <unordered_map>
 
 #include "PolygonSoup.h"
+#include "PrecheckText.h"
 #include "boneless/Error.h"
 
 namespace boneless::detail {
@@ -42,7 +43,7 @@ bool isBlank(char c) {
 class LineReader {
   public:
     explicit LineReader(const std::string& data)
-        : data_(data), pos_(data.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0) {}
+        : data_(data), pos_(precheck::startsWithByteOrderMark(data) ? 3 : 0) {}
 
     bool next(std::string_view& line, int& lineNumber) {
         if (pos_ >= data_.size()) return false;
