@@ -265,9 +265,9 @@ std::vector<TakeJob> readManifest(const std::string& file) {
 // "I/N", 1-based: entry k (0-based) belongs to shard k mod N + 1.
 std::pair<int, int> parseShard(const std::string& text) {
     int i = 0, n = 0;
-    char slash = 0, extra = 0;
-    if (std::sscanf(text.c_str(), "%d%c%d%c", &i, &slash, &n, &extra) != 3 || slash != '/' ||
-        n < 1 || i < 1 || i > n)
+    const auto slash = text.find('/');
+    if (slash == std::string::npos || !readWholeNumber(text.substr(0, slash), i) ||
+        !readWholeNumber(text.substr(slash + 1), n) || n < 1 || i < 1 || i > n)
         throw Error("--shard expects I/N with 1 <= I <= N, got \"" + text + "\"");
     return {i, n};
 }

@@ -74,7 +74,7 @@ std::vector<int> readMarkerFile(const std::string& path, int vertexCount) {
 }
 
 nlohmann::json summaryJson(const EvaluationSummary& s) {
-    return {{"frames", s.frames},
+    return {{"frame_count", s.frames},
             {"rms_pct_mean", s.rmsPctMean},
             {"rms_pct_worst_frame", s.rmsPctWorstFrame},
             {"max_pct_worst_frame", s.maxPctWorstFrame},
@@ -171,6 +171,7 @@ void run(const EvalArgs& args) {
         out["faces"] = sequence.rest.faceCount();
         out["markers"] = options.markers.size();
         out["drop_pct"] = args.drop;
+        out["frame_range"] = {range.first, range.end};  // [first, end), as the sidecar's
         out["options"] = toJson(options.solver);
         nlohmann::json perFrame = nlohmann::json::array();
         for (const auto& f : results[0].frames)

@@ -11,6 +11,17 @@
 // "--frames A:B": 0-based, B excluded; "A:" and ":B" leave that end at its default. `name` is
 // what the error calls it (a manifest's entry says "m.json: takes[2]: \"frames\""); the text is
 // quoted as the choice flags quote theirs: got "0-10".
+// `text` as a count or index typed on a command line or in a manifest: digits alone, decimal as
+// in JSON (readDecimal), so that " 2", "+2" and "02" are refused as --max-iterations refuses them.
+inline bool readWholeNumber(const std::string& text, int& value) {
+    double x = 0;
+    if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos ||
+        boneless::readDecimal(text, x) != boneless::Decimal::Number || x > 2147483647.0)
+        return false;
+    value = static_cast<int>(x);
+    return true;
+}
+
 struct FrameRange {
     int first = 0;
     int end = -1;  // -1 = to the last frame
@@ -20,22 +31,13 @@ inline FrameRange parseFrameRange(const std::string& text, const std::string& na
     FrameRange range;
     if (text.empty()) return range;
     const auto colon = text.find(':');
-    try {
-        if (colon == std::string::npos) throw std::invalid_argument("no colon");
-        // stoi alone would read "0:810:40" as 0:810; every character must belong to a number.
-        auto number = [](const std::string& part) {
-            std::size_t used = 0;
-            const int value = std::stoi(part, &used);
-            if (used != part.size()) throw std::invalid_argument("trailing characters");
-            if (value < 0) throw std::invalid_argument("negative");
-            return value;
-        };
-        if (colon > 0) range.first = number(text.substr(0, colon));
-        if (colon + 1 < text.size()) range.end = number(text.substr(colon + 1));
-    } catch (const std::exception&) {
+    const bool ok =
+        colon != std::string::npos &&
+        (colon == 0 || readWholeNumber(text.substr(0, colon), range.first)) &&
+        (colon + 1 == text.size() || readWholeNumber(text.substr(colon + 1), range.end));
+    if (!ok)
         throw boneless::Error(name + " expects A:B (0-based, not negative, B excluded), got \"" +
                               text + "\"");
-    }
     return range;
 }
 

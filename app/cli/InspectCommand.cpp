@@ -36,7 +36,7 @@ nlohmann::json toJson(const boneless::C3dTake& t) {
     using boneless::toString;
     nlohmann::json j;
     j["file"] = t.file;
-    j["frames"] = t.frameCount();
+    j["frame_count"] = t.frameCount();
     j["fps"] =
         t.hasFrameRate() ? nlohmann::json(t.rate) : nlohmann::json(nullptr);  // as the sidecar
     j["units"] = t.units;

@@ -70,7 +70,9 @@ CLI::Validator numberFrom(double low, double high, bool whole) {
             if (read == Decimal::Underflow) return range + text + ", " + kUnderflowNote;
             const bool ok = read == Decimal::Number && std::isfinite(x) && x >= low && x <= high &&
                             (!whole || text.find_first_not_of("+-0123456789") == std::string::npos);
-            return ok ? std::string() : range + text;
+            // A word is quoted as a bad choice is ("got \"010\""); a number out of range is not.
+            return ok ? std::string()
+                      : range + (read == Decimal::Number ? text : "\"" + text + "\"");
         },
         "");
 }

@@ -59,7 +59,7 @@ TEST(C3dInspect, JsonDescribesTheTake) {
     const CliRun r = inspect(quoted(demoFile()) + " --json");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto j = nlohmann::json::parse(r.out);
-    EXPECT_EQ(j["frames"], 5);
+    EXPECT_EQ(j["frame_count"], 5);
     EXPECT_EQ(j["units"], "mm");
     EXPECT_EQ(j["processor"], "intel");
     EXPECT_EQ(j["storage"], "float");
@@ -217,7 +217,7 @@ TEST(C3dInspect, RealFilesJson) {
     const auto j = nlohmann::json::parse(r.out);
     EXPECT_EQ(j["processor"], "mips");
     EXPECT_EQ(j["storage"], "int16");
-    EXPECT_EQ(j["frames"], 450);
+    EXPECT_EQ(j["frame_count"], 450);
     EXPECT_EQ(j["analog_channels"], 16);
     EXPECT_EQ(j["analog_rate"], 200.0);
     EXPECT_EQ(j["points"].size(), 26u);
@@ -241,7 +241,7 @@ TEST(C3dInspect, TheFirstAndLastFramesAreThoseTheTakeHoldsAndTheHeadersApart) {
     const CliRun r = inspect(quoted(path) + " --json");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto j = nlohmann::json::parse(r.out);
-    const int frames = j["frames"];
+    const int frames = j["frame_count"];
     ASSERT_LT(frames, 40);
     ASSERT_GT(frames, 0);
     EXPECT_EQ(j["first_frame"], 101);

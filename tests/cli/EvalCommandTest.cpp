@@ -34,11 +34,11 @@ TEST(EvalCommand, JsonReportsEverySummaryFigureAndBothMethods) {
         runCli("eval --sequence " + demoFolder() + " --markers 30 --method both --json");
     ASSERT_EQ(r.exitCode, 0) << r.out;
     const auto j = nlohmann::json::parse(r.out);
-    for (const char* key : {"frames", "rms_pct_mean", "rms_pct_worst_frame", "max_pct_worst_frame",
-                            "flipped_faces_max", "ms_per_frame_median"})
+    for (const char* key : {"frame_count", "rms_pct_mean", "rms_pct_worst_frame",
+                            "max_pct_worst_frame", "flipped_faces_max", "ms_per_frame_median"})
         EXPECT_TRUE(j.contains(key)) << key;
     EXPECT_TRUE(j.contains("folded_faces_max"));
-    EXPECT_EQ(j["frames"], 15);  // the rest pose is not counted
+    EXPECT_EQ(j["frame_count"], 15);  // the rest pose is not counted
     EXPECT_EQ(j["method"], "boneless");
     ASSERT_TRUE(j.contains("arap"));
     EXPECT_EQ(j["per_frame"].size(), 16u);
@@ -165,7 +165,11 @@ TEST(EvalCommand, MarkersFileAndDropAreHonoured) {
     ASSERT_EQ(r.exitCode, 0) << r.out;
     const auto j = nlohmann::json::parse(r.out);
     EXPECT_EQ(j["markers"], 10);
-    EXPECT_EQ(j["frames"], 3);
+    // A count and a range, each under its own name: "frames" was the count, where --frames is
+    // the range.
+    EXPECT_EQ(j["frame_count"], 3);
+    EXPECT_EQ(j["frame_range"], nlohmann::json::array({0, 4}));
+    EXPECT_FALSE(j.contains("frames"));
     EXPECT_EQ(j["drop_pct"], 20.0);
 }
 
@@ -302,13 +306,13 @@ TEST(EvalCommand, TheDropIsPrintedAsTyped) {
 // line is decimal, as in JSON: they are refused as --markers refuses them; any unsigned seed is
 // still taken.
 TEST(EvalCommand, ASeedIsReadAsADecimalNumberOnly) {
-    for (const char* typed : {"010", "0x10", "-1", "4294967296"}) {
-        const CliResult r =
-            runCli("eval --sequence s --markers 3 --drop 10 --seed " + std::string(typed));
+    // A word is quoted, a number out of range is not, as every flag echoes them.
+    for (const std::string typed : {"\"010\"", "\"0x10\"", "-1", "4294967296"}) {
+        const CliResult r = runCli("eval --sequence s --markers 3 --drop 10 --seed " + typed);
         EXPECT_EQ(r.exitCode, 1) << typed;
-        EXPECT_NE(r.out.find("--seed: must be a whole number from 0 to 4294967295, got " +
-                             std::string(typed) + "\n"),
-                  std::string::npos)
+        EXPECT_NE(
+            r.out.find("--seed: must be a whole number from 0 to 4294967295, got " + typed + "\n"),
+            std::string::npos)
             << r.out;
     }
     const CliResult r = runCli("eval --sequence " + demoFolder() +

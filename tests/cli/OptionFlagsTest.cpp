@@ -105,8 +105,8 @@ TEST(OptionFlags, ANumberInHexadecimalOrOctalIsRefused) {
         const CliResult r =
             runCli("demo --out " + (dir / "x").string() + " --frame-count " + typed);
         EXPECT_EQ(r.exitCode, 1) << typed;
-        EXPECT_NE(r.out.find("--frame-count: must be a whole number from 1 to 100000, got " +
-                             std::string(typed) + "\n"),
+        EXPECT_NE(r.out.find("--frame-count: must be a whole number from 1 to 100000, got \"" +
+                             std::string(typed) + "\"\n"),
                   std::string::npos)
             << r.out;
         EXPECT_FALSE(fs::exists(dir / "x")) << typed;
@@ -140,7 +140,13 @@ TEST(OptionFlags, ABadRangeIsQuotedAsABadChoiceIs) {
         {solve + "--solver fast", "--solver: must be one of local-global, exact, got \"fast\"\n"},
         {solve + "--frames 0-10",
          "--frames expects A:B (0-based, not negative, B excluded), got \"0-10\"\n"},
-        {"batch m.json --shard 3/2", "--shard expects I/N with 1 <= I <= N, got \"3/2\"\n"}};
+        {"batch m.json --shard 3/2", "--shard expects I/N with 1 <= I <= N, got \"3/2\"\n"},
+        // Numbers are decimal digits alone, in a range or a shard as in any flag: sscanf and
+        // stoi had read these as 1/3, 2/3 and 2:5.
+        {"batch m.json --shard 01/3", "--shard expects I/N with 1 <= I <= N, got \"01/3\"\n"},
+        {"batch m.json --shard \" 2/3\"", "--shard expects I/N with 1 <= I <= N, got \" 2/3\"\n"},
+        {solve + "--frames +2:5",
+         "--frames expects A:B (0-based, not negative, B excluded), got \"+2:5\"\n"}};
     for (const auto& [arguments, message] : refused) {
         const CliResult r = runCli(arguments);
         EXPECT_EQ(r.exitCode, 1) << arguments;

@@ -175,8 +175,12 @@ void read(const json& object, TakeSolveOptions& options, const std::string& wher
             options.solver.method = SolverOptions::Method::LocalGlobal;
             continue;
         }
+        // An old key says what it is now: eval's "method" (boneless, arap) is another idea.
+        const std::string named =
+            key == e.option.key ? "\"" + key + "\""
+                                : "\"" + key + "\" (the old name of \"" + e.option.key + "\")";
         if (const std::string why = checkOptionValue(e.option, *value); !why.empty())
-            throw Error(where + ": \"" + key + "\" " + why);
+            throw Error(where + ": " + named + " " + why);
         e.set(options, *value);
     }
 }

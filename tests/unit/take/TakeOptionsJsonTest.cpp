@@ -131,6 +131,20 @@ TEST(TakeOptionsJson, OldKeysAndOldMethodNamesReadAsTodays) {
     EXPECT_EQ(findTakeOption("no_such_option"), nullptr);
 }
 
+// eval's --json says "method": "boneless" or "arap"; copied into a manifest, "method" is the old
+// key of "solver", and the refusal named "method" alone, as if the solver's names were eval's.
+TEST(TakeOptionsJson, AnOldKeysBadValueIsRefusedNamingItsNewKey) {
+    TakeSolveOptions o;
+    try {
+        fromJson({{"method", "arap"}}, o, "m.json: defaults");
+        FAIL() << "arap is no solver";
+    } catch (const Error& e) {
+        EXPECT_STREQ(e.what(),
+                     "m.json: defaults: \"method\" (the old name of \"solver\") must be one of "
+                     "local-global, exact, got \"arap\"");
+    }
+}
+
 TEST(TakeOptionsJson, ABadValueIsRefusedWithAMessageNamingTheKey) {
     for (const TakeOption& o : takeOptions()) {
         std::vector<json> bad = {"many", nullptr, json::array({1})};
@@ -147,8 +161,9 @@ TEST(TakeOptionsJson, ABadValueIsRefusedWithAMessageNamingTheKey) {
             EXPECT_NE(why.find(value.dump()), std::string::npos) << why;
         }
     }
-    // Through an old key, the message names the key the file holds.
-    EXPECT_NE(refusal({{"rigidity_weight", -1}}).find("\"rigidity_weight\" must be a number"),
+    // Through an old key, the message names the key the file holds, and today's.
+    EXPECT_NE(refusal({{"rigidity_weight", -1}})
+                  .find("\"rigidity_weight\" (the old name of \"fold_guard\") must be a number"),
               std::string::npos);
     EXPECT_NE(refusal({{"fill_gaps_s", -1}}).find("(s) from 0 to 3600, got -1"), std::string::npos);
     EXPECT_NE(
