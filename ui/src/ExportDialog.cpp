@@ -15,6 +15,7 @@
 #include <QProgressBar>
 #include <QPushButton>
 #include <QRadioButton>
+#include <QResizeEvent>
 #include <QSettings>
 #include <QSpinBox>
 #include <QStandardPaths>
@@ -330,6 +331,27 @@ void ExportDialog::showEvent(QShowEvent* event) {
     timeFrames();
     updateEstimate();
     QDialog::showEvent(event);
+}
+
+bool ExportDialog::event(QEvent* event) {
+    const bool handled = QDialog::event(event);
+    if (event->type() == QEvent::LayoutRequest) fitHeight();
+    return handled;
+}
+
+void ExportDialog::resizeEvent(QResizeEvent* event) {
+    QDialog::resizeEvent(event);
+    fitHeight();
+}
+
+void ExportDialog::fitHeight() {
+    // A top-level layout's minimum size leaves out height-for-width: a message wrapping onto more
+    // lines took its height from the rows above it, squeezing the range's spin boxes to a line.
+    QLayout* rows = layout();
+    if (!rows || !rows->hasHeightForWidth()) return;
+    const int needed = std::max(rows->totalMinimumSize().height(), heightForWidth(width()));
+    if (minimumHeight() != needed) setMinimumHeight(needed);
+    if (height() < needed) resize(width(), needed);
 }
 
 bool ExportDialog::startExport() {
