@@ -287,12 +287,16 @@ void ExportDialog::syncFromDocument() {
         const QSignalBlocker block(out_);
         out_->setValue(last);
     }
-    current_->setText(tr("Current frame (%1)").arg(timeline_->frame()));
+    current_->setText(tr("Current frame (%1, capture frame %2)")
+                          .arg(timeline_->frame())
+                          .arg(timeline_->captureFrame(timeline_->frame())));
     if (!folderChosen_) folder_->setText(defaultFolder(projectPath_));
 }
 
 void ExportDialog::updateEstimate() {
-    current_->setText(tr("Current frame (%1)").arg(timeline_->frame()));
+    current_->setText(tr("Current frame (%1, capture frame %2)")
+                          .arg(timeline_->frame())
+                          .arg(timeline_->captureFrame(timeline_->frame())));
     const int frames = frameCountToWrite();
     // Before a run, the bar counts the frames the chosen range would write (not Qt's 0 / 100);
     // after one, how far it got.
