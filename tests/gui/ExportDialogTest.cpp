@@ -15,6 +15,7 @@
 #include <QPushButton>
 #include <QSettings>
 #include <QSignalSpy>
+#include <QSpinBox>
 #include <QtTest>
 
 #include "ModelTestFixtures.h"
@@ -422,6 +423,45 @@ class ExportDialogTest : public QObject {
                  qPrintable(message));  // longer than the dialog is wide
         QVERIFY2(dialog.width() <= width,
                  qPrintable(QString("%1 px wide, %2 before").arg(dialog.width()).arg(width)));
+    }
+
+    // A message of several lines (a long folder's path, a note about an earlier export) took its
+    // height from the rows above it: the dialog kept its height, the range's radio buttons ran
+    // into each other and its spin boxes were squeezed to a line. The dialog grows instead, and
+    // the spin boxes keep the size they ask for.
+    void theFrameBoxesKeepTheirSizeUnderALongMessage() {
+        ExportDialog dialog(&document_, &solver_, &timeline_);
+        dialog.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&dialog));
+        const int width = dialog.width();
+        const QString folder =
+            work_ + "/" + QString("an-export-folder-with-a-long-name/").repeated(5);
+        dialog.setFolder(folder);
+        QLabel* message = progressText(dialog);
+        message->setText(
+            QString("Exported 12 frames to %1. The earlier export's 3 files it did not "
+                    "write again were removed (body.json, body.mdd, "
+                    "body_calibrated_rest.obj): the folder holds this export alone.")
+                .arg(folder));
+        QTest::qWait(50);  // the layout request, and the dialog's answer to it
+        QApplication::processEvents();
+        dialog.grab().save(work_ + "/long-message.png");
+        QVERIFY2(message->height() > 2 * message->fontMetrics().height(),
+                 qPrintable(QString("the message is %1 px high").arg(message->height())));
+        QCOMPARE(dialog.width(), width);  // it wraps, as before
+        for (const char* name : {"exportIn", "exportOut"}) {
+            auto* box = part<QSpinBox>(dialog, name);
+            QVERIFY2(box->width() >= box->sizeHint().width() &&
+                         box->height() >= box->sizeHint().height(),
+                     qPrintable(QString("%1 is %2x%3 px, asks for %4x%5 (dialog %6x%7 px)")
+                                    .arg(name)
+                                    .arg(box->width())
+                                    .arg(box->height())
+                                    .arg(box->sizeHint().width())
+                                    .arg(box->sizeHint().height())
+                                    .arg(dialog.width())
+                                    .arg(dialog.height())));
+        }
     }
 
     // The fold guard and the Gauss-Newton options are read by the exact solver alone (the CLI

@@ -6,12 +6,14 @@
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QSpinBox>
+#include <QToolTip>
 #include <QtTest>
 
 #include "ViewTestSupport.h"
 #include "boneless/ui/Document.h"
 #include "boneless/ui/MainWindow.h"
 #include "boneless/ui/Timeline.h"
+#include "boneless/ui/TimelineStrip.h"
 #include "boneless/ui/TimelineWidget.h"
 
 using namespace boneless::ui;
@@ -115,6 +117,38 @@ class KeysTest : public QObject {
         QVERIFY(test::waitForFrame(*window_));
         QVERIFY2(window_->frameSummary().startsWith("Frame 0 / 59"),
                  qPrintable(window_->frameSummary()));
+    }
+
+    // A C3D take numbers its frames from its header's first frame (CMU 85_02 from 1): the app
+    // numbered them from 0 alone, so an animator comparing frames with Vicon or MotionBuilder was
+    // one off without knowing. The app still counts from 0, and gives the capture's number too.
+    void theCurrentFrameIsAlsoGivenByTheCapturesNumber() {
+        const qint64 first = window_->document()->take().firstFrame;
+        QVERIFY2(first != 0, "a take numbered from 0 cannot tell the two numbers apart");
+        const QString capture = QString("capture frame %1").arg(first + 20);
+        window_->timeline()->scrubTo(20);
+        QVERIFY(test::waitForFrame(*window_));
+        QVERIFY2(window_->frameSummary().startsWith("Frame 20 / 59 (" + capture + ")"),
+                 qPrintable(window_->frameSummary()));
+        QSpinBox* box = window_->timelineWidget()->frameBox();
+        QCOMPARE(box->value(), 20);
+        QVERIFY2(box->toolTip().contains(capture), qPrintable(box->toolTip()));
+        const QString last = QString("capture frames %1 to %2").arg(first).arg(first + 59);
+        QStringList tips;
+        for (auto* label : window_->timelineWidget()->findChildren<QLabel*>())
+            tips << label->toolTip();
+        QVERIFY2(tips.join(" | ").contains(last), qPrintable(tips.join(" | ")));
+
+        // Hovering the strip over the slider names the frame under the pointer both ways.
+        auto* strip = window_->findChild<TimelineStrip*>();
+        QVERIFY(strip);
+        const QPoint at(strip->xOfFrame(30), strip->height() / 2);
+        QHelpEvent hover(QEvent::ToolTip, at, strip->mapToGlobal(at));
+        QApplication::sendEvent(strip, &hover);
+        const QString tip = QToolTip::text();
+        QToolTip::hideText();
+        QVERIFY2(tip.startsWith(QString("Frame 30 (capture frame %1)").arg(first + 30)),
+                 qPrintable(tip));
     }
 
     void menusHaveShortcutsAndHelp() {

@@ -9,6 +9,7 @@
 #include "boneless/ui/Document.h"
 #include "boneless/ui/MainWindow.h"
 #include "boneless/ui/MeshView.h"
+#include "boneless/ui/Timeline.h"
 
 using namespace boneless;
 using namespace boneless::ui;
@@ -135,6 +136,87 @@ class ViewOverlayTest : public QObject {
         QVERIFY(!view->legendVisible());
         const Hues off = huesIn(view->grabImage(), strip);
         QCOMPARE(off.red + off.blue, 0);
+    }
+
+    // The legend's top value sat against its colour bar, the "5" of "23.5" touching it: every
+    // value label keeps clear of the bar.
+    void theLegendsValuesKeepClearOfItsColourBar() {
+        MeshView view;
+        const TriMesh mesh = readMesh((folder_ + "/demo/walker.obj").toStdString()).mesh;
+        QVERIFY(test::showMesh(view, mesh, Eigen::Vector3d::UnitZ()));
+        std::vector<float> mm(mesh.V.rows());
+        for (Eigen::Index v = 0; v < mesh.V.rows(); ++v) mm[v] = float(v % 97) / 4;
+        view.setHeatMap(mm, "Shape error (mm)");
+        const QImage image = view.grabImage().convertToFormat(QImage::Format_RGB32);
+        const QRect box = view.legendRect();
+        QVERIFY2(!box.isEmpty(), "the legend is drawn");
+        // The bar: strongly coloured pixels; the labels: light grey ones, as the text is drawn.
+        QRect bar;
+        QList<QPoint> text;
+        for (int y = box.top(); y <= box.bottom(); ++y)
+            for (int x = box.left(); x <= box.right(); ++x) {
+                const QColor c = image.pixelColor(x, y);
+                const int high = std::max({c.red(), c.green(), c.blue()});
+                const int low = std::min({c.red(), c.green(), c.blue()});
+                if (high - low > 100) bar |= QRect(x, y, 1, 1);
+                if (low > 120 && high - low < 40) text << QPoint(x, y);
+            }
+        QVERIFY2(bar.width() > 5 && bar.height() > 50,
+                 qPrintable(QString("bar %1x%2").arg(bar.width()).arg(bar.height())));
+        QVERIFY2(text.size() > 50, qPrintable(QString("%1 text pixels").arg(text.size())));
+        constexpr int kClearance = 2;  // pixels of background between a label and the bar
+        const QRect near = bar.adjusted(-kClearance, -kClearance, kClearance, kClearance);
+        int touching = 0;
+        for (const QPoint& p : text) touching += near.contains(p);
+        QVERIFY2(touching == 0, qPrintable(QString("%1 label pixels within %2 px of the bar (%3, "
+                                                   "%4 %5x%6)")
+                                               .arg(touching)
+                                               .arg(kClearance)
+                                               .arg(bar.x())
+                                               .arg(bar.y())
+                                               .arg(bar.width())
+                                               .arg(bar.height())));
+    }
+
+    // In a 1024x600 window the legend, 65 % of the view's height down its right edge, lay over
+    // the body's arm as the actor walked. It keeps to the top-right corner, under half the view's
+    // height, and over none of the walker's vertices at any frame of the demo.
+    void theLegendKeepsToACornerBesideTheMeshInASmallWindow() {
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        window.resize(1024, 600);
+        QVERIFY(window.openProject(project_));
+        QVERIFY(test::showAndWait(window));
+        MeshView* view = window.meshView();
+        QAction* heatMap = actionNamed(window, "Shape Error &Heat Map");
+        QVERIFY(heatMap);
+        heatMap->setChecked(true);
+        for (int frame = 0; frame < window.timeline()->frameCount(); frame += 6) {
+            window.timeline()->scrubTo(frame);
+            QVERIFY(QTest::qWaitFor([&] { return window.frameUpToDate() && view->legendVisible(); },
+                                    60000));
+            const QImage image = view->grabImage();  // renders, placing the legend for this size
+            const QRect legend = view->legendRect();
+            const QString where = QString("frame %1: the legend at (%2, %3) %4x%5 in a %6x%7 view")
+                                      .arg(frame)
+                                      .arg(legend.x())
+                                      .arg(legend.y())
+                                      .arg(legend.width())
+                                      .arg(legend.height())
+                                      .arg(view->width())
+                                      .arg(view->height());
+            QVERIFY2(!legend.isEmpty(), qPrintable(where));
+            QVERIFY2(legend.top() < view->height() / 20 && legend.height() < view->height() / 2 &&
+                         legend.right() > view->width() * 19 / 20,
+                     qPrintable(where));
+            int covered = 0;
+            for (int v = 0; v < view->positions().rows(); ++v)
+                covered += legend.contains(view->projectVertex(v));
+            if (covered) image.save(folder_ + QString("/legend-frame%1.png").arg(frame));
+            QVERIFY2(covered == 0,
+                     qPrintable(QString("%1 covers %2 vertices").arg(where).arg(covered)));
+            if (frame == 0) image.save(folder_ + "/legend-1024x600.png");
+        }
     }
 
     void markerLabelsDoNotOverlap() {

@@ -15,6 +15,7 @@
 #include <QProgressBar>
 #include <QPushButton>
 #include <QRadioButton>
+#include <QResizeEvent>
 #include <QSettings>
 #include <QSpinBox>
 #include <QStandardPaths>
@@ -286,12 +287,16 @@ void ExportDialog::syncFromDocument() {
         const QSignalBlocker block(out_);
         out_->setValue(last);
     }
-    current_->setText(tr("Current frame (%1)").arg(timeline_->frame()));
+    current_->setText(tr("Current frame (%1, capture frame %2)")
+                          .arg(timeline_->frame())
+                          .arg(timeline_->captureFrame(timeline_->frame())));
     if (!folderChosen_) folder_->setText(defaultFolder(projectPath_));
 }
 
 void ExportDialog::updateEstimate() {
-    current_->setText(tr("Current frame (%1)").arg(timeline_->frame()));
+    current_->setText(tr("Current frame (%1, capture frame %2)")
+                          .arg(timeline_->frame())
+                          .arg(timeline_->captureFrame(timeline_->frame())));
     const int frames = frameCountToWrite();
     // Before a run, the bar counts the frames the chosen range would write (not Qt's 0 / 100);
     // after one, how far it got.
@@ -330,6 +335,27 @@ void ExportDialog::showEvent(QShowEvent* event) {
     timeFrames();
     updateEstimate();
     QDialog::showEvent(event);
+}
+
+bool ExportDialog::event(QEvent* event) {
+    const bool handled = QDialog::event(event);
+    if (event->type() == QEvent::LayoutRequest) fitHeight();
+    return handled;
+}
+
+void ExportDialog::resizeEvent(QResizeEvent* event) {
+    QDialog::resizeEvent(event);
+    fitHeight();
+}
+
+void ExportDialog::fitHeight() {
+    // A top-level layout's minimum size leaves out height-for-width: a message wrapping onto more
+    // lines took its height from the rows above it, squeezing the range's spin boxes to a line.
+    QLayout* rows = layout();
+    if (!rows || !rows->hasHeightForWidth()) return;
+    const int needed = std::max(rows->totalMinimumSize().height(), heightForWidth(width()));
+    if (minimumHeight() != needed) setMinimumHeight(needed);
+    if (height() < needed) resize(width(), needed);
 }
 
 bool ExportDialog::startExport() {

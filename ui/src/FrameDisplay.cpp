@@ -106,6 +106,7 @@ void FrameDisplay::onMeshChanged() {
 
 void FrameDisplay::onTakeChanged() {
     timeline_->setRate(document_->frameRate());
+    timeline_->setFirstFrame(document_->hasTake() ? document_->take().firstFrame : 0);
     timeline_->setFrameCount(document_->frameCount());
     updateUpAxis(false);
     scheduleProblem();
@@ -301,10 +302,13 @@ void FrameDisplay::updateTrails(int frame) {
 
 void FrameDisplay::emitStatus() {
     const int playhead = timeline_->frame();
-    // Over the last frame's number, as the timeline: a 60-frame take ends at "Frame 59 / 59".
-    QString frame = document_->hasTake()
-                        ? tr("Frame %1 / %2").arg(displayedFrame_).arg(document_->frameCount() - 1)
-                        : tr("No take");
+    // Over the last frame's number, as the timeline: a 60-frame take ends at "Frame 59 / 59";
+    // then the capture's own number for it, which Vicon and MotionBuilder show.
+    QString frame = document_->hasTake() ? tr("Frame %1 / %2 (capture frame %3)")
+                                               .arg(displayedFrame_)
+                                               .arg(document_->frameCount() - 1)
+                                               .arg(timeline_->captureFrame(displayedFrame_))
+                                         : tr("No take");
     if (frozen_)
         frame += tr(" (held while mapping; playhead at %1)").arg(playhead);
     else if (document_->hasTake() && displayedFrame_ != playhead)

@@ -5,6 +5,7 @@
 #include <vtkCamera.h>
 #include <vtkCellArray.h>
 #include <vtkCellPicker.h>
+#include <vtkCoordinate.h>
 #include <vtkDoubleArray.h>
 #include <vtkFloatArray.h>
 #include <vtkGlyph3DMapper.h>
@@ -17,6 +18,7 @@
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkScalarBarActor.h>
+#include <vtkScalarsToColors.h>
 #include <vtkSphereSource.h>
 #include <vtkStaticCellLocator.h>
 #include <vtkTextProperty.h>
@@ -25,6 +27,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace boneless::ui {
 namespace {
@@ -77,12 +80,12 @@ MeshScene::MeshScene() {
     renderer_->AddActor(floor_.actor());
 
     legend_->SetNumberOfLabels(5);
-    legend_->SetPosition(0.86, 0.2);
-    legend_->SetWidth(0.12);
-    legend_->SetHeight(0.65);
-    legend_->SetBarRatio(0.3);
-    legend_->SetLabelFormat("%.3g");
+    // Its size and place are placeLegend()'s, before each render.
+    // VTK sets a label a twentieth of its width from the bar: "23.5" touched it. The spaces
+    // after the value keep it clear.
+    legend_->SetLabelFormat("%.3g  ");
     legend_->SetTextPositionToPrecedeScalarBar();
+    legend_->SetVerticalTitleSeparation(8);  // the top value's label clear of the title
     legend_->UnconstrainedFontSizeOn();
     legend_->GetTitleTextProperty()->SetFontSize(13);
     legend_->GetLabelTextProperty()->SetFontSize(12);
@@ -298,20 +301,50 @@ void MeshScene::setHeatMap(const std::vector<float>& values, const QString& titl
 }
 
 void MeshScene::placeLegend() {
-    // The title is centred over the legend at its own font size, so in a view under about 800
-    // pixels wide a fixed 12 % ran it past the right edge ("Shape error (mm").
-    constexpr double kMinWidth = 0.12, kRightEdge = 0.98;
+    // Sized in pixels from its text, in the view's top-right corner. At 65 % of the view's
+    // height by its right edge it lay over the body's arm in a 1024x600 window, and its values
+    // had only the room the bar left them: the top one, "23.5", touched the bar.
+    constexpr int kMargin = 10, kBar = 14;  // pixels: from the view's edges, the bar's width
     const int* size = renderer_->GetSize();
     vtkTextRenderer* measure = vtkTextRenderer::GetInstance();
     vtkRenderWindow* window = renderer_->GetRenderWindow();
-    int box[4];
-    double width = kMinWidth;
-    if (legend_->GetVisibility() && legend_->GetTitle() && size[0] > 0 && measure && window &&
-        measure->GetBoundingBox(legend_->GetTitleTextProperty(), legend_->GetTitle(), box,
-                                window->GetDPI()))
-        width = std::clamp(double(box[1] - box[0] + 1) / size[0], kMinWidth, kRightEdge);
-    legend_->SetWidth(width);
-    legend_->SetPosition(kRightEdge - width, 0.2);
+    vtkScalarsToColors* table = legend_->GetLookupTable();
+    if (!legend_->GetVisibility() || !table || size[0] <= 0 || size[1] <= 0 || !measure || !window)
+        return;
+    const auto widthOf = [&](vtkTextProperty* text, const char* s) {
+        int box[4];
+        return measure->GetBoundingBox(text, s, box, window->GetDPI()) ? box[1] - box[0] + 1 : 0;
+    };
+    const int title =
+        legend_->GetTitle() ? widthOf(legend_->GetTitleTextProperty(), legend_->GetTitle()) : 0;
+    // The values' labels as the legend prints them, evenly spaced, with their spaces.
+    const double* range = table->GetRange();
+    const int labels = legend_->GetNumberOfLabels();
+    int label = 0;
+    for (int i = 0; i < labels; ++i) {
+        char text[64];
+        const double value = range[0] + (range[1] - range[0]) * i / std::max(1, labels - 1);
+        std::snprintf(text, sizeof text, legend_->GetLabelFormat(), value);
+        label = std::max(label, widthOf(legend_->GetLabelTextProperty(), text));
+    }
+    const int width =
+        std::max(1, std::min(size[0] - 2 * kMargin, std::max(title, label + kBar + 2)));
+    // Two fifths of the view's height, and room for five labels in a small view.
+    const int height =
+        std::max(1, std::min(size[1] - 2 * kMargin, std::clamp(size[1] * 2 / 5, 130, 280)));
+    legend_->SetBarRatio(std::min(1.0, double(kBar) / width));
+    legend_->SetWidth(double(width) / size[0]);
+    legend_->SetHeight(double(height) / size[1]);
+    legend_->SetPosition(double(size[0] - kMargin - width) / size[0],
+                         double(size[1] - kMargin - height) / size[1]);
+}
+
+std::array<int, 4> MeshScene::legendBox() const {
+    if (!legendVisible()) return {0, 0, 0, 0};
+    vtkRenderer* renderer = renderer_.GetPointer();
+    const int* low = legend_->GetPositionCoordinate()->GetComputedDisplayValue(renderer);
+    const int* high = legend_->GetPosition2Coordinate()->GetComputedDisplayValue(renderer);
+    return {low[0], low[1], high[0], high[1]};
 }
 
 bool MeshScene::legendVisible() const {

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <array>
+
 #include <QStringList>
 #include <vector>
 
@@ -53,8 +55,11 @@ class MeshScene {
     void setHeatMap(const std::vector<float>& values, const QString& title);
     bool legendVisible() const;
     QString legendTitle() const;
-    // Before each render: the legend made as wide as its title, at the view's right edge.
+    // Before each render: the legend sized from its title and values, in the top-right corner.
     void placeLegend();
+    // The legend's box as placed at the last placeLegend(), display pixels (bottom-left origin):
+    // x0, y0, x1, y1; all 0 while it is hidden.
+    std::array<int, 4> legendBox() const;
     void setFloor(const Floor& floor) { floor_.set(floor); }
     const FloorGrid& floorGrid() const { return floor_; }
     void setHighlightedVertex(int vertex);

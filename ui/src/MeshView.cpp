@@ -298,6 +298,15 @@ bool MeshView::axesVisible() const {
     return d_->gizmo->GetEnabled() && d_->axes->GetVisibility();
 }
 
+QRect MeshView::legendRect() const {
+    const std::array<int, 4> b = d_->scene.legendBox();
+    if (b[2] <= b[0] || b[3] <= b[1]) return {};
+    const double ratio = devicePixelRatioF();
+    const int height = d_->deviceSize().y();
+    return QRect(QPoint(int(b[0] / ratio), int((height - b[3]) / ratio)),
+                 QPoint(int((b[2] - 1) / ratio), int((height - 1 - b[1]) / ratio)));
+}
+
 QList<QRect> MeshView::labelBoxes() const {
     QList<QRect> boxes;
     const double ratio = devicePixelRatioF();

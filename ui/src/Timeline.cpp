@@ -27,6 +27,12 @@ void Timeline::setFrameCount(int frames) {
     changeFrame(std::clamp(frame_, 0, lastFrame()));
 }
 
+void Timeline::setFirstFrame(qint64 number) {
+    if (number == firstFrame_) return;
+    firstFrame_ = number;
+    emit firstFrameChanged(number);
+}
+
 void Timeline::setRate(double framesPerSecond) {
     rate_ = framesPerSecond > 0 ? framesPerSecond : 30.0;
     restartClock();

@@ -47,7 +47,6 @@ TimelineWidget::TimelineWidget(Timeline* timeline, QWidget* parent)
     slider_->setFocusPolicy(Qt::NoFocus);
     frameBox_ = new QSpinBox(this);
     frameBox_->setObjectName("frameBox");
-    frameBox_->setToolTip(tr("Frame (0-based); Enter goes there"));
     // Typing "100" must not visit frames 1 and 10 on the way: the box applies on Enter.
     frameBox_->setKeyboardTracking(false);
     // Space applies the number typed and plays instead of being typed into the box; undo and
@@ -98,6 +97,8 @@ TimelineWidget::TimelineWidget(Timeline* timeline, QWidget* parent)
 
     connect(timeline, &Timeline::frameChanged, this, &TimelineWidget::syncFrame);
     connect(timeline, &Timeline::frameCountChanged, this, &TimelineWidget::syncRange);
+    connect(timeline, &Timeline::firstFrameChanged, this,
+            [this] { syncRange(timeline_->frameCount()); });
     connect(timeline, &Timeline::loopChanged, loop_, &QToolButton::setChecked);
     connect(timeline, &Timeline::playingChanged, this, [this](bool playing) {
         play_->setIcon(
@@ -120,6 +121,9 @@ void TimelineWidget::syncFrame(int frame) {
     const QSignalBlocker blockBox(frameBox_);
     slider_->setValue(frame);
     frameBox_->setValue(frame);
+    frameBox_->setToolTip(tr("Frame %1 (0-based), capture frame %2; Enter goes to the frame typed")
+                              .arg(frame)
+                              .arg(timeline_->captureFrame(frame)));
 }
 
 void TimelineWidget::syncRange(int frames) {
@@ -132,11 +136,16 @@ void TimelineWidget::syncRange(int frames) {
     }
     // The last frame's number, as the status bar gives it: frames are numbered from 0, as
     // --frame, the export's range and its files number them, so a 60-frame take ends at "59 / 59"
-    // (the count read "59 / 60" there, as if a frame were left).
+    // (the count read "59 / 60" there, as if a frame were left). The tooltips add the capture's
+    // numbers, which an animator compares with Vicon's.
     const int last = std::max(0, frames - 1);
     countLabel_->setText(tr("/ %1").arg(last));
     countLabel_->setToolTip(
-        frames > 0 ? tr("The last frame: %1 frames, numbered 0 to %2").arg(frames).arg(last)
+        frames > 0 ? tr("The last frame: %1 frames, numbered 0 to %2 (capture frames %3 to %4)")
+                         .arg(frames)
+                         .arg(last)
+                         .arg(timeline_->firstFrame())
+                         .arg(timeline_->captureFrame(last))
                    : QString());
     setEnabled(frames > 0);
     syncFrame(timeline_->frame());

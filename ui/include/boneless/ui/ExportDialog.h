@@ -78,8 +78,12 @@ class ExportDialog : public QDialog {
 
   protected:
     void showEvent(QShowEvent* event) override;
+    bool event(QEvent* event) override;              // layout requests: fitHeight()
+    void resizeEvent(QResizeEvent* event) override;  // narrower: fitHeight()
 
   private:
+    // At least as tall as the wrapped messages need at this width (see ExportDialog.cpp).
+    void fitHeight();
     std::vector<std::string> replaced_;  // an earlier export's files the running one replaces
     ExportRequest running_;              // what the running export writes
     void syncFromDocument();

@@ -58,6 +58,9 @@ class MeshView : public QOpenGLWidget {
     void setHeatMap(const std::vector<float>& values, const QString& title = {});
     bool legendVisible() const;
     QString legendTitle() const;
+    // Where the legend was drawn at the last render (logical pixels, top-left origin); empty
+    // while it is hidden.
+    QRect legendRect() const;
     // A grid on the floor; a Floor of size 0 hides it.
     void setFloor(const Floor& floor);
     // The height along the floor's up of the grid drawn, NaN when there is none.

@@ -23,6 +23,12 @@ class Timeline : public QObject {
     int frameCount() const { return frameCount_; }
     void setRate(double framesPerSecond);  // the take's rate; <= 0 is treated as 30
     double rate() const { return rate_; }
+    // The take's first_frame: the number the capture gives frame 0 (C3dTake::firstFrame, 1 for
+    // CMU's takes). The playhead counts from 0, as the CLI and every file do; what the app shows
+    // of the current frame gives the capture's number beside it, as Vicon and MotionBuilder show.
+    void setFirstFrame(qint64 number);
+    qint64 firstFrame() const { return firstFrame_; }
+    qint64 captureFrame(int frame) const { return firstFrame_ + frame; }
 
     int frame() const { return frame_; }
     bool isPlaying() const { return playing_; }
@@ -60,6 +66,7 @@ class Timeline : public QObject {
     void loopChanged(bool loop);
     void speedChanged(boneless::ui::Timeline::Speed speed);
     void frameCountChanged(int frames);
+    void firstFrameChanged(qint64 number);
 
   private:
     void restartClock();
@@ -68,6 +75,7 @@ class Timeline : public QObject {
 
     int frameCount_ = 0;
     double rate_ = 30.0;
+    qint64 firstFrame_ = 0;
     int frame_ = 0;
     bool playing_ = false;
     bool loop_ = true;
