@@ -2,9 +2,16 @@
 
 #include <cctype>
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 
 namespace boneless {
+
+std::string shortNumber(double x) {
+    char text[32];  // "%g" of a double takes at most 13 characters ("-1.79769e+308")
+    std::snprintf(text, sizeof text, "%g", x);
+    return text;
+}
 
 Decimal readDecimal(const std::string& text, double& x) {
     const std::size_t digits = !text.empty() && (text[0] == '-' || text[0] == '+') ? 1 : 0;

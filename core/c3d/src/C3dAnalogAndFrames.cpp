@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "C3dTakeLayout.h"
+#include "boneless/Text.h"
 
 namespace boneless::c3d_detail {
 
@@ -37,11 +38,11 @@ AnalogFrame readAnalog(const C3dParameters& ps, const HeaderWords& h, double rat
         if (std::isfinite(ratio) && ratio >= 0.5 && ratio <= 65535.0) {
             perFrame = static_cast<std::size_t>(std::lround(ratio));
             if (std::fabs(ratio - double(perFrame)) > 1e-3)
-                warn.push_back("analog rate " + fmt(analogRate) + " Hz is not a multiple of " +
-                               fmt(rate) + " Hz; assuming " + std::to_string(perFrame) +
-                               " samples per frame");
+                warn.push_back("analog rate " + shortNumber(analogRate) +
+                               " Hz is not a multiple of " + shortNumber(rate) + " Hz; assuming " +
+                               std::to_string(perFrame) + " samples per frame");
         } else {
-            warn.push_back("ANALOG:RATE " + fmt(analogRate) +
+            warn.push_back("ANALOG:RATE " + shortNumber(analogRate) +
                            " Hz is unusable; using the header's " + std::to_string(perFrame) +
                            " samples per frame");
         }

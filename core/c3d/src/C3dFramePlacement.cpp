@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "C3dTakeLayout.h"
+#include "boneless/Text.h"
 
 namespace boneless::c3d_detail {
 
@@ -17,7 +18,7 @@ void chooseStorage(const Source& src, const HeaderWords& h, double scale, PointL
                    C3dTake& take) {
     if (!std::isfinite(scale) || scale == 0.0) {
         if (L.points > 0 || L.analogWords > 0)
-            src.fail(12, "the point scale is " + fmt(scale) +
+            src.fail(12, "the point scale is " + shortNumber(scale) +
                              " in both the header and POINT:SCALE, so the storage (int16 or "
                              "float) is unknown");
         scale = -1.0;
@@ -68,9 +69,9 @@ void reconcileStorage(const Source& src, const HeaderWords& h, std::size_t decla
     const auto name = [](const PointLayout& l) {
         return l.storage == C3dStorage::Int16 ? std::string("int16") : std::string("float");
     };
-    const std::string both = "the header's point scale (" + fmt(h.scale) + ", " + name(alt) +
-                             ") and POINT:SCALE (" + fmt(L.scale) + ", " + name(L) +
-                             ") disagree on the storage; ";
+    const std::string both = "the header's point scale (" + shortNumber(h.scale) + ", " +
+                             name(alt) + ") and POINT:SCALE (" + shortNumber(L.scale) + ", " +
+                             name(L) + ") disagree on the storage; ";
     if (!fits(L) && fits(alt)) {
         take.warnings.push_back(both + "only the header's fits the file's size, using it");
         L.storage = alt.storage;

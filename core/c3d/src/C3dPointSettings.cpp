@@ -2,9 +2,9 @@
 
 #include <cctype>
 #include <cmath>
-#include <sstream>
 
 #include "C3dTakeLayout.h"
+#include "boneless/Text.h"
 
 namespace boneless {
 
@@ -33,12 +33,6 @@ std::optional<double> c3dUnitToMm(std::string_view units) {
 
 namespace c3d_detail {
 
-std::string fmt(double v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
-}
-
 std::optional<double> paramNumber(const C3dParameters& ps, const char* group, const char* name,
                                   bool unsignedInt16) {
     const C3dParameter* p = ps.find(group, name);
@@ -49,7 +43,7 @@ std::size_t countOr(std::vector<std::string>& warn, double v, double max, const 
                     std::size_t fallback) {
     if (std::isfinite(v) && v >= 0 && v <= max && v == std::floor(v))
         return static_cast<std::size_t>(v);
-    warn.push_back(what + " is " + fmt(v) + ", not a count; using the header's " +
+    warn.push_back(what + " is " + shortNumber(v) + ", not a count; using the header's " +
                    std::to_string(fallback));
     return fallback;
 }
@@ -75,12 +69,13 @@ double pointScale(const C3dParameters& ps, const HeaderWords& h, std::vector<std
             // Opposite signs are a disagreement on the storage, which reconcileStorage names.
             if (std::isfinite(h.scale) && h.scale != 0.0f && (h.scale < 0) == (*s < 0) &&
                 std::fabs(*s - h.scale) > 1e-4 * std::fabs(*s))
-                warn.push_back("header scale " + fmt(h.scale) + " differs from POINT:SCALE " +
-                               fmt(*s) + "; using POINT:SCALE");
+                warn.push_back("header scale " + shortNumber(h.scale) +
+                               " differs from POINT:SCALE " + shortNumber(*s) +
+                               "; using POINT:SCALE");
             scale = *s;
         } else {
-            warn.push_back("POINT:SCALE is " + fmt(*s) + "; using the header's scale " +
-                           fmt(h.scale));
+            warn.push_back("POINT:SCALE is " + shortNumber(*s) + "; using the header's scale " +
+                           shortNumber(h.scale));
         }
     }
     return scale;
@@ -90,17 +85,18 @@ double frameRate(const C3dParameters& ps, const HeaderWords& h, std::vector<std:
     double rate = h.rate;
     if (auto r = paramNumber(ps, "POINT", "RATE")) {
         if (!(std::isfinite(*r) && *r > 0.0)) {
-            warn.push_back("POINT:RATE is " + fmt(*r) + "; using the header's " + fmt(h.rate) +
-                           " Hz");
+            warn.push_back("POINT:RATE is " + shortNumber(*r) + "; using the header's " +
+                           shortNumber(h.rate) + " Hz");
         } else {
             if (std::isfinite(h.rate) && std::fabs(*r - h.rate) > 1e-3 * std::fabs(*r))
-                warn.push_back("header rate " + fmt(h.rate) + " Hz differs from POINT:RATE " +
-                               fmt(*r) + " Hz; using POINT:RATE");
+                warn.push_back("header rate " + shortNumber(h.rate) +
+                               " Hz differs from POINT:RATE " + shortNumber(*r) +
+                               " Hz; using POINT:RATE");
             rate = *r;
         }
     }
     if (!std::isfinite(rate) || rate <= 0.0) {
-        warn.push_back("frame rate is " + fmt(rate) + "; reported as 0");
+        warn.push_back("frame rate is " + shortNumber(rate) + "; reported as 0");
         rate = 0.0;
     }
     return rate;

@@ -1,10 +1,11 @@
 #include "boneless/C3dTake.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <limits>
 #include <map>
 #include <stdexcept>
+
+#include "boneless/Text.h"
 
 namespace boneless {
 
@@ -146,9 +147,7 @@ std::vector<std::size_t> C3dTake::pointsNamed(std::string_view label) const {
 
 std::string C3dTake::rateText() const {
     if (std::isnan(rate)) return "not a number";
-    char text[32];
-    std::snprintf(text, sizeof text, "%g Hz", rate);
-    return text;
+    return shortNumber(rate) + " Hz";
 }
 
 std::vector<std::vector<std::size_t>> C3dTake::sharedLabels() const {

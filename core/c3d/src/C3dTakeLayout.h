@@ -13,8 +13,6 @@
 
 namespace boneless::c3d_detail {
 
-// A number as the warnings print it.
-std::string fmt(double v);
 std::optional<double> paramNumber(const C3dParameters& ps, const char* group, const char* name,
                                   bool unsignedInt16 = true);
 // A count from the parameters that is not a whole number in [0, max] (NaN, negative, 1e30) is

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <limits>
 
@@ -24,12 +23,6 @@ std::string faceList(const PolygonSoup& soup, const std::vector<int>& faces) {
     for (size_t i = 0; i < faces.size() && i < 5; ++i)
         s += (i ? ", " : "") + faceWhere(soup, faces[i]);
     return faces.size() > 5 ? s + ", ..." : s;
-}
-
-std::string shortNumber(double x) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.6g", x);
-    return text;
 }
 
 bool hasRepeatedCorner(const int* c, int n) {

@@ -128,6 +128,7 @@ class ObjParser {
 
     PolygonSoup parse(bool namesOnly) {
         const std::string data = slurp(path_);
+        precheck::refuseOtherFormat(path_, data, "OBJ");
         // A NUL byte is in no text file: a binary file (an STL, a .blend) named .obj was read as
         // lines of unknown keywords and said "no faces".
         if (const std::size_t nul = data.find('\0'); nul != std::string::npos)

@@ -83,6 +83,68 @@ std::string byteOrderMarkRefused(const std::string& format) {
            format + " does not allow: save the file without it";
 }
 
+namespace {
+
+// A binary STL's size as OpenMesh decides it: 84 bytes and 50 per triangle its header announces.
+bool hasBinaryStlSize(const std::string& data) {
+    if (data.size() < 84) return false;
+    uint32_t n;
+    std::memcpy(&n, data.data() + 80, 4);  // little-endian, as on every platform we build for
+    return data.size() == 84 + 50 * uint64_t(n);
+}
+
+// The format the first bytes show and why, as "an OFF file (it starts with 'OFF')"; format empty
+// when they show none. Only the start is read: it decides, and a large file costs nothing more.
+struct Sniffed {
+    std::string format, looks;
+};
+
+Sniffed sniff(const std::string& data) {
+    const size_t start = startsWithByteOrderMark(data) ? 3 : 0;
+    if (data.compare(start, 4, "ply\n") == 0 || data.compare(start, 5, "ply\r\n") == 0)
+        return {"PLY", "a PLY file (it starts with 'ply')"};
+    // The text before a binary part (a binary OFF's counts, a binary STL's triangle count).
+    const std::string head = data.substr(start, std::min(data.find('\0', start), start + 4096));
+    std::vector<std::string> firstWords;
+    for (const auto& [n, line] : contentLines(head, '#')) firstWords.push_back(tokens(line)[0]);
+    const auto has = [&](const char* word) {
+        return std::find(firstWords.begin(), firstWords.end(), word) != firstWords.end();
+    };
+    if (!firstWords.empty()) {
+        const std::string& first = firstWords[0];
+        static const std::regex off("(ST)?C?N?4?n?OFF");
+        if (std::regex_match(first, off))
+            return {"OFF", "an OFF file (it starts with '" + first + "')"};
+        if ((first == "solid" || first == "SOLID") && (has("facet") || has("FACET")))
+            return {"STL", "an ASCII STL file ('solid' then 'facet normal' lines)"};
+        static const std::vector<std::string> objKeys = {"v", "vt", "vn",     "f",     "g",
+                                                         "o", "s",  "mtllib", "usemtl"};
+        if (std::find(objKeys.begin(), objKeys.end(), first) != objKeys.end() && has("v"))
+            return {"OBJ", "an OBJ file ('v' lines)"};
+    }
+    if (hasBinaryStlSize(data) && data.size() > 84) {
+        uint32_t n;
+        std::memcpy(&n, data.data() + 80, 4);
+        return {"STL", "a binary STL file (84 + 50 x " + std::to_string(n) + " bytes)"};
+    }
+    return {};
+}
+
+}  // namespace
+
+void refuseOtherFormat(const std::string& path, const std::string& data,
+                       const std::string& format) {
+    // A binary STL's 80-byte header is free text, which may read as any format's start.
+    if (format == "STL" && hasBinaryStlSize(data)) return;
+    const Sniffed s = sniff(data);
+    if (s.format.empty() || s.format == format) return;
+    std::string extension = s.format;
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
+    throw MeshError(path,
+                    "looks like " + s.looks + ", not " + format + ": rename it ." + extension);
+}
+
 std::vector<std::pair<int, std::string>> contentLines(const std::string& text, char comment) {
     std::vector<std::pair<int, std::string>> out;
     std::istringstream in(text);
@@ -155,6 +217,7 @@ Precheck checkBinaryOff(const std::string& path, const std::string& data,
 Precheck checkOff(const std::string& path) {
     // Text OFF is read here in full, so a byte-order mark (Windows editors write one) is skipped.
     std::string data = readAll(path);
+    refuseOtherFormat(path, data, "OFF");
     const bool byteOrderMark = startsWithByteOrderMark(data);
     if (byteOrderMark) data.erase(0, 3);
     const auto lines = contentLines(data, '#');
@@ -261,10 +324,7 @@ bool isBinaryStl(const std::string& path, const std::string& data) {
     const std::string ext = lowerExtension(path);
     if (ext == "stlb") return true;
     if (ext == "stla" || data.size() < 84) return false;
-    uint32_t n;
-    std::memcpy(&n, data.data() + 80, 4);  // little-endian, as on every platform we build for
-    const uint64_t size = 84 + 50 * uint64_t(n);
-    if (data.size() == size) return true;  // the rule OpenMesh applies
+    if (hasBinaryStlSize(data)) return true;  // the rule OpenMesh applies
     // OpenMesh would parse a cut or padded binary file as text and find no faces; not text, it is
     // binary, and checkStl reports it truncated or its extra bytes.
     return !isText(data);
@@ -272,6 +332,7 @@ bool isBinaryStl(const std::string& path, const std::string& data) {
 
 Precheck checkStl(const std::string& path) {
     const std::string data = readAll(path);
+    refuseOtherFormat(path, data, "STL");
     Precheck p;
     p.stl = true;
     if (isBinaryStl(path, data)) {

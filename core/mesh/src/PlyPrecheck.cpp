@@ -217,6 +217,7 @@ void checkPlyBinary(const std::string& path, const std::string& text, size_t bod
 
 Precheck checkPly(const std::string& path) {
     const std::string text = readAll(path);
+    refuseOtherFormat(path, text, "PLY");
     if (startsWithByteOrderMark(text)) throw MeshError(path, byteOrderMarkRefused("PLY"));
     const size_t headerEnd = text.find("end_header");
     if (text.compare(0, 3, "ply") != 0 || headerEnd == std::string::npos)

@@ -21,6 +21,10 @@ void requireNumbers(const std::string& path, const std::vector<std::string>& tok
 // Whether the text starts with a UTF-8 byte-order mark (EF BB BF), and the message refusing it.
 bool startsWithByteOrderMark(const std::string& text);
 std::string byteOrderMarkRefused(const std::string& format);
+// Refuses, naming the format and the extension to give the file, a file whose first bytes say it
+// is another format than `format` (its extension's: "OBJ", "PLY", "OFF" or "STL"). Read by the
+// wrong parser, such a file said "no faces" or "not a PLY file", which hid the simple fix.
+void refuseOtherFormat(const std::string& path, const std::string& data, const std::string& format);
 // Content lines (comments and blank lines removed) with their 1-based line numbers.
 std::vector<std::pair<int, std::string>> contentLines(const std::string& text, char comment);
 

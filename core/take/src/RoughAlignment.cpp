@@ -26,6 +26,12 @@ constexpr double kWideShare = 1.5;
 // The soles (the lowest 3 % of the height) reach further forward than the ankles (5-12 %) by
 // at least this share of the height when the mesh has feet (4-8 % on human meshes).
 constexpr double kToeShare = 0.01;
+// A lab's origin is on its floor (C3dVertical.cpp); a take's lowest markers (median over the
+// frames) above it by a share of its highest in this range are no feet (ankles and toes: 2-4 % on
+// the shared data's takes) but knees (30 % on CMU 85_02 without its feet), shins or hips: the
+// actor stands on the origin's level, not on them. Above the range a prop (a cube, 78 %).
+constexpr double kFeetShare = 0.1;
+constexpr double kLegShare = 0.6;
 // A standing body is about as tall as its widest level extent (a T-pose's arm span) or taller; a
 // horse is longer than it is tall.
 constexpr double kUprightShare = 0.8;
@@ -81,7 +87,7 @@ Calibration roughAlignment(const C3dTake& take, const std::vector<std::size_t>& 
     if (frames == 0 || points.empty() || mesh.vertexCount() == 0) return c;
     const Vec3 takeUp = take.vertical;
     int best = 0;
-    std::vector<double> heights, spans;
+    std::vector<double> heights, spans, bottoms, tops;
     const std::size_t step = std::max<std::size_t>(1, frames / kHeightSamples);
     for (std::size_t f = 0; f < frames; ++f) {
         int seen = 0;
@@ -99,6 +105,9 @@ Calibration roughAlignment(const C3dTake& take, const std::vector<std::size_t>& 
         if (seen > 1 && f % step == 0) {
             heights.push_back(std::abs((hi - lo).dot(takeUp)));
             spans.push_back((hi - lo).norm());
+            // takeUp is a signed axis: lo and hi along it are the frame's lowest and highest.
+            bottoms.push_back(std::min(lo.dot(takeUp), hi.dot(takeUp)));
+            tops.push_back(std::max(lo.dot(takeUp), hi.dot(takeUp)));
         }
     }
     if (c.frame < 0) return c;
@@ -147,8 +156,12 @@ Calibration roughAlignment(const C3dTake& take, const std::vector<std::size_t>& 
     c.takeToMesh.R = to * from.transpose();
 
     // The actor's height to the mesh's; markers all at one height give their span to the mesh's
-    // size instead, and a take that never shows two markers at once scale 1.
-    const double height = median(heights), span = median(spans);
+    // size instead, and a take that never shows two markers at once scale 1. Without foot
+    // markers the height is the highest markers' above the lab's floor, which the feet stand on.
+    const double bottom = median(bottoms), top = median(tops);
+    const bool feetUnmarked = bottom > kFeetShare * top && bottom < kLegShare * top;
+    if (feetUnmarked) floor = 0;
+    const double height = feetUnmarked ? top : median(heights), span = median(spans);
     c.takeToMesh.scale = height > 0 ? extent[up] / height : span > 0 ? extent.norm() / span : 1.0;
     const double s = c.takeToMesh.scale;
     const Vec3 middle = 0.5 * (mlo + mhi);

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <functional>
 #include <nlohmann/json.hpp>
 
@@ -139,12 +138,6 @@ const std::vector<Entry>& entries() {
     return table;
 }
 
-std::string shown(double x) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%g", x);
-    return text;
-}
-
 bool isOldMethodName(const json& value) {
     return value.is_string() && std::find(std::begin(kOldMethodNames), std::end(kOldMethodNames),
                                           value.get<std::string>()) != std::end(kOldMethodNames);
@@ -248,7 +241,7 @@ std::string check(const TakeOption& option, const json& value, const std::string
     const bool integer = option.kind == TakeOption::Kind::Integer;
     const std::string wanted = std::string(integer ? "a whole number" : "a number") +
                                (option.units.empty() ? "" : " (" + option.units + ")") + " from " +
-                               shown(option.low) + " to " + shown(option.high);
+                               shortNumber(option.low) + " to " + shortNumber(option.high);
     if (!value.is_number()) return "must be " + wanted + ", got " + got;
     const double x = value.get<double>();
     if (!std::isfinite(x) || x < option.low || x > option.high || (integer && x != std::floor(x)))

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -382,11 +383,42 @@ TEST(MeshReaderErrors, EmptyMesh) {
 
 // A binary file named .obj was read as lines of unknown keywords and said "no faces".
 TEST(MeshReaderErrors, ABinaryFileNamedObjIsSaidNotToBeText) {
-    const std::string stl = stlBinary(tentV(), toFaces(tentP));
-    EXPECT_CONTAINS(errorOf(writeFile("binary.obj", stl)), "is not a text OBJ file: byte ");
+    const std::string blend = std::string("BLENDER-v279REND") + std::string(8, '\0') + "SceneX";
+    EXPECT_CONTAINS(errorOf(writeFile("binary.obj", blend)), "is not a text OBJ file: byte 16");
     EXPECT_CONTAINS(errorOf(writeFile("late.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n" +
                                                       std::string(1, '\0') + "f 1 2 3\n")),
                     "byte 24 is a NUL");
+}
+
+// An ASCII STL named .obj was read as lines of unknown keywords and said "no faces (nothing to
+// animate)"; an OBJ named .stl the same, named .ply "not a PLY file". The first bytes name the
+// format the file is in and the extension to give it.
+TEST(MeshReaderErrors, AFileInAnotherFormatThanItsExtensionSaysIsNamedAndARenameSuggested) {
+    const Positions V = tentV();
+    const Faces F = toFaces(tentP);
+    const std::vector<std::tuple<std::string, std::string, std::string>> contents = {
+        {"obj", objText(V, tentP), "an OBJ file ('v' lines)"},
+        {"stl", stlAscii(V, F), "an ASCII STL file ('solid' then 'facet normal' lines)"},
+        {"stl", stlBinary(V, F), "a binary STL file (84 + 50 x 4 bytes)"},
+        {"ply", plyAscii(V, tentP), "a PLY file (it starts with 'ply')"},
+        {"ply", plyBinary(V, tentP), "a PLY file (it starts with 'ply')"},
+        {"off", offText(V, tentP), "an OFF file (it starts with 'OFF')"},
+        {"off", offBinary(V, tentP), "an OFF file (it starts with 'OFF')"},
+        {"off", "\xEF\xBB\xBF# made by hand\n" + offText(V, tentP),
+         "an OFF file (it starts with 'OFF')"},
+    };
+    for (const auto& [format, bytes, looks] : contents)
+        for (const std::string ext : {"obj", "stl", "ply", "off"}) {
+            if (ext == format) continue;
+            std::string upper = ext;
+            for (char& c : upper) c = char(std::toupper(static_cast<unsigned char>(c)));
+            const std::string msg = errorOf(writeFile("tent." + ext, bytes));
+            EXPECT_CONTAINS(msg,
+                            "looks like " + looks + ", not " + upper + ": rename it ." + format);
+        }
+    // An exporter's binary STL header that starts with "solid" is still read as binary.
+    const std::string solid = "solid tent" + stlBinary(V, F).substr(10);
+    EXPECT_EQ(readMesh(writeFile("solid-header.stl", solid)).mesh.faceCount(), 4);
 }
 
 // A cut binary file was parsed as text (its size no longer 84 + 50 n) and reported as having no

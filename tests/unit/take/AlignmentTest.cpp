@@ -1,12 +1,16 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <random>
 
 #include "TestMeshes.h"
 #include "boneless/Alignment.h"
+#include "boneless/C3dReader.h"
 #include "boneless/C3dTake.h"
 #include "boneless/Error.h"
+#include "boneless/MeshReader.h"
 
 using namespace boneless;
 using namespace boneless::testing;
@@ -103,16 +107,14 @@ TEST(Alignment, CalibrationPicksTheFrameClosestToTheRestPose) {
 
 namespace {
 
-// An actor 1.6 m tall in millimetres, Z up, facing +X (left is +Y), standing away from the
-// origin; frame 1 lacks a marker, so frame 0 shows the most.
-C3dTake standingActor() {
-    struct Marker {
-        const char* name;
-        Vec3 at;  // front, left, height
-    };
-    const std::vector<Marker> markers{{"LFHD", {80, 70, 1650}},  {"RFHD", {80, -70, 1650}},
-                                      {"LBHD", {-80, 70, 1630}}, {"STRN", {100, 0, 1300}},
-                                      {"LANK", {0, 100, 80}},    {"RANK", {0, -100, 60}}};
+struct Marker {
+    const char* name;
+    Vec3 at;  // front, left, height
+};
+
+// `markers` on an actor in millimetres, Z up, facing +X (left is +Y), standing away from the
+// origin, which is on the floor; frame 1 lacks the fourth marker, so frame 0 shows the most.
+C3dTake actorWith(const std::vector<Marker>& markers) {
     C3dTake take;
     take.file = "standing.c3d";
     for (const Marker& m : markers) take.points.push_back({m.name, "", m.name, "", {}});
@@ -125,6 +127,16 @@ C3dTake standingActor() {
         }
     take.samples.setMissing(1, 3);
     return take;
+}
+
+// An actor 1.6 m tall.
+C3dTake standingActor() {
+    return actorWith({{"LFHD", {80, 70, 1650}},
+                      {"RFHD", {80, -70, 1650}},
+                      {"LBHD", {-80, 70, 1630}},
+                      {"STRN", {100, 0, 1300}},
+                      {"LANK", {0, 100, 80}},
+                      {"RANK", {0, -100, 60}}});
 }
 
 // An icosphere stretched to a body's box: `extent` along x, y, z.
@@ -228,6 +240,52 @@ TEST(RoughAlignment, ATakeWithNoHeightStillGetsAFiniteScale) {
     const Calibration one = roughAlignment(take, {0}, mesh);  // one marker: nothing to measure
     EXPECT_EQ(one.takeToMesh.scale, 1.0);
     EXPECT_TRUE(one.takeToMesh.apply(*take.samples.position(0, 0)).allFinite());
+}
+
+// A take without foot markers (its lowest a knee) had that knee put on the mesh's floor and its
+// head-to-knee extent scaled to the mesh's height: the body sank into the floor up to the knees.
+// Its lowest markers far above the lab's floor (the origin) say the feet are not marked.
+TEST(RoughAlignment, ATakeWithoutFootMarkersStandsOnTheLabsFloorNotOnItsKnees) {
+    const C3dTake take = actorWith({{"LFHD", {80, 70, 1650}},
+                                    {"RFHD", {80, -70, 1650}},
+                                    {"STRN", {100, 0, 1300}},
+                                    {"LKNE", {40, 100, 500}},
+                                    {"RKNE", {40, -100, 480}}});
+    const TriMesh mesh = bodyBox({5, 17, 3});  // feet at y = -8.5
+    const Calibration c = roughAlignment(take, allPoints(take), mesh);
+    EXPECT_NEAR(c.takeToMesh.scale, 17.0 / 1650, 1e-12);  // the head's height above the floor
+    EXPECT_NEAR(placed(take, c, "RKNE").y(), -8.5 + 480 * 17.0 / 1650, 1e-9);
+    EXPECT_NEAR(placed(take, c, "LFHD").y(), 8.5, 1e-9);
+}
+
+// The same with the CMU take, its foot and shin markers left out, on MakeHuman: the knees land
+// where the take with its feet puts them.
+TEST(RoughAlignment, TheCmuTakeWithoutItsFootMarkersStandsWhereItStandsWithThem) {
+    static const char* const kLowerLeg[] = {"ANK", "HEE", "MT5", "TOE", "SHN"};
+    namespace fs = std::filesystem;
+    const fs::path data = BONELESS_SHARED_DATA;
+    const fs::path meshFile = data / "meshes" / "makehuman" / "makehuman_base.obj";
+    const fs::path takeFile = data / "c3d" / "cmu" / "85_02.c3d";
+    if (!fs::exists(meshFile) || !fs::exists(takeFile)) GTEST_SKIP() << "no " << data;
+    MeshReadOptions options;
+    options.group = "body";
+    const TriMesh mesh = readMesh(meshFile.string(), options).mesh;
+    const C3dTake take = readC3d(takeFile.string());
+    std::vector<std::size_t> legless;
+    for (std::size_t k = 0; k < take.points.size(); ++k) {
+        const std::string& label = take.points[k].label;  // "LANK", or with its subject's prefix
+        if (std::none_of(std::begin(kLowerLeg), std::end(kLowerLeg),
+                         [&](const char* part) { return label.find(part) != std::string::npos; }))
+            legless.push_back(k);
+    }
+    ASSERT_EQ(legless.size(), 31u);
+    const Calibration with = roughAlignment(take, allPoints(take), mesh);
+    const Calibration without = roughAlignment(take, legless, mesh);
+    const double height = mesh.V.col(1).maxCoeff() - mesh.V.col(1).minCoeff();
+    EXPECT_NEAR(without.takeToMesh.scale / with.takeToMesh.scale, 1.0, 0.05);
+    for (const char* knee : {"LKNE", "RKNE"})
+        EXPECT_NEAR(placed(take, without, knee).y(), placed(take, with, knee).y(), 0.03 * height)
+            << knee;
 }
 
 // The same actor recorded Y up (POINT:Y_SCREEN +Y, as many systems but Vicon's write) lands where

@@ -24,6 +24,11 @@ inline std::string plural(long long n, const std::string& word, const std::strin
     return std::to_string(n) + " " + (n == 1 ? word : words.empty() ? word + "s" : words);
 }
 
+// `x` as messages give a number: printf's %g, six significant digits, an exponent for the tiny
+// and the huge ("3", "0.1", "1e-07", "1e+20", "nan", "inf"). The mesh reader, the take options and
+// the C3D reader each had their own copy.
+std::string shortNumber(double x);
+
 // `text` as a number the way a command line gives one: decimal, as in JSON. NotANumber for
 // anything else, "0x10" (which strtod reads as 16) and "010" (octal 8 to C, 10 to strtod)
 // included; "nan" and "inf" are numbers, for a range to refuse by name. Underflow for a number

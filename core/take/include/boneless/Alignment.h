@@ -44,7 +44,10 @@ Calibration calibrate(int frames, const std::function<Positions(int)>& frameAt,
 // its widest level axis, towards the side that puts its soles' front in front, or by convention +X
 // (a mesh facing +Z with Y up, or -Y with Z up), +Y for an X-up mesh. The actor's median height
 // goes to the mesh's, and the lowest marker of the frame that shows the most of `points` (`frame`
-// of the result) to the mesh's lowest point, centred on it. Identity when no frame shows any.
+// of the result) to the mesh's lowest point, centred on it; a take whose lowest markers are far
+// above the origin (knees: no foot markers) stands there with the origin's level on the mesh's
+// lowest point, its highest markers' height above it going to the mesh's height. Identity when
+// no frame shows any.
 Calibration roughAlignment(const C3dTake& take, const std::vector<std::size_t>& points,
                            const TriMesh& mesh);
 

@@ -1,0 +1,38 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "boneless/Text.h"
+
+using namespace boneless;
+
+// The mesh reader, the take options and the C3D reader each formatted numbers for messages
+// their own way; they share shortNumber now, printf's %g: six significant digits.
+TEST(ShortNumber, GivesAnIntegerWithoutADecimalPointUpToSixDigits) {
+    EXPECT_EQ(shortNumber(0), "0");
+    EXPECT_EQ(shortNumber(3), "3");
+    EXPECT_EQ(shortNumber(-12), "-12");
+    EXPECT_EQ(shortNumber(65535), "65535");
+    EXPECT_EQ(shortNumber(999999), "999999");
+    EXPECT_EQ(shortNumber(1e6), "1e+06");
+    EXPECT_EQ(shortNumber(1234567), "1.23457e+06");
+}
+
+TEST(ShortNumber, GivesFractionsInSixSignificantDigitsAndTinyOrHugeOnesWithAnExponent) {
+    EXPECT_EQ(shortNumber(0.1), "0.1");
+    EXPECT_EQ(shortNumber(-2.5), "-2.5");
+    EXPECT_EQ(shortNumber(1.0 / 3), "0.333333");
+    EXPECT_EQ(shortNumber(0.0001), "0.0001");
+    EXPECT_EQ(shortNumber(1e-7), "1e-07");
+    EXPECT_EQ(shortNumber(-0.01), "-0.01");
+    EXPECT_EQ(shortNumber(1e20), "1e+20");
+    EXPECT_EQ(shortNumber(3.4028234663852886e38), "3.40282e+38");  // a float's largest
+}
+
+// A C3D parameter may hold a NaN or an infinity, which the C3D reader's warnings name.
+TEST(ShortNumber, NamesNotANumberAndTheInfinities) {
+    EXPECT_EQ(shortNumber(std::nan("")), "nan");
+    EXPECT_EQ(shortNumber(std::numeric_limits<double>::infinity()), "inf");
+    EXPECT_EQ(shortNumber(-std::numeric_limits<double>::infinity()), "-inf");
+}
