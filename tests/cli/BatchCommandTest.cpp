@@ -879,3 +879,43 @@ TEST(Batch, AFolderWithNoTakeIsNamedWithItsPath) {
         << r.out;
     EXPECT_NE(r.out.find("3 of 3 takes in shard 1/1: 3 solved"), std::string::npos) << r.out;
 }
+
+// A point cache cut short, a glb cut short or an OBJ frame overwritten was skipped, its sidecar
+// saying complete and the file not empty; and the OBJ take, solved again, was refused for want of
+// --force: its own damaged frame counted as no Boneless export's.
+TEST(Batch, ATakeWhoseOutputIsDamagedIsSolvedAgainWithoutForce) {
+    const fs::path dir = makeLibrary();
+    json manifest = {{"defaults", {{"mesh", "walker.obj"}, {"map", "walker.map.json"}}},
+                     {"takes",
+                      {{{"c3d", "takes/walk_a.c3d"}, {"format", "pc2"}, {"out", "pc2"}},
+                       {{"c3d", "takes/walk_a.c3d"}, {"format", "mdd"}, {"out", "mdd"}},
+                       {{"c3d", "takes/walk_a.c3d"}, {"format", "glb"}, {"out", "glb"}},
+                       {{"c3d", "takes/walk_b.c3d"}, {"format", "obj"}, {"out", "obj"}}}}};
+    const fs::path path = writeManifest(dir, "m.json", manifest);
+    ASSERT_EQ(runCli("batch " + path.string()).exitCode, 0);
+    const std::uintmax_t pc2 = fs::file_size(dir / "pc2" / "walker.pc2"),
+                         mdd = fs::file_size(dir / "mdd" / "walker.mdd"),
+                         glb = fs::file_size(dir / "glb" / "walker.glb");
+    fs::resize_file(dir / "pc2" / "walker.pc2", 100);
+    fs::resize_file(dir / "mdd" / "walker.mdd", mdd - 12);
+    fs::resize_file(dir / "glb" / "walker.glb", glb / 2);
+    std::ofstream(dir / "obj" / "walker_0002.obj") << "garbage";
+    const CliResult again = runCli("batch " + path.string());
+    EXPECT_EQ(again.exitCode, 0) << again.out;
+    for (const std::string& line :
+         {"walker.pc2 holds 100 bytes where 4 frames need " + std::to_string(pc2) +
+              ", solving again: 4 frames",
+          "walker.mdd holds " + std::to_string(mdd - 12) + " bytes where 4 frames need " +
+              std::to_string(mdd) + ", solving again: 4 frames",
+          "walker.glb holds " + std::to_string(glb / 2) + " bytes where its header says " +
+              std::to_string(glb) + ", solving again: 4 frames",
+          std::string("walker_0002.obj does not start with the \"# Boneless: \" line a solve "
+                      "writes, solving again: 5 frames"),
+          std::string("4 of 4 takes in shard 1/1: 4 solved, 0 skipped, 0 failed")})
+        EXPECT_NE(again.out.find(line), std::string::npos) << line << "\n" << again.out;
+    EXPECT_EQ(fs::file_size(dir / "pc2" / "walker.pc2"), pc2);
+    const CliResult third = runCli("batch " + path.string());
+    EXPECT_NE(third.out.find("4 of 4 takes in shard 1/1: 0 solved, 4 skipped, 0 failed"),
+              std::string::npos)
+        << third.out;
+}
