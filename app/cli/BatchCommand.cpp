@@ -491,7 +491,7 @@ void run(const BatchArgs& args) {
         std::vector<std::string> meshWarnings;  // filled once the mesh is read
         std::vector<std::string> takeWarnings;  // and the take's once it is opened
         std::vector<std::string> mapWarnings;   // and the map's once it is read
-        std::vector<std::string> takeNotes;     // and a note on its "frames"
+        std::vector<std::string> takeNotes;     // a note on its "frames", on earlier exports
         try {
             const ExportResult r =
                 runTakeJob(job, true, &meshWarnings, &takeWarnings, &mapWarnings, &takeNotes);

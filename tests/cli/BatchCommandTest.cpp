@@ -919,3 +919,24 @@ TEST(Batch, ATakeWhoseOutputIsDamagedIsSolvedAgainWithoutForce) {
               std::string::npos)
         << third.out;
 }
+
+// "[2/3] …/out/walk_a: its sidecar is from another format (obj), solving again: note: …/out/walk_a
+// also holds an earlier export's 4 OBJ frames …", and "4 frames in 0.1 s" alone on the next line.
+TEST(Batch, ANoteOnAnEarlierExportGoesUnderTheTakesFinishedLine) {
+    const fs::path dir = makeLibrary();
+    solvedOnce(dir);
+    json caches = folderManifest("out");
+    caches["defaults"]["format"] = "pc2";
+    const fs::path manifest = writeManifest(dir, "caches.json", caches);
+    const CliResult r = runCli("batch " + manifest.string());
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    const std::string line = (dir / "out" / "walk_a").string() +
+                             ": its sidecar is from another format (obj), solving again: 4 frames";
+    const std::size_t at = r.out.find(line);
+    ASSERT_NE(at, std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\n  note: " + (dir / "out" / "walk_a").string() +
+                             " also holds an earlier export's 4 OBJ frames",
+                         at),
+              std::string::npos)
+        << r.out;
+}
