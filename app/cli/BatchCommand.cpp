@@ -492,6 +492,23 @@ void run(const BatchArgs& args) {
         std::vector<std::string> takeWarnings;  // and the take's once it is opened
         std::vector<std::string> mapWarnings;   // and the map's once it is read
         std::vector<std::string> takeNotes;     // a note on its "frames", on earlier exports
+        // Under the take's line, solved or not: a truncated take solves the frames it holds.
+        const auto underTheLine = [&] {
+            std::fflush(stdout);
+            for (const std::string& w : takeWarnings)
+                std::fprintf(stderr, "  warning: %s: %s\n", job.c3d.c_str(), w.c_str());
+            // As solve says it, a note: "frames" 2:100 is cut to the take, not a fault of it.
+            for (const std::string& n : takeNotes) std::fprintf(stderr, "  note: %s\n", n.c_str());
+            // Said once per map, as the mesh's notes: a library's takes share a few maps.
+            if (!mapWarnings.empty() && notedMaps.insert(job.map).second)
+                for (const std::string& w : mapWarnings)
+                    std::fprintf(stderr, "  warning: %s\n", w.c_str());
+            // A library of takes shares a few meshes: what one lacks is said once, solved or not.
+            if (!meshWarnings.empty() && notedMeshes.insert(job.mesh + "\n" + job.group).second)
+                for (const std::string& w : meshWarnings)
+                    std::printf("  note: %s: %s\n", job.mesh.c_str(), w.c_str());
+            std::fflush(stdout);
+        };
         try {
             const ExportResult r =
                 runTakeJob(job, true, &meshWarnings, &takeWarnings, &mapWarnings, &takeNotes);
@@ -501,6 +518,7 @@ void run(const BatchArgs& args) {
             ++solved;
         } catch (const TakeJobInterrupted& e) {
             std::printf("interrupted\n");
+            underTheLine();  // an earlier run's frames past the stop, named as after a finished one
             throw;
         } catch (const Error& e) {
             std::printf("FAILED: %s\n", e.what());
@@ -510,21 +528,7 @@ void run(const BatchArgs& args) {
             std::printf("FAILED: internal error: %s\n", e.what());
             ++failed;
         }
-        // Under the take's line, solved or not: a truncated take solves the frames it holds.
-        std::fflush(stdout);
-        for (const std::string& w : takeWarnings)
-            std::fprintf(stderr, "  warning: %s: %s\n", job.c3d.c_str(), w.c_str());
-        // As solve says it, a note: "frames" 2:100 is cut to the take, not a fault of it.
-        for (const std::string& n : takeNotes) std::fprintf(stderr, "  note: %s\n", n.c_str());
-        // Said once per map, as the mesh's notes: a library's takes share a few maps.
-        if (!mapWarnings.empty() && notedMaps.insert(job.map).second)
-            for (const std::string& w : mapWarnings)
-                std::fprintf(stderr, "  warning: %s\n", w.c_str());
-        // A library of takes shares a few meshes: what one lacks is said once, solved or not.
-        if (!meshWarnings.empty() && notedMeshes.insert(job.mesh + "\n" + job.group).second)
-            for (const std::string& w : meshWarnings)
-                std::printf("  note: %s: %s\n", job.mesh.c_str(), w.c_str());
-        std::fflush(stdout);
+        underTheLine();
     }
     std::printf("batch: %d of %zu takes in shard %d/%d: %d solved, %d skipped, %d failed\n", mine,
                 jobs.size(), shard, shards, solved, skipped, failed);

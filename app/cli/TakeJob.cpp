@@ -317,6 +317,18 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
         result = exportTake(mesh, take, map, request, onFrame, announce);
     }
     if (!quiet && ::isatty(STDERR_FILENO)) std::fprintf(stderr, "\n");
+    // In batch under the take's line, once it is finished (docs/batch.md).
+    const auto note = [&](const std::string& text) {
+        if (text.empty()) return;
+        if (takeNotes)
+            takeNotes->push_back(text);
+        else
+            std::fprintf(stderr, "note: %s\n", text.c_str());
+    };
+    // Stopped or not: an earlier run's frames past the stop play as part of this take as much.
+    if (request.format == ExportFormat::Obj)
+        note(otherFramesNote(job.out, exportStem(request), result));
+    note(otherOutputsNote(request));
     // The sidecar says "complete": false; the message must not call anything complete.
     if (result.cancelled) {
         const int n = result.framesWritten;
@@ -326,17 +338,6 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
                 exportStem(request) + ".json records the take as incomplete",
             stopSignal);
     }
-    // In batch under the take's line, once it is finished (docs/batch.md).
-    const auto note = [&](const std::string& text) {
-        if (text.empty()) return;
-        if (takeNotes)
-            takeNotes->push_back(text);
-        else
-            std::fprintf(stderr, "note: %s\n", text.c_str());
-    };
-    if (request.format == ExportFormat::Obj)
-        note(otherFramesNote(job.out, exportStem(request), result));
-    note(otherOutputsNote(request));
     const std::string held = heldFramesWarning(result);
     if (!held.empty() && takeWarnings)
         takeWarnings->push_back(held);

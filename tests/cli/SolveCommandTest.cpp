@@ -846,3 +846,19 @@ TEST(SolveCommand, ATakeWhoseYScreenSaysPlusYSolvesToTheSameMeshAsItsZUpTwin) {
                 << "frame " << f << up;
     }
 }
+
+// Stopped by Ctrl-C, an OBJ run said nothing of the frames an earlier run left past the stop,
+// which a tool reading walker_*.obj plays as part of this take; a run that finished names them.
+TEST(SolveCommand, AStoppedRunNamesTheEarlierRunsFramesLeftBesideAsAFinishedOneDoes) {
+    const fs::path demo = makeDemo(3000), out = demo / "solved";
+    ASSERT_EQ(runCli(solveArgs(demo, out) + " --quiet --frames 2990:3000").exitCode, 0);
+    const CliResult r = runShell("timeout --preserve-status -s INT 1 " + std::string(BONELESS_CLI) +
+                                 " " + solveArgs(demo, out) + " --quiet 2>&1");
+    EXPECT_EQ(r.exitCode, 130) << r.out;
+    ASSERT_LT(sidecar(out)["frames_written"].get<int>(), 2990);
+    EXPECT_NE(r.out.find("note: " + out.string() +
+                         " also holds 10 OBJ frames this run did not write (frames 2990 to 2999 "
+                         "of walker_*.obj, from an earlier run)"),
+              std::string::npos)
+        << r.out;
+}
