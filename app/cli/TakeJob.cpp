@@ -332,10 +332,13 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
     // The sidecar says "complete": false; the message must not call anything complete.
     if (result.cancelled) {
         const int n = result.framesWritten;
+        // A run again solves the take from its first frame (there is no resuming part-way): "valid"
+        // frames read as kept.
         throw TakeJobInterrupted(
-            std::string(stopSignal == SIGTERM ? "stopped by SIGTERM" : "interrupted") + ": the " +
-                plural(n, "frame") + (n == 1 ? " written is" : " written are") + " valid, and " +
-                exportStem(request) + ".json records the take as incomplete",
+            std::string(stopSignal == SIGTERM ? "stopped by SIGTERM" : "interrupted") + " after " +
+                plural(n, "frame") + ": " + exportStem(request) +
+                ".json records the take as incomplete, and solving it again starts from its "
+                "first frame",
             stopSignal);
     }
     const std::string held = heldFramesWarning(result);

@@ -178,9 +178,8 @@ TEST(SolveCommand, CtrlCStopsCleanlyWithCompleteFilesOnly) {
     EXPECT_NE(r.out.find("exit=130"), std::string::npos) << r.out;  // 128 + SIGINT, as shells say
     const auto j = sidecar(out);
     // Not "complete", which the sidecar denies.
-    EXPECT_NE(r.out.find("interrupted: the " + std::to_string(j["frames_written"].get<int>()) +
-                         " frames written are valid, and walker.json records the take as "
-                         "incomplete"),
+    EXPECT_NE(r.out.find("interrupted after " + std::to_string(j["frames_written"].get<int>()) +
+                         " frames: walker.json records the take as incomplete"),
               std::string::npos)
         << r.out;
     EXPECT_FALSE(j["complete"].get<bool>());
@@ -861,4 +860,20 @@ TEST(SolveCommand, AStoppedRunNamesTheEarlierRunsFramesLeftBesideAsAFinishedOneD
                          "of walker_*.obj, from an earlier run)"),
               std::string::npos)
         << r.out;
+}
+
+// "the 78 frames written are valid" read as kept, while a run again solves the take from its
+// first frame: the message says what was written and what a run again does.
+TEST(SolveCommand, AStopSaysARunAgainSolvesTheTakeFromItsFirstFrame) {
+    const fs::path demo = makeDemo(3000), out = demo / "solved";
+    const CliResult r = runShell("timeout --preserve-status -s INT 1 " + std::string(BONELESS_CLI) +
+                                 " " + solveArgs(demo, out) + " --quiet 2>&1");
+    EXPECT_EQ(r.exitCode, 130) << r.out;
+    const int n = sidecar(out)["frames_written"].get<int>();
+    EXPECT_NE(r.out.find("interrupted after " + std::to_string(n) +
+                         " frames: walker.json records the take as incomplete, and solving it "
+                         "again starts from its first frame"),
+              std::string::npos)
+        << r.out;
+    EXPECT_EQ(r.out.find("valid"), std::string::npos) << r.out;
 }
