@@ -12,6 +12,7 @@
 
 #include "FrameRange.h"
 #include "OptionFlags.h"
+#include "boneless/Alignment.h"
 #include "boneless/C3dFrameReader.h"
 #include "boneless/Error.h"
 #include "boneless/MarkerSuggestion.h"
@@ -206,6 +207,44 @@ std::string otherOutputsNote(const ExportRequest& request) {
            ", or solve into another folder";
 }
 
+// The warning that the alignment the job chose (its calibration frame, its mesh up) is much worse
+// than the automatic choice's (core's rule, the app's), or "": measured as the app measures it, by
+// the solver's alignment alone with the frame and the up left to it. A solve otherwise went on
+// from a body turned against its markers, its summary looking fine. `keys`: named as a manifest's.
+std::string worseAlignmentWarning(const TriMesh& mesh, const C3dFrameReader& take,
+                                  const Correspondence& map, const TakeSolveOptions& options,
+                                  const Calibration& chosen, bool keys) {
+    if (options.alignment || (options.calibrationFrame < 0 && !options.meshUp)) return "";
+    TakeSolveOptions automatic = options;
+    automatic.calibrationFrame = -1;
+    automatic.meshUp.reset();
+    automatic.calibrate = CalibrateMode::None;  // the alignment alone, not the fit
+    automatic.solver.method = SolverOptions::Method::LocalGlobal;
+    const Calibration found = TakeSolver(mesh, take, map, automatic).calibration();
+    const double unitToMm = take.take().unitToMm;
+    const double chosenMm = chosen.residualMm(unitToMm), automaticMm = found.residualMm(unitToMm);
+    if (!alignsMuchWorse(chosenMm, automaticMm)) return "";
+    const auto at = [&](const Calibration& c) {
+        return "frame " + std::to_string(c.frame) +
+               (options.meshUp ? " with mesh up " + guessUpAxis(c.takeToMesh, take.take().vertical)
+                               : std::string());
+    };
+    std::vector<std::string> chose;
+    for (const std::string key : {"calibration_frame", "mesh_up"}) {
+        if (key == "calibration_frame" ? options.calibrationFrame < 0 : !options.meshUp) continue;
+        std::string flag = key;
+        std::replace(flag.begin(), flag.end(), '_', '-');
+        chose.push_back(keys ? "\"" + key + "\"" : "--" + flag);
+    }
+    char figures[160];
+    std::snprintf(figures, sizeof figures,
+                  "%.1f mm (RMS), over %g times and %g mm more than the automatic choice's %.1f mm",
+                  chosenMm, kMuchWorseAlignmentRatio, kMuchWorseAlignmentMm, automaticMm);
+    return "the alignment at " + at(chosen) + " leaves " + figures + " at " + at(found) +
+           "; try without " + joined(chose, " and ") +
+           " (a pose far from the rest's, or a wrong up, turns the body against its markers)";
+}
+
 // Files of the outputs' names that no Boneless export wrote are the user's: refused unless forced,
 // naming the first few, before anything is solved or written.
 void refuseToReplaceOthersFiles(const ExportRequest& request, int end) {
@@ -292,7 +331,15 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
             request, within.end < 0 ? static_cast<int>(take.frameCount()) : within.end);
 
     auto announce = [&](const Calibration& c) {
-        if (quiet) return;
+        // Said even when quiet, under the take's line in batch, as the take's own warnings.
+        const std::string worse =
+            worseAlignmentWarning(mesh, take, map, request.options, c, takeNotes != nullptr);
+        if (!worse.empty() && takeWarnings) takeWarnings->push_back(worse);
+        const auto warnOfWorse = [&] {
+            if (!worse.empty() && !takeWarnings)
+                std::fprintf(stderr, "warning: %s: %s\n", job.c3d.c_str(), worse.c_str());
+        };
+        if (quiet) return warnOfWorse();
         const double meshUnitsPerMm = c.takeToMesh.scale / take.take().unitToMm;
         std::fprintf(stderr,
                      "%s: %zu frames at %g Hz, units %s; aligned at frame %d (residual %.1f mm), "
@@ -302,6 +349,7 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
                      guessMeshUnits(meshUnitsPerMm),
                      guessUpAxis(c.takeToMesh, take.take().vertical).c_str(),
                      request.options.meshUp ? "" : " (guessed; --mesh-up sets it)");
+        warnOfWorse();
     };
     const auto start = std::chrono::steady_clock::now();
     auto onFrame = [&](int done, int total, const FrameReport& report) {
