@@ -731,7 +731,7 @@ TEST(DemoCommand, TheFrameCountIsACountInItsHelpAndItsRefusal) {
     const fs::path dir = freshTestDir("demo-frames");
     const CliResult r = runCli("demo --out " + (dir / "x").string() + " --frame-count 10:20");
     EXPECT_EQ(r.exitCode, 1) << r.out;
-    EXPECT_NE(r.out.find("--frame-count: must be a whole number from 1 to 100000, got 10:20"),
+    EXPECT_NE(r.out.find("--frame-count: must be a whole number from 1 to 100000, got \"10:20\""),
               std::string::npos)
         << r.out;
     EXPECT_FALSE(fs::exists(dir / "x"));
