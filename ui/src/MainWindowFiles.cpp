@@ -380,6 +380,9 @@ bool MainWindow::offerRecovery(const QStringList& named) {
 }
 
 bool MainWindow::offerRecovery(const QString& path, const QStringList& named) {
+    // Asked by one Boneless at a time: two both asked, and one's Discard took away the other's
+    // Reopen (and its next autosave removed the file).
+    if (!autosave_->hold(path)) return false;
     const QFileInfo recovery(path);
     const QString from = ProjectAutosave::recoveredProject(path);
     QMessageBox box(QMessageBox::Question, tr("Boneless"),
@@ -405,9 +408,10 @@ bool MainWindow::offerRecovery(const QString& path, const QStringList& named) {
     discard->setObjectName("discardButton");
     box.setDefaultButton(reopen);
     box.exec();  // answered before anything else opens (and autosaves over it)
-    if (box.clickedButton() == reopen && openRecovery(path)) return true;
+    if (box.clickedButton() == reopen && openRecovery(path)) return true;  // held while its own
     // Discarded, or it would not open (openRecovery said why): a change may replace it.
     autosave_->discardRecovery(path);
+    autosave_->release(path);
     return false;
 }
 

@@ -4,6 +4,7 @@
 #include <QDir>
 #include <QFile>
 #include <QFileInfo>
+#include <QLockFile>
 #include <QSettings>
 #include <QStandardPaths>
 #include <QTimer>
@@ -86,6 +87,27 @@ bool isAnotherRunningBonelesss(const QString& path) {
            (!session.isEmpty() && session != thisInstance() && !instanceIsGone(session));
 }
 
+// The lock file that says which session holds the recovery file `path`: "PID-START.boneless.lock".
+// Its age alone never makes it stale: a Boneless may ask about a file, or hold it, for days.
+std::unique_ptr<QLockFile> lockOf(const QString& path) {
+    auto lock = std::make_unique<QLockFile>(path + ".lock");
+    lock->setStaleLockTime(0);
+    return lock;
+}
+
+// Takes `lock`, and one left by a process no longer running (a zombie too, which QLockFile counts
+// as running) once its owner is gone.
+bool take(QLockFile& lock) {
+    if (lock.tryLock(0)) return true;
+    qint64 pid = 0;
+    QString host, app;
+    if (lock.error() == QLockFile::LockFailedError && lock.getLockInfo(&pid, &host, &app) &&
+        pid != QCoreApplication::applicationPid() && processIsGone(long(pid)) &&
+        lock.removeStaleLockFile())
+        return lock.tryLock(0);
+    return false;
+}
+
 void removeAutosave(const QString& path) {
     QFile::remove(path);
     QSettings().remove("autosave/" + instanceOf(path));
@@ -112,6 +134,27 @@ void ProjectAutosave::schedule() {
 
 ProjectAutosave::~ProjectAutosave() {
     saveNow();
+}
+
+bool ProjectAutosave::hold(const QString& path) {
+    if (held_.count(path)) return true;
+    std::unique_ptr<QLockFile> lock = lockOf(path);
+    // A folder that takes no lock file (read-only) leaves the file to whoever asks, as before.
+    if (!take(*lock)) return lock->error() != QLockFile::LockFailedError;
+    held_[path] = std::move(lock);
+    return true;
+}
+
+void ProjectAutosave::release(const QString& path) {
+    held_.erase(path);  // the lock file goes with its QLockFile
+}
+
+bool ProjectAutosave::isHeldElsewhere(const QString& path) const {
+    if (held_.count(path)) return false;
+    std::unique_ptr<QLockFile> lock = lockOf(path);
+    if (!take(*lock)) return lock->error() == QLockFile::LockFailedError;
+    lock->unlock();
+    return false;
 }
 
 void ProjectAutosave::setProjectPath(const QString& path) {
@@ -172,7 +215,9 @@ bool ProjectAutosave::sessionIsGone(const QString& session) const {
 QStringList ProjectAutosave::unfinishedRecoveries() const {
     QStringList paths = recoveries();
     paths.erase(std::remove_if(paths.begin(), paths.end(),
-                               [this](const QString& p) { return !sessionIsGone(sessionOf(p)); }),
+                               [this](const QString& p) {
+                                   return !sessionIsGone(sessionOf(p)) || isHeldElsewhere(p);
+                               }),
                 paths.end());
     return paths;
 }
@@ -183,29 +228,42 @@ bool ProjectAutosave::hasUnfinishedRecovery() const {
 
 void ProjectAutosave::claimRecovery(const QString& path) {
     QSettings().setValue(recordKey(path, "session"), session_);
-    // Another Boneless's: it goes once this session's own autosave holds it.
-    if (QFileInfo(path).absoluteFilePath() != QFileInfo(recoveryPath()).absoluteFilePath())
+    // Another Boneless's: it goes once this session's own autosave holds it, and is held till
+    // then, so that no other Boneless offers, gives up or removes the work reopened here.
+    if (QFileInfo(path).absoluteFilePath() != QFileInfo(recoveryPath()).absoluteFilePath()) {
         adopted_ = path;
+        hold(path);
+    } else {
+        release(path);  // held while asked about: this Boneless's own file needs no lock
+    }
 }
 
 void ProjectAutosave::discardRecovery(const QString& path) {
+    // Held by another session: it asks about it, or reopened it and keeps it until it saves.
+    const bool heldHere = held_.count(path) > 0;
+    if (!hold(path)) return;
     QSettings().remove(recordKey(path, "session"));
+    if (!heldHere) release(path);
 }
 
 void ProjectAutosave::endSession() {
     for (const QString& path : {recoveryPath(), adopted_})
         if (!path.isEmpty() && QSettings().value(recordKey(path, "session")).toString() == session_)
             QSettings().remove(recordKey(path, "session"));
+    if (!adopted_.isEmpty()) release(adopted_);
 }
 
 void ProjectAutosave::replaceFinishedAutosaves() {
     // Reopened here, and now in this session's own autosave.
     if (!adopted_.isEmpty() && sessionOf(adopted_) == session_) removeAutosave(adopted_);
+    if (!adopted_.isEmpty()) release(adopted_);
     adopted_.clear();
     // Discarded, or left by a Boneless that closed: the last autosave until a change replaces it,
-    // which this one was.
+    // which this one was. One another session holds (asks about, or reopened) is its own.
     for (const QString& path : recoveries())
-        if (instanceOf(path) != thisInstance() && sessionOf(path).isEmpty()) removeAutosave(path);
+        if (instanceOf(path) != thisInstance() && sessionOf(path).isEmpty() &&
+            !isHeldElsewhere(path))
+            removeAutosave(path);
 }
 
 bool ProjectAutosave::saveNow() {

@@ -5,7 +5,10 @@
 #include <QPointer>
 #include <QString>
 #include <QStringList>
+#include <map>
+#include <memory>
 
+class QLockFile;
 class QTimer;
 
 namespace boneless::ui {
@@ -49,6 +52,9 @@ QByteArray toJson(const Document& document, const QString& path);
 // session that did not end (a crash), in a file that no project file holds, is offered at the next
 // start once its Boneless is no longer running: reopened (claimRecovery) it is that session's,
 // discarded (discardRecovery) it stays as the last autosave until a change replaces it.
+// A recovery file is offered by one Boneless at a time: the one asking about it, and then the one
+// that reopened it, holds its lock file (PID-START.boneless.lock); no other asks about it, gives
+// it up or removes it. A lock left by a Boneless no longer running is taken over.
 class ProjectAutosave : public QObject {
     Q_OBJECT
   public:
@@ -75,14 +81,19 @@ class ProjectAutosave : public QObject {
     // The project the recovery file `path` was last saved from; empty for an untitled session.
     static QString recoveredProject(const QString& path = recoveryPath());
     // The recovery files that hold work no project file holds, from a session that did not end,
-    // newest first.
+    // and that no other session holds, newest first.
     QStringList unfinishedRecoveries() const;
     bool hasUnfinishedRecovery() const;
     // This session takes the work of the recovery file `path` as its own (it reopened it); another
     // Boneless's file goes once this one's own holds that work.
     void claimRecovery(const QString& path = recoveryPath());
-    // The unfinished session's work in `path` is given up: a change may replace it.
+    // The unfinished session's work in `path` is given up: a change may replace it. Nothing is
+    // given up of a file another session holds.
     void discardRecovery(const QString& path = recoveryPath());
+    // Takes the lock of the recovery file `path` for this session (while asking about it, and
+    // once reopened while its work is this session's); false when another session holds it.
+    bool hold(const QString& path);
+    void release(const QString& path);
     // This session ended cleanly (the window closed): its recovery file is not offered at start.
     void endSession();
 
@@ -111,7 +122,11 @@ class ProjectAutosave : public QObject {
     // a Boneless that closed, are replaced by it.
     void replaceFinishedAutosaves();
 
-    const QString session_;      // this session's id in the recovery files' records
+    // Another session (of this Boneless or another) holds `path`'s lock.
+    bool isHeldElsewhere(const QString& path) const;
+
+    const QString session_;  // this session's id in the recovery files' records
+    std::map<QString, std::unique_ptr<QLockFile>> held_;  // recovery file -> its lock, held
     QString adopted_;            // another Boneless's recovery file reopened, until saved here
     bool heldBackSaid_ = false;  // failed() said the recovery file is another session's
     QTimer* timer_;

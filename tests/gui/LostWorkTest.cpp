@@ -1,0 +1,137 @@
+// Ways a reviewer lost a user's work, each driven as the user met it.
+#include <signal.h>
+#include <QAction>
+#include <QFile>
+#include <QFileDialog>
+#include <QLineEdit>
+#include <QMessageBox>
+#include <QProcess>
+#include <QPushButton>
+#include <QSettings>
+#include <QSignalSpy>
+#include <QUndoStack>
+#include <QtTest>
+#include <cstdio>
+
+#include "ViewTestSupport.h"
+#include "boneless/ui/Document.h"
+#include "boneless/ui/MainWindow.h"
+#include "boneless/ui/Project.h"
+
+using namespace boneless::ui;
+
+namespace {
+
+QByteArray readAll(const QString& path) {
+    QFile f(path);
+    return f.open(QIODevice::ReadOnly) ? f.readAll() : QByteArray();
+}
+
+QString recoveryFolder() {
+    return QFileInfo(ProjectAutosave::recoveryPath()).absolutePath();
+}
+
+}  // namespace
+
+class LostWorkTest : public QObject {
+    Q_OBJECT
+  public:
+    static void initMain() { setDefaultSurfaceFormat(); }
+
+  private:
+    static void removeAutosaves() {
+        QDir folder(recoveryFolder());
+        for (const QString& name : folder.entryList({"*.boneless", "*.lock"}, QDir::Files))
+            QFile::remove(folder.filePath(name));
+        QSettings().remove("autosave");
+    }
+
+  private slots:
+    void initTestCase() {
+        test::isolate("LostWorkTest");
+        folder_ = test::freshFolder("LostWorkTest");
+        project_ = test::writeDemoProject(folder_ + "/mine");
+    }
+
+    void init() { removeAutosaves(); }
+
+    // Two Boneless started after a crash both asked about its work; B reopened it, A discarded
+    // it, and A's discard took B's claim away: A's next autosave deleted the file, and B killed
+    // before an edit left nothing. Now one Boneless at a time asks about it, and the other neither
+    // asks nor touches it.
+    void aCrashsWorkReopenedByOneBonelessIsNotDeletedByAnother() {
+        int mapped = -1;
+        {
+            MainWindow crashed;
+            crashed.setMessageBoxesEnabled(false);
+            QVERIFY(crashed.openFiles({folder_ + "/mine/walker.obj", folder_ + "/mine/walker.c3d",
+                                       folder_ + "/mine/walker.map.json"}));
+            QVERIFY(crashed.document()->clearMapping(0));
+            QVERIFY(crashed.autosave()->saveNow());
+            mapped = crashed.document()->mappedCount();
+        }
+        // The work is that of a Boneless no longer running (no process has this id).
+        const QString instance = "999999999-1";
+        const QString file = recoveryFolder() + "/" + instance + ".boneless";
+        QVERIFY(QFile::rename(ProjectAutosave::recoveryPath(), file));
+        QSettings().setValue("autosave/" + instance + "/session", "{crashed} " + instance);
+        QSettings().setValue("autosave/" + instance + "/project", QString());
+
+        QStringList asked;
+        QString answer = "reopenButton";
+        QTimer answering;
+        connect(&answering, &QTimer::timeout, [&] {
+            auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+            if (!box) return;
+            asked << box->objectName();
+            box->findChild<QPushButton*>(answer)->click();
+        });
+        answering.start(100);
+        auto b = std::make_unique<MainWindow>();
+        QVERIFY(b->offerRecovery());
+        QCOMPARE(b->document()->mappedCount(), mapped);
+        QCOMPARE(asked.size(), 1);
+
+        answer = "discardButton";
+        {
+            MainWindow a;
+            QVERIFY(!a.offerRecovery());
+            QCOMPARE(asked.size(), 1);  // B holds it: A does not ask
+            a.setMessageBoxesEnabled(false);
+            QVERIFY(a.openDemo());
+            QVERIFY(a.document()->clearMapping(5));
+            QVERIFY(a.autosave()->saveNow());
+            QVERIFY(QFileInfo::exists(file));
+            a.close();
+        }
+        b.reset();  // killed before an edit: the crash's work is still to be offered
+        {
+            // As kill -9 leaves it: B's lock file, of a process no longer running.
+            QFile lock(file + ".lock");
+            QVERIFY(lock.open(QIODevice::WriteOnly));
+            lock.write("999999999\nLostWorkTest\n" + QSysInfo::machineHostName().toUtf8() + "\n");
+        }
+
+        answer = "reopenButton";
+        MainWindow c;
+        QVERIFY(c.offerRecovery());
+        answering.stop();
+        QCOMPARE(asked.size(), 2);
+        QCOMPARE(c.document()->mappedCount(), mapped);
+        c.setMessageBoxesEnabled(false);
+        c.close();
+    }
+
+  private:
+    QString folder_, project_;
+};
+
+int main(int argc, char** argv) {
+    LostWorkTest::initMain();
+    QApplication app(argc, argv);
+    app.setAttribute(Qt::AA_Use96Dpi, true);
+    LostWorkTest test;
+    QTEST_SET_MAIN_SOURCE_PATH
+    return QTest::qExec(&test, argc, argv);
+}
+#include "LostWorkTest.moc"
