@@ -31,6 +31,13 @@ QString recoveryFolder() {
     return QFileInfo(ProjectAutosave::recoveryPath()).absolutePath();
 }
 
+// The open questions of `window` (boxes shown, not exec'd) named `name`.
+QMessageBox* shownBox(const MainWindow& window, const QString& name) {
+    for (QMessageBox* box : window.findChildren<QMessageBox*>(name))
+        if (box->isVisible()) return box;
+    return nullptr;
+}
+
 }  // namespace
 
 class LostWorkTest : public QObject {
@@ -120,6 +127,63 @@ class LostWorkTest : public QObject {
         QCOMPARE(c.document()->mappedCount(), mapped);
         c.setMessageBoxesEnabled(false);
         c.close();
+    }
+
+    // A project open in two windows: the second's edit was autosaved, then the first's autosave
+    // wrote over it, and neither said a word. The first now leaves the file alone, names it in
+    // a question, and Reload opens what the second saved.
+    void aProjectChangedOnDiskIsNotWrittenOverUnasked() {
+        const QString project = test::writeDemoProject(folder_ + "/twice");
+        MainWindow one, two;
+        one.setMessageBoxesEnabled(false);
+        two.setMessageBoxesEnabled(false);
+        QVERIFY(one.openProject(project));
+        QVERIFY(two.openProject(project));
+        QVERIFY(two.document()->clearMapping(0));
+        QVERIFY(two.autosave()->saveNow());
+        const QByteArray byTwo = readAll(project);
+        const int twoMapped = two.document()->mappedCount();
+
+        one.setMessageBoxesEnabled(true);
+        QVERIFY(one.document()->clearMapping(5));
+        QVERIFY(!one.autosave()->saveNow());
+        QCOMPARE(readAll(project), byTwo);
+        QMessageBox* box = shownBox(one, "changedOnDiskQuestion");
+        QVERIFY(box);
+        QVERIFY2(box->text().contains(QFileInfo(project).fileName()), qPrintable(box->text()));
+        // Nor is it written by the next change, nor by Save.
+        QVERIFY(one.document()->clearMapping(6));
+        (void)one.autosave()->saveNow();
+        QCOMPARE(readAll(project), byTwo);
+        box->findChild<QPushButton*>("reloadButton")->click();
+        QCOMPARE(one.document()->mappedCount(), twoMapped);
+        QCOMPARE(one.projectPath(), project);
+        // Reloaded, its next edit is saved again.
+        QVERIFY(one.document()->clearMapping(7));
+        QVERIFY(one.autosave()->saveNow());
+        Document saved;
+        QVERIFY(Project::load(saved, project));
+        QCOMPARE(saved.mappedCount(), twoMapped - 1);
+        // Another program's edit is left alone too, until Overwrite.
+        {
+            QFile file(project);
+            QVERIFY(file.open(QIODevice::Append));
+            file.write("\n");
+        }
+        const QByteArray byAnother = readAll(project);
+        QVERIFY(one.document()->clearMapping(8));
+        QVERIFY(!one.autosave()->saveNow());
+        QVERIFY(!one.saveProject());
+        QCOMPARE(readAll(project), byAnother);
+        box = shownBox(one, "changedOnDiskQuestion");
+        QVERIFY(box);
+        box->findChild<QPushButton*>("overwriteButton")->click();
+        QVERIFY(Project::load(saved, project));
+        QCOMPARE(saved.mappedCount(), one.document()->mappedCount());
+        QVERIFY(!one.isWindowModified());
+        one.setMessageBoxesEnabled(false);
+        two.setMessageBoxesEnabled(false);
+        two.autosave()->discardPending();
     }
 
   private:

@@ -466,6 +466,11 @@ bool MainWindow::saveProjectAs(const QString& path) {
         showError(tr("The demo is written afresh each time it opens: save the project elsewhere."));
         return false;
     }
+    // Save into the project open: not over what another Boneless or program wrote there since.
+    if (QFileInfo(path).absoluteFilePath() == projectPath_ && autosave_->projectChangedOnDisk()) {
+        askChangedOnDisk(projectPath_);
+        return false;
+    }
     storeSession();
     QString error;
     if (!Project::save(*document_, path, &error)) {
@@ -482,6 +487,51 @@ bool MainWindow::saveProjectAs(const QString& path) {
     updateTitle();
     statusBar()->showMessage(tr("Saved %1").arg(QFileInfo(path).fileName()), 5000);
     return true;
+}
+
+void MainWindow::askChangedOnDisk(const QString& path) {
+    const QString message =
+        tr("%1 changed on disk since it was opened or last saved: this window's changes are not "
+           "saved into it.")
+            .arg(QFileInfo(path).fileName());
+    statusBar()->showMessage(message, 15000);
+    emit errorShown(message + "\n" + path);
+    if (!messageBoxes_) return;
+    // Shown, not exec'd: an autosave finds it, in the middle of whatever the user does.
+    auto* box =
+        new QMessageBox(QMessageBox::Warning, tr("Boneless"), message, QMessageBox::NoButton, this);
+    box->setObjectName("changedOnDiskQuestion");
+    box->setAttribute(Qt::WA_DeleteOnClose);
+    box->setModal(false);
+    box->setInformativeText(
+        tr("Another Boneless or program wrote it. Reload opens it as it is now and drops this "
+           "window's changes; Save As… keeps them in another file; Overwrite replaces what it "
+           "holds with them. Until then they are kept in the last autosave only."));
+    box->setDetailedText(path);
+    QPushButton* reload = box->addButton(tr("Reload"), QMessageBox::DestructiveRole);
+    QPushButton* saveAs = box->addButton(tr("Save As…"), QMessageBox::AcceptRole);
+    QPushButton* overwrite = box->addButton(tr("Overwrite"), QMessageBox::DestructiveRole);
+    reload->setObjectName("reloadButton");
+    saveAs->setObjectName("saveAsButton");
+    overwrite->setObjectName("overwriteButton");
+    box->setDefaultButton(saveAs);
+    connect(reload, &QPushButton::clicked, this, [this, path] {
+        if (path != projectPath_) return;  // another project opened since
+        autosave_->discardPending();
+        setUnsavedEdits(false);
+        const QScopedValueRollback<bool> asked(workAsked_, true);  // the answer was Reload
+        openProject(path);
+    });
+    connect(saveAs, &QPushButton::clicked, this, [this] { chooseSaveProjectAs(); });
+    connect(overwrite, &QPushButton::clicked, this, [this, path] {
+        if (path != projectPath_) return;
+        storeSession();
+        if (autosave_->overwriteProject()) {
+            document_->undoStack()->setClean();
+            setUnsavedEdits(false);
+        }
+    });
+    box->show();
 }
 
 void MainWindow::showExportDialog() {
@@ -681,10 +731,15 @@ bool MainWindow::keepUnsavedWork(bool closing) {
     const bool kept = autosave_->saveNow();
     const bool titled = !projectPath_.isEmpty() && !demo_;
     if (!messageBoxes_ || (titled ? kept : !unsavedEdits_)) return true;
-    const QString question = titled ? tr("%1 could not be saved. Save the project elsewhere first?")
-                                          .arg(QFileInfo(projectPath_).fileName())
-                             : demo_ ? tr("Save your changes to the demo as a project first?")
-                                     : tr("Save this untitled project first?");
+    const QString question =
+        titled && autosave_->projectChangedOnDisk()
+            ? tr("%1 changed on disk since it was opened or last saved, and holds none of these "
+                 "changes. Save them elsewhere first?")
+                  .arg(QFileInfo(projectPath_).fileName())
+        : titled ? tr("%1 could not be saved. Save the project elsewhere first?")
+                       .arg(QFileInfo(projectPath_).fileName())
+        : demo_ ? tr("Save your changes to the demo as a project first?")
+                : tr("Save this untitled project first?");
     QMessageBox box(QMessageBox::Question, closing ? tr("Close Boneless") : tr("Open"), question,
                     QMessageBox::NoButton, this);
     box.setObjectName("unsavedQuestion");

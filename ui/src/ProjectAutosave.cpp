@@ -1,6 +1,7 @@
 #include <algorithm>
 
 #include <QCoreApplication>
+#include <QCryptographicHash>
 #include <QDir>
 #include <QFile>
 #include <QFileInfo>
@@ -108,6 +109,15 @@ bool take(QLockFile& lock) {
     return false;
 }
 
+// A hash of what the file `path` holds; empty when it cannot be read (or is not there).
+QByteArray contentHash(const QString& path) {
+    QFile file(path);
+    if (!file.open(QIODevice::ReadOnly)) return {};
+    QCryptographicHash hash(QCryptographicHash::Sha1);
+    hash.addData(&file);
+    return hash.result();
+}
+
 void removeAutosave(const QString& path) {
     QFile::remove(path);
     QSettings().remove("autosave/" + instanceOf(path));
@@ -159,6 +169,23 @@ bool ProjectAutosave::isHeldElsewhere(const QString& path) const {
 
 void ProjectAutosave::setProjectPath(const QString& path) {
     path_ = path;
+    known_ = path.isEmpty() ? QByteArray() : contentHash(path);
+    changedOnDiskSaid_ = false;
+}
+
+bool ProjectAutosave::projectChangedOnDisk() const {
+    // A file gone since (or a folder in its place, or one that cannot be read) is no other
+    // work: saving it says what is wrong, or writes it back and loses nothing.
+    if (path_.isEmpty() || !QFileInfo(path_).isFile()) return false;
+    const QByteArray now = contentHash(path_);
+    return !now.isEmpty() && now != known_;
+}
+
+bool ProjectAutosave::overwriteProject() {
+    known_ = path_.isEmpty() ? QByteArray() : contentHash(path_);
+    changedOnDiskSaid_ = false;
+    pending_ = true;
+    return saveNow();
 }
 
 void ProjectAutosave::setDelay(int ms) {
@@ -283,7 +310,12 @@ bool ProjectAutosave::saveNow() {
     // disk) must not keep the edits out of the recovery file too.
     QStringList targets;
     if (!sessionIsGone(sessionOf(recoveryPath()))) targets << recoveryPath();
-    if (!path_.isEmpty()) targets.prepend(path_);
+    // Changed on disk since read or written here (another Boneless's autosave, another program):
+    // written over, that work was lost unsaid. The edits stay in the recovery file.
+    const bool changedElsewhere = projectChangedOnDisk();
+    if (!path_.isEmpty() && !changedElsewhere) targets.prepend(path_);
+    if (changedElsewhere && !changedOnDiskSaid_) emit changedOnDisk(path_);
+    changedOnDiskSaid_ = changedOnDiskSaid_ || changedElsewhere;
     if (targets.isEmpty()) {
         pending_ = true;  // kept for a save once that work is reopened or discarded
         // Said once: an untitled session left unsaved must know (a crash's work that would not
@@ -297,12 +329,13 @@ bool ProjectAutosave::saveNow() {
         return false;
     }
     QStringList errors;
-    bool kept = true, recovered = targets.contains(recoveryPath());
+    bool kept = !changedElsewhere, recovered = targets.contains(recoveryPath());
     for (const QString& target : targets) {
         QDir().mkpath(QFileInfo(target).absolutePath());
         QString error;
         const bool ok = Project::save(*document_, target, &error);
         if (!ok) errors << error;
+        if (ok && target == path_) known_ = contentHash(path_);
         (target == path_ ? kept : recovered) = ok;
     }
     // Which project the recovery file holds: offered for another one, it would pass for it.
@@ -315,6 +348,11 @@ bool ProjectAutosave::saveNow() {
         else
             claimRecovery();
         replaceFinishedAutosaves();
+    }
+    if (changedElsewhere) {
+        pending_ = true;  // saved once the user chose (overwriteProject, or another path)
+        if (!errors.isEmpty()) emit failed(errors.join("\n"));
+        return false;
     }
     if (!errors.isEmpty()) {
         pending_ = true;  // try again after the next change

@@ -151,6 +151,9 @@ class MainWindow : public QMainWindow {
     // the recovery file, which the next change overwrites), asks Save As, go on, or cancel.
     // True to go on.
     bool keepUnsavedWork(bool closing);
+    // The project file changed on disk since it was opened or saved here: Reload, Save As… or
+    // Overwrite, asked in a box that stays up (an autosave found it).
+    void askChangedOnDisk(const QString& path);
     void showHelp(const QString& title, const QString& html);
     // A status message whose whole `detail` (a list it names a few of) is the bar's tooltip while
     // it is shown.

@@ -47,6 +47,10 @@ QByteArray toJson(const Document& document, const QString& path);
 // also goes to recoveryPath() (the only place it goes without a project path), which the window
 // offers to reopen when the project it was saved from will not open; a project that cannot be
 // written does not keep the change from it.
+// The project file is written only while it holds what this session last read or wrote there:
+// changed since (by another Boneless, or another program), it is left alone, the edits go to the
+// recovery file only, and changedOnDisk() is emitted once, until overwriteProject() or another
+// project path.
 // Each running Boneless has a recovery file of its own, named by its process (id and start time):
 // a second Boneless beside the first neither writes over the first's nor offers it. The work of a
 // session that did not end (a crash), in a file that no project file holds, is offered at the next
@@ -61,7 +65,8 @@ class ProjectAutosave : public QObject {
     explicit ProjectAutosave(Document* document, QObject* parent = nullptr);
     ~ProjectAutosave() override;  // saves a pending change
 
-    void setProjectPath(const QString& path);  // empty = untitled
+    // Empty = untitled. The file as it is now is the one this session knows (just loaded or saved).
+    void setProjectPath(const QString& path);
     QString projectPath() const { return path_; }
     void setDelay(int ms);  // default 1000
     bool isPending() const;
@@ -87,6 +92,10 @@ class ProjectAutosave : public QObject {
     // This session takes the work of the recovery file `path` as its own (it reopened it); another
     // Boneless's file goes once this one's own holds that work.
     void claimRecovery(const QString& path = recoveryPath());
+    // The project file no longer holds what this session last read or wrote there.
+    bool projectChangedOnDisk() const;
+    // Writes the project file with this session's state whatever it holds now (Overwrite).
+    bool overwriteProject();
     // The unfinished session's work in `path` is given up: a change may replace it. Nothing is
     // given up of a file another session holds.
     void discardRecovery(const QString& path = recoveryPath());
@@ -110,11 +119,15 @@ class ProjectAutosave : public QObject {
     // speed and camera), and that change is saved with the rest.
     void aboutToSave();
     void saved(const QString& path);
+    // The project file `path` changed on disk since this session read or wrote it: not written.
+    void changedOnDisk(const QString& path);
     void failed(const QString& message);
 
   private:
     QPointer<Document> document_;
     QString path_;
+    QByteArray known_;  // a hash of what path_ held when last read or written here
+    bool changedOnDiskSaid_ = false;
     // `session` did not end: another window of this process (gone, as the app has one at a
     // time), or a session of a Boneless no longer running.
     bool sessionIsGone(const QString& session) const;
