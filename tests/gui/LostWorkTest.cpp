@@ -45,12 +45,54 @@ class LostWorkTest : public QObject {
   public:
     static void initMain() { setDefaultSurfaceFormat(); }
 
+    // Run as another Boneless (BONELESS_TEST_EDIT_THEN_WAIT=project): opens the project, unmaps a
+    // marker, says "edited N" (N markers mapped) and runs until a signal ends it. Its autosave
+    // waits a minute: only the signal's handling can save the edit.
+    static int editThenWait(const QString& project) {
+        test::isolate("LostWorkTest");
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        window.quitOnTerminationSignals();
+        window.autosave()->setDelay(60000);
+        if (!window.openProject(project) || !window.document()->clearMapping(0)) return 1;
+        // Said once the event loop has run: what an edit sets off at once has happened.
+        QTimer::singleShot(200, [&window] {
+            std::printf("edited %d\n", window.document()->mappedCount());
+            std::fflush(stdout);
+        });
+        QTimer::singleShot(120000, qApp, &QCoreApplication::quit);  // if the test is gone
+        return qApp->exec();
+    }
+
   private:
     static void removeAutosaves() {
         QDir folder(recoveryFolder());
         for (const QString& name : folder.entryList({"*.boneless", "*.lock"}, QDir::Files))
             QFile::remove(folder.filePath(name));
         QSettings().remove("autosave");
+    }
+
+    // A Boneless that edited `project` and was then sent `signal` (SIGTERM, SIGKILL) at once;
+    // returns how many markers its edit left mapped, -1 when a step failed.
+    int signalAfterAnEdit(const QString& project, int signal) {
+        QProcess other;
+        QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+        env.insert("BONELESS_TEST_EDIT_THEN_WAIT", project);
+        other.setProcessEnvironment(env);
+        other.start(QCoreApplication::applicationFilePath(), {});
+        if (!other.waitForStarted()) return -1;
+        QByteArray said;
+        while (!said.contains('\n') && other.waitForReadyRead(60000)) said += other.readAll();
+        if (!said.startsWith("edited ")) {
+            qWarning("%s", said.constData());
+            return -1;
+        }
+        ::kill(pid_t(other.processId()), signal);
+        if (!other.waitForFinished(30000)) return -1;
+        if (signal == SIGTERM &&
+            (other.exitStatus() != QProcess::NormalExit || other.exitCode() != 0))
+            return -1;
+        return said.mid(7).trimmed().toInt();
     }
 
   private slots:
@@ -186,6 +228,54 @@ class LostWorkTest : public QObject {
         two.autosave()->discardPending();
     }
 
+    // kill (SIGTERM, as at logout) within the autosave's delay lost the last edit of a saved
+    // project, and nothing was offered at the next start.
+    void anEditJustBeforeSigtermReachesTheProject() {
+        const QString project = test::writeDemoProject(folder_ + "/term");
+        const int mapped = signalAfterAnEdit(project, SIGTERM);
+        QVERIFY(mapped >= 0);
+        Document saved;
+        QVERIFY(Project::load(saved, project));
+        QCOMPARE(saved.mappedCount(), mapped);
+    }
+
+    // The app itself, as a session's logout ends it: it quits, not killed by the signal.
+    void theAppQuitsOnSigterm() {
+        const QString project = test::writeDemoProject(folder_ + "/app");
+        const QString home = folder_ + "/app-home";
+        QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+        env.insert("XDG_CONFIG_HOME", home + "/config");
+        env.insert("XDG_DATA_HOME", home + "/data");
+        env.insert("XDG_CACHE_HOME", home + "/cache");
+        env.insert("OPENBLAS_NUM_THREADS", "1");
+        QProcess app;
+        app.setProcessEnvironment(env);
+        app.setProcessChannelMode(QProcess::MergedChannels);
+        app.start(QStringLiteral(BONELESS_GUI), {"--project", project});
+        QVERIFY(app.waitForStarted());
+        QTest::qWait(4000);  // its window up
+        QCOMPARE(app.state(), QProcess::Running);
+        ::kill(pid_t(app.processId()), SIGTERM);
+        QVERIFY(app.waitForFinished(30000));
+        QCOMPARE(app.exitStatus(), QProcess::NormalExit);
+        QCOMPARE(app.exitCode(), 0);
+    }
+
+    // kill -9 within the delay cannot save: the next start offers the edit made.
+    void anEditJustBeforeSigkillIsOfferedAtTheNextStart() {
+        const QString project = test::writeDemoProject(folder_ + "/killed");
+        const int mapped = signalAfterAnEdit(project, SIGKILL);
+        QVERIFY(mapped >= 0);
+        MainWindow window;
+        const QStringList offered = window.autosave()->unfinishedRecoveries();
+        QCOMPARE(offered.size(), 1);
+        QCOMPARE(ProjectAutosave::recoveredProject(offered[0]), project);
+        Document recovered;
+        QVERIFY(Project::load(recovered, offered[0]));
+        QCOMPARE(recovered.mappedCount(), mapped);
+        window.autosave()->discardRecovery(offered[0]);
+    }
+
   private:
     QString folder_, project_;
 };
@@ -193,6 +283,8 @@ class LostWorkTest : public QObject {
 int main(int argc, char** argv) {
     LostWorkTest::initMain();
     QApplication app(argc, argv);
+    if (qEnvironmentVariableIsSet("BONELESS_TEST_EDIT_THEN_WAIT"))
+        return LostWorkTest::editThenWait(qEnvironmentVariable("BONELESS_TEST_EDIT_THEN_WAIT"));
     app.setAttribute(Qt::AA_Use96Dpi, true);
     LostWorkTest test;
     QTEST_SET_MAIN_SOURCE_PATH

@@ -3,6 +3,7 @@
 #include <utility>
 
 #include <QCloseEvent>
+#include <QCoreApplication>
 #include <QDir>
 #include <QDragEnterEvent>
 #include <QDropEvent>
@@ -17,10 +18,16 @@
 #include <QPushButton>
 #include <QScopeGuard>
 #include <QScopedValueRollback>
+#include <QSocketNotifier>
 #include <QStatusBar>
 #include <QUndoStack>
 #include <QUrl>
+#include <cerrno>
 #include <optional>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <unistd.h>
 
 #include "Counted.h"
 #include "FrameDisplay.h"
@@ -68,6 +75,17 @@ QString fileNames(const QStringList& paths) {
     QStringList names;
     for (const QString& path : paths) names << QFileInfo(path).fileName();
     return names.join(", ");
+}
+
+// The signal handler's end of a pipe the event loop reads (the self-pipe): a handler may do little
+// more than write(), and the saving is done by the window, between events.
+int signalPipe[2] = {-1, -1};
+
+void onTerminationSignal(int signal) {
+    const int saved = errno;
+    const char byte = char(signal);
+    (void)!::write(signalPipe[1], &byte, 1);
+    errno = saved;
 }
 
 }  // namespace
@@ -720,6 +738,36 @@ void MainWindow::closeEvent(QCloseEvent* event) {
     exportDialog_->cancelExport();
     autosave_->endSession();  // closed, not crashed: nothing to offer at the next start
     event->accept();
+}
+
+void MainWindow::quitOnTerminationSignals() {
+    if (signalPipe[0] < 0 && ::pipe2(signalPipe, O_CLOEXEC | O_NONBLOCK) != 0) return;
+    delete findChild<QSocketNotifier*>("terminationSignals");
+    auto* notifier = new QSocketNotifier(signalPipe[0], QSocketNotifier::Read, this);
+    notifier->setObjectName("terminationSignals");
+    connect(notifier, &QSocketNotifier::activated, this, [this] {
+        char byte = 0;
+        bool signalled = false;
+        while (::read(signalPipe[0], &byte, 1) > 0) signalled = true;
+        if (signalled) endForSignal();
+    });
+    struct sigaction action = {};
+    action.sa_handler = onTerminationSignal;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = SA_RESTART;
+    for (const int signal : {SIGTERM, SIGHUP, SIGINT}) ::sigaction(signal, &action, nullptr);
+}
+
+void MainWindow::endForSignal() {
+    messageBoxes_ = false;  // nobody may be there to answer (a logout, a shutdown)
+    if (!demo_) storeSession();
+    const bool kept = autosave_->saveNow();
+    const bool titled = !projectPath_.isEmpty() && !demo_;
+    // Kept where it belongs, the session ends as a close ends it; otherwise its work is offered at
+    // the next start.
+    if (titled ? kept : !unsavedEdits_) autosave_->endSession();
+    exportDialog_->cancelExport();
+    QCoreApplication::quit();
 }
 
 bool MainWindow::keepUnsavedWork(bool closing) {

@@ -130,7 +130,11 @@ ProjectAutosave::ProjectAutosave(Document* document, QObject* parent)
       document_(document),
       // The instance too: a session whose Boneless still runs (a second window) has not crashed.
       session_(QUuid::createUuid().toString() + " " + thisInstance()),
-      timer_(new QTimer(this)) {
+      timer_(new QTimer(this)),
+      markTimer_(new QTimer(this)) {
+    markTimer_->setSingleShot(true);
+    markTimer_->setInterval(0);
+    connect(markTimer_, &QTimer::timeout, this, &ProjectAutosave::markUnfinished);
     timer_->setSingleShot(true);
     timer_->setInterval(1000);
     connect(timer_, &QTimer::timeout, this, &ProjectAutosave::saveNow);
@@ -140,6 +144,24 @@ ProjectAutosave::ProjectAutosave(Document* document, QObject* parent)
 void ProjectAutosave::schedule() {
     pending_ = true;
     timer_->start();  // restarts: a burst of edits is one save
+    if (!path_.isEmpty() && !markedUnfinished_) markTimer_->start();
+}
+
+void ProjectAutosave::markUnfinished() {
+    // A load's change is dropped (discardPending) before this runs: only an edit gets here.
+    if (!pending_ || path_.isEmpty() || !document_ || markedUnfinished_) return;
+    const QString own = recoveryPath();
+    const QString session = sessionOf(own);
+    // Offered already (a save that failed), or another session's work, not written over.
+    if (session == session_ || sessionIsGone(session)) return;
+    // The recovery file holds this project's last autosave, or now this edit.
+    if (!QFileInfo::exists(own) || recoveredProject(own) != path_) {
+        QDir().mkpath(recoveryFolder());
+        if (!Project::save(*document_, own)) return;
+        QSettings().setValue(recordKey(own, "project"), path_);
+    }
+    QSettings().setValue(recordKey(own, "session"), session_);
+    markedUnfinished_ = true;
 }
 
 ProjectAutosave::~ProjectAutosave() {
@@ -198,7 +220,11 @@ bool ProjectAutosave::isPending() const {
 
 void ProjectAutosave::discardPending() {
     timer_->stop();
+    markTimer_->stop();
     pending_ = false;
+    // The project file holds the state kept: nothing to offer after a crash.
+    if (markedUnfinished_) endSession();
+    markedUnfinished_ = false;
 }
 
 QString ProjectAutosave::recoveryPath() {
@@ -349,6 +375,9 @@ bool ProjectAutosave::saveNow() {
             claimRecovery();
         replaceFinishedAutosaves();
     }
+    // Held in the project file now (the recovery file could not be written): nothing to offer.
+    if (markedUnfinished_ && kept && !path_.isEmpty() && !recovered) endSession();
+    markedUnfinished_ = false;
     if (changedElsewhere) {
         pending_ = true;  // saved once the user chose (overwriteProject, or another path)
         if (!errors.isEmpty()) emit failed(errors.join("\n"));

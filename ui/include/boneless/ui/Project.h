@@ -51,6 +51,9 @@ QByteArray toJson(const Document& document, const QString& path);
 // changed since (by another Boneless, or another program), it is left alone, the edits go to the
 // recovery file only, and changedOnDisk() is emitted once, until overwriteProject() or another
 // project path.
+// An edit of a titled project marks its session unfinished at once (writing the recovery file
+// when it holds no autosave of that project yet): killed before the delayed save, the next start
+// offers the edit, or what was last saved.
 // Each running Boneless has a recovery file of its own, named by its process (id and start time):
 // a second Boneless beside the first neither writes over the first's nor offers it. The work of a
 // session that did not end (a crash), in a file that no project file holds, is offered at the next
@@ -131,6 +134,9 @@ class ProjectAutosave : public QObject {
     // `session` did not end: another window of this process (gone, as the app has one at a
     // time), or a session of a Boneless no longer running.
     bool sessionIsGone(const QString& session) const;
+    // Just after an edit of a titled project (schedule): the session is marked unfinished, so
+    // that a kill before the delayed save leaves its work offered.
+    void markUnfinished();
     // After a save into recoveryPath(): the recovery file reopened, and those discarded or left by
     // a Boneless that closed, are replaced by it.
     void replaceFinishedAutosaves();
@@ -143,7 +149,9 @@ class ProjectAutosave : public QObject {
     QString adopted_;            // another Boneless's recovery file reopened, until saved here
     bool heldBackSaid_ = false;  // failed() said the recovery file is another session's
     QTimer* timer_;
+    QTimer* markTimer_;  // markUnfinished() once the event loop runs: not in the middle of a load
     bool pending_ = false;
+    bool markedUnfinished_ = false;  // by markUnfinished(), not by a save
 };
 
 // Recently opened projects and files, newest first, kept in QSettings ("recentFiles").
