@@ -31,6 +31,21 @@ QString recoveryFolder() {
     return QFileInfo(ProjectAutosave::recoveryPath()).absolutePath();
 }
 
+// Types `path` into the file dialog once it is up and accepts it.
+void answerFileDialog(const QString& path, int tries = 50) {
+    QTimer::singleShot(100, [path, tries] {
+        auto* dialog = qobject_cast<QFileDialog*>(QApplication::activeModalWidget());
+        if (!dialog) {
+            if (tries > 0) answerFileDialog(path, tries - 1);
+            return;
+        }
+        auto* name = dialog->findChild<QLineEdit*>("fileNameEdit");
+        QVERIFY(name);
+        name->setText(path);
+        QMetaObject::invokeMethod(dialog, "accept");
+    });
+}
+
 // The open questions of `window` (boxes shown, not exec'd) named `name`.
 QMessageBox* shownBox(const MainWindow& window, const QString& name) {
     for (QMessageBox* box : window.findChildren<QMessageBox*>(name))
@@ -274,6 +289,57 @@ class LostWorkTest : public QObject {
         QVERIFY(Project::load(recovered, offered[0]));
         QCOMPARE(recovered.mappedCount(), mapped);
         window.autosave()->discardRecovery(offered[0]);
+    }
+
+    // Save Project As took walker.map.json, the project's own map, and wrote the project over it
+    // (after the dialog's "replace it?"); its autosaves went on rewriting the .json. A project is
+    // now always a .boneless, and none is saved over the document's mesh, take or map.
+    void aProjectIsNeverSavedOverItsOwnFiles() {
+        const QString mine = folder_ + "/own";
+        QVERIFY(QDir().mkpath(mine));
+        for (const QString& name : {"walker.obj", "walker.c3d", "walker.map.json"}) {
+            QFile::remove(mine + "/" + name);
+            QVERIFY(QFile::copy(folder_ + "/mine/" + name, mine + "/" + name));
+        }
+        const QString map = mine + "/walker.map.json", mesh = mine + "/walker.obj";
+        const QByteArray mapBytes = readAll(map), meshBytes = readAll(mesh);
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        QVERIFY(window.openFiles({mesh, mine + "/walker.c3d", map}));
+        QVERIFY(window.document()->clearMapping(0));
+
+        QSignalSpy errors(&window, &MainWindow::errorShown);
+        QVERIFY(!window.saveProjectAs(mesh));
+        QCOMPARE(readAll(mesh), meshBytes);
+        QCOMPARE(errors.count(), 1);
+        QVERIFY2(errors.at(0).at(0).toString().contains("walker.obj"),
+                 qPrintable(errors.at(0).at(0).toString()));
+
+        window.setMessageBoxesEnabled(true);
+        QStringList asked;  // the file dialog's "replace it?", had it been asked, answered Yes
+        QTimer answering;
+        connect(&answering, &QTimer::timeout, [&] {
+            auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+            if (!box) return;
+            asked << box->text();
+            if (QAbstractButton* yes = box->button(QMessageBox::Yes)) yes->click();
+        });
+        answering.start(100);
+        QAction* saveAs = nullptr;
+        for (QAction* action : window.findChildren<QAction*>())
+            if (action->text().startsWith("Save Project &As")) saveAs = action;
+        QVERIFY(saveAs);
+        answerFileDialog(map);
+        saveAs->trigger();
+        answering.stop();
+        QCOMPARE(readAll(map), mapBytes);
+        QCOMPARE(window.projectPath(), map + ".boneless");
+        QVERIFY2(asked.isEmpty(), qPrintable(asked.join("\n")));
+        Document saved;
+        QVERIFY(Project::load(saved, map + ".boneless"));
+        QCOMPARE(saved.mappedCount(), window.document()->mappedCount());
+        window.setMessageBoxesEnabled(false);
+        window.close();
     }
 
   private:

@@ -484,6 +484,22 @@ bool MainWindow::saveProjectAs(const QString& path) {
         showError(tr("The demo is written afresh each time it opens: save the project elsewhere."));
         return false;
     }
+    // Never over the document's own files: saved as its map, the project replaced the user's
+    // correspondence file, and its autosaves went on rewriting it.
+    if (const QString target = QFileInfo(path).canonicalFilePath(); !target.isEmpty()) {
+        const std::pair<QString, QString> inputs[] = {
+            {document_->meshPath(), tr("mesh")},
+            {document_->takePath(), tr("take")},
+            {document_->correspondencePath(), tr("correspondence")}};
+        for (const auto& [input, what] : inputs) {
+            if (input.isEmpty() || QFileInfo(input).canonicalFilePath() != target) continue;
+            showError(tr("%1 is this project's %2 file: a project saved there would replace it. "
+                         "Save the project under another name.")
+                          .arg(QFileInfo(path).fileName(), what),
+                      path);
+            return false;
+        }
+    }
     // Save into the project open: not over what another Boneless or program wrote there since.
     if (QFileInfo(path).absoluteFilePath() == projectPath_ && autosave_->projectChangedOnDisk()) {
         askChangedOnDisk(projectPath_);
@@ -630,11 +646,22 @@ void MainWindow::chooseProject() {
 }
 
 bool MainWindow::chooseSaveProjectAs() {
-    QString path =
-        QFileDialog::getSaveFileName(this, tr("Save Project As"), demo_ ? QString() : projectPath_,
-                                     tr("Boneless projects (*.boneless)"));
+    // A project is a .boneless, whatever was typed: walker.map.json was taken as it was, and the
+    // project written over the map. So the name saved to, not the one typed, is asked about.
+    QString path = QFileDialog::getSaveFileName(
+        this, tr("Save Project As"), demo_ ? QString() : projectPath_,
+        tr("Boneless projects (*.boneless)"), nullptr, QFileDialog::DontConfirmOverwrite);
     if (path.isEmpty()) return false;
-    if (QFileInfo(path).suffix().isEmpty()) path += ".boneless";
+    if (QFileInfo(path).suffix().compare("boneless", Qt::CaseInsensitive) != 0) path += ".boneless";
+    if (messageBoxes_ && QFileInfo::exists(path) &&
+        QFileInfo(path).absoluteFilePath() != projectPath_) {
+        QMessageBox box(QMessageBox::Question, tr("Save Project As"),
+                        tr("%1 already exists. Replace it?").arg(QFileInfo(path).fileName()),
+                        QMessageBox::Yes | QMessageBox::No, this);
+        box.setObjectName("replaceQuestion");
+        box.setDefaultButton(QMessageBox::No);
+        if (box.exec() != QMessageBox::Yes) return false;
+    }
     return saveProjectAs(path);
 }
 
