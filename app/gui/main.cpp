@@ -140,6 +140,8 @@ int main(int argc, char** argv) {
     const int samples = QSettings().value("view/multiSamples", 4).toInt();
     window.meshView()->setMultiSampling(parser.isSet(noMsaa) || batch ? 0 : samples);
     window.setMessageBoxesEnabled(!batch);
+    // Logout, shutdown and kill save the last second's edits and quit, asking nothing.
+    if (!batch) window.quitOnTerminationSignals();
     window.setStartFrame(startFrame);
     window.setStartGroup(parser.value(group));
     if (batch) window.meshView()->setFixedSize(viewSize);

@@ -99,6 +99,8 @@ MainWindow::~MainWindow() {
     solver_->cancelPending();
     disconnect(solver_, nullptr, this, nullptr);
     disconnect(solver_, nullptr, display_, nullptr);
+    // The autosave's last save (its destructor) asks nothing of a window that is going.
+    disconnect(autosave_, &ProjectAutosave::changedOnDisk, this, nullptr);
 }
 
 void MainWindow::buildMarkerDock() {
@@ -443,6 +445,7 @@ void MainWindow::connectDocument() {
     });
     connect(autosave_, &ProjectAutosave::failed, this,
             [this](const QString& message) { showError(message); });
+    connect(autosave_, &ProjectAutosave::changedOnDisk, this, &MainWindow::askChangedOnDisk);
     connect(autosave_, &ProjectAutosave::aboutToSave, this, &MainWindow::storeSession,
             Qt::DirectConnection);
     // What closing or opening another file must not drop unasked (keepUnsavedWork): edits since

@@ -3,6 +3,7 @@
 #include <utility>
 
 #include <QCloseEvent>
+#include <QCoreApplication>
 #include <QDir>
 #include <QDragEnterEvent>
 #include <QDropEvent>
@@ -17,10 +18,16 @@
 #include <QPushButton>
 #include <QScopeGuard>
 #include <QScopedValueRollback>
+#include <QSocketNotifier>
 #include <QStatusBar>
 #include <QUndoStack>
 #include <QUrl>
+#include <cerrno>
 #include <optional>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <unistd.h>
 
 #include "Counted.h"
 #include "FrameDisplay.h"
@@ -68,6 +75,17 @@ QString fileNames(const QStringList& paths) {
     QStringList names;
     for (const QString& path : paths) names << QFileInfo(path).fileName();
     return names.join(", ");
+}
+
+// The signal handler's end of a pipe the event loop reads (the self-pipe): a handler may do little
+// more than write(), and the saving is done by the window, between events.
+int signalPipe[2] = {-1, -1};
+
+void onTerminationSignal(int signal) {
+    const int saved = errno;
+    const char byte = char(signal);
+    (void)!::write(signalPipe[1], &byte, 1);
+    errno = saved;
 }
 
 }  // namespace
@@ -380,6 +398,9 @@ bool MainWindow::offerRecovery(const QStringList& named) {
 }
 
 bool MainWindow::offerRecovery(const QString& path, const QStringList& named) {
+    // Asked by one Boneless at a time: two both asked, and one's Discard took away the other's
+    // Reopen (and its next autosave removed the file).
+    if (!autosave_->hold(path)) return false;
     const QFileInfo recovery(path);
     const QString from = ProjectAutosave::recoveredProject(path);
     QMessageBox box(QMessageBox::Question, tr("Boneless"),
@@ -405,9 +426,10 @@ bool MainWindow::offerRecovery(const QString& path, const QStringList& named) {
     discard->setObjectName("discardButton");
     box.setDefaultButton(reopen);
     box.exec();  // answered before anything else opens (and autosaves over it)
-    if (box.clickedButton() == reopen && openRecovery(path)) return true;
+    if (box.clickedButton() == reopen && openRecovery(path)) return true;  // held while its own
     // Discarded, or it would not open (openRecovery said why): a change may replace it.
     autosave_->discardRecovery(path);
+    autosave_->release(path);
     return false;
 }
 
@@ -462,6 +484,27 @@ bool MainWindow::saveProjectAs(const QString& path) {
         showError(tr("The demo is written afresh each time it opens: save the project elsewhere."));
         return false;
     }
+    // Never over the document's own files: saved as its map, the project replaced the user's
+    // correspondence file, and its autosaves went on rewriting it.
+    if (const QString target = QFileInfo(path).canonicalFilePath(); !target.isEmpty()) {
+        const std::pair<QString, QString> inputs[] = {
+            {document_->meshPath(), tr("mesh")},
+            {document_->takePath(), tr("take")},
+            {document_->correspondencePath(), tr("correspondence")}};
+        for (const auto& [input, what] : inputs) {
+            if (input.isEmpty() || QFileInfo(input).canonicalFilePath() != target) continue;
+            showError(tr("%1 is this project's %2 file: a project saved there would replace it. "
+                         "Save the project under another name.")
+                          .arg(QFileInfo(path).fileName(), what),
+                      path);
+            return false;
+        }
+    }
+    // Save into the project open: not over what another Boneless or program wrote there since.
+    if (QFileInfo(path).absoluteFilePath() == projectPath_ && autosave_->projectChangedOnDisk()) {
+        askChangedOnDisk(projectPath_);
+        return false;
+    }
     storeSession();
     QString error;
     if (!Project::save(*document_, path, &error)) {
@@ -478,6 +521,51 @@ bool MainWindow::saveProjectAs(const QString& path) {
     updateTitle();
     statusBar()->showMessage(tr("Saved %1").arg(QFileInfo(path).fileName()), 5000);
     return true;
+}
+
+void MainWindow::askChangedOnDisk(const QString& path) {
+    const QString message =
+        tr("%1 changed on disk since it was opened or last saved: this window's changes are not "
+           "saved into it.")
+            .arg(QFileInfo(path).fileName());
+    statusBar()->showMessage(message, 15000);
+    emit errorShown(message + "\n" + path);
+    if (!messageBoxes_) return;
+    // Shown, not exec'd: an autosave finds it, in the middle of whatever the user does.
+    auto* box =
+        new QMessageBox(QMessageBox::Warning, tr("Boneless"), message, QMessageBox::NoButton, this);
+    box->setObjectName("changedOnDiskQuestion");
+    box->setAttribute(Qt::WA_DeleteOnClose);
+    box->setModal(false);
+    box->setInformativeText(
+        tr("Another Boneless or program wrote it. Reload opens it as it is now and drops this "
+           "window's changes; Save As… keeps them in another file; Overwrite replaces what it "
+           "holds with them. Until then they are kept in the last autosave only."));
+    box->setDetailedText(path);
+    QPushButton* reload = box->addButton(tr("Reload"), QMessageBox::DestructiveRole);
+    QPushButton* saveAs = box->addButton(tr("Save As…"), QMessageBox::AcceptRole);
+    QPushButton* overwrite = box->addButton(tr("Overwrite"), QMessageBox::DestructiveRole);
+    reload->setObjectName("reloadButton");
+    saveAs->setObjectName("saveAsButton");
+    overwrite->setObjectName("overwriteButton");
+    box->setDefaultButton(saveAs);
+    connect(reload, &QPushButton::clicked, this, [this, path] {
+        if (path != projectPath_) return;  // another project opened since
+        autosave_->discardPending();
+        setUnsavedEdits(false);
+        const QScopedValueRollback<bool> asked(workAsked_, true);  // the answer was Reload
+        openProject(path);
+    });
+    connect(saveAs, &QPushButton::clicked, this, [this] { chooseSaveProjectAs(); });
+    connect(overwrite, &QPushButton::clicked, this, [this, path] {
+        if (path != projectPath_) return;
+        storeSession();
+        if (autosave_->overwriteProject()) {
+            document_->undoStack()->setClean();
+            setUnsavedEdits(false);
+        }
+    });
+    box->show();
 }
 
 void MainWindow::showExportDialog() {
@@ -558,11 +646,22 @@ void MainWindow::chooseProject() {
 }
 
 bool MainWindow::chooseSaveProjectAs() {
-    QString path =
-        QFileDialog::getSaveFileName(this, tr("Save Project As"), demo_ ? QString() : projectPath_,
-                                     tr("Boneless projects (*.boneless)"));
+    // A project is a .boneless, whatever was typed: walker.map.json was taken as it was, and the
+    // project written over the map. So the name saved to, not the one typed, is asked about.
+    QString path = QFileDialog::getSaveFileName(
+        this, tr("Save Project As"), demo_ ? QString() : projectPath_,
+        tr("Boneless projects (*.boneless)"), nullptr, QFileDialog::DontConfirmOverwrite);
     if (path.isEmpty()) return false;
-    if (QFileInfo(path).suffix().isEmpty()) path += ".boneless";
+    if (QFileInfo(path).suffix().compare("boneless", Qt::CaseInsensitive) != 0) path += ".boneless";
+    if (messageBoxes_ && QFileInfo::exists(path) &&
+        QFileInfo(path).absoluteFilePath() != projectPath_) {
+        QMessageBox box(QMessageBox::Question, tr("Save Project As"),
+                        tr("%1 already exists. Replace it?").arg(QFileInfo(path).fileName()),
+                        QMessageBox::Yes | QMessageBox::No, this);
+        box.setObjectName("replaceQuestion");
+        box.setDefaultButton(QMessageBox::No);
+        if (box.exec() != QMessageBox::Yes) return false;
+    }
     return saveProjectAs(path);
 }
 
@@ -668,6 +767,36 @@ void MainWindow::closeEvent(QCloseEvent* event) {
     event->accept();
 }
 
+void MainWindow::quitOnTerminationSignals() {
+    if (signalPipe[0] < 0 && ::pipe2(signalPipe, O_CLOEXEC | O_NONBLOCK) != 0) return;
+    delete findChild<QSocketNotifier*>("terminationSignals");
+    auto* notifier = new QSocketNotifier(signalPipe[0], QSocketNotifier::Read, this);
+    notifier->setObjectName("terminationSignals");
+    connect(notifier, &QSocketNotifier::activated, this, [this] {
+        char byte = 0;
+        bool signalled = false;
+        while (::read(signalPipe[0], &byte, 1) > 0) signalled = true;
+        if (signalled) endForSignal();
+    });
+    struct sigaction action = {};
+    action.sa_handler = onTerminationSignal;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = SA_RESTART;
+    for (const int signal : {SIGTERM, SIGHUP, SIGINT}) ::sigaction(signal, &action, nullptr);
+}
+
+void MainWindow::endForSignal() {
+    messageBoxes_ = false;  // nobody may be there to answer (a logout, a shutdown)
+    if (!demo_) storeSession();
+    const bool kept = autosave_->saveNow();
+    const bool titled = !projectPath_.isEmpty() && !demo_;
+    // Kept where it belongs, the session ends as a close ends it; otherwise its work is offered at
+    // the next start.
+    if (titled ? kept : !unsavedEdits_) autosave_->endSession();
+    exportDialog_->cancelExport();
+    QCoreApplication::quit();
+}
+
 bool MainWindow::keepUnsavedWork(bool closing) {
     if (workAsked_) return true;
     // The frame, speed and camera only count as a change when the project is left, closed or for
@@ -677,10 +806,15 @@ bool MainWindow::keepUnsavedWork(bool closing) {
     const bool kept = autosave_->saveNow();
     const bool titled = !projectPath_.isEmpty() && !demo_;
     if (!messageBoxes_ || (titled ? kept : !unsavedEdits_)) return true;
-    const QString question = titled ? tr("%1 could not be saved. Save the project elsewhere first?")
-                                          .arg(QFileInfo(projectPath_).fileName())
-                             : demo_ ? tr("Save your changes to the demo as a project first?")
-                                     : tr("Save this untitled project first?");
+    const QString question =
+        titled && autosave_->projectChangedOnDisk()
+            ? tr("%1 changed on disk since it was opened or last saved, and holds none of these "
+                 "changes. Save them elsewhere first?")
+                  .arg(QFileInfo(projectPath_).fileName())
+        : titled ? tr("%1 could not be saved. Save the project elsewhere first?")
+                       .arg(QFileInfo(projectPath_).fileName())
+        : demo_ ? tr("Save your changes to the demo as a project first?")
+                : tr("Save this untitled project first?");
     QMessageBox box(QMessageBox::Question, closing ? tr("Close Boneless") : tr("Open"), question,
                     QMessageBox::NoButton, this);
     box.setObjectName("unsavedQuestion");

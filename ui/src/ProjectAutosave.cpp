@@ -1,9 +1,11 @@
 #include <algorithm>
 
 #include <QCoreApplication>
+#include <QCryptographicHash>
 #include <QDir>
 #include <QFile>
 #include <QFileInfo>
+#include <QLockFile>
 #include <QSettings>
 #include <QStandardPaths>
 #include <QTimer>
@@ -86,6 +88,36 @@ bool isAnotherRunningBonelesss(const QString& path) {
            (!session.isEmpty() && session != thisInstance() && !instanceIsGone(session));
 }
 
+// The lock file that says which session holds the recovery file `path`: "PID-START.boneless.lock".
+// Its age alone never makes it stale: a Boneless may ask about a file, or hold it, for days.
+std::unique_ptr<QLockFile> lockOf(const QString& path) {
+    auto lock = std::make_unique<QLockFile>(path + ".lock");
+    lock->setStaleLockTime(0);
+    return lock;
+}
+
+// Takes `lock`, and one left by a process no longer running (a zombie too, which QLockFile counts
+// as running) once its owner is gone.
+bool take(QLockFile& lock) {
+    if (lock.tryLock(0)) return true;
+    qint64 pid = 0;
+    QString host, app;
+    if (lock.error() == QLockFile::LockFailedError && lock.getLockInfo(&pid, &host, &app) &&
+        pid != QCoreApplication::applicationPid() && processIsGone(long(pid)) &&
+        lock.removeStaleLockFile())
+        return lock.tryLock(0);
+    return false;
+}
+
+// A hash of what the file `path` holds; empty when it cannot be read (or is not there).
+QByteArray contentHash(const QString& path) {
+    QFile file(path);
+    if (!file.open(QIODevice::ReadOnly)) return {};
+    QCryptographicHash hash(QCryptographicHash::Sha1);
+    hash.addData(&file);
+    return hash.result();
+}
+
 void removeAutosave(const QString& path) {
     QFile::remove(path);
     QSettings().remove("autosave/" + instanceOf(path));
@@ -98,7 +130,11 @@ ProjectAutosave::ProjectAutosave(Document* document, QObject* parent)
       document_(document),
       // The instance too: a session whose Boneless still runs (a second window) has not crashed.
       session_(QUuid::createUuid().toString() + " " + thisInstance()),
-      timer_(new QTimer(this)) {
+      timer_(new QTimer(this)),
+      markTimer_(new QTimer(this)) {
+    markTimer_->setSingleShot(true);
+    markTimer_->setInterval(0);
+    connect(markTimer_, &QTimer::timeout, this, &ProjectAutosave::markUnfinished);
     timer_->setSingleShot(true);
     timer_->setInterval(1000);
     connect(timer_, &QTimer::timeout, this, &ProjectAutosave::saveNow);
@@ -108,14 +144,70 @@ ProjectAutosave::ProjectAutosave(Document* document, QObject* parent)
 void ProjectAutosave::schedule() {
     pending_ = true;
     timer_->start();  // restarts: a burst of edits is one save
+    if (!path_.isEmpty() && !markedUnfinished_) markTimer_->start();
+}
+
+void ProjectAutosave::markUnfinished() {
+    // A load's change is dropped (discardPending) before this runs: only an edit gets here.
+    if (!pending_ || path_.isEmpty() || !document_ || markedUnfinished_) return;
+    const QString own = recoveryPath();
+    const QString session = sessionOf(own);
+    // Offered already (a save that failed), or another session's work, not written over.
+    if (session == session_ || sessionIsGone(session)) return;
+    // The recovery file holds this project's last autosave, or now this edit.
+    if (!QFileInfo::exists(own) || recoveredProject(own) != path_) {
+        QDir().mkpath(recoveryFolder());
+        if (!Project::save(*document_, own)) return;
+        QSettings().setValue(recordKey(own, "project"), path_);
+    }
+    QSettings().setValue(recordKey(own, "session"), session_);
+    markedUnfinished_ = true;
 }
 
 ProjectAutosave::~ProjectAutosave() {
     saveNow();
 }
 
+bool ProjectAutosave::hold(const QString& path) {
+    if (held_.count(path)) return true;
+    std::unique_ptr<QLockFile> lock = lockOf(path);
+    // A folder that takes no lock file (read-only) leaves the file to whoever asks, as before.
+    if (!take(*lock)) return lock->error() != QLockFile::LockFailedError;
+    held_[path] = std::move(lock);
+    return true;
+}
+
+void ProjectAutosave::release(const QString& path) {
+    held_.erase(path);  // the lock file goes with its QLockFile
+}
+
+bool ProjectAutosave::isHeldElsewhere(const QString& path) const {
+    if (held_.count(path)) return false;
+    std::unique_ptr<QLockFile> lock = lockOf(path);
+    if (!take(*lock)) return lock->error() == QLockFile::LockFailedError;
+    lock->unlock();
+    return false;
+}
+
 void ProjectAutosave::setProjectPath(const QString& path) {
     path_ = path;
+    known_ = path.isEmpty() ? QByteArray() : contentHash(path);
+    changedOnDiskSaid_ = false;
+}
+
+bool ProjectAutosave::projectChangedOnDisk() const {
+    // A file gone since (or a folder in its place, or one that cannot be read) is no other
+    // work: saving it says what is wrong, or writes it back and loses nothing.
+    if (path_.isEmpty() || !QFileInfo(path_).isFile()) return false;
+    const QByteArray now = contentHash(path_);
+    return !now.isEmpty() && now != known_;
+}
+
+bool ProjectAutosave::overwriteProject() {
+    known_ = path_.isEmpty() ? QByteArray() : contentHash(path_);
+    changedOnDiskSaid_ = false;
+    pending_ = true;
+    return saveNow();
 }
 
 void ProjectAutosave::setDelay(int ms) {
@@ -128,7 +220,11 @@ bool ProjectAutosave::isPending() const {
 
 void ProjectAutosave::discardPending() {
     timer_->stop();
+    markTimer_->stop();
     pending_ = false;
+    // The project file holds the state kept: nothing to offer after a crash.
+    if (markedUnfinished_) endSession();
+    markedUnfinished_ = false;
 }
 
 QString ProjectAutosave::recoveryPath() {
@@ -172,7 +268,9 @@ bool ProjectAutosave::sessionIsGone(const QString& session) const {
 QStringList ProjectAutosave::unfinishedRecoveries() const {
     QStringList paths = recoveries();
     paths.erase(std::remove_if(paths.begin(), paths.end(),
-                               [this](const QString& p) { return !sessionIsGone(sessionOf(p)); }),
+                               [this](const QString& p) {
+                                   return !sessionIsGone(sessionOf(p)) || isHeldElsewhere(p);
+                               }),
                 paths.end());
     return paths;
 }
@@ -183,29 +281,42 @@ bool ProjectAutosave::hasUnfinishedRecovery() const {
 
 void ProjectAutosave::claimRecovery(const QString& path) {
     QSettings().setValue(recordKey(path, "session"), session_);
-    // Another Boneless's: it goes once this session's own autosave holds it.
-    if (QFileInfo(path).absoluteFilePath() != QFileInfo(recoveryPath()).absoluteFilePath())
+    // Another Boneless's: it goes once this session's own autosave holds it, and is held till
+    // then, so that no other Boneless offers, gives up or removes the work reopened here.
+    if (QFileInfo(path).absoluteFilePath() != QFileInfo(recoveryPath()).absoluteFilePath()) {
         adopted_ = path;
+        hold(path);
+    } else {
+        release(path);  // held while asked about: this Boneless's own file needs no lock
+    }
 }
 
 void ProjectAutosave::discardRecovery(const QString& path) {
+    // Held by another session: it asks about it, or reopened it and keeps it until it saves.
+    const bool heldHere = held_.count(path) > 0;
+    if (!hold(path)) return;
     QSettings().remove(recordKey(path, "session"));
+    if (!heldHere) release(path);
 }
 
 void ProjectAutosave::endSession() {
     for (const QString& path : {recoveryPath(), adopted_})
         if (!path.isEmpty() && QSettings().value(recordKey(path, "session")).toString() == session_)
             QSettings().remove(recordKey(path, "session"));
+    if (!adopted_.isEmpty()) release(adopted_);
 }
 
 void ProjectAutosave::replaceFinishedAutosaves() {
     // Reopened here, and now in this session's own autosave.
     if (!adopted_.isEmpty() && sessionOf(adopted_) == session_) removeAutosave(adopted_);
+    if (!adopted_.isEmpty()) release(adopted_);
     adopted_.clear();
     // Discarded, or left by a Boneless that closed: the last autosave until a change replaces it,
-    // which this one was.
+    // which this one was. One another session holds (asks about, or reopened) is its own.
     for (const QString& path : recoveries())
-        if (instanceOf(path) != thisInstance() && sessionOf(path).isEmpty()) removeAutosave(path);
+        if (instanceOf(path) != thisInstance() && sessionOf(path).isEmpty() &&
+            !isHeldElsewhere(path))
+            removeAutosave(path);
 }
 
 bool ProjectAutosave::saveNow() {
@@ -225,7 +336,12 @@ bool ProjectAutosave::saveNow() {
     // disk) must not keep the edits out of the recovery file too.
     QStringList targets;
     if (!sessionIsGone(sessionOf(recoveryPath()))) targets << recoveryPath();
-    if (!path_.isEmpty()) targets.prepend(path_);
+    // Changed on disk since read or written here (another Boneless's autosave, another program):
+    // written over, that work was lost unsaid. The edits stay in the recovery file.
+    const bool changedElsewhere = projectChangedOnDisk();
+    if (!path_.isEmpty() && !changedElsewhere) targets.prepend(path_);
+    if (changedElsewhere && !changedOnDiskSaid_) emit changedOnDisk(path_);
+    changedOnDiskSaid_ = changedOnDiskSaid_ || changedElsewhere;
     if (targets.isEmpty()) {
         pending_ = true;  // kept for a save once that work is reopened or discarded
         // Said once: an untitled session left unsaved must know (a crash's work that would not
@@ -239,12 +355,13 @@ bool ProjectAutosave::saveNow() {
         return false;
     }
     QStringList errors;
-    bool kept = true, recovered = targets.contains(recoveryPath());
+    bool kept = !changedElsewhere, recovered = targets.contains(recoveryPath());
     for (const QString& target : targets) {
         QDir().mkpath(QFileInfo(target).absolutePath());
         QString error;
         const bool ok = Project::save(*document_, target, &error);
         if (!ok) errors << error;
+        if (ok && target == path_) known_ = contentHash(path_);
         (target == path_ ? kept : recovered) = ok;
     }
     // Which project the recovery file holds: offered for another one, it would pass for it.
@@ -257,6 +374,14 @@ bool ProjectAutosave::saveNow() {
         else
             claimRecovery();
         replaceFinishedAutosaves();
+    }
+    // Held in the project file now (the recovery file could not be written): nothing to offer.
+    if (markedUnfinished_ && kept && !path_.isEmpty() && !recovered) endSession();
+    markedUnfinished_ = false;
+    if (changedElsewhere) {
+        pending_ = true;  // saved once the user chose (overwriteProject, or another path)
+        if (!errors.isEmpty()) emit failed(errors.join("\n"));
+        return false;
     }
     if (!errors.isEmpty()) {
         pending_ = true;  // try again after the next change

@@ -97,6 +97,10 @@ class MainWindow : public QMainWindow {
     void setStartGroup(const QString& group) { startGroup_ = group; }
     // false: failures only go to the status bar and errorShown (batch use, screenshots).
     void setMessageBoxesEnabled(bool enabled) { messageBoxes_ = enabled; }
+    // SIGTERM, SIGHUP and SIGINT (logout, shutdown, kill, Ctrl+C) save the edits pending and quit,
+    // asking nothing: killed within the autosave's delay, the last edit was lost. For the process;
+    // the last window to call it handles them.
+    void quitOnTerminationSignals();
     // The frame on screen, and whether it is the timeline's frame, rendered.
     int displayedFrame() const;
     bool frameUpToDate() const;
@@ -151,6 +155,10 @@ class MainWindow : public QMainWindow {
     // the recovery file, which the next change overwrites), asks Save As, go on, or cancel.
     // True to go on.
     bool keepUnsavedWork(bool closing);
+    void endForSignal();  // quitOnTerminationSignals()
+    // The project file changed on disk since it was opened or saved here: Reload, Save As… or
+    // Overwrite, asked in a box that stays up (an autosave found it).
+    void askChangedOnDisk(const QString& path);
     void showHelp(const QString& title, const QString& html);
     // A status message whose whole `detail` (a list it names a few of) is the bar's tooltip while
     // it is shown.

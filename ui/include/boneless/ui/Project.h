@@ -5,7 +5,10 @@
 #include <QPointer>
 #include <QString>
 #include <QStringList>
+#include <map>
+#include <memory>
 
+class QLockFile;
 class QTimer;
 
 namespace boneless::ui {
@@ -44,18 +47,29 @@ QByteArray toJson(const Document& document, const QString& path);
 // also goes to recoveryPath() (the only place it goes without a project path), which the window
 // offers to reopen when the project it was saved from will not open; a project that cannot be
 // written does not keep the change from it.
+// The project file is written only while it holds what this session last read or wrote there:
+// changed since (by another Boneless, or another program), it is left alone, the edits go to the
+// recovery file only, and changedOnDisk() is emitted once, until overwriteProject() or another
+// project path.
+// An edit of a titled project marks its session unfinished at once (writing the recovery file
+// when it holds no autosave of that project yet): killed before the delayed save, the next start
+// offers the edit, or what was last saved.
 // Each running Boneless has a recovery file of its own, named by its process (id and start time):
 // a second Boneless beside the first neither writes over the first's nor offers it. The work of a
 // session that did not end (a crash), in a file that no project file holds, is offered at the next
 // start once its Boneless is no longer running: reopened (claimRecovery) it is that session's,
 // discarded (discardRecovery) it stays as the last autosave until a change replaces it.
+// A recovery file is offered by one Boneless at a time: the one asking about it, and then the one
+// that reopened it, holds its lock file (PID-START.boneless.lock); no other asks about it, gives
+// it up or removes it. A lock left by a Boneless no longer running is taken over.
 class ProjectAutosave : public QObject {
     Q_OBJECT
   public:
     explicit ProjectAutosave(Document* document, QObject* parent = nullptr);
     ~ProjectAutosave() override;  // saves a pending change
 
-    void setProjectPath(const QString& path);  // empty = untitled
+    // Empty = untitled. The file as it is now is the one this session knows (just loaded or saved).
+    void setProjectPath(const QString& path);
     QString projectPath() const { return path_; }
     void setDelay(int ms);  // default 1000
     bool isPending() const;
@@ -75,14 +89,23 @@ class ProjectAutosave : public QObject {
     // The project the recovery file `path` was last saved from; empty for an untitled session.
     static QString recoveredProject(const QString& path = recoveryPath());
     // The recovery files that hold work no project file holds, from a session that did not end,
-    // newest first.
+    // and that no other session holds, newest first.
     QStringList unfinishedRecoveries() const;
     bool hasUnfinishedRecovery() const;
     // This session takes the work of the recovery file `path` as its own (it reopened it); another
     // Boneless's file goes once this one's own holds that work.
     void claimRecovery(const QString& path = recoveryPath());
-    // The unfinished session's work in `path` is given up: a change may replace it.
+    // The project file no longer holds what this session last read or wrote there.
+    bool projectChangedOnDisk() const;
+    // Writes the project file with this session's state whatever it holds now (Overwrite).
+    bool overwriteProject();
+    // The unfinished session's work in `path` is given up: a change may replace it. Nothing is
+    // given up of a file another session holds.
     void discardRecovery(const QString& path = recoveryPath());
+    // Takes the lock of the recovery file `path` for this session (while asking about it, and
+    // once reopened while its work is this session's); false when another session holds it.
+    bool hold(const QString& path);
+    void release(const QString& path);
     // This session ended cleanly (the window closed): its recovery file is not offered at start.
     void endSession();
 
@@ -99,23 +122,36 @@ class ProjectAutosave : public QObject {
     // speed and camera), and that change is saved with the rest.
     void aboutToSave();
     void saved(const QString& path);
+    // The project file `path` changed on disk since this session read or wrote it: not written.
+    void changedOnDisk(const QString& path);
     void failed(const QString& message);
 
   private:
     QPointer<Document> document_;
     QString path_;
+    QByteArray known_;  // a hash of what path_ held when last read or written here
+    bool changedOnDiskSaid_ = false;
     // `session` did not end: another window of this process (gone, as the app has one at a
     // time), or a session of a Boneless no longer running.
     bool sessionIsGone(const QString& session) const;
+    // Just after an edit of a titled project (schedule): the session is marked unfinished, so
+    // that a kill before the delayed save leaves its work offered.
+    void markUnfinished();
     // After a save into recoveryPath(): the recovery file reopened, and those discarded or left by
     // a Boneless that closed, are replaced by it.
     void replaceFinishedAutosaves();
 
-    const QString session_;      // this session's id in the recovery files' records
+    // Another session (of this Boneless or another) holds `path`'s lock.
+    bool isHeldElsewhere(const QString& path) const;
+
+    const QString session_;  // this session's id in the recovery files' records
+    std::map<QString, std::unique_ptr<QLockFile>> held_;  // recovery file -> its lock, held
     QString adopted_;            // another Boneless's recovery file reopened, until saved here
     bool heldBackSaid_ = false;  // failed() said the recovery file is another session's
     QTimer* timer_;
+    QTimer* markTimer_;  // markUnfinished() once the event loop runs: not in the middle of a load
     bool pending_ = false;
+    bool markedUnfinished_ = false;  // by markUnfinished(), not by a save
 };
 
 // Recently opened projects and files, newest first, kept in QSettings ("recentFiles").

@@ -1,0 +1,359 @@
+// Ways a reviewer lost a user's work, each driven as the user met it.
+#include <signal.h>
+#include <QAction>
+#include <QFile>
+#include <QFileDialog>
+#include <QLineEdit>
+#include <QMessageBox>
+#include <QProcess>
+#include <QPushButton>
+#include <QSettings>
+#include <QSignalSpy>
+#include <QUndoStack>
+#include <QtTest>
+#include <cstdio>
+
+#include "ViewTestSupport.h"
+#include "boneless/ui/Document.h"
+#include "boneless/ui/MainWindow.h"
+#include "boneless/ui/Project.h"
+
+using namespace boneless::ui;
+
+namespace {
+
+QByteArray readAll(const QString& path) {
+    QFile f(path);
+    return f.open(QIODevice::ReadOnly) ? f.readAll() : QByteArray();
+}
+
+QString recoveryFolder() {
+    return QFileInfo(ProjectAutosave::recoveryPath()).absolutePath();
+}
+
+// Types `path` into the file dialog once it is up and accepts it.
+void answerFileDialog(const QString& path, int tries = 50) {
+    QTimer::singleShot(100, [path, tries] {
+        auto* dialog = qobject_cast<QFileDialog*>(QApplication::activeModalWidget());
+        if (!dialog) {
+            if (tries > 0) answerFileDialog(path, tries - 1);
+            return;
+        }
+        auto* name = dialog->findChild<QLineEdit*>("fileNameEdit");
+        QVERIFY(name);
+        name->setText(path);
+        QMetaObject::invokeMethod(dialog, "accept");
+    });
+}
+
+// The open questions of `window` (boxes shown, not exec'd) named `name`.
+QMessageBox* shownBox(const MainWindow& window, const QString& name) {
+    for (QMessageBox* box : window.findChildren<QMessageBox*>(name))
+        if (box->isVisible()) return box;
+    return nullptr;
+}
+
+}  // namespace
+
+class LostWorkTest : public QObject {
+    Q_OBJECT
+  public:
+    static void initMain() { setDefaultSurfaceFormat(); }
+
+    // Run as another Boneless (BONELESS_TEST_EDIT_THEN_WAIT=project): opens the project, unmaps a
+    // marker, says "edited N" (N markers mapped) and runs until a signal ends it. Its autosave
+    // waits a minute: only the signal's handling can save the edit.
+    static int editThenWait(const QString& project) {
+        test::isolate("LostWorkTest");
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        window.quitOnTerminationSignals();
+        window.autosave()->setDelay(60000);
+        if (!window.openProject(project) || !window.document()->clearMapping(0)) return 1;
+        // Said once the event loop has run: what an edit sets off at once has happened.
+        QTimer::singleShot(200, [&window] {
+            std::printf("edited %d\n", window.document()->mappedCount());
+            std::fflush(stdout);
+        });
+        QTimer::singleShot(120000, qApp, &QCoreApplication::quit);  // if the test is gone
+        return qApp->exec();
+    }
+
+  private:
+    static void removeAutosaves() {
+        QDir folder(recoveryFolder());
+        for (const QString& name : folder.entryList({"*.boneless", "*.lock"}, QDir::Files))
+            QFile::remove(folder.filePath(name));
+        QSettings().remove("autosave");
+    }
+
+    // A Boneless that edited `project` and was then sent `signal` (SIGTERM, SIGKILL) at once;
+    // returns how many markers its edit left mapped, -1 when a step failed.
+    int signalAfterAnEdit(const QString& project, int signal) {
+        QProcess other;
+        QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+        env.insert("BONELESS_TEST_EDIT_THEN_WAIT", project);
+        other.setProcessEnvironment(env);
+        other.start(QCoreApplication::applicationFilePath(), {});
+        if (!other.waitForStarted()) return -1;
+        QByteArray said;
+        while (!said.contains('\n') && other.waitForReadyRead(60000)) said += other.readAll();
+        if (!said.startsWith("edited ")) {
+            qWarning("%s", said.constData());
+            return -1;
+        }
+        ::kill(pid_t(other.processId()), signal);
+        if (!other.waitForFinished(30000)) return -1;
+        if (signal == SIGTERM &&
+            (other.exitStatus() != QProcess::NormalExit || other.exitCode() != 0))
+            return -1;
+        return said.mid(7).trimmed().toInt();
+    }
+
+  private slots:
+    void initTestCase() {
+        test::isolate("LostWorkTest");
+        folder_ = test::freshFolder("LostWorkTest");
+        project_ = test::writeDemoProject(folder_ + "/mine");
+    }
+
+    void init() { removeAutosaves(); }
+
+    // Two Boneless started after a crash both asked about its work; B reopened it, A discarded
+    // it, and A's discard took B's claim away: A's next autosave deleted the file, and B killed
+    // before an edit left nothing. Now one Boneless at a time asks about it, and the other neither
+    // asks nor touches it.
+    void aCrashsWorkReopenedByOneBonelessIsNotDeletedByAnother() {
+        int mapped = -1;
+        {
+            MainWindow crashed;
+            crashed.setMessageBoxesEnabled(false);
+            QVERIFY(crashed.openFiles({folder_ + "/mine/walker.obj", folder_ + "/mine/walker.c3d",
+                                       folder_ + "/mine/walker.map.json"}));
+            QVERIFY(crashed.document()->clearMapping(0));
+            QVERIFY(crashed.autosave()->saveNow());
+            mapped = crashed.document()->mappedCount();
+        }
+        // The work is that of a Boneless no longer running (no process has this id).
+        const QString instance = "999999999-1";
+        const QString file = recoveryFolder() + "/" + instance + ".boneless";
+        QVERIFY(QFile::rename(ProjectAutosave::recoveryPath(), file));
+        QSettings().setValue("autosave/" + instance + "/session", "{crashed} " + instance);
+        QSettings().setValue("autosave/" + instance + "/project", QString());
+
+        QStringList asked;
+        QString answer = "reopenButton";
+        QTimer answering;
+        connect(&answering, &QTimer::timeout, [&] {
+            auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+            if (!box) return;
+            asked << box->objectName();
+            box->findChild<QPushButton*>(answer)->click();
+        });
+        answering.start(100);
+        auto b = std::make_unique<MainWindow>();
+        QVERIFY(b->offerRecovery());
+        QCOMPARE(b->document()->mappedCount(), mapped);
+        QCOMPARE(asked.size(), 1);
+
+        answer = "discardButton";
+        {
+            MainWindow a;
+            QVERIFY(!a.offerRecovery());
+            QCOMPARE(asked.size(), 1);  // B holds it: A does not ask
+            a.setMessageBoxesEnabled(false);
+            QVERIFY(a.openDemo());
+            QVERIFY(a.document()->clearMapping(5));
+            QVERIFY(a.autosave()->saveNow());
+            QVERIFY(QFileInfo::exists(file));
+            a.close();
+        }
+        b.reset();  // killed before an edit: the crash's work is still to be offered
+        {
+            // As kill -9 leaves it: B's lock file, of a process no longer running.
+            QFile lock(file + ".lock");
+            QVERIFY(lock.open(QIODevice::WriteOnly));
+            lock.write("999999999\nLostWorkTest\n" + QSysInfo::machineHostName().toUtf8() + "\n");
+        }
+
+        answer = "reopenButton";
+        MainWindow c;
+        QVERIFY(c.offerRecovery());
+        answering.stop();
+        QCOMPARE(asked.size(), 2);
+        QCOMPARE(c.document()->mappedCount(), mapped);
+        c.setMessageBoxesEnabled(false);
+        c.close();
+    }
+
+    // A project open in two windows: the second's edit was autosaved, then the first's autosave
+    // wrote over it, and neither said a word. The first now leaves the file alone, names it in
+    // a question, and Reload opens what the second saved.
+    void aProjectChangedOnDiskIsNotWrittenOverUnasked() {
+        const QString project = test::writeDemoProject(folder_ + "/twice");
+        MainWindow one, two;
+        one.setMessageBoxesEnabled(false);
+        two.setMessageBoxesEnabled(false);
+        QVERIFY(one.openProject(project));
+        QVERIFY(two.openProject(project));
+        QVERIFY(two.document()->clearMapping(0));
+        QVERIFY(two.autosave()->saveNow());
+        const QByteArray byTwo = readAll(project);
+        const int twoMapped = two.document()->mappedCount();
+
+        one.setMessageBoxesEnabled(true);
+        QVERIFY(one.document()->clearMapping(5));
+        QVERIFY(!one.autosave()->saveNow());
+        QCOMPARE(readAll(project), byTwo);
+        QMessageBox* box = shownBox(one, "changedOnDiskQuestion");
+        QVERIFY(box);
+        QVERIFY2(box->text().contains(QFileInfo(project).fileName()), qPrintable(box->text()));
+        // Nor is it written by the next change, nor by Save.
+        QVERIFY(one.document()->clearMapping(6));
+        (void)one.autosave()->saveNow();
+        QCOMPARE(readAll(project), byTwo);
+        box->findChild<QPushButton*>("reloadButton")->click();
+        QCOMPARE(one.document()->mappedCount(), twoMapped);
+        QCOMPARE(one.projectPath(), project);
+        // Reloaded, its next edit is saved again.
+        QVERIFY(one.document()->clearMapping(7));
+        QVERIFY(one.autosave()->saveNow());
+        Document saved;
+        QVERIFY(Project::load(saved, project));
+        QCOMPARE(saved.mappedCount(), twoMapped - 1);
+        // Another program's edit is left alone too, until Overwrite.
+        {
+            QFile file(project);
+            QVERIFY(file.open(QIODevice::Append));
+            file.write("\n");
+        }
+        const QByteArray byAnother = readAll(project);
+        QVERIFY(one.document()->clearMapping(8));
+        QVERIFY(!one.autosave()->saveNow());
+        QVERIFY(!one.saveProject());
+        QCOMPARE(readAll(project), byAnother);
+        box = shownBox(one, "changedOnDiskQuestion");
+        QVERIFY(box);
+        box->findChild<QPushButton*>("overwriteButton")->click();
+        QVERIFY(Project::load(saved, project));
+        QCOMPARE(saved.mappedCount(), one.document()->mappedCount());
+        QVERIFY(!one.isWindowModified());
+        one.setMessageBoxesEnabled(false);
+        two.setMessageBoxesEnabled(false);
+        two.autosave()->discardPending();
+    }
+
+    // kill (SIGTERM, as at logout) within the autosave's delay lost the last edit of a saved
+    // project, and nothing was offered at the next start.
+    void anEditJustBeforeSigtermReachesTheProject() {
+        const QString project = test::writeDemoProject(folder_ + "/term");
+        const int mapped = signalAfterAnEdit(project, SIGTERM);
+        QVERIFY(mapped >= 0);
+        Document saved;
+        QVERIFY(Project::load(saved, project));
+        QCOMPARE(saved.mappedCount(), mapped);
+    }
+
+    // The app itself, as a session's logout ends it: it quits, not killed by the signal.
+    void theAppQuitsOnSigterm() {
+        const QString project = test::writeDemoProject(folder_ + "/app");
+        const QString home = folder_ + "/app-home";
+        QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+        env.insert("XDG_CONFIG_HOME", home + "/config");
+        env.insert("XDG_DATA_HOME", home + "/data");
+        env.insert("XDG_CACHE_HOME", home + "/cache");
+        env.insert("OPENBLAS_NUM_THREADS", "1");
+        QProcess app;
+        app.setProcessEnvironment(env);
+        app.setProcessChannelMode(QProcess::MergedChannels);
+        app.start(QStringLiteral(BONELESS_GUI), {"--project", project});
+        QVERIFY(app.waitForStarted());
+        QTest::qWait(4000);  // its window up
+        QCOMPARE(app.state(), QProcess::Running);
+        ::kill(pid_t(app.processId()), SIGTERM);
+        QVERIFY(app.waitForFinished(30000));
+        QCOMPARE(app.exitStatus(), QProcess::NormalExit);
+        QCOMPARE(app.exitCode(), 0);
+    }
+
+    // kill -9 within the delay cannot save: the next start offers the edit made.
+    void anEditJustBeforeSigkillIsOfferedAtTheNextStart() {
+        const QString project = test::writeDemoProject(folder_ + "/killed");
+        const int mapped = signalAfterAnEdit(project, SIGKILL);
+        QVERIFY(mapped >= 0);
+        MainWindow window;
+        const QStringList offered = window.autosave()->unfinishedRecoveries();
+        QCOMPARE(offered.size(), 1);
+        QCOMPARE(ProjectAutosave::recoveredProject(offered[0]), project);
+        Document recovered;
+        QVERIFY(Project::load(recovered, offered[0]));
+        QCOMPARE(recovered.mappedCount(), mapped);
+        window.autosave()->discardRecovery(offered[0]);
+    }
+
+    // Save Project As took walker.map.json, the project's own map, and wrote the project over it
+    // (after the dialog's "replace it?"); its autosaves went on rewriting the .json. A project is
+    // now always a .boneless, and none is saved over the document's mesh, take or map.
+    void aProjectIsNeverSavedOverItsOwnFiles() {
+        const QString mine = folder_ + "/own";
+        QVERIFY(QDir().mkpath(mine));
+        for (const QString& name : {"walker.obj", "walker.c3d", "walker.map.json"}) {
+            QFile::remove(mine + "/" + name);
+            QVERIFY(QFile::copy(folder_ + "/mine/" + name, mine + "/" + name));
+        }
+        const QString map = mine + "/walker.map.json", mesh = mine + "/walker.obj";
+        const QByteArray mapBytes = readAll(map), meshBytes = readAll(mesh);
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        QVERIFY(window.openFiles({mesh, mine + "/walker.c3d", map}));
+        QVERIFY(window.document()->clearMapping(0));
+
+        QSignalSpy errors(&window, &MainWindow::errorShown);
+        QVERIFY(!window.saveProjectAs(mesh));
+        QCOMPARE(readAll(mesh), meshBytes);
+        QCOMPARE(errors.count(), 1);
+        QVERIFY2(errors.at(0).at(0).toString().contains("walker.obj"),
+                 qPrintable(errors.at(0).at(0).toString()));
+
+        window.setMessageBoxesEnabled(true);
+        QStringList asked;  // the file dialog's "replace it?", had it been asked, answered Yes
+        QTimer answering;
+        connect(&answering, &QTimer::timeout, [&] {
+            auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+            if (!box) return;
+            asked << box->text();
+            if (QAbstractButton* yes = box->button(QMessageBox::Yes)) yes->click();
+        });
+        answering.start(100);
+        QAction* saveAs = nullptr;
+        for (QAction* action : window.findChildren<QAction*>())
+            if (action->text().startsWith("Save Project &As")) saveAs = action;
+        QVERIFY(saveAs);
+        answerFileDialog(map);
+        saveAs->trigger();
+        answering.stop();
+        QCOMPARE(readAll(map), mapBytes);
+        QCOMPARE(window.projectPath(), map + ".boneless");
+        QVERIFY2(asked.isEmpty(), qPrintable(asked.join("\n")));
+        Document saved;
+        QVERIFY(Project::load(saved, map + ".boneless"));
+        QCOMPARE(saved.mappedCount(), window.document()->mappedCount());
+        window.setMessageBoxesEnabled(false);
+        window.close();
+    }
+
+  private:
+    QString folder_, project_;
+};
+
+int main(int argc, char** argv) {
+    LostWorkTest::initMain();
+    QApplication app(argc, argv);
+    if (qEnvironmentVariableIsSet("BONELESS_TEST_EDIT_THEN_WAIT"))
+        return LostWorkTest::editThenWait(qEnvironmentVariable("BONELESS_TEST_EDIT_THEN_WAIT"));
+    app.setAttribute(Qt::AA_Use96Dpi, true);
+    LostWorkTest test;
+    QTEST_SET_MAIN_SOURCE_PATH
+    return QTest::qExec(&test, argc, argv);
+}
+#include "LostWorkTest.moc"
