@@ -7,15 +7,18 @@
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
+#include <cstring>
 #include <deque>
 #include <limits>
 #include <mutex>
 #include <optional>
 #include <thread>
 
+#include <nlohmann/json.hpp>
 #include "boneless/MeshTopology.h"
 #include "boneless/Parallel.h"
 #include "boneless/ShapeEncoding.h"
+#include "boneless/TakeOptionsJson.h"
 #include "boneless/ui/Document.h"
 #include "boneless/ui/FrameCache.h"
 
@@ -58,6 +61,10 @@ struct FrameSolver::Shared {
     double lastSolveMs = 0;       // how long the last frame took, for how far along this one is
     bool lastSuperseded = false;  // the last solve was stopped by a request: this one finishes
     bool shapeError = false;
+    // The current generation's solver, once built: how long that took, and its calibrated rest.
+    quint64 preparedGeneration = 0;
+    double preparationMs = 0;
+    std::shared_ptr<const Positions> preparedRest;
     std::deque<int> toTime;          // timeFrames()'s frames not yet timed
     std::optional<int> lastRequest;  // where read-ahead starts
     int readAhead = 0;
@@ -146,6 +153,7 @@ struct WorkerState {
     std::unique_ptr<MeshTopology> topology;
     std::unique_ptr<ShapeEncoding> encoding;
     quint64 generation = 0, failedGeneration = 0;
+    double preparationMs = 0;  // building `solver`
 
     std::shared_ptr<FrameResult> solve(const Problem& p, quint64 gen, int frame,
                                        bool wantShapeError, const std::atomic<bool>* stop,
@@ -154,7 +162,11 @@ struct WorkerState {
             solver.reset();
             encoding.reset();
             topology.reset();
+            const auto t0 = std::chrono::steady_clock::now();
             solver = std::make_unique<TakeSolver>(p.mesh, p.take, p.map, p.options);
+            preparationMs =
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                    .count();
             rest = std::make_shared<const Positions>(solver->rest().V);
             generation = gen;
         }
@@ -240,6 +252,12 @@ void FrameSolver::run(Shared* sh, FrameSolver* self) {
             QMetaObject::invokeMethod(
                 self, [self, generation, error] { self->deliverFailure(generation, error); });
             continue;
+        }
+        if (generation == sh->generation && sh->preparedGeneration != generation) {
+            sh->preparedGeneration = generation;
+            sh->preparationMs = state.preparationMs;
+            sh->preparedRest =
+                problem->options.calibrate == CalibrateMode::None ? nullptr : state.rest;
         }
         sh->lastSolveMs = result->solveMs;
         sh->lastSuperseded = false;
@@ -335,6 +353,48 @@ void FrameSolver::timeFrames(const std::vector<int>& frames) {
                 shared_->toTime.push_back(frame);
     }
     shared_->wake.notify_one();
+}
+
+double FrameSolver::preparationMs() const {
+    std::lock_guard lock(shared_->mutex);
+    return shared_->preparedGeneration == shared_->generation ? shared_->preparationMs : 0;
+}
+
+namespace {
+
+bool sameTake(const C3dTake& a, const C3dTake& b) {
+    const C3dSamples &x = a.samples, &y = b.samples;
+    if (a.file != b.file || a.unitToMm != b.unitToMm || a.points.size() != b.points.size() ||
+        x.frames() != y.frames() || x.points() != y.points() || a.vertical != b.vertical)
+        return false;
+    for (std::size_t i = 0; i < a.points.size(); ++i)
+        if (a.points[i].label != b.points[i].label) return false;
+    const std::size_t n = 3 * x.frames() * x.points();
+    return n == 0 || std::memcmp(x.xyzData(), y.xyzData(), n * sizeof(double)) == 0;
+}
+
+}  // namespace
+
+std::shared_ptr<const Positions> FrameSolver::calibratedRestFor(const Document& document) const {
+    std::shared_ptr<const Problem> problem;
+    std::shared_ptr<const Positions> rest;
+    {
+        std::lock_guard lock(shared_->mutex);
+        if (shared_->preparedGeneration != shared_->generation) return nullptr;
+        problem = shared_->problem;
+        rest = shared_->preparedRest;
+    }
+    // The watched document may have changed since (a refresh is queued a turn later), and an
+    // unwatched one may never have been this problem's.
+    if (!problem || !rest || !document.hasMesh() || !document.hasTake()) return nullptr;
+    const TriMesh& mesh = document.mesh();
+    if (toJson(problem->options) != toJson(document.solveOptions()) ||
+        problem->map.toJson() != document.correspondence().toJson() ||
+        problem->mesh.V.rows() != mesh.V.rows() || problem->mesh.F.rows() != mesh.F.rows() ||
+        problem->mesh.V != mesh.V || problem->mesh.F != mesh.F ||
+        !sameTake(problem->take, document.take()))
+        return nullptr;
+    return rest;
 }
 
 bool FrameSolver::hasProblem() const {

@@ -99,6 +99,15 @@ class FrameSolver : public QObject {
     // frameTimed() follows. Replaces the frames still to time; a new problem drops them.
     void timeFrames(const std::vector<int>& frames);
 
+    // How long building the solver for the current problem took (aligning, calibrating,
+    // factorising) in milliseconds; 0 until its first frame is solved. An export of the same
+    // problem prepares as much before its first frame (ExportDialog's estimate adds it).
+    double preparationMs() const;
+    // The calibrated rest the current problem's solver fitted, when it is built, calibrates, and
+    // `document`'s mesh, take, map and solve options are still the ones it was built from; else
+    // null. An export passes it on (TakeSolveOptions::calibratedRest) rather than fitting again.
+    std::shared_ptr<const Positions> calibratedRestFor(const Document& document) const;
+
     static std::size_t defaultCacheLimit();  // from QSettings
 
   signals:
