@@ -69,6 +69,10 @@ struct FrameSolver::Shared {
     std::optional<int> lastRequest;  // where read-ahead starts
     int readAhead = 0;
     bool wrap = false;
+    // The last request missed the cache while an older one was still unanswered: requests come
+    // faster than frames are solved (playback of a large mesh), so the frames after the one
+    // answered are passed by the time they would be solved, and the worker reads none ahead.
+    bool behind = false;
     FrameCache cache;
     std::thread worker;
 
@@ -76,7 +80,7 @@ struct FrameSolver::Shared {
     // cache holds, and its cached frames and the request are marked used, so that read-ahead
     // evicts other frames, never its own.
     std::optional<int> nextAhead() {
-        if (!problem || !lastRequest || readAhead <= 0) return std::nullopt;
+        if (!problem || !lastRequest || readAhead <= 0 || behind) return std::nullopt;
         const int frames = int(problem->take.frameCount());
         const std::size_t frameBytes = cache.lastFrameBytes();
         const std::size_t fits =
@@ -320,6 +324,7 @@ bool FrameSolver::setProblem(const Document& document, QString* why) {
         shared_->pending.reset();
         shared_->toTime.clear();
         shared_->lastRequest.reset();
+        shared_->behind = false;
         shared_->stopSolve = true;  // a frame of the old problem is of no use
         shared_->cache.clear();
     }
@@ -337,6 +342,7 @@ void FrameSolver::clearProblem() {
         shared_->pending.reset();
         shared_->toTime.clear();
         shared_->lastRequest.reset();
+        shared_->behind = false;
         shared_->stopSolve = true;
         shared_->cache.clear();
     }
@@ -467,13 +473,16 @@ void FrameSolver::requestFrame(int frame) {
             return;
         shared_->lastRequest = frame;
         const quint64 request = ++shared_->requests;
+        const bool unanswered = shared_->pending.has_value() || shared_->solving;
         // Any older request still waiting is no longer wanted, whether or not this one is
         // cached: solved after it, it would replace this frame on screen.
         shared_->pending.reset();
         shared_->supersede(frame);
         if (auto hit = shared_->cache.use(frame)) {
+            shared_->behind = false;
             deliverHit(*hit, request);
         } else {
+            shared_->behind = unanswered;
             shared_->pending = frame;
             shared_->pendingRequest = request;
         }

@@ -55,7 +55,9 @@ struct FrameResult {
 // newest frame whenever it is free, and once the playhead stops its frame follows the solve in
 // flight. While playing, the worker also reads ahead (setReadAhead()): when no request waits it
 // solves the frames after the last one asked for into the cache, so that the playhead finds them
-// there.
+// there; but not while requests come faster than it solves them (a large mesh playing): those
+// frames would be passed by the time they were solved, so it waits for the newest request, and
+// the frame shown stays within one solve of the playhead.
 class FrameSolver : public QObject {
     Q_OBJECT
   public:
