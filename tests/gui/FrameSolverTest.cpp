@@ -334,6 +334,35 @@ class FrameSolverTest : public QObject {
         QCOMPARE(ready.count(), 3);
     }
 
+    // Playing a 100K-face koala at 120 Hz showed frames 125 to 262 behind the playhead: when a
+    // request was answered and the next had not come yet, the worker read ahead from the frame
+    // answered, frames the playhead had long passed, and the next request waited for them. When
+    // requests come faster than the solver answers them, it reads nothing ahead: free, it takes
+    // the newest request.
+    void whenRequestsOutrunTheSolverItSolvesNoFrameThePlayheadHasPassed() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        FrameSolver solver;
+        QVERIFY(solver.setProblem(d));
+        QSignalSpy ready(&solver, &FrameSolver::frameReady);
+        solver.requestFrame(0);
+        QVERIFY(ready.wait(30000));
+        solver.setReadAhead(8);
+        QVERIFY(QTest::qWaitFor([&] { return solver.isCached(8); }, 30000));
+        // The playhead moves on before frame 20 is answered: the solver is behind.
+        solver.requestFrame(20);
+        solver.requestFrame(30);
+        QVERIFY(QTest::qWaitFor(
+            [&] { return !ready.isEmpty() && resultOf(ready, ready.count() - 1).frame == 30; },
+            30000));
+        QTest::qWait(300);
+        for (int f = 31; f <= 38; ++f)
+            QVERIFY2(!solver.isCached(f), qPrintable(QString::number(f)));
+        // A request it answers before the next one comes: it keeps up, and reads ahead again.
+        solver.requestFrame(40);
+        QVERIFY(QTest::qWaitFor([&] { return solver.isCached(44); }, 30000));
+    }
+
     void aMapTheTakeCannotResolveIsRefused() {
         Document d;
         QVERIFY(test::loadDemo(d, demo_));

@@ -70,6 +70,31 @@ class MainWindowTest : public QObject {
         QVERIFY2(moved > 0.02 * size, qPrintable(QString("moved %1 of %2").arg(moved).arg(size)));
     }
 
+    // At start-up the status bar said "Frame -1 / 809 (preview; playhead at 0) solving frame 0…"
+    // for the whole preparation (12 s on a 100K-face mesh). Until the first frame is solved it
+    // says what is happening, over the playhead's frame.
+    void untilTheFirstFrameIsSolvedTheStatusSaysTheSolverIsBeingPrepared() {
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        QStringList said;
+        // Queued: read after the window has shown the new problem, before any frame of it
+        // arrives (the worker posts that after this, once its solver is built).
+        connect(
+            window.frameSolver(), &FrameSolver::problemChanged, &window,
+            [&] { said << window.frameSummary(); }, Qt::QueuedConnection);
+        QVERIFY(window.openProject(project_));
+        QVERIFY(test::showAndWait(window));
+        QVERIFY(test::waitForFrame(window));
+        QVERIFY(!said.isEmpty());
+        for (const QString& summary : said) {
+            QVERIFY2(!summary.contains("Frame -1"), qPrintable(summary));
+            QVERIFY2(!summary.contains("preview"), qPrintable(summary));
+        }
+        QVERIFY2(said.back().contains("preparing the solver for walker.obj"),
+                 qPrintable(said.back()));
+        QVERIFY2(window.frameSummary().startsWith("Frame 0 / "), qPrintable(window.frameSummary()));
+    }
+
     void looseFilesOpenedOneByOneStandTheMeshUp() {
         // The demo's mesh is Z-up; the take and its map say so once both are open, whichever
         // comes last (a map after the take used to leave the view Y-up, the body on the floor).

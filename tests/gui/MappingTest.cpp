@@ -12,6 +12,7 @@
 #include <QLabel>
 #include <QMenu>
 #include <QMessageBox>
+#include <QProgressBar>
 #include <QPushButton>
 #include <QSignalSpy>
 #include <QStatusBar>
@@ -233,12 +234,8 @@ class MappingTest : public QObject {
         QCOMPARE(d->markerOffsetMm(0), 12.5);
     }
 
-    void suggestRestSaysHowManyItSuggested() {
-        MainWindow window;
-        window.setMessageBoxesEnabled(false);
-        QVERIFY(window.openProject(freshProject()));
-        Document* d = window.document();
-        // Four picks spread over the body, as DocumentTest's suggestion test makes them.
+    // Four picks spread over the body, as DocumentTest's suggestion test makes them.
+    static void keepFourPicks(Document* d) {
         for (int m = 0; m < d->markerCount(); ++m) {
             bool kept = false;
             for (const char* label : {"RFHD", "LWRA", "RANK", "LASI"})
@@ -246,11 +243,26 @@ class MappingTest : public QObject {
             if (!kept) QVERIFY(d->clearMapping(m));
         }
         QCOMPARE(d->mappedCount(), 4);
-        QPushButton* suggest = nullptr;
-        for (QPushButton* b : window.findChildren<QPushButton*>())
-            if (b->text() == "Suggest rest") suggest = b;
+    }
+    static QPushButton* suggestButton(MainWindow& window) {
+        return window.findChild<QPushButton*>("suggestRest");
+    }
+
+    void suggestRestSaysHowManyItSuggested() {
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        QVERIFY(window.openProject(freshProject()));
+        Document* d = window.document();
+        keepFourPicks(d);
+        QPushButton* suggest = suggestButton(window);
         QVERIFY(suggest);
-        suggest->click();
+        // It runs on a worker: the status bar says so until it ends.
+        const auto suggestAndWait = [&] {
+            suggest->click();
+            QTRY_VERIFY_WITH_TIMEOUT(!window.statusBar()->currentMessage().startsWith("Suggesting"),
+                                     30000);
+        };
+        suggestAndWait();
         QCOMPARE(d->mappedCount(), d->markerCount());
         const QString said = window.statusBar()->currentMessage();
         QVERIFY2(said.startsWith(QString("%1 markers suggested").arg(d->markerCount() - 4)),
@@ -261,14 +273,64 @@ class MappingTest : public QObject {
         int dropped = 0;
         while (!d->markerSuggested(dropped)) ++dropped;
         QVERIFY(d->clearMapping(dropped));
-        suggest->click();
+        suggestAndWait();
         QCOMPARE(d->mappedCount(), d->markerCount());
         QVERIFY2(window.statusBar()->currentMessage().startsWith("1 marker suggested"),
                  qPrintable(window.statusBar()->currentMessage()));
         QCOMPARE(d->undoStack()->undoText(), QString("Suggest 1 marker"));
-        suggest->click();
+        suggestAndWait();
         QVERIFY2(window.statusBar()->currentMessage().startsWith("Nothing to suggest"),
                  qPrintable(window.statusBar()->currentMessage()));
+    }
+
+    // Suggest Rest ran on the window's thread: on a 100K-face koala the window froze for 43 s.
+    // Now the event loop turns while it runs (a timer fires, the view repaints), the window says
+    // it is suggesting, edits wait, and the map is applied as one step when it ends.
+    void suggestRestKeepsTheWindowRunningAndMapsWhenItEnds() {
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        QVERIFY(window.openProject(freshProject()));
+        Document* d = window.document();
+        keepFourPicks(d);
+        const int steps = d->undoStack()->count();
+        int ticks = 0, ticksWhenMapped = -1;
+        QTimer timer;
+        timer.setInterval(0);
+        connect(&timer, &QTimer::timeout, [&] { ++ticks; });
+        connect(d->undoStack(), &QUndoStack::indexChanged, [&] {
+            if (ticksWhenMapped < 0) ticksWhenMapped = ticks;
+        });
+        timer.start();
+        suggestButton(window)->click();
+        QCOMPARE(d->mappedCount(), 4);  // not yet: it runs on a worker
+        QVERIFY2(window.statusBar()->currentMessage().startsWith("Suggesting the rest of the map"),
+                 qPrintable(window.statusBar()->currentMessage()));
+        auto* busy = window.findChild<QProgressBar*>("busyBar");
+        QVERIFY(busy && busy->isVisibleTo(&window));
+        QVERIFY(d->editsHeld());
+        QVERIFY(!d->clearMapping(0));
+        QTRY_COMPARE_WITH_TIMEOUT(d->mappedCount(), d->markerCount(), 30000);
+        QVERIFY2(ticksWhenMapped > 0, qPrintable(QString::number(ticksWhenMapped)));
+        QCOMPARE(d->undoStack()->count(), steps + 1);
+        QVERIFY(!busy->isVisibleTo(&window));
+        QVERIFY(!d->editsHeld());
+        QVERIFY2(window.statusBar()->currentMessage().contains("markers suggested"),
+                 qPrintable(window.statusBar()->currentMessage()));
+    }
+
+    // A suggestion is made from the mesh, take and map as they were when it started: one that
+    // ends after the take was opened again is dropped, not applied to inputs it was not made from.
+    void aSuggestionWhoseTakeChangedMeanwhileIsDropped() {
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        QVERIFY(window.openProject(freshProject()));
+        Document* d = window.document();
+        keepFourPicks(d);
+        suggestButton(window)->click();
+        QVERIFY(d->loadTake(d->takePath()));
+        QTRY_VERIFY_WITH_TIMEOUT(window.statusBar()->currentMessage().contains("dropped"), 30000);
+        QVERIFY(!d->undoStack()->undoText().startsWith("Suggest"));
+        QCOMPARE(d->mappedCount(), 4);
     }
 
     void openingAMapOverMappingsAsksReplaceMergeOrCancel() {

@@ -191,14 +191,25 @@ bool Document::clearAllMappings() {
     return true;
 }
 
-bool Document::suggestMappings(int* suggested, int* toCheck, QStringList* offBody) {
+bool Document::canSuggest() {
     if (refusedWhileHeld()) return false;
     if (!hasMesh_ || !hasTake_) return fail(tr("Suggesting needs a mesh and a take."));
+    return true;
+}
+
+void Document::applySuggestion(Suggestion s) {
+    if (s.suggested == 0) return;
     EditState after = editState();
+    after.map = std::move(s.map);
+    pushEdit(counted(s.suggested, tr("Suggest %n marker"), tr("Suggest %n markers")),
+             std::move(after));
+}
+
+bool Document::suggestMappings(int* suggested, int* toCheck, QStringList* offBody) {
+    if (!canSuggest()) return false;
     Suggestion s;
     try {
         s = boneless::suggestMappings(mesh_, take_, map_);
-        after.map = std::move(s.map);
     } catch (const std::exception& e) {
         return fail(QString::fromStdString(e.what()));
     }
@@ -206,9 +217,7 @@ bool Document::suggestMappings(int* suggested, int* toCheck, QStringList* offBod
     if (toCheck) *toCheck = s.needsReview;
     if (offBody)
         for (const std::string& label : s.offBody) *offBody << QString::fromStdString(label);
-    if (s.suggested == 0) return true;
-    pushEdit(counted(s.suggested, tr("Suggest %n marker"), tr("Suggest %n markers")),
-             std::move(after));
+    applySuggestion(std::move(s));
     return true;
 }
 

@@ -2,6 +2,7 @@
 
 #include <utility>
 
+#include <QFileInfo>
 #include <QStringList>
 #include <QTimer>
 #include <cmath>
@@ -304,14 +305,17 @@ void FrameDisplay::emitStatus() {
     const int playhead = timeline_->frame();
     // Over the last frame's number, as the timeline: a 60-frame take ends at "Frame 59 / 59";
     // then the capture's own number for it, which Vicon and MotionBuilder show.
+    // Before anything is drawn (the solver being prepared) the view shows the rest mesh: the
+    // playhead's frame is named, never the -1 of no frame.
+    const int named = displayedFrame_ >= 0 ? displayedFrame_ : playhead;
     QString frame = document_->hasTake() ? tr("Frame %1 / %2 (capture frame %3)")
-                                               .arg(displayedFrame_)
+                                               .arg(named)
                                                .arg(document_->frameCount() - 1)
-                                               .arg(timeline_->captureFrame(displayedFrame_))
+                                               .arg(timeline_->captureFrame(named))
                                          : tr("No take");
     if (frozen_)
         frame += tr(" (held while mapping; playhead at %1)").arg(playhead);
-    else if (document_->hasTake() && displayedFrame_ != playhead)
+    else if (document_->hasTake() && named != playhead)
         frame += tr(" (preview; playhead at %1)").arg(playhead);
     QString solve, residual, solveDetail;
     const bool current = result_ && result_->frame == playhead && !problemTimer_->isActive();
@@ -321,6 +325,13 @@ void FrameDisplay::emitStatus() {
         solve = notSolvingReason_.isEmpty() ? tr("Not solving")
                                             : tr("Not solving: %1").arg(notSolvingReason_);
         solveDetail = notSolvingDetail_;
+    } else if (!result_) {
+        // No frame of this problem yet: the solver is being built (calibrated, factorised),
+        // seconds on a large mesh, which "solving frame 0…" did not say.
+        const QString mesh = QFileInfo(document_->meshPath()).fileName();
+        solve = document_->settings().calibrate == CalibrateMode::None
+                    ? tr("preparing the solver for %1 (factorising)…").arg(mesh)
+                    : tr("preparing the solver for %1 (calibrating, factorising)…").arg(mesh);
     } else if (!current) {
         solve = tr("solving frame %1…").arg(playhead);
     } else if (shown_ == Shown::CalibratedRest) {

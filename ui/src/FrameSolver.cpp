@@ -7,15 +7,18 @@
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
+#include <cstring>
 #include <deque>
 #include <limits>
 #include <mutex>
 #include <optional>
 #include <thread>
 
+#include <nlohmann/json.hpp>
 #include "boneless/MeshTopology.h"
 #include "boneless/Parallel.h"
 #include "boneless/ShapeEncoding.h"
+#include "boneless/TakeOptionsJson.h"
 #include "boneless/ui/Document.h"
 #include "boneless/ui/FrameCache.h"
 
@@ -58,10 +61,18 @@ struct FrameSolver::Shared {
     double lastSolveMs = 0;       // how long the last frame took, for how far along this one is
     bool lastSuperseded = false;  // the last solve was stopped by a request: this one finishes
     bool shapeError = false;
+    // The current generation's solver, once built: how long that took, and its calibrated rest.
+    quint64 preparedGeneration = 0;
+    double preparationMs = 0;
+    std::shared_ptr<const Positions> preparedRest;
     std::deque<int> toTime;          // timeFrames()'s frames not yet timed
     std::optional<int> lastRequest;  // where read-ahead starts
     int readAhead = 0;
     bool wrap = false;
+    // The last request missed the cache while an older one was still unanswered: requests come
+    // faster than frames are solved (playback of a large mesh), so the frames after the one
+    // answered are passed by the time they would be solved, and the worker reads none ahead.
+    bool behind = false;
     FrameCache cache;
     std::thread worker;
 
@@ -69,7 +80,7 @@ struct FrameSolver::Shared {
     // cache holds, and its cached frames and the request are marked used, so that read-ahead
     // evicts other frames, never its own.
     std::optional<int> nextAhead() {
-        if (!problem || !lastRequest || readAhead <= 0) return std::nullopt;
+        if (!problem || !lastRequest || readAhead <= 0 || behind) return std::nullopt;
         const int frames = int(problem->take.frameCount());
         const std::size_t frameBytes = cache.lastFrameBytes();
         const std::size_t fits =
@@ -146,6 +157,7 @@ struct WorkerState {
     std::unique_ptr<MeshTopology> topology;
     std::unique_ptr<ShapeEncoding> encoding;
     quint64 generation = 0, failedGeneration = 0;
+    double preparationMs = 0;  // building `solver`
 
     std::shared_ptr<FrameResult> solve(const Problem& p, quint64 gen, int frame,
                                        bool wantShapeError, const std::atomic<bool>* stop,
@@ -154,7 +166,11 @@ struct WorkerState {
             solver.reset();
             encoding.reset();
             topology.reset();
+            const auto t0 = std::chrono::steady_clock::now();
             solver = std::make_unique<TakeSolver>(p.mesh, p.take, p.map, p.options);
+            preparationMs =
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                    .count();
             rest = std::make_shared<const Positions>(solver->rest().V);
             generation = gen;
         }
@@ -241,6 +257,12 @@ void FrameSolver::run(Shared* sh, FrameSolver* self) {
                 self, [self, generation, error] { self->deliverFailure(generation, error); });
             continue;
         }
+        if (generation == sh->generation && sh->preparedGeneration != generation) {
+            sh->preparedGeneration = generation;
+            sh->preparationMs = state.preparationMs;
+            sh->preparedRest =
+                problem->options.calibrate == CalibrateMode::None ? nullptr : state.rest;
+        }
         sh->lastSolveMs = result->solveMs;
         sh->lastSuperseded = false;
         result->request = request;
@@ -302,6 +324,7 @@ bool FrameSolver::setProblem(const Document& document, QString* why) {
         shared_->pending.reset();
         shared_->toTime.clear();
         shared_->lastRequest.reset();
+        shared_->behind = false;
         shared_->stopSolve = true;  // a frame of the old problem is of no use
         shared_->cache.clear();
     }
@@ -319,6 +342,7 @@ void FrameSolver::clearProblem() {
         shared_->pending.reset();
         shared_->toTime.clear();
         shared_->lastRequest.reset();
+        shared_->behind = false;
         shared_->stopSolve = true;
         shared_->cache.clear();
     }
@@ -335,6 +359,48 @@ void FrameSolver::timeFrames(const std::vector<int>& frames) {
                 shared_->toTime.push_back(frame);
     }
     shared_->wake.notify_one();
+}
+
+double FrameSolver::preparationMs() const {
+    std::lock_guard lock(shared_->mutex);
+    return shared_->preparedGeneration == shared_->generation ? shared_->preparationMs : 0;
+}
+
+namespace {
+
+bool sameTake(const C3dTake& a, const C3dTake& b) {
+    const C3dSamples &x = a.samples, &y = b.samples;
+    if (a.file != b.file || a.unitToMm != b.unitToMm || a.points.size() != b.points.size() ||
+        x.frames() != y.frames() || x.points() != y.points() || a.vertical != b.vertical)
+        return false;
+    for (std::size_t i = 0; i < a.points.size(); ++i)
+        if (a.points[i].label != b.points[i].label) return false;
+    const std::size_t n = 3 * x.frames() * x.points();
+    return n == 0 || std::memcmp(x.xyzData(), y.xyzData(), n * sizeof(double)) == 0;
+}
+
+}  // namespace
+
+std::shared_ptr<const Positions> FrameSolver::calibratedRestFor(const Document& document) const {
+    std::shared_ptr<const Problem> problem;
+    std::shared_ptr<const Positions> rest;
+    {
+        std::lock_guard lock(shared_->mutex);
+        if (shared_->preparedGeneration != shared_->generation) return nullptr;
+        problem = shared_->problem;
+        rest = shared_->preparedRest;
+    }
+    // The watched document may have changed since (a refresh is queued a turn later), and an
+    // unwatched one may never have been this problem's.
+    if (!problem || !rest || !document.hasMesh() || !document.hasTake()) return nullptr;
+    const TriMesh& mesh = document.mesh();
+    if (toJson(problem->options) != toJson(document.solveOptions()) ||
+        problem->map.toJson() != document.correspondence().toJson() ||
+        problem->mesh.V.rows() != mesh.V.rows() || problem->mesh.F.rows() != mesh.F.rows() ||
+        problem->mesh.V != mesh.V || problem->mesh.F != mesh.F ||
+        !sameTake(problem->take, document.take()))
+        return nullptr;
+    return rest;
 }
 
 bool FrameSolver::hasProblem() const {
@@ -407,13 +473,16 @@ void FrameSolver::requestFrame(int frame) {
             return;
         shared_->lastRequest = frame;
         const quint64 request = ++shared_->requests;
+        const bool unanswered = shared_->pending.has_value() || shared_->solving;
         // Any older request still waiting is no longer wanted, whether or not this one is
         // cached: solved after it, it would replace this frame on screen.
         shared_->pending.reset();
         shared_->supersede(frame);
         if (auto hit = shared_->cache.use(frame)) {
+            shared_->behind = false;
             deliverHit(*hit, request);
         } else {
+            shared_->behind = unanswered;
             shared_->pending = frame;
             shared_->pendingRequest = request;
         }

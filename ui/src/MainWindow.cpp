@@ -5,6 +5,7 @@
 #include <QComboBox>
 #include <QDockWidget>
 #include <QFileInfo>
+#include <QFutureWatcher>
 #include <QHBoxLayout>
 #include <QHeaderView>
 #include <QItemSelectionModel>
@@ -13,6 +14,7 @@
 #include <QLineEdit>
 #include <QMenuBar>
 #include <QMessageBox>
+#include <QProgressBar>
 #include <QPushButton>
 #include <QShortcut>
 #include <QStatusBar>
@@ -20,6 +22,7 @@
 #include <QToolButton>
 #include <QUndoStack>
 #include <QVBoxLayout>
+#include <QtConcurrent/QtConcurrentRun>
 #include <cmath>
 #include <utility>
 
@@ -31,9 +34,11 @@
 #include "ShortcutPassThrough.h"
 #include "SuggestionHighlight.h"
 #include "boneless/ActorCalibration.h"
+#include "boneless/MarkerSuggestion.h"
 #include "boneless/ui/AppIcon.h"
 #include "boneless/ui/Document.h"
 #include "boneless/ui/ExportDialog.h"
+#include "boneless/ui/ExportRunner.h"
 #include "boneless/ui/FrameSolver.h"
 #include "boneless/ui/MarkerListModel.h"
 #include "boneless/ui/MeshView.h"
@@ -391,6 +396,13 @@ void MainWindow::buildStatusBar() {
     frameLabel_->setObjectName("frameLabel");
     solveLabel_->setObjectName("solveLabel");
     residualLabel_->setObjectName("residualLabel");
+    // A task with no measure of how far along it is (Suggest Rest): a busy bar while it runs.
+    busyBar_ = new QProgressBar;
+    busyBar_->setObjectName("busyBar");
+    busyBar_->setRange(0, 0);
+    busyBar_->setMaximumWidth(120);
+    busyBar_->setVisible(false);
+    statusBar()->addPermanentWidget(busyBar_);
     statusBar()->addPermanentWidget(frameLabel_);
     statusBar()->addPermanentWidget(solveLabel_);
     statusBar()->addPermanentWidget(residualLabel_);
@@ -477,11 +489,11 @@ void MainWindow::connectDocument() {
     });
     // An export solves the map, alignment and settings it started with: an edit made meanwhile
     // would not be in what it writes, so edits wait for it.
-    connect(exportDialog_, &ExportDialog::runningChanged, document_, [this](bool running) {
-        document_->holdEdits(
-            running ? tr("An export is running: edits wait until it ends or is cancelled.")
-                    : QString());
-    });
+    connect(exportDialog_, &ExportDialog::runningChanged, document_, [this] { updateEditsHeld(); });
+    // A suggestion made from inputs that changed while it ran is not theirs.
+    for (auto changed :
+         {&Document::meshChanged, &Document::takeChanged, &Document::correspondenceChanged})
+        connect(document_, changed, this, [this] { ++suggestInputs_; });
     connect(exportDialog_, &ExportDialog::finished, this, [this](bool ok, const QString& message) {
         if (ok)
             statusBar()->showMessage(message, 10000);
@@ -612,10 +624,85 @@ void MainWindow::onVertexPicked(int vertex) {
         8000);
 }
 
+struct MainWindow::SuggestJob {
+    TriMesh mesh;
+    C3dTake take;
+    Correspondence map;
+    quint64 inputs = 0;  // suggestInputs_ when it started
+    Suggestion result;
+    QString error;
+};
+
+bool MainWindow::isSuggesting() const {
+    return suggestJob_ != nullptr;
+}
+
+void MainWindow::updateEditsHeld() {
+    // An export solves the map, alignment and settings it started with, and a suggestion adds to
+    // the map it started from: an edit made meanwhile would be lost, so edits wait for both.
+    if (exportDialog_->runner()->isRunning())
+        document_->holdEdits(tr("An export is running: edits wait until it ends or is cancelled."));
+    else if (suggestJob_)
+        document_->holdEdits(tr("Suggest Rest is running: edits wait until it ends."));
+    else
+        document_->holdEdits({});
+}
+
 bool MainWindow::suggestMappings() {
-    int suggested = 0, toCheck = 0;
+    if (suggestJob_) {
+        statusBar()->showMessage(tr("Suggest Rest is already running"), 5000);
+        return false;
+    }
+    if (!document_->canSuggest()) return false;
+    auto job = std::make_shared<SuggestJob>();
+    job->mesh = document_->mesh();
+    job->take = document_->take();
+    job->map = document_->correspondence();
+    job->inputs = suggestInputs_;
+    suggestJob_ = job;
+    updateEditsHeld();
+    busyBar_->setVisible(true);
+    statusBar()->showMessage(tr("Suggesting the rest of the map for %1…")
+                                 .arg(QFileInfo(document_->meshPath()).fileName()));
+    // The worker shares the job, so a window closed meanwhile leaves it whole; the watcher, the
+    // window's, goes with the window.
+    auto* watcher = new QFutureWatcher<void>(this);
+    connect(watcher, &QFutureWatcher<void>::finished, this, [this, watcher] {
+        watcher->deleteLater();
+        finishSuggestion();
+    });
+    watcher->setFuture(QtConcurrent::run([job] {
+        try {
+            job->result = boneless::suggestMappings(job->mesh, job->take, job->map);
+        } catch (const std::exception& e) {
+            job->error = QString::fromStdString(e.what());
+        }
+    }));
+    return true;
+}
+
+void MainWindow::finishSuggestion() {
+    const std::shared_ptr<SuggestJob> job = std::move(suggestJob_);
+    if (!job) return;
+    busyBar_->setVisible(false);
+    updateEditsHeld();
+    if (!job->error.isEmpty()) {
+        statusBar()->clearMessage();
+        showError(tr("Suggest Rest failed."), job->error);
+        emit suggestionFinished(false);
+        return;
+    }
+    if (job->inputs != suggestInputs_) {
+        statusBar()->showMessage(
+            tr("Suggest Rest was dropped: the mesh, take or map changed while it ran"), 10000);
+        emit suggestionFinished(false);
+        return;
+    }
+    Suggestion& s = job->result;
+    const int suggested = s.suggested, toCheck = s.needsReview;
     QStringList offBody;
-    if (!document_->suggestMappings(&suggested, &toCheck, &offBody)) return false;
+    for (const std::string& label : s.offBody) offBody << QString::fromStdString(label);
+    document_->applySuggestion(std::move(s));
     // What this click added: markers suggested by an earlier click are the user's map by now.
     QString message;
     if (suggested == 0 && offBody.isEmpty())
@@ -638,7 +725,7 @@ bool MainWindow::suggestMappings() {
                                        .arg(kUnreachableMm)
                                        .arg(offBody.join(", ")),
                toCheck == 0 && offBody.isEmpty() ? 10000 : 15000);
-    return true;
+    emit suggestionFinished(true);
 }
 
 void MainWindow::alignTake() {

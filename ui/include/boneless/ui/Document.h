@@ -16,6 +16,10 @@
 
 class QUndoStack;
 
+namespace boneless {
+struct Suggestion;
+}
+
 namespace boneless::ui {
 
 // The open session: one rest mesh, one take, the marker-to-vertex map being authored, the
@@ -150,6 +154,11 @@ class Document : public QObject {
     // are marked for review; `offBody` the markers left unmapped as too far from the body.
     bool suggestMappings(int* suggested = nullptr, int* toCheck = nullptr,
                          QStringList* offBody = nullptr);
+    // The same in two halves, for a caller that suggests on a worker thread (up to half a minute
+    // on a 100K-face mesh): canSuggest() checks the edit may start, and applySuggestion() makes a
+    // suggestion computed from mesh(), take() and correspondence() as they still are one undo step.
+    bool canSuggest();
+    void applySuggestion(Suggestion suggestion);
     // Fixes the alignment from the mapped markers (at least 3); calibrationFrame -1 = automatic.
     bool align(int calibrationFrame = -1);
     bool clearAlignment();

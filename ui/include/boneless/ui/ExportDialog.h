@@ -56,7 +56,8 @@ class ExportDialog : public QDialog {
     int frameCountToWrite() const;
     // Median milliseconds of the frames timed for this problem; 0 when none.
     double measuredMsPerFrame() const;
-    // The estimate for the chosen frames in milliseconds; 0 when nothing is measured yet.
+    // The estimate for the chosen frames in milliseconds, the solver's preparation included
+    // (FrameSolver::preparationMs); 0 when nothing is measured yet.
     double estimatedMs() const;
 
     // The widgets have object names for tests: exportFormat, exportCalibratedRest, exportEstimate,

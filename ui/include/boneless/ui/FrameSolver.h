@@ -55,7 +55,9 @@ struct FrameResult {
 // newest frame whenever it is free, and once the playhead stops its frame follows the solve in
 // flight. While playing, the worker also reads ahead (setReadAhead()): when no request waits it
 // solves the frames after the last one asked for into the cache, so that the playhead finds them
-// there.
+// there; but not while requests come faster than it solves them (a large mesh playing): those
+// frames would be passed by the time they were solved, so it waits for the newest request, and
+// the frame shown stays within one solve of the playhead.
 class FrameSolver : public QObject {
     Q_OBJECT
   public:
@@ -98,6 +100,15 @@ class FrameSolver : public QObject {
     // drawing. Requests come first; each timed frame is cached, not delivered, and
     // frameTimed() follows. Replaces the frames still to time; a new problem drops them.
     void timeFrames(const std::vector<int>& frames);
+
+    // How long building the solver for the current problem took (aligning, calibrating,
+    // factorising) in milliseconds; 0 until its first frame is solved. An export of the same
+    // problem prepares as much before its first frame (ExportDialog's estimate adds it).
+    double preparationMs() const;
+    // The calibrated rest the current problem's solver fitted, when it is built, calibrates, and
+    // `document`'s mesh, take, map and solve options are still the ones it was built from; else
+    // null. An export passes it on (TakeSolveOptions::calibratedRest) rather than fitting again.
+    std::shared_ptr<const Positions> calibratedRestFor(const Document& document) const;
 
     static std::size_t defaultCacheLimit();  // from QSettings
 

@@ -3,6 +3,7 @@
 #include <QMainWindow>
 #include <QMap>
 #include <QString>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -14,6 +15,7 @@ class QLineEdit;
 class QComboBox;
 class QMenu;
 class QMessageBox;
+class QProgressBar;
 class QTableView;
 
 namespace boneless::ui {
@@ -86,8 +88,12 @@ class MainWindow : public QMainWindow {
     // File → Export: range, format, folder, estimate, progress.
     ExportDialog* exportDialog() const { return exportDialog_; }
     void showExportDialog();
-    // Edit → Suggest Rest, and the status bar says how many suggestions to check.
+    // Edit → Suggest Rest, on a worker thread (half a minute on a 100K-face mesh): the status bar
+    // says it runs, edits wait, and the window keeps drawing; when it ends the suggestions are
+    // one undo step and the status bar says how many to check. A suggestion made from a mesh,
+    // take or map that changed meanwhile is dropped. False when it could not start.
     bool suggestMappings();
+    bool isSuggesting() const;
     // Align (Edit menu and marker panel), and the status bar says how well the alignment fits.
     void alignTake();
 
@@ -116,6 +122,8 @@ class MainWindow : public QMainWindow {
     void frameDisplayed(int frame);
     // From moving the playhead to the render that shows the frame.
     void latencyMeasured(int frame, double milliseconds, bool fromCache);
+    // Suggest Rest ended: `applied` when its suggestions (if any) went into the map.
+    void suggestionFinished(bool applied);
 
   protected:
     void dragEnterEvent(QDragEnterEvent* event) override;
@@ -164,6 +172,10 @@ class MainWindow : public QMainWindow {
     // it is shown.
     void showStatus(const QString& message, const QString& detail, int timeoutMs);
     void storeSession();
+    // The suggestion the worker made, applied or dropped.
+    void finishSuggestion();
+    // Why edits wait: an export, a suggestion, or nothing.
+    void updateEditsHeld();
     void restoreSession();
     QMessageBox* errorBox(const QString& message, const QString& detail);
     // "Opened X", and what opening it let through or changed, if anything.
@@ -219,6 +231,10 @@ class MainWindow : public QMainWindow {
     bool asking_ = false;
     std::vector<std::pair<QString, QString>> heldErrors_;  // message, detail
     QString detailedMessage_;  // the status message the bar's tooltip goes with
+    struct SuggestJob;
+    std::shared_ptr<SuggestJob> suggestJob_;  // the suggestion running, if any
+    QProgressBar* busyBar_ = nullptr;         // shown while it runs
+    quint64 suggestInputs_ = 0;  // counts changes of the mesh, take and map a suggestion reads
 };
 
 }  // namespace boneless::ui
