@@ -293,8 +293,23 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
         refuseToReplaceOthersFiles(
             request, within.end < 0 ? static_cast<int>(take.frameCount()) : within.end);
 
+    // Preparing (the alignment, the calibration, the factorisation) takes seconds on a large
+    // mesh: said as it starts and ends, and kept out of the seconds a frame takes.
+    const auto begun = std::chrono::steady_clock::now();
+    auto start = begun;  // the first frame's: s/frame and the ETA count from it
+    if (!quiet) {
+        const TakeSolveOptions& o = request.options;
+        std::string steps = o.alignment ? "" : "aligning the take to the mesh, ";
+        if (o.calibrate != CalibrateMode::None) steps += "calibrating the rest to the actor, ";
+        std::fprintf(stderr, "preparing: %sfactorising (%s, %s)...\n", steps.c_str(),
+                     plural(mesh.vertexCount(), "vertex", "vertices").c_str(),
+                     plural(mesh.faceCount(), "face").c_str());
+    }
     auto announce = [&](const Calibration& c) {
+        start = std::chrono::steady_clock::now();
         if (quiet) return;
+        std::fprintf(stderr, "prepared in %.1f s\n",
+                     std::chrono::duration<double>(start - begun).count());
         const double meshUnitsPerMm = c.takeToMesh.scale / take.take().unitToMm;
         std::fprintf(stderr,
                      "%s: %zu frames at %g Hz, units %s; aligned at frame %d (residual %.1f mm), "
@@ -305,7 +320,6 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
                      guessUpAxis(c.takeToMesh, take.take().vertical).c_str(),
                      request.options.meshUp ? "" : " (guessed; --mesh-up sets it)");
     };
-    const auto start = std::chrono::steady_clock::now();
     auto onFrame = [&](int done, int total, const FrameReport& report) {
         const double elapsed =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -347,7 +361,7 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
             bytes = fs::file_size(written);
         }
         const double seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - begun).count();
         std::fprintf(stderr, "wrote %s: %s, %.1f MB in %.1f s\n", written.c_str(),
                      plural(result.framesWritten, "frame").c_str(), bytes / 1e6, seconds);
         printSummary(result.sidecarPath);
