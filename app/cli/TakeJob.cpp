@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "FrameRange.h"
 #include "OptionFlags.h"
@@ -16,6 +17,7 @@
 #include "boneless/Error.h"
 #include "boneless/MarkerSuggestion.h"
 #include "boneless/MeshReader.h"
+#include "boneless/ProgressPace.h"
 #include "boneless/TakeOptionsJson.h"
 #include "boneless/Text.h"
 
@@ -45,10 +47,11 @@ struct StopSignals {
     void (*sigterm)(int);
 };
 
-void progress(int done, int total, double elapsedSeconds, const FrameReport& last) {
-    // On a terminal the bar redraws in place; into a log it is a line every tenth of the take.
+void progress(int done, int total, double elapsedSeconds, const FrameReport& last,
+              ProgressPace& pace) {
+    // On a terminal the bar redraws in place; into a log it is a line as ProgressPace paces it.
     static const bool terminal = ::isatty(STDERR_FILENO);
-    if (!terminal && done != total && done % std::max(1, total / 10) != 0) return;
+    if (!terminal && !pace.due(done, elapsedSeconds)) return;
     const int width = 30;
     const int filled = total ? width * done / total : width;
     const double perFrame = done ? elapsedSeconds / done : 0;
@@ -320,10 +323,12 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
                      guessUpAxis(c.takeToMesh, take.take().vertical).c_str(),
                      request.options.meshUp ? "" : " (guessed; --mesh-up sets it)");
     };
+    std::optional<ProgressPace> pace;
     auto onFrame = [&](int done, int total, const FrameReport& report) {
         const double elapsed =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        if (!quiet) progress(done, total, elapsed, report);
+        if (!pace) pace.emplace(total);
+        if (!quiet) progress(done, total, elapsed, report, *pace);
         return stopSignal.load() == 0;
     };
 
