@@ -3,6 +3,7 @@
 #include <array>
 #include <cerrno>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -10,6 +11,7 @@
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <tuple>
 #include <vector>
@@ -22,6 +24,7 @@
 #include "boneless/Error.h"
 #include "boneless/ExportFormat.h"
 #include "boneless/InputFile.h"
+#include "boneless/TakeExport.h"
 #include "boneless/TakeOptionsJson.h"
 #include "boneless/Text.h"
 
@@ -319,33 +322,89 @@ std::string changedInputs(const json& recorded, const TakeJob& job, Fingerprints
            " solved";
 }
 
-// Why the files a complete sidecar vouches for are not all there, or "" if they are: an output
-// deleted or cut short (a copy, a full disk) since. Named as exportTake names them, not as recorded
-// (a name that is not UTF-8 is recorded otherwise): the frames of `range`, or the cache or glb,
-// and the calibrated rest when the entry asks for it.
-std::string missingOutputs(const TakeJob& job, const json& range) {
+// The 32-bit unsigned integer at `offset` of `file`, little- or big-endian; nothing when the file
+// is shorter.
+std::optional<std::uint32_t> headerWord(const fs::path& file, std::streamoff offset, bool big) {
+    std::ifstream in(file, std::ios::binary);
+    unsigned char b[4];
+    if (!in.seekg(offset) || !in.read(reinterpret_cast<char*>(b), 4)) return std::nullopt;
+    return big ? std::uint32_t(b[0]) << 24 | std::uint32_t(b[1]) << 16 | std::uint32_t(b[2]) << 8 |
+                     b[3]
+               : std::uint32_t(b[3]) << 24 | std::uint32_t(b[2]) << 16 | std::uint32_t(b[1]) << 8 |
+                     b[0];
+}
+
+// Why `file`, an output of `frames` frames, is not what the export wrote, or "" if it may be: what
+// its size and first bytes tell, without reading it (a PC2's or MDD's size is fixed by its point
+// and frame counts, a glb's header says its length, an OBJ a solve wrote starts with its line).
+std::string outputFault(const fs::path& file, ExportFormat format, int frames) {
+    std::error_code ec;
+    const std::uintmax_t size = fs::file_size(file, ec);
+    if (ec || size == 0) return "is missing or empty";
+    const auto need = [&](std::uintmax_t bytes) {
+        return bytes == size
+                   ? std::string()
+                   : "holds " + std::to_string(size) + " bytes where " + plural(frames, "frame") +
+                         (frames == 1 ? " needs " : " need ") + std::to_string(bytes);
+    };
+    switch (format) {
+        case ExportFormat::Obj:
+            return objWrittenBySolve(file.string())
+                       ? ""
+                       : "does not start with the \"# Boneless: \" line a solve writes";
+        case ExportFormat::Pc2: {  // 32 bytes of header, the point count at 16
+            const std::optional<std::uint32_t> points = headerWord(file, 16, false);
+            if (!points || size < 32)
+                return "holds " + std::to_string(size) + " bytes, less than a PC2 header";
+            return need(32 + std::uintmax_t(12) * *points * frames);
+        }
+        case ExportFormat::Mdd: {  // the frame and point counts, a time per frame, the points
+            const std::optional<std::uint32_t> points = headerWord(file, 4, true);
+            if (!points) return "holds " + std::to_string(size) + " bytes, less than an MDD header";
+            return need(8 + std::uintmax_t(4) * frames + std::uintmax_t(12) * *points * frames);
+        }
+        case ExportFormat::Glb: {  // "glTF", the version, the file's length
+            const std::optional<std::uint32_t> length = headerWord(file, 8, false);
+            if (!length) return "holds " + std::to_string(size) + " bytes, less than a glb header";
+            return size >= *length ? ""
+                                   : "holds " + std::to_string(size) +
+                                         " bytes where its header says " + std::to_string(*length);
+        }
+    }
+    return "";
+}
+
+// Why the files a complete sidecar vouches for are not all there as written, or "" if they are:
+// an output deleted, cut short or overwritten (a copy, a full disk) since. Named as exportTake
+// names them, not as recorded (a name that is not UTF-8 is recorded otherwise): the frames of
+// `range`, or the cache or glb, and the calibrated rest when the entry asks for it.
+std::string damagedOutputs(const TakeJob& job, const json& range) {
     const fs::path sidecar = takeJobSidecar(job), out = sidecar.parent_path();
     const std::string stem = sidecar.stem().string();
-    std::vector<fs::path> files;
     const ExportFormat format = findExportFormat(job.format).value_or(ExportFormat::Obj);
+    const int first = range.at(0).get<int>(), end = range.at(1).get<int>();
+    std::vector<std::pair<fs::path, ExportFormat>> files;
     if (format == ExportFormat::Obj)
-        for (int f = range.at(0).get<int>(); f < range.at(1).get<int>(); ++f)
-            files.push_back(out / objFrameFile(stem, f));
+        for (int f = first; f < end; ++f) files.emplace_back(out / objFrameFile(stem, f), format);
     else
-        files.push_back(out / (stem + exportFormatInfo(format).extension));
-    if (job.writeCalibratedRest) files.push_back(out / (stem + "_calibrated_rest.obj"));
-    std::vector<std::string> gone;
-    for (const fs::path& file : files) {
-        std::error_code ec;
-        if (fs::file_size(file, ec) == 0 || ec) gone.push_back(file.filename().string());
-    }
-    if (gone.empty()) return "";
-    if (gone.size() == 1) return gone.front() + " is missing or empty";
-    const std::size_t named = std::min<std::size_t>(gone.size(), 3);
-    return std::to_string(gone.size()) + " of its files are missing or empty (" +
-           joined({gone.begin(), gone.begin() + named}) +
-           (gone.size() > named ? " and " + std::to_string(gone.size() - named) + " more" : "") +
-           ")";
+        files.emplace_back(out / (stem + exportFormatInfo(format).extension), format);
+    if (job.writeCalibratedRest)
+        files.emplace_back(out / (stem + "_calibrated_rest.obj"), ExportFormat::Obj);
+    std::vector<std::string> bad;
+    std::string fault;
+    bool gone = true;  // every one missing or empty
+    for (const auto& [file, kind] : files)
+        if (const std::string why = outputFault(file, kind, end - first); !why.empty()) {
+            bad.push_back(file.filename().string());
+            if (fault.empty()) fault = why;
+            gone = gone && why == "is missing or empty";
+        }
+    if (bad.empty()) return "";
+    if (bad.size() == 1) return bad.front() + " " + fault;
+    const std::size_t named = std::min<std::size_t>(bad.size(), 3);
+    return std::to_string(bad.size()) + " of its files are missing or " +
+           (gone ? "empty" : "damaged") + " (" + joined({bad.begin(), bad.begin() + named}) +
+           (bad.size() > named ? " and " + std::to_string(bad.size() - named) + " more" : "") + ")";
 }
 
 // A take is done when its sidecar says it completed from the same sources into the same format,
@@ -393,7 +452,7 @@ Sidecar sidecarState(const TakeJob& job, Fingerprints& known, std::string& why) 
         if (recorded.is_object() && !recorded.contains("mesh_up")) recorded["mesh_up"] = "auto";
         if (!(sameFrames && sameRest && recorded == toJson(options)))
             why = "its sidecar is from other frames or options";
-        if (why.empty()) why = missingOutputs(job, s.at("frame_range"));
+        if (why.empty()) why = damagedOutputs(job, s.at("frame_range"));
         if (why.empty()) why = changedInputs(s.value("source_fingerprints", json()), job, known);
         return why.empty() ? Sidecar::Complete : Sidecar::Stale;
     } catch (const json::exception&) {
@@ -432,7 +491,24 @@ void run(const BatchArgs& args) {
         std::vector<std::string> meshWarnings;  // filled once the mesh is read
         std::vector<std::string> takeWarnings;  // and the take's once it is opened
         std::vector<std::string> mapWarnings;   // and the map's once it is read
-        std::vector<std::string> takeNotes;     // and a note on its "frames"
+        std::vector<std::string> takeNotes;     // a note on its "frames", on earlier exports
+        // Under the take's line, solved or not: a truncated take solves the frames it holds.
+        const auto underTheLine = [&] {
+            std::fflush(stdout);
+            for (const std::string& w : takeWarnings)
+                std::fprintf(stderr, "  warning: %s: %s\n", job.c3d.c_str(), w.c_str());
+            // As solve says it, a note: "frames" 2:100 is cut to the take, not a fault of it.
+            for (const std::string& n : takeNotes) std::fprintf(stderr, "  note: %s\n", n.c_str());
+            // Said once per map, as the mesh's notes: a library's takes share a few maps.
+            if (!mapWarnings.empty() && notedMaps.insert(job.map).second)
+                for (const std::string& w : mapWarnings)
+                    std::fprintf(stderr, "  warning: %s\n", w.c_str());
+            // A library of takes shares a few meshes: what one lacks is said once, solved or not.
+            if (!meshWarnings.empty() && notedMeshes.insert(job.mesh + "\n" + job.group).second)
+                for (const std::string& w : meshWarnings)
+                    std::printf("  note: %s: %s\n", job.mesh.c_str(), w.c_str());
+            std::fflush(stdout);
+        };
         try {
             const ExportResult r =
                 runTakeJob(job, true, &meshWarnings, &takeWarnings, &mapWarnings, &takeNotes);
@@ -442,6 +518,7 @@ void run(const BatchArgs& args) {
             ++solved;
         } catch (const TakeJobInterrupted& e) {
             std::printf("interrupted\n");
+            underTheLine();  // an earlier run's frames past the stop, named as after a finished one
             throw;
         } catch (const Error& e) {
             std::printf("FAILED: %s\n", e.what());
@@ -451,21 +528,7 @@ void run(const BatchArgs& args) {
             std::printf("FAILED: internal error: %s\n", e.what());
             ++failed;
         }
-        // Under the take's line, solved or not: a truncated take solves the frames it holds.
-        std::fflush(stdout);
-        for (const std::string& w : takeWarnings)
-            std::fprintf(stderr, "  warning: %s: %s\n", job.c3d.c_str(), w.c_str());
-        // As solve says it, a note: "frames" 2:100 is cut to the take, not a fault of it.
-        for (const std::string& n : takeNotes) std::fprintf(stderr, "  note: %s\n", n.c_str());
-        // Said once per map, as the mesh's notes: a library's takes share a few maps.
-        if (!mapWarnings.empty() && notedMaps.insert(job.map).second)
-            for (const std::string& w : mapWarnings)
-                std::fprintf(stderr, "  warning: %s\n", w.c_str());
-        // A library of takes shares a few meshes: what one lacks is said once, solved or not.
-        if (!meshWarnings.empty() && notedMeshes.insert(job.mesh + "\n" + job.group).second)
-            for (const std::string& w : meshWarnings)
-                std::printf("  note: %s: %s\n", job.mesh.c_str(), w.c_str());
-        std::fflush(stdout);
+        underTheLine();
     }
     std::printf("batch: %d of %zu takes in shard %d/%d: %d solved, %d skipped, %d failed\n", mine,
                 jobs.size(), shard, shards, solved, skipped, failed);

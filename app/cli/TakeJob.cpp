@@ -13,6 +13,7 @@
 
 #include "FrameRange.h"
 #include "OptionFlags.h"
+#include "boneless/Alignment.h"
 #include "boneless/C3dFrameReader.h"
 #include "boneless/Error.h"
 #include "boneless/MarkerSuggestion.h"
@@ -72,9 +73,9 @@ std::vector<std::string> formatNames() {
 }  // namespace
 
 // Said even when quiet: without it, a stretch where the actor left the volume plays as a pose
-// frozen on purpose.
-static void warnOfHeldFrames(const std::string& c3d, const ExportResult& result) {
-    if (result.held.empty()) return;
+// frozen on purpose. The warning without the take's name, or "" when no frame is held.
+static std::string heldFramesWarning(const ExportResult& result) {
+    if (result.held.empty()) return "";
     std::vector<std::string> runs;
     int frames = 0;
     for (const auto& [first, last] : result.held) {
@@ -82,11 +83,10 @@ static void warnOfHeldFrames(const std::string& c3d, const ExportResult& result)
                                      : std::to_string(first) + " to " + std::to_string(last));
         frames += last - first + 1;
     }
-    std::fprintf(stderr,
-                 "warning: %s: %s %s %s no marker; %s the pose of the nearest frame that shows "
-                 "one\n",
-                 c3d.c_str(), frames == 1 ? "frame" : "frames", joined(runs).c_str(),
-                 frames == 1 ? "shows" : "show", frames == 1 ? "it holds" : "each holds");
+    return std::string(frames == 1 ? "frame " : "frames ") + joined(runs) +
+           (frames == 1 ? " shows" : " show") + " no marker; " +
+           (frames == 1 ? "it holds" : "each holds") +
+           " the pose of the nearest frame that shows one";
 }
 
 // The sidecar's quality figures, so a run's stretch and fit are seen without opening it.
@@ -150,11 +150,13 @@ namespace {
 
 // OBJ frames of an earlier run that this one did not write would play as part of this take in a
 // tool that reads the folder by pattern (Houdini's <stem>_$F4.obj); they are the user's to remove.
-void warnOfOtherFrames(const std::string& out, const std::string& stem, const ExportResult& r) {
+// The note, or "" when there are none.
+std::string otherFramesNote(const std::string& out, const std::string& stem,
+                            const ExportResult& r) {
     std::vector<int> others;
     for (int frame : objFramesIn(out, stem))
         if (frame < r.first || frame >= r.first + r.framesWritten) others.push_back(frame);
-    if (others.empty()) return;
+    if (others.empty()) return "";
     // As runs ("0 to 2 and 6 to 9"): the lowest and highest alone took in the frames just written.
     std::sort(others.begin(), others.end());
     std::vector<std::string> runs;
@@ -173,17 +175,15 @@ void warnOfOtherFrames(const std::string& out, const std::string& stem, const Ex
     }
     const std::string listed =
         runs.size() == 1 ? runs[0] : joined({runs.begin(), runs.end() - 1}) + " and " + runs.back();
-    std::fprintf(stderr,
-                 "note: %s also holds %s this run did not write (%s %s of %s_*.obj, from an "
-                 "earlier run)\n",
-                 out.c_str(), plural(others.size(), "OBJ frame").c_str(),
-                 others.size() == 1 ? "frame" : "frames", listed.c_str(), stem.c_str());
+    return out + " also holds " + plural(others.size(), "OBJ frame") + " this run did not write (" +
+           (others.size() == 1 ? "frame " : "frames ") + listed + " of " + stem +
+           "_*.obj, from an earlier run)";
 }
 
 // An earlier export of another format (or its calibrated rest) stays beside this one, under a
 // sidecar that now describes this one alone: the user's to remove, so named. OBJ frames in an OBJ
-// run are warnOfOtherFrames' to name, by frame.
-void warnOfOtherOutputs(const ExportRequest& request) {
+// run are otherFramesNote's to name, by frame. The note, or "" when there are none.
+std::string otherOutputsNote(const ExportRequest& request) {
     const std::string stem = exportStem(request);
     std::vector<std::string> others;
     std::size_t frames = 0;
@@ -193,22 +193,59 @@ void warnOfOtherOutputs(const ExportRequest& request) {
         if (name == stem + "_calibrated_rest.obj") {
             if (!request.writeCalibratedRest) others.push_back(name);
         } else if (name.size() > 4 && name.compare(name.size() - 4, 4, ".obj") == 0) {
-            if (request.format != ExportFormat::Obj) ++frames;  // an OBJ run's: warnOfOtherFrames
+            if (request.format != ExportFormat::Obj) ++frames;  // an OBJ run's: otherFramesNote
         } else {
             others.push_back(name);
         }
     }
     if (frames) others.push_back(plural(long(frames), "OBJ frame") + " (" + stem + "_*.obj)");
-    if (others.empty()) return;
+    if (others.empty()) return "";
     const std::string listed =
         others.size() == 1 ? others[0]
                            : joined({others.begin(), others.end() - 1}) + " and " + others.back();
-    std::fprintf(
-        stderr,
-        "note: %s also holds an earlier export's %s, which %s.json no longer describes; "
-        "remove %s, or solve into another folder\n",
-        request.outDir.c_str(), listed.c_str(), stem.c_str(),
-        others.size() == 1 && others[0].find("OBJ frames") == std::string::npos ? "it" : "them");
+    return request.outDir + " also holds an earlier export's " + listed + ", which " + stem +
+           ".json no longer describes; remove " +
+           (others.size() == 1 && others[0].find("OBJ frames") == std::string::npos ? "it"
+                                                                                    : "them") +
+           ", or solve into another folder";
+}
+
+// The warning that the alignment the job chose (its calibration frame, its mesh up) is much worse
+// than the automatic choice's (core's rule, the app's), or "": measured as the app measures it, by
+// the solver's alignment alone with the frame and the up left to it. A solve otherwise went on
+// from a body turned against its markers, its summary looking fine. `keys`: named as a manifest's.
+std::string worseAlignmentWarning(const TriMesh& mesh, const C3dFrameReader& take,
+                                  const Correspondence& map, const TakeSolveOptions& options,
+                                  const Calibration& chosen, bool keys) {
+    if (options.alignment || (options.calibrationFrame < 0 && !options.meshUp)) return "";
+    TakeSolveOptions automatic = options;
+    automatic.calibrationFrame = -1;
+    automatic.meshUp.reset();
+    automatic.calibrate = CalibrateMode::None;  // the alignment alone, not the fit
+    automatic.solver.method = SolverOptions::Method::LocalGlobal;
+    const Calibration found = TakeSolver(mesh, take, map, automatic).calibration();
+    const double unitToMm = take.take().unitToMm;
+    const double chosenMm = chosen.residualMm(unitToMm), automaticMm = found.residualMm(unitToMm);
+    if (!alignsMuchWorse(chosenMm, automaticMm)) return "";
+    const auto at = [&](const Calibration& c) {
+        return "frame " + std::to_string(c.frame) +
+               (options.meshUp ? " with mesh up " + guessUpAxis(c.takeToMesh, take.take().vertical)
+                               : std::string());
+    };
+    std::vector<std::string> chose;
+    for (const std::string key : {"calibration_frame", "mesh_up"}) {
+        if (key == "calibration_frame" ? options.calibrationFrame < 0 : !options.meshUp) continue;
+        std::string flag = key;
+        std::replace(flag.begin(), flag.end(), '_', '-');
+        chose.push_back(keys ? "\"" + key + "\"" : "--" + flag);
+    }
+    char figures[160];
+    std::snprintf(figures, sizeof figures,
+                  "%.1f mm (RMS), over %g times and %g mm more than the automatic choice's %.1f mm",
+                  chosenMm, kMuchWorseAlignmentRatio, kMuchWorseAlignmentMm, automaticMm);
+    return "the alignment at " + at(chosen) + " leaves " + figures + " at " + at(found) +
+           "; try without " + joined(chose, " and ") +
+           " (a pose far from the rest's, or a wrong up, turns the body against its markers)";
 }
 
 // Files of the outputs' names that no Boneless export wrote are the user's: refused unless forced,
@@ -309,8 +346,16 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
                      plural(mesh.faceCount(), "face").c_str());
     }
     auto announce = [&](const Calibration& c) {
+        // Said even when quiet, under the take's line in batch, as the take's own warnings.
+        const std::string worse =
+            worseAlignmentWarning(mesh, take, map, request.options, c, takeNotes != nullptr);
+        if (!worse.empty() && takeWarnings) takeWarnings->push_back(worse);
+        const auto warnOfWorse = [&] {
+            if (!worse.empty() && !takeWarnings)
+                std::fprintf(stderr, "warning: %s: %s\n", job.c3d.c_str(), worse.c_str());
+        };
         start = std::chrono::steady_clock::now();
-        if (quiet) return;
+        if (quiet) return warnOfWorse();
         std::fprintf(stderr, "prepared in %.1f s\n",
                      std::chrono::duration<double>(start - begun).count());
         const double meshUnitsPerMm = c.takeToMesh.scale / take.take().unitToMm;
@@ -322,6 +367,7 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
                      guessMeshUnits(meshUnitsPerMm),
                      guessUpAxis(c.takeToMesh, take.take().vertical).c_str(),
                      request.options.meshUp ? "" : " (guessed; --mesh-up sets it)");
+        warnOfWorse();
     };
     std::optional<ProgressPace> pace;
     auto onFrame = [&](int done, int total, const FrameReport& report) {
@@ -338,19 +384,35 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
         result = exportTake(mesh, take, map, request, onFrame, announce);
     }
     if (!quiet && ::isatty(STDERR_FILENO)) std::fprintf(stderr, "\n");
+    // In batch under the take's line, once it is finished (docs/batch.md).
+    const auto note = [&](const std::string& text) {
+        if (text.empty()) return;
+        if (takeNotes)
+            takeNotes->push_back(text);
+        else
+            std::fprintf(stderr, "note: %s\n", text.c_str());
+    };
+    // Stopped or not: an earlier run's frames past the stop play as part of this take as much.
+    if (request.format == ExportFormat::Obj)
+        note(otherFramesNote(job.out, exportStem(request), result));
+    note(otherOutputsNote(request));
     // The sidecar says "complete": false; the message must not call anything complete.
     if (result.cancelled) {
         const int n = result.framesWritten;
+        // A run again solves the take from its first frame (there is no resuming part-way): "valid"
+        // frames read as kept.
         throw TakeJobInterrupted(
-            std::string(stopSignal == SIGTERM ? "stopped by SIGTERM" : "interrupted") + ": the " +
-                plural(n, "frame") + (n == 1 ? " written is" : " written are") + " valid, and " +
-                exportStem(request) + ".json records the take as incomplete",
+            std::string(stopSignal == SIGTERM ? "stopped by SIGTERM" : "interrupted") + " after " +
+                plural(n, "frame") + ": " + exportStem(request) +
+                ".json records the take as incomplete, and solving it again starts from its "
+                "first frame",
             stopSignal);
     }
-    if (request.format == ExportFormat::Obj)
-        warnOfOtherFrames(job.out, exportStem(request), result);
-    warnOfOtherOutputs(request);
-    warnOfHeldFrames(job.c3d, result);
+    const std::string held = heldFramesWarning(result);
+    if (!held.empty() && takeWarnings)
+        takeWarnings->push_back(held);
+    else if (!held.empty())
+        std::fprintf(stderr, "warning: %s: %s\n", job.c3d.c_str(), held.c_str());
     if (!quiet) {
         namespace fs = std::filesystem;
         const std::string stem = exportStem(request);

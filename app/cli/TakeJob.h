@@ -46,11 +46,12 @@ std::string takeJobSidecar(const TakeJob& job);
 // too. A map with entries `map suggest` marked for review is solved as it is, with a warning
 // naming them, on stderr, quiet or not, or in `mapWarnings` when given, as are the map's own
 // warnings (a version 1 entry's "face"). A note on the job's frames
-// (a range cut at the take's end) goes to stderr as solve's "note: ...", or to `takeNotes` when
-// given, in the same words. Ctrl-C or SIGTERM stops
-// after the frames being solved and throws TakeJobInterrupted (the frames written are valid, and
-// the sidecar records the take as incomplete). Throws Error naming the file or option for bad
-// input.
+// (a range cut at the take's end), and one on an earlier export's files left beside the outputs,
+// go to stderr as solve's "note: ...", or to `takeNotes` when given, in the same words; so does
+// the warning of frames that show no marker, to `takeWarnings`. Ctrl-C or SIGTERM stops
+// after the frames being solved and throws TakeJobInterrupted (the sidecar records the take as
+// incomplete, and solving it again starts from its first frame). Throws Error naming the file or
+// option for bad input.
 boneless::ExportResult runTakeJob(const TakeJob& job, bool quiet,
                                   std::vector<std::string>* meshWarnings = nullptr,
                                   std::vector<std::string>* takeWarnings = nullptr,

@@ -125,3 +125,30 @@ TEST(InputFiles, AMarkerFileOrManifestThatCannotBeOpenedSaysWhy) {
     }
     expectRefusals(cases);
 }
+
+// A link to a take, mesh or map that was moved said "cannot open the take (No such file or
+// directory)" of the link, which is there: the link and where it points are named.
+TEST(InputFiles, ALinkWhoseTargetIsGoneIsNamedWithItsTargetByEveryLoader) {
+    const fs::path dir = freshTestDir("links");
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frame-count 3").exitCode, 0);
+    const std::string mesh = (dir / "walker.obj").string(), take = (dir / "walker.c3d").string(),
+                      map = (dir / "walker.map.json").string(),
+                      out = " --out " + (dir / "out").string();
+    const auto link = [&](const char* name) {
+        fs::create_symlink(dir / "moved" / name, dir / name);
+        return (dir / name).string() + ": is a link to " + (dir / "moved" / name).string() +
+               ", which does not exist";
+    };
+    auto solve = [&](const std::string& m, const std::string& t, const std::string& c) {
+        return "solve --mesh " + m + " --c3d " + t + " --map " + c + out;
+    };
+    const auto at = [&](const char* name) { return (dir / name).string(); };
+    expectRefusals({
+        {solve(at("gone.obj"), take, map), link("gone.obj")},
+        {solve(mesh, at("gone.c3d"), map), link("gone.c3d")},
+        {solve(mesh, take, at("gone.json")), link("gone.json")},
+        {"inspect " + at("gone.c3d"), at("gone.c3d") + ": is a link to " +
+                                          (dir / "moved" / "gone.c3d").string() +
+                                          ", which does not exist"},
+    });
+}

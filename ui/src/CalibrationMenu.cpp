@@ -16,13 +16,8 @@ namespace boneless::ui {
 namespace {
 
 // A frame whose pose is far from the rest's (a stride) can align the body turned against its
-// markers: CMU 85_02 at frame 300 on MakeHuman turned it about 90°, 104.6 mm (RMS) at the
-// automatic frame, 256.3 mm there, and only the status bar's figure said so. Warned when the
-// chosen frame's alignment residual is both this many times the automatic one and this much more:
-// a few millimetres more on a good take are no concern, nor a small share more on a poor one.
-constexpr double kWorseRatio = 1.5;
-constexpr double kWorseMm = 50.0;
-
+// markers: CMU 85_02 at frame 300 on MakeHuman turned it about 90°, and only the status bar's
+// figure said so. Warned by core's rule (alignsMuchWorse), as solve and batch warn.
 void warnIfWorseThanAutomatic(const Document* document, int frame,
                               const std::function<void(const QString&, const QString&)>& warn) {
     const std::optional<Calibration> automatic = document->alignmentAt(-1);
@@ -34,7 +29,7 @@ void warnIfWorseThanAutomatic(const Document* document, int frame,
     const double unitToMm = document->take().unitToMm;
     const double chosenMm = chosen->residualMm(unitToMm);
     const double automaticMm = automatic->residualMm(unitToMm);
-    if (chosenMm <= kWorseRatio * automaticMm || chosenMm - automaticMm <= kWorseMm) return;
+    if (!alignsMuchWorse(chosenMm, automaticMm)) return;
     warn(QObject::tr("Frame %1 aligns the take much worse than the automatic choice, frame %2: "
                      "alignment %3 mm (RMS), against %4 mm. Undo (Ctrl+Z) goes back; Edit → "
                      "Calibrate Automatically picks the automatic frame.")
@@ -46,8 +41,8 @@ void warnIfWorseThanAutomatic(const Document* document, int frame,
                      "against its markers, and the solve then bends the mesh to meet them. Said "
                      "when the frame's alignment is more than %1 times and %2 mm worse than the "
                      "automatic frame's. Undo (Ctrl+Z) goes back too.")
-             .arg(kWorseRatio)
-             .arg(kWorseMm));
+             .arg(kMuchWorseAlignmentRatio)
+             .arg(kMuchWorseAlignmentMm));
 }
 
 }  // namespace

@@ -98,4 +98,9 @@ Calibration calibrate(int frames, const std::function<Positions(int)>& frameAt,
     return best;
 }
 
+bool alignsMuchWorse(double chosenMm, double automaticMm) {
+    return chosenMm > kMuchWorseAlignmentRatio * automaticMm &&
+           chosenMm - automaticMm > kMuchWorseAlignmentMm;
+}
+
 }  // namespace boneless

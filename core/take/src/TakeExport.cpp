@@ -147,28 +147,42 @@ std::vector<std::string> exportFilesIn(const std::string& outDir, const std::str
     return names;
 }
 
-namespace {
-
-// Whether the OBJ `path` starts as a solve writes one: "# Boneless: <take> frame N", "# Boneless:
-// <mesh> fitted to <take> ..." (objText's comment line).
-bool writtenBySolve(const fs::path& path) {
+bool objWrittenBySolve(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     std::string line(12, '\0');
     in.read(line.data(), static_cast<std::streamsize>(line.size()));
     return in && line == "# Boneless: ";
 }
 
-// The "output" of `stem`'s sidecar in `outDir` ("pc2"; "" if it records none), or nothing when
-// there is no sidecar, or what is there is no Boneless sidecar.
-std::optional<std::string> sidecarOutput(const fs::path& outDir, const std::string& stem) {
+namespace {
+
+// What `stem`'s Boneless sidecar in `outDir` says it wrote.
+struct SidecarOutputs {
+    std::string output;      // "pc2"; "" if it records none
+    int first = 0, end = 0;  // its OBJ frames, [first, end)
+    std::string rest;        // its calibrated rest's file name, "" if none
+};
+
+// What `stem`'s sidecar in `outDir` says it wrote, or nothing when there is no sidecar, or what is
+// there is no Boneless sidecar.
+std::optional<SidecarOutputs> sidecarOutputs(const fs::path& outDir, const std::string& stem) {
     std::ifstream in(outDir / (stem + ".json"));
     if (!in) return std::nullopt;
     try {
         const json s = json::parse(in);
-        if (s.is_object() && s.value("format", json()) == "boneless-solve") {
-            const json output = s.value("output", json());
-            return output.is_string() ? output.get<std::string>() : "";
+        if (!s.is_object() || s.value("format", json()) != "boneless-solve") return std::nullopt;
+        SidecarOutputs o;
+        const json output = s.value("output", json());
+        if (output.is_string()) o.output = output.get<std::string>();
+        const json range = s.value("frame_range", json());
+        if (range.is_array() && range.size() == 2 && range[0].is_number_integer() &&
+            range[1].is_number_integer()) {
+            o.first = range[0].get<int>();
+            o.end = range[1].get<int>();
         }
+        const json rest = s.value("calibration", json::object()).value("calibrated_rest", json());
+        if (rest.is_string()) o.rest = rest.get<std::string>();
+        return o;
     } catch (const json::exception&) {
     }
     return std::nullopt;
@@ -181,7 +195,16 @@ std::vector<std::string> filesNoExportWrote(const ExportRequest& request, int en
     const std::string stem = exportStem(request);
     std::error_code ec;
     if (!fs::is_directory(out, ec)) return {};
-    const std::optional<std::string> output = sidecarOutput(out, stem);
+    const std::optional<SidecarOutputs> sidecar = sidecarOutputs(out, stem);
+    // The files the folder's own sidecar names are an export's however they read now: a frame or
+    // a rest cut short or overwritten since is the tool's own to replace.
+    const auto named = [&](const std::string& name, std::optional<int> frame) {
+        if (!sidecar) return false;
+        if (frame)
+            return sidecar->output == exportFormatInfo(ExportFormat::Obj).name &&
+                   *frame >= sidecar->first && *frame < sidecar->end;
+        return name == sidecar->rest;
+    };
     std::vector<std::string> foreign;
     for (const std::string& name : exportFilesIn(request.outDir, stem)) {
         const fs::path path = out / name;
@@ -190,15 +213,17 @@ std::vector<std::string> filesNoExportWrote(const ExportRequest& request, int en
             sameFile(path.string(), request.mapPath))
             continue;
         if (name == stem + ".json") {
-            if (!output) foreign.push_back(name);  // any Boneless sidecar is replaced
+            if (!sidecar) foreign.push_back(name);  // any Boneless sidecar is replaced
         } else if (name == stem + "_calibrated_rest.obj") {
-            if (request.writeCalibratedRest && !writtenBySolve(path)) foreign.push_back(name);
+            if (request.writeCalibratedRest && !named(name, std::nullopt) &&
+                !objWrittenBySolve(path.string()))
+                foreign.push_back(name);
         } else if (const std::optional<int> frame = objFrameOf(path, stem)) {
             if (request.format == ExportFormat::Obj && *frame >= request.first && *frame < end &&
-                !writtenBySolve(path))
+                !named(name, frame) && !objWrittenBySolve(path.string()))
                 foreign.push_back(name);
         } else if (name == stem + exportFormatInfo(request.format).extension &&
-                   output != exportFormatInfo(request.format).name)
+                   (!sidecar || sidecar->output != exportFormatInfo(request.format).name))
             foreign.push_back(name);
     }
     return foreign;

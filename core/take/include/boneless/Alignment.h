@@ -25,6 +25,16 @@ struct Calibration {
     }
 };
 
+// A frame whose pose is far from the rest's (a stride) can align the body turned against its
+// markers, as can a wrong mesh up: CMU 85_02 on MakeHuman aligns at 104.6 mm (RMS) at the automatic
+// frame 171, at 256.3 mm at frame 300, and at 743.6 mm with the mesh's up given as +z. An alignment
+// the user chose (a calibration frame, a mesh up) is much worse than the automatic choice when its
+// residual is both this many times that one's and this much more: a few millimetres more on a
+// good take are no concern, nor a small share more on a poor one. The app, solve and batch warn.
+constexpr double kMuchWorseAlignmentRatio = 1.5;
+constexpr double kMuchWorseAlignmentMm = 50.0;
+bool alignsMuchWorse(double chosenMm, double automaticMm);
+
 // Among the frames where every given point is visible, the one that is closest to the rest pose
 // after its own similarity alignment (docs/algorithm.md §8); when no frame shows them all, among
 // the frames that show the most. restPositions: the mapped vertices' rest positions, one row per

@@ -61,13 +61,19 @@ std::vector<int> objFramesIn(const std::string& outDir, const std::string& stem)
 // file names, not paths.
 std::vector<std::string> exportFilesIn(const std::string& outDir, const std::string& stem);
 
+// Whether the OBJ `path` starts with the "# Boneless: " line a solve writes (a frame, the
+// calibrated rest).
+bool objWrittenBySolve(const std::string& path);
+
 // The files an export of `request` over the take frames [request.first, end) would replace in
 // its folder that no Boneless export wrote, by name in the order exportFilesIn gives: an OBJ
 // (a frame, the calibrated rest) that does not start with the "# Boneless: " line a solve
 // writes (the demo's truth/, another tool's frames), a sidecar that is not a "boneless-solve"
 // one, and a point cache or glb that no Boneless sidecar beside it records as its output. An
-// earlier export's files, however many runs left them, are not listed, nor the request's inputs
-// (which exportTake refuses to replace, naming both).
+// earlier export's files, however many runs left them, are not listed, nor the files the
+// folder's Boneless sidecar names as its outputs (its OBJ frames within its "frame_range", its
+// calibrated rest) however damaged, nor the request's inputs (which exportTake refuses to
+// replace, naming both).
 std::vector<std::string> filesNoExportWrote(const ExportRequest& request, int end);
 
 // Whether `a` and `b` name one file however each is spelled (relative, through "..", a symbolic or
