@@ -18,6 +18,7 @@
 #include "boneless/MeshReader.h"
 #include "boneless/SuggestionCheck.h"
 #include "boneless/TakeExport.h"
+#include "boneless/TakeOptionsJson.h"
 #include "boneless/Text.h"
 
 using namespace boneless;
@@ -27,6 +28,7 @@ void registerMapCommand(CLI::App& app) {
         std::string mesh, group, c3d, map, out, check;
         double toleranceMm = 30;
         bool force = false;
+        nlohmann::json options = nlohmann::json::object();  // --mesh-up, as solve reads it
     };
     auto args = std::make_shared<Args>();
     CLI::App* map = app.add_subcommand("map", "Author marker-to-vertex correspondence files");
@@ -57,6 +59,7 @@ void registerMapCommand(CLI::App& app) {
                                  args->toleranceMm))
         ->check(numberFrom(0.1, 1000))
         ->needs(check);
+    addOptionFlag(suggest, args->options, toJson(TakeSolveOptions{}), "mesh_up");
     suggest->add_flag("--force", args->force,
                       "Replace an --out that differs from the map this run writes (a map reviewed "
                       "by hand)");
@@ -106,7 +109,9 @@ void registerMapCommand(CLI::App& app) {
                 std::fprintf(stderr, "warning: %s\n", w.c_str());
         // A reference made for another mesh compares vertex numbers that name other places.
         if (truth) checkMapFitsMesh(*truth, mesh, args->mesh, args->group);
-        Suggestion s = suggestMappings(mesh, take, partial);
+        TakeSolveOptions solveOptions;
+        fromJson(args->options, solveOptions, "options");
+        Suggestion s = suggestMappings(mesh, take, partial, solveOptions.meshUp);
         // The map records the mesh it was made on, as the app's maps do.
         if (s.map.meshFile.empty())
             s.map.meshFile = std::filesystem::path(args->mesh).filename().string();

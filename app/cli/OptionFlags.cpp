@@ -33,26 +33,39 @@ const RenamedFlag kRenamedFlags[] = {
 
 }  // namespace
 
+namespace {
+
+void addOptionFlag(CLI::App* command, nlohmann::json& given, const nlohmann::json& defaults,
+                   const TakeOption& o) {
+    std::string help = o.doc;
+    help[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(help[0])));
+    if (!o.units.empty()) help += " (" + o.units + ")";
+    CLI::Option* flag = command->add_option_function<std::string>(
+        optionFlag(o),
+        [&given, o](const std::string& text) { given[o.key] = optionValueFromText(o, text); },
+        withDefault(help, defaults.at(o.key)));
+    flag->check(CLI::Validator([o](std::string& text) { return checkOptionText(o, text); }, ""));
+    std::string type = o.kind == TakeOption::Kind::Integer ? "INT" : "NUMBER";
+    if (o.kind == TakeOption::Kind::Choice) {
+        type.clear();
+        for (const std::string& c : o.choices) type += (type.empty() ? "" : "|") + c;
+    }
+    flag->type_name(type);
+}
+
+}  // namespace
+
 void addOptionFlags(CLI::App* command, nlohmann::json& given, const nlohmann::json& defaults,
                     bool solverOnly) {
-    for (const TakeOption& o : takeOptions()) {
-        if (solverOnly && !o.solver) continue;
-        std::string help = o.doc;
-        help[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(help[0])));
-        if (!o.units.empty()) help += " (" + o.units + ")";
-        CLI::Option* flag = command->add_option_function<std::string>(
-            optionFlag(o),
-            [&given, o](const std::string& text) { given[o.key] = optionValueFromText(o, text); },
-            withDefault(help, defaults.at(o.key)));
-        flag->check(
-            CLI::Validator([o](std::string& text) { return checkOptionText(o, text); }, ""));
-        std::string type = o.kind == TakeOption::Kind::Integer ? "INT" : "NUMBER";
-        if (o.kind == TakeOption::Kind::Choice) {
-            type.clear();
-            for (const std::string& c : o.choices) type += (type.empty() ? "" : "|") + c;
-        }
-        flag->type_name(type);
-    }
+    for (const TakeOption& o : takeOptions())
+        if (!solverOnly || o.solver) addOptionFlag(command, given, defaults, o);
+}
+
+void addOptionFlag(CLI::App* command, nlohmann::json& given, const nlohmann::json& defaults,
+                   const std::string& key) {
+    for (const TakeOption& o : takeOptions())
+        if (o.key == key) return addOptionFlag(command, given, defaults, o);
+    throw Error("no option \"" + key + "\" in the take options' table");
 }
 
 CLI::Validator numberFrom(double low, double high, bool whole) {

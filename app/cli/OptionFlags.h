@@ -14,6 +14,11 @@
 void addOptionFlags(CLI::App* command, nlohmann::json& given, const nlohmann::json& defaults,
                     bool solverOnly);
 
+// The one flag of core's table for `key` ("mesh_up" gives --mesh-up), as addOptionFlags adds it:
+// for a command that reads that option alone (map suggest's --mesh-up, the meaning solve's has).
+void addOptionFlag(CLI::App* command, nlohmann::json& given, const nlohmann::json& defaults,
+                   const std::string& key);
+
 // A flag's help with its default, as the table's flags give theirs: "... (1 to 100000) [60]",
 // "[10.0]", "["boneless"]" (the value as JSON writes it).
 template <class T>

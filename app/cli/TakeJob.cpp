@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "FrameRange.h"
 #include "OptionFlags.h"
@@ -17,6 +18,7 @@
 #include "boneless/Error.h"
 #include "boneless/MarkerSuggestion.h"
 #include "boneless/MeshReader.h"
+#include "boneless/ProgressPace.h"
 #include "boneless/TakeOptionsJson.h"
 #include "boneless/Text.h"
 
@@ -46,10 +48,11 @@ struct StopSignals {
     void (*sigterm)(int);
 };
 
-void progress(int done, int total, double elapsedSeconds, const FrameReport& last) {
-    // On a terminal the bar redraws in place; into a log it is a line every tenth of the take.
+void progress(int done, int total, double elapsedSeconds, const FrameReport& last,
+              ProgressPace& pace) {
+    // On a terminal the bar redraws in place; into a log it is a line as ProgressPace paces it.
     static const bool terminal = ::isatty(STDERR_FILENO);
-    if (!terminal && done != total && done % std::max(1, total / 10) != 0) return;
+    if (!terminal && !pace.due(done, elapsedSeconds)) return;
     const int width = 30;
     const int filled = total ? width * done / total : width;
     const double perFrame = done ? elapsedSeconds / done : 0;
@@ -330,6 +333,18 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
         refuseToReplaceOthersFiles(
             request, within.end < 0 ? static_cast<int>(take.frameCount()) : within.end);
 
+    // Preparing (the alignment, the calibration, the factorisation) takes seconds on a large
+    // mesh: said as it starts and ends, and kept out of the seconds a frame takes.
+    const auto begun = std::chrono::steady_clock::now();
+    auto start = begun;  // the first frame's: s/frame and the ETA count from it
+    if (!quiet) {
+        const TakeSolveOptions& o = request.options;
+        std::string steps = o.alignment ? "" : "aligning the take to the mesh, ";
+        if (o.calibrate != CalibrateMode::None) steps += "calibrating the rest to the actor, ";
+        std::fprintf(stderr, "preparing: %sfactorising (%s, %s)...\n", steps.c_str(),
+                     plural(mesh.vertexCount(), "vertex", "vertices").c_str(),
+                     plural(mesh.faceCount(), "face").c_str());
+    }
     auto announce = [&](const Calibration& c) {
         // Said even when quiet, under the take's line in batch, as the take's own warnings.
         const std::string worse =
@@ -339,7 +354,10 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
             if (!worse.empty() && !takeWarnings)
                 std::fprintf(stderr, "warning: %s: %s\n", job.c3d.c_str(), worse.c_str());
         };
+        start = std::chrono::steady_clock::now();
         if (quiet) return warnOfWorse();
+        std::fprintf(stderr, "prepared in %.1f s\n",
+                     std::chrono::duration<double>(start - begun).count());
         const double meshUnitsPerMm = c.takeToMesh.scale / take.take().unitToMm;
         std::fprintf(stderr,
                      "%s: %zu frames at %g Hz, units %s; aligned at frame %d (residual %.1f mm), "
@@ -351,11 +369,12 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
                      request.options.meshUp ? "" : " (guessed; --mesh-up sets it)");
         warnOfWorse();
     };
-    const auto start = std::chrono::steady_clock::now();
+    std::optional<ProgressPace> pace;
     auto onFrame = [&](int done, int total, const FrameReport& report) {
         const double elapsed =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        if (!quiet) progress(done, total, elapsed, report);
+        if (!pace) pace.emplace(total);
+        if (!quiet) progress(done, total, elapsed, report, *pace);
         return stopSignal.load() == 0;
     };
 
@@ -409,7 +428,7 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
             bytes = fs::file_size(written);
         }
         const double seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - begun).count();
         std::fprintf(stderr, "wrote %s: %s, %.1f MB in %.1f s\n", written.c_str(),
                      plural(result.framesWritten, "frame").c_str(), bytes / 1e6, seconds);
         printSummary(result.sidecarPath);

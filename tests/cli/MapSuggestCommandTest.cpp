@@ -363,3 +363,35 @@ TEST(MapSuggestCommand, AnExistingOutThatDiffersIsKeptUnlessForced) {
         << r.out;
     EXPECT_EQ(r.out.find("markers ("), std::string::npos) << r.out;
 }
+
+// solve took --mesh-up and map suggest refused it ("The following arguments were not expected"),
+// though the suggestions are made on fits solved as solve solves them.
+TEST(MapSuggestCommand, TakesTheMeshsUpAxisAsSolveDoesAndRefusesOneSolveRefuses) {
+    const fs::path dir = freshTestDir("map-suggest-up");
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frame-count 20").exitCode, 0);
+    nlohmann::json map;
+    std::ifstream(dir / "walker.map.json") >> map;
+    nlohmann::json picks = nlohmann::json::array();
+    for (const auto& m : map["markers"])
+        for (const char* label : {"LFHD", "LASI", "LWRA", "RWRA", "LANK", "RANK"})
+            if (m["label"] == label) picks.push_back(m);
+    map["markers"] = picks;
+    std::ofstream(dir / "partial.json") << map.dump();
+    const std::string args = "map suggest --mesh " + (dir / "walker.obj").string() + " --c3d " +
+                             (dir / "walker.c3d").string() + " --map " +
+                             (dir / "partial.json").string() + " --check " +
+                             (dir / "walker.map.json").string() + " --out ";
+    const CliResult up = runCli(args + (dir / "up.json").string() + " --mesh-up +y");
+    ASSERT_EQ(up.exitCode, 0) << up.out;
+    EXPECT_NE(up.out.find("0 to review"), std::string::npos) << up.out;
+
+    const CliResult bad = runCli(args + (dir / "bad.json").string() + " --mesh-up up");
+    const CliResult solve =
+        runCli("solve --mesh " + (dir / "walker.obj").string() + " --c3d " +
+               (dir / "walker.c3d").string() + " --map " + (dir / "walker.map.json").string() +
+               " --out " + (dir / "solved").string() + " --mesh-up up");
+    EXPECT_EQ(bad.exitCode, solve.exitCode);
+    ASSERT_NE(solve.out.find("--mesh-up"), std::string::npos) << solve.out;
+    EXPECT_EQ(bad.out.substr(0, bad.out.find('\n')), solve.out.substr(0, solve.out.find('\n')));
+    EXPECT_FALSE(fs::exists(dir / "bad.json"));
+}

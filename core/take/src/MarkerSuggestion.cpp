@@ -152,11 +152,13 @@ double distanceSpreadMm(const C3dTake& take, std::size_t a, std::size_t b) {
 // leave unposed): it gets no vertex, and goes to `offBody` instead.
 std::vector<Draft> draft(const TriMesh& rest, const C3dTake& take, const Correspondence& known,
                          const std::vector<std::size_t>& wanted, const MirrorPlane& mirror,
-                         Calibration& calibration, int& fittedFrame,
-                         std::vector<std::size_t>& offBody) {
+                         const std::optional<Vec3>& meshUp, Calibration& calibration,
+                         int& fittedFrame, std::vector<std::size_t>& offBody) {
     // The rest is first fitted to the actor at the alignment's frame, as solve does: the limbs
     // between the picks then take the actor's lengths (CMU 85_02, six picks: 17 to 20 of 35).
-    TakeSolver solver(rest, take, known, TakeSolveOptions{});
+    TakeSolveOptions options;
+    options.meshUp = meshUp;  // solved level as solve does, so the fits are the ones it makes
+    TakeSolver solver(rest, take, known, options);
     calibration = solver.calibration();
     const Similarity& s = calibration.takeToMesh;
     const double unitsPerMm = s.scale / take.unitToMm;
@@ -300,8 +302,8 @@ std::string reviewReason(const Draft& d, const std::string& label, const SideChe
 
 }  // namespace
 
-Suggestion suggestMappings(const TriMesh& rest, const C3dTake& take,
-                           const Correspondence& partial) {
+Suggestion suggestMappings(const TriMesh& rest, const C3dTake& take, const Correspondence& partial,
+                           const std::optional<Vec3>& meshUp) {
     if (partial.markers.size() < 4)
         throw Error((partial.source().empty() ? "" : partial.source() + ": ") +
                     "suggesting correspondences needs at least 4 mapped markers to align the "
@@ -346,8 +348,8 @@ Suggestion suggestMappings(const TriMesh& rest, const C3dTake& take,
     if (wanted.empty()) return out;  // every marker seen is mapped: nothing to fit the mesh for
     const MirrorPlane mirror(rest, sides);
     std::vector<std::size_t> offBody;
-    for (Draft& d :
-         draft(rest, take, partial, wanted, mirror, out.calibration, out.fittedFrame, offBody)) {
+    for (Draft& d : draft(rest, take, partial, wanted, mirror, meshUp, out.calibration,
+                          out.fittedFrame, offBody)) {
         d.heldMm = std::numeric_limits<double>::infinity();
         for (std::size_t pick : mapped)
             if (const double spread = distanceSpreadMm(take, d.point, pick); spread < d.heldMm) {

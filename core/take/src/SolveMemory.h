@@ -14,8 +14,12 @@ namespace boneless {
 
 struct SolveMemory {
     std::uint64_t perSolver = 0;  // bytes one solver of the take holds (method, calibration)
-    std::uint64_t budget = 0;     // bytes the process may use
-    std::string budgetFrom;       // what sets the budget, for messages ("physical memory", ...)
+    // Address space the process maps to solve with one solver: the program and its libraries,
+    // the mesh, the take and the solver, what an address-space limit (ulimit -v) must hold.
+    std::uint64_t addressSpace = 0;
+    std::uint64_t budget = 0;  // bytes the process may use
+    std::string budgetFrom;    // what sets the budget, for messages ("physical memory", ...)
+    bool budgetIsAddressSpace = false;  // the budget is ulimit -v's: addressSpace must fit it
 };
 
 // The estimate for a mesh of this size and method, and the budget from the machine: physical

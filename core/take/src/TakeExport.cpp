@@ -383,17 +383,24 @@ json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibr
 // Frames do not depend on each other, so each core solves frames of its own (each worker with a
 // TakeSolver of its own; the first is `first`), and `write` gets them in order on the calling
 // thread until it returns false. A worker runs at most a few frames ahead of the writing.
+// Returns how many workers solved.
 using FrameSink = std::function<bool(int frame, const Positions& V, const FrameReport& report,
                                      double distortion, double strainP95)>;
-void solveInOrder(TakeSolver& first, const TriMesh& mesh, const Correspondence& map,
-                  const TakeSolveOptions& options, int begin, int end, int maxWorkers,
-                  const FrameSink& write) {
+int solveInOrder(TakeSolver& first, const TriMesh& mesh, const Correspondence& map,
+                 const TakeSolveOptions& options, int begin, int end, int maxWorkers,
+                 const FrameSink& write) {
     struct Solved {
         Positions V;
         FrameReport report;
         double distortion = 0, strainP95 = 0;
     };
-    const int workers = std::max(1, std::min({solverThreadCount(), end - begin, maxWorkers}));
+    // A further worker first prepares a solver of its own, in the time the first solves some 7
+    // (the koala in solve) to 14 (boneless-bench --sweep) frames: on a shorter take it solved
+    // none, and the export waited for it (the koala's 2 frames, 3.5 s after the last was written).
+    constexpr int kFramesForAnotherWorker = 16;
+    const int workers = end - begin < kFramesForAnotherWorker
+                            ? 1
+                            : std::max(1, std::min({solverThreadCount(), end - begin, maxWorkers}));
     const int window = 4 * workers;
     std::mutex mutex;
     std::condition_variable changed;
@@ -480,6 +487,7 @@ void solveInOrder(TakeSolver& first, const TriMesh& mesh, const Correspondence& 
     stopAll();
     for (auto& t : threads) t.join();
     if (error) std::rethrow_exception(error);
+    return workers;
 }
 
 SolveMemory solveMemory(const TriMesh& mesh, const ExportRequest& request) {
@@ -605,35 +613,35 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
     if (calibrated) calibrated(solver.calibration());
     result.first = request.first;
     PerFrameFigures perFrame;
-    solveInOrder(solver, mesh, map, request.options, request.first, end,
-                 solversThatFit(solveMemory(mesh, request), solverThreadCount()),
-                 [&](int f, const Positions& V, const FrameReport& report, double distortion,
-                     double strainP95) {
-                     output.append(f, V);
-                     // Quality a user checks before importing: stretch against the rest pose,
-                     // and folds.
-                     const bool seen = report.visibleMarkers > 0;
-                     json figures = {
-                         {"frame", f},
-                         {"visible_markers", report.visibleMarkers},
-                         {"residual_rms_mm", seen ? json(report.residualRmsMm) : json()},
-                         {"residual_max_mm", seen ? json(report.residualMaxMm) : json()},
-                         {"edge_distortion", distortion},
-                         {"edge_strain_p95", strainP95},
-                         {"folded_faces", report.foldedFaces},
-                         {"dent_ratio", report.dentRatio},
-                         {"iterations", report.iterations},
-                         {"ms", report.milliseconds}};
-                     if (report.heldFrom >= 0) figures["held_from"] = report.heldFrom;
-                     perFrame.add(figures);
-                     ++result.framesWritten;
-                     if (progress && !progress(result.framesWritten, end - request.first, report) &&
-                         f + 1 < end) {
-                         result.cancelled = true;
-                         return false;
-                     }
-                     return true;
-                 });
+    result.workers = solveInOrder(
+        solver, mesh, map, request.options, request.first, end,
+        solversThatFit(solveMemory(mesh, request), solverThreadCount()),
+        [&](int f, const Positions& V, const FrameReport& report, double distortion,
+            double strainP95) {
+            output.append(f, V);
+            // Quality a user checks before importing: stretch against the rest pose,
+            // and folds.
+            const bool seen = report.visibleMarkers > 0;
+            json figures = {{"frame", f},
+                            {"visible_markers", report.visibleMarkers},
+                            {"residual_rms_mm", seen ? json(report.residualRmsMm) : json()},
+                            {"residual_max_mm", seen ? json(report.residualMaxMm) : json()},
+                            {"edge_distortion", distortion},
+                            {"edge_strain_p95", strainP95},
+                            {"folded_faces", report.foldedFaces},
+                            {"dent_ratio", report.dentRatio},
+                            {"iterations", report.iterations},
+                            {"ms", report.milliseconds}};
+            if (report.heldFrom >= 0) figures["held_from"] = report.heldFrom;
+            perFrame.add(figures);
+            ++result.framesWritten;
+            if (progress && !progress(result.framesWritten, end - request.first, report) &&
+                f + 1 < end) {
+                result.cancelled = true;
+                return false;
+            }
+            return true;
+        });
     output.finish();
     result.held = perFrame.held();
     json sidecar =

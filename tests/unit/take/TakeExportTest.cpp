@@ -11,6 +11,7 @@
 #include "boneless/DemoFiles.h"
 #include "boneless/Error.h"
 #include "boneless/MeshReader.h"
+#include "boneless/Parallel.h"
 #include "boneless/TakeExport.h"
 
 using namespace boneless;
@@ -84,4 +85,26 @@ TEST(TakeExport, AGroupNamesItsFilesWholeAndKeepsThemInTheFolder) {
     EXPECT_EQ(exportStem(request), ".._.._evil");
     request.group = "..";
     EXPECT_EQ(exportStem(request), "__");
+}
+
+// On the 100K-face koala a 2-frame export had both frames written at 10.1 s but ended at 13.6 s:
+// a second worker was still preparing a solver that would never solve a frame.
+TEST(TakeExport, AShortTakeIsSolvedByOneWorkerAndALongerOneByOnePerCore) {
+    if (solverThreadCount() < 2) GTEST_SKIP() << "one core: one worker whatever the take";
+    const DemoFiles files = writeDemoFiles(freshTestDir("export-workers"), 24, 10.0, false);
+    const TriMesh mesh = readMesh(files.mesh).mesh;
+    const C3dTake take = readC3d(files.take);
+    const Correspondence map = Correspondence::read(files.map);
+    auto workersFor = [&](int frames) {
+        ExportRequest request;
+        request.meshPath = files.mesh;
+        request.c3dPath = files.take;
+        request.mapPath = files.map;
+        request.outDir = freshTestDir("export-workers-" + std::to_string(frames));
+        request.format = ExportFormat::Pc2;
+        request.end = frames;
+        return exportTake(mesh, take, map, request).workers;
+    };
+    EXPECT_EQ(workersFor(2), 1);
+    EXPECT_EQ(workersFor(24), solverThreadCount());
 }

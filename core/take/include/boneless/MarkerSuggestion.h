@@ -1,5 +1,6 @@
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -52,7 +53,10 @@ struct Suggestion {
 // vertex over the fits (a prop, another actor), or from its vertex on the best fit, gets no
 // entry: Suggestion::offBody names it.
 // Throws Error naming what is missing, or a mapped marker the mesh cannot reach.
-Suggestion suggestMappings(const TriMesh& rest, const C3dTake& take, const Correspondence& partial);
+// `meshUp`: the mesh's up axis, as solve's "mesh_up" gives it; none, the one the alignment puts
+// nearest the take's vertical.
+Suggestion suggestMappings(const TriMesh& rest, const C3dTake& take, const Correspondence& partial,
+                           const std::optional<Vec3>& meshUp = std::nullopt);
 
 // What `suggest` wrote on a map entry, as the user left it: "suggested": true, and
 // "needs_review": true with its "review_reason" (the app clears both when the user accepts or

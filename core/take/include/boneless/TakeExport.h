@@ -37,6 +37,9 @@ struct ExportResult {
     int first = 0;
     int framesWritten = 0;
     bool cancelled = false;
+    // How many solvers solved frames at once, each prepared on its own (one per core, as memory
+    // allows, and one alone for a take too short to repay preparing another).
+    int workers = 0;
     std::string sidecarPath;
     // Runs of frames [first, last] that show no marker and hold a neighbour's pose (as the
     // sidecar's summary "frames_held" lists them).
