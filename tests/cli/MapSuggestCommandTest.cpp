@@ -13,19 +13,30 @@
 using namespace boneless::testing;
 namespace fs = std::filesystem;
 
-TEST(MapSuggestCommand, CompletesAPartialMapAndChecksItAgainstTheTrueOne) {
-    const fs::path dir = freshTestDir("map-suggest");
-    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frame-count 20").exitCode, 0);
+namespace {
+
+// The demo in `dir` and `dir`/partial.json, its map cut to six picks as an animator clicks them
+// first; the demo map's marker count.
+int demoWithSixPicks(const fs::path& dir) {
+    EXPECT_EQ(runCli("demo --out " + dir.string() + " --frame-count 20").exitCode, 0);
     nlohmann::json map;
     std::ifstream(dir / "walker.map.json") >> map;
     nlohmann::json picks = nlohmann::json::array();
     for (const auto& m : map["markers"])
         for (const char* label : {"LFHD", "LASI", "LWRA", "RWRA", "LANK", "RANK"})
             if (m["label"] == label) picks.push_back(m);
-    ASSERT_EQ(picks.size(), 6u);
+    EXPECT_EQ(picks.size(), 6u);
     const int total = static_cast<int>(map["markers"].size());
     map["markers"] = picks;
     std::ofstream(dir / "partial.json") << map.dump();
+    return total;
+}
+
+}  // namespace
+
+TEST(MapSuggestCommand, CompletesAPartialMapAndChecksItAgainstTheTrueOne) {
+    const fs::path dir = freshTestDir("map-suggest");
+    const int total = demoWithSixPicks(dir);
 
     const CliResult r = runCli(
         "map suggest --mesh " + (dir / "walker.obj").string() + " --c3d " +
@@ -368,15 +379,7 @@ TEST(MapSuggestCommand, AnExistingOutThatDiffersIsKeptUnlessForced) {
 // though the suggestions are made on fits solved as solve solves them.
 TEST(MapSuggestCommand, TakesTheMeshsUpAxisAsSolveDoesAndRefusesOneSolveRefuses) {
     const fs::path dir = freshTestDir("map-suggest-up");
-    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frame-count 20").exitCode, 0);
-    nlohmann::json map;
-    std::ifstream(dir / "walker.map.json") >> map;
-    nlohmann::json picks = nlohmann::json::array();
-    for (const auto& m : map["markers"])
-        for (const char* label : {"LFHD", "LASI", "LWRA", "RWRA", "LANK", "RANK"})
-            if (m["label"] == label) picks.push_back(m);
-    map["markers"] = picks;
-    std::ofstream(dir / "partial.json") << map.dump();
+    demoWithSixPicks(dir);
     const std::string args = "map suggest --mesh " + (dir / "walker.obj").string() + " --c3d " +
                              (dir / "walker.c3d").string() + " --map " +
                              (dir / "partial.json").string() + " --check " +
