@@ -235,9 +235,7 @@ std::string worseAlignmentWarning(const TriMesh& mesh, const C3dFrameReader& tak
     std::vector<std::string> chose;
     for (const std::string key : {"calibration_frame", "mesh_up"}) {
         if (key == "calibration_frame" ? options.calibrationFrame < 0 : !options.meshUp) continue;
-        std::string flag = key;
-        std::replace(flag.begin(), flag.end(), '_', '-');
-        chose.push_back(keys ? "\"" + key + "\"" : "--" + flag);
+        chose.push_back(keys ? "\"" + key + "\"" : optionFlag(*findTakeOption(key)));
     }
     char figures[160];
     std::snprintf(figures, sizeof figures,
