@@ -314,6 +314,8 @@ class ObjParser {
     void countGroupFace(std::string_view rest) {
         corners_.clear();
         for (auto t = nextToken(rest); !t.empty(); t = nextToken(rest)) {
+            t = beforeComment(t, rest);  // as face() cuts "3/1/#1": else the count took a corner
+            if (t.empty()) break;
             int index = 0;
             std::from_chars(afterPlus(t), t.data() + t.size(), index);
             if (index != 0) corners_.push_back(index > 0 ? index - 1 : vertexCount_ + index);

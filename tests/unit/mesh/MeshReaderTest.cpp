@@ -927,6 +927,17 @@ TEST(MeshReaderGroups, SelectedGroupKeepsItsVerticesInFileOrder) {
     EXPECT_EQ(readMesh(path, {"lonely"}).sourceVertexIndex, (std::vector<int>{0, 1, 2}));
 }
 
+// The OBJ fuzzer's find: a comment straight after a corner's slash ("3/1/#1") ends the face
+// there, so the face is a triangle; the group chooser counted the fourth corner after it.
+TEST(MeshReaderGroups, AGroupsVertexCountIsTheReadMeshsWhenACommentCutsAFace) {
+    const std::string path = writeFile(
+        "cut-face.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\ng quad\nf 1/1/1 2/1/1 3/1/#1 4/1/1\n");
+    const std::vector<ObjGroup> groups = objGroups(path);
+    ASSERT_EQ(groups.size(), 1u);
+    EXPECT_EQ(groups[0].vertices, readMesh(path, {"quad"}).mesh.vertexCount());
+    EXPECT_EQ(groups[0].vertices, 3);
+}
+
 TEST(MeshReaderGroups, NonObjFilesHaveNoGroups) {
     EXPECT_TRUE(objGroups(writeFile("nogroups.off", offText(tentV(), tentP))).empty());
     EXPECT_TRUE(objGroups(writeFile("nogroups.obj", objText(tentV(), tentP))).empty());
