@@ -13,6 +13,7 @@
 #include <QtTest>
 #include <cstdio>
 
+#include "AppRun.h"
 #include "ViewTestSupport.h"
 #include "boneless/ui/Document.h"
 #include "boneless/ui/MainWindow.h"
@@ -258,13 +259,8 @@ class LostWorkTest : public QObject {
     void theAppQuitsOnSigterm() {
         const QString project = test::writeDemoProject(folder_ + "/app");
         const QString home = folder_ + "/app-home";
-        QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
-        env.insert("XDG_CONFIG_HOME", home + "/config");
-        env.insert("XDG_DATA_HOME", home + "/data");
-        env.insert("XDG_CACHE_HOME", home + "/cache");
-        env.insert("OPENBLAS_NUM_THREADS", "1");
         QProcess app;
-        app.setProcessEnvironment(env);
+        app.setProcessEnvironment(test::appEnvironment(home));
         app.setProcessChannelMode(QProcess::MergedChannels);
         app.start(QStringLiteral(BONELESS_GUI), {"--project", project});
         QVERIFY(app.waitForStarted());
