@@ -955,3 +955,26 @@ TEST(SolveCommand, AnAlignmentMuchWorseThanTheAutomaticChoiceIsWarnedOfNamingBot
     EXPECT_NE(r.out.find("; try without \"calibration_frame\" and \"mesh_up\""), std::string::npos)
         << r.out;
 }
+
+// The OBJ frames' first line named the take as typed (`demo/walker.c3d`), so the same solve run
+// from another folder, or by the app, wrote other bytes; it names the take in full, as the
+// sidecar does.
+TEST(SolveCommand, ObjFramesNameTheirInputsInFullWhicheverFolderSolveRanIn) {
+    const fs::path demo = makeDemo(2);
+    const std::string name = demo.filename().string();
+    const CliResult r =
+        runShell("cd " + demo.parent_path().string() + " && " + BONELESS_CLI + " solve --mesh " +
+                 name + "/walker.obj --c3d " + name + "/walker.c3d --map " + name +
+                 "/walker.map.json --out " + name + "/x --write-calibrated-rest --quiet 2>&1");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    const auto firstLine = [](const fs::path& file) {
+        std::string line;
+        std::getline(std::ifstream(file), line);
+        return line;
+    };
+    const std::string take = (demo / "walker.c3d").string();
+    EXPECT_EQ(firstLine(demo / "x" / "walker_0000.obj"), "# Boneless: " + take + " frame 0");
+    EXPECT_EQ(firstLine(demo / "x" / "walker_calibrated_rest.obj")
+                  .rfind("# Boneless: " + (demo / "walker.obj").string() + " fitted to " + take, 0),
+              0u);
+}

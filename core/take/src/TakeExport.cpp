@@ -331,13 +331,18 @@ json calibrationJson(const ExportRequest& request, const TriMesh& mesh, const Ta
     return j;
 }
 
-// An input as the sidecar names it: in full, so that the same file is recognised whichever folder
-// solve, batch or the app ran in. JSON holds only UTF-8: a Latin-1 name is read as Latin-1.
-json recordedPath(const std::string& path) {
-    if (path.empty()) return nullptr;  // the app's map may be in no file
+// An input as the outputs name it: in full, so that the same file is named alike whichever folder
+// solve, batch or the app ran in (and their outputs match byte for byte).
+std::string fullPath(const std::string& path) {
     std::error_code ec;
     const fs::path full = fs::absolute(path, ec).lexically_normal();
-    return validUtf8(ec ? path : full.string());
+    return ec ? path : full.string();
+}
+
+// JSON holds only UTF-8: a Latin-1 name is read as Latin-1.
+json recordedPath(const std::string& path) {
+    if (path.empty()) return nullptr;  // the app's map may be in no file
+    return validUtf8(fullPath(path));
 }
 
 json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibration& c,
@@ -596,7 +601,7 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
     }
     FrameOutput output = openFrameOutput(
         request.format, request.outDir, stem, mesh, request.first, take.rate,
-        "Boneless: " + request.c3dPath,
+        "Boneless: " + fullPath(request.c3dPath),
         gltfPlacement(solver.calibration().takeToMesh, take.unitToMm, take.vertical));
 
     std::string restFile;
@@ -606,7 +611,8 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
                 "writing the calibrated rest needs calibration (calibrate: none was given)");
         restFile = stem + "_calibrated_rest.obj";
         writeObj((out / restFile).string(), solver.rest().V, mesh.F,
-                 "Boneless: " + request.meshPath + " fitted to " + request.c3dPath + " at frame " +
+                 "Boneless: " + fullPath(request.meshPath) + " fitted to " +
+                     fullPath(request.c3dPath) + " at frame " +
                      std::to_string(solver.calibration().frame),
                  mesh.sourceFaces.get());
     }
