@@ -18,6 +18,8 @@
 
 namespace {
 
+constexpr int kMinSide = 16, kMaxSide = 16384;  // a screenshot's side, in pixels
+
 void fail(const QString& message) {
     std::fprintf(stderr, "boneless: %s\n", qPrintable(message));
 }
@@ -88,8 +90,9 @@ int main(int argc, char** argv) {
     const QCommandLineOption screenshot("screenshot",
                                         "Render the frame into the PNG file OUT and exit.", "OUT");
     const QCommandLineOption noMsaa("no-msaa", "Render without multisampling.");
-    const QCommandLineOption size("size", "With --screenshot: the view's size WxH (800x600).",
-                                  "WxH", "800x600");
+    const QCommandLineOption size(
+        "size", "With --screenshot: the view's size WxH, 16 to 16384 pixels a side (800x600).",
+        "WxH", "800x600");
     const QCommandLineOption group(
         "group", "Open group G of an OBJ among the files, without asking which.", "G");
     parser.addOptions({project, frame, group, screenshot, noMsaa, size});
@@ -127,11 +130,22 @@ int main(int argc, char** argv) {
     QSize viewSize(800, 600);
     if (batch) {
         const QStringList wh = parser.value(size).split('x');
-        if (wh.size() != 2 || wh[0].toInt() < 16 || wh[1].toInt() < 16) {
+        bool okW = false, okH = false;
+        const int w = wh.size() == 2 ? wh[0].toInt(&okW) : 0;
+        const int h = wh.size() == 2 ? wh[1].toInt(&okH) : 0;
+        if (!okW || !okH) {
             fail(QString("--size wants WxH, not '%1'").arg(parser.value(size)));
             return 2;
         }
-        viewSize = QSize(wh[0].toInt(), wh[1].toInt());
+        // Past 16384 a side, Mesa's frame buffer fails: a blank picture, or a crash.
+        if (w < kMinSide || h < kMinSide || w > kMaxSide || h > kMaxSide) {
+            fail(QString("--size: each side must be %1 to %2 pixels, not '%3'")
+                     .arg(kMinSide)
+                     .arg(kMaxSide)
+                     .arg(parser.value(size)));
+            return 2;
+        }
+        viewSize = QSize(w, h);
     }
 
     boneless::ui::MainWindow window;

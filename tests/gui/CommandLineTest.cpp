@@ -61,6 +61,22 @@ class CommandLineTest : public QObject {
                  qPrintable(run.output));
     }
 
+    // A screenshot past 16384 pixels a side came out blank (exit 0) or crashed the app; one under
+    // 16 was refused as not "WxH".
+    void aScreenshotSizeOutOfRangeIsRefusedNamingTheRange() {
+        for (const QString& size : {"20000x100", "100x16385", "10x10"}) {
+            const QStringList arguments{"--screenshot", "x.png", "--size", size};
+            const AppRun run = runFromShell(arguments, false);
+            QVERIFY2(!run.crashed && run.exitCode == 2, qPrintable(exitText(arguments, run)));
+            QVERIFY2(run.output.contains("--size: each side must be 16 to 16384 pixels, not '" +
+                                         size + "'"),
+                     qPrintable(run.output));
+        }
+        const AppRun run = runFromShell({"--screenshot", "x.png", "--size", "800by600"}, false);
+        QVERIFY2(run.exitCode == 2 && run.output.contains("--size wants WxH, not '800by600'"),
+                 qPrintable(run.output));
+    }
+
     // Answering --help early must not let a wrong option through to the window.
     void anUnknownOptionIsStillRefusedWithTheParsersMessage() {
         const AppRun run = runFromShell({"--no-such-option"}, false);
