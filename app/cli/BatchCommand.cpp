@@ -113,7 +113,9 @@ void applyKeys(const json& object, const fs::path& base, const std::string& wher
             } else
                 throw Error(where + ": unknown key \"" + written + "\"");
         } catch (const json::exception&) {
-            throw Error(where + ": \"" + written + "\" has the wrong type (" + value.dump() + ")");
+            const char* wants = key == "write_calibrated_rest" ? "true or false" : "a string";
+            throw Error(where + ": \"" + written + "\" has the wrong type (" + value.dump() +
+                        "): it wants " + wants);
         }
     }
 }

@@ -117,7 +117,8 @@ void addTakeJobOptions(CLI::App* cmd, TakeJob& job) {
     std::string formats;
     for (const ExportFormatInfo& f : exportFormats())
         formats += std::string(formats.empty() ? "" : "; ") + f.name + ": " + f.description;
-    cmd->add_option("--format", job.format, formats)->check(CLI::IsMember(formatNames()));
+    cmd->add_option("--format", job.format, withDefault(formats, job.format))
+        ->check(CLI::IsMember(formatNames()));
     cmd->add_option("--frames", job.frames, "Frame range A:B (0-based, B excluded; A: or :B)");
     addOptionFlags(cmd, job.options, toJson(TakeSolveOptions{}), false);
     cmd->add_flag("--write-calibrated-rest", job.writeCalibratedRest,

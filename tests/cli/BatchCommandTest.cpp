@@ -336,7 +336,14 @@ TEST(Batch, AManifestMistakeNamesTheFileAndTheEntry) {
         {{{"takes", {{{"c3d", "a.c3d"}, {"mesh", "m.obj"}, {"map", "x"}}}}},
          "m.json: takes[0]: \"out\" is missing\n"},
         {{{"takes", {{{"c3d", "a.c3d"}, {"mesh", 3}}}}},
-         "m.json: takes[0]: \"mesh\" has the wrong type (3)\n"},
+         "m.json: takes[0]: \"mesh\" has the wrong type (3): it wants a string\n"},
+        {{{"takes",
+           {{{"c3d", "a.c3d"},
+             {"mesh", "m.obj"},
+             {"out", "x"},
+             {"write_calibrated_rest", "yes"}}}}},
+         "m.json: takes[0]: \"write_calibrated_rest\" has the wrong type (\"yes\"): it wants true "
+         "or false\n"},
         // As a path flag refuses "": it named the manifest's folder, and solved into it.
         {{{"takes", {{{"c3d", "a.c3d"}, {"mesh", "m.obj"}, {"map", "x"}, {"out", ""}}}}},
          "m.json: takes[0]: \"out\" must be a path, got \"\"\n"},

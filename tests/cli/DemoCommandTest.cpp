@@ -69,7 +69,7 @@ TEST(DemoCommand, ATakeLongerThanMemoryCouldHoldIsWrittenFrameByFrame) {
 }
 
 // solve --help gives each option's default ("[0.2]"); demo's gave none of 60 frames, detail 1 and
-// 10 mm, nor eval's of its method, drop and seed. Each is given as solve's are.
+// 10 mm, nor eval's of its method, drop and seed, nor solve's of --format. Each is given so.
 TEST(DemoCommand, TheHelpGivesEachDefaultAsSolvesDoes) {
     const std::pair<std::string, std::string> helped[] = {
         {"demo", "How many frames the take has (1 to 100000) [60]\n"},
@@ -79,7 +79,8 @@ TEST(DemoCommand, TheHelpGivesEachDefaultAsSolvesDoes) {
         {"eval", "Percentage of markers missing in each frame (seeded) [0.0]\n"},
         {"eval", "Seed for --drop [1]\n"},
         {"map suggest", "how near counts as landing (0.1 to 1000) [30.0]\n"},
-        {"solve", "longer gaps stay missing; 0 = off (s) [0.2]\n"}};
+        {"solve", "longer gaps stay missing; 0 = off (s) [0.2]\n"},
+        {"solve", "(Blender, Unity, web viewers) [\"obj\"]\n"}};
     for (const auto& [command, line] : helped) {
         const CliResult r = runCli(command + " --help");
         EXPECT_EQ(r.exitCode, 0) << r.out;

@@ -88,8 +88,8 @@ const std::vector<Entry>& entries() {
          }},
         {choice("mesh_up", {"auto", "+x", "-x", "+y", "-y", "+z", "-z"},
                 "the mesh's up axis, where the take's vertical goes; auto: the axis nearest "
-                "where the alignment at the calibration frame puts it (set it for an actor who "
-                "lies or rolls there)",
+                "where the alignment puts it (set it for an actor who lies or rolls in the "
+                "frame the take is aligned at)",
                 {}, false),
          [](const TakeSolveOptions& o) { return json(o.meshUp ? axisName(*o.meshUp) : "auto"); },
          [](TakeSolveOptions& o, const json& v) { o.meshUp = parseAxis(v.get<std::string>()); }},

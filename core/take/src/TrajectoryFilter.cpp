@@ -26,8 +26,8 @@ Biquad butterworth(double rate, double cutoffHz) {
     if (!(cutoffHz > 0) || !(corrected < 0.5 * rate)) {
         char why[160];
         std::snprintf(why, sizeof why,
-                      "low-pass cutoff %g Hz must be positive and below %.3g Hz at a frame rate "
-                      "of %g Hz",
+                      "low-pass cutoff %g Hz must be below %.3g Hz (0.4 times the take's frame "
+                      "rate, %g Hz), or 0 for no filter",
                       cutoffHz, 0.5 * rate * kTwoPassCorrection, rate);
         throw Error(why);
     }
