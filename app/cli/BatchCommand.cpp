@@ -24,6 +24,7 @@
 #include "boneless/Error.h"
 #include "boneless/ExportFormat.h"
 #include "boneless/InputFile.h"
+#include "boneless/MeshReader.h"
 #include "boneless/TakeExport.h"
 #include "boneless/TakeOptionsJson.h"
 #include "boneless/Text.h"
@@ -336,13 +337,28 @@ std::optional<std::uint32_t> headerWord(const fs::path& file, std::streamoff off
                      b[0];
 }
 
+// A point count a cache must hold, and who says so: the mesh's vertices, the sidecar's record.
+struct PointCount {
+    int points;
+    std::string said;  // "walker.obj has 3426 vertices", "its sidecar says 3426"
+};
+
 // Why `file`, an output of `frames` frames, is not what the export wrote, or "" if it may be: what
 // its size and first bytes tell, without reading it (a PC2's or MDD's size is fixed by its point
 // and frame counts, a glb's header says its length, an OBJ a solve wrote starts with its line).
-std::string outputFault(const fs::path& file, ExportFormat format, int frames) {
+// A cache's header must give each of `points`: a PC2 of another mesh is the right size for its
+// own header.
+std::string outputFault(const fs::path& file, ExportFormat format, int frames,
+                        const std::vector<PointCount>& points) {
     std::error_code ec;
     const std::uintmax_t size = fs::file_size(file, ec);
     if (ec || size == 0) return "is missing or empty";
+    const auto otherPoints = [&](std::uint32_t header) {
+        for (const PointCount& p : points)
+            if (std::int64_t(header) != p.points)
+                return "holds " + std::to_string(header) + " points where " + p.said;
+        return std::string();
+    };
     const auto need = [&](std::uintmax_t bytes) {
         return bytes == size
                    ? std::string()
@@ -358,11 +374,13 @@ std::string outputFault(const fs::path& file, ExportFormat format, int frames) {
             const std::optional<std::uint32_t> points = headerWord(file, 16, false);
             if (!points || size < 32)
                 return "holds " + std::to_string(size) + " bytes, less than a PC2 header";
+            if (const std::string other = otherPoints(*points); !other.empty()) return other;
             return need(32 + std::uintmax_t(12) * *points * frames);
         }
         case ExportFormat::Mdd: {  // the frame and point counts, a time per frame, the points
             const std::optional<std::uint32_t> points = headerWord(file, 4, true);
             if (!points) return "holds " + std::to_string(size) + " bytes, less than an MDD header";
+            if (const std::string other = otherPoints(*points); !other.empty()) return other;
             return need(8 + std::uintmax_t(4) * frames + std::uintmax_t(12) * *points * frames);
         }
         case ExportFormat::Glb: {  // "glTF", the version, the file's length
@@ -379,8 +397,10 @@ std::string outputFault(const fs::path& file, ExportFormat format, int frames) {
 // Why the files a complete sidecar vouches for are not all there as written, or "" if they are:
 // an output deleted, cut short or overwritten (a copy, a full disk) since. Named as exportTake
 // names them, not as recorded (a name that is not UTF-8 is recorded otherwise): the frames of
-// `range`, or the cache or glb, and the calibrated rest when the entry asks for it.
-std::string damagedOutputs(const TakeJob& job, const json& range) {
+// `range`, or the cache or glb, and the calibrated rest when the entry asks for it. A cache holds
+// `points` points a frame.
+std::string damagedOutputs(const TakeJob& job, const json& range,
+                           const std::vector<PointCount>& points) {
     const fs::path sidecar = takeJobSidecar(job), out = sidecar.parent_path();
     const std::string stem = sidecar.stem().string();
     const ExportFormat format = findExportFormat(job.format).value_or(ExportFormat::Obj);
@@ -396,7 +416,7 @@ std::string damagedOutputs(const TakeJob& job, const json& range) {
     std::string fault;
     bool gone = true;  // every one missing or empty
     for (const auto& [file, kind] : files)
-        if (const std::string why = outputFault(file, kind, end - first); !why.empty()) {
+        if (const std::string why = outputFault(file, kind, end - first, points); !why.empty()) {
             bad.push_back(file.filename().string());
             if (fault.empty()) fault = why;
             gone = gone && why == "is missing or empty";
@@ -409,11 +429,39 @@ std::string damagedOutputs(const TakeJob& job, const json& range) {
            (bad.size() > named ? " and " + std::to_string(bad.size() - named) + " more" : "") + ")";
 }
 
+// The vertices of each mesh (and group) this run has read, by its path and group: a cache's point
+// count must match them, and a library's takes share a few meshes.
+using VertexCounts = std::map<std::pair<std::string, std::string>, int>;
+
+// The point counts the job's cache must hold: its mesh's vertices, and the sidecar's record of
+// them when it has one (sidecars before 30 November 2026 have none). None for OBJ frames and glb.
+std::vector<PointCount> cachePoints(const TakeJob& job, const json& sidecar, VertexCounts& known) {
+    const ExportFormat format = findExportFormat(job.format).value_or(ExportFormat::Obj);
+    if (format != ExportFormat::Pc2 && format != ExportFormat::Mdd) return {};
+    auto it = known.find({job.mesh, job.group});
+    if (it == known.end()) {
+        MeshReadOptions options;
+        options.group = job.group;
+        it = known
+                 .emplace(std::pair{job.mesh, job.group},
+                          readMesh(job.mesh, options).mesh.vertexCount())
+                 .first;
+    }
+    std::string mesh = fs::path(job.mesh).filename().string();
+    if (!job.group.empty()) mesh += " (group " + job.group + ")";
+    std::vector<PointCount> points{
+        {it->second, mesh + " has " + plural(it->second, "vertex", "vertices")}};
+    if (const json v = sidecar.value("vertices", json()); v.is_number_integer())
+        points.push_back({v.get<int>(), "its sidecar says " + std::to_string(v.get<int>())});
+    return points;
+}
+
 // A take is done when its sidecar says it completed from the same sources into the same format,
 // over the frames and with the options the manifest asks for now, the files it wrote are still
 // there, and its input files are as they were then. Otherwise it is solved again, `why` saying
 // why: other frames or options (the manifest changed), an output gone, or other file contents.
-Sidecar sidecarState(const TakeJob& job, Fingerprints& known, std::string& why) {
+Sidecar sidecarState(const TakeJob& job, Fingerprints& known, VertexCounts& meshes,
+                     std::string& why) {
     std::ifstream in(takeJobSidecar(job));
     if (!in) return Sidecar::Missing;
     try {
@@ -454,7 +502,8 @@ Sidecar sidecarState(const TakeJob& job, Fingerprints& known, std::string& why) 
         if (recorded.is_object() && !recorded.contains("mesh_up")) recorded["mesh_up"] = "auto";
         if (!(sameFrames && sameRest && recorded == toJson(options)))
             why = "its sidecar is from other frames or options";
-        if (why.empty()) why = damagedOutputs(job, s.at("frame_range"));
+        if (why.empty())
+            why = damagedOutputs(job, s.at("frame_range"), cachePoints(job, s, meshes));
         if (why.empty()) why = changedInputs(s.value("source_fingerprints", json()), job, known);
         return why.empty() ? Sidecar::Complete : Sidecar::Stale;
     } catch (const json::exception&) {
@@ -476,12 +525,13 @@ void run(const BatchArgs& args) {
     std::set<std::string> notedMeshes;  // mesh and group
     std::set<std::string> notedMaps;
     Fingerprints fingerprints;
+    VertexCounts vertexCounts;
     for (std::size_t k = 0; k < jobs.size(); ++k) {
         if (static_cast<int>(k % shards) != shard - 1) continue;
         const TakeJob& job = jobs[k];
         std::printf("[%d/%d] %s -> %s: ", ++done, mine, job.c3d.c_str(), job.out.c_str());
         std::string why;
-        const Sidecar sidecar = sidecarState(job, fingerprints, why);
+        const Sidecar sidecar = sidecarState(job, fingerprints, vertexCounts, why);
         if (sidecar == Sidecar::Complete) {
             std::printf("skipped (its sidecar says it is complete)\n");
             ++skipped;

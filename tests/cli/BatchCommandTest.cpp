@@ -947,3 +947,72 @@ TEST(Batch, ANoteOnAnEarlierExportGoesUnderTheTakesFinishedLine) {
               std::string::npos)
         << r.out;
 }
+
+namespace {
+
+// A point cache of `points` points and `frames` frames whose size is what its own header gives.
+void writePc2(const fs::path& file, std::uint32_t points, std::uint32_t frames) {
+    std::ofstream out(file, std::ios::binary | std::ios::trunc);
+    const float start = 0, rate = 1;
+    const std::uint32_t version = 1;
+    out.write("POINTCACHE2\0", 12);
+    out.write(reinterpret_cast<const char*>(&version), 4);
+    out.write(reinterpret_cast<const char*>(&points), 4);
+    out.write(reinterpret_cast<const char*>(&start), 4);
+    out.write(reinterpret_cast<const char*>(&rate), 4);
+    out.write(reinterpret_cast<const char*>(&frames), 4);
+    out << std::string(std::size_t(12) * points * frames, '\0');
+}
+
+void bigEndian(std::ofstream& out, std::uint32_t word) {
+    const char b[4] = {char(word >> 24), char(word >> 16), char(word >> 8), char(word)};
+    out.write(b, 4);
+}
+
+void writeMdd(const fs::path& file, std::uint32_t points, std::uint32_t frames) {
+    std::ofstream out(file, std::ios::binary | std::ios::trunc);
+    bigEndian(out, frames);
+    bigEndian(out, points);
+    out << std::string(std::size_t(4) * frames + std::size_t(12) * points * frames, '\0');
+}
+
+}  // namespace
+
+// A cache's size was checked against its own header's point count: a PC2 or MDD of another mesh
+// (or one whose header was damaged consistently) passed as complete and the take was skipped.
+TEST(Batch, ACacheWhosePointCountIsNotTheMeshsIsSolvedAgainNamingBothCounts) {
+    const fs::path dir = makeLibrary();
+    json manifest = {{"defaults", {{"mesh", "walker.obj"}, {"map", "walker.map.json"}}},
+                     {"takes",
+                      {{{"c3d", "takes/walk_a.c3d"}, {"format", "pc2"}, {"out", "pc2"}},
+                       {{"c3d", "takes/walk_a.c3d"}, {"format", "mdd"}, {"out", "mdd"}},
+                       {{"c3d", "takes/walk_b.c3d"}, {"format", "pc2"}, {"out", "pc2b"}}}}};
+    const fs::path path = writeManifest(dir, "m.json", manifest);
+    ASSERT_EQ(runCli("batch " + path.string()).exitCode, 0);
+    const std::uintmax_t pc2 = fs::file_size(dir / "pc2" / "walker.pc2");
+    const int vertices = static_cast<int>((pc2 - 32) / 12 / 4);
+    writePc2(dir / "pc2" / "walker.pc2", 100, 4);
+    writeMdd(dir / "mdd" / "walker.mdd", 100, 4);
+    // The cache is the mesh's, but the sidecar says otherwise: one of the two is not this take's.
+    json sidecar = json::parse(std::ifstream(dir / "pc2b" / "walker.json"));
+    sidecar["vertices"] = 100;
+    std::ofstream(dir / "pc2b" / "walker.json") << sidecar.dump();
+
+    const CliResult again = runCli("batch " + path.string());
+    EXPECT_EQ(again.exitCode, 0) << again.out;
+    const std::string mesh = "walker.obj has " + std::to_string(vertices) + " vertices";
+    for (const std::string& line :
+         {"walker.pc2 holds 100 points where " + mesh + ", solving again: 4 frames",
+          "walker.mdd holds 100 points where " + mesh + ", solving again: 4 frames",
+          "walker.pc2 holds " + std::to_string(vertices) +
+              " points where its sidecar says 100, solving again: 5 frames",
+          std::string("3 of 3 takes in shard 1/1: 3 solved, 0 skipped, 0 failed")})
+        EXPECT_NE(again.out.find(line), std::string::npos) << line << "\n" << again.out;
+    EXPECT_EQ(fs::file_size(dir / "pc2" / "walker.pc2"), pc2);
+    EXPECT_EQ(json::parse(std::ifstream(dir / "pc2b" / "walker.json")).value("vertices", 0),
+              vertices);
+    const CliResult third = runCli("batch " + path.string());
+    EXPECT_NE(third.out.find("3 of 3 takes in shard 1/1: 0 solved, 3 skipped, 0 failed"),
+              std::string::npos)
+        << third.out;
+}

@@ -12,6 +12,7 @@
 #include "boneless/ui/Timeline.h"
 
 using namespace boneless::ui;
+using boneless::estimateSolveMemory;
 using boneless::limitSolveMemoryForTests;
 using boneless::SolverOptions;
 
@@ -102,9 +103,14 @@ class MemoryRefusalTest : public QObject {
         MainWindow& window = *shown;
         QVERIFY(window.isSolving());
         Document& document = *window.document();
-        // Local/global takes about 4 KB a face, exact 16 KB, and one solver at most 80 % of the
-        // limit: at 10 KB a face of limit, only local/global fits.
-        limitSolveMemoryForTests(std::uint64_t(document.mesh().faceCount()) * 10 * 1024);
+        // A limit between the two methods' estimates: only local/global fits.
+        const int vertices = document.mesh().vertexCount(), faces = document.mesh().faceCount();
+        const std::uint64_t localGlobal =
+            estimateSolveMemory(vertices, faces, SolverOptions::Method::LocalGlobal).firstRun;
+        const std::uint64_t exact =
+            estimateSolveMemory(vertices, faces, SolverOptions::Method::Exact).firstRun;
+        QVERIFY(localGlobal < exact);
+        limitSolveMemoryForTests((localGlobal + exact) / 2);
 
         auto settings = document.settings();
         settings.solver.method = SolverOptions::Method::Exact;

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <thread>
+#include <utility>
 
 #include "boneless/Error.h"
 #include "boneless/SolveFits.h"
@@ -22,9 +23,8 @@ namespace {
 // need several times more than the local/global method's levels.
 constexpr double kLocalGlobalBytesPerFace = 4.0 * 1024;
 constexpr double kExactBytesPerFace = 16.0 * 1024;
-// One solver may take at most this share of the budget.
-constexpr double kLargestShare = 0.8;
-// The address space a first solver's run maps, which ulimit -v caps: the program and its
+// What a first solver's run takes, held against every limit (physical memory, ulimit -v, a
+// cgroup): the address space it maps, which ulimit -v caps, the program and its
 // libraries, a buffer for each of OpenBLAS's threads, then 4.8 KB a face for the mesh, take,
 // calibration and solver. Fitted on 2 cores to the smallest limits that solved 4 frames of CMU
 // 85_02 (docs/benchmarks.md): the koala (99,994 faces) needs 650 to 684 MB (558 to 605 MB with
@@ -63,63 +63,82 @@ std::string thousands(int n) {
 
 }  // namespace
 
-SolveMemory estimateSolveMemory(int vertices, int faces, SolverOptions::Method method) {
+std::uint64_t physicalMemory() {
+    const long pages = ::sysconf(_SC_PHYS_PAGES), pageSize = ::sysconf(_SC_PAGESIZE);
+    return pages > 0 && pageSize > 0 ? std::uint64_t(pages) * std::uint64_t(pageSize) : 0;
+}
+
+std::uint64_t addressSpaceLimit() {
+    rlimit limit{};
+    return ::getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY ? limit.rlim_cur
+                                                                                  : 0;
+}
+
+std::uint64_t cgroupMemoryMax(const std::string& file) {
+    std::uint64_t bytes = 0;
+    return std::ifstream(file) >> bytes ? bytes : 0;
+}
+
+MemoryBudget lowestBudget(std::uint64_t physical, std::uint64_t addressSpace, std::uint64_t cgroup,
+                          std::uint64_t test) {
+    MemoryBudget budget;
+    for (const auto& [bytes, from] :
+         {std::pair{physical, "this machine's physical memory"},
+          {addressSpace, "the process's address-space limit (ulimit -v)"},
+          {cgroup, "the cgroup's memory.max"},
+          {test, "the limit set for tests"}})
+        if (bytes > 0 && (budget.bytes == 0 || bytes < budget.bytes)) budget = {bytes, from};
+    return budget;
+}
+
+MemoryBudget processBudget() {
+    return lowestBudget(physicalMemory(), addressSpaceLimit(), cgroupMemoryMax(), testLimit);
+}
+
+SolveMemory estimateSolveMemory(int vertices, int faces, SolverOptions::Method method,
+                                const MemoryBudget& budget) {
     (void)vertices;  // a closed mesh has twice as many faces as vertices: faces say it all
     SolveMemory m;
     const double perFace =
         method == SolverOptions::Method::Exact ? kExactBytesPerFace : kLocalGlobalBytesPerFace;
     m.perSolver = static_cast<std::uint64_t>(perFace * std::max(faces, 0));
-    m.addressSpace = static_cast<std::uint64_t>(
+    m.firstRun = static_cast<std::uint64_t>(
         kAddressSpaceBase + kAddressSpacePerBlasThread * (blasThreads() - 1) +
         (kAddressBytesPerFace - kLocalGlobalBytesPerFace + perFace) * std::max(faces, 0));
-    const long pages = ::sysconf(_SC_PHYS_PAGES), pageSize = ::sysconf(_SC_PAGESIZE);
-    m.budget = pages > 0 && pageSize > 0 ? std::uint64_t(pages) * std::uint64_t(pageSize) : 0;
-    m.budgetFrom = "this machine's physical memory";
-    rlimit limit{};
-    if (::getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY &&
-        (m.budget == 0 || limit.rlim_cur < m.budget)) {
-        m.budget = limit.rlim_cur;
-        m.budgetFrom = "the process's address-space limit (ulimit -v)";
-        m.budgetIsAddressSpace = true;
-    }
-    std::uint64_t cgroup = 0;
-    if (std::ifstream("/sys/fs/cgroup/memory.max") >> cgroup && cgroup > 0 &&
-        (m.budget == 0 || cgroup < m.budget)) {
-        m.budget = cgroup;
-        m.budgetFrom = "the cgroup's memory.max";
-        m.budgetIsAddressSpace = false;
-    }
-    if (const std::uint64_t test = testLimit; test > 0 && (m.budget == 0 || test < m.budget)) {
-        m.budget = test;
-        m.budgetFrom = "the limit set for tests";
-        m.budgetIsAddressSpace = false;
-    }
+    m.budget = budget;
     return m;
+}
+
+SolveMemory estimateSolveMemory(int vertices, int faces, SolverOptions::Method method) {
+    return estimateSolveMemory(vertices, faces, method, processBudget());
 }
 
 void limitSolveMemoryForTests(std::uint64_t bytes) {
     testLimit = bytes;
 }
 
-void checkSolveFits(const TriMesh& mesh, const std::string& meshPath,
-                    SolverOptions::Method method) {
-    const int vertices = mesh.vertexCount(), faces = mesh.faceCount();
-    const SolveMemory memory = estimateSolveMemory(vertices, faces, method);
-    // Under ulimit -v all the address space mapped counts, and nothing else is the user's; the
-    // resident figure left out the program and its libraries, so a limit between 400 and 700 MB
-    // passed the koala, which then ran out of memory half a minute in.
-    const std::uint64_t need = memory.budgetIsAddressSpace ? memory.addressSpace : memory.perSolver;
-    const double share = memory.budgetIsAddressSpace ? 1.0 : kLargestShare;
-    if (memory.budget == 0 || double(need) <= share * double(memory.budget)) return;
+void checkSolveFits(int vertices, int faces, const std::string& meshPath,
+                    SolverOptions::Method method, const MemoryBudget& budget) {
+    const SolveMemory memory = estimateSolveMemory(vertices, faces, method, budget);
+    // One figure whatever sets the limit: physical memory and a cgroup took the solver's 4 KB a
+    // face against 80 % of themselves, so a cgroup that ulimit -v's check refused passed the
+    // koala, which then ran out of memory; the whole run is what each limit must hold.
+    const std::uint64_t need = memory.firstRun;
+    if (budget.bytes == 0 || need <= budget.bytes) return;
     throw Error(meshPath + ": " + thousands(faces) + " faces (" + thousands(vertices) +
-                " vertices) would need about " + megabytes(need) + " to solve, and " +
-                memory.budgetFrom + " is " + megabytes(memory.budget) +
+                " vertices) would need about " + megabytes(need) + " to solve, and " + budget.from +
+                " is " + megabytes(budget.bytes) +
                 "; decimate the mesh (Blender's Decimate modifier, for one) and solve again");
 }
 
+void checkSolveFits(const TriMesh& mesh, const std::string& meshPath,
+                    SolverOptions::Method method) {
+    checkSolveFits(mesh.vertexCount(), mesh.faceCount(), meshPath, method, processBudget());
+}
+
 int solversThatFit(const SolveMemory& memory, int wanted) {
-    if (memory.budget == 0 || memory.perSolver == 0) return std::max(1, wanted);
-    const auto fit = static_cast<int>(memory.budget / 2 / memory.perSolver);
+    if (memory.budget.bytes == 0 || memory.perSolver == 0) return std::max(1, wanted);
+    const auto fit = static_cast<int>(memory.budget.bytes / 2 / memory.perSolver);
     return std::clamp(fit, 1, std::max(1, wanted));
 }
 

@@ -653,6 +653,9 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
     json sidecar =
         sidecarJson(take, request, solver.calibration(), result, fingerprints,
                     calibrationJson(request, mesh, solver, restFile), perFrame.summary());
+    // The points a frame of the outputs holds: batch checks a cache's header against it and the
+    // mesh, as a cache of another mesh is the right size for its own header.
+    sidecar["vertices"] = mesh.vertexCount();
     // The app's map may be in no file (edited, or kept in the project): the sidecar then holds
     // the map that was solved, so the frames can be traced and solved again.
     if (request.mapPath.empty()) sidecar["map"] = json::parse(map.toJson());
