@@ -14,6 +14,7 @@
 #include "boneless/MeshReader.h"
 #include "boneless/Metrics.h"
 #include "boneless/PointCacheWriter.h"
+#include "boneless/Text.h"
 
 using namespace boneless;
 using namespace boneless::testing;
@@ -179,8 +180,8 @@ TEST(SolveCommand, CtrlCStopsCleanlyWithCompleteFilesOnly) {
     EXPECT_NE(r.out.find("exit=130"), std::string::npos) << r.out;  // 128 + SIGINT, as shells say
     const auto j = sidecar(out);
     // Not "complete", which the sidecar denies.
-    EXPECT_NE(r.out.find("interrupted after " + std::to_string(j["frames_written"].get<int>()) +
-                         " frames: walker.json records the take as incomplete"),
+    EXPECT_NE(r.out.find("interrupted after " + plural(j["frames_written"].get<int>(), "frame") +
+                         ": walker.json records the take as incomplete"),
               std::string::npos)
         << r.out;
     EXPECT_FALSE(j["complete"].get<bool>());
@@ -899,8 +900,8 @@ TEST(SolveCommand, AStopSaysARunAgainSolvesTheTakeFromItsFirstFrame) {
                                  " " + solveArgs(demo, out) + " --quiet 2>&1");
     EXPECT_EQ(r.exitCode, 130) << r.out;
     const int n = sidecar(out)["frames_written"].get<int>();
-    EXPECT_NE(r.out.find("interrupted after " + std::to_string(n) +
-                         " frames: walker.json records the take as incomplete, and solving it "
+    EXPECT_NE(r.out.find("interrupted after " + plural(n, "frame") +
+                         ": walker.json records the take as incomplete, and solving it "
                          "again starts from its first frame"),
               std::string::npos)
         << r.out;
