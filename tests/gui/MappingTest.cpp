@@ -253,6 +253,7 @@ class MappingTest : public QObject {
         window.setMessageBoxesEnabled(false);
         QVERIFY(window.openProject(freshProject()));
         Document* d = window.document();
+        const Correspondence truth = d->correspondence();
         keepFourPicks(d);
         QPushButton* suggest = suggestButton(window);
         QVERIFY(suggest);
@@ -269,6 +270,20 @@ class MappingTest : public QObject {
                  qPrintable(said));
         QCOMPARE(d->undoStack()->undoText(),
                  QString("Suggest %1 markers").arg(d->markerCount() - 4));
+        // The demo's markers sit 10 mm off the skin; nearly all land on their own vertex.
+        int same = 0;
+        for (const MarkerMapping& m : d->correspondence().markers)
+            for (const MarkerMapping& t : truth.markers)
+                same += t.label == m.label && t.vertex == m.vertex;
+        QVERIFY2(same >= 34, qPrintable(QString::number(same)));
+        // Editing a suggestion makes it the user's own entry.
+        int free = 0;
+        while (d->markerForVertex(free) >= 0) ++free;
+        int edited = 0;
+        while (!d->markerSuggested(edited)) ++edited;
+        QVERIFY(d->assign(edited, free));
+        QVERIFY(!d->markerSuggested(edited));
+        d->undoStack()->undo();
         // A later click counts what it adds, not the suggestions the map already holds.
         int dropped = 0;
         while (!d->markerSuggested(dropped)) ++dropped;
@@ -331,6 +346,22 @@ class MappingTest : public QObject {
         QTRY_VERIFY_WITH_TIMEOUT(window.statusBar()->currentMessage().contains("dropped"), 30000);
         QVERIFY(!d->undoStack()->undoText().startsWith("Suggest"));
         QCOMPARE(d->mappedCount(), 4);
+    }
+
+    // Four picks cleared down to none: Suggest Rest says it needs four, and maps nothing.
+    void suggestRestNeedsFourMarkers() {
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        QVERIFY(window.openProject(freshProject()));
+        Document* d = window.document();
+        QVERIFY(d->clearAllMappings());
+        QSignalSpy errors(&window, &MainWindow::errorShown);
+        QVERIFY(window.suggestMappings());
+        QTRY_VERIFY_WITH_TIMEOUT(!window.isSuggesting(), 30000);
+        QCOMPARE(errors.count(), 1);
+        QVERIFY2(errors.first().at(0).toString().contains("at least 4 mapped markers"),
+                 qPrintable(errors.first().at(0).toString()));
+        QCOMPARE(d->mappedCount(), 0);
     }
 
     void openingAMapOverMappingsAsksReplaceMergeOrCancel() {

@@ -197,28 +197,20 @@ bool Document::canSuggest() {
     return true;
 }
 
+Document::SuggestInputs Document::suggestInputs() const {
+    return {mesh_, take_, map_, settings_.meshUp};
+}
+
+Suggestion Document::suggest(const SuggestInputs& inputs) {
+    return boneless::suggestMappings(inputs.mesh, inputs.take, inputs.map, inputs.meshUp);
+}
+
 void Document::applySuggestion(Suggestion s) {
     if (s.suggested == 0) return;
     EditState after = editState();
     after.map = std::move(s.map);
     pushEdit(counted(s.suggested, tr("Suggest %n marker"), tr("Suggest %n markers")),
              std::move(after));
-}
-
-bool Document::suggestMappings(int* suggested, int* toCheck, QStringList* offBody) {
-    if (!canSuggest()) return false;
-    Suggestion s;
-    try {
-        s = boneless::suggestMappings(mesh_, take_, map_);
-    } catch (const std::exception& e) {
-        return fail(QString::fromStdString(e.what()));
-    }
-    if (suggested) *suggested = s.suggested;
-    if (toCheck) *toCheck = s.needsReview;
-    if (offBody)
-        for (const std::string& label : s.offBody) *offBody << QString::fromStdString(label);
-    applySuggestion(std::move(s));
-    return true;
 }
 
 std::optional<Calibration> Document::solverAlignment(const EditState& state, int frame,

@@ -490,9 +490,10 @@ void MainWindow::connectDocument() {
     // An export solves the map, alignment and settings it started with: an edit made meanwhile
     // would not be in what it writes, so edits wait for it.
     connect(exportDialog_, &ExportDialog::runningChanged, document_, [this] { updateEditsHeld(); });
-    // A suggestion made from inputs that changed while it ran is not theirs.
-    for (auto changed :
-         {&Document::meshChanged, &Document::takeChanged, &Document::correspondenceChanged})
+    // A suggestion made from inputs that changed while it ran is not theirs (the settings: their
+    // mesh up).
+    for (auto changed : {&Document::meshChanged, &Document::takeChanged,
+                         &Document::correspondenceChanged, &Document::settingsChanged})
         connect(document_, changed, this, [this] { ++suggestInputs_; });
     connect(exportDialog_, &ExportDialog::finished, this, [this](bool ok, const QString& message) {
         if (ok)
@@ -625,9 +626,7 @@ void MainWindow::onVertexPicked(int vertex) {
 }
 
 struct MainWindow::SuggestJob {
-    TriMesh mesh;
-    C3dTake take;
-    Correspondence map;
+    Document::SuggestInputs read;
     quint64 inputs = 0;  // suggestInputs_ when it started
     Suggestion result;
     QString error;
@@ -655,9 +654,7 @@ bool MainWindow::suggestMappings() {
     }
     if (!document_->canSuggest()) return false;
     auto job = std::make_shared<SuggestJob>();
-    job->mesh = document_->mesh();
-    job->take = document_->take();
-    job->map = document_->correspondence();
+    job->read = document_->suggestInputs();
     job->inputs = suggestInputs_;
     suggestJob_ = job;
     updateEditsHeld();
@@ -673,7 +670,7 @@ bool MainWindow::suggestMappings() {
     });
     watcher->setFuture(QtConcurrent::run([job] {
         try {
-            job->result = boneless::suggestMappings(job->mesh, job->take, job->map);
+            job->result = Document::suggest(job->read);
         } catch (const std::exception& e) {
             job->error = QString::fromStdString(e.what());
         }
