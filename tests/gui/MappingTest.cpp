@@ -4,6 +4,7 @@
 // leaving shows the playhead's frame, and suggestions to review stand out.
 #include <QAction>
 #include <QDoubleSpinBox>
+#include <QElapsedTimer>
 #include <QFile>
 #include <QFileInfo>
 #include <QJsonArray>
@@ -362,6 +363,45 @@ class MappingTest : public QObject {
         QVERIFY2(errors.first().at(0).toString().contains("at least 4 mapped markers"),
                  qPrintable(errors.first().at(0).toString()));
         QCOMPARE(d->mappedCount(), 0);
+    }
+
+    // A suggestion running when the window closed ran to its end (half a minute on a 100K-face
+    // mesh) before the app quit. Closing stops it between the fits it scans, and the map is left
+    // as it was.
+    void closingTheWindowStopsARunningSuggestionAndMapsNothing() {
+        QElapsedTimer clock;
+        qint64 whole = 0;
+        {
+            MainWindow window;
+            window.setMessageBoxesEnabled(false);
+            QVERIFY(window.openProject(freshProject()));
+            keepFourPicks(window.document());
+            QSignalSpy finished(&window, &MainWindow::suggestionFinished);
+            clock.start();
+            QVERIFY(window.suggestMappings());
+            QVERIFY(finished.wait(30000));
+            whole = clock.elapsed();
+        }
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        QVERIFY(window.openProject(freshProject()));
+        Document* d = window.document();
+        keepFourPicks(d);
+        const int steps = d->undoStack()->count();
+        QSignalSpy finished(&window, &MainWindow::suggestionFinished);
+        QVERIFY(window.suggestMappings());
+        QTest::qWait(int(whole / 4));  // under way
+        QVERIFY2(finished.isEmpty(), "it ended before the window closed");
+        clock.restart();
+        QVERIFY(window.close());
+        QVERIFY(finished.wait(30000));
+        const qint64 stopping = clock.elapsed();
+        QVERIFY2(
+            stopping < whole / 2,
+            qPrintable(QString("%1 ms to stop, %2 ms for the whole").arg(stopping).arg(whole)));
+        QCOMPARE(finished.first().at(0).toBool(), false);
+        QCOMPARE(d->mappedCount(), 4);
+        QCOMPARE(d->undoStack()->count(), steps);
     }
 
     void openingAMapOverMappingsAsksReplaceMergeOrCancel() {

@@ -201,8 +201,8 @@ Document::SuggestInputs Document::suggestInputs() const {
     return {mesh_, take_, map_, settings_.meshUp};
 }
 
-Suggestion Document::suggest(const SuggestInputs& inputs) {
-    return boneless::suggestMappings(inputs.mesh, inputs.take, inputs.map, inputs.meshUp);
+Suggestion Document::suggest(const SuggestInputs& inputs, const std::atomic<bool>* stop) {
+    return boneless::suggestMappings(inputs.mesh, inputs.take, inputs.map, inputs.meshUp, stop);
 }
 
 void Document::applySuggestion(Suggestion s) {

@@ -627,13 +627,18 @@ void MainWindow::onVertexPicked(int vertex) {
 
 struct MainWindow::SuggestJob {
     Document::SuggestInputs read;
-    quint64 inputs = 0;  // suggestInputs_ when it started
+    quint64 inputs = 0;             // suggestInputs_ when it started
+    std::atomic<bool> stop{false};  // the window closed: the app waits for no fit
     Suggestion result;
     QString error;
 };
 
 bool MainWindow::isSuggesting() const {
     return suggestJob_ != nullptr;
+}
+
+void MainWindow::stopSuggesting() {
+    if (suggestJob_) suggestJob_->stop = true;
 }
 
 void MainWindow::updateEditsHeld() {
@@ -670,7 +675,7 @@ bool MainWindow::suggestMappings() {
     });
     watcher->setFuture(QtConcurrent::run([job] {
         try {
-            job->result = Document::suggest(job->read);
+            job->result = Document::suggest(job->read, &job->stop);
         } catch (const std::exception& e) {
             job->error = QString::fromStdString(e.what());
         }
@@ -686,6 +691,11 @@ void MainWindow::finishSuggestion() {
     if (!job->error.isEmpty()) {
         statusBar()->clearMessage();
         showError(tr("Suggest Rest failed."), job->error);
+        emit suggestionFinished(false);
+        return;
+    }
+    if (job->result.stopped) {
+        statusBar()->showMessage(tr("Suggest Rest was stopped: nothing was mapped"), 10000);
         emit suggestionFinished(false);
         return;
     }

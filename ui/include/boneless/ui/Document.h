@@ -4,6 +4,7 @@
 #include <QString>
 #include <QStringList>
 #include <QVariantMap>
+#include <atomic>
 #include <optional>
 #include <vector>
 
@@ -158,8 +159,8 @@ class Document : public QObject {
         std::optional<Vec3> meshUp;
     };
     SuggestInputs suggestInputs() const;
-    // Core's suggestMappings on them; throws its Error.
-    static Suggestion suggest(const SuggestInputs& inputs);
+    // Core's suggestMappings on them; throws its Error. stop: as core's.
+    static Suggestion suggest(const SuggestInputs& inputs, const std::atomic<bool>* stop = nullptr);
     // canSuggest() checks the edit may start, and applySuggestion() makes a suggestion, made from
     // suggestInputs() as they still are, one undo step. The alignment is left as it is: the
     // suggestion's own only placed the proposals.
