@@ -12,6 +12,7 @@
 #include "boneless/SolveFits.h"
 #include "boneless/TakeOptionsJson.h"
 #include "boneless/ui/Document.h"
+#include "boneless/ui/Timeline.h"
 
 namespace boneless::ui {
 
@@ -320,7 +321,8 @@ bool Document::calibrateAt(int frame) {
     if (sameSettings(after.settings, settings_) && sameAlignment(after.alignment, alignment_))
         return true;
     // Named as the Edit menu names them: Undo and Redo say "Undo Calibrate Automatically".
-    pushEdit(frame >= 0 ? tr("Calibrate at Frame %1").arg(frame) : tr("Calibrate Automatically"),
+    pushEdit(frame >= 0 ? tr("Calibrate at Frame %1").arg(frameName(frame, take_.firstFrame))
+                        : tr("Calibrate Automatically"),
              std::move(after));
     return true;
 }

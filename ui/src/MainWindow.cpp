@@ -742,7 +742,7 @@ void MainWindow::alignTake() {
     const Calibration& aligned = *document_->alignment();
     statusBar()->showMessage(
         tr("Aligned at frame %1: the mapped markers sit %2 mm (RMS) from their points on the mesh")
-            .arg(aligned.frame)
+            .arg(timeline_->frameName(aligned.frame))
             .arg(aligned.residualMm(document_->take().unitToMm), 0, 'f', 1),
         10000);
 }
