@@ -51,6 +51,13 @@ class CalibrationMenuTest : public QObject {
   public:
     static void initMain() { setDefaultSurfaceFormat(); }
 
+  private:
+    // A frame as the status bar names the current one: 0-based, then the capture's number.
+    qint64 capture(int frame) const { return window_->document()->take().firstFrame + frame; }
+    QString named(int frame) const {
+        return QString("%1 (capture frame %2)").arg(frame).arg(capture(frame));
+    }
+
   private slots:
     void initTestCase() { project_ = test::demoProjectFor("CalibrationMenuTest", &folder_); }
 
@@ -219,7 +226,7 @@ class CalibrationMenuTest : public QObject {
         window_->findChild<QAction*>("actionRedo")->trigger();
         QCOMPARE(document->settings().calibrationFrame, 25);
         QCOMPARE(document->alignment()->frame, 25);
-        QCOMPARE(document->undoStack()->undoText(), QString("Calibrate at Frame 25"));
+        QCOMPARE(document->undoStack()->undoText(), "Calibrate at Frame " + named(25));
     }
 
     // Undo and Redo name a calibration as the Edit menu does: "Redo Calibrate automatically"
@@ -231,7 +238,7 @@ class CalibrationMenuTest : public QObject {
         window_->timeline()->scrubTo(25);
         QVERIFY(test::waitForFrame(*window_));
         QVERIFY(trigger(*window_, "calibrateAtFrame"));
-        QCOMPARE(undo->text(), QString("&Undo Calibrate at Frame 25"));
+        QCOMPARE(undo->text(), "&Undo Calibrate at Frame " + named(25));
         for (const char* name : {"calibrateNone", "calibrateAutomatically"}) {
             QAction* item = window_->findChild<QAction*>(name);
             QVERIFY(trigger(*window_, name));
@@ -313,17 +320,21 @@ class CalibrationMenuTest : public QObject {
         QCOMPARE(said.count(), 1);
         const QString warning = said.first().at(0).toString();
         const QRegularExpression figures(
-            "^Frame 30 aligns the take much worse than the automatic choice, frame (\\d+): "
+            "^Frame 30 \\(capture frame " + QString::number(capture(30)) +
+            "\\) aligns the take much worse than the automatic choice, frame (\\d+) "
+            "\\(capture frame (\\d+)\\): "
             "alignment (\\d+\\.\\d) mm \\(RMS\\), against (\\d+\\.\\d) mm\\. Undo "
             "\\(Ctrl\\+Z\\) goes back; Edit → Calibrate Automatically picks the automatic "
             "frame\\.\n");
         const QRegularExpressionMatch match = figures.match(warning);
         QVERIFY2(match.hasMatch(), qPrintable(warning));
         QVERIFY(match.captured(1).toInt() != kShuffled);
-        const double chosen = match.captured(2).toDouble(),
-                     automatic = match.captured(3).toDouble();
+        QCOMPARE(match.captured(2).toLongLong(), capture(match.captured(1).toInt()));
+        const double chosen = match.captured(3).toDouble(),
+                     automatic = match.captured(4).toDouble();
         QVERIFY2(chosen > 1.5 * automatic && chosen - automatic > 50, qPrintable(warning));
-        QVERIFY2(window_->statusBar()->currentMessage().startsWith("Frame 30 aligns the take"),
+        QVERIFY2(window_->statusBar()->currentMessage().startsWith("Frame " + named(30) +
+                                                                   " aligns the take"),
                  qPrintable(window_->statusBar()->currentMessage()));
 
         // The way back it names: automatic again, and no warning.
@@ -344,7 +355,8 @@ class CalibrationMenuTest : public QObject {
         QVERIFY(document->alignment());
         QCOMPARE(document->alignment()->frame, 25);
         QCOMPARE(document->settings().calibrationFrame, 25);
-        QVERIFY2(window_->statusBar()->currentMessage().startsWith("Aligned at frame 25:"),
+        QVERIFY2(window_->statusBar()->currentMessage().startsWith("Aligned at frame " + named(25) +
+                                                                   ":"),
                  qPrintable(window_->statusBar()->currentMessage()));
 
         // Automatic stays automatic: the alignment's frame is the solver's choice.
@@ -360,7 +372,14 @@ class CalibrationMenuTest : public QObject {
         QVERIFY2(window_->frameSummary().contains("residual"), qPrintable(window_->frameSummary()));
         QVERIFY(trigger(*window_, "showCalibratedRest"));
         QString summary = window_->frameSummary();
-        QVERIFY2(summary.contains("showing the calibrated rest"), qPrintable(summary));
+        // Named as the status bar names the current frame, with the capture's number.
+        const QRegularExpressionMatch fitted =
+            QRegularExpression(
+                "showing the calibrated rest, fitted at frame (\\d+) \\(capture "
+                "frame (\\d+)\\)")
+                .match(summary);
+        QVERIFY2(fitted.hasMatch(), qPrintable(summary));
+        QCOMPARE(fitted.captured(2).toLongLong(), capture(fitted.captured(1).toInt()));
         QVERIFY2(!summary.contains("residual"), qPrintable(summary));
         QVERIFY(trigger(*window_, "showRest"));
         summary = window_->frameSummary();
@@ -401,7 +420,7 @@ class CalibrationMenuTest : public QObject {
             const QModelIndex cell = model->index(row, MarkerListModel::ResidualColumn);
             if (cell.data().toString().isEmpty()) continue;
             const QString tip = cell.data(Qt::ToolTipRole).toString();
-            QVERIFY2(tip.endsWith(QString("frame %1").arg(frame)), qPrintable(tip));
+            QVERIFY2(tip.endsWith("frame " + named(frame)), qPrintable(tip));
         }
     }
 

@@ -4,6 +4,7 @@
 // leaving shows the playhead's frame, and suggestions to review stand out.
 #include <QAction>
 #include <QDoubleSpinBox>
+#include <QElapsedTimer>
 #include <QFile>
 #include <QFileInfo>
 #include <QJsonArray>
@@ -253,6 +254,7 @@ class MappingTest : public QObject {
         window.setMessageBoxesEnabled(false);
         QVERIFY(window.openProject(freshProject()));
         Document* d = window.document();
+        const Correspondence truth = d->correspondence();
         keepFourPicks(d);
         QPushButton* suggest = suggestButton(window);
         QVERIFY(suggest);
@@ -269,6 +271,20 @@ class MappingTest : public QObject {
                  qPrintable(said));
         QCOMPARE(d->undoStack()->undoText(),
                  QString("Suggest %1 markers").arg(d->markerCount() - 4));
+        // The demo's markers sit 10 mm off the skin; nearly all land on their own vertex.
+        int same = 0;
+        for (const MarkerMapping& m : d->correspondence().markers)
+            for (const MarkerMapping& t : truth.markers)
+                same += t.label == m.label && t.vertex == m.vertex;
+        QVERIFY2(same >= 34, qPrintable(QString::number(same)));
+        // Editing a suggestion makes it the user's own entry.
+        int free = 0;
+        while (d->markerForVertex(free) >= 0) ++free;
+        int edited = 0;
+        while (!d->markerSuggested(edited)) ++edited;
+        QVERIFY(d->assign(edited, free));
+        QVERIFY(!d->markerSuggested(edited));
+        d->undoStack()->undo();
         // A later click counts what it adds, not the suggestions the map already holds.
         int dropped = 0;
         while (!d->markerSuggested(dropped)) ++dropped;
@@ -331,6 +347,61 @@ class MappingTest : public QObject {
         QTRY_VERIFY_WITH_TIMEOUT(window.statusBar()->currentMessage().contains("dropped"), 30000);
         QVERIFY(!d->undoStack()->undoText().startsWith("Suggest"));
         QCOMPARE(d->mappedCount(), 4);
+    }
+
+    // Four picks cleared down to none: Suggest Rest says it needs four, and maps nothing.
+    void suggestRestNeedsFourMarkers() {
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        QVERIFY(window.openProject(freshProject()));
+        Document* d = window.document();
+        QVERIFY(d->clearAllMappings());
+        QSignalSpy errors(&window, &MainWindow::errorShown);
+        QVERIFY(window.suggestMappings());
+        QTRY_VERIFY_WITH_TIMEOUT(!window.isSuggesting(), 30000);
+        QCOMPARE(errors.count(), 1);
+        QVERIFY2(errors.first().at(0).toString().contains("at least 4 mapped markers"),
+                 qPrintable(errors.first().at(0).toString()));
+        QCOMPARE(d->mappedCount(), 0);
+    }
+
+    // A suggestion running when the window closed ran to its end (half a minute on a 100K-face
+    // mesh) before the app quit. Closing stops it between the fits it scans, and the map is left
+    // as it was.
+    void closingTheWindowStopsARunningSuggestionAndMapsNothing() {
+        QElapsedTimer clock;
+        qint64 whole = 0;
+        {
+            MainWindow window;
+            window.setMessageBoxesEnabled(false);
+            QVERIFY(window.openProject(freshProject()));
+            keepFourPicks(window.document());
+            QSignalSpy finished(&window, &MainWindow::suggestionFinished);
+            clock.start();
+            QVERIFY(window.suggestMappings());
+            QVERIFY(finished.wait(30000));
+            whole = clock.elapsed();
+        }
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        QVERIFY(window.openProject(freshProject()));
+        Document* d = window.document();
+        keepFourPicks(d);
+        const int steps = d->undoStack()->count();
+        QSignalSpy finished(&window, &MainWindow::suggestionFinished);
+        QVERIFY(window.suggestMappings());
+        QTest::qWait(int(whole / 4));  // under way
+        QVERIFY2(finished.isEmpty(), "it ended before the window closed");
+        clock.restart();
+        QVERIFY(window.close());
+        QVERIFY(finished.wait(30000));
+        const qint64 stopping = clock.elapsed();
+        QVERIFY2(
+            stopping < whole / 2,
+            qPrintable(QString("%1 ms to stop, %2 ms for the whole").arg(stopping).arg(whole)));
+        QCOMPARE(finished.first().at(0).toBool(), false);
+        QCOMPARE(d->mappedCount(), 4);
+        QCOMPARE(d->undoStack()->count(), steps);
     }
 
     void openingAMapOverMappingsAsksReplaceMergeOrCancel() {

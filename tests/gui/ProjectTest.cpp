@@ -149,7 +149,9 @@ class ProjectTest : public QObject {
         QCOMPARE(d.settings().calibrationFrame, -1);
         const QString notes = d.takeNotes().join("\n");
         QVERIFY2(d.takeNotes().size() >= 2 &&
-                     notes.contains("The calibration frame 50 is past this take's"),
+                     notes.contains(QString("The calibration frame 50 (capture frame %1) is "
+                                            "past this take's")
+                                        .arg(d.take().firstFrame + 50)),
                  qPrintable(notes));
     }
 

@@ -18,7 +18,7 @@ namespace {
 // A frame whose pose is far from the rest's (a stride) can align the body turned against its
 // markers: CMU 85_02 at frame 300 on MakeHuman turned it about 90°, and only the status bar's
 // figure said so. Warned by core's rule (alignsMuchWorse), as solve and batch warn.
-void warnIfWorseThanAutomatic(const Document* document, int frame,
+void warnIfWorseThanAutomatic(const Document* document, const Timeline* timeline, int frame,
                               const std::function<void(const QString&, const QString&)>& warn) {
     const std::optional<Calibration> automatic = document->alignmentAt(-1);
     if (!automatic || automatic->frame == frame) return;
@@ -33,8 +33,8 @@ void warnIfWorseThanAutomatic(const Document* document, int frame,
     warn(QObject::tr("Frame %1 aligns the take much worse than the automatic choice, frame %2: "
                      "alignment %3 mm (RMS), against %4 mm. Undo (Ctrl+Z) goes back; Edit → "
                      "Calibrate Automatically picks the automatic frame.")
-             .arg(frame)
-             .arg(automatic->frame)
+             .arg(timeline->frameName(frame))
+             .arg(timeline->frameName(automatic->frame))
              .arg(chosenMm, 0, 'f', 1)
              .arg(automaticMm, 0, 'f', 1),
          QObject::tr("A pose far from the rest's (a stride, a crouch) can align the body turned "
@@ -52,7 +52,7 @@ void addCalibrationActions(QMenu* edit, QMenu* view, Document* document, Timelin
                            const std::function<void(const QString&, const QString&)>& warn) {
     QAction* atFrame = edit->addAction(QObject::tr("Calibrate at &This Frame"), document, [=] {
         const int frame = timeline->frame();
-        if (document->calibrateAt(frame)) warnIfWorseThanAutomatic(document, frame, warn);
+        if (document->calibrateAt(frame)) warnIfWorseThanAutomatic(document, timeline, frame, warn);
     });
     atFrame->setObjectName("calibrateAtFrame");
     atFrame->setStatusTip(QObject::tr(

@@ -1,4 +1,5 @@
 #include "boneless/ui/Document.h"
+#include "boneless/ui/Timeline.h"
 
 #include <QFileInfo>
 #include <QUndoStack>
@@ -278,7 +279,7 @@ bool Document::noteTake() {
     // Every frame would fail on it.
     takeNotes_ << tr("The calibration frame %1 is past this take's %2 frames: the take is "
                      "calibrated automatically.")
-                      .arg(settings_.calibrationFrame)
+                      .arg(frameName(settings_.calibrationFrame, take_.firstFrame))
                       .arg(frameCount());
     settings_.calibrationFrame = -1;
     return true;

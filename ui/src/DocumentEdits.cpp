@@ -12,6 +12,7 @@
 #include "boneless/SolveFits.h"
 #include "boneless/TakeOptionsJson.h"
 #include "boneless/ui/Document.h"
+#include "boneless/ui/Timeline.h"
 
 namespace boneless::ui {
 
@@ -197,28 +198,20 @@ bool Document::canSuggest() {
     return true;
 }
 
+Document::SuggestInputs Document::suggestInputs() const {
+    return {mesh_, take_, map_, settings_.meshUp};
+}
+
+Suggestion Document::suggest(const SuggestInputs& inputs, const std::atomic<bool>* stop) {
+    return boneless::suggestMappings(inputs.mesh, inputs.take, inputs.map, inputs.meshUp, stop);
+}
+
 void Document::applySuggestion(Suggestion s) {
     if (s.suggested == 0) return;
     EditState after = editState();
     after.map = std::move(s.map);
     pushEdit(counted(s.suggested, tr("Suggest %n marker"), tr("Suggest %n markers")),
              std::move(after));
-}
-
-bool Document::suggestMappings(int* suggested, int* toCheck, QStringList* offBody) {
-    if (!canSuggest()) return false;
-    Suggestion s;
-    try {
-        s = boneless::suggestMappings(mesh_, take_, map_);
-    } catch (const std::exception& e) {
-        return fail(QString::fromStdString(e.what()));
-    }
-    if (suggested) *suggested = s.suggested;
-    if (toCheck) *toCheck = s.needsReview;
-    if (offBody)
-        for (const std::string& label : s.offBody) *offBody << QString::fromStdString(label);
-    applySuggestion(std::move(s));
-    return true;
 }
 
 std::optional<Calibration> Document::solverAlignment(const EditState& state, int frame,
@@ -328,7 +321,8 @@ bool Document::calibrateAt(int frame) {
     if (sameSettings(after.settings, settings_) && sameAlignment(after.alignment, alignment_))
         return true;
     // Named as the Edit menu names them: Undo and Redo say "Undo Calibrate Automatically".
-    pushEdit(frame >= 0 ? tr("Calibrate at Frame %1").arg(frame) : tr("Calibrate Automatically"),
+    pushEdit(frame >= 0 ? tr("Calibrate at Frame %1").arg(frameName(frame, take_.firstFrame))
+                        : tr("Calibrate Automatically"),
              std::move(after));
     return true;
 }

@@ -376,8 +376,7 @@ bool ExportDialog::startExport() {
     // The calibrated rest the app fitted for these very inputs: fitting it again is most of the
     // export's preparation on a large mesh.
     if (r.options.calibrate == CalibrateMode::Shape)
-        if (const auto rest = solver_->calibratedRestFor(*document_))
-            r.options.calibratedRest = *rest;
+        if (const auto rest = solver_->calibratedRestFor(*document_)) r.fittedRest = *rest;
     const std::vector<std::string> earlier = exportFilesIn(r.outDir, exportStem(r));
     if (!earlier.empty() && !askToReplace(earlier)) {
         progressText_->setText(tr("Not exported: the folder keeps its earlier export."));
@@ -397,8 +396,7 @@ bool ExportDialog::startExport() {
     progress_->setValue(0);
     // Until the first frame is written the bar says what the export is doing, which takes
     // seconds on a large mesh, rather than standing at "0 / 40 frames".
-    const bool calibrating =
-        r.options.calibrate == CalibrateMode::Shape && !r.options.calibratedRest;
+    const bool calibrating = r.options.calibrate == CalibrateMode::Shape && !r.fittedRest;
     progress_->setFormat(calibrating ? tr("preparing (calibrating, factorising)…")
                                      : tr("preparing (factorising)…"));
     const double preparingMs = solver_->preparationMs();

@@ -314,9 +314,9 @@ void FrameDisplay::emitStatus() {
                                                .arg(timeline_->captureFrame(named))
                                          : tr("No take");
     if (frozen_)
-        frame += tr(" (held while mapping; playhead at %1)").arg(playhead);
+        frame += tr(" (held while mapping; playhead at %1)").arg(timeline_->frameName(playhead));
     else if (document_->hasTake() && named != playhead)
-        frame += tr(" (preview; playhead at %1)").arg(playhead);
+        frame += tr(" (preview; playhead at %1)").arg(timeline_->frameName(playhead));
     QString solve, residual, solveDetail;
     const bool current = result_ && result_->frame == playhead && !problemTimer_->isActive();
     if (frozen_) {
@@ -333,13 +333,13 @@ void FrameDisplay::emitStatus() {
                     ? tr("preparing the solver for %1 (factorising)…").arg(mesh)
                     : tr("preparing the solver for %1 (calibrating, factorising)…").arg(mesh);
     } else if (!current) {
-        solve = tr("solving frame %1…").arg(playhead);
+        solve = tr("solving frame %1…").arg(timeline_->frameName(playhead));
     } else if (shown_ == Shown::CalibratedRest) {
         // The frame's solve time and residual would read as the rest's.
         solve = document_->settings().calibrate == CalibrateMode::None
                     ? tr("showing the rest (not calibrated)")
                     : tr("showing the calibrated rest, fitted at frame %1")
-                          .arg(result_->calibration.frame);
+                          .arg(timeline_->frameName(result_->calibration.frame));
     } else if (shown_ == Shown::Rest) {
         solve = tr("showing the rest");
     } else {
@@ -352,8 +352,8 @@ void FrameDisplay::emitStatus() {
         const QString alignment =
             tr("alignment %1 mm").arg(aligned.residualMm(document_->take().unitToMm), 0, 'f', 1);
         residual = result_->report.heldFrom >= 0
-                       ? tr("no marker seen: holding frame %1's pose, %2")
-                             .arg(result_->report.heldFrom)
+                       ? tr("no marker seen: holding the pose of frame %1, %2")
+                             .arg(timeline_->frameName(result_->report.heldFrom))
                              .arg(alignment)
                        : tr("residual %1 mm (max %2), %3")
                              .arg(result_->report.residualRmsMm, 0, 'f', 2)

@@ -490,9 +490,10 @@ void MainWindow::connectDocument() {
     // An export solves the map, alignment and settings it started with: an edit made meanwhile
     // would not be in what it writes, so edits wait for it.
     connect(exportDialog_, &ExportDialog::runningChanged, document_, [this] { updateEditsHeld(); });
-    // A suggestion made from inputs that changed while it ran is not theirs.
-    for (auto changed :
-         {&Document::meshChanged, &Document::takeChanged, &Document::correspondenceChanged})
+    // A suggestion made from inputs that changed while it ran is not theirs (the settings: their
+    // mesh up).
+    for (auto changed : {&Document::meshChanged, &Document::takeChanged,
+                         &Document::correspondenceChanged, &Document::settingsChanged})
         connect(document_, changed, this, [this] { ++suggestInputs_; });
     connect(exportDialog_, &ExportDialog::finished, this, [this](bool ok, const QString& message) {
         if (ok)
@@ -625,16 +626,19 @@ void MainWindow::onVertexPicked(int vertex) {
 }
 
 struct MainWindow::SuggestJob {
-    TriMesh mesh;
-    C3dTake take;
-    Correspondence map;
-    quint64 inputs = 0;  // suggestInputs_ when it started
+    Document::SuggestInputs read;
+    quint64 inputs = 0;             // suggestInputs_ when it started
+    std::atomic<bool> stop{false};  // the window closed: the app waits for no fit
     Suggestion result;
     QString error;
 };
 
 bool MainWindow::isSuggesting() const {
     return suggestJob_ != nullptr;
+}
+
+void MainWindow::stopSuggesting() {
+    if (suggestJob_) suggestJob_->stop = true;
 }
 
 void MainWindow::updateEditsHeld() {
@@ -655,9 +659,7 @@ bool MainWindow::suggestMappings() {
     }
     if (!document_->canSuggest()) return false;
     auto job = std::make_shared<SuggestJob>();
-    job->mesh = document_->mesh();
-    job->take = document_->take();
-    job->map = document_->correspondence();
+    job->read = document_->suggestInputs();
     job->inputs = suggestInputs_;
     suggestJob_ = job;
     updateEditsHeld();
@@ -673,7 +675,7 @@ bool MainWindow::suggestMappings() {
     });
     watcher->setFuture(QtConcurrent::run([job] {
         try {
-            job->result = boneless::suggestMappings(job->mesh, job->take, job->map);
+            job->result = Document::suggest(job->read, &job->stop);
         } catch (const std::exception& e) {
             job->error = QString::fromStdString(e.what());
         }
@@ -689,6 +691,11 @@ void MainWindow::finishSuggestion() {
     if (!job->error.isEmpty()) {
         statusBar()->clearMessage();
         showError(tr("Suggest Rest failed."), job->error);
+        emit suggestionFinished(false);
+        return;
+    }
+    if (job->result.stopped) {
+        statusBar()->showMessage(tr("Suggest Rest was stopped: nothing was mapped"), 10000);
         emit suggestionFinished(false);
         return;
     }
@@ -735,7 +742,7 @@ void MainWindow::alignTake() {
     const Calibration& aligned = *document_->alignment();
     statusBar()->showMessage(
         tr("Aligned at frame %1: the mapped markers sit %2 mm (RMS) from their points on the mesh")
-            .arg(aligned.frame)
+            .arg(timeline_->frameName(aligned.frame))
             .arg(aligned.residualMm(document_->take().unitToMm), 0, 'f', 1),
         10000);
 }

@@ -763,6 +763,7 @@ void MainWindow::closeEvent(QCloseEvent* event) {
         return;
     }
     exportDialog_->cancelExport();
+    stopSuggesting();
     autosave_->endSession();  // closed, not crashed: nothing to offer at the next start
     event->accept();
 }
@@ -794,6 +795,7 @@ void MainWindow::endForSignal() {
     // the next start.
     if (titled ? kept : !unsavedEdits_) autosave_->endSession();
     exportDialog_->cancelExport();
+    stopSuggesting();
     QCoreApplication::quit();
 }
 

@@ -7,6 +7,7 @@
 
 #include "boneless/ui/Document.h"
 #include "boneless/ui/FrameSolver.h"
+#include "boneless/ui/Timeline.h"
 
 namespace boneless::ui {
 
@@ -118,7 +119,8 @@ QVariant MarkerListModel::data(const QModelIndex& index, int role) const {
         return review.isEmpty() ? offset : tr("Suggested, check it: %1.\n%2").arg(review, offset);
     }
     if (role == Qt::ToolTipRole && index.column() == ResidualColumn && std::isfinite(residual))
-        return tr("Marker to the posed mesh at frame %1").arg(residualFrame_);
+        return tr("Marker to the posed mesh at frame %1")
+            .arg(frameName(residualFrame_, document_->take().firstFrame));
     if (role == Qt::ToolTipRole && index.column() == ResidualColumn && restShown_)
         return tr("A rest is shown: residuals are a frame's (View → Show → Frame)");
     if (role == Qt::ForegroundRole && document_->hasTake() && !visible)

@@ -1,11 +1,18 @@
 #include "boneless/ui/Timeline.h"
 
+#include <QCoreApplication>
 #include <QElapsedTimer>
 #include <QTimer>
 #include <algorithm>
 #include <cmath>
 
 namespace boneless::ui {
+
+QString frameName(int frame, qint64 firstFrame) {
+    return QCoreApplication::translate("Timeline", "%1 (capture frame %2)")
+        .arg(frame)
+        .arg(firstFrame + frame);
+}
 
 Timeline::Timeline(QObject* parent) : QObject(parent), timer_(new QTimer(this)) {
     auto monotonic = std::make_shared<QElapsedTimer>();

@@ -178,9 +178,8 @@ bool TimelineStrip::event(QEvent* event) {
     for (int k = 0; k < document_->markerCount(); ++k)
         if (!document_->markerVisible(k, frame)) missing << document_->markerLabel(k);
     QString text =
-        tr("Frame %1 (capture frame %2)%3%4")
-            .arg(frame)
-            .arg(timeline_->captureFrame(frame))
+        tr("Frame %1%2%3")
+            .arg(timeline_->frameName(frame))
             .arg(frame < int(cached_.size()) && cached_[frame] ? tr(", solved") : QString())
             .arg(frame == calibrationFrame_ ? tr(", the calibration frame") : QString());
     if (!missing.isEmpty())

@@ -152,8 +152,9 @@ double distanceSpreadMm(const C3dTake& take, std::size_t a, std::size_t b) {
 // leave unposed): it gets no vertex, and goes to `offBody` instead.
 std::vector<Draft> draft(const TriMesh& rest, const C3dTake& take, const Correspondence& known,
                          const std::vector<std::size_t>& wanted, const MirrorPlane& mirror,
-                         const std::optional<Vec3>& meshUp, Calibration& calibration,
-                         int& fittedFrame, std::vector<std::size_t>& offBody) {
+                         const std::optional<Vec3>& meshUp, const std::atomic<bool>* stop,
+                         Calibration& calibration, int& fittedFrame,
+                         std::vector<std::size_t>& offBody) {
     // The rest is first fitted to the actor at the alignment's frame, as solve does: the limbs
     // between the picks then take the actor's lengths (CMU 85_02, six picks: 17 to 20 of 35).
     TakeSolveOptions options;
@@ -170,15 +171,23 @@ std::vector<Draft> draft(const TriMesh& rest, const C3dTake& take, const Corresp
     frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
     std::vector<std::pair<double, int>> ranked;
     FrameReport report;
-    for (int f : frames)
-        ranked.push_back({fitQuality(take, s, wanted, f, solver.solve(f, report)), f});
+    // A fit takes up to a second on a 100K-face mesh, and there are some 50 of them.
+    const auto stopped = [&] { return stop && stop->load(); };
+    for (int f : frames) {
+        if (stopped()) return {};
+        const Positions V = solver.solve(f, report, stop);
+        if (report.stopped) return {};
+        ranked.push_back({fitQuality(take, s, wanted, f, V), f});
+    }
     std::sort(ranked.begin(), ranked.end());
     std::vector<Fit> fits;
     for (const auto& [quality, f] : ranked) {
         if (fits.size() == kKeptFrames || !std::isfinite(quality) ||
             quality > kKeptQuality * ranked.front().first)
             break;
-        const Positions V = solver.solve(f, report);
+        if (stopped()) return {};
+        const Positions V = solver.solve(f, report, stop);
+        if (report.stopped) return {};
         fits.push_back({f, quality, V, V + kLiftMm * unitsPerMm * vertexNormals(rest.F, V)});
     }
     if (fits.empty()) return {};  // no scanned frame shows an unmapped marker: nothing to place
@@ -303,7 +312,7 @@ std::string reviewReason(const Draft& d, const std::string& label, const SideChe
 }  // namespace
 
 Suggestion suggestMappings(const TriMesh& rest, const C3dTake& take, const Correspondence& partial,
-                           const std::optional<Vec3>& meshUp) {
+                           const std::optional<Vec3>& meshUp, const std::atomic<bool>* stop) {
     if (partial.markers.size() < 4)
         throw Error((partial.source().empty() ? "" : partial.source() + ": ") +
                     "suggesting correspondences needs at least 4 mapped markers to align the "
@@ -348,8 +357,15 @@ Suggestion suggestMappings(const TriMesh& rest, const C3dTake& take, const Corre
     if (wanted.empty()) return out;  // every marker seen is mapped: nothing to fit the mesh for
     const MirrorPlane mirror(rest, sides);
     std::vector<std::size_t> offBody;
-    for (Draft& d : draft(rest, take, partial, wanted, mirror, meshUp, out.calibration,
-                          out.fittedFrame, offBody)) {
+    std::vector<Draft> drafts = draft(rest, take, partial, wanted, mirror, meshUp, stop,
+                                      out.calibration, out.fittedFrame, offBody);
+    if (stop && stop->load()) {  // nothing half-done: the picks alone
+        Suggestion stopped;
+        stopped.map = partial;
+        stopped.stopped = true;
+        return stopped;
+    }
+    for (Draft& d : drafts) {
         d.heldMm = std::numeric_limits<double>::infinity();
         for (std::size_t pick : mapped)
             if (const double spread = distanceSpreadMm(take, d.point, pick); spread < d.heldMm) {

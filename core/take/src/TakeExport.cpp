@@ -663,6 +663,14 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
     return result;
 }
 
+// What the first solver is built with: the request's options, starting from its fitted rest.
+TakeSolveOptions firstSolverOptions(const ExportRequest& request) {
+    TakeSolveOptions options = request.options;
+    if (request.fittedRest && !options.calibratedRest && options.calibrate == CalibrateMode::Shape)
+        options.calibratedRest = request.fittedRest;
+    return options;
+}
+
 }  // namespace
 
 std::string fileFingerprint(const std::string& path, bool contents) {
@@ -702,7 +710,7 @@ ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspo
                         const ExportCalibrated& calibrated) {
     checkRequest(mesh, map, request, take, static_cast<int>(take.frameCount()));
     requireMarkersToAlign(map, request, take);
-    TakeSolver solver(mesh, take, map, request.options);
+    TakeSolver solver(mesh, take, map, firstSolverOptions(request));
     return exportSolved(solver, mesh, take, map, request, progress, calibrated);
 }
 
@@ -711,7 +719,7 @@ ExportResult exportTake(const TriMesh& mesh, const C3dFrameReader& take, const C
                         const ExportCalibrated& calibrated) {
     checkRequest(mesh, map, request, take.take(), static_cast<int>(take.frameCount()));
     requireMarkersToAlign(map, request, take.take());
-    TakeSolver solver(mesh, take, map, request.options);
+    TakeSolver solver(mesh, take, map, firstSolverOptions(request));
     return exportSolved(solver, mesh, take.take(), map, request, progress, calibrated);
 }
 

@@ -81,6 +81,26 @@ TEST(MarkerSuggestion, FindsTheVerticesUnderTheUnmappedMarkers) {
     EXPECT_NEAR(s.calibration.takeToMesh.scale, 1e-3, 1e-5);  // millimetres to metres
 }
 
+// The app stops a suggestion when its window closes: it says so and suggests nothing, rather than
+// a map made from the fits scanned so far.
+TEST(MarkerSuggestion, AStopSetSaysStoppedAndSuggestsNothing) {
+    const TriMesh mesh = icosphere(2);
+    const std::vector<int> ids{0, 7, 19, 33, 48, 77, 101, 150};
+    const C3dTake take = takeOnVertices(mesh, ids, 0.01, 0);
+    Correspondence partial;
+    partial.meshVertices = mesh.vertexCount();
+    for (int k = 0; k < 4; ++k)
+        partial.markers.push_back({"M" + std::to_string(k), ids[k], 10.0, "{}"});
+    const std::atomic<bool> stop{true};
+    const Suggestion s = suggestMappings(mesh, take, partial, std::nullopt, &stop);
+    EXPECT_TRUE(s.stopped);
+    EXPECT_EQ(s.suggested, 0);
+    EXPECT_TRUE(s.proposals.empty() && s.offBody.empty());
+    EXPECT_EQ(s.map.toJson(), partial.toJson());
+    const std::atomic<bool> go{false};
+    EXPECT_FALSE(suggestMappings(mesh, take, partial, std::nullopt, &go).stopped);
+}
+
 TEST(MarkerSuggestion, AMapThatHoldsEveryMarkerSeenGetsNothingSuggested) {
     const TriMesh mesh = icosphere(2);
     const std::vector<int> ids{0, 7, 19, 33, 48, 77};

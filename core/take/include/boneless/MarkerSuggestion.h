@@ -1,5 +1,6 @@
 #pragma once
 
+#include <atomic>
 #include <optional>
 #include <string>
 #include <vector>
@@ -36,6 +37,7 @@ struct Suggestion {
     // Labels two or more points of the take share (C3dTake::sharedLabels), once each, left
     // unmapped: no entry could say which point it means, and solve refuses such an entry.
     std::vector<std::string> sharedLabels;
+    bool stopped = false;  // `stop` was set: nothing was suggested, the map is the partial one
 };
 
 // Proposes a vertex for every marker of the take that `partial` does not map. The take is
@@ -55,8 +57,10 @@ struct Suggestion {
 // Throws Error naming what is missing, or a mapped marker the mesh cannot reach.
 // `meshUp`: the mesh's up axis, as solve's "mesh_up" gives it; none, the one the alignment puts
 // nearest the take's vertical.
+// `stop`: checked between the fits it scans (a window closing); once set, it returns stopped.
 Suggestion suggestMappings(const TriMesh& rest, const C3dTake& take, const Correspondence& partial,
-                           const std::optional<Vec3>& meshUp = std::nullopt);
+                           const std::optional<Vec3>& meshUp = std::nullopt,
+                           const std::atomic<bool>* stop = nullptr);
 
 // What `suggest` wrote on a map entry, as the user left it: "suggested": true, and
 // "needs_review": true with its "review_reason" (the app clears both when the user accepts or

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,10 @@ struct ExportRequest {
     int first = 0;  // 0-based take frames [first, end); end < 0 = to the take's end
     int end = -1;
     TakeSolveOptions options;
+    // The rest these very inputs and options fit, fitted already (the app's solver holds it): the
+    // solve starts from it rather than fitting it again. Unlike options.calibratedRest, a rest the
+    // user gave, it leaves the sidecar's calibration.overridden false.
+    std::optional<Positions> fittedRest;
     // Also write DIR/<stem>_calibrated_rest.obj, the rest fitted to the actor (input vertex
     // order and faces), and name it in the sidecar.
     bool writeCalibratedRest = false;

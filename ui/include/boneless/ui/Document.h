@@ -4,6 +4,7 @@
 #include <QString>
 #include <QStringList>
 #include <QVariantMap>
+#include <atomic>
 #include <optional>
 #include <vector>
 
@@ -148,15 +149,21 @@ class Document : public QObject {
     // Refused outside Correspondence::kMinOffsetMm to kMaxOffsetMm, as a map file would be.
     bool setOffsetMm(const std::vector<int>& markers, double mm);
     bool clearAllMappings();
-    // Proposes a vertex for every unmapped marker (needs at least 4 mapped). The alignment is
-    // left as it is: the proposals' own alignment is only used to place them. `suggested` and
-    // `toCheck`, when given, receive how many markers this call proposed and how many of those
-    // are marked for review; `offBody` the markers left unmapped as too far from the body.
-    bool suggestMappings(int* suggested = nullptr, int* toCheck = nullptr,
-                         QStringList* offBody = nullptr);
-    // The same in two halves, for a caller that suggests on a worker thread (up to half a minute
-    // on a 100K-face mesh): canSuggest() checks the edit may start, and applySuggestion() makes a
-    // suggestion computed from mesh(), take() and correspondence() as they still are one undo step.
+    // Suggest Rest's inputs, copied so that a worker can suggest from them (up to half a minute
+    // on a 100K-face mesh) while the document changes: the mesh, the take, the map, and the
+    // settings' mesh up, which `map suggest --mesh-up` takes too.
+    struct SuggestInputs {
+        TriMesh mesh;
+        C3dTake take;
+        Correspondence map;
+        std::optional<Vec3> meshUp;
+    };
+    SuggestInputs suggestInputs() const;
+    // Core's suggestMappings on them; throws its Error. stop: as core's.
+    static Suggestion suggest(const SuggestInputs& inputs, const std::atomic<bool>* stop = nullptr);
+    // canSuggest() checks the edit may start, and applySuggestion() makes a suggestion, made from
+    // suggestInputs() as they still are, one undo step. The alignment is left as it is: the
+    // suggestion's own only placed the proposals.
     bool canSuggest();
     void applySuggestion(Suggestion suggestion);
     // Fixes the alignment from the mapped markers (at least 3); calibrationFrame -1 = automatic.

@@ -91,9 +91,13 @@ class MainWindow : public QMainWindow {
     // Edit → Suggest Rest, on a worker thread (half a minute on a 100K-face mesh): the status bar
     // says it runs, edits wait, and the window keeps drawing; when it ends the suggestions are
     // one undo step and the status bar says how many to check. A suggestion made from a mesh,
-    // take or map that changed meanwhile is dropped. False when it could not start.
+    // take, map or mesh up that changed meanwhile is dropped, as is one the window's closing
+    // stopped. False when it could not start.
     bool suggestMappings();
     bool isSuggesting() const;
+    // Ends the suggestion running, if any, at its next fit, mapping nothing: the window closes,
+    // and the app would otherwise wait for it to end (half a minute on a 100K-face mesh).
+    void stopSuggesting();
     // Align (Edit menu and marker panel), and the status bar says how well the alignment fits.
     void alignTake();
 

@@ -1,11 +1,16 @@
 #pragma once
 
 #include <QObject>
+#include <QString>
 #include <functional>
 
 class QTimer;
 
 namespace boneless::ui {
+
+// A frame as the app names it to the user, as the status bar names the current one: the 0-based
+// frame the CLI and files use, then the capture's own number, "576 (capture frame 577)".
+QString frameName(int frame, qint64 firstFrame);
 
 // The playhead: frame, play/pause, step, loop and speed, without any widget. Realtime speeds
 // place the playhead by the wall clock (frame = start + elapsed × rate × speed), so playback skips
@@ -29,6 +34,7 @@ class Timeline : public QObject {
     void setFirstFrame(qint64 number);
     qint64 firstFrame() const { return firstFrame_; }
     qint64 captureFrame(int frame) const { return firstFrame_ + frame; }
+    QString frameName(int frame) const { return boneless::ui::frameName(frame, firstFrame_); }
 
     int frame() const { return frame_; }
     bool isPlaying() const { return playing_; }
