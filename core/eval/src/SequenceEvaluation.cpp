@@ -84,7 +84,6 @@ Evaluation evaluateSequence(const MeshSequence& sequence, const EvaluationOption
         }
     }
 
-    std::mt19937 rng(options.seed);
     const int dropCount = options.droppedPerFrame();
     std::vector<int> order(K);
     std::optional<Positions> previous;
@@ -96,6 +95,9 @@ Evaluation evaluateSequence(const MeshSequence& sequence, const EvaluationOption
         Positions targets(K, 3);
         for (int k = 0; k < K; ++k) targets.row(k) = truth.row(markers[k]);
         if (dropCount > 0) {
+            // Drawn from (seed, frame): a frame loses the same markers whatever --frames says.
+            std::seed_seq frameSeed{options.seed, static_cast<unsigned>(frame)};
+            std::mt19937 rng(frameSeed);
             std::iota(order.begin(), order.end(), 0);
             std::shuffle(order.begin(), order.end(), rng);
             for (int i = 0; i < dropCount; ++i)

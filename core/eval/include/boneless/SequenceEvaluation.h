@@ -19,8 +19,8 @@ struct EvaluationOptions {
     std::vector<int> markers;  // vertex ids
     int firstFrame = 0;
     int endFrame = -1;       // one past the last frame; -1 = the end of the sequence
-    double dropPercent = 0;  // each frame, this share of the markers goes missing (seeded)
-    unsigned seed = 1;
+    double dropPercent = 0;  // each frame, this share of the markers goes missing
+    unsigned seed = 1;       // a frame's missing markers are drawn from (seed, frame)
     // As a take is solved (TakeSolveOptions), so that what eval measures is what a user gets:
     // the orientation guard on for the exact method.
     SolverOptions solver = [] {
