@@ -360,3 +360,15 @@ TEST(EvalCommand, AFramesDroppedMarkersAreTheSameWhateverTheRange) {
                   frameOf(later["per_frame"], frame)["rms_pct"])
             << "frame " << frame;
 }
+
+// ARAP starts each frame from the previous one's answer, but a range starting after frame 0
+// started it from the rest pose: frame 4's figures depended on where --frames began.
+TEST(EvalCommand, AFramesArapFiguresAreTheSameWhateverTheRange) {
+    const auto whole = evalJson("--markers 30 --method arap --frames 0:8");
+    const auto later = evalJson("--markers 30 --method arap --frames 4:8");
+    for (int frame : {4, 6}) {
+        const auto a = frameOf(whole["per_frame"], frame), b = frameOf(later["per_frame"], frame);
+        EXPECT_EQ(a["rms_pct"], b["rms_pct"]) << "frame " << frame;
+        EXPECT_EQ(a["flipped_faces"], b["flipped_faces"]) << "frame " << frame;
+    }
+}

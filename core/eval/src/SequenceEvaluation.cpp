@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <optional>
 #include <random>
 
 #include "boneless/ArapDeformer.h"
@@ -86,11 +85,12 @@ Evaluation evaluateSequence(const MeshSequence& sequence, const EvaluationOption
 
     const int dropCount = options.droppedPerFrame();
     std::vector<int> order(K);
-    std::optional<Positions> previous;
-    if (options.firstFrame == 0) previous = sequence.rest.V;
+    // ARAP's chain starts at the rest pose at frame 0 whatever the range: the frames before it
+    // are solved, unreported, so that a frame's figures do not depend on where --frames begins.
+    Positions previous = sequence.rest.V;
 
     Evaluation evaluation;
-    for (int frame = options.firstFrame; frame < end; ++frame) {
+    for (int frame = useArap ? 0 : options.firstFrame; frame < end; ++frame) {
         const Positions& truth = sequence.frames[frame];
         Positions targets(K, 3);
         for (int k = 0; k < K; ++k) targets.row(k) = truth.row(markers[k]);
@@ -106,7 +106,11 @@ Evaluation evaluateSequence(const MeshSequence& sequence, const EvaluationOption
         SolveResult result;
         if (useArap) {
             // ARAP as it is used: each frame from the previous one's answer.
-            result = arap.solve(targets, previous ? &*previous : nullptr);
+            result = arap.solve(targets, &previous);
+            if (frame < options.firstFrame) {
+                previous = std::move(result.V);
+                continue;
+            }
         } else if (exact) {
             const SolveResult first = start.solve(targets);
             result = boneless.solve(targets, &first.V);

@@ -11,8 +11,9 @@ namespace boneless {
 
 // Drives marker vertices of a ground-truth sequence with their true positions, reconstructs every
 // frame (Boneless as a take is solved, each frame from its own markers; ARAP as it is used, each
-// frame from the previous one's answer) and measures the result against the truth. This is how
-// a user finds out how many markers a mesh needs, and how Boneless is compared with ARAP.
+// frame from the previous one's answer, the chain starting at the rest pose at frame 0) and
+// measures the result against the truth. This is how a user finds out how many markers a mesh
+// needs, and how Boneless is compared with ARAP.
 struct EvaluationOptions {
     enum class Method { Boneless, Arap };
     Method method = Method::Boneless;
