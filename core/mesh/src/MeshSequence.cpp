@@ -1,7 +1,10 @@
 #include "boneless/MeshSequence.h"
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
+#include <utility>
+#include <vector>
 
 #include "boneless/Error.h"
 #include "boneless/MeshReader.h"
@@ -19,6 +22,63 @@ bool sameFaces(const TriMesh& a, const TriMesh& b) {
     return !a.sourceFaces && !b.sourceFaces && a.F == b.F;
 }
 
+// A file name's frame key: its digit runs as numbers, and the text around them as its pattern
+// ("frame_#.obj"), so that frame_2.obj comes before frame_10.obj.
+struct FrameName {
+    std::string pattern;
+    std::vector<std::string> numbers;  // leading zeros stripped, compared by length then digits
+};
+
+FrameName frameName(const std::string& name) {
+    FrameName key;
+    for (size_t i = 0; i < name.size();) {
+        if (std::isdigit(static_cast<unsigned char>(name[i]))) {
+            size_t j = i;
+            while (j < name.size() && std::isdigit(static_cast<unsigned char>(name[j]))) ++j;
+            const size_t nonZero = std::min(name.find_first_not_of('0', i), j);
+            key.numbers.push_back(name.substr(nonZero, j - nonZero));
+            key.pattern += '#';
+            i = j;
+        } else {
+            key.pattern += name[i++];
+        }
+    }
+    return key;
+}
+
+bool numbersBefore(const std::vector<std::string>& a, const std::vector<std::string>& b) {
+    return std::lexicographical_compare(
+        a.begin(), a.end(), b.begin(), b.end(), [](const std::string& x, const std::string& y) {
+            return x.size() != y.size() ? x.size() < y.size() : x < y;
+        });
+}
+
+// Sorts `files` by the numbers in their names. Names of different patterns, or two carrying the
+// same numbers, give no evident order: refused, naming two of them, rather than guessed.
+void sortFrames(const std::string& directory, std::vector<std::string>& files) {
+    namespace fs = std::filesystem;
+    std::sort(files.begin(), files.end());  // so that the two named are always the same
+    std::vector<std::pair<FrameName, std::string>> keyed;
+    for (const auto& file : files) keyed.emplace_back(frameName(fs::path(file).filename()), file);
+    const auto why = [&](const std::string& a, const std::string& b, const std::string& what) {
+        return MeshError(directory,
+                         "no frame order in the file names: " + fs::path(a).filename().string() +
+                             " and " + fs::path(b).filename().string() + " " + what +
+                             " (name the frames alike, each with its number, e.g. "
+                             "frame_1.obj … frame_12.obj)");
+    };
+    for (const auto& [key, file] : keyed)
+        if (key.pattern != keyed.front().first.pattern)
+            throw why(keyed.front().second, file, "are named differently");
+    std::stable_sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) {
+        return numbersBefore(a.first.numbers, b.first.numbers);
+    });
+    for (size_t i = 1; i < keyed.size(); ++i)
+        if (!numbersBefore(keyed[i - 1].first.numbers, keyed[i].first.numbers))
+            throw why(keyed[i - 1].second, keyed[i].second, "carry the same frame number");
+    for (size_t i = 0; i < keyed.size(); ++i) files[i] = keyed[i].second;
+}
+
 }  // namespace
 
 MeshSequence readMeshSequence(const std::string& directory) {
@@ -34,7 +94,7 @@ MeshSequence readMeshSequence(const std::string& directory) {
             sequence.files.push_back(entry.path().string());
     }
     if (sequence.files.empty()) throw MeshError(directory, "contains no .obj frames");
-    std::sort(sequence.files.begin(), sequence.files.end());
+    sortFrames(directory, sequence.files);
     for (const auto& file : sequence.files) {
         TriMesh mesh = readMesh(file).mesh;
         if (sequence.frames.empty()) {
