@@ -75,6 +75,7 @@ std::vector<int> readMarkerFile(const std::string& path, int vertexCount) {
 
 nlohmann::json summaryJson(const EvaluationSummary& s) {
     return {{"frame_count", s.frames},
+            {"markers_used", s.markersUsed},
             {"rms_pct_mean", s.rmsPctMean},
             {"rms_pct_worst_frame", s.rmsPctWorstFrame},
             {"max_pct_worst_frame", s.maxPctWorstFrame},
@@ -89,11 +90,12 @@ nlohmann::json summaryJson(const EvaluationSummary& s) {
 
 void printSummary(const char* name, const EvaluationSummary& s) {
     std::printf(
-        "%-9s frames %d  RMS %% mean %.3f  RMS %% worst frame %.3f  max %% worst frame %.3f  "
+        "%-9s frames %d  markers used %d  RMS %% mean %.3f  RMS %% worst frame %.3f  max %% worst "
+        "frame %.3f  "
         "flipped max %d (mean %.1f)  folded max %d  ms/frame mean %.1f worst %.1f median %.1f\n",
-        name, s.frames, s.rmsPctMean, s.rmsPctWorstFrame, s.maxPctWorstFrame, s.flippedFacesMax,
-        s.flippedFacesMean, s.foldedFacesMax, s.msPerFrameMean, s.msPerFrameWorst,
-        s.msPerFrameMedian);
+        name, s.frames, s.markersUsed, s.rmsPctMean, s.rmsPctWorstFrame, s.maxPctWorstFrame,
+        s.flippedFacesMax, s.flippedFacesMean, s.foldedFacesMax, s.msPerFrameMean,
+        s.msPerFrameWorst, s.msPerFrameMedian);
 }
 
 void run(const EvalArgs& args) {
@@ -143,13 +145,18 @@ void run(const EvalArgs& args) {
     if (args.method == "arap" || args.method == "both")
         methods.push_back(EvaluationOptions::Method::Arap);
 
+    // What a frame is reconstructed from: a drop that rounds to no marker drops none, and says so.
+    const int used = static_cast<int>(options.markers.size()) - options.droppedPerFrame();
+    std::string dropped;
+    if (args.drop > 0)
+        dropped = ", " + std::string(drop) + " % dropped per frame" +
+                  (options.droppedPerFrame() == 0 ? " rounds to none" : "") + ": " +
+                  std::to_string(used) + " used per frame";
     if (!args.json)
-        std::printf(
-            "%s: %zu frames, %d vertices, %d faces, %zu markers%s, %s solver\n",
-            args.sequence.c_str(), sequence.frames.size(), sequence.rest.vertexCount(),
-            sequence.rest.faceCount(), options.markers.size(),
-            args.drop > 0 ? (", " + std::string(drop) + " % dropped per frame").c_str() : "",
-            methodName(options.solver.method));
+        std::printf("%s: %zu frames, %d vertices, %d faces, %zu markers%s, %s solver\n",
+                    args.sequence.c_str(), sequence.frames.size(), sequence.rest.vertexCount(),
+                    sequence.rest.faceCount(), options.markers.size(), dropped.c_str(),
+                    methodName(options.solver.method));
     std::vector<Evaluation> results;
     for (auto method : methods) {
         options.method = method;
@@ -180,6 +187,7 @@ void run(const EvalArgs& args) {
                                 {"max_pct", f.maxPct},
                                 {"flipped_faces", f.flippedFaces},
                                 {"folded_faces", f.foldedFaces},
+                                {"markers_used", f.markersUsed},
                                 {"iterations", f.iterations},
                                 {"ms", f.milliseconds}});
         out["per_frame"] = perFrame;

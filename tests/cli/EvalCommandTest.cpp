@@ -372,3 +372,22 @@ TEST(EvalCommand, AFramesArapFiguresAreTheSameWhateverTheRange) {
         EXPECT_EQ(a["flipped_faces"], b["flipped_faces"]) << "frame " << frame;
     }
 }
+
+// "4 % dropped per frame" where 4 % of 10 markers rounds to none: the markers actually used are
+// said, per frame and in summary.
+TEST(EvalCommand, TheMarkersUsedPerFrameAreReportedAndADropRoundingToNoneIsSaid) {
+    const CliResult r =
+        runCli("eval --sequence " + demoFolder() + " --markers 10 --frames 0:3 --drop 4");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("10 markers, 4 % dropped per frame rounds to none: 10 used per frame"),
+              std::string::npos)
+        << r.out;
+    const auto j = evalJson("--markers 10 --frames 0:3 --drop 30");
+    EXPECT_EQ(j["markers_used"], 7);
+    EXPECT_EQ(frameOf(j["per_frame"], 1)["markers_used"], 7);
+    const CliResult text =
+        runCli("eval --sequence " + demoFolder() + " --markers 10 --frames 0:3 --drop 30");
+    EXPECT_NE(text.out.find("10 markers, 30 % dropped per frame: 7 used per frame"),
+              std::string::npos)
+        << text.out;
+}

@@ -27,6 +27,7 @@ EvaluationSummary summarise(const std::vector<FrameEvaluation>& frames) {
     double iterations = 0;
     for (const auto& f : frames) {
         if (f.frame == 0) continue;  // the rest pose is reproduced by construction
+        s.markersUsed = s.frames == 0 ? f.markersUsed : std::min(s.markersUsed, f.markersUsed);
         ++s.frames;
         s.rmsPctMean += f.rmsPct;
         s.rmsPctWorstFrame = std::max(s.rmsPctWorstFrame, f.rmsPct);

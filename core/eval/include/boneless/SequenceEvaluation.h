@@ -45,11 +45,12 @@ struct FrameEvaluation {
     int foldedFaces = 0;
     int iterations = 0;
     double milliseconds = 0;
-    int markersUsed = 0;
+    int markersUsed = 0;  // the markers this frame was reconstructed from: those not dropped
 };
 
 struct EvaluationSummary {
-    int frames = 0;  // frames summarised: those after the rest pose
+    int frames = 0;       // frames summarised: those after the rest pose
+    int markersUsed = 0;  // the fewest markers any of them was reconstructed from
     double rmsPctMean = 0, rmsPctWorstFrame = 0, maxPctWorstFrame = 0;
     int flippedFacesMax = 0;
     double flippedFacesMean = 0;
