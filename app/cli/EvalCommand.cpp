@@ -88,6 +88,20 @@ nlohmann::json summaryJson(const EvaluationSummary& s) {
             {"iterations_mean", s.iterationsMean}};
 }
 
+nlohmann::json perFrameJson(const std::vector<FrameEvaluation>& frames) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& f : frames)
+        list.push_back({{"frame", f.frame},
+                        {"rms_pct", f.rmsPct},
+                        {"max_pct", f.maxPct},
+                        {"flipped_faces", f.flippedFaces},
+                        {"folded_faces", f.foldedFaces},
+                        {"markers_used", f.markersUsed},
+                        {"iterations", f.iterations},
+                        {"ms", f.milliseconds}});
+    return list;
+}
+
 void printSummary(const char* name, const EvaluationSummary& s) {
     std::printf(
         "%-9s frames %d  markers used %d  RMS %% mean %.3f  RMS %% worst frame %.3f  max %% worst "
@@ -153,10 +167,12 @@ void run(const EvalArgs& args) {
                   (options.droppedPerFrame() == 0 ? " rounds to none" : "") + ": " +
                   std::to_string(used) + " used per frame";
     if (!args.json)
-        std::printf("%s: %zu frames, %d vertices, %d faces, %zu markers%s, %s solver\n",
+        std::printf("%s: %zu frames, %d vertices, %d faces, %zu markers%s, %s\n",
                     args.sequence.c_str(), sequence.frames.size(), sequence.rest.vertexCount(),
                     sequence.rest.faceCount(), options.markers.size(), dropped.c_str(),
-                    methodName(options.solver.method));
+                    methods[0] == EvaluationOptions::Method::Boneless
+                        ? (std::string(methodName(options.solver.method)) + " solver").c_str()
+                        : "ARAP alone");
     std::vector<Evaluation> results;
     for (auto method : methods) {
         options.method = method;
@@ -172,27 +188,26 @@ void run(const EvalArgs& args) {
     }
     if (args.json) {
         nlohmann::json out = summaryJson(results[0].summary);
-        out["method"] = methodName(methods[0]);
+        out["method"] = args.method;                 // boneless, arap or both
         out["sequence"] = validUtf8(args.sequence);  // JSON holds only UTF-8
         out["vertices"] = sequence.rest.vertexCount();
         out["faces"] = sequence.rest.faceCount();
         out["markers"] = options.markers.size();
+        out["marker_vertices"] = options.markers;  // to give another method: --markers-file
         out["drop_pct"] = args.drop;
+        if (args.drop > 0) out["seed"] = args.seed;
+        out["bbox_diagonal"] = results[0].bboxDiagonal;
         out["frame_range"] = {range.first, range.end};  // [first, end), as the sidecar's
-        out["options"] = toJson(options.solver);
-        nlohmann::json perFrame = nlohmann::json::array();
-        for (const auto& f : results[0].frames)
-            perFrame.push_back({{"frame", f.frame},
-                                {"rms_pct", f.rmsPct},
-                                {"max_pct", f.maxPct},
-                                {"flipped_faces", f.flippedFaces},
-                                {"folded_faces", f.foldedFaces},
-                                {"markers_used", f.markersUsed},
-                                {"iterations", f.iterations},
-                                {"ms", f.milliseconds}});
-        out["per_frame"] = perFrame;
-        for (size_t i = 1; i < results.size(); ++i)
-            out[methodName(methods[i])] = summaryJson(results[i].summary);
+        // ARAP alone uses none of Boneless's solver options.
+        if (methods[0] == EvaluationOptions::Method::Boneless)
+            out["options"] = toJson(options.solver);
+        out["per_frame"] = perFrameJson(results[0].frames);
+        // With both, the top level is Boneless's and ARAP's figures are under its name.
+        for (size_t i = 1; i < results.size(); ++i) {
+            nlohmann::json other = summaryJson(results[i].summary);
+            other["per_frame"] = perFrameJson(results[i].frames);
+            out[methodName(methods[i])] = other;
+        }
         std::cout << out.dump(2) << "\n";
     } else {
         std::printf("summary over the frames after the rest pose:\n");

@@ -39,7 +39,7 @@ TEST(EvalCommand, JsonReportsEverySummaryFigureAndBothMethods) {
         EXPECT_TRUE(j.contains(key)) << key;
     EXPECT_TRUE(j.contains("folded_faces_max"));
     EXPECT_EQ(j["frame_count"], 15);  // the rest pose is not counted
-    EXPECT_EQ(j["method"], "boneless");
+    EXPECT_EQ(j["method"], "both");   // the top level's figures are Boneless's
     ASSERT_TRUE(j.contains("arap"));
     EXPECT_EQ(j["per_frame"].size(), 16u);
     EXPECT_LT(j["per_frame"][0]["rms_pct"].get<double>(), 1e-9);  // the rest pose comes back
@@ -390,4 +390,36 @@ TEST(EvalCommand, TheMarkersUsedPerFrameAreReportedAndADropRoundingToNoneIsSaid)
     EXPECT_NE(text.out.find("10 markers, 30 % dropped per frame: 7 used per frame"),
               std::string::npos)
         << text.out;
+}
+
+// The JSON could not be reproduced: it gave neither the seed, nor the marker vertices (to hand
+// to another method with --markers-file), nor the length its percentages are of; with --method
+// both it said "boneless" and held ARAP's summary without its frames; with --method arap it
+// listed Boneless's solver options as if used.
+TEST(EvalCommand, TheJsonHoldsWhatItTakesToReproduceItAndNamesItsMethods) {
+    const auto both = evalJson("--markers 12 --frames 0:4 --method both --drop 10 --seed 7");
+    EXPECT_EQ(both["method"], "both");
+    EXPECT_EQ(both["seed"], 7);
+    ASSERT_EQ(both["marker_vertices"].size(), 12u);
+    EXPECT_EQ(both["marker_vertices"][0], 0);  // farthest-point sampling starts at vertex 0
+    EXPECT_GT(both["bbox_diagonal"].get<double>(), 0);
+    ASSERT_TRUE(both.contains("arap"));
+    EXPECT_EQ(both["arap"]["per_frame"].size(), 4u);
+    EXPECT_NE(both["arap"]["per_frame"][2]["rms_pct"], both["per_frame"][2]["rms_pct"]);
+    EXPECT_TRUE(both.contains("options"));
+
+    const auto arap = evalJson("--markers 12 --frames 0:4 --method arap");
+    EXPECT_EQ(arap["method"], "arap");
+    EXPECT_FALSE(arap.contains("options")) << arap.dump();
+    EXPECT_FALSE(arap.contains("seed"));  // nothing dropped, nothing drawn
+
+    // The ids written are the ones used: given back as a file, the same figures come out.
+    const fs::path file = fs::path(BONELESS_TEST_WORK_DIR) / "reproduce.txt";
+    {
+        std::ofstream ids(file);
+        for (const auto& id : both["marker_vertices"]) ids << id.get<int>() << "\n";
+    }
+    const auto again = evalJson("--markers-file " + file.string() +
+                                " --frames 0:4 --method both --drop 10 --seed 7");
+    EXPECT_EQ(again["per_frame"][3]["rms_pct"], both["per_frame"][3]["rms_pct"]);
 }

@@ -91,6 +91,7 @@ Evaluation evaluateSequence(const MeshSequence& sequence, const EvaluationOption
     Positions previous = sequence.rest.V;
 
     Evaluation evaluation;
+    evaluation.bboxDiagonal = diagonal;
     for (int frame = useArap ? 0 : options.firstFrame; frame < end; ++frame) {
         const Positions& truth = sequence.frames[frame];
         Positions targets(K, 3);

@@ -61,6 +61,8 @@ struct EvaluationSummary {
 struct Evaluation {
     std::vector<FrameEvaluation> frames;
     EvaluationSummary summary;
+    double bboxDiagonal =
+        0;  // the rest pose's bounding-box diagonal (mesh units): the % figures' 100
 };
 
 const char* methodName(EvaluationOptions::Method method);
