@@ -423,3 +423,20 @@ TEST(EvalCommand, TheJsonHoldsWhatItTakesToReproduceItAndNamesItsMethods) {
                                 " --frames 0:4 --method both --drop 10 --seed 7");
     EXPECT_EQ(again["per_frame"][3]["rms_pct"], both["per_frame"][3]["rms_pct"]);
 }
+
+// --frames 0:3 read every OBJ of the folder (samba: 175 files for 2 frames) and the header gave
+// the folder's frame count for the range: a frame outside the range is not read at all, and the
+// header names the range.
+TEST(EvalCommand, OnlyTheFramesEvaluatedAreReadAndTheHeaderNamesThem) {
+    const fs::path dir = freshTestDir("eval-partial");
+    for (const auto& e : fs::directory_iterator(demoFolder()))
+        fs::copy_file(e.path(), dir / e.path().filename());
+    // A frame beyond the range that could not be read as one of this sequence.
+    std::ofstream(dir / "walker_0012.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    const CliResult r =
+        runCli("eval --sequence " + dir.string() + " --markers 20 --frames 2:6 --method both");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("frames 2:6 of 16"), std::string::npos) << r.out;
+    // The whole folder is still checked when it is evaluated whole.
+    EXPECT_NE(runCli("eval --sequence " + dir.string() + " --markers 20").exitCode, 0);
+}

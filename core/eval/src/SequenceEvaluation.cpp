@@ -94,6 +94,12 @@ Evaluation evaluateSequence(const MeshSequence& sequence, const EvaluationOption
     evaluation.bboxDiagonal = diagonal;
     for (int frame = useArap ? 0 : options.firstFrame; frame < end; ++frame) {
         const Positions& truth = sequence.frames[frame];
+        if (truth.rows() != sequence.rest.V.rows())
+            throw Error("frame " + std::to_string(frame) +
+                        (frame < static_cast<int>(sequence.files.size())
+                             ? " (" + sequence.files[frame] + ")"
+                             : std::string()) +
+                        " was not read, and the evaluation needs it");
         Positions targets(K, 3);
         for (int k = 0; k < K; ++k) targets.row(k) = truth.row(markers[k]);
         if (dropCount > 0) {

@@ -81,21 +81,32 @@ void sortFrames(const std::string& directory, std::vector<std::string>& files) {
 
 }  // namespace
 
-MeshSequence readMeshSequence(const std::string& directory) {
+std::vector<std::string> meshSequenceFiles(const std::string& directory) {
     namespace fs = std::filesystem;
     std::error_code ec;
     if (!fs::is_directory(directory, ec))
         throw MeshError(directory, "not a directory of mesh frames");
-    MeshSequence sequence;
+    std::vector<std::string> files;
     for (const auto& entry : fs::directory_iterator(directory)) {
         std::string ext = entry.path().extension().string();
         std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
-        if (entry.is_regular_file() && ext == ".obj")
-            sequence.files.push_back(entry.path().string());
+        if (entry.is_regular_file() && ext == ".obj") files.push_back(entry.path().string());
     }
-    if (sequence.files.empty()) throw MeshError(directory, "contains no .obj frames");
-    sortFrames(directory, sequence.files);
+    if (files.empty()) throw MeshError(directory, "contains no .obj frames");
+    sortFrames(directory, files);
+    return files;
+}
+
+MeshSequence readMeshSequence(const std::string& directory,
+                              const std::function<bool(int frame)>& wanted) {
+    MeshSequence sequence;
+    sequence.files = meshSequenceFiles(directory);
     for (const auto& file : sequence.files) {
+        const int frame = static_cast<int>(sequence.frames.size());
+        if (frame > 0 && wanted && !wanted(frame)) {
+            sequence.frames.emplace_back();  // not read
+            continue;
+        }
         TriMesh mesh = readMesh(file).mesh;
         if (sequence.frames.empty()) {
             sequence.rest = mesh;
