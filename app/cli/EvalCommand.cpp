@@ -82,6 +82,7 @@ nlohmann::json summaryJson(const EvaluationSummary& s) {
             {"flipped_faces_max", s.flippedFacesMax},
             {"flipped_faces_mean", s.flippedFacesMean},
             {"folded_faces_max", s.foldedFacesMax},
+            {"truth_folded_faces_max", s.truthFoldedFacesMax},
             {"ms_per_frame_mean", s.msPerFrameMean},
             {"ms_per_frame_worst", s.msPerFrameWorst},
             {"ms_per_frame_median", s.msPerFrameMedian},
@@ -96,6 +97,7 @@ nlohmann::json perFrameJson(const std::vector<FrameEvaluation>& frames) {
                         {"max_pct", f.maxPct},
                         {"flipped_faces", f.flippedFaces},
                         {"folded_faces", f.foldedFaces},
+                        {"truth_folded_faces", f.truthFoldedFaces},
                         {"markers_used", f.markersUsed},
                         {"iterations", f.iterations},
                         {"ms", f.milliseconds}});
@@ -106,10 +108,11 @@ void printSummary(const char* name, const EvaluationSummary& s) {
     std::printf(
         "%-9s frames %d  markers used %d  RMS %% mean %.3f  RMS %% worst frame %.3f  max %% worst "
         "frame %.3f  "
-        "flipped max %d (mean %.1f)  folded max %d  ms/frame mean %.1f worst %.1f median %.1f\n",
+        "flipped max %d (mean %.1f)  folded max %d (truth folded max %d)  ms/frame mean %.1f worst "
+        "%.1f median %.1f\n",
         name, s.frames, s.markersUsed, s.rmsPctMean, s.rmsPctWorstFrame, s.maxPctWorstFrame,
-        s.flippedFacesMax, s.flippedFacesMean, s.foldedFacesMax, s.msPerFrameMean,
-        s.msPerFrameWorst, s.msPerFrameMedian);
+        s.flippedFacesMax, s.flippedFacesMean, s.foldedFacesMax, s.truthFoldedFacesMax,
+        s.msPerFrameMean, s.msPerFrameWorst, s.msPerFrameMedian);
 }
 
 void run(const EvalArgs& args) {
@@ -185,12 +188,13 @@ void run(const EvalArgs& args) {
         options.method = method;
         const bool perFrame = !args.json && !args.quiet;
         if (perFrame)
-            std::printf("%-9s %6s %9s %9s %8s %7s %6s %9s\n", methodName(method), "frame", "RMS %",
-                        "max %", "flipped", "folded", "iters", "ms");
+            std::printf("%-9s %6s %9s %9s %8s %7s %13s %6s %9s\n", methodName(method), "frame",
+                        "RMS %", "max %", "flipped", "folded", "truth folded", "iters", "ms");
         results.push_back(evaluateSequence(sequence, options, [&](const FrameEvaluation& f) {
             if (perFrame)
-                std::printf("%-9s %6d %9.4f %9.4f %8d %7d %6d %9.1f\n", "", f.frame, f.rmsPct,
-                            f.maxPct, f.flippedFaces, f.foldedFaces, f.iterations, f.milliseconds);
+                std::printf("%-9s %6d %9.4f %9.4f %8d %7d %13d %6d %9.1f\n", "", f.frame, f.rmsPct,
+                            f.maxPct, f.flippedFaces, f.foldedFaces, f.truthFoldedFaces,
+                            f.iterations, f.milliseconds);
         }));
     }
     if (args.json) {

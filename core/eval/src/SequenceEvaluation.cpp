@@ -35,6 +35,7 @@ EvaluationSummary summarise(const std::vector<FrameEvaluation>& frames) {
         s.flippedFacesMax = std::max(s.flippedFacesMax, f.flippedFaces);
         s.flippedFacesMean += f.flippedFaces;
         s.foldedFacesMax = std::max(s.foldedFacesMax, f.foldedFaces);
+        s.truthFoldedFacesMax = std::max(s.truthFoldedFacesMax, f.truthFoldedFaces);
         iterations += f.iterations;
         ms.push_back(f.milliseconds);
     }
@@ -134,6 +135,7 @@ Evaluation evaluateSequence(const MeshSequence& sequence, const EvaluationOption
         f.maxPct = 100.0 * maxVertexError(result.V, truth) / diagonal;
         f.flippedFaces = flippedFaceCount(sequence.rest.F, result.V, truth);
         f.foldedFaces = foldedFaceCount(sequence.rest.F, result.V, sequence.rest.V);
+        f.truthFoldedFaces = foldedFaceCount(sequence.rest.F, truth, sequence.rest.V);
         f.iterations = result.report.iterations;
         f.milliseconds = result.report.milliseconds;
         f.markersUsed = K - dropCount;

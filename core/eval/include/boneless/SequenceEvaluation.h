@@ -43,6 +43,9 @@ struct FrameEvaluation {
     // can turn away from the truth without folding: the first counts it, the second does not.
     int flippedFaces = 0;
     int foldedFaces = 0;
+    // The truth's own folded faces, by the same measure: a sequence that folds itself is folded
+    // in a faithful answer too, and this tells those folds from the method's.
+    int truthFoldedFaces = 0;
     int iterations = 0;
     double milliseconds = 0;
     int markersUsed = 0;  // the markers this frame was reconstructed from: those not dropped
@@ -55,6 +58,7 @@ struct EvaluationSummary {
     int flippedFacesMax = 0;
     double flippedFacesMean = 0;
     int foldedFacesMax = 0;
+    int truthFoldedFacesMax = 0;
     double msPerFrameMean = 0, msPerFrameWorst = 0, msPerFrameMedian = 0, iterationsMean = 0;
 };
 
