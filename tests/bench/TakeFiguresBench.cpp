@@ -12,8 +12,10 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -22,6 +24,7 @@
 
 #include "boneless/Correspondence.h"
 #include "boneless/DentGauge.h"
+#include "boneless/Error.h"
 #include "boneless/MeshReader.h"
 #include "boneless/Metrics.h"
 #include "boneless/PointCacheWriter.h"
@@ -56,9 +59,23 @@ struct Worst {
     double mean() const { return count ? sum / count : 0; }
 };
 
+int measure(int argc, char** argv);
+
 }  // namespace
 
 int main(int argc, char** argv) {
+    // A folder it cannot measure is one line naming the file, not an uncaught exception.
+    try {
+        return measure(argc, argv);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "boneless-bench-take: %s\n", e.what());
+        return 1;
+    }
+}
+
+namespace {
+
+int measure(int argc, char** argv) {
     CLI::App app{"Quality figures of solved takes (issue 28)"};
     std::string meshPath, group, mapPath;
     std::vector<std::string> solved;
@@ -84,15 +101,28 @@ int main(int argc, char** argv) {
 
     for (const std::string& dir : solved) {
         const std::string stem = group.empty() ? fs::path(meshPath).stem().string() : group;
-        const auto sidecar = nlohmann::json::parse(std::ifstream(fs::path(dir) / (stem + ".json")));
+        const std::string sidecarPath = (fs::path(dir) / (stem + ".json")).string();
+        std::ifstream sidecarFile(sidecarPath);
+        if (!sidecarFile)
+            throw Error(sidecarPath + ": cannot open the sidecar (" + std::strerror(errno) +
+                        "): is " + dir + " a `boneless-cli solve --format pc2` output?");
+        const auto sidecar = nlohmann::json::parse(sidecarFile, nullptr, false);
+        if (sidecar.is_discarded() || !sidecar.is_object())
+            throw Error(sidecarPath + ": not a sidecar (not a JSON object)");
+        // Before the calibration: a folder solved to OBJ is told so, whatever its calibration.
+        const std::string cachePath = (fs::path(dir) / (stem + ".pc2")).string();
+        if (!fs::is_regular_file(cachePath))
+            throw Error(cachePath +
+                        ": cannot open the point cache (no such file): solve with "
+                        "--format pc2; OBJ, MDD and glb outputs are not measured");
         TriMesh rest = input;
         const auto& calibration = sidecar["calibration"];
         if (calibration.value("calibrate", "none") != "none") {
-            if (!calibration["calibrated_rest"].is_string()) {
-                std::fprintf(stderr, "%s: calibrated, but without --write-calibrated-rest\n",
-                             dir.c_str());
-                return 1;
-            }
+            if (!calibration["calibrated_rest"].is_string())
+                throw Error(sidecarPath +
+                            ": the take was solved with calibration but its calibrated rest was "
+                            "not written, and the figures are measured against it: solve again "
+                            "with --write-calibrated-rest");
             rest.V =
                 readMesh(
                     (fs::path(dir) / calibration["calibrated_rest"].get<std::string>()).string())
@@ -102,8 +132,7 @@ int main(int argc, char** argv) {
         const double unitsPerMm = sidecar["units"]["mesh_units_per_mm"].get<double>();
         const DentGauge dents(rest, topology, encoding, points,
                               TakeSolver::kDentRadiusMm * unitsPerMm);
-        const std::vector<Positions> frames =
-            readPointCache((fs::path(dir) / (stem + ".pc2")).string());
+        const std::vector<Positions> frames = readPointCache(cachePath);
         const int first = sidecar["frame_range"][0].get<int>();
         Worst strain, distortion, folded, dent, residual, bent;
         int foldedFrames = 0, foldedTotal = 0;
@@ -162,3 +191,5 @@ int main(int argc, char** argv) {
     }
     return 0;
 }
+
+}  // namespace

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <optional>
 #include <random>
 
 #include "boneless/ArapDeformer.h"
@@ -28,6 +27,7 @@ EvaluationSummary summarise(const std::vector<FrameEvaluation>& frames) {
     double iterations = 0;
     for (const auto& f : frames) {
         if (f.frame == 0) continue;  // the rest pose is reproduced by construction
+        s.markersUsed = s.frames == 0 ? f.markersUsed : std::min(s.markersUsed, f.markersUsed);
         ++s.frames;
         s.rmsPctMean += f.rmsPct;
         s.rmsPctWorstFrame = std::max(s.rmsPctWorstFrame, f.rmsPct);
@@ -35,6 +35,7 @@ EvaluationSummary summarise(const std::vector<FrameEvaluation>& frames) {
         s.flippedFacesMax = std::max(s.flippedFacesMax, f.flippedFaces);
         s.flippedFacesMean += f.flippedFaces;
         s.foldedFacesMax = std::max(s.foldedFacesMax, f.foldedFaces);
+        s.truthFoldedFacesMax = std::max(s.truthFoldedFacesMax, f.truthFoldedFaces);
         iterations += f.iterations;
         ms.push_back(f.milliseconds);
     }
@@ -84,18 +85,28 @@ Evaluation evaluateSequence(const MeshSequence& sequence, const EvaluationOption
         }
     }
 
-    std::mt19937 rng(options.seed);
     const int dropCount = options.droppedPerFrame();
     std::vector<int> order(K);
-    std::optional<Positions> previous;
-    if (options.firstFrame == 0) previous = sequence.rest.V;
+    // ARAP's chain starts at the rest pose at frame 0 whatever the range: the frames before it
+    // are solved, unreported, so that a frame's figures do not depend on where --frames begins.
+    Positions previous = sequence.rest.V;
 
     Evaluation evaluation;
-    for (int frame = options.firstFrame; frame < end; ++frame) {
+    evaluation.bboxDiagonal = diagonal;
+    for (int frame = useArap ? 0 : options.firstFrame; frame < end; ++frame) {
         const Positions& truth = sequence.frames[frame];
+        if (truth.rows() != sequence.rest.V.rows())
+            throw Error("frame " + std::to_string(frame) +
+                        (frame < static_cast<int>(sequence.files.size())
+                             ? " (" + sequence.files[frame] + ")"
+                             : std::string()) +
+                        " was not read, and the evaluation needs it");
         Positions targets(K, 3);
         for (int k = 0; k < K; ++k) targets.row(k) = truth.row(markers[k]);
         if (dropCount > 0) {
+            // Drawn from (seed, frame): a frame loses the same markers whatever --frames says.
+            std::seed_seq frameSeed{options.seed, static_cast<unsigned>(frame)};
+            std::mt19937 rng(frameSeed);
             std::iota(order.begin(), order.end(), 0);
             std::shuffle(order.begin(), order.end(), rng);
             for (int i = 0; i < dropCount; ++i)
@@ -104,7 +115,11 @@ Evaluation evaluateSequence(const MeshSequence& sequence, const EvaluationOption
         SolveResult result;
         if (useArap) {
             // ARAP as it is used: each frame from the previous one's answer.
-            result = arap.solve(targets, previous ? &*previous : nullptr);
+            result = arap.solve(targets, &previous);
+            if (frame < options.firstFrame) {
+                previous = std::move(result.V);
+                continue;
+            }
         } else if (exact) {
             const SolveResult first = start.solve(targets);
             result = boneless.solve(targets, &first.V);
@@ -120,6 +135,7 @@ Evaluation evaluateSequence(const MeshSequence& sequence, const EvaluationOption
         f.maxPct = 100.0 * maxVertexError(result.V, truth) / diagonal;
         f.flippedFaces = flippedFaceCount(sequence.rest.F, result.V, truth);
         f.foldedFaces = foldedFaceCount(sequence.rest.F, result.V, sequence.rest.V);
+        f.truthFoldedFaces = foldedFaceCount(sequence.rest.F, truth, sequence.rest.V);
         f.iterations = result.report.iterations;
         f.milliseconds = result.report.milliseconds;
         f.markersUsed = K - dropCount;

@@ -11,16 +11,17 @@ namespace boneless {
 
 // Drives marker vertices of a ground-truth sequence with their true positions, reconstructs every
 // frame (Boneless as a take is solved, each frame from its own markers; ARAP as it is used, each
-// frame from the previous one's answer) and measures the result against the truth. This is how
-// a user finds out how many markers a mesh needs, and how Boneless is compared with ARAP.
+// frame from the previous one's answer, the chain starting at the rest pose at frame 0) and
+// measures the result against the truth. This is how a user finds out how many markers a mesh
+// needs, and how Boneless is compared with ARAP.
 struct EvaluationOptions {
     enum class Method { Boneless, Arap };
     Method method = Method::Boneless;
     std::vector<int> markers;  // vertex ids
     int firstFrame = 0;
     int endFrame = -1;       // one past the last frame; -1 = the end of the sequence
-    double dropPercent = 0;  // each frame, this share of the markers goes missing (seeded)
-    unsigned seed = 1;
+    double dropPercent = 0;  // each frame, this share of the markers goes missing
+    unsigned seed = 1;       // a frame's missing markers are drawn from (seed, frame)
     // As a take is solved (TakeSolveOptions), so that what eval measures is what a user gets:
     // the orientation guard on for the exact method.
     SolverOptions solver = [] {
@@ -42,23 +43,30 @@ struct FrameEvaluation {
     // can turn away from the truth without folding: the first counts it, the second does not.
     int flippedFaces = 0;
     int foldedFaces = 0;
+    // The truth's own folded faces, by the same measure: a sequence that folds itself is folded
+    // in a faithful answer too, and this tells those folds from the method's.
+    int truthFoldedFaces = 0;
     int iterations = 0;
     double milliseconds = 0;
-    int markersUsed = 0;
+    int markersUsed = 0;  // the markers this frame was reconstructed from: those not dropped
 };
 
 struct EvaluationSummary {
-    int frames = 0;  // frames summarised: those after the rest pose
+    int frames = 0;       // frames summarised: those after the rest pose
+    int markersUsed = 0;  // the fewest markers any of them was reconstructed from
     double rmsPctMean = 0, rmsPctWorstFrame = 0, maxPctWorstFrame = 0;
     int flippedFacesMax = 0;
     double flippedFacesMean = 0;
     int foldedFacesMax = 0;
+    int truthFoldedFacesMax = 0;
     double msPerFrameMean = 0, msPerFrameWorst = 0, msPerFrameMedian = 0, iterationsMean = 0;
 };
 
 struct Evaluation {
     std::vector<FrameEvaluation> frames;
     EvaluationSummary summary;
+    double bboxDiagonal =
+        0;  // the rest pose's bounding-box diagonal (mesh units): the % figures' 100
 };
 
 const char* methodName(EvaluationOptions::Method method);
