@@ -65,8 +65,8 @@ struct EvaluationSummary {
 struct Evaluation {
     std::vector<FrameEvaluation> frames;
     EvaluationSummary summary;
-    double bboxDiagonal =
-        0;  // the rest pose's bounding-box diagonal (mesh units): the % figures' 100
+    // The rest pose's bounding-box diagonal (mesh units): what the % figures are a share of.
+    double bboxDiagonal = 0;
 };
 
 const char* methodName(EvaluationOptions::Method method);
