@@ -49,7 +49,8 @@ std::string vertexWhere(const PolygonSoup& soup, int vertex) {
 TopologySummary checkManifold(const std::string& file, const Faces& F, int vertexCount,
                               const std::vector<int>& faceOf, const PolygonSoup& soup,
                               const std::vector<int>& vertexOf,
-                              const std::unordered_set<uint64_t>& repeated) {
+                              const std::unordered_set<uint64_t>& repeated,
+                              const std::vector<int>& weldedTo) {
     const int T = static_cast<int>(F.rows());
     auto faceName = [&](int t) { return faceWhere(soup, faceOf[t]); };
     auto vertexName = [&](int v) { return std::to_string(vertexOf[v]); };
@@ -133,10 +134,10 @@ TopologySummary checkManifold(const std::string& file, const Faces& F, int verte
         }
     }
     for (int v = 0; v < vertexCount; ++v) {
-        if (fanRoot[v] < 0) {
+        if (fanRoot[v] < 0 && weldedTo[v] == v) {
             ++summary.isolatedVertices;
             if (summary.isolated.size() < 5) summary.isolated.push_back(vertexOf[v]);
-        } else if (parts.find(v) == v) {
+        } else if (fanRoot[v] >= 0 && parts.find(v) == v) {
             ++summary.components;
         }
     }

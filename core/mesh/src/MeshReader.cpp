@@ -220,6 +220,10 @@ MeshReadResult readMesh(const std::string& path, const MeshReadOptions& options)
                                 vertexWhere(soup, v));
     }
 
+    int welded = 0;
+    const std::vector<int> weld = weldCopies(V, soup, kept, meshIndex, welded);
+    for (int& v : meshIndex)
+        if (v >= 0) v = weld[v];
     // The file's edges, so that no diagonal the triangulation cuts doubles one of them.
     std::unordered_set<uint64_t> sides;
     for (int f : kept)
@@ -250,7 +254,7 @@ MeshReadResult readMesh(const std::string& path, const MeshReadOptions& options)
     r.mesh.F = Eigen::Map<const Faces>(tris.data(), static_cast<Eigen::Index>(tris.size() / 3), 3);
 
     const TopologySummary topo = checkManifold(path, r.mesh.F, r.mesh.vertexCount(), triFace, soup,
-                                               r.sourceVertexIndex, repeated);
+                                               r.sourceVertexIndex, repeated, weld);
     r.boundaryEdges = topo.boundaryEdges;
     r.boundaryLoops = topo.boundaryLoops;
     r.components = topo.components;
@@ -268,7 +272,15 @@ MeshReadResult readMesh(const std::string& path, const MeshReadOptions& options)
         }
 
     addWarnings(r, soup, dropped, flat, topo);
+    // The file's own corners, copies and all: their texture coordinates tell the copies apart.
+    for (int i = 0; i < V.rows(); ++i) meshIndex[r.sourceVertexIndex[i]] = i;
     r.mesh.sourceFaces = sourceFaces(path, soup, kept, meshIndex, r.mesh.vertexCount(), r.warnings);
+    if (welded > 0) {
+        r.mesh.weldedTo = weld;
+        r.weldedVertices = welded;
+        r.warnings.push_back("welded " + plural(welded, "vertex", "vertices") +
+                             " that share a position with another (split UV seams)");
+    }
     return r;
 }
 

@@ -56,6 +56,13 @@ void triangulatePolygon(const Positions& V, const int* corners, int n,
                         std::unordered_set<uint64_t>& edges, std::vector<int>& out,
                         std::unordered_set<uint64_t>& repeated);
 
+// Per mesh vertex (meshIndex maps the soup's), the vertex it is welded to: copies at the same
+// position (within 1e-6 of the used vertices' bounding-box diagonal), the first in file order
+// standing for them, where the kept polygons about it still form one fan. `welded`: copies.
+std::vector<int> weldCopies(const Positions& V, const PolygonSoup& soup,
+                            const std::vector<int>& kept, const std::vector<int>& meshIndex,
+                            int& welded);
+
 // Throws MeshError for non-manifold edges, inconsistent orientation and non-manifold vertices;
 // fills the boundary and component counts of `result`. F rows come from soup faces `faceOf`.
 struct TopologySummary {
@@ -63,9 +70,11 @@ struct TopologySummary {
     std::vector<int> isolated;  // first few isolated vertices, for the warning
 };
 // `repeated`: edges (edgeKey) the triangulation cut again, to say it made them, not the file.
+// `weldedTo`: weldCopies', whose copies F does not use and are not isolated.
 TopologySummary checkManifold(const std::string& file, const Faces& F, int vertexCount,
                               const std::vector<int>& faceOf, const PolygonSoup& soup,
                               const std::vector<int>& vertexOf,
-                              const std::unordered_set<uint64_t>& repeated);
+                              const std::unordered_set<uint64_t>& repeated,
+                              const std::vector<int>& weldedTo);
 
 }  // namespace boneless::detail
