@@ -349,9 +349,14 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
         const std::string worse =
             worseAlignmentWarning(mesh, take, map, request.options, c, takeNotes != nullptr);
         if (!worse.empty() && takeWarnings) takeWarnings->push_back(worse);
+        // A mesh 100 times too small came out so in a .glb, said only as "units look like m".
+        const std::string scale =
+            meshScaleWarning(mesh, c.takeToMesh, take.take().unitToMm, take.take().vertical);
+        if (!scale.empty() && takeWarnings) takeWarnings->push_back(scale);
         const auto warnOfWorse = [&] {
-            if (!worse.empty() && !takeWarnings)
-                std::fprintf(stderr, "warning: %s: %s\n", job.c3d.c_str(), worse.c_str());
+            for (const std::string& w : {worse, scale})
+                if (!w.empty() && !takeWarnings)
+                    std::fprintf(stderr, "warning: %s: %s\n", job.c3d.c_str(), w.c_str());
         };
         start = std::chrono::steady_clock::now();
         if (quiet) return warnOfWorse();

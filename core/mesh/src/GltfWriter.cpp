@@ -124,8 +124,10 @@ bool splitAtUvSeams(const TriMesh& mesh, std::vector<int>& meshVertexOf, std::ve
             if (t >= mesh.F.rows()) return false;
             for (int c = 0; c < 3; ++c) {
                 const int v = mesh.F(t, c);
+                // F names a welded vertex where the polygon may name its copy.
                 const int* corner =
-                    std::find(&source->corners[first], &source->corners[first] + n, v);
+                    std::find_if(&source->corners[first], &source->corners[first] + n,
+                                 [&](int u) { return weldedVertex(mesh, u) == v; });
                 if (corner == &source->corners[first] + n) return false;
                 const int coordinate = source->uvOf[corner - source->corners.data()];
                 const auto [it, added] =

@@ -48,7 +48,9 @@ std::string vertexWhere(const PolygonSoup& soup, int vertex) {
 
 TopologySummary checkManifold(const std::string& file, const Faces& F, int vertexCount,
                               const std::vector<int>& faceOf, const PolygonSoup& soup,
-                              const std::vector<int>& vertexOf) {
+                              const std::vector<int>& vertexOf,
+                              const std::unordered_set<uint64_t>& repeated,
+                              const std::vector<int>& weldedTo) {
     const int T = static_cast<int>(F.rows());
     auto faceName = [&](int t) { return faceWhere(soup, faceOf[t]); };
     auto vertexName = [&](int v) { return std::to_string(vertexOf[v]); };
@@ -80,10 +82,15 @@ TopologySummary checkManifold(const std::string& file, const Faces& F, int verte
             for (size_t m = i; m < j && m < i + 4; ++m)
                 where += (m > i ? ", " : "") + faceName(edges[m].tri);
             if (j - i > 4) where += ", ...";
-            throw MeshError(
-                file,
-                "non-manifold " + edgeName + ": shared by " + std::to_string(j - i) + " faces",
-                where);
+            // Ear clipping avoids repeating an edge, but a polygon may have no other way out.
+            const std::string made = repeated.count(e.key)
+                                         ? " (Boneless made it splitting the file's polygons into "
+                                           "triangles: no other split was left)"
+                                         : "";
+            throw MeshError(file,
+                            "non-manifold " + edgeName + ": shared by " + std::to_string(j - i) +
+                                " faces" + made,
+                            where);
         }
         if (j - i == 1) {
             ++summary.boundaryEdges;
@@ -127,10 +134,10 @@ TopologySummary checkManifold(const std::string& file, const Faces& F, int verte
         }
     }
     for (int v = 0; v < vertexCount; ++v) {
-        if (fanRoot[v] < 0) {
+        if (fanRoot[v] < 0 && weldedTo[v] == v) {
             ++summary.isolatedVertices;
             if (summary.isolated.size() < 5) summary.isolated.push_back(vertexOf[v]);
-        } else if (parts.find(v) == v) {
+        } else if (fanRoot[v] >= 0 && parts.find(v) == v) {
             ++summary.components;
         }
     }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <unordered_set>
 
 #include "MtlReader.h"
 #include "OpenMeshPrecheck.h"
@@ -219,13 +220,25 @@ MeshReadResult readMesh(const std::string& path, const MeshReadOptions& options)
                                 vertexWhere(soup, v));
     }
 
+    int welded = 0;
+    const std::vector<int> weld = weldCopies(V, soup, kept, meshIndex, welded);
+    for (int& v : meshIndex)
+        if (v >= 0) v = weld[v];
+    // The file's edges, so that no diagonal the triangulation cuts doubles one of them.
+    std::unordered_set<uint64_t> sides;
+    for (int f : kept)
+        for (int c = soup.faceStart[f], end = soup.faceStart[f + 1]; c < end; ++c)
+            sides.insert(
+                edgeKey(meshIndex[soup.faceIndex[c]],
+                        meshIndex[soup.faceIndex[c + 1 < end ? c + 1 : soup.faceStart[f]]]));
+    std::unordered_set<uint64_t> edges = std::move(sides), repeated;
     std::vector<int> tris, polygon, triFace;  // triFace: soup face of each triangle
     for (int f : kept) {
         const int n = soup.faceStart[f + 1] - soup.faceStart[f];
         polygon.assign(soup.faceIndex.begin() + soup.faceStart[f],
                        soup.faceIndex.begin() + soup.faceStart[f] + n);
         for (int& c : polygon) c = meshIndex[c];
-        triangulatePolygon(V, polygon.data(), n, tris);
+        triangulatePolygon(V, polygon.data(), n, edges, tris, repeated);
         triFace.insert(triFace.end(), n - 2, f);
         if (n > 3) ++r.polygonsTriangulated;
     }
@@ -240,8 +253,8 @@ MeshReadResult readMesh(const std::string& path, const MeshReadOptions& options)
     }
     r.mesh.F = Eigen::Map<const Faces>(tris.data(), static_cast<Eigen::Index>(tris.size() / 3), 3);
 
-    const TopologySummary topo =
-        checkManifold(path, r.mesh.F, r.mesh.vertexCount(), triFace, soup, r.sourceVertexIndex);
+    const TopologySummary topo = checkManifold(path, r.mesh.F, r.mesh.vertexCount(), triFace, soup,
+                                               r.sourceVertexIndex, repeated, weld);
     r.boundaryEdges = topo.boundaryEdges;
     r.boundaryLoops = topo.boundaryLoops;
     r.components = topo.components;
@@ -259,7 +272,15 @@ MeshReadResult readMesh(const std::string& path, const MeshReadOptions& options)
         }
 
     addWarnings(r, soup, dropped, flat, topo);
+    // The file's own corners, copies and all: their texture coordinates tell the copies apart.
+    for (int i = 0; i < V.rows(); ++i) meshIndex[r.sourceVertexIndex[i]] = i;
     r.mesh.sourceFaces = sourceFaces(path, soup, kept, meshIndex, r.mesh.vertexCount(), r.warnings);
+    if (welded > 0) {
+        r.mesh.weldedTo = weld;
+        r.weldedVertices = welded;
+        r.warnings.push_back("welded " + plural(welded, "vertex", "vertices") +
+                             " that share a position with another (split UV seams)");
+    }
     return r;
 }
 

@@ -2,7 +2,9 @@
 
 // Internal to the mesh reader: what a format reader hands over before any checking.
 
+#include <cstdint>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 #include "boneless/MeshReader.h"
@@ -47,7 +49,19 @@ PolygonSoup readWithOpenMesh(const std::string& path);
 
 // Splits polygon `corners` (>= 3 vertex indices into V) into corners.size() - 2 triangles
 // appended to `out`, never creating a triangle that folds over the polygon when an ear exists.
-void triangulatePolygon(const Positions& V, const int* corners, int n, std::vector<int>& out);
+// `edges` (edgeKey) holds the mesh's edges so far: every polygon's sides and the diagonals cut
+// before; the polygon's diagonals join them, and `repeated` gets any that had to be one of them.
+uint64_t edgeKey(int a, int b);
+void triangulatePolygon(const Positions& V, const int* corners, int n,
+                        std::unordered_set<uint64_t>& edges, std::vector<int>& out,
+                        std::unordered_set<uint64_t>& repeated);
+
+// Per mesh vertex (meshIndex maps the soup's), the vertex it is welded to: copies at the same
+// position (within 1e-6 of the used vertices' bounding-box diagonal), the first in file order
+// standing for them, where the kept polygons about it still form one fan. `welded`: copies.
+std::vector<int> weldCopies(const Positions& V, const PolygonSoup& soup,
+                            const std::vector<int>& kept, const std::vector<int>& meshIndex,
+                            int& welded);
 
 // Throws MeshError for non-manifold edges, inconsistent orientation and non-manifold vertices;
 // fills the boundary and component counts of `result`. F rows come from soup faces `faceOf`.
@@ -55,8 +69,12 @@ struct TopologySummary {
     int boundaryEdges = 0, boundaryLoops = 0, components = 0, isolatedVertices = 0;
     std::vector<int> isolated;  // first few isolated vertices, for the warning
 };
+// `repeated`: edges (edgeKey) the triangulation cut again, to say it made them, not the file.
+// `weldedTo`: weldCopies', whose copies F does not use and are not isolated.
 TopologySummary checkManifold(const std::string& file, const Faces& F, int vertexCount,
                               const std::vector<int>& faceOf, const PolygonSoup& soup,
-                              const std::vector<int>& vertexOf);
+                              const std::vector<int>& vertexOf,
+                              const std::unordered_set<uint64_t>& repeated,
+                              const std::vector<int>& weldedTo);
 
 }  // namespace boneless::detail

@@ -1,8 +1,11 @@
 // Ear clipping in the polygon's best-fit plane, always cutting the ear with the shortest new
 // diagonal. For a quad this picks the shorter diagonal unless that diagonal lies outside a
 // non-convex quad, where a fan or the shorter-diagonal rule alone would fold a triangle over.
+// A diagonal that is already an edge (of the file, or another polygon's diagonal) is cut only
+// when no other ear is left: two hexagons sharing a vertex once both got the same diagonal.
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <limits>
 
 #include "PolygonSoup.h"
@@ -24,7 +27,13 @@ bool insideOrOn(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c) {
 
 }  // namespace
 
-void triangulatePolygon(const Positions& V, const int* corners, int n, std::vector<int>& out) {
+uint64_t edgeKey(int a, int b) {
+    return (uint64_t(uint32_t(std::min(a, b))) << 32) | uint32_t(std::max(a, b));
+}
+
+void triangulatePolygon(const Positions& V, const int* corners, int n,
+                        std::unordered_set<uint64_t>& edges, std::vector<int>& out,
+                        std::unordered_set<uint64_t>& repeated) {
     if (n == 3) {
         out.insert(out.end(), corners, corners + 3);
         return;
@@ -49,26 +58,34 @@ void triangulatePolygon(const Positions& V, const int* corners, int n, std::vect
     for (int i = 0; i < n; ++i) ring[i] = i;
     while (ring.size() > 3) {
         const int m = static_cast<int>(ring.size());
-        int best = -1, fallback = 0;
+        // Ears whose diagonal is new first, then (only if none is) those that repeat an edge.
+        int best = -1, bestTaken = -1, fallback = 0;
         double bestLength = std::numeric_limits<double>::infinity();
-        double fallbackLength = bestLength;
+        double takenLength = bestLength, fallbackLength = bestLength;
         for (int i = 0; i < m; ++i) {
             const int a = ring[(i + m - 1) % m], b = ring[i], c = ring[(i + 1) % m];
             const double length = (V.row(corners[a]) - V.row(corners[c])).squaredNorm();
-            if (length < fallbackLength) fallbackLength = length, fallback = i;
-            if (length >= bestLength || cross2(p[a], p[b], p[c]) <= 0) continue;
+            const bool taken = edges.count(edgeKey(corners[a], corners[c])) > 0;
+            if (length < fallbackLength && !taken) fallbackLength = length, fallback = i;
+            if (cross2(p[a], p[b], p[c]) <= 0) continue;
+            if (taken ? length >= takenLength : length >= bestLength) continue;
             bool ear = true;
             for (int j = 0; j < m && ear; ++j) {
                 const int q = ring[j];
                 if (q != a && q != b && q != c && insideOrOn(p[q], p[a], p[b], p[c])) ear = false;
             }
-            if (ear) best = i, bestLength = length;
+            if (!ear) continue;
+            if (taken)
+                bestTaken = i, takenLength = length;
+            else
+                best = i, bestLength = length;
         }
         // No ear means a degenerate or self-intersecting polygon: any cut is as good as another,
         // and the zero-area check reports what comes out.
-        const int i = best >= 0 ? best : fallback;
-        out.insert(out.end(),
-                   {corners[ring[(i + m - 1) % m]], corners[ring[i]], corners[ring[(i + 1) % m]]});
+        const int i = best >= 0 ? best : bestTaken >= 0 ? bestTaken : fallback;
+        const int a = corners[ring[(i + m - 1) % m]], c = corners[ring[(i + 1) % m]];
+        if (!edges.insert(edgeKey(a, c)).second) repeated.insert(edgeKey(a, c));
+        out.insert(out.end(), {a, corners[ring[i]], c});
         ring.erase(ring.begin() + i);
     }
     out.insert(out.end(), {corners[ring[0]], corners[ring[1]], corners[ring[2]]});

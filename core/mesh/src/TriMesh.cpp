@@ -2,6 +2,11 @@
 
 namespace boneless {
 
+void followWelds(const TriMesh& mesh, Positions& V) {
+    for (size_t v = 0; v < mesh.weldedTo.size(); ++v)
+        if (mesh.weldedTo[v] != static_cast<int>(v)) V.row(v) = V.row(mesh.weldedTo[v]);
+}
+
 double boundingBoxDiagonal(const Positions& V) {
     if (V.rows() == 0) return 0.0;
     return (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();

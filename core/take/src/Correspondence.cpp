@@ -231,8 +231,10 @@ void Correspondence::checkMesh(int vertexCount, const std::string& meshPath,
             fail(file, "marker " + m.label + ": face " + std::to_string(m.face) +
                            " is out of range (" + meshPath + " has " +
                            std::to_string(mesh->faceCount()) + " triangles)");
+        // Any copy of a welded vertex names it (TriMesh::weldedTo).
         const auto corners = mesh->F.row(m.face);
-        if (corners[0] != m.vertex && corners[1] != m.vertex && corners[2] != m.vertex)
+        const int v = weldedVertex(*mesh, m.vertex);
+        if (corners[0] != v && corners[1] != v && corners[2] != v)
             fail(file, "marker " + m.label + ": vertex " + std::to_string(m.vertex) +
                            " is not a corner of face " + std::to_string(m.face));
     }

@@ -223,13 +223,15 @@ std::vector<Draft> draft(const TriMesh& rest, const C3dTake& take, const Corresp
         return choice[a].minCoeff() < choice[b].minCoeff();
     });
     std::set<int> taken;
-    for (const auto& m : known.markers) taken.insert(m.vertex);
+    for (const auto& m : known.markers) taken.insert(weldedVertex(rest, m.vertex));
     std::vector<Draft> drafts;
     for (std::size_t w : order) {
         Draft d;
         d.point = wanted[w];
         for (int v = 0; v < rest.vertexCount(); ++v)
-            if (!taken.count(v) && (d.vertex < 0 || choice[w][v] < choice[w][d.vertex]))
+            // Only a welded vertex's first copy: the one the faces, and the app's picks, use.
+            if (weldedVertex(rest, v) == v && !taken.count(v) &&
+                (d.vertex < 0 || choice[w][v] < choice[w][d.vertex]))
                 d.vertex = v;
         if (d.vertex < 0) break;
         taken.insert(d.vertex);

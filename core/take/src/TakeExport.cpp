@@ -77,6 +77,32 @@ const char* guessMeshUnits(double meshUnitsPerMm) {
     return nearestUnit(meshUnitsPerMm).name;
 }
 
+std::string meshScaleWarning(const TriMesh& rest, const Similarity& takeToMesh, double takeUnitToMm,
+                             const Vec3& takeUp) {
+    const double meshUnitsPerMm = takeToMesh.scale / takeUnitToMm;
+    const MeshUnit unit = nearestUnit(meshUnitsPerMm);
+    // Neighbouring metric units are 10 apart, so the nearest is within √10 of any mesh sized
+    // between mm and m: only a mesh beyond them (a body 0.01 times its size) gets this far.
+    if (std::abs(std::log(meshUnitsPerMm / unit.perMm)) < std::log(4.0) || rest.F.size() == 0)
+        return "";
+    const Vec3 up = meshUp(takeToMesh, takeUp);
+    double low = INFINITY, high = -INFINITY;
+    for (Eigen::Index i = 0; i < rest.F.size(); ++i) {
+        const double h = rest.V.row(rest.F.data()[i]).dot(up);
+        low = std::min(low, h), high = std::max(high, h);
+    }
+    const double mm = (high - low) / unit.perMm;
+    char height[32];
+    if (mm >= 1000)
+        std::snprintf(height, sizeof height, "%.2g m", mm / 1000);
+    else if (mm >= 10)
+        std::snprintf(height, sizeof height, "%.2g cm", mm / 10);
+    else
+        std::snprintf(height, sizeof height, "%.2g mm", mm);
+    return std::string("mesh units look like ") + unit.name + ", but the body would be " + height +
+           " tall: check its scale (a .glb export places it by that unit)";
+}
+
 std::string guessUpAxis(const Similarity& s, const Vec3& takeUp) {
     return axisName(meshUp(s, takeUp));
 }

@@ -64,6 +64,7 @@ TakeSolver::TakeSolver(const TriMesh& rest, const TakeSolver& same, const Corres
 }
 
 void TakeSolver::prepare(const Correspondence& map) {
+    followWelds(rest_, rest_.V);  // copies within the weld's tolerance: exactly together
     auto calibrateTrack = [&](const Positions& R) {
         return calibrate(
             frameCount(), [&](int f) { return trackFrame(f, false); }, track_->file(), R);
@@ -73,7 +74,9 @@ void TakeSolver::prepare(const Correspondence& map) {
     solverOptions.constraints = SolverOptions::Constraints::Soft;
     solverOptions.markerWeight = options_.markerWeight;
     solverOptions.markerOffsets.clear();
-    const std::vector<SurfacePoint> points = surfacePoints(map);
+    // A map may name any copy of a welded vertex; F and the solver know only the first.
+    std::vector<SurfacePoint> points = surfacePoints(map);
+    for (SurfacePoint& p : points) p.vertex = weldedVertex(rest_, p.vertex);
     topology_ = std::make_unique<MeshTopology>(rest_);
     encoding_ = std::make_unique<ShapeEncoding>(rest_, *topology_);
 
@@ -157,6 +160,7 @@ void TakeSolver::prepare(const Correspondence& map) {
             rest_.V = fitActorShape(solver_, targets(calibration_.frame, true), labels,
                                     1.0 / meshUnitsPerMm_);
         }
+        followWelds(rest_, rest_.V);
         encoding_ = std::make_unique<ShapeEncoding>(rest_, *topology_);
         solver_.prepare(rest_, points, solverOptions);
     }
@@ -246,6 +250,7 @@ Positions TakeSolver::solve(int frame, FrameReport& report, const std::atomic<bo
     SolveResult result = solver_.solve(pull, nullptr, stop);
     if (result.report.stopped) {
         report.stopped = true;
+        followWelds(rest_, result.V);
         return result.V;
     }
     if (exact_ && result.V.allFinite()) {
@@ -253,6 +258,7 @@ Positions TakeSolver::solve(int frame, FrameReport& report, const std::atomic<bo
         SolveResult refined = exact_->solve(pull, &result.V, stop);
         if (refined.report.stopped) {
             report.stopped = true;
+            followWelds(rest_, refined.V);
             return refined.V;
         }
         refined.report.iterations += result.report.iterations;
@@ -267,6 +273,9 @@ Positions TakeSolver::solve(int frame, FrameReport& report, const std::atomic<bo
         for (int v = 0; v < rest_.vertexCount(); ++v)
             result.V.row(v) = motion.apply(rest_.V.row(v).transpose()).transpose();
     }
+    // The solver moves a welded vertex's copies rigidly, as vertices no face uses: they take its
+    // place, so that a seam the file splits stays closed in every output.
+    followWelds(rest_, result.V);
     const Positions predicted = predictedMarkers(result.V);
     double sum = 0;
     for (int k = 0; k < T.rows(); ++k) {

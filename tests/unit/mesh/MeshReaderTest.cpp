@@ -889,6 +889,35 @@ TEST(MeshReaderTriangulation, NonConvexHexagonCoversItsAreaWithoutFolds) {
     }
 }
 
+// Two hexagons across a crease, sharing the path P-Q-R (as a MakeHuman n-gon mesh's 590 589 572
+// 573 574 591 and 607 606 589 590 591 608): both once cut their ear at Q, each adding the
+// diagonal P-R, which four triangles then shared ("non-manifold edge").
+TEST(MeshReaderTriangulation, TwoHexagonsSharingTwoSidesDoNotBothCutTheSameDiagonal) {
+    Positions V(9, 3);
+    V << 0, 0.3, -0.3,                                         // Q, bulging out of both
+        -1, 0, 0, -1.5, -3, 0, 0, -4, 0, 1.5, -3, 0, 1, 0, 0,  // P, A's own three, R
+        0, 0, 4, -1.5, 0, 3, 1.5, 0, 3;                        // B's own three
+    const MeshReadResult r =
+        readMesh(writeFile("hexagons.obj", objText(V, {{0, 1, 2, 3, 4, 5}, {6, 7, 1, 0, 5, 8}})));
+    EXPECT_EQ(r.polygonsTriangulated, 2);
+    ASSERT_EQ(r.mesh.faceCount(), 8);
+    int usingPR = 0;
+    for (int t = 0; t < 8; ++t)
+        for (int k = 0; k < 3; ++k)
+            usingPR += std::minmax(r.mesh.F(t, k), r.mesh.F(t, (k + 1) % 3)) == std::minmax(1, 5);
+    EXPECT_EQ(usingPR, 2);
+}
+
+// A quad whose both diagonals are edges of the file's other faces cannot be split without
+// repeating one: the message says the split made the edge, which no face of the file has twice.
+TEST(MeshReaderTriangulation, AnEdgeOnlyTheSplitCouldRepeatIsSaidToBeTheSplits) {
+    Positions V(6, 3);
+    V << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0.5, 0.5, 1, 0.5, 0.5, -1;
+    const std::string path =
+        writeFile("forced.obj", objText(V, {{0, 1, 2, 3}, {0, 2, 4}, {1, 3, 5}}));
+    EXPECT_CONTAINS(errorOf(path), "Boneless made it splitting the file's polygons into triangles");
+}
+
 // ---- OBJ groups ------------------------------------------------------------------------------
 
 TEST(MeshReaderGroups, SelectedGroupKeepsItsVerticesInFileOrder) {

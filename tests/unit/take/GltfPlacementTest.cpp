@@ -59,3 +59,42 @@ TEST(GltfPlacement, AMeshInInchesOrFeetIsScaledToMetresByItsOwnUnit) {
     EXPECT_STREQ(guessMeshUnits(0.1 / 1.64), "cm");
     EXPECT_STREQ(guessMeshUnits(0.01 / 1.75), "dm");
 }
+
+// The MakeHuman body scaled by 0.01 (17 cm tall) was "mesh units look like m" and came out of a
+// glb 100 times too small with nothing said; a body that no unit makes a body's size is named.
+TEST(GltfPlacement, AMeshThatNoUnitMakesTheActorsSizeIsSaidToBeWronglyScaled) {
+    TriMesh body;  // 17.4 units tall along y, as a MakeHuman body in decimetres
+    body.V.resize(3, 3);
+    body.V << 0, 0, 0, 1, 17.4, 0, 0, 17.4, 1;
+    body.F.resize(1, 3);
+    body.F << 0, 1, 2;
+    const double actorMm = 1740;
+    EXPECT_EQ(meshScaleWarning(body, takeOnto(Vec3::UnitY(), actorMm / 17.4), 1.0, Vec3::UnitZ()),
+              "");  // decimetres
+    TriMesh small = body;
+    small.V *= 0.01;
+    EXPECT_EQ(meshScaleWarning(small, takeOnto(Vec3::UnitY(), actorMm / 0.174), 1.0, Vec3::UnitZ()),
+              "mesh units look like m, but the body would be 17 cm tall: check its scale (a .glb "
+              "export places it by that unit)");
+    TriMesh tiny = body;
+    tiny.V *= 0.001;
+    EXPECT_NE(meshScaleWarning(tiny, takeOnto(Vec3::UnitY(), actorMm / 0.0174), 1.0, Vec3::UnitZ())
+                  .find("but the body would be 1.7 cm tall"),
+              std::string::npos);
+    TriMesh huge = body;
+    huge.V *= 1000;
+    EXPECT_NE(meshScaleWarning(huge, takeOnto(Vec3::UnitY(), actorMm / 17400), 1.0, Vec3::UnitZ())
+                  .find("mesh units look like mm, but the body would be 17 m tall"),
+              std::string::npos);
+    // Every unit between mm and m, and a child's body driven by an adult, says nothing.
+    for (double unitMm : {1.0, 10.0, 100.0, 1000.0, 25.4, 304.8})
+        for (double actorOverMesh : {0.6, 1.0, 1.7}) {
+            TriMesh m = body;
+            m.V *= 100.0 / unitMm / actorOverMesh;  // a body 1.74 m / actorOverMesh tall
+            const double meshUnitsPerMm = m.V(1, 1) / actorMm;
+            EXPECT_EQ(meshScaleWarning(m, takeOnto(Vec3::UnitY(), 1 / meshUnitsPerMm), 1.0,
+                                       Vec3::UnitZ()),
+                      "")
+                << unitMm << " mm units, actor " << actorOverMesh;
+        }
+}

@@ -26,6 +26,7 @@ struct MeshReadResult {
     int sourceFaceCount = 0;             // faces read (of the selected group)
     int polygonsTriangulated = 0;        // file faces with more than three corners
     int droppedFaces = 0;                // faces with a repeated vertex index
+    int weldedVertices = 0;              // copies welded to another vertex (TriMesh::weldedTo)
 
     int boundaryEdges = 0;
     int boundaryLoops = 0;
@@ -42,6 +43,8 @@ struct MeshReadResult {
 // STL stores no shared vertices: OpenMesh merges corners with bitwise-equal positions, so vertex i
 // is the i-th distinct position in the order of first appearance (triangle by triangle, corner by
 // corner), and triangles whose corners merge are dropped (reported as a warning).
+// Copies of a vertex at one position (a file split at its UV seams) are welded for F: see
+// TriMesh::weldedTo; the vertex count and order stay the file's.
 // OFF, PLY and STL go through OpenMesh, which hands over float positions: double-precision PLY/OFF
 // coordinates arrive rounded to float. OBJ is parsed here, in double precision.
 MeshReadResult readMesh(const std::string& path, const MeshReadOptions& options = {});

@@ -51,10 +51,21 @@ struct TriMesh {
     // The file's polygons and texture coordinates when they are more than F (quads, UVs,
     // materials); shared, since a posed copy of the mesh has the same ones.
     std::shared_ptr<const SourceFaces> sourceFaces;
+    // Per vertex, the vertex it is welded to: copies at one position (a file split at its UV
+    // seams) are one vertex to F and the solve, the first in file order; a pose gives each copy
+    // that vertex's position (followWelds). Empty when nothing is welded.
+    std::vector<int> weldedTo;
 
     int vertexCount() const { return static_cast<int>(V.rows()); }
     int faceCount() const { return static_cast<int>(F.rows()); }
 };
+
+// The vertex `v` is welded to (v itself when it is no copy).
+inline int weldedVertex(const TriMesh& mesh, int v) {
+    return mesh.weldedTo.empty() ? v : mesh.weldedTo[v];
+}
+// Puts every copy of a welded vertex where that vertex is in V (#V by 3).
+void followWelds(const TriMesh& mesh, Positions& V);
 
 // Length of the diagonal of the axis-aligned bounding box (0 for an empty mesh).
 double boundingBoxDiagonal(const Positions& V);

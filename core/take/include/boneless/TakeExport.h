@@ -109,6 +109,12 @@ std::string fileFingerprint(const std::string& path, bool contents);
 // The nearest of mm/cm/dm/m to the mesh's unit, from how many mesh units a millimetre is.
 const char* guessMeshUnits(double meshUnitsPerMm);
 
+// "" when the mesh, read in its guessed unit, is about the size of the actor the take aligns onto
+// it; else a warning that no common unit makes it a body's size ("mesh units look like m, but
+// the body would be 17 cm tall: check its scale ..."), with its height along the guessed up axis.
+std::string meshScaleWarning(const TriMesh& rest, const Similarity& takeToMesh, double takeUnitToMm,
+                             const Vec3& takeUp);
+
 // The mesh axis ("+y", "-z", …) the take's vertical `takeUp` (C3dTake::vertical) maps onto.
 std::string guessUpAxis(const Similarity& takeToMesh, const Vec3& takeUp);
 
