@@ -124,6 +124,14 @@ void addTakeJobOptions(CLI::App* cmd, TakeJob& job) {
                   "Also write <stem>_calibrated_rest.obj, the rest fitted to the actor");
 }
 
+void refuseDoubtfulUnits(const C3dTake& take, const MarkerSpan& span, const std::string& outcome) {
+    if (span.doubt.empty()) return;
+    // Boneless reads a take in its file's units alone: the file is what to fix.
+    throw Error(take.file + ": " + span.doubt + "; " + outcome +
+                ": set the file's POINT:UNITS to " + span.likelyUnits +
+                " (Mokka, or ezc3d or btk in a script), or scale its coordinates");
+}
+
 void checkMapFitsMesh(const Correspondence& map, const TriMesh& mesh, const std::string& meshPath,
                       const std::string& group) {
     try {
@@ -284,6 +292,10 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
     request.mapPath = job.map;
     request.outDir = job.out;
 
+    // Streamed: a take of any length solves in the memory of a short one. Opened first, so that
+    // a take in other units than it says is refused at once.
+    const C3dFrameReader take(job.c3d);
+    refuseDoubtfulUnits(take.take(), measureMarkerSpan(take), "nothing was solved");
     MeshReadOptions meshOptions;
     meshOptions.group = job.group;
     const MeshReadResult read = readMesh(job.mesh, meshOptions);
@@ -293,8 +305,6 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
     else if (!quiet)
         for (const std::string& w : read.warnings)
             std::fprintf(stderr, "note: %s: %s\n", job.mesh.c_str(), w.c_str());
-    // Streamed: a take of any length solves in the memory of a short one.
-    const C3dFrameReader take(job.c3d);
     // Said even when quiet: a truncated take solves the frames it holds, and without this only
     // `inspect` would tell.
     if (takeWarnings)

@@ -88,7 +88,7 @@ TEST(C3dWriter, RoundTripIsExact) {
     t.points[5].kind = C3dPointKind::Power;
     t.points[6].kind = C3dPointKind::Scalar;
     t.points[0].description = "left front head";
-    t.units = "m";
+    t.units = "cm";  // 4000 units across: 40 m, a span a take may have (in metres, warned of)
     t.rate = 250.0;
     t.firstFrame = 17;
     t.parameters.addGroup("MYGROUP", "kept as is").locked = true;
@@ -101,8 +101,8 @@ TEST(C3dWriter, RoundTripIsExact) {
     EXPECT_EQ(r.processor, C3dProcessor::Intel);
     EXPECT_EQ(r.storage, C3dStorage::Float);
     EXPECT_DOUBLE_EQ(r.rate, 250.0);
-    EXPECT_EQ(r.units, "m");
-    EXPECT_DOUBLE_EQ(r.unitToMm, 1000.0);
+    EXPECT_EQ(r.units, "cm");
+    EXPECT_DOUBLE_EQ(r.unitToMm, 10.0);
     EXPECT_EQ(r.firstFrame, 17);
     EXPECT_EQ(r.firstFrameWord, 17);
     EXPECT_EQ(r.lastFrameWord, 56);
