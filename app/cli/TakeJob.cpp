@@ -343,10 +343,6 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
     request.mapPath = job.map;
     request.outDir = job.out;
 
-    // Streamed: a take of any length solves in the memory of a short one. Opened first, so that
-    // a take in other units than it says is refused at once.
-    const C3dFrameReader take(job.c3d);
-    refuseDoubtfulUnits(take.take(), measureMarkerSpan(take), "nothing was solved");
     MeshReadOptions meshOptions;
     meshOptions.group = job.group;
     const MeshReadResult read = readMesh(job.mesh, meshOptions);
@@ -356,6 +352,10 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
     else if (!quiet)
         for (const std::string& w : read.warnings)
             std::fprintf(stderr, "note: %s: %s\n", job.mesh.c_str(), w.c_str());
+    // Streamed: a take of any length solves in the memory of a short one. A take in other units
+    // than it says is refused here, before the solver is prepared.
+    const C3dFrameReader take(job.c3d);
+    refuseDoubtfulUnits(take.take(), measureMarkerSpan(take), "nothing was solved");
     // Said even when quiet: a truncated take solves the frames it holds, and without this only
     // `inspect` would tell.
     if (takeWarnings)
