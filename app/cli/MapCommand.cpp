@@ -94,10 +94,12 @@ void registerMapCommand(CLI::App& app) {
                 throw refuse();
             }
         }
+        // The take first: one in other units than it says is refused before the mesh is read.
+        const C3dTake take = readC3d(args->c3d);
+        refuseDoubtfulUnits(take, measureMarkerSpan(take), "nothing was written");
         MeshReadOptions options;
         options.group = args->group;
         const TriMesh mesh = readMesh(args->mesh, options).mesh;
-        const C3dTake take = readC3d(args->c3d);
         const Correspondence partial = Correspondence::read(args->map);
         // Read before the map is written, so that a run that fails leaves nothing behind.
         const std::optional<Correspondence> truth =

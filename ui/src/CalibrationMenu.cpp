@@ -60,7 +60,8 @@ void addCalibrationActions(QMenu* edit, QMenu* view, Document* document, Timelin
     QAction* automatic = edit->addAction(QObject::tr("Calibrate A&utomatically"), document,
                                          [=] { document->calibrateAt(-1); });
     automatic->setObjectName("calibrateAutomatically");
-    // The way out when the mesh cannot reach the actor, as `solve --calibrate none`.
+    // The way out when the mesh cannot reach the actor with a right map, as `solve --calibrate
+    // none`.
     QAction* none = edit->addAction(QObject::tr("&Do Not Calibrate"), document, [=] {
         TakeSolveOptions settings = document->settings();
         settings.calibrate = CalibrateMode::None;

@@ -66,14 +66,24 @@ void reconcileStorage(const Source& src, const HeaderWords& h, std::size_t decla
     const auto fits = [&](const PointLayout& l) {
         return l.frameBytes() == 0 || declaredFrames <= dataBytes(src, l) / l.frameBytes();
     };
+    // The data section is the declared frames and at most a block's padding: a float file read
+    // as int16 fits too, in half its bytes, and gave coordinates like -133720.
+    const auto fills = [&](const PointLayout& l) {
+        return fits(l) && dataBytes(src, l) - declaredFrames * l.frameBytes() < kBlock;
+    };
     const auto name = [](const PointLayout& l) {
         return l.storage == C3dStorage::Int16 ? std::string("int16") : std::string("float");
     };
     const std::string both = "the header's point scale (" + shortNumber(h.scale) + ", " +
                              name(alt) + ") and POINT:SCALE (" + shortNumber(L.scale) + ", " +
                              name(L) + ") disagree on the storage; ";
-    if (!fits(L) && fits(alt)) {
-        take.warnings.push_back(both + "only the header's fits the file's size, using it");
+    const bool onlyHeaderFits = !fits(L) && fits(alt);
+    if (onlyHeaderFits || (!fills(L) && fills(alt))) {
+        take.warnings.push_back(both + (onlyHeaderFits
+                                            ? "only the header's fits the file's size, using it"
+                                            : "the 3D data section is the size of " +
+                                                  std::to_string(declaredFrames) + " " + name(alt) +
+                                                  " frames, using the header's"));
         L.storage = alt.storage;
         L.scale = alt.scale;
         take.storage = L.storage;

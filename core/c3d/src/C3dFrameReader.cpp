@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "C3dDetail.h"
+#include "boneless/C3dMarkerSpan.h"
 #include "boneless/InputFile.h"
 
 namespace boneless {
@@ -53,6 +54,8 @@ C3dFrameReader::C3dFrameReader(const std::string& path, const C3dReadOptions& op
         scale_ = L.scale;
         take_.samples = C3dSamples(0, points_);
         setVertical(take_, frames_, [this](std::size_t f) { return read(f, 1); });
+        if (std::string doubt = measureMarkerSpan(*this).doubt; !doubt.empty())
+            take_.warnings.push_back(std::move(doubt));
     } catch (...) {
         ::close(fd_);
         throw;

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "C3dTakeLayout.h"
+#include "boneless/C3dMarkerSpan.h"
 #include "boneless/InputFile.h"
 
 namespace boneless {
@@ -73,6 +74,9 @@ C3dTake readC3dMemory(const std::uint8_t* data, std::size_t size, const std::str
             if (const auto p = take.samples.position(f, k)) frame.set(0, k, p->x(), p->y(), p->z());
         return frame;
     });
+    // A take in other units than it says, warned of where every reader of the file sees it.
+    if (std::string doubt = measureMarkerSpan(take).doubt; !doubt.empty())
+        take.warnings.push_back(std::move(doubt));
     return take;
 }
 

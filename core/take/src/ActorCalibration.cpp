@@ -106,9 +106,13 @@ Positions fitActorShape(Reconstruction& solver, const Positions& targets,
                       label.c_str(), mm);
         list.push_back(line);
     }
+    // The map first: a map made on another file of the body (another vertex order) names other
+    // places, and solved uncalibrated it pulls the body apart without a word.
     throw Error("the mesh cannot reach the actor at the calibration frame: marker " + joined(list) +
-                " (farthest first); check the map for these markers, or solve without calibrating "
-                "(calibrate none)");
+                " (farthest first); check the map first: it must name this mesh file's vertices "
+                "in their order (a map made on another export or format of the body names other "
+                "places). Only for a right map on an actor the mesh cannot take the shape of, "
+                "solve without calibrating (calibrate none)");
 }
 
 }  // namespace boneless

@@ -88,7 +88,7 @@ TEST(C3dWriter, RoundTripIsExact) {
     t.points[5].kind = C3dPointKind::Power;
     t.points[6].kind = C3dPointKind::Scalar;
     t.points[0].description = "left front head";
-    t.units = "m";
+    t.units = "cm";  // 4000 units across: 40 m, a span a take may have (in metres, warned of)
     t.rate = 250.0;
     t.firstFrame = 17;
     t.parameters.addGroup("MYGROUP", "kept as is").locked = true;
@@ -101,8 +101,8 @@ TEST(C3dWriter, RoundTripIsExact) {
     EXPECT_EQ(r.processor, C3dProcessor::Intel);
     EXPECT_EQ(r.storage, C3dStorage::Float);
     EXPECT_DOUBLE_EQ(r.rate, 250.0);
-    EXPECT_EQ(r.units, "m");
-    EXPECT_DOUBLE_EQ(r.unitToMm, 1000.0);
+    EXPECT_EQ(r.units, "cm");
+    EXPECT_DOUBLE_EQ(r.unitToMm, 10.0);
     EXPECT_EQ(r.firstFrame, 17);
     EXPECT_EQ(r.firstFrameWord, 17);
     EXPECT_EQ(r.lastFrameWord, 56);
@@ -239,6 +239,27 @@ TEST(C3dWriter, APointScaleWhoseStorageTheFileCannotHoldGivesWayToTheHeaders) {
     const C3dTake f = readC3dMemory(floats.data(), floats.size(), "header.c3d");
     EXPECT_EQ(f.storage, C3dStorage::Float);
     EXPECT_TRUE(hasWarning(f, "using POINT:SCALE")) << ::testing::PrintToString(f.warnings);
+}
+
+// CMU 85_02 with POINT:SCALE made +10 (int16) and the header's -0.05 (float) left: int16 frames
+// fit in the first half of its data, and were read so, coordinates like -133720.
+TEST(C3dWriter, AFloatFileWhosePointScaleSaysInt16IsReadAsFloatsByItsDataSize) {
+    const C3dTake t = syntheticTake(100, {"A", "B", "C"});
+    auto bytes = encodeC3d(t);
+    c3d::putF32(&bytes[valueOffset(bytes, "POINT", "SCALE")], 10.0f);
+    const C3dTake r = readC3dMemory(bytes.data(), bytes.size(), "scale.c3d");
+    EXPECT_EQ(r.storage, C3dStorage::Float);
+    EXPECT_TRUE(hasWarning(r,
+                           "the 3D data section is the size of 100 float frames, using the "
+                           "header's"))
+        << ::testing::PrintToString(r.warnings);
+    ASSERT_EQ(r.frameCount(), 100u);
+    for (std::size_t f = 0; f < 100; ++f)
+        for (std::size_t k = 0; k < 3; ++k) {
+            ASSERT_EQ(r.samples.valid(f, k), t.samples.valid(f, k));
+            if (t.samples.valid(f, k))
+                EXPECT_LE((*r.samples.position(f, k) - *t.samples.position(f, k)).norm(), 1e-3);
+        }
 }
 
 TEST(C3dWriter, ZeroSamplesAreMissingUnlessKept) {

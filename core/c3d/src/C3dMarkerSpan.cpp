@@ -1,0 +1,96 @@
+// Whether the take's markers span what a body does in the units the file states.
+
+#include "boneless/C3dMarkerSpan.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "boneless/C3dFrameReader.h"
+
+namespace boneless {
+
+namespace {
+
+// Frames measured, as many as the vertical's check reads (C3dVertical.cpp).
+constexpr std::size_t kSpanFrames = 256;
+// A body spans 0.3 to 3 m; a hand or a face alone 0.1 m, a crowd 20 m. Outside these the
+// coordinates are in other units than the file says: CMU 85_02 in metres under "mm" spans 1.8 mm.
+constexpr double kSmallestSpanMm = 50.0;
+constexpr double kLargestSpanMm = 50000.0;
+
+std::string lengthText(double mm) {
+    char text[48];
+    if (mm >= 1000.0)
+        std::snprintf(text, sizeof text, "%.3g m", mm / 1000.0);
+    else
+        std::snprintf(text, sizeof text, "%.3g mm", mm);
+    return text;
+}
+
+}  // namespace
+
+MarkerSpan measureMarkerSpan(const C3dTake& take, std::size_t frames,
+                             const std::function<C3dSamples(std::size_t frame)>& frameAt) {
+    MarkerSpan result;
+    const std::vector<std::size_t> markers = take.markerIndices();
+    std::vector<double> spans;  // per frame showing 3 markers: its bounding box's longest side
+    const std::size_t judged = std::min(frames, kSpanFrames);
+    for (std::size_t i = 0; i < judged; ++i) {
+        const C3dSamples frame = frameAt(i * frames / judged);
+        Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
+        int seen = 0;
+        for (std::size_t k : markers)
+            if (const auto p = frame.position(0, k)) {
+                lo = lo.cwiseMin(*p);
+                hi = hi.cwiseMax(*p);
+                ++seen;
+            }
+        if (seen >= 3) spans.push_back((hi - lo).maxCoeff());
+    }
+    if (spans.empty()) return result;
+    std::nth_element(spans.begin(), spans.begin() + spans.size() / 2, spans.end());
+    const double span = spans[spans.size() / 2];  // in the file's units
+    result.mm = span * take.unitToMm;
+    if (!(span > 0.0) || (result.mm >= kSmallestSpanMm && result.mm <= kLargestSpanMm))
+        return result;
+    // The units that make the span a body's: nearest 1 m on a log scale.
+    struct Unit {
+        const char *symbol, *name;
+        double mm;
+    };
+    static const Unit units[] = {{"mm", "millimetres", 1.0},
+                                 {"cm", "centimetres", 10.0},
+                                 {"m", "metres", 1000.0},
+                                 {"in", "inches", 25.4}};
+    const Unit* likely = &units[0];
+    for (const Unit& u : units)
+        if (std::fabs(std::log(span * u.mm / 1000.0)) <
+            std::fabs(std::log(span * likely->mm / 1000.0)))
+            likely = &u;
+    result.likelyUnits = likely->symbol;
+    const bool stated = take.parameters.find("POINT", "UNITS") != nullptr;
+    result.doubt = "its markers span " + lengthText(result.mm) + " although " +
+                   (stated ? "POINT:UNITS says " + take.units
+                           : std::string("millimetres were assumed (no POINT:UNITS)")) +
+                   ": are they in " + likely->name + " (" + lengthText(span * likely->mm) +
+                   ")? A body spans 0.3 to 3 m";
+    return result;
+}
+
+MarkerSpan measureMarkerSpan(const C3dTake& take) {
+    return measureMarkerSpan(take, take.frameCount(), [&take](std::size_t f) {
+        C3dSamples frame(1, take.samples.points());
+        for (std::size_t k = 0; k < frame.points(); ++k)
+            if (const auto p = take.samples.position(f, k)) frame.set(0, k, p->x(), p->y(), p->z());
+        return frame;
+    });
+}
+
+MarkerSpan measureMarkerSpan(const C3dFrameReader& reader) {
+    return measureMarkerSpan(reader.take(), reader.frameCount(),
+                             [&reader](std::size_t f) { return reader.read(f, 1); });
+}
+
+}  // namespace boneless
