@@ -19,6 +19,7 @@
 #include "boneless/MarkerSuggestion.h"
 #include "boneless/MeshReader.h"
 #include "boneless/ProgressPace.h"
+#include "boneless/Reconstruction.h"
 #include "boneless/TakeOptionsJson.h"
 #include "boneless/Text.h"
 
@@ -382,6 +383,18 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
             std::fprintf(stderr, "warning: %s\n", warning.c_str());
     };
     for (const std::string& w : map.warnings) warnOfMap(w);  // a version 1 entry's "face"
+    // The reader's component count alone read as if every part were solved.
+    std::vector<int> markerVertices;
+    for (const auto& m : map.markers) markerVertices.push_back(m.vertex);
+    if (const int carried = componentsWithoutMarkers(mesh, markerVertices); carried > 0) {
+        const std::string text = plural(carried, "component") +
+                                 (carried == 1 ? " carries" : " carry") +
+                                 " no marker: each follows the nearest marked part rigidly";
+        if (meshWarnings)
+            meshWarnings->push_back(text);
+        else if (!quiet)
+            std::fprintf(stderr, "note: %s: %s\n", job.mesh.c_str(), text.c_str());
+    }
     // Not an error: the user may have looked and accepted them; but a suggestion on a prop or
     // the wrong limb pulls the mesh there, and nothing else would say so.
     if (const std::vector<std::string> review = labelsToReview(map); !review.empty()) {

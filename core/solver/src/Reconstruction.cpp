@@ -286,7 +286,17 @@ void Reconstruction::prepare(const TriMesh& rest, std::vector<SurfacePoint> poin
                     "a hard constraint puts a vertex on its marker, not a face point");
     impl->topology = std::make_unique<MeshTopology>(impl->rest);
     impl->encoding = std::make_unique<ShapeEncoding>(impl->rest, *impl->topology);
-    if (options.method == SolverOptions::Method::LocalGlobal) {
+    if (auto carried = std::make_unique<CarriedParts>(impl->rest, impl->markers);
+        !carried->empty()) {
+        std::vector<SurfacePoint> solvedPoints = points;
+        for (SurfacePoint& p : solvedPoints) {
+            p.vertex = carried->solvedVertex(p.vertex);
+            if (p.face >= 0) p.face = carried->solvedFace(p.face);
+        }
+        impl->solved = std::make_unique<Reconstruction>();
+        impl->solved->prepare(carried->solvedMesh(), std::move(solvedPoints), options);
+        impl->carried = std::move(carried);
+    } else if (options.method == SolverOptions::Method::LocalGlobal) {
         for (const SurfacePoint& p : points)
             impl->patches.push_back(makeMarkerPatch(impl->rest, *impl->encoding, p));
         impl->localGlobal = std::make_unique<LocalGlobalMethod>(
@@ -310,6 +320,7 @@ void Reconstruction::prepare(const TriMesh& rest, std::vector<SurfacePoint> poin
 
 Positions Reconstruction::markerPositions(const Positions& V) const {
     const Impl& s = *impl_;
+    if (s.solved) return s.solved->markerPositions(s.carried->solvedRows(V));
     const int K = static_cast<int>(s.markers.size());
     Positions P(K, 3);
     for (int k = 0; k < K; ++k) {
@@ -363,6 +374,14 @@ SolveResult Reconstruction::solve(const Positions& targets, const Positions* gue
     if (guess && guess->rows() != n)
         throw SolverError("the initial guess has " + std::to_string(guess->rows()) +
                           " vertices, the mesh " + std::to_string(n));
+    if (s.solved) {
+        Positions solvedGuess;
+        if (guess) solvedGuess = s.carried->solvedRows(*guess);
+        SolveResult result = s.solved->solve(targets, guess ? &solvedGuess : nullptr, stop);
+        // A stopped solve's positions are no answer (often none): nothing to carry.
+        if (!result.report.stopped) result.V = s.carried->whole(result.V);
+        return result;
+    }
     if (s.localGlobal) {
         // Each frame from its own markers: no guess, so that no history can matter. With none
         // visible there is nothing to follow: the rest pose.
@@ -399,6 +418,7 @@ Stencils Reconstruction::Impl::stencils() const {
 }
 
 double Reconstruction::energy(const Positions& V, const Positions& targets) const {
+    if (impl_->solved) return impl_->solved->energy(impl_->carried->solvedRows(V), targets);
     if (impl_->localGlobal)
         return impl_->localGlobal->energy(V, targets, impl_->options.markerOffsets);
     return impl_->energy(V, targets);
@@ -426,6 +446,7 @@ void Reconstruction::setOptions(const SolverOptions& options) {
     }
     const bool guardChanged = options.orientationGuard != old.orientationGuard;
     impl_->options = options;
+    if (impl_->solved) impl_->solved->setOptions(options);
     impl_->restMarkers = markerPositions(impl_->rest.V);  // the offsets may have changed
     if (guardChanged && impl_->system) impl_->updateOrientationGuard();
 }

@@ -12,6 +12,7 @@
 
 #include "ArapEnergy.h"
 #include "BlockSystem.h"
+#include "CarriedParts.h"
 #include "LocalGlobalMethod.h"
 #include "MarkerPatch.h"
 #include "OrientationGuard.h"
@@ -38,6 +39,10 @@ struct Reconstruction::Impl {
     std::vector<int> residualOf;       // residual -> vertex
     std::vector<int> residualIndex;    // vertex -> residual, or -1
     SolverOptions options;
+    // When some components hold no marker: the method runs on the others (`solved`, so that
+    // their answer is theirs alone) and carries these with them. Only the state above is kept.
+    std::unique_ptr<CarriedParts> carried;
+    std::unique_ptr<Reconstruction> solved;
     std::unique_ptr<LocalGlobalMethod> localGlobal;  // Method::LocalGlobal
     // Method::Exact:
     std::unique_ptr<BlockSystem> system;

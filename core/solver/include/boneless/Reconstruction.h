@@ -29,6 +29,11 @@ Vec3 surfaceNormal(const TriMesh& mesh, const ShapeEncoding& encoding, const Sur
 std::vector<int> surfaceDisk(const TriMesh& mesh, const MeshTopology& topology,
                              const SurfacePoint& p, double radius);
 
+// The connected components of the mesh that hold none of the marker vertices, when some do (0
+// when every one does, or none): Reconstruction solves the others and carries each of these
+// rigidly with the part of them nearest to it at rest (eyes and teeth with the head).
+int componentsWithoutMarkers(const TriMesh& mesh, const std::vector<int>& markerVertices);
+
 // What a caller chooses, one line each with its units. Users meet these under one name (core's
 // TakeOptionsJson: the JSON key and CLI flag in brackets); docs/solver.md says why each exists.
 struct SolverOptions {
@@ -73,7 +78,8 @@ struct SolveReport {
     // answer.
     bool stopped = false;
     // LocalGlobal only (−1 otherwise): faces the answer leaves folded over against their own
-    // neighbourhood (Metrics' foldedFaces, judged in each vertex's whole ring).
+    // neighbourhood (Metrics' foldedFaces, judged in each vertex's whole ring), on the solved
+    // components: a carried one moves rigidly and cannot fold.
     int foldedFaces = -1;
     // Exact only (NaN and empty for LocalGlobal): the energy at the guess and at the answer, and
     // after each accepted step (energies[0] = energyBefore); the steps that factorised their
@@ -95,7 +101,8 @@ struct SolveResult {
 //   Reconstruction r;  r.prepare(rest, markers);
 //   for each frame: result = r.solve(targets);
 // Every vertex keeps its shape relative to its one-ring (Kraevoy & Sheffer's encoding) while the
-// marker vertices go where the markers are; SolverOptions::method says how.
+// marker vertices go where the markers are; SolverOptions::method says how. A component with no
+// marker is not solved: it follows the nearest marked part rigidly (componentsWithoutMarkers).
 class Reconstruction {
   public:
     Reconstruction();
