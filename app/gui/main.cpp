@@ -165,6 +165,7 @@ int main(int argc, char** argv) {
     const auto openErrors = QObject::connect(&window, &boneless::ui::MainWindow::errorShown,
                                              [&](const QString& message) { openError = message; });
     const bool opened = window.openAtStart(parser.value(project), parser.positionalArguments());
+    if (window.endedBySignal()) return 0;  // during a question at start: app.exec() would stay
     if (batch && !opened) {
         fail(openError.isEmpty() ? window.statusBar()->currentMessage() : openError);
         return 1;

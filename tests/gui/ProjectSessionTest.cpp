@@ -18,6 +18,7 @@
 #include <QProcess>
 #include <QPushButton>
 #include <QSettings>
+#include <QSignalSpy>
 #include <QStatusBar>
 #include <QUndoStack>
 #include <QtTest>
@@ -226,6 +227,35 @@ class ProjectSessionTest : public QObject {
             for (int k = 0; k < 3; ++k)
                 QVERIFY(qAbs(restored[key].toList()[k].toDouble() -
                              camera[key].toList()[k].toDouble()) < 1e-6);
+    }
+
+    // With the project changed on disk, turning the heat map on (no edit, no `*`) asked about
+    // the file on disk as an edit would: the toggle autosaved. It is kept as the frame is, when
+    // the project is left.
+    void aViewToggleIsNoEditAndIsKeptWhenTheProjectIsLeft() {
+        const QString project = test::writeDemoProject(folder_ + "/toggle");
+        const QByteArray opened = readAll(project);
+        {
+            MainWindow window;
+            window.setMessageBoxesEnabled(false);
+            QVERIFY(window.openProject(project));
+            QSignalSpy errors(&window, &MainWindow::errorShown);
+            writeAll(project, opened + "\n");  // another program wrote it
+            QAction* heatMap = nullptr;
+            for (QAction* action : window.findChildren<QAction*>())
+                if (action->text() == "Shape Error &Heat Map") heatMap = action;
+            QVERIFY(heatMap);
+            heatMap->setChecked(true);
+            QVERIFY(!window.autosave()->isPending());
+            QVERIFY(window.autosave()->saveNow());
+            QVERIFY(!window.isWindowModified());
+            QCOMPARE(errors.count(), 0);
+            writeAll(project, opened);  // as it was: leaving it may write it
+            QVERIFY(window.close());
+        }
+        Document left;
+        QVERIFY(Project::load(left, project));
+        QCOMPARE(left.viewSettings().value("heatMap").toBool(), true);
     }
 
     // Opening another project left this one's frame, speed and camera unsaved, and the next

@@ -317,10 +317,8 @@ QMenu* MainWindow::buildViewMenu() {
                     if (action == trailsAction_) display_->setTrailsVisible(on);
                     if (action == heatMapAction_) display_->setHeatMapVisible(on);
                     if (action == followAction_) view_->setCameraFollow(on);
-                    // Follow is on unless the project says otherwise; the others are off.
-                    const bool stored =
-                        document_->viewSettings().value(key, action == followAction_).toBool();
-                    if (stored != on) document_->setViewSetting(key, on);
+                    // Kept in the project as the frame and camera are (storeSession), not here:
+                    // a display choice is no edit, to autosave, mark or ask about.
                 });
     }
     const QSignalBlocker quiet(followAction_);  // on by default, not an edit of the session
@@ -523,13 +521,23 @@ const std::pair<Timeline::Speed, const char*> kSpeedNames[] = {
 
 }  // namespace
 
-// Where the user was: frame, speed and camera go into the project's view settings.
+// Where the user was: frame, speed, camera and the View menu's toggles go into the project's
+// view settings.
 void MainWindow::storeSession() {
     if (!document_->hasTake() && !document_->hasMesh()) return;
     if (document_->hasTake()) document_->setViewSetting("frame", timeline_->frame());
     for (const auto& [speed, name] : kSpeedNames)
         if (speed == timeline_->speed()) document_->setViewSetting("speed", QString(name));
     if (document_->hasMesh()) document_->setViewSetting("camera", view_->cameraState());
+    const std::pair<QAction*, const char*> toggles[] = {{labelsAction_, "labels"},
+                                                        {trailsAction_, "trails"},
+                                                        {heatMapAction_, "heatMap"},
+                                                        {followAction_, "follow"}};
+    for (const auto& [action, key] : toggles) {
+        // Follow is on unless the project says otherwise; the others are off.
+        const bool stored = document_->viewSettings().value(key, action == followAction_).toBool();
+        if (stored != action->isChecked()) document_->setViewSetting(key, action->isChecked());
+    }
 }
 
 // A project opens where it was left, paused, or at the start frame asked for (--frame). What it

@@ -393,7 +393,10 @@ bool MainWindow::offerRecovery(const QStringList& named) {
     if (!messageBoxes_) return false;
     // One question for each Boneless that did not close, its last work first.
     for (const QString& path : autosave_->unfinishedRecoveries())
-        if (offerRecovery(path, named)) return true;
+        if (offerRecovery(path, named))
+            return true;
+        else if (endedBySignal_)
+            return false;
     return false;
 }
 
@@ -426,6 +429,10 @@ bool MainWindow::offerRecovery(const QString& path, const QStringList& named) {
     discard->setObjectName("discardButton");
     box.setDefaultButton(reopen);
     box.exec();  // answered before anything else opens (and autosaves over it)
+    if (endedBySignal_) {
+        autosave_->release(path);  // unanswered: offered again at the next start
+        return false;
+    }
     if (box.clickedButton() == reopen && openRecovery(path)) return true;  // held while its own
     // Discarded, or it would not open (openRecovery said why): a change may replace it.
     autosave_->discardRecovery(path);
@@ -439,7 +446,9 @@ bool MainWindow::openAtStart(const QString& project, const QStringList& files) {
     if (!project.isEmpty()) named.prepend(project);
     // A crash's work first: a file opened, or the demo edited, before the question would autosave
     // over it.
-    if (offerRecovery(named)) {
+    const bool reopened = offerRecovery(named);
+    if (endedBySignal_) return false;  // nothing more opens: the app is ending
+    if (reopened) {
         if (!named.isEmpty())
             statusBar()->showMessage(
                 tr("Opened the last autosave, untitled (Save As keeps it), instead of %1")
@@ -796,7 +805,11 @@ void MainWindow::endForSignal() {
     if (titled ? kept : !unsavedEdits_) autosave_->endSession();
     exportDialog_->cancelExport();
     stopSuggesting();
-    QCoreApplication::quit();
+    endedBySignal_ = true;
+    // Not quit(): Qt 6's asks each window to close, and a box without an escape button (the
+    // changed-on-disk question) refused, so the app stayed until killed; nor did it end a box
+    // exec'd before app.exec() (the recovery question). exit() ends every running event loop.
+    QCoreApplication::exit(0);
 }
 
 bool MainWindow::keepUnsavedWork(bool closing) {

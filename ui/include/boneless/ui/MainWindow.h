@@ -109,8 +109,12 @@ class MainWindow : public QMainWindow {
     void setMessageBoxesEnabled(bool enabled) { messageBoxes_ = enabled; }
     // SIGTERM, SIGHUP and SIGINT (logout, shutdown, kill, Ctrl+C) save the edits pending and quit,
     // asking nothing: killed within the autosave's delay, the last edit was lost. For the process;
-    // the last window to call it handles them.
+    // the last window to call it handles them. Any question up (a box, the recovery question
+    // at start-up) is left unanswered: a crash's work stays offered at the next start.
     void quitOnTerminationSignals();
+    // A termination signal ended the session: every event loop was told to end, so main() must
+    // not start its own (one asked before app.exec(), as the recovery question is).
+    bool endedBySignal() const { return endedBySignal_; }
     // The frame on screen, and whether it is the timeline's frame, rendered.
     int displayedFrame() const;
     bool frameUpToDate() const;
@@ -230,6 +234,7 @@ class MainWindow : public QMainWindow {
     int startFrame_ = -1;
     QString startGroup_;
     bool messageBoxes_ = true;
+    bool endedBySignal_ = false;
     // While keepUnsavedWork's question waits, error boxes are held (one over the question would
     // hide it); the answer shows them if the session stays, drops them if it is left.
     bool asking_ = false;
