@@ -27,6 +27,17 @@ const std::string& demoFolder() {
     return dir;
 }
 
+// One frame of a ground-truth sequence: `mesh`'s faces at positions V.
+void writeSequenceFrame(const fs::path& path, const boneless::Positions& V,
+                        const boneless::TriMesh& mesh) {
+    std::ofstream obj(path);
+    for (int v = 0; v < V.rows(); ++v)
+        obj << "v " << V(v, 0) << " " << V(v, 1) << " " << V(v, 2) << "\n";
+    for (int f = 0; f < mesh.faceCount(); ++f)
+        obj << "f " << mesh.F(f, 0) + 1 << " " << mesh.F(f, 1) + 1 << " " << mesh.F(f, 2) + 1
+            << "\n";
+}
+
 }  // namespace
 
 TEST(EvalCommand, JsonReportsEverySummaryFigureAndBothMethods) {
@@ -119,16 +130,8 @@ TEST(EvalCommand, FoldedFacesAreTheAnswersOwnAndFlippedOnesAgainstTheTruth) {
     ASSERT_GE(turned, 2);
 
     const fs::path dir = freshTestDir("eval-folded-truth");
-    auto write = [&](const fs::path& path, const boneless::Positions& V) {
-        std::ofstream obj(path);
-        for (int v = 0; v < V.rows(); ++v)
-            obj << "v " << V(v, 0) << " " << V(v, 1) << " " << V(v, 2) << "\n";
-        for (int f = 0; f < mesh.faceCount(); ++f)
-            obj << "f " << mesh.F(f, 0) + 1 << " " << mesh.F(f, 1) + 1 << " " << mesh.F(f, 2) + 1
-                << "\n";
-    };
-    write(dir / "000.obj", mesh.V);
-    write(dir / "001.obj", truth);
+    writeSequenceFrame(dir / "000.obj", mesh.V, mesh);
+    writeSequenceFrame(dir / "001.obj", truth, mesh);
     // Markers on every 10th vertex off that ring: the answer is the rest pose.
     const fs::path markers = dir / "markers.txt";
     std::ofstream ids(markers);
@@ -453,16 +456,8 @@ TEST(EvalCommand, TheTruthsOwnFoldedFacesAreGivenBesideTheAnswers) {
     ASSERT_GE(neighbour, 0);
     truth.row(0) += 2.5 * (mesh.V.row(neighbour) - mesh.V.row(0));
     const fs::path dir = freshTestDir("eval-truth-folds");
-    auto write = [&](const fs::path& path, const boneless::Positions& V) {
-        std::ofstream obj(path);
-        for (int v = 0; v < V.rows(); ++v)
-            obj << "v " << V(v, 0) << " " << V(v, 1) << " " << V(v, 2) << "\n";
-        for (int f = 0; f < mesh.faceCount(); ++f)
-            obj << "f " << mesh.F(f, 0) + 1 << " " << mesh.F(f, 1) + 1 << " " << mesh.F(f, 2) + 1
-                << "\n";
-    };
-    write(dir / "000.obj", mesh.V);
-    write(dir / "001.obj", truth);
+    writeSequenceFrame(dir / "000.obj", mesh.V, mesh);
+    writeSequenceFrame(dir / "001.obj", truth, mesh);
     const CliResult r = runCli("eval --sequence " + dir.string() + " --markers 30 --json");
     ASSERT_EQ(r.exitCode, 0) << r.out;
     const auto j = nlohmann::json::parse(r.out);
