@@ -101,12 +101,24 @@ int connectedComponents(const TriMesh& mesh, std::vector<int>& componentOf) {
     return count;
 }
 
+namespace {
+
+// Per component of `componentOf` (count of them), whether it holds one of the marker vertices.
+std::vector<char> markedComponents(const std::vector<int>& componentOf, int count,
+                                   const std::vector<int>& markerVertices) {
+    std::vector<char> marked(count, 0);
+    const int n = static_cast<int>(componentOf.size());
+    for (int v : markerVertices)
+        if (v >= 0 && v < n && componentOf[v] >= 0) marked[componentOf[v]] = 1;
+    return marked;
+}
+
+}  // namespace
+
 int componentsWithoutMarkers(const TriMesh& mesh, const std::vector<int>& markerVertices) {
     std::vector<int> componentOf;
     const int count = connectedComponents(mesh, componentOf);
-    std::vector<char> marked(count, 0);
-    for (int v : markerVertices)
-        if (v >= 0 && v < mesh.vertexCount() && componentOf[v] >= 0) marked[componentOf[v]] = 1;
+    const std::vector<char> marked = markedComponents(componentOf, count, markerVertices);
     const int unmarked = static_cast<int>(std::count(marked.begin(), marked.end(), 0));
     return unmarked == count ? 0 : unmarked;
 }
@@ -116,9 +128,7 @@ CarriedParts::CarriedParts(const TriMesh& rest, const std::vector<int>& markerVe
     const int n = rest.vertexCount();
     std::vector<int> componentOf;
     const int count = connectedComponents(rest, componentOf);
-    std::vector<char> marked(count, 0);
-    for (int v : markerVertices)
-        if (v >= 0 && v < n && componentOf[v] >= 0) marked[componentOf[v]] = 1;
+    const std::vector<char> marked = markedComponents(componentOf, count, markerVertices);
     const int unmarked = static_cast<int>(std::count(marked.begin(), marked.end(), 0));
     if (unmarked == 0 || unmarked == count) return;
 
