@@ -13,10 +13,10 @@
 #include "Commands.h"
 #include "OptionFlags.h"
 #include "boneless/Alignment.h"
-#include "boneless/C3dMarkerSpan.h"
 #include "boneless/C3dReader.h"
 #include "boneless/ObjWriter.h"
 #include "boneless/TakeExport.h"
+#include "boneless/Text.h"
 
 namespace {
 
@@ -43,7 +43,7 @@ nlohmann::json toJson(const boneless::C3dTake& t) {
     j["units"] = t.units;
     j["unit_to_mm"] = t.unitToMm;
     // null without a frame showing 3 markers; a span no body has is also among the warnings.
-    const double span = boneless::measureMarkerSpan(t).mm;
+    const double span = t.markerSpan.mm;
     j["marker_span_mm"] = span > 0 ? nlohmann::json(span) : nlohmann::json();
     j["up_axis"] = boneless::axisName(t.vertical);  // the sidecar's up_axis.take
     j["processor"] = toString(t.processor);
@@ -87,14 +87,9 @@ void printSummary(const boneless::C3dTake& t, std::ostream& out) {
     if (t.frameCount()) out << ", numbered " << t.firstFrame << ".." << lastFrame(t);
     out << " (header frames " << t.firstFrameWord << ".." << t.lastFrameWord << ")\n";
     out << "  units     " << t.units << " (x" << t.unitToMm << " to mm)";
-    if (const boneless::MarkerSpan span = boneless::measureMarkerSpan(t); span.mm > 0) {
-        char text[64];
-        if (span.mm >= 1000)
-            std::snprintf(text, sizeof text, ", markers span %.3g m", span.mm / 1000);
-        else
-            std::snprintf(text, sizeof text, ", markers span %.3g mm", span.mm);
-        out << text << (span.doubt.empty() ? "" : " (see the warning)");
-    }
+    if (const boneless::MarkerSpan& span = t.markerSpan; span.mm > 0)
+        out << ", markers span " << boneless::lengthText(span.mm)
+            << (span.doubt.empty() ? "" : " (see the warning)");
     out << "\n";
     out << "  up        " << boneless::axisName(t.vertical) << "\n";
     out << "  analog    " << t.analogChannels << " channels @ " << t.analogRate << " Hz\n";

@@ -96,7 +96,7 @@ void registerMapCommand(CLI::App& app) {
         }
         // The take first: one in other units than it says is refused before the mesh is read.
         const C3dTake take = readC3d(args->c3d);
-        refuseDoubtfulUnits(take, measureMarkerSpan(take), "nothing was written");
+        refuseDoubtfulUnits(take, "nothing was written");
         MeshReadOptions options;
         options.group = args->group;
         const TriMesh mesh = readMesh(args->mesh, options).mesh;

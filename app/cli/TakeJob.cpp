@@ -126,7 +126,8 @@ void addTakeJobOptions(CLI::App* cmd, TakeJob& job) {
                   "Also write <stem>_calibrated_rest.obj, the rest fitted to the actor");
 }
 
-void refuseDoubtfulUnits(const C3dTake& take, const MarkerSpan& span, const std::string& outcome) {
+void refuseDoubtfulUnits(const C3dTake& take, const std::string& outcome) {
+    const MarkerSpan& span = take.markerSpan;
     if (span.doubt.empty()) return;
     // Boneless reads a take in its file's units alone: the file is what to fix.
     throw Error(take.file + ": " + span.doubt + "; " + outcome +
@@ -357,7 +358,7 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
     // Streamed: a take of any length solves in the memory of a short one. A take in other units
     // than it says is refused here, before the solver is prepared.
     const C3dFrameReader take(job.c3d);
-    refuseDoubtfulUnits(take.take(), measureMarkerSpan(take), "nothing was solved");
+    refuseDoubtfulUnits(take.take(), "nothing was solved");
     // Said even when quiet: a truncated take solves the frames it holds, and without this only
     // `inspect` would tell.
     if (takeWarnings)

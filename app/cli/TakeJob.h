@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "boneless/C3dMarkerSpan.h"
+#include "boneless/C3dTake.h"
 #include "boneless/Error.h"
 #include "boneless/TakeExport.h"
 
@@ -38,12 +38,11 @@ void addTakeJobOptions(CLI::App* command, TakeJob& job);
 void checkMapFitsMesh(const boneless::Correspondence& map, const boneless::TriMesh& mesh,
                       const std::string& meshPath, const std::string& group);
 
-// A take whose markers span no body in the units it states (measureMarkerSpan) is refused before
+// A take whose markers span no body in the units it states (C3dTake::markerSpan) is refused before
 // the mesh is read or the solver prepared: solved, CMU 85_02 in metres under "mm" aligned "at
 // 10 mm" hundreds of metres off after 250 s. `outcome` says what was not done ("nothing was
 // solved").
-void refuseDoubtfulUnits(const boneless::C3dTake& take, const boneless::MarkerSpan& span,
-                         const std::string& outcome);
+void refuseDoubtfulUnits(const boneless::C3dTake& take, const std::string& outcome);
 
 // Where the job's sidecar goes: OUT/<stem>.json.
 std::string takeJobSidecar(const TakeJob& job);

@@ -13,6 +13,15 @@ std::string shortNumber(double x) {
     return text;
 }
 
+std::string lengthText(double mm) {
+    char text[48];
+    if (mm >= 1000.0)
+        std::snprintf(text, sizeof text, "%.3g m", mm / 1000.0);
+    else
+        std::snprintf(text, sizeof text, "%.3g mm", mm);
+    return text;
+}
+
 Decimal readDecimal(const std::string& text, double& x) {
     const std::size_t digits = !text.empty() && (text[0] == '-' || text[0] == '+') ? 1 : 0;
     if (text.find_first_of("xX") != std::string::npos) return Decimal::NotANumber;  // hexadecimal

@@ -92,6 +92,11 @@ void noteDecodeStats(const DecodeStats& stats, const C3dReadOptions& options,
 void setVertical(C3dTake& take, std::size_t frames,
                  const std::function<C3dSamples(std::size_t frame)>& frameAt);
 
+// The span of the markers of up to 256 of `frames` frames spread over the take (frameAt as
+// setVertical's, the same frames), read by both readers into C3dTake::markerSpan.
+MarkerSpan measureMarkerSpan(const C3dTake& take, std::size_t frames,
+                             const std::function<C3dSamples(std::size_t frame)>& frameAt);
+
 // Fills kind (and subject/name) of every point from POINT:ANGLES, FORCES, ... and known
 // model-output names.
 void classifyPoints(const C3dParameters& params, std::vector<C3dPoint>& points);

@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "C3dDetail.h"
-#include "boneless/C3dMarkerSpan.h"
 #include "boneless/InputFile.h"
 
 namespace boneless {
@@ -53,9 +52,10 @@ C3dFrameReader::C3dFrameReader(const std::string& path, const C3dReadOptions& op
         analogWords_ = L.analogWords;
         scale_ = L.scale;
         take_.samples = C3dSamples(0, points_);
-        setVertical(take_, frames_, [this](std::size_t f) { return read(f, 1); });
-        if (std::string doubt = measureMarkerSpan(*this).doubt; !doubt.empty())
-            take_.warnings.push_back(std::move(doubt));
+        const auto frameAt = [this](std::size_t f) { return read(f, 1); };
+        setVertical(take_, frames_, frameAt);
+        take_.markerSpan = measureMarkerSpan(take_, frames_, frameAt);
+        if (!take_.markerSpan.doubt.empty()) take_.warnings.push_back(take_.markerSpan.doubt);
     } catch (...) {
         ::close(fd_);
         throw;

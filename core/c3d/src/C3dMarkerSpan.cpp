@@ -1,15 +1,13 @@
 // Whether the take's markers span what a body does in the units the file states.
 
-#include "boneless/C3dMarkerSpan.h"
-
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <vector>
 
-#include "boneless/C3dFrameReader.h"
+#include "C3dDetail.h"
+#include "boneless/Text.h"
 
-namespace boneless {
+namespace boneless::c3d_detail {
 
 namespace {
 
@@ -19,15 +17,6 @@ constexpr std::size_t kSpanFrames = 256;
 // coordinates are in other units than the file says: CMU 85_02 in metres under "mm" spans 1.8 mm.
 constexpr double kSmallestSpanMm = 50.0;
 constexpr double kLargestSpanMm = 50000.0;
-
-std::string lengthText(double mm) {
-    char text[48];
-    if (mm >= 1000.0)
-        std::snprintf(text, sizeof text, "%.3g m", mm / 1000.0);
-    else
-        std::snprintf(text, sizeof text, "%.3g mm", mm);
-    return text;
-}
 
 }  // namespace
 
@@ -79,18 +68,4 @@ MarkerSpan measureMarkerSpan(const C3dTake& take, std::size_t frames,
     return result;
 }
 
-MarkerSpan measureMarkerSpan(const C3dTake& take) {
-    return measureMarkerSpan(take, take.frameCount(), [&take](std::size_t f) {
-        C3dSamples frame(1, take.samples.points());
-        for (std::size_t k = 0; k < frame.points(); ++k)
-            if (const auto p = take.samples.position(f, k)) frame.set(0, k, p->x(), p->y(), p->z());
-        return frame;
-    });
-}
-
-MarkerSpan measureMarkerSpan(const C3dFrameReader& reader) {
-    return measureMarkerSpan(reader.take(), reader.frameCount(),
-                             [&reader](std::size_t f) { return reader.read(f, 1); });
-}
-
-}  // namespace boneless
+}  // namespace boneless::c3d_detail

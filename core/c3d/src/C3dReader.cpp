@@ -7,7 +7,6 @@
 #include <fstream>
 
 #include "C3dTakeLayout.h"
-#include "boneless/C3dMarkerSpan.h"
 #include "boneless/InputFile.h"
 
 namespace boneless {
@@ -68,15 +67,16 @@ C3dTake readC3dMemory(const std::uint8_t* data, std::size_t size, const std::str
     const PointLayout L = readTakeLayout(src, options, take);
     take.samples = C3dSamples(L.frames, L.points);
     noteDecodeStats(decodePoints(src, L, take.samples), options, take.warnings);
-    setVertical(take, L.frames, [&take](std::size_t f) {
+    const auto frameAt = [&take](std::size_t f) {
         C3dSamples frame(1, take.samples.points());
         for (std::size_t k = 0; k < frame.points(); ++k)
             if (const auto p = take.samples.position(f, k)) frame.set(0, k, p->x(), p->y(), p->z());
         return frame;
-    });
+    };
+    setVertical(take, L.frames, frameAt);
     // A take in other units than it says, warned of where every reader of the file sees it.
-    if (std::string doubt = measureMarkerSpan(take).doubt; !doubt.empty())
-        take.warnings.push_back(std::move(doubt));
+    take.markerSpan = measureMarkerSpan(take, L.frames, frameAt);
+    if (!take.markerSpan.doubt.empty()) take.warnings.push_back(take.markerSpan.doubt);
     return take;
 }
 

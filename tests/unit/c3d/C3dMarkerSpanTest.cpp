@@ -5,7 +5,6 @@
 
 #include "C3dTestSupport.h"
 #include "boneless/C3dFrameReader.h"
-#include "boneless/C3dMarkerSpan.h"
 #include "boneless/C3dWriter.h"
 
 using namespace boneless;
@@ -44,7 +43,7 @@ TEST(C3dMarkerSpan, MetresUnderMillimetresAreDoubtedNamingTheSpanAndTheLikelyUni
     const std::string path = written("metres.c3d", scaledTake(0.001));
     const C3dTake whole = readC3d(path);
     const C3dFrameReader streamed(path);
-    for (const MarkerSpan& s : {measureMarkerSpan(whole), measureMarkerSpan(streamed)}) {
+    for (const MarkerSpan& s : {whole.markerSpan, streamed.take().markerSpan}) {
         EXPECT_EQ(s.likelyUnits, "m");
         EXPECT_NE(s.doubt.find("its markers span"), std::string::npos) << s.doubt;
         EXPECT_NE(s.doubt.find("although POINT:UNITS says mm: are they in metres"),
@@ -58,8 +57,7 @@ TEST(C3dMarkerSpan, MetresUnderMillimetresAreDoubtedNamingTheSpanAndTheLikelyUni
 }
 
 TEST(C3dMarkerSpan, MillimetresUnderMetresAreDoubtedToo) {
-    const MarkerSpan s =
-        measureMarkerSpan(readC3d(written("millimetres.c3d", scaledTake(1.0, "m"))));
+    const MarkerSpan s = readC3d(written("millimetres.c3d", scaledTake(1.0, "m"))).markerSpan;
     EXPECT_EQ(s.likelyUnits, "mm");
     EXPECT_NE(s.doubt.find("although POINT:UNITS says m: are they in millimetres"),
               std::string::npos)
@@ -69,7 +67,7 @@ TEST(C3dMarkerSpan, MillimetresUnderMetresAreDoubtedToo) {
 TEST(C3dMarkerSpan, ABodySizedTakeIsNotDoubted) {
     for (const auto& [factor, units] : {std::pair{1.0, "mm"}, {0.1, "cm"}, {0.001, "m"}}) {
         const C3dTake t = readC3d(written("body.c3d", scaledTake(factor, units)));
-        const MarkerSpan s = measureMarkerSpan(t);
+        const MarkerSpan& s = t.markerSpan;
         EXPECT_TRUE(s.doubt.empty()) << units << ": " << s.doubt;
         EXPECT_TRUE(s.likelyUnits.empty());
         EXPECT_NEAR(s.mm, 4000.0, 600.0) << units;

@@ -29,6 +29,9 @@ inline std::string plural(long long n, const std::string& word, const std::strin
 // the C3D reader each had their own copy.
 std::string shortNumber(double x);
 
+// A length in millimetres as messages give it, three significant digits: "1.54 mm", "1.8 m".
+std::string lengthText(double mm);
+
 // `text` as a number the way a command line gives one: decimal, as in JSON. NotANumber for
 // anything else, "0x10" (which strtod reads as 16) and "010" (octal 8 to C, 10 to strtod)
 // included; "nan" and "inf" are numbers, for a range to refuse by name. Underflow for a number

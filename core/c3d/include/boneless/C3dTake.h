@@ -81,6 +81,18 @@ struct C3dPoint {
     C3dPointKind kind = C3dPointKind::Marker;
 };
 
+// Whether a take's markers span what a body does in the units the file states (docs/c3d.md, "A
+// take's units"): CMU 85_02 with its coordinates in metres under POINT:UNITS "mm" spans 1.8 mm.
+struct MarkerSpan {
+    // The median over frames showing 3 markers of their bounding box's longest side, in mm as
+    // the take's units say; 0 when no frame shows 3.
+    double mm = 0.0;
+    // When that span is no body's (outside 50 mm to 50 m): "its markers span 1.8 mm although
+    // POINT:UNITS says mm: are they in metres (1.8 m)? A body spans 0.3 to 3 m", and the units
+    // that make it one's ("m"); both "" otherwise.
+    std::string doubt, likelyUnits;
+};
+
 struct C3dTake {
     std::string file;
     C3dProcessor processor = C3dProcessor::Intel;
@@ -107,6 +119,9 @@ struct C3dTake {
     // the one POINT:Y_SCREEN names, else +Z, reversed when nearly all markers lie below the
     // origin along it. The alignment's levelling, the view's floor, the sidecar and the glb ask it.
     Eigen::Vector3d vertical = Eigen::Vector3d::UnitZ();
+    // The readers measure it over the frames they judge the vertical by, and a doubt is also among
+    // the warnings.
+    MarkerSpan markerSpan;
 
     std::size_t frameCount() const { return samples.frames(); }
     // Whether the take says how long a frame is: the reader reports 0 for a rate that is 0, not
