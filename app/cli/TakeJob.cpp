@@ -91,9 +91,7 @@ static std::string heldFramesWarning(const ExportResult& result) {
 }
 
 // The sidecar's quality figures, so a run's stretch and fit are seen without opening it.
-static void printSummary(const std::string& sidecarPath) {
-    std::ifstream in(sidecarPath);
-    const nlohmann::json sidecar = nlohmann::json::parse(in);
+static void printSummary(const nlohmann::json& sidecar) {
     const nlohmann::json& s = sidecar.at("summary");
     const nlohmann::json& c = sidecar.at("calibration");
     // null when every frame held a neighbour's pose: then there is no residual to give.
@@ -264,11 +262,8 @@ std::string worseAlignmentWarning(const TriMesh& mesh, const C3dFrameReader& tak
 constexpr double kImplausibleDistortion = 0.5;
 constexpr double kImplausibleAlignmentMm = 200.0;
 
-// The warning that the solve the sidecar at `sidecarPath` describes is no body's, pointing at the
-// map first, or "".
-std::string implausibleSolveWarning(const std::string& sidecarPath, const std::string& mapPath) {
-    std::ifstream in(sidecarPath);
-    const nlohmann::json sidecar = nlohmann::json::parse(in);
+// The warning that the solve `sidecar` describes is no body's, pointing at the map first, or "".
+std::string implausibleSolveWarning(const nlohmann::json& sidecar, const std::string& mapPath) {
     const double distortion = sidecar.at("summary").at("edge_distortion_mean").get<double>();
     const double alignedMm = sidecar.at("alignment").at("residual_mm").get<double>();
     std::vector<std::string> signs;
@@ -488,9 +483,11 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
                 "first frame",
             stopSignal);
     }
+    // Read once for the warning and the summary line.
+    const nlohmann::json sidecar = nlohmann::json::parse(std::ifstream(result.sidecarPath));
     // Said even when quiet, as the held frames: the summary's figures alone looked like a solve.
     for (const std::string& w :
-         {heldFramesWarning(result), implausibleSolveWarning(result.sidecarPath, job.map)}) {
+         {heldFramesWarning(result), implausibleSolveWarning(sidecar, job.map)}) {
         if (!w.empty() && takeWarnings)
             takeWarnings->push_back(w);
         else if (!w.empty())
@@ -514,7 +511,7 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
             std::chrono::duration<double>(std::chrono::steady_clock::now() - begun).count();
         std::fprintf(stderr, "wrote %s: %s, %.1f MB in %.1f s\n", written.c_str(),
                      plural(result.framesWritten, "frame").c_str(), bytes / 1e6, seconds);
-        printSummary(result.sidecarPath);
+        printSummary(sidecar);
     }
     return result;
 }
