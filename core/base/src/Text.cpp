@@ -1,6 +1,5 @@
 #include "boneless/Text.h"
 
-#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -25,11 +24,9 @@ std::string lengthText(double mm) {
 Decimal readDecimal(const std::string& text, double& x) {
     const std::size_t digits = !text.empty() && (text[0] == '-' || text[0] == '+') ? 1 : 0;
     if (text.find_first_of("xX") != std::string::npos) return Decimal::NotANumber;  // hexadecimal
-    if (text.size() > digits + 1 && text[digits] == '0' &&
-        std::isdigit(static_cast<unsigned char>(text[digits + 1])))
+    if (text.size() > digits + 1 && text[digits] == '0' && isAsciiDigit(text[digits + 1]))
         return Decimal::NotANumber;  // a leading zero: octal to some
-    if (text.empty() || std::isspace(static_cast<unsigned char>(text[0])))
-        return Decimal::NotANumber;
+    if (text.empty() || isAsciiSpace(text[0])) return Decimal::NotANumber;
     char* end = nullptr;
     errno = 0;
     x = std::strtod(text.c_str(), &end);
