@@ -154,6 +154,7 @@ int main(int argc, char** argv) {
     const int samples = QSettings().value("view/multiSamples", 4).toInt();
     window.meshView()->setMultiSampling(parser.isSet(noMsaa) || batch ? 0 : samples);
     window.setMessageBoxesEnabled(!batch);
+    window.setRecordsSession(!batch);  // a render script leaves the user's recent files alone
     // Logout, shutdown and kill save the last second's edits and quit, asking nothing.
     if (!batch) window.quitOnTerminationSignals();
     window.setStartFrame(startFrame);
