@@ -13,6 +13,7 @@
 #include "boneless/ui/Document.h"
 #include "boneless/ui/MainWindow.h"
 #include "boneless/ui/MeshView.h"
+#include "boneless/ui/NumberFormat.h"
 #include "boneless/ui/SurfaceFormat.h"
 #include "boneless/ui/Timeline.h"
 
@@ -115,6 +116,7 @@ int main(int argc, char** argv) {
 
     boneless::ui::setDefaultSurfaceFormat();
     QApplication app(argc, argv);
+    boneless::ui::useOneNumberFormat();  // "12.5" as the CLI and project files write it
     parser.process(app);
 
     const bool batch = parser.isSet(screenshot);

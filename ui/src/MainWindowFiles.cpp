@@ -263,8 +263,8 @@ bool MainWindow::openProject(const QString& path, const QMap<QString, QString>& 
             box->setInformativeText(
                 tr("The file is left as it is. The last autosave, from %1, can be opened "
                    "instead.")
-                    .arg(QLocale().toString(QFileInfo(recovery).lastModified(),
-                                            QLocale::ShortFormat)));
+                    .arg(QLocale::system().toString(QFileInfo(recovery).lastModified(),
+                                                    QLocale::ShortFormat)));
             QPushButton* open = box->addButton(tr("Open Last Autosave"), QMessageBox::AcceptRole);
             open->setObjectName("openRecoveryButton");
             connect(open, &QPushButton::clicked, this,
@@ -412,7 +412,7 @@ bool MainWindow::offerRecovery(const QString& path, const QStringList& named) {
     box.setObjectName("recoveryQuestion");
     QString holds =
         tr("The last autosave, from %1, holds %2.")
-            .arg(QLocale().toString(recovery.lastModified(), QLocale::ShortFormat),
+            .arg(QLocale::system().toString(recovery.lastModified(), QLocale::ShortFormat),
                  from.isEmpty() ? tr("an untitled project")
                                 : tr("unsaved changes to %1").arg(QFileInfo(from).fileName()));
     if (!named.isEmpty())
@@ -722,8 +722,9 @@ void MainWindow::rebuildRecentMenu() {
     last->setObjectName("openLastAutosave");
     last->setEnabled(!path.isEmpty() && recovery.exists());
     if (last->isEnabled()) {
-        last->setText(tr("Last Autosave (%1)")
-                          .arg(QLocale().toString(recovery.lastModified(), QLocale::ShortFormat)));
+        last->setText(
+            tr("Last Autosave (%1)")
+                .arg(QLocale::system().toString(recovery.lastModified(), QLocale::ShortFormat)));
         last->setToolTip(recovery.absoluteFilePath());
     }
     recentMenu_->addAction(tr("Clear"), this, [] { RecentFiles::clear(); });

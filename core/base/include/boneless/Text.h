@@ -56,8 +56,13 @@ inline std::string asciiLower(std::string_view text) {
 
 // `x` as messages give a number: printf's %g, six significant digits, an exponent for the tiny
 // and the huge ("3", "0.1", "1e-07", "1e+20", "nan", "inf"). The mesh reader, the take options and
-// the C3D reader each had their own copy.
-std::string shortNumber(double x);
+// the C3D reader each had their own copy. With a decimal point in every locale, as JSON and
+// the CLI write it (setlocale made it "12,5" in German): this, fixedNumber and readDecimal are
+// how core writes and reads a number.
+std::string shortNumber(double x, int significant = 6);
+
+// `x` with `decimals` digits after the point, printf's %.*f in the "C" locale: "2.5 GB".
+std::string fixedNumber(double x, int decimals);
 
 // A length in millimetres as messages give it, three significant digits: "1.54 mm", "1.8 m".
 std::string lengthText(double mm);
