@@ -240,8 +240,7 @@ std::vector<TakeJob> readManifest(const std::string& file) {
         for (const auto& e : fs::directory_iterator(pattern.c3d, ec)) {
             // Hidden, or another tool's: macOS's ._take.c3d holds Finder's metadata, not a take.
             if (e.path().filename().string().front() == '.') continue;
-            std::string ext = e.path().extension().string();
-            std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+            const std::string ext = asciiLower(e.path().extension().string());
             // A link whose take is gone was meant as a take: its entry fails, naming it.
             const bool dangling = e.is_symlink() && !e.exists();
             if ((e.is_regular_file() || dangling) && ext == ".c3d") found.push_back(e.path());

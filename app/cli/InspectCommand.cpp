@@ -1,5 +1,6 @@
 // boneless-cli inspect TAKE.c3d [--json] [--csv OUT.csv]
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cstdio>
@@ -9,6 +10,7 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <utility>
 
 #include "Commands.h"
 #include "OptionFlags.h"
@@ -26,6 +28,36 @@ struct InspectOptions {
     std::string csv;
     bool keepZero = false;
 };
+
+// The columns a terminal gives the code point `c`: two for the East Asian wide and fullwidth
+// (CJK, Hangul, kana, fullwidth forms, emoji), none for a combining mark, one for the rest.
+int columnsOf(char32_t c) {
+    if (c >= 0x0300 && c <= 0x036F) return 0;
+    static const std::pair<char32_t, char32_t> wide[] = {
+        {0x1100, 0x115F},   {0x2E80, 0x303E},  {0x3041, 0x33FF}, {0x3400, 0x4DBF},
+        {0x4E00, 0x9FFF},   {0xA000, 0xA4CF},  {0xAC00, 0xD7A3}, {0xF900, 0xFAFF},
+        {0xFE30, 0xFE4F},   {0xFF00, 0xFF60},  {0xFFE0, 0xFFE6}, {0x1F300, 0x1F64F},
+        {0x1F900, 0x1F9FF}, {0x20000, 0x3FFFD}};
+    for (const auto& [first, last] : wide)
+        if (c >= first && c <= last) return 2;
+    return 1;
+}
+
+// `text` (UTF-8) and spaces after it to fill `columns` as a terminal shows them: printf's %-30s
+// counts bytes, and a label with a "Ö" or a "頭" shifted the columns after it.
+std::string padded(const std::string& text, std::size_t columns) {
+    std::size_t width = 0;
+    for (std::size_t i = 0; i < text.size();) {
+        const std::size_t n = std::max<std::size_t>(1, boneless::utf8SequenceAt(text, i));
+        char32_t c = n == 1 ? static_cast<unsigned char>(text[i])
+                            : static_cast<unsigned char>(text[i]) & (0x7F >> n);
+        for (std::size_t k = 1; k < n; ++k)
+            c = (c << 6) | (static_cast<unsigned char>(text[i + k]) & 0x3F);
+        width += columnsOf(c);
+        i += n;
+    }
+    return text + std::string(columns > width ? columns - width : 0, ' ');
+}
 
 // The number of the last frame the take holds (of one that holds any): a truncated copy's, not
 // the header's.
@@ -108,9 +140,11 @@ void printSummary(const boneless::C3dTake& t, std::ostream& out) {
     for (const auto& w : t.warnings) out << "  warning   " << w << "\n";
     out << "\n  #    label                          kind     missing\n";
     for (std::size_t i = 0; i < t.points.size(); ++i) {
-        char line[512];
-        std::snprintf(line, sizeof line, "  %-4zu %-30s %-8s %zu\n", i, t.points[i].label.c_str(),
-                      toString(t.points[i].kind), t.samples.missingFrames(i));
+        char line[64];
+        std::snprintf(line, sizeof line, "  %-4zu ", i);
+        out << line << padded(t.points[i].label, 30);
+        std::snprintf(line, sizeof line, " %-8s %zu\n", toString(t.points[i].kind),
+                      t.samples.missingFrames(i));
         out << line;
     }
 }

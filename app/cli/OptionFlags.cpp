@@ -1,6 +1,5 @@
 #include "OptionFlags.h"
 
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -38,7 +37,7 @@ namespace {
 void addOptionFlag(CLI::App* command, nlohmann::json& given, const nlohmann::json& defaults,
                    const TakeOption& o) {
     std::string help = o.doc;
-    help[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(help[0])));
+    help[0] = asciiUpper(help[0]);
     if (!o.units.empty()) help += " (" + o.units + ")";
     CLI::Option* flag = command->add_option_function<std::string>(
         optionFlag(o),

@@ -13,6 +13,7 @@
 #include "boneless/ui/Document.h"
 #include "boneless/ui/MainWindow.h"
 #include "boneless/ui/MeshView.h"
+#include "boneless/ui/NumberFormat.h"
 #include "boneless/ui/SurfaceFormat.h"
 #include "boneless/ui/Timeline.h"
 
@@ -115,6 +116,7 @@ int main(int argc, char** argv) {
 
     boneless::ui::setDefaultSurfaceFormat();
     QApplication app(argc, argv);
+    boneless::ui::useOneNumberFormat();  // "12.5" as the CLI and project files write it
     parser.process(app);
 
     const bool batch = parser.isSet(screenshot);
@@ -154,6 +156,7 @@ int main(int argc, char** argv) {
     const int samples = QSettings().value("view/multiSamples", 4).toInt();
     window.meshView()->setMultiSampling(parser.isSet(noMsaa) || batch ? 0 : samples);
     window.setMessageBoxesEnabled(!batch);
+    window.setRecordsSession(!batch);  // a render script leaves the user's recent files alone
     // Logout, shutdown and kill save the last second's edits and quit, asking nothing.
     if (!batch) window.quitOnTerminationSignals();
     window.setStartFrame(startFrame);

@@ -266,3 +266,23 @@ TEST(C3dInspect, WarnsOfTwoPointsThatShareALabel) {
     EXPECT_NE(r.out.find("warning   points 1 and 3 are both labelled Male:LFWT"), std::string::npos)
         << r.out;
 }
+
+// The point table pads labels to the columns a terminal shows them in, not to their bytes:
+// "walker:頭" (a wide character, 3 bytes) shifted the kind column by one, and so did "KÖPF".
+TEST(C3dInspect, ThePointTableStaysAlignedForLabelsOutsideAscii) {
+    const C3dTake t = c3dtest::syntheticTake(3, {"walker:頭", "walker:KÖPF", "walker:HEAD"});
+    const std::string path = (c3dtest::workDir() / "wide-labels.c3d").string();
+    writeC3d(t, path);
+    const CliRun r = inspect(quoted(path));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    // The label column is 30 wide and a space follows it: the spaces after each label are what
+    // its display width (頭 takes two columns) leaves.
+    const std::pair<std::string, std::size_t> rows[] = {
+        {"walker:頭", 30 - 9 + 1}, {"walker:KÖPF", 30 - 11 + 1}, {"walker:HEAD", 30 - 11 + 1}};
+    for (const auto& [label, spaces] : rows) {
+        const std::size_t at = r.out.find(label + " ");
+        ASSERT_NE(at, std::string::npos) << label << " not in\n" << r.out;
+        const std::size_t after = at + label.size();
+        EXPECT_EQ(r.out.find_first_not_of(' ', after) - after, spaces) << label << " in\n" << r.out;
+    }
+}

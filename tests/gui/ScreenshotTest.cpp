@@ -7,6 +7,7 @@
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QSet>
+#include <QSettings>
 #include <QtTest>
 
 #include "AppRun.h"
@@ -110,6 +111,41 @@ class ScreenshotTest : public QObject {
         run = screenshot({"--group", "body", "--frame", "5"});
         QVERIFY2(run.exitCode == 0, qPrintable(run.output));
         QVERIFY(!QImage(out).isNull());
+    }
+
+    // A render script over a library replaced the user's File → Recent Files with what it
+    // rendered: a screenshot run records nothing of the user's session, recent files and autosave
+    // records (the settings file) and autosaves (the recovery folder) alike.
+    void aScreenshotRunLeavesTheUsersRecentFilesAndAutosavesAlone() {
+        const QString home = boneless::ui::test::freshFolder("ScreenshotTest/session");
+        const QString settingsFile = home + "/config/Boneless/Boneless.conf";
+        {
+            QSettings settings(settingsFile, QSettings::IniFormat);
+            settings.setValue("recentFiles", QStringList{project_});
+        }
+        const QString recovery = home + "/data/Boneless/Boneless/recovery";
+        QVERIFY(QDir().mkpath(recovery));
+        QFile autosave(recovery + "/1-1.boneless");
+        QVERIFY(autosave.open(QIODevice::WriteOnly) && autosave.write("{}") == 2);
+        autosave.close();
+        auto contents = [](const QString& path) {
+            QFile file(path);
+            return file.open(QIODevice::ReadOnly) ? file.readAll() : QByteArray("(none)");
+        };
+        const QByteArray settingsBefore = contents(settingsFile);
+        const QStringList recoveryBefore = QDir(recovery).entryList(QDir::Files);
+
+        const QString dir = QFileInfo(project_).absolutePath();
+        const QStringList runs[] = {
+            {"--project", project_},
+            {dir + "/walker.obj", dir + "/walker.c3d", dir + "/walker.map.json"}};
+        for (const QStringList& files : runs) {
+            const test::AppRun run = test::runBoneless(
+                files + QStringList{"--frame", "2", "--screenshot", home + "/shot.png"}, home);
+            QVERIFY2(run.exitCode == 0, qPrintable(run.output));
+            QCOMPARE(contents(settingsFile), settingsBefore);
+            QCOMPARE(QDir(recovery).entryList(QDir::Files), recoveryBefore);
+        }
     }
 
     void badProjectFailsWithMessage() {

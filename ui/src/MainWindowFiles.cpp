@@ -176,7 +176,7 @@ bool MainWindow::openFile(const QString& path) {
             ok = document_->loadCorrespondence(path, mode, &added, &replaced);
             if (ok && asOpened) document_->undoStack()->setClean();
             if (ok && mode == Document::MapLoad::Merge && replaced > 0) {
-                RecentFiles::add(QFileInfo(path).absoluteFilePath());
+                addRecentFile(QFileInfo(path).absoluteFilePath());
                 statusBar()->showMessage(
                     counted(replaced,
                             tr("Merged %1: %2 added, and %n suggestion still to review "
@@ -189,7 +189,7 @@ bool MainWindow::openFile(const QString& path) {
                 return true;
             }
             if (ok && mode == Document::MapLoad::Merge && added == 0) {
-                RecentFiles::add(QFileInfo(path).absoluteFilePath());
+                addRecentFile(QFileInfo(path).absoluteFilePath());
                 statusBar()->showMessage(
                     tr("Nothing merged from %1: each marker it maps is mapped already, or its "
                        "vertex is taken")
@@ -208,7 +208,7 @@ bool MainWindow::openFile(const QString& path) {
     }
     // The document has already reported a failure through errorOccurred.
     if (ok) {
-        RecentFiles::add(QFileInfo(path).absoluteFilePath());
+        addRecentFile(QFileInfo(path).absoluteFilePath());
         showOpened(path, kindOf(path) == FileKind::Take ? document_->takeNotes() : QStringList());
     }
     return ok;
@@ -263,8 +263,8 @@ bool MainWindow::openProject(const QString& path, const QMap<QString, QString>& 
             box->setInformativeText(
                 tr("The file is left as it is. The last autosave, from %1, can be opened "
                    "instead.")
-                    .arg(QLocale().toString(QFileInfo(recovery).lastModified(),
-                                            QLocale::ShortFormat)));
+                    .arg(QLocale::system().toString(QFileInfo(recovery).lastModified(),
+                                                    QLocale::ShortFormat)));
             QPushButton* open = box->addButton(tr("Open Last Autosave"), QMessageBox::AcceptRole);
             open->setObjectName("openRecoveryButton");
             connect(open, &QPushButton::clicked, this,
@@ -297,7 +297,7 @@ bool MainWindow::openProject(const QString& path, const QMap<QString, QString>& 
     // The file holds what was just loaded: saving it again now would only overwrite the
     // recovery file with it (or, for the demo, with the demo).
     autosave_->discardPending();
-    if (!demo_) RecentFiles::add(projectPath_);
+    if (!demo_) addRecentFile(projectPath_);
     applyViewSettings();
     restoreSession();
     updateTitle();
@@ -412,7 +412,7 @@ bool MainWindow::offerRecovery(const QString& path, const QStringList& named) {
     box.setObjectName("recoveryQuestion");
     QString holds =
         tr("The last autosave, from %1, holds %2.")
-            .arg(QLocale().toString(recovery.lastModified(), QLocale::ShortFormat),
+            .arg(QLocale::system().toString(recovery.lastModified(), QLocale::ShortFormat),
                  from.isEmpty() ? tr("an untitled project")
                                 : tr("unsaved changes to %1").arg(QFileInfo(from).fileName()));
     if (!named.isEmpty())
@@ -526,7 +526,7 @@ bool MainWindow::saveProjectAs(const QString& path) {
     setUnsavedEdits(false);
     autosave_->setProjectPath(projectPath_);
     autosave_->discardPending();
-    RecentFiles::add(projectPath_);
+    addRecentFile(projectPath_);
     updateTitle();
     statusBar()->showMessage(tr("Saved %1").arg(QFileInfo(path).fileName()), 5000);
     return true;
@@ -631,7 +631,7 @@ bool MainWindow::openMesh(const QString& path) {
     const Loading loading(this);
     if (!document_->loadMesh(path, group)) return false;
     startUntitled();  // never into the project (or demo) open before
-    RecentFiles::add(QFileInfo(path).absoluteFilePath());
+    addRecentFile(QFileInfo(path).absoluteFilePath());
     showOpened(path, document_->meshWarnings());
     return true;
 }
@@ -684,6 +684,15 @@ void MainWindow::chooseSaveCorrespondence() {
         statusBar()->showMessage(tr("Saved %1").arg(QFileInfo(path).fileName()), 5000);
 }
 
+void MainWindow::setRecordsSession(bool records) {
+    recordsSession_ = records;
+    autosave_->setEnabled(records);
+}
+
+void MainWindow::addRecentFile(const QString& path) {
+    if (recordsSession_) RecentFiles::add(path);
+}
+
 void MainWindow::rebuildRecentMenu() {
     recentMenu_->clear();
     // Each file's full path is its tooltip; a name two entries share also names its folder, or
@@ -713,8 +722,9 @@ void MainWindow::rebuildRecentMenu() {
     last->setObjectName("openLastAutosave");
     last->setEnabled(!path.isEmpty() && recovery.exists());
     if (last->isEnabled()) {
-        last->setText(tr("Last Autosave (%1)")
-                          .arg(QLocale().toString(recovery.lastModified(), QLocale::ShortFormat)));
+        last->setText(
+            tr("Last Autosave (%1)")
+                .arg(QLocale::system().toString(recovery.lastModified(), QLocale::ShortFormat)));
         last->setToolTip(recovery.absoluteFilePath());
     }
     recentMenu_->addAction(tr("Clear"), this, [] { RecentFiles::clear(); });

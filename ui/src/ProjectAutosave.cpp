@@ -142,6 +142,7 @@ ProjectAutosave::ProjectAutosave(Document* document, QObject* parent)
 }
 
 void ProjectAutosave::schedule() {
+    if (!enabled_) return;
     pending_ = true;
     timer_->start();  // restarts: a burst of edits is one save
     if (!path_.isEmpty() && !markedUnfinished_) markTimer_->start();
@@ -321,6 +322,7 @@ void ProjectAutosave::replaceFinishedAutosaves() {
 
 bool ProjectAutosave::saveNow() {
     timer_->stop();
+    if (!enabled_) return true;
     if (!pending_ || !document_) return true;
     pending_ = false;
     // An empty untitled session has nothing worth recovering.

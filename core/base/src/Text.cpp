@@ -1,40 +1,77 @@
 #include "boneless/Text.h"
 
-#include <cctype>
-#include <cerrno>
-#include <cstdio>
-#include <cstdlib>
+#include <algorithm>
+#include <charconv>
+#include <limits>
 
 namespace boneless {
 
-std::string shortNumber(double x) {
-    char text[32];  // "%g" of a double takes at most 13 characters ("-1.79769e+308")
-    std::snprintf(text, sizeof text, "%g", x);
-    return text;
+// Numbers are written and read by std::to_chars and std::from_chars, which follow no locale:
+// printf's and strtod's decimal point is LC_NUMERIC's, a comma in German once a program (the
+// application's QApplication) calls setlocale(LC_ALL, "").
+
+std::string shortNumber(double x, int significant) {
+    char text[64];
+    const auto [end, ec] =
+        std::to_chars(text, text + sizeof text, x, std::chars_format::general, significant);
+    return ec == std::errc() ? std::string(text, end) : std::string("?");
+}
+
+std::string fixedNumber(double x, int decimals) {
+    char text[400];  // the largest double in full: 309 digits and the decimals
+    const auto [end, ec] =
+        std::to_chars(text, text + sizeof text, x, std::chars_format::fixed, decimals);
+    return ec == std::errc() ? std::string(text, end) : shortNumber(x);
 }
 
 std::string lengthText(double mm) {
-    char text[48];
-    if (mm >= 1000.0)
-        std::snprintf(text, sizeof text, "%.3g m", mm / 1000.0);
-    else
-        std::snprintf(text, sizeof text, "%.3g mm", mm);
-    return text;
+    return mm >= 1000.0 ? shortNumber(mm / 1000.0, 3) + " m" : shortNumber(mm, 3) + " mm";
 }
+
+namespace {
+
+// Whether the decimal `text`, which a double cannot hold, is too close to 0 (rather than too
+// far from it): its first significant digit's place and its exponent say which.
+bool belowOne(std::string_view text) {
+    const std::size_t e = text.find_first_of("eE");
+    const std::string_view mantissa = text.substr(0, e);
+    long long exponent = 0;
+    if (e != std::string_view::npos) {
+        std::string_view digits = text.substr(e + 1);
+        const bool negative = !digits.empty() && digits[0] == '-';
+        if (!digits.empty() && (digits[0] == '-' || digits[0] == '+')) digits.remove_prefix(1);
+        const auto [end, ec] =
+            std::from_chars(digits.data(), digits.data() + digits.size(), exponent);
+        if (ec == std::errc::result_out_of_range) return negative;
+        if (negative) exponent = -exponent;
+    }
+    const std::size_t point = std::min(mantissa.find('.'), mantissa.size());
+    const std::size_t first = mantissa.find_first_of("123456789");
+    if (first == std::string_view::npos) return true;
+    const long long place = first < point ? static_cast<long long>(point - first) - 1
+                                          : -static_cast<long long>(first - point);
+    return place + exponent < 0;
+}
+
+}  // namespace
 
 Decimal readDecimal(const std::string& text, double& x) {
     const std::size_t digits = !text.empty() && (text[0] == '-' || text[0] == '+') ? 1 : 0;
     if (text.find_first_of("xX") != std::string::npos) return Decimal::NotANumber;  // hexadecimal
-    if (text.size() > digits + 1 && text[digits] == '0' &&
-        std::isdigit(static_cast<unsigned char>(text[digits + 1])))
+    if (text.size() > digits + 1 && text[digits] == '0' && isAsciiDigit(text[digits + 1]))
         return Decimal::NotANumber;  // a leading zero: octal to some
-    if (text.empty() || std::isspace(static_cast<unsigned char>(text[0])))
-        return Decimal::NotANumber;
-    char* end = nullptr;
-    errno = 0;
-    x = std::strtod(text.c_str(), &end);
-    if (end != text.c_str() + text.size()) return Decimal::NotANumber;
-    return errno == ERANGE && x == 0 ? Decimal::Underflow : Decimal::Number;
+    if (text.size() == digits || (digits == 1 && (text[1] == '-' || text[1] == '+')))
+        return Decimal::NotANumber;  // from_chars would take the second sign of "+-1"
+    const char* first = text.data() + (text[0] == '+');  // from_chars takes no '+'
+    const char* last = text.data() + text.size();
+    const auto [end, ec] = std::from_chars(first, last, x);
+    if (end != last || ec == std::errc::invalid_argument) return Decimal::NotANumber;
+    if (ec == std::errc::result_out_of_range) {
+        if (belowOne(std::string_view(text).substr(digits))) return Decimal::Underflow;
+        x = text[0] == '-' ? -std::numeric_limits<double>::infinity()
+                           : std::numeric_limits<double>::infinity();
+    }
+    return Decimal::Number;
 }
 
 std::size_t utf8SequenceAt(std::string_view s, std::size_t i) {

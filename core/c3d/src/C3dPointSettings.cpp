@@ -1,6 +1,5 @@
 // What the header and the POINT group both say about the points: count, scale, rate and units.
 
-#include <cctype>
 #include <cmath>
 
 #include "C3dTakeLayout.h"
@@ -11,8 +10,7 @@ namespace boneless {
 std::optional<double> c3dUnitToMm(std::string_view units) {
     std::string u;
     for (char c : units)
-        if (std::isalpha(static_cast<unsigned char>(c)))
-            u.push_back(static_cast<char>(std::tolower(static_cast<unsigned char>(c))));
+        if (isAsciiAlpha(c)) u.push_back(asciiLower(c));
     if (u == "mm") return 1.0;
     if (u == "cm") return 10.0;
     if (u == "dm") return 100.0;

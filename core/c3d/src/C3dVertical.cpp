@@ -1,11 +1,11 @@
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <optional>
 
 #include "C3dDetail.h"
 #include "boneless/Axis.h"
+#include "boneless/Text.h"
 
 namespace boneless::c3d_detail {
 
@@ -32,8 +32,7 @@ std::optional<Eigen::Vector3d> screenUp(const C3dParameters& parameters, std::st
     if (!screen) return std::nullopt;
     std::string axis;
     for (char c : screen->string())
-        if (!std::isspace(static_cast<unsigned char>(c)))
-            axis += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        if (!isAsciiSpace(c)) axis += asciiLower(c);
     const std::optional<Eigen::Vector3d> up = parseAxis(axis);
     if (!up) unread = screen->string();
     return up;

@@ -3,7 +3,6 @@
 #include "boneless/C3dWriter.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -13,6 +12,7 @@
 
 #include "C3dDetail.h"
 #include "boneless/C3dError.h"
+#include "boneless/Text.h"
 
 namespace boneless {
 
@@ -29,7 +29,7 @@ bool isContinuation(const std::string& name, const char* base) {
     const std::size_t n = std::strlen(base);
     if (name.size() <= n || !c3dNameEquals(std::string_view(name).substr(0, n), base)) return false;
     for (std::size_t i = n; i < name.size(); ++i)
-        if (!std::isdigit(static_cast<unsigned char>(name[i]))) return false;
+        if (!isAsciiDigit(name[i])) return false;
     return true;
 }
 

@@ -34,9 +34,7 @@ std::uintmax_t objBytes(const TriMesh& mesh) {
 }
 
 std::string gigabytes(std::uintmax_t bytes) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.1f GB", double(bytes) / (1024.0 * 1024 * 1024));
-    return text;
+    return fixedNumber(double(bytes) / (1024.0 * 1024 * 1024), 1) + " GB";
 }
 
 // Refuses, before anything is made or written, a demo the folder's file system has no room for:

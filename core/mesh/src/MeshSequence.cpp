@@ -1,13 +1,13 @@
 #include "boneless/MeshSequence.h"
 
 #include <algorithm>
-#include <cctype>
 #include <filesystem>
 #include <utility>
 #include <vector>
 
 #include "boneless/Error.h"
 #include "boneless/MeshReader.h"
+#include "boneless/Text.h"
 
 namespace boneless {
 
@@ -32,9 +32,9 @@ struct FrameName {
 FrameName frameName(const std::string& name) {
     FrameName key;
     for (size_t i = 0; i < name.size();) {
-        if (std::isdigit(static_cast<unsigned char>(name[i]))) {
+        if (isAsciiDigit(name[i])) {
             size_t j = i;
-            while (j < name.size() && std::isdigit(static_cast<unsigned char>(name[j]))) ++j;
+            while (j < name.size() && isAsciiDigit(name[j])) ++j;
             const size_t nonZero = std::min(name.find_first_not_of('0', i), j);
             key.numbers.push_back(name.substr(nonZero, j - nonZero));
             key.pattern += '#';
@@ -88,8 +88,7 @@ std::vector<std::string> meshSequenceFiles(const std::string& directory) {
         throw MeshError(directory, "not a directory of mesh frames");
     std::vector<std::string> files;
     for (const auto& entry : fs::directory_iterator(directory)) {
-        std::string ext = entry.path().extension().string();
-        std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+        const std::string ext = asciiLower(entry.path().extension().string());
         if (entry.is_regular_file() && ext == ".obj") files.push_back(entry.path().string());
     }
     if (files.empty()) throw MeshError(directory, "contains no .obj frames");

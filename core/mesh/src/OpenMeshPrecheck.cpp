@@ -1,7 +1,6 @@
 #include "OpenMeshPrecheck.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -138,9 +137,7 @@ void refuseOtherFormat(const std::string& path, const std::string& data,
     if (format == "STL" && hasBinaryStlSize(data)) return;
     const Sniffed s = sniff(data);
     if (s.format.empty() || s.format == format) return;
-    std::string extension = s.format;
-    std::transform(extension.begin(), extension.end(), extension.begin(),
-                   [](unsigned char c) { return std::tolower(c); });
+    const std::string extension = asciiLower(s.format);
     throw MeshError(path,
                     "looks like " + s.looks + ", not " + format + ": rename it ." + extension);
 }
@@ -389,10 +386,7 @@ std::string lowerExtension(const std::string& path) {
     const size_t slash = path.find_last_of("/\\");
     const size_t dot = path.find_last_of('.');
     if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return {};
-    std::string ext = path.substr(dot + 1);
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return std::tolower(c); });
-    return ext;
+    return asciiLower(std::string_view(path).substr(dot + 1));
 }
 
 Precheck precheckForOpenMesh(const std::string& path) {

@@ -117,11 +117,11 @@ Correspondence Correspondence::fromJson(const std::string& text, const std::stri
         mapping.offsetMm = m.contains("offset_mm") ? get<double>(m, "offset_mm", path, where) : 0.0;
         if (!(mapping.offsetMm >= Correspondence::kMinOffsetMm &&
               mapping.offsetMm <= Correspondence::kMaxOffsetMm)) {
-            char value[160];  // the bounds from the constants, so the message follows them
-            std::snprintf(
-                value, sizeof value, "%g is out of range (a marker sits %g to %g mm off the skin)",
-                mapping.offsetMm, Correspondence::kMinOffsetMm, Correspondence::kMaxOffsetMm);
-            fail(path, where + ": \"offset_mm\" " + value);
+            // The bounds from the constants, so the message follows them.
+            fail(path, where + ": \"offset_mm\" " + shortNumber(mapping.offsetMm) +
+                           " is out of range (a marker sits " +
+                           shortNumber(Correspondence::kMinOffsetMm) + " to " +
+                           shortNumber(Correspondence::kMaxOffsetMm) + " mm off the skin)");
         }
         if (version >= 2 && m.contains("barycentric") && !m.contains("face"))
             fail(path, where + ": \"barycentric\" places it on a face, and it names no \"face\"");

@@ -13,6 +13,7 @@
 
 #include "boneless/Error.h"
 #include "boneless/SolveFits.h"
+#include "boneless/Text.h"
 
 namespace boneless {
 
@@ -46,13 +47,8 @@ int blasThreads() {
 std::atomic<std::uint64_t> testLimit{0};
 
 std::string megabytes(std::uint64_t bytes) {
-    char text[32];
     const double mb = double(bytes) / (1024.0 * 1024);
-    if (mb >= 1024)
-        std::snprintf(text, sizeof text, "%.1f GB", mb / 1024);
-    else
-        std::snprintf(text, sizeof text, "%.0f MB", mb);
-    return text;
+    return mb >= 1024 ? fixedNumber(mb / 1024, 1) + " GB" : fixedNumber(mb, 0) + " MB";
 }
 
 std::string thousands(int n) {

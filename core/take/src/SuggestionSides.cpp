@@ -1,8 +1,9 @@
 #include "SuggestionSides.h"
 
 #include <algorithm>
-#include <cctype>
 #include <vector>
+
+#include "boneless/Text.h"
 
 namespace boneless {
 
@@ -16,8 +17,7 @@ std::size_t nameStart(const std::string& label) {
 
 char SideCheck::side(const std::string& label) {
     const std::size_t i = nameStart(label);
-    if (label.size() < i + 3 || (label[i] != 'L' && label[i] != 'R') ||
-        !std::isupper(static_cast<unsigned char>(label[i + 1])))
+    if (label.size() < i + 3 || (label[i] != 'L' && label[i] != 'R') || !isAsciiUpper(label[i + 1]))
         return 0;
     return label[i];
 }

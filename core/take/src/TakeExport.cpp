@@ -92,13 +92,9 @@ std::string meshScaleWarning(const TriMesh& rest, const Similarity& takeToMesh, 
         low = std::min(low, h), high = std::max(high, h);
     }
     const double mm = (high - low) / unit.perMm;
-    char height[32];
-    if (mm >= 1000)
-        std::snprintf(height, sizeof height, "%.2g m", mm / 1000);
-    else if (mm >= 10)
-        std::snprintf(height, sizeof height, "%.2g cm", mm / 10);
-    else
-        std::snprintf(height, sizeof height, "%.2g mm", mm);
+    const std::string height = mm >= 1000 ? shortNumber(mm / 1000, 2) + " m"
+                               : mm >= 10 ? shortNumber(mm / 10, 2) + " cm"
+                                          : shortNumber(mm, 2) + " mm";
     return std::string("mesh units look like ") + unit.name + ", but the body would be " + height +
            " tall: check its scale (a .glb export places it by that unit)";
 }

@@ -7,6 +7,7 @@
 
 #include "boneless/C3dTake.h"
 #include "boneless/Error.h"
+#include "boneless/Text.h"
 
 namespace boneless {
 
@@ -24,12 +25,10 @@ struct Biquad {
 Biquad butterworth(double rate, double cutoffHz) {
     const double corrected = cutoffHz / kTwoPassCorrection;
     if (!(cutoffHz > 0) || !(corrected < 0.5 * rate)) {
-        char why[160];
-        std::snprintf(why, sizeof why,
-                      "low-pass cutoff %g Hz must be below %.3g Hz (0.4 times the take's frame "
-                      "rate, %g Hz), or 0 for no filter",
-                      cutoffHz, 0.5 * rate * kTwoPassCorrection, rate);
-        throw Error(why);
+        throw Error("low-pass cutoff " + shortNumber(cutoffHz) + " Hz must be below " +
+                    shortNumber(0.5 * rate * kTwoPassCorrection, 3) +
+                    " Hz (0.4 times the take's frame rate, " + shortNumber(rate) +
+                    " Hz), or 0 for no filter");
     }
     const double K = std::tan(kPi * corrected / rate);
     const double norm = 1.0 / (1.0 + std::sqrt(2.0) * K + K * K);

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "ProcessLocale.h"
 #include "boneless/Text.h"
 
 using namespace boneless;
@@ -35,4 +36,18 @@ TEST(ShortNumber, NamesNotANumberAndTheInfinities) {
     EXPECT_EQ(shortNumber(std::nan("")), "nan");
     EXPECT_EQ(shortNumber(std::numeric_limits<double>::infinity()), "inf");
     EXPECT_EQ(shortNumber(-std::numeric_limits<double>::infinity()), "-inf");
+}
+
+// Core writes and reads numbers as JSON and the CLI do in any locale: once a program calls
+// setlocale (the application does), printf and strtod use a German decimal comma.
+TEST(NumbersInAGermanLocale, AreWrittenAndReadWithADecimalPoint) {
+    PROCESS_LOCALE_OR_SKIP(german, "de_DE.UTF-8");
+    EXPECT_EQ(shortNumber(12.5), "12.5");
+    EXPECT_EQ(shortNumber(0.4 * 30, 3), "12");
+    EXPECT_EQ(fixedNumber(2.5, 1), "2.5");
+    EXPECT_EQ(lengthText(1540), "1.54 m");
+    double x = 0;
+    EXPECT_EQ(readDecimal("12.5", x), Decimal::Number);
+    EXPECT_EQ(x, 12.5);
+    EXPECT_EQ(readDecimal("12,5", x), Decimal::NotANumber);
 }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "ProcessLocale.h"
 #include "TrajectoryFilter.h"
 #include "boneless/C3dTake.h"
 #include "boneless/Error.h"
@@ -90,4 +91,19 @@ TEST(GapFill, ShortGapsFollowTheTrajectoryAndLongOnesStay) {
     EXPECT_FALSE(gapFilled(samples, 0, 1, 5).has_value());   // nothing before it
     EXPECT_FALSE(gapFilled(samples, 5, 0, 5).has_value());   // not missing
     EXPECT_FALSE(gapFilled(samples, 11, 0, 0).has_value());  // filling off
+}
+
+// The application runs with the user's locale (QApplication calls setlocale): in German printf
+// wrote "low-pass cutoff 12,5 Hz", which the project file the user types it back into refuses.
+TEST(TrajectoryFilter, ACutoffTooHighIsSaidWithADecimalPointInAGermanLocale) {
+    PROCESS_LOCALE_OR_SKIP(german, "de_DE.UTF-8");
+    std::vector<double> v(10, 1.0);
+    try {
+        lowPassFilter(v, 30, 12.5);
+        FAIL() << "a cutoff of 12.5 Hz at 30 Hz was taken";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("low-pass cutoff 12.5 Hz must be below 12 Hz"),
+                  std::string::npos)
+            << e.what();
+    }
 }

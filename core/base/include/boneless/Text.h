@@ -24,10 +24,45 @@ inline std::string plural(long long n, const std::string& word, const std::strin
     return std::to_string(n) + " " + (n == 1 ? word : words.empty() ? word + "s" : words);
 }
 
+// ASCII's classes and case, whatever the process's locale: C's isalpha and tolower follow
+// setlocale, which QApplication calls with the user's, and in Turkish tolower('I') is 'I' (its
+// lower case is a dotless i), which made a take's units "IN" no unit at all.
+constexpr bool isAsciiDigit(char c) {
+    return c >= '0' && c <= '9';
+}
+constexpr bool isAsciiUpper(char c) {
+    return c >= 'A' && c <= 'Z';
+}
+constexpr bool isAsciiLower(char c) {
+    return c >= 'a' && c <= 'z';
+}
+constexpr bool isAsciiAlpha(char c) {
+    return isAsciiUpper(c) || isAsciiLower(c);
+}
+constexpr bool isAsciiSpace(char c) {
+    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v';
+}
+constexpr char asciiLower(char c) {
+    return isAsciiUpper(c) ? char(c - 'A' + 'a') : c;
+}
+constexpr char asciiUpper(char c) {
+    return isAsciiLower(c) ? char(c - 'a' + 'A') : c;
+}
+inline std::string asciiLower(std::string_view text) {
+    std::string out(text);
+    for (char& c : out) c = asciiLower(c);
+    return out;
+}
+
 // `x` as messages give a number: printf's %g, six significant digits, an exponent for the tiny
 // and the huge ("3", "0.1", "1e-07", "1e+20", "nan", "inf"). The mesh reader, the take options and
-// the C3D reader each had their own copy.
-std::string shortNumber(double x);
+// the C3D reader each had their own copy. With a decimal point in every locale, as JSON and
+// the CLI write it (setlocale made it "12,5" in German): this, fixedNumber and readDecimal are
+// how core writes and reads a number.
+std::string shortNumber(double x, int significant = 6);
+
+// `x` with `decimals` digits after the point, printf's %.*f in the "C" locale: "2.5 GB".
+std::string fixedNumber(double x, int decimals);
 
 // A length in millimetres as messages give it, three significant digits: "1.54 mm", "1.8 m".
 std::string lengthText(double mm);

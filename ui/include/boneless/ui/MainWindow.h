@@ -107,6 +107,10 @@ class MainWindow : public QMainWindow {
     void setStartGroup(const QString& group) { startGroup_ = group; }
     // false: failures only go to the status bar and errorShown (batch use, screenshots).
     void setMessageBoxesEnabled(bool enabled) { messageBoxes_ = enabled; }
+    // false: nothing of the user's session is recorded (a scripted run, --screenshot): no recent
+    // files, no autosave and no autosave records. A render script over a library had replaced
+    // the user's File → Recent Files with the files it rendered.
+    void setRecordsSession(bool records);
     // SIGTERM, SIGHUP and SIGINT (logout, shutdown, kill, Ctrl+C) save the edits pending and quit,
     // asking nothing: killed within the autosave's delay, the last edit was lost. For the process;
     // the last window to call it handles them. Any question up (a box, the recovery question
@@ -152,6 +156,7 @@ class MainWindow : public QMainWindow {
     void connectDocument();
     void applyViewSettings();
     void rebuildRecentMenu();
+    void addRecentFile(const QString& path);  // unless !recordsSession_
     // The start-up question about one recovery file; true when it was reopened.
     bool offerRecovery(const QString& path, const QStringList& named);
     void updateTitle();
@@ -234,6 +239,7 @@ class MainWindow : public QMainWindow {
     int startFrame_ = -1;
     QString startGroup_;
     bool messageBoxes_ = true;
+    bool recordsSession_ = true;
     bool endedBySignal_ = false;
     // While keepUnsavedWork's question waits, error boxes are held (one over the question would
     // hide it); the answer shows them if the session stays, drops them if it is left.

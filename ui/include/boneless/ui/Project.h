@@ -72,6 +72,9 @@ class ProjectAutosave : public QObject {
     void setProjectPath(const QString& path);
     QString projectPath() const { return path_; }
     void setDelay(int ms);  // default 1000
+    // false: nothing is saved or recorded, the project file, the recovery file and the settings
+    // are left as they are (a scripted run).
+    void setEnabled(bool enabled) { enabled_ = enabled; }
     bool isPending() const;
     // A change the document did not signal (a file the project names, located elsewhere):
     // saved as an edit is.
@@ -150,6 +153,7 @@ class ProjectAutosave : public QObject {
     bool heldBackSaid_ = false;  // failed() said the recovery file is another session's
     QTimer* timer_;
     QTimer* markTimer_;  // markUnfinished() once the event loop runs: not in the middle of a load
+    bool enabled_ = true;
     bool pending_ = false;
     bool markedUnfinished_ = false;  // by markUnfinished(), not by a save
 };
