@@ -141,6 +141,10 @@ struct MeshView::Impl {
 MeshView::MeshView(QWidget* parent) : QOpenGLWidget(parent), d_(std::make_unique<Impl>(this)) {
     setFocusPolicy(Qt::StrongFocus);
     setMinimumSize(200, 150);
+    // It takes the focus first: a screen reader must say what it is.
+    setAccessibleName(tr("3D view"));
+    setAccessibleDescription(
+        tr("The mesh and the take's markers; click the mesh to pick a vertex"));
 }
 
 MeshView::~MeshView() {
