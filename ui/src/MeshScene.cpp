@@ -85,7 +85,7 @@ MeshScene::MeshScene() {
     // after the value keep it clear.
     legend_->SetLabelFormat("%.3g  ");
     legend_->SetTextPositionToPrecedeScalarBar();
-    legend_->SetVerticalTitleSeparation(8);  // the top value's label clear of the title
+    // The top value's label is kept clear of the title: placeLegend() sets the gap.
     legend_->UnconstrainedFontSizeOn();
     legend_->GetTitleTextProperty()->SetFontSize(13);
     legend_->GetLabelTextProperty()->SetFontSize(12);
@@ -304,13 +304,17 @@ void MeshScene::placeLegend() {
     // Sized in pixels from its text, in the view's top-right corner. At 65 % of the view's
     // height by its right edge it lay over the body's arm in a 1024x600 window, and its values
     // had only the room the bar left them: the top one, "23.5", touched the bar.
-    constexpr int kMargin = 10, kBar = 14;  // pixels: from the view's edges, the bar's width
     const int* size = renderer_->GetSize();
     vtkTextRenderer* measure = vtkTextRenderer::GetInstance();
     vtkRenderWindow* window = renderer_->GetRenderWindow();
     vtkScalarsToColors* table = legend_->GetLookupTable();
     if (!legend_->GetVisibility() || !table || size[0] <= 0 || size[1] <= 0 || !measure || !window)
         return;
+    // Pixels at a DPI of 72 (a scale of 1), scaled with the text on a high-DPI screen.
+    const double scale = window->GetDPI() / 72.0;
+    const auto px = [scale](int pixels) { return int(std::lround(pixels * scale)); };
+    const int kMargin = px(10), kBar = px(14);  // from the view's edges, the bar's width
+    legend_->SetVerticalTitleSeparation(px(8));
     const auto widthOf = [&](vtkTextProperty* text, const char* s) {
         int box[4];
         return measure->GetBoundingBox(text, s, box, window->GetDPI()) ? box[1] - box[0] + 1 : 0;
@@ -328,10 +332,10 @@ void MeshScene::placeLegend() {
         label = std::max(label, widthOf(legend_->GetLabelTextProperty(), text));
     }
     const int width =
-        std::max(1, std::min(size[0] - 2 * kMargin, std::max(title, label + kBar + 2)));
+        std::max(1, std::min(size[0] - 2 * kMargin, std::max(title, label + kBar + px(2))));
     // Two fifths of the view's height, and room for five labels in a small view.
     const int height =
-        std::max(1, std::min(size[1] - 2 * kMargin, std::clamp(size[1] * 2 / 5, 130, 280)));
+        std::max(1, std::min(size[1] - 2 * kMargin, std::clamp(size[1] * 2 / 5, px(130), px(280))));
     legend_->SetBarRatio(std::min(1.0, double(kBar) / width));
     legend_->SetWidth(double(width) / size[0]);
     legend_->SetHeight(double(height) / size[1]);

@@ -118,6 +118,12 @@ struct MeshView::Impl {
     }
 
     void syncSize() {
+        // VTK sizes text in points at this DPI, 72 = a point a pixel. Scaled as Qt scales the
+        // widgets' text (device pixels per pixel, the screen's font DPI over 96), the labels and
+        // legend read as large as the window's; at 72 on a scale of 2 they were half as large.
+        const int dpi =
+            std::max(1, int(std::lround(72.0 * q->devicePixelRatioF() * q->logicalDpiY() / 96.0)));
+        if (window->GetDPI() != dpi) window->SetDPI(dpi);
         const QPoint size = deviceSize();
         interactor->UpdateSize(size.x(), size.y());
         window->SetSize(size.x(), size.y());
