@@ -46,6 +46,35 @@ void copyPoints(const Positions& V, vtkPoints* points) {
 
 }  // namespace
 
+QColor heatMapColour(double t) {
+    // Viridis read off at eighths: its lightness rises evenly (L* about 15 to 91) and its hues
+    // avoid the red-green axis, so no colour vision confuses two parts of the scale.
+    static constexpr unsigned char stops[9][3] = {{68, 1, 84},    {71, 45, 123},  {59, 82, 139},
+                                                  {44, 114, 142}, {33, 145, 140}, {40, 174, 128},
+                                                  {94, 201, 98},  {173, 220, 48}, {253, 231, 37}};
+    const double x = std::clamp(std::isfinite(t) ? t : 0.0, 0.0, 1.0) * 8;
+    const int i = std::min(7, int(x));
+    const double f = x - i;
+    const auto mix = [&](int c) {
+        return int(std::lround(stops[i][c] * (1 - f) + stops[i + 1][c] * f));
+    };
+    return QColor(mix(0), mix(1), mix(2));
+}
+
+QColor markerColour(MarkerState state) {
+    // Blue and orange, the pair most colour visions tell apart, and 25 L* apart as well;
+    // the selected marker is lighter still, and larger.
+    switch (state) {
+        case MarkerState::Mapped:
+            return QColor(40, 100, 210);
+        case MarkerState::Selected:
+            return QColor(255, 235, 40);
+        case MarkerState::Unmapped:
+            break;
+    }
+    return QColor(240, 150, 30);
+}
+
 MeshScene::MeshScene() {
     renderer_->SetBackground(0.20, 0.22, 0.26);
     // VTK clears to alpha 0 by default; Qt would compose the view with the window behind it.
@@ -213,14 +242,11 @@ void MeshScene::setMarkers(const Positions& markers, const std::vector<MarkerSta
         const MarkerState state =
             k < static_cast<Eigen::Index>(states.size()) ? states[k] : MarkerState::Unmapped;
         points->InsertNextPoint(markers(k, 0), markers(k, 1), markers(k, 2));
-        unsigned char rgb[3] = {240, 130, 40};  // unmapped: orange
-        double scale = r;
-        if (state == MarkerState::Mapped) {
-            rgb[0] = 70, rgb[1] = 200, rgb[2] = 90;
-        } else if (state == MarkerState::Selected) {
-            rgb[0] = 255, rgb[1] = 235, rgb[2] = 40;
-            scale = 1.7 * r;
-        }
+        const QColor c = markerColour(state);
+        const unsigned char rgb[3] = {static_cast<unsigned char>(c.red()),
+                                      static_cast<unsigned char>(c.green()),
+                                      static_cast<unsigned char>(c.blue())};
+        const double scale = state == MarkerState::Selected ? 1.7 * r : r;
         radius->InsertNextValue(static_cast<float>(scale));
         colour->InsertNextTypedTuple(rgb);
         shown.row(Eigen::Index(texts.size())) = markers.row(k);
@@ -269,7 +295,8 @@ bool MeshScene::trailsVisible() const {
     return trailActor_->GetVisibility();
 }
 
-void MeshScene::setHeatMap(const std::vector<float>& values, const QString& title) {
+void MeshScene::setHeatMap(const std::vector<float>& values, const QString& title, double floor) {
+    legendTop_ = 0;
     if (values.empty() || static_cast<Eigen::Index>(values.size()) != V_.rows()) {
         mesh_->GetPointData()->SetScalars(nullptr);
         meshMapper_->ScalarVisibilityOff();
@@ -285,11 +312,17 @@ void MeshScene::setHeatMap(const std::vector<float>& values, const QString& titl
     std::vector<float> sorted = values;
     const std::size_t p = std::min(sorted.size() - 1, sorted.size() * 98 / 100);
     std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(p), sorted.end());
-    const double top = std::max(1e-12, static_cast<double>(sorted[p]));
+    // The floor: noise on a frame at rest (1e-6 mm) filled the whole scale and read as error.
+    const double top = std::max({1e-12, floor, static_cast<double>(sorted[p])});
+    legendTop_ = top;
     vtkNew<vtkLookupTable> table;
-    table->SetHueRange(0.667, 0.0);
+    constexpr int kColours = 256;
+    table->SetNumberOfTableValues(kColours);
+    for (int i = 0; i < kColours; ++i) {
+        const QColor c = heatMapColour(double(i) / (kColours - 1));
+        table->SetTableValue(i, c.redF(), c.greenF(), c.blueF(), 1.0);
+    }
     table->SetTableRange(0.0, top);
-    table->Build();
     meshMapper_->SetLookupTable(table);
     meshMapper_->SetScalarRange(0.0, top);
     meshMapper_->SetScalarModeToUsePointData();

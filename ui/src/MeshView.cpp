@@ -282,9 +282,13 @@ bool MeshView::trailsVisible() const {
     return d_->scene.trailsVisible();
 }
 
-void MeshView::setHeatMap(const std::vector<float>& values, const QString& title) {
-    d_->scene.setHeatMap(values, title);
+void MeshView::setHeatMap(const std::vector<float>& values, const QString& title, double floor) {
+    d_->scene.setHeatMap(values, title, floor);
     update();
+}
+
+double MeshView::legendTop() const {
+    return d_->scene.legendTop();
 }
 
 bool MeshView::legendVisible() const {
