@@ -2,6 +2,7 @@
 // heat map's legend and marker labels that do not pile up.
 #include <QAction>
 #include <QtTest>
+#include <cmath>
 #include <limits>
 
 #include "ViewTestSupport.h"
@@ -25,7 +26,18 @@ QAction* actionNamed(MainWindow& window, const QString& text) {
 // How many pixels of `image` inside `area` are strongly of one hue: red, green or blue.
 struct Hues {
     int red = 0, green = 0, blue = 0;
+    int violet = 0, yellow = 0;  // the heat map's ends
 };
+
+// CIE L*, the lightness a reader sees whatever their colour vision: 0 black to 100 white.
+double lightness(const QColor& c) {
+    const auto linear = [](double v) {
+        return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+    };
+    const double y =
+        0.2126 * linear(c.redF()) + 0.7152 * linear(c.greenF()) + 0.0722 * linear(c.blueF());
+    return y > 216.0 / 24389 ? 116 * std::cbrt(y) - 16 : y * 24389.0 / 27;
+}
 Hues huesIn(const QImage& image, const QRect& area) {
     Hues h;
     for (int y = area.top(); y <= area.bottom(); ++y)
@@ -35,6 +47,8 @@ Hues huesIn(const QImage& image, const QRect& area) {
             h.red += r > 150 && r > 2 * g && r > 2 * b;
             h.green += g > 150 && g > 1.6 * r && g > 1.6 * b;
             h.blue += b > 150 && b > 1.6 * r && b > 1.3 * g;
+            h.violet += b > 60 && r > 40 && g < 30;
+            h.yellow += r > 200 && g > 200 && b < 100;
         }
     return h;
 }
@@ -127,15 +141,65 @@ class ViewOverlayTest : public QObject {
         QVERIFY(QTest::qWaitFor([&] { return window.frameUpToDate() && view->legendVisible(); },
                                 60000));
         QCOMPARE(view->legendTitle(), QString("Shape error (mm)"));
-        // The legend's colour bar is drawn: blue at its low end, red at its high end.
+        // The legend's colour bar is drawn: dark violet at its low end, yellow at its high end,
+        // and no red (a rainbow's red reads darker than its yellow).
         const Hues legend = huesIn(view->grabImage(), strip);
-        QVERIFY2(legend.red > 50 && legend.blue > 50,
-                 qPrintable(QString("red %1, blue %2").arg(legend.red).arg(legend.blue)));
+        QVERIFY2(legend.violet > 20 && legend.yellow > 20 && legend.red == 0,
+                 qPrintable(QString("violet %1, yellow %2, red %3")
+                                .arg(legend.violet)
+                                .arg(legend.yellow)
+                                .arg(legend.red)));
+        // The demo's first frame, the take at rest, is no error: its scale is at least 2 mm.
+        QVERIFY2(view->legendTop() >= 2.0, qPrintable(QString::number(view->legendTop())));
 
         heatMap->setChecked(false);
         QVERIFY(!view->legendVisible());
         const Hues off = huesIn(view->grabImage(), strip);
         QCOMPARE(off.red + off.blue, 0);
+    }
+
+    // The rainbow (blue to red) gave a deuteranope a mid-scale green and a three-quarter yellow
+    // about alike (ΔE 20), and its red read darker than its yellow. Along the scale each tenth
+    // is lighter than the one below, by as much as a reader tells apart.
+    void theHeatMapGrowsLighterAlongItsScale() {
+        double previous = -1;
+        for (int i = 0; i <= 10; ++i) {
+            const double l = lightness(heatMapColour(i / 10.0));
+            QVERIFY2(
+                l > previous + 4,
+                qPrintable(QString("L* %1 at %2 after %3").arg(l).arg(i / 10.0).arg(previous)));
+            previous = l;
+        }
+        QVERIFY(lightness(heatMapColour(0)) < 35 && lightness(heatMapColour(1)) > 85);
+    }
+
+    // A frame at rest (1e-6 mm of shape error) filled the scale, and the head and chest were
+    // drawn red: the scale reaches the floor given.
+    void aHeatMapOfNoiseStaysAtTheBottomOfItsScale() {
+        MeshView view;
+        const TriMesh mesh = readMesh((folder_ + "/demo/walker.obj").toStdString()).mesh;
+        QVERIFY(test::showMesh(view, mesh));
+        std::vector<float> noise(mesh.V.rows());
+        for (std::size_t i = 0; i < noise.size(); ++i) noise[i] = 4e-6f * float(i % 7) / 6;
+        view.setHeatMap(noise, "Shape error (mm)", 2.0);
+        QCOMPARE(view.legendTop(), 2.0);
+        view.setHeatMap(noise, "Shape error (mm)");
+        QVERIFY(view.legendTop() < 1e-5);
+    }
+
+    // Mapped green (70, 200, 90) and unmapped orange (240, 130, 40) spheres differed by ΔE 24
+    // and 16 for a deuteranope and a protanope, nearly alike in lightness.
+    void markerStatesDifferInLightness() {
+        const double unmapped = lightness(markerColour(MarkerState::Unmapped));
+        const double mapped = lightness(markerColour(MarkerState::Mapped));
+        const double selected = lightness(markerColour(MarkerState::Selected));
+        const QString said = QString("L* unmapped %1, mapped %2, selected %3")
+                                 .arg(unmapped)
+                                 .arg(mapped)
+                                 .arg(selected);
+        QVERIFY2(std::abs(unmapped - mapped) >= 20, qPrintable(said));
+        QVERIFY2(std::abs(selected - mapped) >= 15 && std::abs(selected - unmapped) >= 15,
+                 qPrintable(said));
     }
 
     // The legend's top value sat against its colour bar, the "5" of "23.5" touching it: every

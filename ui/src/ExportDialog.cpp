@@ -83,6 +83,8 @@ ExportDialog::ExportDialog(Document* document, FrameSolver* solver, Timeline* ti
     out_ = new QSpinBox;
     in_->setObjectName("exportIn");
     out_->setObjectName("exportOut");
+    in_->setAccessibleName(tr("First frame to export"));
+    out_->setAccessibleName(tr("Last frame to export"));
     auto* inOutRow = new QHBoxLayout;
     inOutRow->addWidget(inOut_);
     inOutRow->addWidget(in_);
@@ -96,6 +98,7 @@ ExportDialog::ExportDialog(Document* document, FrameSolver* solver, Timeline* ti
 
     format_ = new QComboBox;
     format_->setObjectName("exportFormat");
+    format_->setAccessibleName(tr("Format"));  // a combo box is read by its value, not its label
     for (const ExportFormatInfo& f : exportFormats())
         format_->addItem(QString::fromUtf8(f.description), int(f.format));
 
@@ -128,6 +131,7 @@ ExportDialog::ExportDialog(Document* document, FrameSolver* solver, Timeline* ti
     estimate_->setObjectName("exportEstimate");
     progress_ = new QProgressBar;
     progress_->setObjectName("exportProgress");
+    progress_->setAccessibleName(tr("Export progress"));
     progress_->setValue(0);
     progressText_ = new QLabel;
     progressText_->setObjectName("exportProgressText");
@@ -139,7 +143,10 @@ ExportDialog::ExportDialog(Document* document, FrameSolver* solver, Timeline* ti
     auto* form = new QFormLayout;
     form->addRow(tr("Range:"), rangeBox);
     form->addRow(tr("Format:"), format_);
-    form->addRow(tr("Folder:"), folderRow);
+    // A row of a layout gets no buddy from the form: the label names the folder box itself.
+    auto* folderLabel = new QLabel(tr("Folder:"));
+    folderLabel->setBuddy(folder_);
+    form->addRow(folderLabel, folderRow);
     form->addRow(QString(), calibratedRest_);
     form->addRow(tr("Time:"), estimate_);
 

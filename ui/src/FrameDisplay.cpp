@@ -18,7 +18,10 @@
 namespace boneless::ui {
 namespace {
 constexpr int kTrailFrames = 20;
-}
+// The heat map's scale reaches at least this: below it, about a capture's marker noise, a frame
+// reads as no shape error (docs/view.md), where a frame at rest showed its 1e-6 mm as red.
+constexpr double kShapeErrorFloorMm = 2.0;
+}  // namespace
 
 FrameDisplay::FrameDisplay(Document* document, FrameSolver* solver, Timeline* timeline,
                            MeshView* view, MarkerListModel* markers, QObject* parent)
@@ -232,7 +235,7 @@ void FrameDisplay::showResult() {
         std::vector<float> mm(result.shapeError.size());
         for (std::size_t i = 0; i < mm.size(); ++i)
             mm[i] = float(result.shapeError[i] / meshUnitsPerMm);
-        view_->setHeatMap(mm, tr("Shape error (mm)"));
+        view_->setHeatMap(mm, tr("Shape error (mm)"), kShapeErrorFloorMm);
     }
 }
 

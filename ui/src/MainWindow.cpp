@@ -118,7 +118,9 @@ void MainWindow::buildMarkerDock() {
     filterEdit_->setObjectName("markerFilter");
     filterEdit_->setPlaceholderText(tr("Filter labels"));
     filterEdit_->setClearButtonEnabled(true);
+    filterEdit_->setAccessibleName(tr("Filter marker labels"));
     stateFilter_ = new QComboBox;
+    stateFilter_->setAccessibleName(tr("Markers shown"));
     stateFilter_->addItem(tr("All"), int(MarkerFilterProxy::State::All));
     stateFilter_->addItem(tr("Mapped"), int(MarkerFilterProxy::State::Mapped));
     stateFilter_->addItem(tr("Unmapped"), int(MarkerFilterProxy::State::Unmapped));
@@ -135,6 +137,7 @@ void MainWindow::buildMarkerDock() {
 
     markerTable_ = new QTableView;
     markerTable_->setObjectName("markerTable");
+    markerTable_->setAccessibleName(tr("Markers"));
     markerTable_->setModel(proxy_);
     markerTable_->setSelectionBehavior(QAbstractItemView::SelectRows);
     markerTable_->setSelectionMode(QAbstractItemView::SingleSelection);
@@ -397,6 +400,7 @@ void MainWindow::buildStatusBar() {
     // A task with no measure of how far along it is (Suggest Rest): a busy bar while it runs.
     busyBar_ = new QProgressBar;
     busyBar_->setObjectName("busyBar");
+    busyBar_->setAccessibleName(tr("Busy"));
     busyBar_->setRange(0, 0);
     busyBar_->setMaximumWidth(120);
     busyBar_->setVisible(false);

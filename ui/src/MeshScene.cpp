@@ -46,6 +46,35 @@ void copyPoints(const Positions& V, vtkPoints* points) {
 
 }  // namespace
 
+QColor heatMapColour(double t) {
+    // Viridis read off at eighths: its lightness rises evenly (L* about 15 to 91) and its hues
+    // avoid the red-green axis, so no colour vision confuses two parts of the scale.
+    static constexpr unsigned char stops[9][3] = {{68, 1, 84},    {71, 45, 123},  {59, 82, 139},
+                                                  {44, 114, 142}, {33, 145, 140}, {40, 174, 128},
+                                                  {94, 201, 98},  {173, 220, 48}, {253, 231, 37}};
+    const double x = std::clamp(std::isfinite(t) ? t : 0.0, 0.0, 1.0) * 8;
+    const int i = std::min(7, int(x));
+    const double f = x - i;
+    const auto mix = [&](int c) {
+        return int(std::lround(stops[i][c] * (1 - f) + stops[i + 1][c] * f));
+    };
+    return QColor(mix(0), mix(1), mix(2));
+}
+
+QColor markerColour(MarkerState state) {
+    // Blue and orange, the pair most colour visions tell apart, and 25 L* apart as well;
+    // the selected marker is lighter still, and larger.
+    switch (state) {
+        case MarkerState::Mapped:
+            return QColor(40, 100, 210);
+        case MarkerState::Selected:
+            return QColor(255, 235, 40);
+        case MarkerState::Unmapped:
+            break;
+    }
+    return QColor(240, 150, 30);
+}
+
 MeshScene::MeshScene() {
     renderer_->SetBackground(0.20, 0.22, 0.26);
     // VTK clears to alpha 0 by default; Qt would compose the view with the window behind it.
@@ -85,7 +114,7 @@ MeshScene::MeshScene() {
     // after the value keep it clear.
     legend_->SetLabelFormat("%.3g  ");
     legend_->SetTextPositionToPrecedeScalarBar();
-    legend_->SetVerticalTitleSeparation(8);  // the top value's label clear of the title
+    // The top value's label is kept clear of the title: placeLegend() sets the gap.
     legend_->UnconstrainedFontSizeOn();
     legend_->GetTitleTextProperty()->SetFontSize(13);
     legend_->GetLabelTextProperty()->SetFontSize(12);
@@ -213,14 +242,11 @@ void MeshScene::setMarkers(const Positions& markers, const std::vector<MarkerSta
         const MarkerState state =
             k < static_cast<Eigen::Index>(states.size()) ? states[k] : MarkerState::Unmapped;
         points->InsertNextPoint(markers(k, 0), markers(k, 1), markers(k, 2));
-        unsigned char rgb[3] = {240, 130, 40};  // unmapped: orange
-        double scale = r;
-        if (state == MarkerState::Mapped) {
-            rgb[0] = 70, rgb[1] = 200, rgb[2] = 90;
-        } else if (state == MarkerState::Selected) {
-            rgb[0] = 255, rgb[1] = 235, rgb[2] = 40;
-            scale = 1.7 * r;
-        }
+        const QColor c = markerColour(state);
+        const unsigned char rgb[3] = {static_cast<unsigned char>(c.red()),
+                                      static_cast<unsigned char>(c.green()),
+                                      static_cast<unsigned char>(c.blue())};
+        const double scale = state == MarkerState::Selected ? 1.7 * r : r;
         radius->InsertNextValue(static_cast<float>(scale));
         colour->InsertNextTypedTuple(rgb);
         shown.row(Eigen::Index(texts.size())) = markers.row(k);
@@ -269,7 +295,8 @@ bool MeshScene::trailsVisible() const {
     return trailActor_->GetVisibility();
 }
 
-void MeshScene::setHeatMap(const std::vector<float>& values, const QString& title) {
+void MeshScene::setHeatMap(const std::vector<float>& values, const QString& title, double floor) {
+    legendTop_ = 0;
     if (values.empty() || static_cast<Eigen::Index>(values.size()) != V_.rows()) {
         mesh_->GetPointData()->SetScalars(nullptr);
         meshMapper_->ScalarVisibilityOff();
@@ -285,11 +312,17 @@ void MeshScene::setHeatMap(const std::vector<float>& values, const QString& titl
     std::vector<float> sorted = values;
     const std::size_t p = std::min(sorted.size() - 1, sorted.size() * 98 / 100);
     std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(p), sorted.end());
-    const double top = std::max(1e-12, static_cast<double>(sorted[p]));
+    // The floor: noise on a frame at rest (1e-6 mm) filled the whole scale and read as error.
+    const double top = std::max({1e-12, floor, static_cast<double>(sorted[p])});
+    legendTop_ = top;
     vtkNew<vtkLookupTable> table;
-    table->SetHueRange(0.667, 0.0);
+    constexpr int kColours = 256;
+    table->SetNumberOfTableValues(kColours);
+    for (int i = 0; i < kColours; ++i) {
+        const QColor c = heatMapColour(double(i) / (kColours - 1));
+        table->SetTableValue(i, c.redF(), c.greenF(), c.blueF(), 1.0);
+    }
     table->SetTableRange(0.0, top);
-    table->Build();
     meshMapper_->SetLookupTable(table);
     meshMapper_->SetScalarRange(0.0, top);
     meshMapper_->SetScalarModeToUsePointData();
@@ -304,13 +337,17 @@ void MeshScene::placeLegend() {
     // Sized in pixels from its text, in the view's top-right corner. At 65 % of the view's
     // height by its right edge it lay over the body's arm in a 1024x600 window, and its values
     // had only the room the bar left them: the top one, "23.5", touched the bar.
-    constexpr int kMargin = 10, kBar = 14;  // pixels: from the view's edges, the bar's width
     const int* size = renderer_->GetSize();
     vtkTextRenderer* measure = vtkTextRenderer::GetInstance();
     vtkRenderWindow* window = renderer_->GetRenderWindow();
     vtkScalarsToColors* table = legend_->GetLookupTable();
     if (!legend_->GetVisibility() || !table || size[0] <= 0 || size[1] <= 0 || !measure || !window)
         return;
+    // Pixels at a DPI of 72 (a scale of 1), scaled with the text on a high-DPI screen.
+    const double scale = window->GetDPI() / 72.0;
+    const auto px = [scale](int pixels) { return int(std::lround(pixels * scale)); };
+    const int kMargin = px(10), kBar = px(14);  // from the view's edges, the bar's width
+    legend_->SetVerticalTitleSeparation(px(8));
     const auto widthOf = [&](vtkTextProperty* text, const char* s) {
         int box[4];
         return measure->GetBoundingBox(text, s, box, window->GetDPI()) ? box[1] - box[0] + 1 : 0;
@@ -328,10 +365,10 @@ void MeshScene::placeLegend() {
         label = std::max(label, widthOf(legend_->GetLabelTextProperty(), text));
     }
     const int width =
-        std::max(1, std::min(size[0] - 2 * kMargin, std::max(title, label + kBar + 2)));
+        std::max(1, std::min(size[0] - 2 * kMargin, std::max(title, label + kBar + px(2))));
     // Two fifths of the view's height, and room for five labels in a small view.
     const int height =
-        std::max(1, std::min(size[1] - 2 * kMargin, std::clamp(size[1] * 2 / 5, 130, 280)));
+        std::max(1, std::min(size[1] - 2 * kMargin, std::clamp(size[1] * 2 / 5, px(130), px(280))));
     legend_->SetBarRatio(std::min(1.0, double(kBar) / width));
     legend_->SetWidth(double(width) / size[0]);
     legend_->SetHeight(double(height) / size[1]);

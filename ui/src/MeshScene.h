@@ -52,7 +52,8 @@ class MeshScene {
     void setTrails(const std::vector<Positions>& trails);
     bool trailsVisible() const;
     // `title` names the quantity and its units, for the legend.
-    void setHeatMap(const std::vector<float>& values, const QString& title);
+    void setHeatMap(const std::vector<float>& values, const QString& title, double floor = 0);
+    double legendTop() const { return legendTop_; }
     bool legendVisible() const;
     QString legendTitle() const;
     // Before each render: the legend sized from its title and values, in the top-right corner.
@@ -80,6 +81,7 @@ class MeshScene {
     Faces F_;
     bool locatorStale_ = true;
     int highlighted_ = -1;
+    double legendTop_ = 0;
 
     vtkNew<vtkRenderer> renderer_;
     vtkNew<vtkPolyData> mesh_;

@@ -118,6 +118,12 @@ struct MeshView::Impl {
     }
 
     void syncSize() {
+        // VTK sizes text in points at this DPI, 72 = a point a pixel. Scaled as Qt scales the
+        // widgets' text (device pixels per pixel, the screen's font DPI over 96), the labels and
+        // legend read as large as the window's; at 72 on a scale of 2 they were half as large.
+        const int dpi =
+            std::max(1, int(std::lround(72.0 * q->devicePixelRatioF() * q->logicalDpiY() / 96.0)));
+        if (window->GetDPI() != dpi) window->SetDPI(dpi);
         const QPoint size = deviceSize();
         interactor->UpdateSize(size.x(), size.y());
         window->SetSize(size.x(), size.y());
@@ -141,6 +147,10 @@ struct MeshView::Impl {
 MeshView::MeshView(QWidget* parent) : QOpenGLWidget(parent), d_(std::make_unique<Impl>(this)) {
     setFocusPolicy(Qt::StrongFocus);
     setMinimumSize(200, 150);
+    // It takes the focus first: a screen reader must say what it is.
+    setAccessibleName(tr("3D view"));
+    setAccessibleDescription(
+        tr("The mesh and the take's markers; click the mesh to pick a vertex"));
 }
 
 MeshView::~MeshView() {
@@ -272,9 +282,13 @@ bool MeshView::trailsVisible() const {
     return d_->scene.trailsVisible();
 }
 
-void MeshView::setHeatMap(const std::vector<float>& values, const QString& title) {
-    d_->scene.setHeatMap(values, title);
+void MeshView::setHeatMap(const std::vector<float>& values, const QString& title, double floor) {
+    d_->scene.setHeatMap(values, title, floor);
     update();
+}
+
+double MeshView::legendTop() const {
+    return d_->scene.legendTop();
 }
 
 bool MeshView::legendVisible() const {

@@ -22,7 +22,9 @@ QLayout* makeOffsetRow(Document* document) {
     auto* all = new QPushButton(QObject::tr("All mapped"));
     all->setObjectName("offsetAll");
     all->setToolTip(QObject::tr("Give every mapped marker this offset off the skin"));
-    row->addWidget(new QLabel(QObject::tr("Offset off the skin")));
+    auto* label = new QLabel(QObject::tr("Offset off the skin"));
+    label->setBuddy(spin);  // the spin box's name, for a screen reader
+    row->addWidget(label);
     row->addWidget(spin, 1);
     row->addWidget(all);
 

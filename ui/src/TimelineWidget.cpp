@@ -62,6 +62,16 @@ TimelineWidget::TimelineWidget(Timeline* timeline, QWidget* parent)
     speed_->addItem(tr("Every frame"), int(Timeline::Speed::EveryFrame));
     speed_->setCurrentIndex(speed_->findData(int(timeline->speed())));
 
+    // What a screen reader announces: the buttons show only icons, the combo box its value.
+    first_->setAccessibleName(tr("First frame"));
+    previous_->setAccessibleName(tr("Previous frame"));
+    play_->setAccessibleName(tr("Play or pause"));
+    next_->setAccessibleName(tr("Next frame"));
+    last_->setAccessibleName(tr("Last frame"));
+    slider_->setAccessibleName(tr("Frame"));
+    frameBox_->setAccessibleName(tr("Frame number"));
+    speed_->setAccessibleName(tr("Playback speed"));
+
     auto* layout = new QHBoxLayout(this);
     layout->setContentsMargins(4, 2, 4, 2);
     for (QWidget* w :

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <QColor>
 #include <QImage>
 #include <QList>
 #include <QOpenGLWidget>
@@ -53,9 +54,12 @@ class MeshView : public QOpenGLWidget {
     void setTrails(const std::vector<Positions>& trails);
     // Whether a trail is drawn (one of two points or more).
     bool trailsVisible() const;
-    // Per-vertex scalars coloured from blue (0) to red (max), with a colour legend titled with
-    // the quantity and its units ("Shape error (mm)"); empty = plain shading, no legend.
-    void setHeatMap(const std::vector<float>& values, const QString& title = {});
+    // Per-vertex scalars coloured by heatMapColour from 0 to the values' 98th percentile, or
+    // `floor` if that is higher (noise at rest must not read as error), with a colour legend
+    // titled with the quantity and its units ("Shape error (mm)"); empty = plain shading.
+    void setHeatMap(const std::vector<float>& values, const QString& title = {}, double floor = 0);
+    // The value at the top of the heat map's scale, 0 without one.
+    double legendTop() const;
     bool legendVisible() const;
     QString legendTitle() const;
     // Where the legend was drawn at the last render (logical pixels, top-left origin); empty
@@ -125,6 +129,12 @@ class MeshView : public QOpenGLWidget {
     struct Impl;
     std::unique_ptr<Impl> d_;
 };
+
+// The view's colours. A heat map's at t in [0, 1] of its scale: violet through blue and green to
+// yellow, lighter all along, so that its order reads by lightness alone (a colour-blind reader).
+QColor heatMapColour(double t);
+// A marker sphere's: unmapped, mapped and selected differ in lightness as well as in hue.
+QColor markerColour(MarkerState state);
 
 // "+y", "-z", ... → unit vector; anything else gives +y.
 Eigen::Vector3d upAxisVector(const QString& axis);
