@@ -494,11 +494,14 @@ Sidecar sidecarState(const TakeJob& job, Fingerprints& known, VertexCounts& mesh
         // Every sidecar of a calibrated take has "calibrated_rest", null when none was written.
         const bool sameRest = !job.writeCalibratedRest ||
                               s.at("calibration").value("calibrated_rest", json()).is_string();
-        // Sidecars from before mesh_up solved with the up guessed, as "auto" does: without this,
-        // every take of a library was solved again "from other options". (Other keys missing
-        // from older sidecars had other defaults then, and stay a difference.)
+        // Sidecars from before mesh_up solved with the up guessed, as "auto" does, and those from
+        // before take_units in the file's units, as "file" does: without this, every take of a
+        // library was solved again "from other options". (Other keys missing from older
+        // sidecars had other defaults then, and stay a difference.)
         json recorded = s.at("options");
         if (recorded.is_object() && !recorded.contains("mesh_up")) recorded["mesh_up"] = "auto";
+        if (recorded.is_object() && !recorded.contains("take_units"))
+            recorded["take_units"] = "file";
         if (!(sameFrames && sameRest && recorded == toJson(options)))
             why = "its sidecar is from other frames or options";
         if (why.empty())

@@ -14,10 +14,12 @@
 
 #include "Commands.h"
 #include "OptionFlags.h"
+#include "TakeJob.h"
 #include "boneless/Alignment.h"
 #include "boneless/C3dReader.h"
 #include "boneless/ObjWriter.h"
 #include "boneless/TakeExport.h"
+#include "boneless/TakeOptionsJson.h"
 #include "boneless/Text.h"
 
 namespace {
@@ -27,6 +29,7 @@ struct InspectOptions {
     bool json = false;
     std::string csv;
     bool keepZero = false;
+    nlohmann::json options = nlohmann::json::object();  // --take-units, as solve reads it
 };
 
 // The columns a terminal gives the code point `c`: two for the East Asian wide and fullwidth
@@ -72,7 +75,10 @@ nlohmann::json toJson(const boneless::C3dTake& t) {
     j["frame_count"] = t.frameCount();
     j["fps"] =
         t.hasFrameRate() ? nlohmann::json(t.rate) : nlohmann::json(nullptr);  // as the sidecar
-    j["units"] = t.units;
+    j["units"] = t.units;  // the units used: the file's, or --take-units
+    // What the file's POINT:UNITS says (null without one), which --take-units may overrule.
+    const std::string file = boneless::c3dFileUnits(t);
+    j["file_units"] = file.empty() ? nlohmann::json() : nlohmann::json(file);
     j["unit_to_mm"] = t.unitToMm;
     // null without a frame showing 3 markers; a span no body has is also among the warnings.
     const double span = t.markerSpan.mm;
@@ -118,7 +124,7 @@ void printSummary(const boneless::C3dTake& t, std::ostream& out) {
         out << ", no frame rate";
     if (t.frameCount()) out << ", numbered " << t.firstFrame << ".." << lastFrame(t);
     out << " (header frames " << t.firstFrameWord << ".." << t.lastFrameWord << ")\n";
-    out << "  units     " << t.units << " (x" << t.unitToMm << " to mm)";
+    out << "  units     " << unitsText(t) << " (x" << t.unitToMm << " to mm)";
     if (const boneless::MarkerSpan& span = t.markerSpan; span.mm > 0)
         out << ", markers span " << boneless::lengthText(span.mm)
             << (span.doubt.empty() ? "" : " (see the warning)");
@@ -200,6 +206,7 @@ void registerInspectCommand(CLI::App& app) {
                     "write frame,label,x,y,z,valid rows (frame 0-based, file units, empty x/y/z "
                     "where missing)")
         ->check(aPath());
+    addOptionFlag(cmd, opts->options, boneless::toJson(boneless::TakeSolveOptions{}), "take_units");
     cmd->add_flag("--keep-zero", opts->keepZero,
                   "keep samples at exactly (0,0,0) instead of treating them as missing");
     cmd->callback([opts]() {
@@ -209,7 +216,8 @@ void registerInspectCommand(CLI::App& app) {
                                   "; give --csv another file");
         boneless::C3dReadOptions ro;
         ro.keepZeroSamples = opts->keepZero;
-        const boneless::C3dTake take = boneless::readC3d(opts->take, ro);
+        boneless::C3dTake take = boneless::readC3d(opts->take, ro);
+        applyTakeUnits(take, opts->options);
         // Under a temporary name, renamed once whole: a write that fails (a full disk) leaves
         // the file it was to replace as it was. A link or a device (/dev/stdout, a pipe) is
         // written through: a rename would replace the link, or cannot be made beside it.

@@ -28,7 +28,8 @@ void registerMapCommand(CLI::App& app) {
         std::string mesh, group, c3d, map, out, check;
         double toleranceMm = 30;
         bool force = false;
-        nlohmann::json options = nlohmann::json::object();  // --mesh-up, as solve reads it
+        // --mesh-up and --take-units, as solve reads them.
+        nlohmann::json options = nlohmann::json::object();
     };
     auto args = std::make_shared<Args>();
     CLI::App* map = app.add_subcommand("map", "Author marker-to-vertex correspondence files");
@@ -60,6 +61,7 @@ void registerMapCommand(CLI::App& app) {
         ->check(numberFrom(0.1, 1000))
         ->needs(check);
     addOptionFlag(suggest, args->options, toJson(TakeSolveOptions{}), "mesh_up");
+    addOptionFlag(suggest, args->options, toJson(TakeSolveOptions{}), "take_units");
     suggest->add_flag("--force", args->force,
                       "Replace an --out that differs from the map this run writes (a map reviewed "
                       "by hand)");
@@ -95,7 +97,8 @@ void registerMapCommand(CLI::App& app) {
             }
         }
         // The take first: one in other units than it says is refused before the mesh is read.
-        const C3dTake take = readC3d(args->c3d);
+        C3dTake take = readC3d(args->c3d);
+        applyTakeUnits(take, args->options);
         refuseDoubtfulUnits(take, "nothing was written");
         MeshReadOptions options;
         options.group = args->group;

@@ -15,6 +15,7 @@
 #include "OptionFlags.h"
 #include "boneless/Alignment.h"
 #include "boneless/C3dFrameReader.h"
+#include "boneless/C3dReader.h"
 #include "boneless/Error.h"
 #include "boneless/MarkerSuggestion.h"
 #include "boneless/MeshReader.h"
@@ -124,13 +125,34 @@ void addTakeJobOptions(CLI::App* cmd, TakeJob& job) {
                   "Also write <stem>_calibrated_rest.obj, the rest fitted to the actor");
 }
 
-void refuseDoubtfulUnits(const C3dTake& take, const std::string& outcome) {
+void refuseDoubtfulUnits(const C3dTake& take, const std::string& outcome, bool keys) {
     const MarkerSpan& span = take.markerSpan;
     if (span.doubt.empty()) return;
-    // Boneless reads a take in its file's units alone: the file is what to fix.
-    throw Error(take.file + ": " + span.doubt + "; " + outcome +
-                ": set the file's POINT:UNITS to " + span.likelyUnits +
+    // The option first: it fixes the solve without another tool; the file is for every reader.
+    const std::string give = "give " + takeUnitsName(keys) +
+                             (keys ? ": \"" + span.likelyUnits + "\"" : " " + span.likelyUnits);
+    if (!take.unitsFrom.empty())
+        throw Error(take.file + ": " + span.doubt + "; " + outcome + ": " + give + " instead");
+    throw Error(take.file + ": " + span.doubt + "; " + outcome + ": " + give +
+                ", or set the file's POINT:UNITS to " + span.likelyUnits +
                 " (Mokka, or ezc3d or btk in a script), or scale its coordinates");
+}
+
+std::string takeUnitsName(bool keys) {
+    return keys ? "\"take_units\"" : "--take-units";
+}
+
+void applyTakeUnits(C3dTake& take, const nlohmann::json& options, bool keys) {
+    TakeSolveOptions o;
+    fromJson(options, o, "options");
+    if (o.takeUnits != "file") setTakeUnits(take, o.takeUnits, takeUnitsName(keys));
+}
+
+std::string unitsText(const C3dTake& take) {
+    if (take.unitsFrom.empty()) return take.units;
+    const std::string file = c3dFileUnits(take);
+    return take.units + " (" + take.unitsFrom + "; the file says " +
+           (file.empty() ? "none" : file) + ")";
 }
 
 void checkMapFitsMesh(const Correspondence& map, const TriMesh& mesh, const std::string& meshPath,
@@ -352,8 +374,12 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
             std::fprintf(stderr, "note: %s: %s\n", job.mesh.c_str(), w.c_str());
     // Streamed: a take of any length solves in the memory of a short one. A take in other units
     // than it says is refused here, before the solver is prepared.
-    const C3dFrameReader take(job.c3d);
-    refuseDoubtfulUnits(take.take(), "nothing was solved");
+    C3dFrameReader take(job.c3d);
+    // As a manifest names it in batch, which gives takeNotes.
+    const bool keys = takeNotes != nullptr;
+    if (const std::string& units = request.options.takeUnits; units != "file")
+        take.setUnits(units, takeUnitsName(keys));
+    refuseDoubtfulUnits(take.take(), "nothing was solved", keys);
     // Said even when quiet: a truncated take solves the frames it holds, and without this only
     // `inspect` would tell.
     if (takeWarnings)
@@ -446,7 +472,7 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
                      "%s: %zu frames at %g Hz, units %s; aligned at frame %d (residual %.1f mm), "
                      "mesh units look like %s, mesh up axis %s%s\n",
                      job.c3d.c_str(), take.frameCount(), take.take().rate,
-                     take.take().units.c_str(), c.frame, c.residualMm(take.take().unitToMm),
+                     unitsText(take.take()).c_str(), c.frame, c.residualMm(take.take().unitToMm),
                      guessMeshUnits(meshUnitsPerMm),
                      guessUpAxis(c.takeToMesh, take.take().vertical).c_str(),
                      request.options.meshUp ? "" : " (guessed; --mesh-up sets it)");

@@ -41,8 +41,19 @@ void checkMapFitsMesh(const boneless::Correspondence& map, const boneless::TriMe
 // A take whose markers span no body in the units it states (C3dTake::markerSpan) is refused before
 // the mesh is read or the solver prepared: solved, CMU 85_02 in metres under "mm" aligned "at
 // 10 mm" hundreds of metres off after 250 s. `outcome` says what was not done ("nothing was
-// solved").
-void refuseDoubtfulUnits(const boneless::C3dTake& take, const std::string& outcome);
+// solved"); the fix offered first is the take_units option, as a flag or, with `keys`, as a
+// manifest's key.
+void refuseDoubtfulUnits(const boneless::C3dTake& take, const std::string& outcome,
+                         bool keys = false);
+
+// setTakeUnits with the take_units of `options` (flags or keys given, as TakeJob::options), named
+// as --take-units or, with `keys`, "take_units"; nothing for "file".
+void applyTakeUnits(boneless::C3dTake& take, const nlohmann::json& options, bool keys = false);
+// How the option is named: --take-units, or with `keys` "take_units" (a manifest's key).
+std::string takeUnitsName(bool keys);
+// The take's units as messages give them: "mm", or "m (--take-units; the file says mm)" when
+// set otherwise than by the file.
+std::string unitsText(const boneless::C3dTake& take);
 
 // Where the job's sidecar goes: OUT/<stem>.json.
 std::string takeJobSidecar(const TakeJob& job);

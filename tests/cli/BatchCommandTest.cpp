@@ -307,6 +307,25 @@ TEST(Batch, ASidecarFromBeforeMeshUpIsSkippedAsAnAutoOne) {
     EXPECT_NE(r.out.find("3 solved, 0 skipped"), std::string::npos) << r.out;
 }
 
+// take_units came after these sidecars: they were solved in the file's units, as "file" is.
+TEST(Batch, ASidecarFromBeforeTakeUnitsIsSkippedAsAFileOne) {
+    const fs::path dir = makeLibrary();
+    const fs::path manifest = solvedOnce(dir);
+    const fs::path sidecar = dir / "out" / "walk_c" / "walker.json";
+    json j = json::parse(std::ifstream(sidecar));
+    ASSERT_EQ(j["options"]["take_units"], "file");
+    j["options"].erase("take_units");
+    std::ofstream(sidecar) << j.dump();
+    CliResult r = runCli("batch " + manifest.string());
+    EXPECT_NE(r.out.find("0 solved, 3 skipped"), std::string::npos) << r.out;
+    // Takes asked for other units are not the ones solved.
+    json m = json::parse(std::ifstream(manifest));
+    m["defaults"]["take_units"] = "mm";
+    writeManifest(dir, "m.json", m);
+    r = runCli("batch " + manifest.string());
+    EXPECT_NE(r.out.find("3 solved, 0 skipped"), std::string::npos) << r.out;
+}
+
 TEST(Batch, AFailingTakeDoesNotStopTheOthersButFailsTheRun) {
     const fs::path dir = makeLibrary();
     std::ofstream(dir / "takes" / "broken.c3d") << "not a c3d file";

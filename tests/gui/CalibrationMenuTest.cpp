@@ -38,7 +38,8 @@ bool trigger(MainWindow& window, const char* name) {
     const quint64 generation = window.frameSolver()->generation();
     action->trigger();
     // A calibration change rebuilds the solver (a new generation) before the frame is solved.
-    if ((QString(name).startsWith("calibrate") || QString(name).startsWith("meshUp")) &&
+    if ((QString(name).startsWith("calibrate") || QString(name).startsWith("meshUp") ||
+         QString(name).startsWith("takeUnits")) &&
         !QTest::qWaitFor([&] { return window.frameSolver()->generation() != generation; }, 10000))
         return false;
     return test::waitForFrame(window);
@@ -147,6 +148,44 @@ class CalibrationMenuTest : public QObject {
         QVERIFY(document->alignment());
         QVERIFY((document->alignment()->takeToMesh.R * Vec3::UnitZ() - Vec3::UnitX()).norm() <
                 1e-9);
+    }
+
+    // A take whose file states other units than its coordinates are in is read in the ones the
+    // user names (take_units), undoably, the one in use checked, and kept in the project.
+    void theTakeUnitsAreTheUsersChoiceCheckedUndoneAndSaved() {
+        Document* document = window_->document();
+        QCOMPARE(document->settings().takeUnits, std::string("file"));
+        QVERIFY(window_->findChild<QAction*>("takeUnitsfile")->isChecked());
+        QCOMPARE(document->take().unitToMm, 1.0);
+        const Positions inFile = window_->meshView()->positions();
+        QVERIFY(trigger(*window_, "takeUnitsm"));
+        QCOMPARE(document->settings().takeUnits, std::string("m"));
+        QCOMPARE(document->take().unitToMm, 1000.0);
+        QCOMPARE(document->take().units, std::string("m"));
+        QVERIFY(window_->findChild<QAction*>("takeUnitsm")->isChecked());
+        QVERIFY(!window_->findChild<QAction*>("takeUnitsfile")->isChecked());
+        QCOMPARE(document->undoStack()->undoText(), QString("Take Units Metres (m)"));
+        // The walker's millimetres read as metres span kilometres: doubted, naming the menu.
+        const QString notes = document->takeNotes().join('\n');
+        QVERIFY2(notes.contains("although Edit → Take Units says m: are they in millimetres") &&
+                     notes.contains("choose Edit → Take Units → Millimetres (mm) instead."),
+                 qPrintable(notes));
+        // The markers' 10 mm off the skin are 10 µm in metres: the frame is solved again.
+        QVERIFY(maxDistance(window_->meshView()->positions(), inFile) > 0.0);
+
+        const QString saved = folder_ + "/units.boneless";
+        QVERIFY(window_->saveProjectAs(saved));
+        QFile file(saved);
+        QVERIFY(file.open(QIODevice::ReadOnly));
+        QCOMPARE(QJsonDocument::fromJson(file.readAll())["settings"]["take_units"].toString(),
+                 QString("m"));
+
+        document->undoStack()->undo();
+        QCOMPARE(document->settings().takeUnits, std::string("file"));
+        QCOMPARE(document->take().unitToMm, 1.0);
+        QCOMPARE(document->take().units, std::string("mm"));
+        QVERIFY(window_->findChild<QAction*>("takeUnitsfile")->isChecked());
+        QVERIFY(!document->takeNotes().join('\n').contains("its markers span"));
     }
 
     void theShowMenuTogglesFrameCalibratedRestAndRest() {

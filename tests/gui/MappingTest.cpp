@@ -591,11 +591,13 @@ class MappingTest : public QObject {
                 const QObject* item = window.findChild<QObject*>(name);
                 if (!item || item->property("enabled").toBool()) on << name;
             }
-            if (window.findChild<QMenu*>("meshUp")->menuAction()->isEnabled()) on << "meshUp";
+            for (const char* menu : {"meshUp", "takeUnits"})
+                if (window.findChild<QMenu*>(menu)->menuAction()->isEnabled()) on << menu;
             return on.join(' ');
         };
         const QString before = enabledOnes();
-        QVERIFY2(before.contains("actionUndo") && before.contains("calibrateAtFrame"),
+        QVERIFY2(before.contains("actionUndo") && before.contains("calibrateAtFrame") &&
+                     before.contains("takeUnits"),
                  qPrintable(before));
 
         ExportDialog* dialog = window.exportDialog();

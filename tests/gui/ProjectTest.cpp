@@ -12,6 +12,7 @@
 #include <QtTest>
 
 #include "ModelTestFixtures.h"
+#include "boneless/C3dWriter.h"
 
 using namespace boneless;
 using namespace boneless::ui;
@@ -153,6 +154,46 @@ class ProjectTest : public QObject {
                                             "past this take's")
                                         .arg(d.take().firstFrame + 50)),
                  qPrintable(notes));
+    }
+
+    // A take in metres under POINT:UNITS "mm" says how to read it right, naming the menu first;
+    // read in metres (take_units), the project keeps them and reopens the take in them.
+    void aTakesUnitsAreKeptInTheProjectAndItsTakeIsReadInThem() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        C3dTake metres = d.take();
+        for (std::size_t f = 0; f < metres.samples.frames(); ++f)
+            for (std::size_t k = 0; k < metres.samples.points(); ++k)
+                if (const auto p = metres.samples.position(f, k)) {
+                    const Eigen::Vector3d m = *p / 1000.0;
+                    metres.samples.set(f, k, m.x(), m.y(), m.z());
+                }
+        const QString take = work_ + "/metres.c3d";
+        writeC3d(metres, take.toStdString());
+        QVERIFY(d.loadTake(take));
+        QVERIFY2(d.takeNotes().join("\n").contains("are they in metres (") &&
+                     d.takeNotes().join("\n").contains(
+                         "A body spans 0.3 to 3 m: choose Edit → Take "
+                         "Units → Metres (m), or set the file's POINT:UNITS to m."),
+                 qPrintable(d.takeNotes().join("\n")));
+        TakeSolveOptions settings = d.settings();
+        settings.takeUnits = "m";
+        d.setSettings(settings);
+        QCOMPARE(d.take().unitToMm, 1000.0);
+        QVERIFY(!d.takeNotes().join("\n").contains("its markers span"));
+
+        const QString path = work_ + "/metres.boneless";
+        QString error;
+        QVERIFY2(Project::save(d, path, &error), qPrintable(error));
+        QCOMPARE(readJson(path)["settings"].toObject()["take_units"].toString(), QString("m"));
+        Document e;
+        QVERIFY2(Project::load(e, path, &error), qPrintable(error));
+        QCOMPARE(e.settings().takeUnits, std::string("m"));
+        QCOMPARE(e.take().units, std::string("m"));
+        QCOMPARE(e.take().unitToMm, 1000.0);
+        QCOMPARE(e.take().unitsFrom, std::string(Document::kTakeUnitsFrom));
+        QVERIFY2(!e.takeNotes().join("\n").contains("its markers span"),
+                 qPrintable(e.takeNotes().join("\n")));
     }
 
     void anOldProjectOpensWithLocalGlobalUnlessItAsksForExact() {

@@ -124,6 +124,34 @@ void addCalibrationActions(QMenu* edit, QMenu* view, Document* document, Timelin
         QObject::connect(action, &QAction::triggered, ups, showUp);
     showUp();
 
+    // The units the take's coordinates are in (take_units): a take whose file states others
+    // (CMU 85_02 in metres under "mm") is read right without another tool editing the file.
+    QMenu* units = edit->addMenu(QObject::tr("Ta&ke Units"));
+    units->setObjectName("takeUnits");
+    enableWhile(units->menuAction(), document, hasTake);
+    auto* unitChoices = new QActionGroup(units);
+    for (const std::string& choice : findTakeOption("take_units")->choices) {
+        QAction* action = units->addAction(Document::takeUnitsName(choice));
+        action->setObjectName(QString::fromStdString("takeUnits" + choice));
+        action->setCheckable(true);
+        unitChoices->addAction(action);
+        QObject::connect(action, &QAction::triggered, document, [=] {
+            TakeSolveOptions settings = document->settings();
+            settings.takeUnits = choice;
+            // Named as the menu names it: "Undo Take Units Metres (m)".
+            document->setSettings(settings, QObject::tr("Take Units %1").arg(action->text()));
+        });
+    }
+    auto showUnits = [=] {
+        const QString name = QString::fromStdString("takeUnits" + document->settings().takeUnits);
+        for (QAction* action : unitChoices->actions())
+            action->setChecked(action->objectName() == name);
+    };
+    QObject::connect(document, &Document::settingsChanged, unitChoices, showUnits);
+    for (QAction* action : unitChoices->actions())
+        QObject::connect(action, &QAction::triggered, unitChoices, showUnits);
+    showUnits();
+
     QMenu* show = view->addMenu(QObject::tr("&Show"));
     auto* group = new QActionGroup(show);
     const std::tuple<const char*, QString, FrameDisplay::Shown> choices[] = {

@@ -19,10 +19,12 @@ class Timeline;
 //  Edit → Do Not Calibrate: calibrate none, frames solved against the rest as given;
 //    of these three, the mode in use is checked (the document's settings, through undo);
 //  Edit → Mesh Up → Guessed from the Take / +X … -Z: the project's settings.mesh_up, checked;
+//  Edit → Take Units → From the File / Millimetres (mm) … Feet (ft): settings.take_units, checked;
 //  View → Show → Frame / Calibrated Rest / Rest: what the view draws (FrameDisplay::Shown), and
 //    the status bar says which rest is shown.
 // The actions' object names: calibrateAtFrame, calibrateAutomatically, calibrateNone, meshUpauto,
-// meshUp+x … meshUp-z, showFrame, showCalibratedRest, showRest.
+// meshUp+x … meshUp-z, takeUnits, takeUnitsfile, takeUnitsmm … takeUnitsft, showFrame,
+// showCalibratedRest, showRest.
 void addCalibrationActions(QMenu* edit, QMenu* view, Document* document, Timeline* timeline,
                            FrameDisplay* display,
                            const std::function<void(const QString&, const QString&)>& warn);

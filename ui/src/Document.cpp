@@ -125,6 +125,7 @@ bool Document::loadTake(const QString& path) {
     hasTake_ = true;
     take_ = std::move(s.take);
     takePath_ = path;
+    applyTakeUnits();  // the session's, as the project keeps them
     const bool pastEnd = noteTake();
     alignment_.reset();
     undoStack_->clear();
@@ -265,6 +266,7 @@ bool Document::restoreState(State state) {
     alignment_ = state.alignment;
     settings_ = state.settings;
     settings_.alignment.reset();
+    applyTakeUnits();
     // A project whose take was cut short since (a truncated copy) says so, as the take would.
     if (noteTake()) alignment_.reset();
     viewSettings_ = state.viewSettings;
@@ -272,9 +274,42 @@ bool Document::restoreState(State state) {
     return true;
 }
 
+QString Document::takeUnitsName(const std::string& units) {
+    static const std::pair<const char*, const char*> names[] = {
+        {"file", QT_TR_NOOP("From the File")},  {"mm", QT_TR_NOOP("Millimetres (mm)")},
+        {"cm", QT_TR_NOOP("Centimetres (cm)")}, {"dm", QT_TR_NOOP("Decimetres (dm)")},
+        {"m", QT_TR_NOOP("Metres (m)")},        {"in", QT_TR_NOOP("Inches (in)")},
+        {"ft", QT_TR_NOOP("Feet (ft)")}};
+    for (const auto& [key, name] : names)
+        if (units == key) return tr(name);
+    return QString::fromStdString(units);
+}
+
+void Document::applyTakeUnits() {
+    if (!hasTake_) return;
+    try {
+        setTakeUnits(take_, settings_.takeUnits, kTakeUnitsFrom);
+    } catch (const std::exception& e) {
+        fail(QString::fromStdString(e.what()));  // the options table's choices: never
+    }
+}
+
 bool Document::noteTake() {
     takeNotes_.clear();
-    for (const auto& w : take_.warnings) takeNotes_ << QString::fromStdString(w);
+    for (const auto& w : take_.warnings) {
+        if (w != take_.markerSpan.doubt) {
+            takeNotes_ << QString::fromStdString(w);
+            continue;
+        }
+        // The fix first, in this window: the file is another tool's to edit.
+        const QString menu =
+            tr("Edit → Take Units → %1").arg(takeUnitsName(take_.markerSpan.likelyUnits));
+        const QString units = QString::fromStdString(take_.markerSpan.likelyUnits);
+        takeNotes_ << (take_.unitsFrom.empty()
+                           ? tr("%1: choose %2, or set the file's POINT:UNITS to %3.")
+                                 .arg(QString::fromStdString(w), menu, units)
+                           : tr("%1: choose %2 instead.").arg(QString::fromStdString(w), menu));
+    }
     if (!hasTake_ || settings_.calibrationFrame < frameCount()) return false;
     // Every frame would fail on it.
     takeNotes_ << tr("The calibration frame %1 is past this take's %2 frames: the take is "

@@ -46,10 +46,18 @@ Document::EditState Document::editState() const {
 void Document::applyEditState(const EditState& state) {
     const bool alignmentChangedToo = !sameAlignment(alignment_, state.alignment);
     const bool settingsChangedToo = !sameSettings(settings_, state.settings);
+    const bool unitsChanged = settings_.takeUnits != state.settings.takeUnits;
     map_ = state.map;
     mapPath_ = state.mapPath;
     alignment_ = state.alignment;
     settings_ = state.settings;
+    // The take's coordinates stay as they are: what they measure in mm changes, and the marker
+    // span is judged again. settingsChanged tells the solver and the view.
+    if (unitsChanged) {
+        applyTakeUnits();
+        noteTake();
+        autoAlignment_.reset();
+    }
     rebuildMarkers();
     emit correspondenceChanged();
     if (alignmentChangedToo) emit alignmentChanged();

@@ -96,6 +96,11 @@ void setVertical(C3dTake& take, std::size_t frames,
 // setVertical's, the same frames), read by both readers into C3dTake::markerSpan.
 MarkerSpan measureMarkerSpan(const C3dTake& take, std::size_t frames,
                              const std::function<C3dSamples(std::size_t frame)>& frameAt);
+// The span `stored` (in the take's coordinates as stored) judged in the take's units, and by what
+// set them (C3dTake::unitsFrom): its mm, and the doubt when it is no body's.
+MarkerSpan judgeMarkerSpan(const C3dTake& take, double stored);
+// What the reader warns of the file's POINT:UNITS (none, or a name it does not know), or "".
+std::string fileUnitsWarning(const C3dTake& take);
 
 // Fills kind (and subject/name) of every point from POINT:ANGLES, FORCES, ... and known
 // model-output names.

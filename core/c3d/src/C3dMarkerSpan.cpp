@@ -22,7 +22,6 @@ constexpr double kLargestSpanMm = 50000.0;
 
 MarkerSpan measureMarkerSpan(const C3dTake& take, std::size_t frames,
                              const std::function<C3dSamples(std::size_t frame)>& frameAt) {
-    MarkerSpan result;
     const std::vector<std::size_t> markers = take.markerIndices();
     std::vector<double> spans;  // per frame showing 3 markers: its bounding box's longest side
     const std::size_t judged = std::min(frames, kSpanFrames);
@@ -38,11 +37,16 @@ MarkerSpan measureMarkerSpan(const C3dTake& take, std::size_t frames,
             }
         if (seen >= 3) spans.push_back((hi - lo).maxCoeff());
     }
-    if (spans.empty()) return result;
+    if (spans.empty()) return {};
     std::nth_element(spans.begin(), spans.begin() + spans.size() / 2, spans.end());
-    const double span = spans[spans.size() / 2];  // in the file's units
-    result.mm = span * take.unitToMm;
-    if (!(span > 0.0) || (result.mm >= kSmallestSpanMm && result.mm <= kLargestSpanMm))
+    return judgeMarkerSpan(take, spans[spans.size() / 2]);
+}
+
+MarkerSpan judgeMarkerSpan(const C3dTake& take, double stored) {
+    MarkerSpan result;
+    result.stored = stored;
+    result.mm = stored * take.unitToMm;
+    if (!(stored > 0.0) || (result.mm >= kSmallestSpanMm && result.mm <= kLargestSpanMm))
         return result;
     // The units that make the span a body's: nearest 1 m on a log scale.
     struct Unit {
@@ -55,15 +59,16 @@ MarkerSpan measureMarkerSpan(const C3dTake& take, std::size_t frames,
                                  {"in", "inches", 25.4}};
     const Unit* likely = &units[0];
     for (const Unit& u : units)
-        if (std::fabs(std::log(span * u.mm / 1000.0)) <
-            std::fabs(std::log(span * likely->mm / 1000.0)))
+        if (std::fabs(std::log(stored * u.mm / 1000.0)) <
+            std::fabs(std::log(stored * likely->mm / 1000.0)))
             likely = &u;
     result.likelyUnits = likely->symbol;
     const bool stated = take.parameters.find("POINT", "UNITS") != nullptr;
-    result.doubt = "its markers span " + lengthText(result.mm) + " although " +
-                   (stated ? "POINT:UNITS says " + take.units
-                           : std::string("millimetres were assumed (no POINT:UNITS)")) +
-                   ": are they in " + likely->name + " (" + lengthText(span * likely->mm) +
+    const std::string said = !take.unitsFrom.empty() ? take.unitsFrom + " says " + take.units
+                             : stated                ? "POINT:UNITS says " + take.units
+                                      : std::string("millimetres were assumed (no POINT:UNITS)");
+    result.doubt = "its markers span " + lengthText(result.mm) + " although " + said +
+                   ": are they in " + likely->name + " (" + lengthText(stored * likely->mm) +
                    ")? A body spans 0.3 to 3 m";
     return result;
 }

@@ -1,5 +1,6 @@
 // What the header and the POINT group both say about the points: count, scale, rate and units.
 
+#include <algorithm>
 #include <cmath>
 
 #include "C3dTakeLayout.h"
@@ -103,16 +104,59 @@ double frameRate(const C3dParameters& ps, const HeaderWords& h, std::vector<std:
 void readUnits(const C3dParameters& ps, C3dTake& take, bool& latin1) {
     if (const C3dParameter* u = ps.find("POINT", "UNITS")) {
         take.units = textFromC3d(u->string(), latin1);
-        if (auto mm = c3dUnitToMm(take.units)) {
-            take.unitToMm = *mm;
-        } else {
-            take.warnings.push_back("unknown POINT:UNITS \"" + take.units +
-                                    "\"; assuming millimetres");
-        }
-    } else {
-        take.warnings.push_back("no POINT:UNITS; assuming millimetres");
+        if (auto mm = c3dUnitToMm(take.units)) take.unitToMm = *mm;
     }
+    if (const std::string w = fileUnitsWarning(take); !w.empty()) take.warnings.push_back(w);
+}
+
+std::string fileUnitsWarning(const C3dTake& take) {
+    if (!take.parameters.find("POINT", "UNITS")) return "no POINT:UNITS; assuming millimetres";
+    const std::string units = c3dFileUnits(take);
+    if (c3dUnitToMm(units)) return "";
+    return "unknown POINT:UNITS \"" + units + "\"; assuming millimetres";
 }
 
 }  // namespace c3d_detail
+const std::vector<std::string>& c3dUnitSymbols() {
+    static const std::vector<std::string> symbols = {"mm", "cm", "dm", "m", "in", "ft"};
+    return symbols;
+}
+
+std::string c3dFileUnits(const C3dTake& take) {
+    const C3dParameter* u = take.parameters.find("POINT", "UNITS");
+    bool latin1 = false;
+    return u ? c3d_detail::textFromC3d(u->string(), latin1) : std::string();
+}
+
+void setTakeUnits(C3dTake& take, const std::string& units, const std::string& from) {
+    const bool file = units == "file";
+    if (file && take.unitsFrom.empty()) return;  // read in them already, its warnings in order
+    const std::optional<double> mm = file ? c3dUnitToMm(c3dFileUnits(take)) : c3dUnitToMm(units);
+    if (!file && (!mm || std::find(c3dUnitSymbols().begin(), c3dUnitSymbols().end(), units) ==
+                             c3dUnitSymbols().end()))
+        throw C3dError(take.file, C3dError::kNoOffset,
+                       "units \"" + units + "\" are none of file, " + joined(c3dUnitSymbols()));
+    auto& warnings = take.warnings;
+    const auto drop = [&](const std::string& w) {
+        if (!w.empty())
+            warnings.erase(std::remove(warnings.begin(), warnings.end(), w), warnings.end());
+    };
+    drop(take.markerSpan.doubt);
+    drop(c3d_detail::fileUnitsWarning(take));
+    if (file) {
+        const bool stated = take.parameters.find("POINT", "UNITS") != nullptr;
+        take.units = stated ? c3dFileUnits(take) : std::string("mm");
+        take.unitsFrom.clear();
+        // What the reader said of the file's units is true again.
+        if (const std::string w = c3d_detail::fileUnitsWarning(take); !w.empty())
+            warnings.insert(warnings.begin(), w);
+    } else {
+        take.units = units;
+        take.unitsFrom = from;
+    }
+    take.unitToMm = mm.value_or(1.0);
+    take.markerSpan = c3d_detail::judgeMarkerSpan(take, take.markerSpan.stored);
+    if (!take.markerSpan.doubt.empty()) warnings.push_back(take.markerSpan.doubt);
+}
+
 }  // namespace boneless

@@ -579,6 +579,12 @@ void requireFrameRate(const ExportRequest& request, const C3dTake& take) {
 void checkRequest(const TriMesh& mesh, const Correspondence& map, const ExportRequest& request,
                   const C3dTake& take, int frames) {
     validate(request.options);
+    // The sidecar records take_units: a take read in other units than it says would lie there.
+    const std::string& units = request.options.takeUnits;
+    if (units == "file" ? !take.unitsFrom.empty() : take.unitsFrom.empty() || take.units != units)
+        throw Error(request.c3dPath + ": take_units is " + units + " but the take was read in " +
+                    take.units + (take.unitsFrom.empty() ? " (the file's)" : "") +
+                    ": set its units (setTakeUnits) where it is read");
     requireFrameRate(request, take);
     refuseOutputsOverInputs(request, frames);
     checkSolveFits(mesh, request.meshPath, request.options.solver.method);

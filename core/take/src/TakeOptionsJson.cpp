@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "boneless/Alignment.h"
+#include "boneless/C3dReader.h"
 #include "boneless/Error.h"
 #include "boneless/Text.h"
 
@@ -93,6 +94,19 @@ const std::vector<Entry>& entries() {
                 {}, false),
          [](const TakeSolveOptions& o) { return json(o.meshUp ? axisName(*o.meshUp) : "auto"); },
          [](TakeSolveOptions& o, const json& v) { o.meshUp = parseAxis(v.get<std::string>()); }},
+        {choice(
+             "take_units",
+             [] {
+                 std::vector<std::string> units{"file"};
+                 for (const std::string& u : c3dUnitSymbols()) units.push_back(u);
+                 return units;
+             }(),
+             "the units the take's coordinates are in; file: as its POINT:UNITS says "
+             "(millimetres when it has none). Set it for a take in other units than its file "
+             "says",
+             {}, false),
+         [](const TakeSolveOptions& o) { return json(o.takeUnits); },
+         [](TakeSolveOptions& o, const json& v) { o.takeUnits = v.get<std::string>(); }},
         {number("marker_weight", 1e-9, 1e9, "",
                 "how hard each marker pulls its point of the mesh, against the mesh's shape",
                 {"weight"}),

@@ -74,3 +74,59 @@ TEST(C3dMarkerSpan, ABodySizedTakeIsNotDoubted) {
         EXPECT_FALSE(hasWarning(t, "its markers span")) << units;
     }
 }
+
+TEST(C3dMarkerSpan, TakeUnitsJudgeTheSpanAgainWithoutTheFramesAndTheDoubtNamesWhoSetThem) {
+    const std::string path = written("metres-set.c3d", scaledTake(0.001));
+    C3dTake whole = readC3d(path);
+    C3dFrameReader streamed(path);
+    setTakeUnits(whole, "m", "--take-units");
+    streamed.setUnits("m", "--take-units");
+    for (const C3dTake* t : {static_cast<const C3dTake*>(&whole), &streamed.take()}) {
+        EXPECT_EQ(t->units, "m");
+        EXPECT_EQ(t->unitToMm, 1000.0);
+        EXPECT_EQ(t->unitsFrom, "--take-units");
+        EXPECT_TRUE(t->markerSpan.doubt.empty()) << t->markerSpan.doubt;
+        EXPECT_NEAR(t->markerSpan.mm, 4000.0, 600.0);
+        EXPECT_FALSE(hasWarning(*t, "its markers span")) << ::testing::PrintToString(t->warnings);
+    }
+    // Units that make it no body's are doubted, naming what said them, not POINT:UNITS.
+    setTakeUnits(whole, "cm", "\"take_units\"");
+    EXPECT_NE(whole.markerSpan.doubt.find("although \"take_units\" says cm: are they in metres"),
+              std::string::npos)
+        << whole.markerSpan.doubt;
+    EXPECT_EQ(whole.markerSpan.likelyUnits, "m");
+    EXPECT_TRUE(hasWarning(whole, "although \"take_units\" says cm"));
+    // The file's units again: the doubt as the reader gave it, once.
+    setTakeUnits(whole, "file", "");
+    const C3dTake read = readC3d(path);
+    EXPECT_EQ(whole.units, "mm");
+    EXPECT_EQ(whole.unitToMm, 1.0);
+    EXPECT_TRUE(whole.unitsFrom.empty());
+    EXPECT_EQ(whole.markerSpan.doubt, read.markerSpan.doubt);
+    EXPECT_EQ(whole.warnings, read.warnings);
+}
+
+TEST(C3dMarkerSpan, TakeUnitsReplaceTheAssumedMillimetresOfATakeWithoutPointUnits) {
+    C3dTake t = scaledTake(0.001);
+    t.warnings = {"no POINT:UNITS; assuming millimetres"};
+    setTakeUnits(t, "m", "--take-units");
+    EXPECT_TRUE(t.warnings.empty()) << ::testing::PrintToString(t.warnings);
+    setTakeUnits(t, "file", "");
+    EXPECT_EQ(t.units, "mm");
+    EXPECT_EQ(t.warnings, std::vector<std::string>{"no POINT:UNITS; assuming millimetres"});
+}
+
+TEST(C3dMarkerSpan, UnitsSetTakeUnitsDoesNotKnowAreRefusedNamingTheFile) {
+    C3dTake t = scaledTake(1.0);
+    t.file = "take.c3d";
+    try {
+        setTakeUnits(t, "yards", "--take-units");
+        FAIL() << "yards were taken";
+    } catch (const C3dError& e) {
+        EXPECT_NE(std::string(e.what()).find("take.c3d"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("\"yards\""), std::string::npos) << e.what();
+    }
+    // A spelled-out name the reader accepts from a file is no symbol of the option's.
+    EXPECT_THROW(setTakeUnits(t, "metres", "--take-units"), C3dError);
+    EXPECT_EQ(t.units, "mm");
+}

@@ -23,6 +23,10 @@ class C3dFrameReader {
     // Its warnings lack what only decoding finds (non-finite or (0,0,0) samples).
     const C3dTake& take() const { return take_; }
     std::size_t frameCount() const { return frames_; }
+    // setTakeUnits on take(): its samples, read later, are in the units it then says.
+    void setUnits(const std::string& units, const std::string& from) {
+        setTakeUnits(take_, units, from);
+    }
     // Frames [first, first + count) of every point, as readC3d gives them. Safe to call from
     // several threads. Throws C3dError when the file can no longer be read.
     C3dSamples read(std::size_t first, std::size_t count) const;

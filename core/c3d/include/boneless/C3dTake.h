@@ -87,6 +87,9 @@ struct MarkerSpan {
     // The median over frames showing 3 markers of their bounding box's longest side, in mm as
     // the take's units say; 0 when no frame shows 3.
     double mm = 0.0;
+    // The same median in the take's coordinates as stored: judged again in other units
+    // (setTakeUnits) without reading the frames again.
+    double stored = 0.0;
     // When that span is no body's (outside 50 mm to 50 m): "its markers span 1.8 mm although
     // POINT:UNITS says mm: are they in metres (1.8 m)? A body spans 0.3 to 3 m", and the units
     // that make it one's ("m"); both "" otherwise.
@@ -99,9 +102,11 @@ struct C3dTake {
     C3dStorage storage = C3dStorage::Float;
     double pointScale = -1.0;  // POINT:SCALE as stored (sign gives the storage)
     double rate = 0.0;         // frames per second; 0 when the file gives none (hasFrameRate)
-    std::string units = "mm";  // POINT:UNITS as stored
+    std::string units = "mm";  // POINT:UNITS as stored, or as setTakeUnits set them
     double unitToMm = 1.0;     // multiply coordinates by this to get millimetres
-    int firstFrameWord = 1;    // header words 4 and 5 (1-based, 16-bit)
+    // What set units when not the file ("--take-units"), for messages; "" for POINT:UNITS.
+    std::string unitsFrom;
+    int firstFrameWord = 1;  // header words 4 and 5 (1-based, 16-bit)
     int lastFrameWord = 0;
     std::int64_t firstFrame = 1;  // first frame number, from TRIAL when the header cannot hold it
     int analogChannels = 0;

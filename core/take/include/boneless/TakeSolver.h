@@ -3,6 +3,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "boneless/ActorCalibration.h"
@@ -30,6 +31,9 @@ struct TakeSolveOptions {
     // nearest where the alignment at the calibration frame puts it, wrong for an actor lying there.
     std::optional<Vec3> meshUp;
     std::optional<Similarity> alignment;  // overrides the automatic alignment
+    // The units the take's coordinates are in: "file" (its POINT:UNITS) or a c3dUnitSymbols()
+    // one, applied where the take is read (setTakeUnits); the export checks they were.
+    std::string takeUnits = "file";
     // Shape: the rest mesh is first fitted to the actor at the calibration frame, and every frame
     // is solved against that calibrated rest (see docs/calibration.md). None: against the rest.
     CalibrateMode calibrate = CalibrateMode::Shape;

@@ -125,6 +125,10 @@ class Document : public QObject {
     // settings as they are, changing nothing (no undo step, no error reported); empty when it
     // finds none. It builds a solver: up to a second on a 13K-vertex mesh.
     std::optional<Calibration> alignmentAt(int frame) const;
+    // The settings' take_units as Edit → Take Units names them: "From the File", "Metres (m)".
+    static QString takeUnitsName(const std::string& units);
+    // What sets the take's units when not its file, as the take's messages name it.
+    static constexpr const char* kTakeUnitsFrom = "Edit → Take Units";
     // What the solver and the export use: settings() plus the fixed alignment, if any, without
     // the options only the exact solver reads when it is not the one chosen (their defaults).
     TakeSolveOptions solveOptions() const;
@@ -253,6 +257,8 @@ class Document : public QObject {
     // takeNotes_ from the take's warnings, and a calibration frame past its end set back to
     // automatic with a note (true then).
     bool noteTake();
+    // The take read in the settings' take_units (setTakeUnits), its marker span judged in them.
+    void applyTakeUnits();
     bool fail(const QString& message);
     // True (and errorOccurred) while edits are held.
     bool refusedWhileHeld();
