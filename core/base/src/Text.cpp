@@ -25,6 +25,9 @@ std::string fixedNumber(double x, int decimals) {
 }
 
 std::string lengthText(double mm) {
+    // A take read in the wrong units spans kilometres: "1.54 km", not "1.54e+03 m".
+    if (mm >= 1e9) return fixedNumber(mm / 1e6, 0) + " km";
+    if (mm >= 1e6) return shortNumber(mm / 1e6, 3) + " km";
     return mm >= 1000.0 ? shortNumber(mm / 1000.0, 3) + " m" : shortNumber(mm, 3) + " mm";
 }
 

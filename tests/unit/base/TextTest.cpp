@@ -51,3 +51,11 @@ TEST(NumbersInAGermanLocale, AreWrittenAndReadWithADecimalPoint) {
     EXPECT_EQ(x, 12.5);
     EXPECT_EQ(readDecimal("12,5", x), Decimal::NotANumber);
 }
+
+TEST(LengthText, ALengthOfKilometresIsWrittenInKilometresWithoutAnExponent) {
+    // A take in millimetres read as metres spans 1540 m: it said "1.54e+03 m".
+    EXPECT_EQ(lengthText(1540e3), "1.54 km");
+    EXPECT_EQ(lengthText(999e3), "999 m");
+    EXPECT_EQ(lengthText(2.5e12), "2500000 km");
+    EXPECT_EQ(lengthText(15.4), "15.4 mm");
+}

@@ -64,7 +64,8 @@ std::string shortNumber(double x, int significant = 6);
 // `x` with `decimals` digits after the point, printf's %.*f in the "C" locale: "2.5 GB".
 std::string fixedNumber(double x, int decimals);
 
-// A length in millimetres as messages give it, three significant digits: "1.54 mm", "1.8 m".
+// A length in millimetres as messages give it, three significant digits: "1.54 mm", "1.8 m",
+// "1.54 km"; never an exponent.
 std::string lengthText(double mm);
 
 // `text` as a number the way a command line gives one: decimal, as in JSON. NotANumber for
