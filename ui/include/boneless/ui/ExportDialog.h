@@ -1,9 +1,9 @@
 #pragma once
 
 #include <QDialog>
-#include <QElapsedTimer>
 #include <QStringList>
 #include <deque>
+#include <functional>
 
 #include "boneless/TakeExport.h"
 
@@ -63,6 +63,9 @@ class ExportDialog : public QDialog {
     // The widgets have object names for tests: exportFormat, exportCalibratedRest, exportEstimate,
     // exportProgress, exportProgressText, exportStart, exportCancel, exportBrowse.
     ExportRunner* runner() const { return runner_; }
+    // Milliseconds since an arbitrary origin, read for the time left; replaceable so that tests
+    // drive time themselves.
+    void setClock(std::function<qint64()> clock) { clock_ = std::move(clock); }
 
   public slots:
     // Starts writing (false with the reason in the dialog when refused).
@@ -123,7 +126,10 @@ class ExportDialog : public QDialog {
     QLabel* progressText_;
     bool lastRunShown_ = false;  // the bar shows how far the last run got
     QPushButton *start_, *cancel_, *close_;
-    QElapsedTimer clock_;
+    std::function<qint64()> clock_;
+    qint64 startedMs_ = 0;  // when the running export started
+    // When its solver was prepared and its first frame began (-1: not yet).
+    qint64 framesFromMs_ = -1;
 };
 
 }  // namespace boneless::ui
