@@ -431,14 +431,24 @@ void ExportDialog::reject() {
     QDialog::reject();
 }
 
-bool ExportDialog::askToStop() {
-    QMessageBox box(QMessageBox::Question, tr("Export"), tr("Stop the export?"),
-                    QMessageBox::NoButton, this);
-    box.setObjectName("stopExportQuestion");
+bool ExportDialog::mayCloseApp(QWidget* window) {
+    // Stop Export, or an export that ended while asked: nothing of it is left to lose.
+    return !runner_->isRunning() || askToStop(window) || !runner_->isRunning();
+}
+
+bool ExportDialog::askToStop(QWidget* closing) {
+    // The bar says how far it got: "360 / 810 frames", or what it is preparing.
+    QMessageBox box(QMessageBox::Question, closing ? tr("Close Boneless") : tr("Export"),
+                    closing ? tr("An export is running (%1): closing stops it. Stop the export?")
+                                  .arg(progress_->text())
+                            : tr("Stop the export?"),
+                    QMessageBox::NoButton, closing ? closing : this);
+    box.setObjectName(closing ? "closeWhileExportingQuestion" : "stopExportQuestion");
     box.setInformativeText(tr("The frames written so far are kept in %1, and its sidecar records "
                               "the take as incomplete.")
                                .arg(QString::fromStdString(running_.outDir)));
-    QPushButton* stop = box.addButton(tr("Stop Export"), QMessageBox::DestructiveRole);
+    QPushButton* stop = box.addButton(closing ? tr("Stop Export and Close") : tr("Stop Export"),
+                                      QMessageBox::DestructiveRole);
     QPushButton* keep = box.addButton(tr("Keep Exporting"), QMessageBox::RejectRole);
     stop->setObjectName("stopExportButton");
     keep->setObjectName("keepExportingButton");

@@ -73,6 +73,10 @@ class ExportDialog : public QDialog {
     void cancelExport();
     // Closing while writing asks whether to stop the export (Stop Export / Keep Exporting).
     void reject() override;
+    // The app's `window` closing: false when an export runs and the user keeps it (Keep
+    // Exporting, the default). True leaves the export running: the caller stops it once nothing
+    // else keeps the window open (cancelExport).
+    bool mayCloseApp(QWidget* window);
 
   signals:
     // As ExportRunner::finished: the message names the folder or the reason.
@@ -99,8 +103,9 @@ class ExportDialog : public QDialog {
     void forgetLastRun();
     // Asks whether to replace the earlier export's files `names` in the folder.
     bool askToReplace(const std::vector<std::string>& names);
-    // Asks whether to stop the running export; true for Stop Export.
-    bool askToStop();
+    // Asks whether to stop the running export, over the dialog or, when the app's window
+    // `closing` closes, over it naming how far the export got; true for Stop Export.
+    bool askToStop(QWidget* closing = nullptr);
     // After a run, finished or cancelled: removes the earlier export's files it did not write
     // again, which would pass for its, and returns their names.
     QStringList removeReplaced(const ExportRequest& request, const ExportResult& result);
