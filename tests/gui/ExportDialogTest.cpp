@@ -208,6 +208,25 @@ class ExportDialogTest : public QObject {
                      .toBool());
     }
 
+    // The koala's estimate said "about 2 min 25 s (preparing about 16 s, then 319 ms a frame …)"
+    // and, at 24 / 810, "about 13 min 42 s left": the time left spread the 16 s of preparing
+    // over the frames written. It is now the frames' own pace, timed from when the solver was
+    // prepared (the frames of every worker in that time, however many solve at once).
+    void theTimeLeftIsTheFramesPaceWithoutThePreparation() {
+        ExportDialog dialog(&document_, &solver_, &timeline_);
+        qint64 now = 0;
+        dialog.setClock([&now] { return now; });
+        now = 16000;
+        emit dialog.runner()->prepared();
+        now += 24 * 300;
+        emit dialog.runner()->progress(24, 810, 0.0);
+        QCOMPARE(progressText(dialog)->text(), QString("about 3 min 56 s left"));  // 786 × 300 ms
+        // A second worker joins: 100 frames more in 15 s, 22.2 s for the 124 frames so far.
+        now += 15000;
+        emit dialog.runner()->progress(124, 810, 0.0);
+        QCOMPARE(progressText(dialog)->text(), QString("about 2 min 3 s left"));  // 686 × 179 ms
+    }
+
     void theFramesChosenAreTheFramesWritten() {
         ExportDialog dialog(&document_, &solver_, &timeline_);
         dialog.show();

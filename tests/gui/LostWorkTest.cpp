@@ -16,6 +16,8 @@
 #include "AppRun.h"
 #include "ViewTestSupport.h"
 #include "boneless/ui/Document.h"
+#include "boneless/ui/ExportDialog.h"
+#include "boneless/ui/ExportRunner.h"
 #include "boneless/ui/MainWindow.h"
 #include "boneless/ui/Project.h"
 
@@ -458,6 +460,80 @@ class LostWorkTest : public QObject {
         QCOMPARE(saved.mappedCount(), window.document()->mappedCount());
         window.setMessageBoxesEnabled(false);
         window.close();
+    }
+
+    // Ctrl+Q at "24 / 810 frames" closed the app in 4 s and left 27 OBJ files and a sidecar
+    // saying "complete": false; with unsaved edits the only question was about them, and Close
+    // Without Saving stopped the export too. Closing now first asks about the export, naming
+    // how far it got, with Keep Exporting the default; then about the edits, and the export is
+    // stopped only once both let the window close.
+    void closingTheAppWhileAnExportRunsAsksBeforeStoppingIt() {
+        const QString project = test::writeDemoProject(folder_ + "/exporting");
+        MainWindow window;
+        QVERIFY(window.openProject(project));
+        ExportDialog* dialog = window.exportDialog();
+        QStringList asked;
+        QStringList answers;        // the button clicked in each question, in turn
+        QStringList keptByDefault;  // their default buttons
+        QTimer answering;
+        connect(&answering, &QTimer::timeout, [&] {
+            auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+            if (!box || answers.isEmpty()) return;
+            asked << box->objectName() + ": " + box->text();
+            if (box->defaultButton()) keptByDefault << box->defaultButton()->objectName();
+            box->findChild<QPushButton*>(answers.takeFirst())->click();
+        });
+        answering.start(0);
+        bool closed = false;
+        // Closes the window at the first frame written, then waits for the export's end.
+        const auto closeWhileExporting = [&](const QString& folder) {
+            asked.clear();
+            bool first = true;
+            const QMetaObject::Connection once =
+                connect(dialog->runner(), &ExportRunner::progress, &window, [&] {
+                    if (!std::exchange(first, false)) return;
+                    closed = window.close();
+                });
+            QSignalSpy finished(dialog, &ExportDialog::finished);
+            dialog->setFolder(folder);
+            const bool started = dialog->startExport() && finished.wait(120000);
+            disconnect(once);
+            return started;
+        };
+
+        // Nothing unsaved: the one question is the export's, and it is kept by default.
+        answers = {"keepExportingButton"};
+        QVERIFY(closeWhileExporting(folder_ + "/exporting/kept"));
+        QCOMPARE(asked.size(), 1);
+        QCOMPARE(keptByDefault, QStringList{"keepExportingButton"});
+        QVERIFY2(asked[0].startsWith("closeWhileExportingQuestion: An export is running (") &&
+                     asked[0].contains(" frames): closing"),
+                 qPrintable(asked[0]));
+        QVERIFY(!closed);
+        QVERIFY(!dialog->runner()->result().cancelled);
+        QCOMPARE(dialog->runner()->result().framesWritten, window.document()->frameCount());
+
+        // Unsaved edits: Stop, then Cancel on the edits' question, and the export goes on.
+        window.setMessageBoxesEnabled(false);  // the map replaces the one the files came with
+        QVERIFY(
+            window.openFiles({folder_ + "/exporting/walker.obj", folder_ + "/exporting/walker.c3d",
+                              folder_ + "/exporting/walker.map.json"}));
+        QVERIFY(window.document()->clearMapping(0));
+        window.setMessageBoxesEnabled(true);
+        answers = {"stopExportButton", "cancelButton"};
+        QVERIFY(closeWhileExporting(folder_ + "/exporting/cancelled"));
+        QCOMPARE(asked.size(), 2);
+        QVERIFY2(asked[1].startsWith("unsavedQuestion: "), qPrintable(asked[1]));
+        QVERIFY(!closed);
+        QVERIFY(!dialog->runner()->result().cancelled);
+
+        // Stop, then Close Without Saving: both said, the export stops and the window closes.
+        answers = {"stopExportButton", "discardButton"};
+        QVERIFY(closeWhileExporting(folder_ + "/exporting/stopped"));
+        QCOMPARE(asked.size(), 2);
+        QVERIFY(closed);
+        QVERIFY(dialog->runner()->result().cancelled);
+        answering.stop();
     }
 
   private:

@@ -5,6 +5,7 @@
 #include <QComboBox>
 #include <QDialogButtonBox>
 #include <QDir>
+#include <QElapsedTimer>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QFormLayout>
@@ -21,6 +22,7 @@
 #include <QStandardPaths>
 #include <QVBoxLayout>
 #include <algorithm>
+#include <memory>
 #include <set>
 #include <vector>
 
@@ -68,6 +70,9 @@ ExportDialog::ExportDialog(Document* document, FrameSolver* solver, Timeline* ti
       solver_(solver),
       timeline_(timeline),
       runner_(new ExportRunner(this)) {
+    auto monotonic = std::make_shared<QElapsedTimer>();
+    monotonic->start();
+    clock_ = [monotonic] { return monotonic->elapsed(); };
     setObjectName("exportDialog");
     setWindowTitle(tr("Export"));
 
@@ -198,6 +203,7 @@ ExportDialog::ExportDialog(Document* document, FrameSolver* solver, Timeline* ti
         if (isVisible()) timeFrames();
         updateEstimate();
     });
+    connect(runner_, &ExportRunner::prepared, this, [this] { framesFromMs_ = clock_(); });
     connect(runner_, &ExportRunner::progress, this,
             [this](int done, int total, double) { onProgress(done, total); });
     connect(runner_, &ExportRunner::finished, this, &ExportDialog::onFinished);
@@ -411,7 +417,8 @@ bool ExportDialog::startExport() {
         preparingMs > 0
             ? tr("Preparing the solver (%1 when the app last did)…").arg(duration(preparingMs))
             : tr("Preparing the solver…"));
-    clock_.start();
+    startedMs_ = clock_();
+    framesFromMs_ = -1;
     setRunning(true);
     emit runningChanged(true);
     return true;
@@ -431,14 +438,24 @@ void ExportDialog::reject() {
     QDialog::reject();
 }
 
-bool ExportDialog::askToStop() {
-    QMessageBox box(QMessageBox::Question, tr("Export"), tr("Stop the export?"),
-                    QMessageBox::NoButton, this);
-    box.setObjectName("stopExportQuestion");
+bool ExportDialog::mayCloseApp(QWidget* window) {
+    // Stop Export, or an export that ended while asked: nothing of it is left to lose.
+    return !runner_->isRunning() || askToStop(window) || !runner_->isRunning();
+}
+
+bool ExportDialog::askToStop(QWidget* closing) {
+    // The bar says how far it got: "360 / 810 frames", or what it is preparing.
+    QMessageBox box(QMessageBox::Question, closing ? tr("Close Boneless") : tr("Export"),
+                    closing ? tr("An export is running (%1): closing stops it. Stop the export?")
+                                  .arg(progress_->text())
+                            : tr("Stop the export?"),
+                    QMessageBox::NoButton, closing ? closing : this);
+    box.setObjectName(closing ? "closeWhileExportingQuestion" : "stopExportQuestion");
     box.setInformativeText(tr("The frames written so far are kept in %1, and its sidecar records "
                               "the take as incomplete.")
                                .arg(QString::fromStdString(running_.outDir)));
-    QPushButton* stop = box.addButton(tr("Stop Export"), QMessageBox::DestructiveRole);
+    QPushButton* stop = box.addButton(closing ? tr("Stop Export and Close") : tr("Stop Export"),
+                                      QMessageBox::DestructiveRole);
     QPushButton* keep = box.addButton(tr("Keep Exporting"), QMessageBox::RejectRole);
     stop->setObjectName("stopExportButton");
     keep->setObjectName("keepExportingButton");
@@ -455,8 +472,11 @@ void ExportDialog::onProgress(int done, int total) {
     progress_->setFormat(tr("%v / %m frames"));  // prepared: frames are being written
     progress_->setRange(0, total);
     progress_->setValue(done);
-    // The time left from this run's own pace, which includes preparing and writing.
-    const double msPerFrame = clock_.elapsed() / double(std::max(1, done));
+    // The time left from this run's own pace, writing included, timed from when its solver was
+    // prepared: the preparation (16 s of the koala's) is not spent again for each frame left.
+    // Frames solved at once on several workers count alike, so the pace is theirs together.
+    const qint64 framesFrom = framesFromMs_ >= 0 ? framesFromMs_ : startedMs_;
+    const double msPerFrame = (clock_() - framesFrom) / double(std::max(1, done));
     progressText_->setText(tr("%1 left").arg(duration(msPerFrame * (total - done))));
 }
 

@@ -56,15 +56,20 @@ bool ExportRunner::start(const Document& document, const ExportRequest& request,
     QPointer<ExportRunner> self(this);
     job->future = QtConcurrent::run([job, self] {
         try {
-            job->result = exportTake(job->mesh, job->take, job->map, job->request,
-                                     [job, self](int done, int total, const FrameReport& last) {
-                                         const double residual = last.residualRmsMm;
-                                         QMetaObject::invokeMethod(
-                                             self.data(), [self, done, total, residual] {
-                                                 if (self) self->onProgress(done, total, residual);
-                                             });
-                                         return !job->cancel.load();
-                                     });
+            job->result = exportTake(
+                job->mesh, job->take, job->map, job->request,
+                [job, self](int done, int total, const FrameReport& last) {
+                    const double residual = last.residualRmsMm;
+                    QMetaObject::invokeMethod(self.data(), [self, done, total, residual] {
+                        if (self) self->onProgress(done, total, residual);
+                    });
+                    return !job->cancel.load();
+                },
+                [self](const Calibration&) {
+                    QMetaObject::invokeMethod(self.data(), [self] {
+                        if (self) emit self->prepared();
+                    });
+                });
         } catch (const std::exception& e) {
             job->error = QString::fromStdString(e.what());
         }

@@ -777,7 +777,16 @@ bool MainWindow::openFiles(QStringList paths) {
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {
-    if (!keepUnsavedWork(true)) {
+    // A running export is work as unsaved edits are: asked about first, by how far it got, and
+    // stopped only once neither question keeps the window open.
+    bool exportAsked = true;
+    if (messageBoxes_) {
+        const QScopedValueRollback<bool> asking(asking_, true);
+        exportAsked = exportDialog_->mayCloseApp(this);
+    }
+    if (!exportAsked || !keepUnsavedWork(true)) {
+        for (const auto& [message, detail] : std::exchange(heldErrors_, {}))
+            errorBox(message, detail)->show();
         event->ignore();  // and an export running goes on
         return;
     }

@@ -1,9 +1,9 @@
 #pragma once
 
 #include <QDialog>
-#include <QElapsedTimer>
 #include <QStringList>
 #include <deque>
+#include <functional>
 
 #include "boneless/TakeExport.h"
 
@@ -63,6 +63,9 @@ class ExportDialog : public QDialog {
     // The widgets have object names for tests: exportFormat, exportCalibratedRest, exportEstimate,
     // exportProgress, exportProgressText, exportStart, exportCancel, exportBrowse.
     ExportRunner* runner() const { return runner_; }
+    // Milliseconds since an arbitrary origin, read for the time left; replaceable so that tests
+    // drive time themselves.
+    void setClock(std::function<qint64()> clock) { clock_ = std::move(clock); }
 
   public slots:
     // Starts writing (false with the reason in the dialog when refused).
@@ -70,6 +73,10 @@ class ExportDialog : public QDialog {
     void cancelExport();
     // Closing while writing asks whether to stop the export (Stop Export / Keep Exporting).
     void reject() override;
+    // The app's `window` closing: false when an export runs and the user keeps it (Keep
+    // Exporting, the default). True leaves the export running: the caller stops it once nothing
+    // else keeps the window open (cancelExport).
+    bool mayCloseApp(QWidget* window);
 
   signals:
     // As ExportRunner::finished: the message names the folder or the reason.
@@ -96,8 +103,9 @@ class ExportDialog : public QDialog {
     void forgetLastRun();
     // Asks whether to replace the earlier export's files `names` in the folder.
     bool askToReplace(const std::vector<std::string>& names);
-    // Asks whether to stop the running export; true for Stop Export.
-    bool askToStop();
+    // Asks whether to stop the running export, over the dialog or, when the app's window
+    // `closing` closes, over it naming how far the export got; true for Stop Export.
+    bool askToStop(QWidget* closing = nullptr);
     // After a run, finished or cancelled: removes the earlier export's files it did not write
     // again, which would pass for its, and returns their names.
     QStringList removeReplaced(const ExportRequest& request, const ExportResult& result);
@@ -123,7 +131,10 @@ class ExportDialog : public QDialog {
     QLabel* progressText_;
     bool lastRunShown_ = false;  // the bar shows how far the last run got
     QPushButton *start_, *cancel_, *close_;
-    QElapsedTimer clock_;
+    std::function<qint64()> clock_;
+    qint64 startedMs_ = 0;  // when the running export started
+    // When its solver was prepared and its first frame began (-1: not yet).
+    qint64 framesFromMs_ = -1;
 };
 
 }  // namespace boneless::ui

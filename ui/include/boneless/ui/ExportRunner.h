@@ -32,6 +32,8 @@ class ExportRunner : public QObject {
     QString errorMessage() const { return error_; }
 
   signals:
+    // The solver is prepared (calibrated, factorised) and the first frame is being solved.
+    void prepared();
     void progress(int done, int total, double residualRmsMm);
     // ok: every requested frame written, or cancelled cleanly (see result().cancelled).
     void finished(bool ok, const QString& message);
