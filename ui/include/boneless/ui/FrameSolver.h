@@ -56,8 +56,8 @@ struct FrameResult {
 // flight. While playing, the worker also reads ahead (setReadAhead()): when no request waits it
 // solves the frames after the last one asked for into the cache, so that the playhead finds them
 // there; but not while requests come faster than it solves them (a large mesh playing): those
-// frames would be passed by the time they were solved, so it waits for the newest request, and
-// the frame shown stays within one solve of the playhead.
+// frames would be passed by the time they were solved, so it waits for the newest request: the
+// frame shown is where the playhead was when its solve began (docs/view.md, "Large inputs").
 class FrameSolver : public QObject {
     Q_OBJECT
   public:
