@@ -86,12 +86,8 @@ TEST(GltfExport, EachFrameIsTheRestMeshPlusItsMorphTargetKeyedAtItsTime) {
     ASSERT_EQ(times.size(), 3u);
     EXPECT_FLOAT_EQ(times[0], 0.4f);
     EXPECT_FLOAT_EQ(times[2], 0.6f);
-    // The weight keys: frames² values, of which only the ones on the diagonal are stored.
-    const tinygltf::Accessor& weights = m.accessors[s.output];
-    EXPECT_EQ(weights.count, 9u);
-    EXPECT_TRUE(weights.sparse.isSparse);
-    EXPECT_EQ(weights.sparse.count, 3);
-    EXPECT_EQ(weights.bufferView, -1);  // everything else is zero
+    // The weight keys: frames² values, one row of weights a key.
+    EXPECT_EQ(m.accessors[s.output].count, 9u);
 }
 
 TEST(GltfExport, TextureCoordinatesGoWithTheMeshSplitAtTheirSeams) {
@@ -283,4 +279,38 @@ TEST(GltfExport, TheNodePlacesTheMeshsOwnCoordinatesInGltfsFrame) {
     EXPECT_EQ(node.scale, (std::vector<double>{0.1, 0.1, 0.1}));
     const std::vector<float> rest = floats(m, m.meshes[0].primitives[0].attributes.at("POSITION"));
     for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(rest[c], float(mesh.V(0, c)));
+}
+
+// glTFast (Unity) skips an accessor without a bufferView and then reads its empty slot, so a
+// sparse accessor for the weight keys left Unity with no animation (glTFast issue #768).
+TEST(GltfExport, TheWeightKeysAreDenseIdentityRowsThatUnityImportersRead) {
+    const fs::path dir = freshTestDir("glb-dense-keys");
+    const std::string path = (dir / "sphere.glb").string();
+    const TriMesh mesh = icosphere(0);
+    const int frames = 4;
+    {
+        GltfWriter writer(path, mesh, "sphere");
+        for (int k = 0; k < frames; ++k) writer.append(k, 0.1 * k, (1.0 + 0.1 * k) * mesh.V);
+        writer.finish();
+    }
+    const tinygltf::Model m = load(path);
+    const tinygltf::Accessor& weights = m.accessors[m.animations[0].samplers[0].output];
+    EXPECT_FALSE(weights.sparse.isSparse);
+    ASSERT_GE(weights.bufferView, 0);
+    ASSERT_EQ(weights.count, size_t(frames * frames));
+    const std::vector<float> keys = floats(m, m.animations[0].samplers[0].output);
+    for (int k = 0; k < frames; ++k)
+        for (int t = 0; t < frames; ++t)
+            EXPECT_EQ(keys[k * frames + t], k == t ? 1.0f : 0.0f) << "key " << k << " target " << t;
+}
+
+// The dense keys take frames² × 4 bytes: past about 32,000 frames no .glb can hold them, and
+// that is said before solving, with the file, the frame count and how many frames would fit.
+TEST(GltfExport, AGlbTooLargeForTheContainerIsRefusedNamingTheFramesThatFit) {
+    const TriMesh mesh = icosphere(0);
+    EXPECT_NO_THROW(checkGlbFits("out/w.glb", mesh, 30000));
+    const std::string error = errorOf([&] { checkGlbFits("out/w.glb", mesh, 40000); });
+    EXPECT_NE(error.find("out/w.glb: 40000 frames"), std::string::npos) << error;
+    EXPECT_NE(error.find("--frames"), std::string::npos) << error;
+    EXPECT_NE(error.find("at most 327"), std::string::npos) << error;
 }

@@ -17,17 +17,23 @@ namespace boneless {
 // is one glTF vertex per side of it, as glTF has one coordinate per vertex), one morph target per
 // frame holding that frame's offsets from the rest pose, and an animation on the morph weights
 // keyed at each frame's time in the take (LINEAR: frame k has weight 1 at its time, and playback
-// between two frames blends them). The weight keys are a sparse accessor, so they grow with the
-// frame count rather than its square. An OBJ's materials become one primitive each, with their
-// colour, opacity and PNG or JPEG texture (embedded). The accessors hold the mesh's own
-// coordinates; the node places them in glTF's frame. Frames are spooled to a
-// file; finish() writes the .glb under a temporary name and renames it.
-// glTF's frame is +Y up in metres: the node turns the mesh's up onto +Y and scales its unit to
-// metres, so that viewers show the body standing at its size whatever axes the mesh has.
+// between two frames blends them). The weight keys are dense (frames² floats), as Unity's glTFast
+// reads no sparse accessor; they bound a .glb to about 32,700 frames (4 GB). An OBJ's materials
+// become one primitive each, with their colour, opacity and PNG or JPEG texture (embedded). The
+// accessors hold the mesh's own coordinates; the node places them in glTF's frame. Frames are
+// spooled to a file; finish() writes the .glb under a temporary name and renames it. glTF's frame
+// is +Y up in metres: the node turns the mesh's up onto +Y and scales its unit to metres, so that
+// viewers show the body standing at its size whatever axes the mesh has.
 struct GltfPlacement {
     Mat3 turn = Mat3::Identity();  // a rotation
     double metresPerUnit = 1.0;
 };
+
+struct GlbShape;
+
+// Throws Error naming `path`, the frame count and how many frames fit when a .glb of `frames`
+// frames of `mesh` would pass the 4 GB a GLB holds; checked before solving.
+void checkGlbFits(const std::string& path, const TriMesh& mesh, int frames);
 
 class GltfWriter {
   public:
@@ -43,6 +49,7 @@ class GltfWriter {
     void finish();
 
   private:
+    GlbShape shape() const;
     std::string path_, name_;
     const TriMesh& rest_;
     GltfPlacement placement_;
