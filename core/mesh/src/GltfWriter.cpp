@@ -2,6 +2,7 @@
 
 #include <tiny_gltf.h>
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -27,12 +28,32 @@ namespace {
 // The GLB container stores chunk lengths as uint32.
 constexpr std::uint64_t kMaxGlbBytes = std::numeric_limits<std::uint32_t>::max() - (1u << 20);
 
-// The .glb's length with `frames` frames: the rest mesh, each frame's offsets, the times, the
-// dense weight keys (frames × frames floats) and the JSON, estimated (each frame adds an accessor,
-// a view, a name and a target per primitive).
+// The .glb's length with `frames` frames: the rest mesh and its normals, each frame's position
+// and normal offsets, the times, the dense weight keys (frames × frames floats) and the JSON,
+// estimated (each frame adds two accessors, two views, a name and a target per primitive).
 std::uint64_t glbBytes(const GlbShape& s, std::uint64_t frames) {
-    return 4096 + 12 * s.vertices * (frames + 1) + 4 * s.uvFloats + 12 * s.triangles +
-           s.textureBytes + 4 * frames + 4 * frames * frames + frames * (300 + 40 * s.primitives);
+    return 4096 + 24 * s.vertices * (frames + 1) + 4 * s.uvFloats + 12 * s.triangles +
+           s.textureBytes + 4 * frames + 4 * frames * frames + frames * (450 + 40 * s.primitives);
+}
+
+// Area-weighted vertex normals of the triangles F over V: each triangle's cross product (twice its
+// area along its normal) summed at its corners, normalised. glTF wants unit normals, so a vertex
+// no triangle uses, or only degenerate ones, gets +Z.
+Positions vertexNormals(const Positions& V, const Faces& F) {
+    Positions n = Positions::Zero(V.rows(), 3);
+    for (int t = 0; t < F.rows(); ++t) {
+        const Vec3 a = V.row(F(t, 0)), b = V.row(F(t, 1)), c = V.row(F(t, 2));
+        const Vec3 cross = (b - a).cross(c - a);
+        for (int k = 0; k < 3; ++k) n.row(F(t, k)) += cross;
+    }
+    for (int v = 0; v < n.rows(); ++v) {
+        const double length = n.row(v).norm();
+        if (length > 0 && std::isfinite(length))
+            n.row(v) /= length;
+        else
+            n.row(v) = Vec3::UnitZ();
+    }
+    return n;
 }
 
 std::string tooLarge(const std::string& path, const GlbShape& s, std::uint64_t frames) {
@@ -293,6 +314,7 @@ GltfWriter::GltfWriter(std::string path, const TriMesh& rest, std::string name,
                        GltfPlacement placement)
     : path_(std::move(path)), name_(std::move(name)), rest_(rest), placement_(placement) {
     layOut(rest_, meshVertexOf_, uv_, triangles_, usedMaterials_, groups_, textureBytes_);
+    restNormals_ = vertexNormals(rest_.V, rest_.F);
     file_ = openSpoolBeside(path_);
 }
 
@@ -309,13 +331,17 @@ void GltfWriter::append(int frame, double seconds, const Positions& positions) {
     const std::uint64_t m = meshVertexOf_.size();
     if (glbBytes(shape(), times_.size() + 1) > kMaxGlbBytes)
         throw Error(tooLarge(path_, shape(), times_.size() + 1));
-    std::vector<float> offsets(3 * m);
+    // The position offsets, then the normals' (a UV seam's copies of a vertex share its normal,
+    // so no seam shows): Unity's blend shapes move the shading only by the normal offsets.
+    const Positions normals = vertexNormals(positions, rest_.F);
+    std::vector<float> offsets(6 * m);
     std::array<double, 6> b = {1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
     for (size_t i = 0; i < m; ++i)
         for (int c = 0; c < 3; ++c) {
             const int v = meshVertexOf_[i];
             const float d = static_cast<float>(positions(v, c) - rest_.V(v, c));
             offsets[3 * i + c] = d;
+            offsets[3 * (m + i) + c] = static_cast<float>(normals(v, c) - restNormals_(v, c));
             b[c] = std::min(b[c], double(d));
             b[3 + c] = std::max(b[3 + c], double(d));
         }
@@ -345,14 +371,15 @@ void GltfWriter::finish() {
     m.asset.generator = "Boneless";
     m.buffers.emplace_back();
 
-    // BIN chunk: rest positions, triangles, texture coordinates, textures, the spooled offsets,
-    // times, weight keys.
+    // BIN chunk: rest positions and normals, triangles, texture coordinates, textures, the
+    // spooled offsets (positions, normals, a frame at a time), times, weight keys.
     std::string head;
-    std::vector<float> rest(3 * static_cast<size_t>(n));
+    std::vector<float> rest(3 * static_cast<size_t>(n)), restNormals(rest.size());
     std::vector<double> lo(3, 1e300), hi(3, -1e300);
     for (int v = 0; v < n; ++v)
         for (int c = 0; c < 3; ++c) {
             rest[3 * v + c] = static_cast<float>(rest_.V(meshVertexOf_[v], c));
+            restNormals[3 * v + c] = static_cast<float>(restNormals_(meshVertexOf_[v], c));
             lo[c] = std::min(lo[c], double(rest[3 * v + c]));
             hi[c] = std::max(hi[c], double(rest[3 * v + c]));
         }
@@ -366,9 +393,13 @@ void GltfWriter::finish() {
     const int restAccessor =
         addAccessor(m, place(rest.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
                     TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n, lo, hi);
+    const int normalAccessor =
+        addAccessor(m, place(restNormals.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
+                    TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n);
     const int triangleView = place(triangles.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
     tinygltf::Primitive primitive;
     primitive.attributes["POSITION"] = restAccessor;
+    primitive.attributes["NORMAL"] = normalAccessor;
     if (!uv_.empty())
         primitive.attributes["TEXCOORD_0"] =
             addAccessor(m, place(uv_.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
@@ -408,10 +439,12 @@ void GltfWriter::finish() {
     std::vector<tinygltf::Value> targetNames;
     for (size_t k = 0; k < frames; ++k) {
         const auto& b = bounds_[k];
-        primitive.targets.push_back(
-            {{"POSITION", addAccessor(m, place(12ull * n, TINYGLTF_TARGET_ARRAY_BUFFER),
-                                      TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n,
-                                      {b[0], b[1], b[2]}, {b[3], b[4], b[5]})}});
+        const int position = addAccessor(m, place(12ull * n, TINYGLTF_TARGET_ARRAY_BUFFER),
+                                         TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n,
+                                         {b[0], b[1], b[2]}, {b[3], b[4], b[5]});
+        const int normal = addAccessor(m, place(12ull * n, TINYGLTF_TARGET_ARRAY_BUFFER),
+                                       TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n);
+        primitive.targets.push_back({{"POSITION", position}, {"NORMAL", normal}});
         char label[32];
         std::snprintf(label, sizeof label, "frame_%04d", frames_[k]);
         targetNames.emplace_back(std::string(label));
@@ -447,7 +480,7 @@ void GltfWriter::finish() {
     if (28 + json.size() + offset > kMaxGlbBytes) throw Error(tooLarge(path_, shape(), frames));
     size_t imageBytes = 0;
     for (const std::string& image : images) imageBytes += image.size();
-    head.reserve(28 + json.size() + rest.size() * 4 + triangles.size() * 4 + uv_.size() * 4 +
+    head.reserve(28 + json.size() + rest.size() * 8 + triangles.size() * 4 + uv_.size() * 4 +
                  imageBytes);
     head.append("glTF");
     appendU32(head, 2);
@@ -458,6 +491,7 @@ void GltfWriter::finish() {
     appendU32(head, static_cast<std::uint32_t>(offset));
     head.append("BIN", 4);  // with its NUL: the chunk type is 0x004E4942
     appendBytes(head, rest);
+    appendBytes(head, restNormals);
     appendBytes(head, triangles);
     appendBytes(head, uv_);
     for (std::string& image : images) {
