@@ -44,8 +44,8 @@ class GltfWriter {
     GltfWriter(const GltfWriter&) = delete;
     GltfWriter& operator=(const GltfWriter&) = delete;
 
-    // positions: #vertices by 3. frame: the take's frame number, which names the morph target
-    // (frame_0100), as it names the OBJ files of the same range.
+    // positions: #vertices by 3. frame: the 0-based frame index in the take (not the take's
+    // own first number), which names the morph target (frame_0100), as it names the OBJ files.
     void append(int frame, double seconds, const Positions& positions);
     void finish();
 
@@ -64,7 +64,7 @@ class GltfWriter {
     std::uint64_t textureBytes_ = 0;  // the textures' files, padded, as the BIN chunk holds them
     std::FILE* file_ = nullptr;
     std::vector<float> times_;
-    std::vector<int> frames_;                    // the take's frame numbers, as appended
+    std::vector<int> frames_;                    // the 0-based frame indices, as appended
     std::vector<std::array<double, 6>> bounds_;  // per frame: min xyz, max xyz of the offsets
 };
 
