@@ -2,6 +2,7 @@
 
 #include <tiny_gltf.h>
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -17,11 +18,57 @@
 
 namespace boneless {
 
+// What a .glb's length depends on besides its frame count.
+struct GlbShape {
+    std::uint64_t vertices = 0, triangles = 0, uvFloats = 0, textureBytes = 0, primitives = 1;
+};
+
 namespace {
 
-// The GLB container stores chunk lengths as uint32; the sparse weight keys index an N×N array.
+// The GLB container stores chunk lengths as uint32.
 constexpr std::uint64_t kMaxGlbBytes = std::numeric_limits<std::uint32_t>::max() - (1u << 20);
-constexpr int kMaxFrames = 65535;
+
+// The .glb's length with `frames` frames: the rest mesh and its normals, each frame's position
+// and normal offsets, the times, the dense weight keys (frames × frames floats) and the JSON,
+// estimated (each frame adds two accessors, two views, a name and a target per primitive).
+std::uint64_t glbBytes(const GlbShape& s, std::uint64_t frames) {
+    return 4096 + 24 * s.vertices * (frames + 1) + 4 * s.uvFloats + 12 * s.triangles +
+           s.textureBytes + 4 * frames + 4 * frames * frames + frames * (450 + 40 * s.primitives);
+}
+
+// Area-weighted vertex normals of the triangles F over V: each triangle's cross product (twice its
+// area along its normal) summed at its corners, normalised. glTF wants unit normals, so a vertex
+// no triangle uses, or only degenerate ones, gets +Z.
+Positions vertexNormals(const Positions& V, const Faces& F) {
+    Positions n = Positions::Zero(V.rows(), 3);
+    for (int t = 0; t < F.rows(); ++t) {
+        const Vec3 a = V.row(F(t, 0)), b = V.row(F(t, 1)), c = V.row(F(t, 2));
+        const Vec3 cross = (b - a).cross(c - a);
+        for (int k = 0; k < 3; ++k) n.row(F(t, k)) += cross;
+    }
+    for (int v = 0; v < n.rows(); ++v) {
+        const double length = n.row(v).norm();
+        if (length > 0 && std::isfinite(length))
+            n.row(v) /= length;
+        else
+            n.row(v) = Vec3::UnitZ();
+    }
+    return n;
+}
+
+std::string tooLarge(const std::string& path, const GlbShape& s, std::uint64_t frames) {
+    std::uint64_t fit = 0, over = 1 << 20;  // glbBytes(fit) fits, glbBytes(over) does not
+    while (over - fit > 1) {
+        const std::uint64_t mid = (fit + over) / 2;
+        (glbBytes(s, mid) <= kMaxGlbBytes ? fit : over) = mid;
+    }
+    char size[32];
+    std::snprintf(size, sizeof size, "%.1f GB", glbBytes(s, frames) / 1e9);
+    return path + ": " + std::to_string(frames) + " frames make a .glb of about " + size +
+           ", more than the 4.29 GB (2^32 bytes) a .glb can hold (the weight keys alone take "
+           "frames² × 4 bytes); export at most " +
+           std::to_string(fit) + " frames of this mesh at a time (--frames A:B), or a point cache";
+}
 
 int addView(tinygltf::Model& m, size_t offset, size_t length, int target = 0) {
     tinygltf::BufferView view;
@@ -207,42 +254,67 @@ std::string readImage(const std::string& path) {
     return in ? bytes.str() : std::string();
 }
 
-}  // namespace
-
-GltfWriter::GltfWriter(std::string path, const TriMesh& rest, std::string name,
-                       GltfPlacement placement)
-    : path_(std::move(path)), name_(std::move(name)), rest_(rest), placement_(placement) {
-    if (!splitAtUvSeams(rest_, meshVertexOf_, uv_, triangles_)) {
-        meshVertexOf_.resize(static_cast<size_t>(rest_.vertexCount()));
-        for (int v = 0; v < rest_.vertexCount(); ++v) meshVertexOf_[v] = v;
-        uv_.clear();
-        triangles_.assign(rest_.F.data(), rest_.F.data() + rest_.F.size());
+// The glTF vertices (split at UV seams), their coordinates, the triangles grouped by material,
+// and the bytes of the textures they embed.
+void layOut(const TriMesh& rest, std::vector<int>& meshVertexOf, std::vector<float>& uv,
+            std::vector<std::uint32_t>& triangles, std::vector<ObjMaterial>& usedMaterials,
+            std::vector<std::pair<int, size_t>>& groups, std::uint64_t& textureBytes) {
+    if (!splitAtUvSeams(rest, meshVertexOf, uv, triangles)) {
+        meshVertexOf.resize(static_cast<size_t>(rest.vertexCount()));
+        for (int v = 0; v < rest.vertexCount(); ++v) meshVertexOf[v] = v;
+        uv.clear();
+        triangles.assign(rest.F.data(), rest.F.data() + rest.F.size());
     }
     // One glTF primitive per material: the triangles grouped by it, in their order within.
-    const std::vector<int> material = triangleMaterials(rest_, usedMaterials_);
+    const std::vector<int> material = triangleMaterials(rest, usedMaterials);
     if (!material.empty()) {
         std::vector<std::uint32_t> grouped;
-        grouped.reserve(triangles_.size());
-        for (int g = -1; g < static_cast<int>(usedMaterials_.size()); ++g) {
+        grouped.reserve(triangles.size());
+        for (int g = -1; g < static_cast<int>(usedMaterials.size()); ++g) {
             const size_t before = grouped.size();
             for (size_t t = 0; t < material.size(); ++t)
                 if (material[t] == g)
-                    grouped.insert(grouped.end(), &triangles_[3 * t], &triangles_[3 * t] + 3);
-            if (grouped.size() > before) groups_.push_back({g, (grouped.size() - before) / 3});
+                    grouped.insert(grouped.end(), &triangles[3 * t], &triangles[3 * t] + 3);
+            if (grouped.size() > before) groups.push_back({g, (grouped.size() - before) / 3});
         }
-        triangles_ = std::move(grouped);
+        triangles = std::move(grouped);
     }
     std::vector<std::string> textures;
-    for (const ObjMaterial& obj : usedMaterials_)
+    for (const ObjMaterial& obj : usedMaterials)
         for (const std::string& texture : {obj.texture, obj.normalTexture}) {
-            if (uv_.empty() || texture.empty() ||
+            if (uv.empty() || texture.empty() ||
                 std::find(textures.begin(), textures.end(), texture) != textures.end())
                 continue;
             textures.push_back(texture);
             std::error_code error;
             const std::uintmax_t size = std::filesystem::file_size(texture, error);
-            if (!error) textureBytes_ += size + 3;
+            if (!error) textureBytes += size + 3;
         }
+}
+
+}  // namespace
+
+void checkGlbFits(const std::string& path, const TriMesh& mesh, int frames) {
+    std::vector<int> meshVertexOf;
+    std::vector<float> uv;
+    std::vector<std::uint32_t> triangles;
+    std::vector<ObjMaterial> usedMaterials;
+    std::vector<std::pair<int, size_t>> groups;
+    GlbShape shape;
+    layOut(mesh, meshVertexOf, uv, triangles, usedMaterials, groups, shape.textureBytes);
+    shape.vertices = meshVertexOf.size();
+    shape.triangles = triangles.size() / 3;
+    shape.uvFloats = uv.size();
+    shape.primitives = std::max<std::uint64_t>(groups.size(), 1);
+    if (frames > 0 && glbBytes(shape, frames) > kMaxGlbBytes)
+        throw Error(tooLarge(path, shape, frames));
+}
+
+GltfWriter::GltfWriter(std::string path, const TriMesh& rest, std::string name,
+                       GltfPlacement placement)
+    : path_(std::move(path)), name_(std::move(name)), rest_(rest), placement_(placement) {
+    layOut(rest_, meshVertexOf_, uv_, triangles_, usedMaterials_, groups_, textureBytes_);
+    restNormals_ = vertexNormals(rest_.V, rest_.F);
     file_ = openSpoolBeside(path_);
 }
 
@@ -257,21 +329,19 @@ void GltfWriter::append(int frame, double seconds, const Positions& positions) {
         throw Error(path_ + ": frame with " + std::to_string(positions.rows()) +
                     " vertices, the mesh has " + std::to_string(n));
     const std::uint64_t m = meshVertexOf_.size();
-    // Each frame also adds an accessor, a view, a name and a target per primitive to the JSON.
-    const std::uint64_t frames = times_.size() + 1;
-    const std::uint64_t primitives = std::max<std::uint64_t>(groups_.size(), 1);
-    const std::uint64_t bytes = 12ull * m * (frames + 1) + 8ull * m + 12ull * rest_.F.rows() +
-                                textureBytes_ + frames * (300 + 40 * primitives);
-    if (static_cast<int>(times_.size()) >= kMaxFrames || bytes > kMaxGlbBytes)
-        throw Error(path_ + ": a .glb holds at most " + std::to_string(kMaxFrames) +
-                    " frames and 4 GB; export fewer frames (--frames) or a point cache");
-    std::vector<float> offsets(3 * m);
+    if (glbBytes(shape(), times_.size() + 1) > kMaxGlbBytes)
+        throw Error(tooLarge(path_, shape(), times_.size() + 1));
+    // The position offsets, then the normals' (a UV seam's copies of a vertex share its normal,
+    // so no seam shows): Unity's blend shapes move the shading only by the normal offsets.
+    const Positions normals = vertexNormals(positions, rest_.F);
+    std::vector<float> offsets(6 * m);
     std::array<double, 6> b = {1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
     for (size_t i = 0; i < m; ++i)
         for (int c = 0; c < 3; ++c) {
             const int v = meshVertexOf_[i];
             const float d = static_cast<float>(positions(v, c) - rest_.V(v, c));
             offsets[3 * i + c] = d;
+            offsets[3 * (m + i) + c] = static_cast<float>(normals(v, c) - restNormals_(v, c));
             b[c] = std::min(b[c], double(d));
             b[3 + c] = std::max(b[3 + c], double(d));
         }
@@ -280,6 +350,16 @@ void GltfWriter::append(int frame, double seconds, const Positions& positions) {
     times_.push_back(static_cast<float>(seconds));
     frames_.push_back(frame);
     bounds_.push_back(b);
+}
+
+GlbShape GltfWriter::shape() const {
+    GlbShape s;
+    s.vertices = meshVertexOf_.size();
+    s.triangles = triangles_.size() / 3;
+    s.uvFloats = uv_.size();
+    s.textureBytes = textureBytes_;
+    s.primitives = std::max<std::uint64_t>(groups_.size(), 1);
+    return s;
 }
 
 void GltfWriter::finish() {
@@ -291,14 +371,15 @@ void GltfWriter::finish() {
     m.asset.generator = "Boneless";
     m.buffers.emplace_back();
 
-    // BIN chunk: rest positions, triangles, texture coordinates, textures, the spooled offsets,
-    // times, sparse weight keys.
+    // BIN chunk: rest positions and normals, triangles, texture coordinates, textures, the
+    // spooled offsets (positions, normals, a frame at a time), times, weight keys.
     std::string head;
-    std::vector<float> rest(3 * static_cast<size_t>(n));
+    std::vector<float> rest(3 * static_cast<size_t>(n)), restNormals(rest.size());
     std::vector<double> lo(3, 1e300), hi(3, -1e300);
     for (int v = 0; v < n; ++v)
         for (int c = 0; c < 3; ++c) {
             rest[3 * v + c] = static_cast<float>(rest_.V(meshVertexOf_[v], c));
+            restNormals[3 * v + c] = static_cast<float>(restNormals_(meshVertexOf_[v], c));
             lo[c] = std::min(lo[c], double(rest[3 * v + c]));
             hi[c] = std::max(hi[c], double(rest[3 * v + c]));
         }
@@ -312,9 +393,13 @@ void GltfWriter::finish() {
     const int restAccessor =
         addAccessor(m, place(rest.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
                     TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n, lo, hi);
+    const int normalAccessor =
+        addAccessor(m, place(restNormals.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
+                    TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n);
     const int triangleView = place(triangles.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
     tinygltf::Primitive primitive;
     primitive.attributes["POSITION"] = restAccessor;
+    primitive.attributes["NORMAL"] = normalAccessor;
     if (!uv_.empty())
         primitive.attributes["TEXCOORD_0"] =
             addAccessor(m, place(uv_.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER),
@@ -354,10 +439,12 @@ void GltfWriter::finish() {
     std::vector<tinygltf::Value> targetNames;
     for (size_t k = 0; k < frames; ++k) {
         const auto& b = bounds_[k];
-        primitive.targets.push_back(
-            {{"POSITION", addAccessor(m, place(12ull * n, TINYGLTF_TARGET_ARRAY_BUFFER),
-                                      TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n,
-                                      {b[0], b[1], b[2]}, {b[3], b[4], b[5]})}});
+        const int position = addAccessor(m, place(12ull * n, TINYGLTF_TARGET_ARRAY_BUFFER),
+                                         TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n,
+                                         {b[0], b[1], b[2]}, {b[3], b[4], b[5]});
+        const int normal = addAccessor(m, place(12ull * n, TINYGLTF_TARGET_ARRAY_BUFFER),
+                                       TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n);
+        primitive.targets.push_back({{"POSITION", position}, {"NORMAL", normal}});
         char label[32];
         std::snprintf(label, sizeof label, "frame_%04d", frames_[k]);
         targetNames.emplace_back(std::string(label));
@@ -366,20 +453,11 @@ void GltfWriter::finish() {
     const double tMax = frames ? *std::max_element(times_.begin(), times_.end()) : 0.0;
     const int timeAccessor = addAccessor(m, place(frames * 4), TINYGLTF_COMPONENT_TYPE_FLOAT,
                                          TINYGLTF_TYPE_SCALAR, frames, {tMin}, {tMax});
-    // Key k sets weight k to 1 and every other to 0: only the N ones are stored.
-    std::vector<std::uint32_t> keyIndices(frames);
-    for (size_t k = 0; k < frames; ++k) keyIndices[k] = static_cast<std::uint32_t>(k * frames + k);
-    const std::vector<float> ones(frames, 1.0f);
+    // Key k sets weight k to 1 and every other to 0. Dense, though a sparse accessor would hold
+    // only the ones: glTFast (Unity) skips accessors without a bufferView and loses the animation.
     const int weightAccessor =
-        addAccessor(m, -1, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, frames * frames);
-    auto& sparse = m.accessors[weightAccessor].sparse;
-    sparse.isSparse = true;
-    sparse.count = static_cast<int>(frames);
-    sparse.indices.bufferView = place(frames * 4);
-    sparse.indices.byteOffset = 0;  // tinygltf leaves these uninitialised
-    sparse.values.byteOffset = 0;
-    sparse.indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-    sparse.values.bufferView = place(frames * 4);
+        addAccessor(m, place(4 * frames * frames), TINYGLTF_COMPONENT_TYPE_FLOAT,
+                    TINYGLTF_TYPE_SCALAR, frames * frames);
 
     std::vector<tinygltf::Primitive> primitives;
     size_t first = 0;
@@ -399,18 +477,10 @@ void GltfWriter::finish() {
                     timeAccessor, weightAccessor);
     const std::string json = glbJson(m, offset);
     // append() estimated the JSON; this is the file's length as written, checked before it is.
-    if (28 + json.size() + offset > kMaxGlbBytes)
-        throw Error(path_ +
-                    ": a .glb holds at most 4 GB; export fewer frames (--frames) or a "
-                    "point cache");
-
-    std::string tail;
-    appendBytes(tail, times_);
-    appendBytes(tail, keyIndices);
-    appendBytes(tail, ones);
+    if (28 + json.size() + offset > kMaxGlbBytes) throw Error(tooLarge(path_, shape(), frames));
     size_t imageBytes = 0;
     for (const std::string& image : images) imageBytes += image.size();
-    head.reserve(28 + json.size() + rest.size() * 4 + triangles.size() * 4 + uv_.size() * 4 +
+    head.reserve(28 + json.size() + rest.size() * 8 + triangles.size() * 4 + uv_.size() * 4 +
                  imageBytes);
     head.append("glTF");
     appendU32(head, 2);
@@ -421,6 +491,7 @@ void GltfWriter::finish() {
     appendU32(head, static_cast<std::uint32_t>(offset));
     head.append("BIN", 4);  // with its NUL: the chunk type is 0x004E4942
     appendBytes(head, rest);
+    appendBytes(head, restNormals);
     appendBytes(head, triangles);
     appendBytes(head, uv_);
     for (std::string& image : images) {
@@ -429,7 +500,17 @@ void GltfWriter::finish() {
     }
     std::FILE* spool = file_;
     file_ = nullptr;
-    writeSpooled(path_, head, spool, tail);
+    // The keys are written a row at a time, so memory stays at one frame's.
+    writeSpooled(path_, head, spool, [&](std::FILE* out) {
+        if (std::fwrite(times_.data(), 4, frames, out) != frames) return false;
+        std::vector<float> row(frames, 0.0f);
+        for (size_t k = 0; k < frames; ++k) {
+            row[k] = 1.0f;
+            if (std::fwrite(row.data(), 4, frames, out) != frames) return false;
+            row[k] = 0.0f;
+        }
+        return true;
+    });
 }
 
 }  // namespace boneless

@@ -74,7 +74,7 @@ void MddWriter::finish() {
     std::memcpy(head.data(), header.data(), head.size());
     std::FILE* spool = file_;
     file_ = nullptr;
-    writeSpooled(path_, head, spool, {});
+    writeSpooled(path_, head, spool, std::string());
 }
 
 std::vector<Positions> readMdd(const std::string& path, std::vector<double>* seconds) {

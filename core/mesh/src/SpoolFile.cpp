@@ -123,6 +123,13 @@ std::FILE* openSpoolBeside(const std::string& path) {
 
 void writeSpooled(const std::string& path, const std::string& head, std::FILE* spool,
                   const std::string& tail) {
+    writeSpooled(path, head, spool, [&](std::FILE* out) {
+        return std::fwrite(tail.data(), 1, tail.size(), out) == tail.size();
+    });
+}
+
+void writeSpooled(const std::string& path, const std::string& head, std::FILE* spool,
+                  const std::function<bool(std::FILE*)>& writeTail) {
     const std::string temporary = temporaryFor(path);
     std::FILE* out = std::fopen(temporary.c_str(), "wb");
     const std::string cannotCreate = out ? "" : std::strerror(errno);
@@ -134,7 +141,7 @@ void writeSpooled(const std::string& path, const std::string& head, std::FILE* s
         if (got == 0) break;
         ok = std::fwrite(buffer.data(), 1, got, out) == got;
     }
-    ok = ok && !std::ferror(spool) && std::fwrite(tail.data(), 1, tail.size(), out) == tail.size();
+    ok = ok && !std::ferror(spool) && writeTail(out);
     std::string why = ok ? "" : writeFailure();  // before fclose and remove touch errno
     if (out && std::fclose(out) != 0 && ok) {
         ok = false;

@@ -587,6 +587,12 @@ void checkRequest(const TriMesh& mesh, const Correspondence& map, const ExportRe
                     ": set its units (setTakeUnits) where it is read");
     requireFrameRate(request, take);
     refuseOutputsOverInputs(request, frames);
+    // A glb's weight keys grow with the square of its frames: said before hours of solving.
+    if (request.format == ExportFormat::Glb) {
+        const int end = request.end < 0 ? frames : std::min(request.end, frames);
+        checkGlbFits((fs::path(request.outDir) / (exportStem(request) + ".glb")).string(), mesh,
+                     end - request.first);
+    }
     checkSolveFits(mesh, request.meshPath, request.options.solver.method);
     // Here, where the mesh's file is known: the solver's own check can only say "the mesh".
     map.checkMesh(mesh.vertexCount(), request.meshPath.empty() ? "the mesh" : request.meshPath,

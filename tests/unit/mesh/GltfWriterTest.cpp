@@ -86,12 +86,8 @@ TEST(GltfExport, EachFrameIsTheRestMeshPlusItsMorphTargetKeyedAtItsTime) {
     ASSERT_EQ(times.size(), 3u);
     EXPECT_FLOAT_EQ(times[0], 0.4f);
     EXPECT_FLOAT_EQ(times[2], 0.6f);
-    // The weight keys: frames² values, of which only the ones on the diagonal are stored.
-    const tinygltf::Accessor& weights = m.accessors[s.output];
-    EXPECT_EQ(weights.count, 9u);
-    EXPECT_TRUE(weights.sparse.isSparse);
-    EXPECT_EQ(weights.sparse.count, 3);
-    EXPECT_EQ(weights.bufferView, -1);  // everything else is zero
+    // The weight keys: frames² values, one row of weights a key.
+    EXPECT_EQ(m.accessors[s.output].count, 9u);
 }
 
 TEST(GltfExport, TextureCoordinatesGoWithTheMeshSplitAtTheirSeams) {
@@ -283,4 +279,89 @@ TEST(GltfExport, TheNodePlacesTheMeshsOwnCoordinatesInGltfsFrame) {
     EXPECT_EQ(node.scale, (std::vector<double>{0.1, 0.1, 0.1}));
     const std::vector<float> rest = floats(m, m.meshes[0].primitives[0].attributes.at("POSITION"));
     for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(rest[c], float(mesh.V(0, c)));
+}
+
+// glTFast (Unity) skips an accessor without a bufferView and then reads its empty slot, so a
+// sparse accessor for the weight keys left Unity with no animation (glTFast issue #768).
+TEST(GltfExport, TheWeightKeysAreDenseIdentityRowsThatUnityImportersRead) {
+    const fs::path dir = freshTestDir("glb-dense-keys");
+    const std::string path = (dir / "sphere.glb").string();
+    const TriMesh mesh = icosphere(0);
+    const int frames = 4;
+    {
+        GltfWriter writer(path, mesh, "sphere");
+        for (int k = 0; k < frames; ++k) writer.append(k, 0.1 * k, (1.0 + 0.1 * k) * mesh.V);
+        writer.finish();
+    }
+    const tinygltf::Model m = load(path);
+    const tinygltf::Accessor& weights = m.accessors[m.animations[0].samplers[0].output];
+    EXPECT_FALSE(weights.sparse.isSparse);
+    ASSERT_GE(weights.bufferView, 0);
+    ASSERT_EQ(weights.count, size_t(frames * frames));
+    const std::vector<float> keys = floats(m, m.animations[0].samplers[0].output);
+    for (int k = 0; k < frames; ++k)
+        for (int t = 0; t < frames; ++t)
+            EXPECT_EQ(keys[k * frames + t], k == t ? 1.0f : 0.0f) << "key " << k << " target " << t;
+}
+
+// The dense keys take frames² × 4 bytes: past about 32,000 frames no .glb can hold them, and
+// that is said before solving, with the file, the frame count and how many frames would fit.
+TEST(GltfExport, AGlbTooLargeForTheContainerIsRefusedNamingTheFramesThatFit) {
+    const TriMesh mesh = icosphere(0);
+    EXPECT_NO_THROW(checkGlbFits("out/w.glb", mesh, 30000));
+    const std::string error = errorOf([&] { checkGlbFits("out/w.glb", mesh, 40000); });
+    EXPECT_NE(error.find("out/w.glb: 40000 frames"), std::string::npos) << error;
+    EXPECT_NE(error.find("--frames"), std::string::npos) << error;
+    EXPECT_NE(error.find("at most 326"), std::string::npos) << error;
+}
+
+// Unity's blend shapes change the shading only by their normal offsets, and glTFast computes
+// normals once for the base mesh: without NORMAL the body moved in its rest pose's shading.
+TEST(GltfExport, EachFramesNormalsAreTheBaseNormalsPlusItsNormalTarget) {
+    const fs::path dir = freshTestDir("glb-normals");
+    // Two quads with a UV seam between them: the seam's vertices are two glTF vertices each.
+    std::ofstream(dir / "strip.obj") << "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0\nv 2 1 0\n"
+                                        "vt 0 0\nvt 0.4 0\nvt 0.4 1\nvt 0 1\n"
+                                        "vt 0.6 0\nvt 1 0\nvt 1 1\nvt 0.6 1\n"
+                                        "f 1/1 2/2 5/3 4/4\nf 2/5 3/6 6/7 5/8\n";
+    const TriMesh strip = readMesh((dir / "strip.obj").string()).mesh;
+    Positions bent = strip.V;
+    bent.col(2) = bent.col(0).cwiseAbs2();  // z = x²: each column of vertices tilts differently
+    const std::string path = (dir / "strip.glb").string();
+    {
+        GltfWriter writer(path, strip, "strip");
+        writer.append(0, 0.0, strip.V);
+        writer.append(1, 0.1, bent);
+        writer.finish();
+    }
+    // Area-weighted vertex normals of the mesh's triangles, as the test computes them.
+    const auto normals = [&](const Positions& V) {
+        Positions n = Positions::Zero(V.rows(), 3);
+        for (int t = 0; t < strip.F.rows(); ++t) {
+            const Vec3 a = V.row(strip.F(t, 0)), b = V.row(strip.F(t, 1)), c = V.row(strip.F(t, 2));
+            for (int k = 0; k < 3; ++k) n.row(strip.F(t, k)) += (b - a).cross(c - a);
+        }
+        n.rowwise().normalize();
+        return n;
+    };
+    const Positions flat = normals(strip.V), posed = normals(bent);
+    const tinygltf::Model m = load(path);
+    const tinygltf::Primitive& p = m.meshes[0].primitives[0];
+    ASSERT_TRUE(p.attributes.count("NORMAL"));
+    ASSERT_EQ(p.targets.size(), 2u);
+    ASSERT_TRUE(p.targets[1].count("NORMAL"));
+    const std::vector<float> rest = floats(m, p.attributes.at("POSITION"));
+    const std::vector<float> base = floats(m, p.attributes.at("NORMAL"));
+    const std::vector<float> delta = floats(m, p.targets[1].at("NORMAL"));
+    ASSERT_EQ(base.size(), 3u * 8);
+    for (int g = 0; g < 8; ++g) {
+        // The mesh vertex this glTF vertex is, by its rest position (x, y on the unit grid).
+        const int v = static_cast<int>(rest[3 * g]) + 3 * static_cast<int>(rest[3 * g + 1]);
+        EXPECT_NEAR(Vec3(base[3 * g], base[3 * g + 1], base[3 * g + 2]).norm(), 1.0, 1e-6) << g;
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_NEAR(base[3 * g + c], flat(v, c), 1e-6) << g;
+            EXPECT_NEAR(base[3 * g + c] + delta[3 * g + c], posed(v, c), 1e-6) << g;
+        }
+    }
+    EXPECT_GT(std::abs(delta[0]), 0.1);  // the bend tilts the normals
 }

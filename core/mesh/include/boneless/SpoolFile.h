@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdio>
+#include <functional>
 #include <string>
 
 namespace boneless {
@@ -24,5 +25,9 @@ std::FILE* openSpoolBeside(const std::string& path);
 // happens. Throws Error naming `path` when a write fails.
 void writeSpooled(const std::string& path, const std::string& head, std::FILE* spool,
                   const std::string& tail);
+// The same with a tail too large to hold (a glb's N × N weight keys): `writeTail` writes it to
+// the open file, returning false when a write fails.
+void writeSpooled(const std::string& path, const std::string& head, std::FILE* spool,
+                  const std::function<bool(std::FILE*)>& writeTail);
 
 }  // namespace boneless
