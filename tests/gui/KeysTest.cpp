@@ -1,17 +1,27 @@
 // Keys whichever widget has focus: the frame box applies on Enter and never on the way, Space
 // plays after typing a frame, the arrows step once the number is applied; menu shortcuts.
+#include <QAbstractItemView>
+#include <QComboBox>
 #include <QDoubleSpinBox>
+#include <QInputDialog>
 #include <QLabel>
 #include <QLineEdit>
 #include <QMenuBar>
 #include <QMessageBox>
+#include <QPushButton>
 #include <QSpinBox>
+#include <QStatusBar>
+#include <QTableView>
+#include <QToolButton>
 #include <QToolTip>
 #include <QtTest>
+#include <functional>
 
 #include "ViewTestSupport.h"
 #include "boneless/ui/Document.h"
 #include "boneless/ui/MainWindow.h"
+#include "boneless/ui/MarkerListModel.h"
+#include "boneless/ui/MeshView.h"
 #include "boneless/ui/Timeline.h"
 #include "boneless/ui/TimelineStrip.h"
 #include "boneless/ui/TimelineWidget.h"
@@ -191,6 +201,51 @@ class KeysTest : public QObject {
         QVERIFY(help);
         QVERIFY2(help->text().contains("in Edit → Map Markers mode"), qPrintable(help->text()));
         help->close();
+    }
+
+    // Tab went from the filter boxes into the marker table and then from cell to cell, changing
+    // the selected marker, round and round: the buttons and the offset under it could be reached
+    // only backwards. The table is one stop (the arrows move within it), and Tab from the view
+    // visits every control once, in the order they read, back to the view.
+    void tabVisitsEveryControlOnceInReadingOrder() {
+        window_->document()->setSelectedMarker(0);  // mapped: Clear and the offset are enabled
+        QWidget* panel = window_->markerFilter()->parentWidget();
+        QToolButton* map = nullptr;
+        for (auto* button : panel->findChildren<QToolButton*>())
+            if (button->defaultAction() == window_->findChild<QAction*>("actionMapMarkers"))
+                map = button;
+        const QList<QWidget*> expected = {window_->meshView(),
+                                          window_->timelineWidget()->frameBox(),
+                                          window_->markerFilter(),
+                                          panel->findChild<QComboBox*>(),
+                                          window_->markerTable(),
+                                          map,
+                                          window_->findChild<QWidget*>("clearMarker"),
+                                          window_->findChild<QWidget*>("suggestRest"),
+                                          window_->findChild<QWidget*>("alignTake"),
+                                          window_->findChild<QWidget*>("offsetSpin"),
+                                          window_->findChild<QWidget*>("offsetAll")};
+        QVERIFY(!expected.contains(nullptr));
+        QWidget* view = window_->meshView();
+        view->setFocus();
+        QTRY_VERIFY(view->hasFocus());
+        QList<QWidget*> cycle{view};
+        QStringList names;
+        for (int i = 0; i < 40; ++i) {
+            QTest::keyClick(window_->focusWidget(), Qt::Key_Tab);
+            QWidget* now = window_->focusWidget();
+            if (now == view) break;
+            cycle << now;
+            names << (now->objectName().isEmpty() ? now->metaObject()->className()
+                                                  : now->objectName());
+        }
+        QCOMPARE(window_->document()->selectedMarker(), 0);  // Tab selects no other marker
+        QVERIFY2(cycle == expected, qPrintable(names.join(" → ")));
+        // And back the same way.
+        for (qsizetype i = expected.size() - 1; i >= 0; --i) {
+            QTest::keyClick(window_->focusWidget(), Qt::Key_Backtab);
+            QCOMPARE(window_->focusWidget(), expected[i]);
+        }
     }
 
   private:

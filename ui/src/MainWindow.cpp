@@ -139,6 +139,9 @@ void MainWindow::buildMarkerDock() {
     markerTable_->setSelectionBehavior(QAbstractItemView::SelectRows);
     markerTable_->setSelectionMode(QAbstractItemView::SingleSelection);
     markerTable_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+    // One Tab stop, the arrows moving within: Tab went from cell to cell, changing the selected
+    // marker, and never left, so the buttons under the table could not be reached.
+    markerTable_->setTabKeyNavigation(false);
     markerTable_->verticalHeader()->hide();
     // The numbers keep their width; a long label is elided instead, so the Residual column is
     // never cut off.
