@@ -248,6 +248,91 @@ class KeysTest : public QObject {
         }
     }
 
+    // Space, the arrows, Home and End were the window's whatever had the focus: Space on a
+    // focused button or combo played the take instead of pressing it. A focused control keeps
+    // the keys it uses; from the view the keys move the take.
+    void aFocusedControlKeepsTheKeysItUses() {
+        Timeline* timeline = window_->timeline();
+        Document* document = window_->document();
+        document->setSelectedMarker(0);
+        timeline->scrubTo(30);
+        auto* align = window_->findChild<QPushButton*>("alignTake");
+        QSignalSpy aligned(align, &QPushButton::clicked);
+        align->setFocus();
+        QTRY_VERIFY(align->hasFocus());
+        QTest::keyClick(align, Qt::Key_Space);
+        QCOMPARE(aligned.count(), 1);
+        QVERIFY(!timeline->isPlaying());
+        QTest::keyClick(align, Qt::Key_Return);  // Enter presses it too
+        QCOMPARE(aligned.count(), 2);
+
+        QComboBox* state = window_->markerFilter()->parentWidget()->findChild<QComboBox*>();
+        state->setFocus();
+        QTRY_VERIFY(state->hasFocus());
+        QTest::keyClick(state, Qt::Key_Space);
+        QTRY_VERIFY(state->view()->isVisible());
+        state->hidePopup();
+        QVERIFY(!timeline->isPlaying());
+
+        QWidget* boxes[] = {window_->findChild<QWidget*>("offsetSpin"), window_->markerFilter()};
+        for (QWidget* box : boxes) {
+            box->setFocus();
+            QTRY_VERIFY(box->hasFocus());
+            for (Qt::Key key : {Qt::Key_Home, Qt::Key_End, Qt::Key_Left, Qt::Key_Right})
+                QTest::keyClick(box, key);
+            QCOMPARE(timeline->frame(), 30);
+        }
+
+        QTableView* table = window_->markerTable();
+        table->setFocus();
+        QTRY_VERIFY(table->hasFocus());
+        QTest::keyClick(table, Qt::Key_Right);  // the table's cell cursor, not the next frame
+        QCOMPARE(timeline->frame(), 30);
+        QCOMPARE(table->currentIndex().column(), 1);
+        QTest::keyClick(table, Qt::Key_End, Qt::ControlModifier);  // its last marker
+        QCOMPARE(table->currentIndex().row(), table->model()->rowCount() - 1);
+        QCOMPARE(timeline->frame(), 30);
+        // Home and End move across a row's cells in a table, nothing a row selection shows:
+        // they stay the first and last frame.
+        QTest::keyClick(table, Qt::Key_End);
+        QCOMPARE(timeline->frame(), timeline->frameCount() - 1);
+        timeline->scrubTo(30);
+
+        QWidget* view = window_->meshView();
+        view->setFocus();
+        QTRY_VERIFY(view->hasFocus());
+        QTest::keyClick(view, Qt::Key_Right);
+        QCOMPARE(timeline->frame(), 31);
+        QTest::keyClick(view, Qt::Key_Home);
+        QCOMPARE(timeline->frame(), 0);
+        QTest::keyClick(view, Qt::Key_Space);
+        QVERIFY(timeline->isPlaying());
+        QTest::keyClick(view, Qt::Key_Space);
+        QVERIFY(!timeline->isPlaying());
+    }
+
+    // "All mapped" was the one panel button with no menu item: without the pointer or a long
+    // walk of Tab it could not be reached.
+    void everyPanelButtonHasAMenuItem() {
+        QMenu* edit = nullptr;
+        for (QAction* action : window_->menuBar()->actions())
+            if (action->text() == "&Edit") edit = action->menu();
+        QVERIFY(edit);
+        QAction* all = window_->findChild<QAction*>("actionOffsetAll");
+        QVERIFY(all && edit->actions().contains(all));
+        for (const char* name :
+             {"actionMapMarkers", "actionClearMapping", "actionSuggestRest", "actionAlign"})
+            QVERIFY2(edit->actions().contains(window_->findChild<QAction*>(name)), name);
+        Document* document = window_->document();
+        document->setSelectedMarker(0);
+        auto* offset = window_->findChild<QDoubleSpinBox*>("offsetSpin");
+        offset->setValue(12.5);
+        QVERIFY(all->isEnabled());
+        all->trigger();
+        for (int m = 0; m < document->markerCount(); ++m)
+            if (document->mappedVertex(m) >= 0) QCOMPARE(document->markerOffsetMm(m), 12.5);
+    }
+
   private:
     QString project_;
     std::unique_ptr<MainWindow> window_;

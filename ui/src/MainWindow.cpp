@@ -1,5 +1,6 @@
 #include "boneless/ui/MainWindow.h"
 
+#include <QAbstractButton>
 #include <QAbstractSpinBox>
 #include <QAction>
 #include <QComboBox>
@@ -197,7 +198,14 @@ void MainWindow::buildMarkerDock() {
     buttons->addWidget(suggest);
     buttons->addWidget(align);
     layout->addLayout(buttons);
-    layout->addLayout(makeOffsetRow(document_));
+    // "All mapped"'s menu twin (Edit), as every panel button has one.
+    offsetAllAction_ = new QAction(tr("Give All Mapped This &Offset"), this);
+    offsetAllAction_->setObjectName("actionOffsetAll");
+    offsetAllAction_->setStatusTip(
+        tr("Give every mapped marker the offset off the skin in the Markers panel's box"));
+    layout->addLayout(makeOffsetRow(document_, offsetAllAction_));
+    // Enter presses a focused button, as Space does (only a dialog's buttons do by default).
+    for (QPushButton* button : {clear, suggest, align}) button->setAutoDefault(true);
     // Ctrl+Z after typing an offset or a filter undoes the last edit, as everywhere else; the
     // boxes' own undo of the typing took it.
     passShortcuts(filterEdit_, undoRedoKeys());
@@ -292,6 +300,7 @@ QMenu* MainWindow::buildEditMenu() {
     QAction* clearAll =
         edit->addAction(tr("Clear &All Mappings"), document_, &Document::clearAllMappings);
     clearAll->setObjectName("actionClearAllMappings");
+    edit->addAction(offsetAllAction_);
     enableWhile(suggest, document_, hasMeshAndTake);
     enableWhile(align, document_, hasMeshAndTake);
     enableWhile(clear, document_, hasSelectedMapping);
@@ -438,6 +447,16 @@ void MainWindow::buildShortcuts() {
     add(QKeySequence(Qt::SHIFT | Qt::Key_Left), [this] { timeline_->stepBackward(10); });
     add(QKeySequence(Qt::Key_Home), [this] { timeline_->goToFirst(); });
     add(QKeySequence(Qt::Key_End), [this] { timeline_->goToLast(); });
+    // A focused control keeps those keys it uses itself: Space presses a button or opens a
+    // combo's list, ← and → move the marker table's cell cursor. Line edits and spin boxes keep
+    // their editing keys without help; the frame box hands Space on (passShortcuts). The table's
+    // Home and End (first and last cell of a row, which a row selection does not show) stay the
+    // first and last frame; Ctrl+Home and Ctrl+End are its first and last marker.
+    const QKeySequence space(Qt::Key_Space);
+    for (auto* button : findChildren<QAbstractButton*>()) keepKeys(button, {space});
+    for (auto* combo : findChildren<QComboBox*>())
+        keepKeys(combo, {space, QKeySequence(Qt::Key_Home), QKeySequence(Qt::Key_End)});
+    keepKeys(markerTable_, {QKeySequence(Qt::Key_Left), QKeySequence(Qt::Key_Right)});
 }
 
 void MainWindow::connectDocument() {

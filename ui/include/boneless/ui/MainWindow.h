@@ -219,6 +219,7 @@ class MainWindow : public QMainWindow {
     QAction* heatMapAction_ = nullptr;
     QAction* mappingAction_ = nullptr;
     QAction* followAction_ = nullptr;
+    QAction* offsetAllAction_ = nullptr;
 
     QString projectPath_;
     bool demo_ = false;
