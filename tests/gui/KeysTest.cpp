@@ -214,8 +214,13 @@ class KeysTest : public QObject {
         for (auto* button : panel->findChildren<QToolButton*>())
             if (button->defaultAction() == window_->findChild<QAction*>("actionMapMarkers"))
                 map = button;
+        QToolButton* loopButton = nullptr;
+        for (auto* button : window_->timelineWidget()->findChildren<QToolButton*>())
+            if (button->text() == "Loop") loopButton = button;
         const QList<QWidget*> expected = {window_->meshView(),
                                           window_->timelineWidget()->frameBox(),
+                                          loopButton,
+                                          window_->timelineWidget()->speedBox(),
                                           window_->markerFilter(),
                                           panel->findChild<QComboBox*>(),
                                           window_->markerTable(),
@@ -331,6 +336,48 @@ class KeysTest : public QObject {
         all->trigger();
         for (int m = 0; m < document->markerCount(); ++m)
             if (document->mappedVertex(m) >= 0) QCOMPARE(document->markerOffsetMm(m), 12.5);
+    }
+
+    // Loop and the playback speed could not be reached from the keyboard: not focusable, in no
+    // menu. Playback has them, with keys; the timeline's Loop and speed box are Tab stops.
+    void loopAndSpeedHaveMenuItemsAndKeys() {
+        Timeline* timeline = window_->timeline();
+        QAction* loop = window_->findChild<QAction*>("actionLoop");
+        QVERIFY(loop);
+        QMenu* playback = nullptr;
+        for (QAction* action : window_->menuBar()->actions())
+            if (action->text() == "&Playback") playback = action->menu();
+        QVERIFY(playback && playback->actions().contains(loop));
+        const bool looped = timeline->loops();
+        QTest::keyClick(window_.get(), Qt::Key_L, Qt::ControlModifier);
+        QCOMPARE(timeline->loops(), !looped);
+        QCOMPARE(loop->isChecked(), !looped);
+        const std::tuple<Qt::Key, Timeline::Speed, const char*> speeds[] = {
+            {Qt::Key_2, Timeline::Speed::Half, "speedHalf"},
+            {Qt::Key_3, Timeline::Speed::Quarter, "speedQuarter"},
+            {Qt::Key_4, Timeline::Speed::EveryFrame, "speedEveryFrame"},
+            {Qt::Key_1, Timeline::Speed::Realtime, "speedRealtime"}};
+        QComboBox* box = window_->timelineWidget()->speedBox();
+        for (const auto& [key, speed, name] : speeds) {
+            QTest::keyClick(window_.get(), key, Qt::ControlModifier);
+            QCOMPARE(timeline->speed(), speed);
+            QCOMPARE(box->currentData().toInt(), int(speed));
+            QAction* action = window_->findChild<QAction*>(name);
+            QVERIFY2(action && action->isChecked(), name);
+        }
+        timeline->setSpeed(Timeline::Speed::Quarter);  // the menu follows the box and a project
+        QVERIFY(window_->findChild<QAction*>("speedQuarter")->isChecked());
+        QVERIFY(box->focusPolicy() & Qt::TabFocus);
+        // A focused Loop is pressed by Space, not the take played.
+        QToolButton* loopButton = nullptr;
+        for (auto* button : window_->timelineWidget()->findChildren<QToolButton*>())
+            if (button->text() == "Loop") loopButton = button;
+        QVERIFY(loopButton && (loopButton->focusPolicy() & Qt::TabFocus));
+        loopButton->setFocus();
+        QTRY_VERIFY(loopButton->hasFocus());
+        QTest::keyClick(loopButton, Qt::Key_Space);
+        QCOMPARE(timeline->loops(), looped);
+        QVERIFY(!timeline->isPlaying());
     }
 
   private:

@@ -3,6 +3,7 @@
 #include <QAbstractButton>
 #include <QAbstractSpinBox>
 #include <QAction>
+#include <QActionGroup>
 #include <QComboBox>
 #include <QDockWidget>
 #include <QFileInfo>
@@ -234,6 +235,7 @@ void MainWindow::buildMenus() {
     addCalibrationActions(
         edit, view, document_, timeline_, display_,
         [this](const QString& message, const QString& detail) { showError(message, detail); });
+    buildPlaybackMenu();
     buildHelpMenu();
 }
 
@@ -338,6 +340,43 @@ QMenu* MainWindow::buildViewMenu() {
     return view;
 }
 
+void MainWindow::buildPlaybackMenu() {
+    // The timeline's Loop and speed box, with keys: before, only the pointer reached them.
+    QMenu* playback = menuBar()->addMenu(tr("&Playback"));
+    QAction* loop = playback->addAction(tr("&Loop"));
+    loop->setObjectName("actionLoop");
+    loop->setCheckable(true);
+    loop->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_L));
+    loop->setChecked(timeline_->loops());
+    connect(loop, &QAction::toggled, timeline_, &Timeline::setLoop);
+    connect(timeline_, &Timeline::loopChanged, loop, &QAction::setChecked);
+    QMenu* speedMenu = playback->addMenu(tr("&Speed"));
+    auto* speeds = new QActionGroup(speedMenu);
+    const std::tuple<Timeline::Speed, QString, const char*> choices[] = {
+        {Timeline::Speed::Realtime, tr("&Realtime"), "speedRealtime"},
+        {Timeline::Speed::Half, tr("&Half Speed"), "speedHalf"},
+        {Timeline::Speed::Quarter, tr("&Quarter Speed"), "speedQuarter"},
+        {Timeline::Speed::EveryFrame, tr("&Every Frame"), "speedEveryFrame"}};
+    int key = Qt::Key_1;
+    for (const auto& [speed, text, name] : choices) {
+        QAction* action = speedMenu->addAction(text);
+        action->setObjectName(name);
+        action->setCheckable(true);
+        action->setData(int(speed));
+        action->setShortcut(QKeySequence(Qt::CTRL | Qt::Key(key++)));
+        speeds->addAction(action);
+        connect(action, &QAction::triggered, timeline_,
+                [this, speed = speed] { timeline_->setSpeed(speed); });
+    }
+    // The speed in use is checked, however it was set (the box, a project).
+    const auto showSpeed = [this, speeds] {
+        for (QAction* action : speeds->actions())
+            action->setChecked(action->data().toInt() == int(timeline_->speed()));
+    };
+    connect(timeline_, &Timeline::speedChanged, speeds, showSpeed);
+    showSpeed();
+}
+
 void MainWindow::buildHelpMenu() {
     QMenu* help = menuBar()->addMenu(tr("&Help"));
     help->addAction(
@@ -365,6 +404,9 @@ void MainWindow::buildHelpMenu() {
                                "<tr><td>Shift+← →</td><td>10 frames back / on</td></tr>"
                                "<tr><td>Home / End</td><td>first / last frame</td></tr>"
                                "<tr><td>frame box, Enter</td><td>go to the frame typed</td></tr>"
+                               "<tr><td>Ctrl+L</td><td>loop on / off</td></tr>"
+                               "<tr><td>Ctrl+1 … Ctrl+4</td><td>realtime, ½, ¼ speed, every "
+                               "frame</td></tr>"
                                "<tr><td>Ctrl+O</td><td>open a project</td></tr>"
                                "<tr><td>Ctrl+M / Ctrl+T</td><td>open a mesh / a take</td></tr>"
                                "<tr><td>Ctrl+S / Ctrl+Shift+S</td><td>save / save as</td></tr>"

@@ -145,6 +145,7 @@ class MainWindow : public QMainWindow {
     void buildFileMenu();
     QMenu* buildEditMenu();  // returned for the calibration actions
     QMenu* buildViewMenu();
+    void buildPlaybackMenu();
     void buildHelpMenu();
     void buildMarkerDock();
     void buildStatusBar();
