@@ -380,6 +380,50 @@ class KeysTest : public QObject {
         QVERIFY(!timeline->isPlaying());
     }
 
+    // The letter after a single '&', lower case; none for "&&" alone.
+    static QChar mnemonic(const QString& text) {
+        for (qsizetype i = 0; i + 1 < text.size(); ++i) {
+            if (text[i] != '&') continue;
+            if (text[i + 1] == '&') {
+                ++i;
+                continue;
+            }
+            return text[i + 1].toLower();
+        }
+        return {};
+    }
+
+    // Edit had U for Undo, Calibrate Automatically and Mesh Up, A for Align and Clear All
+    // Mappings; File had R for Recent Files and Save Correspondence As: Alt and the letter went
+    // to the first, or only highlighted, and a keyboard user could not tell which.
+    void noTwoItemsOfAMenuShareAMnemonic() {
+        QStringList clashes;
+        int menus = 0;
+        std::function<void(const QString&, const QList<QAction*>&)> walk =
+            [&](const QString& where, const QList<QAction*>& actions) {
+                ++menus;
+                QMap<QChar, QString> taken;
+                for (QAction* action : actions) {
+                    if (action->isSeparator() || !action->isVisible()) continue;
+                    const QChar letter = mnemonic(action->text());
+                    if (!letter.isNull()) {
+                        if (taken.contains(letter))
+                            clashes << QString("%1: %2 and %3")
+                                           .arg(where, taken[letter], action->text());
+                        else
+                            taken[letter] = action->text();
+                    }
+                    if (QMenu* sub = action->menu()) {
+                        emit sub->aboutToShow();  // the recent files are listed then
+                        walk(where + " → " + action->text(), sub->actions());
+                    }
+                }
+            };
+        walk("menu bar", window_->menuBar()->actions());
+        QVERIFY(menus >= 8);  // the bar, File, Recent Files, Edit, Mesh Up, View, Show, Help
+        QVERIFY2(clashes.isEmpty(), qPrintable(clashes.join("\n")));
+    }
+
   private:
     QString project_;
     std::unique_ptr<MainWindow> window_;

@@ -261,7 +261,7 @@ void MainWindow::buildFileMenu() {
     // Not QKeySequence::SaveAs: it has no key on Windows, nor on X11 without a desktop theme.
     file->addAction(tr("Save Project &As…"), QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_S), this,
                     &MainWindow::chooseSaveProjectAs);
-    file->addAction(tr("Save Co&rrespondence As…"), this, &MainWindow::chooseSaveCorrespondence);
+    file->addAction(tr("Save Correspo&ndence As…"), this, &MainWindow::chooseSaveCorrespondence);
     file->addSeparator();
     file->addAction(tr("&Export…"), QKeySequence(Qt::CTRL | Qt::Key_E), this,
                     &MainWindow::showExportDialog)
@@ -300,7 +300,7 @@ QMenu* MainWindow::buildEditMenu() {
     });
     clear->setObjectName("actionClearMapping");
     QAction* clearAll =
-        edit->addAction(tr("Clear &All Mappings"), document_, &Document::clearAllMappings);
+        edit->addAction(tr("Clear A&ll Mappings"), document_, &Document::clearAllMappings);
     clearAll->setObjectName("actionClearAllMappings");
     edit->addAction(offsetAllAction_);
     enableWhile(suggest, document_, hasMeshAndTake);
