@@ -424,6 +424,49 @@ class KeysTest : public QObject {
         QVERIFY2(clashes.isEmpty(), qPrintable(clashes.join("\n")));
     }
 
+    // A marker could be mapped only by a click on the mesh: the first markers Suggest needs
+    // could not be mapped from the keyboard. Edit → Map Selected Marker to Vertex asks for the
+    // vertex's number, within the mesh's, and maps as a click does: one undoable edit.
+    void theSelectedMarkerIsMappedToAVertexTypedIn() {
+        Document* document = window_->document();
+        const int marker = 0;  // the demo maps every marker: this one is unmapped first
+        document->clearMapping(marker);
+        QCOMPARE(document->mappedVertex(marker), -1);
+        int vertex = 0;
+        while (document->markerForVertex(vertex) >= 0) ++vertex;
+        document->setSelectedMarker(marker);
+        QAction* action = window_->findChild<QAction*>("actionMapToVertex");
+        QVERIFY(action && action->isEnabled());
+        int lowest = -1, highest = -1;
+        QTimer answer;
+        connect(&answer, &QTimer::timeout, [&] {
+            auto* dialog = qobject_cast<QInputDialog*>(QApplication::activeModalWidget());
+            if (!dialog) return;
+            lowest = dialog->intMinimum();
+            highest = dialog->intMaximum();
+            dialog->setIntValue(vertex);
+            dialog->accept();
+        });
+        answer.start(50);
+        QTest::keyClick(window_.get(), Qt::Key_M, Qt::ControlModifier | Qt::ShiftModifier);
+        QTRY_COMPARE(document->mappedVertex(marker), vertex);
+        QCOMPARE(lowest, 0);
+        QCOMPARE(highest, document->mesh().vertexCount() - 1);
+        QVERIFY2(window_->statusBar()->currentMessage().contains(
+                     QString("mapped to vertex %1").arg(vertex)),
+                 qPrintable(window_->statusBar()->currentMessage()));
+        window_->findChild<QAction*>("actionUndo")->trigger();
+        QCOMPARE(document->mappedVertex(marker), -1);
+
+        // No marker selected: it says what to do, and asks nothing.
+        document->setSelectedMarker(-1);
+        lowest = -1;
+        action->trigger();
+        QCOMPARE(lowest, -1);
+        QVERIFY2(window_->statusBar()->currentMessage().contains("Select a marker"),
+                 qPrintable(window_->statusBar()->currentMessage()));
+    }
+
   private:
     QString project_;
     std::unique_ptr<MainWindow> window_;

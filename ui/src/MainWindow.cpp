@@ -10,6 +10,7 @@
 #include <QFutureWatcher>
 #include <QHBoxLayout>
 #include <QHeaderView>
+#include <QInputDialog>
 #include <QItemSelectionModel>
 #include <QKeySequence>
 #include <QLabel>
@@ -291,6 +292,12 @@ QMenu* MainWindow::buildEditMenu() {
     edit->addAction(redo);
     edit->addSeparator();
     edit->addAction(mappingAction_);
+    // Mapping without the pointer: the vertex's number, as the Vertex column shows it.
+    QAction* toVertex = edit->addAction(tr("Map Selected Marker to &Vertex…"),
+                                        QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_M), this,
+                                        &MainWindow::askVertexForSelected);
+    toVertex->setObjectName("actionMapToVertex");
+    enableWhile(toVertex, document_, hasMarkersToMap);
     QAction* suggest = edit->addAction(tr("&Suggest Rest"), this, &MainWindow::suggestMappings);
     suggest->setObjectName("actionSuggestRest");
     QAction* align = edit->addAction(tr("&Align Take to Mesh"), this, &MainWindow::alignTake);
@@ -413,6 +420,8 @@ void MainWindow::buildHelpMenu() {
                                "<tr><td>Ctrl+E</td><td>export</td></tr>"
                                "<tr><td>Ctrl+Z / Ctrl+Shift+Z</td><td>undo / redo</td></tr>"
                                "<tr><td>Ctrl+R</td><td>reset the camera</td></tr>"
+                               "<tr><td>Ctrl+Shift+M</td><td>map the selected marker to a "
+                               "vertex typed</td></tr>"
                                "<tr><td>double-click a marker in the list</td><td>bring the "
                                "camera to it</td></tr>"
                                "<tr><td>mouse</td><td>left drag turns, right drag or wheel zooms, "
@@ -678,10 +687,7 @@ void MainWindow::onVertexPicked(int vertex) {
         return;
     }
     if (selected >= 0) {
-        if (document_->assign(selected, vertex))
-            statusBar()->showMessage(
-                tr("%1 mapped to vertex %2").arg(document_->markerLabel(selected)).arg(vertex),
-                5000);
+        mapSelectedMarker(vertex);
         return;
     }
     const int onVertex = document_->markerForVertex(vertex);
@@ -695,6 +701,33 @@ void MainWindow::onVertexPicked(int vertex) {
                   .arg(vertex)
             : tr("Vertex %1 — Edit → Map Markers maps a marker by clicking").arg(vertex),
         8000);
+}
+
+void MainWindow::mapSelectedMarker(int vertex) {
+    const int selected = document_->selectedMarker();
+    if (document_->assign(selected, vertex))
+        statusBar()->showMessage(
+            tr("%1 mapped to vertex %2").arg(document_->markerLabel(selected)).arg(vertex), 5000);
+}
+
+void MainWindow::askVertexForSelected() {
+    const int selected = document_->selectedMarker();
+    if (selected < 0) {
+        statusBar()->showMessage(tr("Select a marker in the list first, then map it to a vertex"),
+                                 8000);
+        return;
+    }
+    // Only the mesh's vertices can be typed: the box stops at its last.
+    const int last = document_->mesh().vertexCount() - 1;
+    const int current = document_->mappedVertex(selected);
+    bool ok = false;
+    const int vertex = QInputDialog::getInt(
+        this, tr("Map to Vertex"),
+        tr("The vertex of %1 that carries %2 (0 to %3):")
+            .arg(QFileInfo(document_->meshPath()).fileName(), document_->markerLabel(selected))
+            .arg(last),
+        std::max(current, 0), 0, last, 1, &ok);
+    if (ok) mapSelectedMarker(vertex);
 }
 
 struct MainWindow::SuggestJob {
