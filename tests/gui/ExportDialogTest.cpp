@@ -10,6 +10,7 @@
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QLabel>
+#include <QLineEdit>
 #include <QMessageBox>
 #include <QProgressBar>
 #include <QPushButton>
@@ -634,6 +635,37 @@ class ExportDialogTest : public QObject {
         QVERIFY(!dialog.startExport());
         QVERIFY(!dialog.runner()->isRunning());
         QVERIFY(progressText(dialog)->text().contains("folder"));
+    }
+
+    // Enter in the folder field opened the folder browser: the Export button was made the
+    // default before the dialog held it, so the dialog took its first button, Browse…
+    void enterInTheFolderFieldStartsTheExport() {
+        ExportDialog dialog(&document_, &solver_, &timeline_);
+        dialog.setRange(ExportDialog::Range::Current);
+        dialog.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&dialog));
+        QVERIFY(part<QPushButton>(dialog, "exportStart")->isDefault());
+        QVERIFY(!part<QPushButton>(dialog, "exportBrowse")->isDefault());
+        // A browser opened by mistake waits for an answer: closed, and counted.
+        bool browsed = false;
+        QTimer closer;
+        connect(&closer, &QTimer::timeout, [&] {
+            if (QWidget* modal = QApplication::activeModalWidget()) {
+                browsed = true;
+                modal->close();
+            }
+        });
+        closer.start(100);
+        const QString folder = work_ + "/entered";
+        dialog.setFolder(folder);
+        auto* field = part<QLineEdit>(dialog, "exportFolder");
+        field->setFocus();
+        QSignalSpy finished(&dialog, &ExportDialog::finished);
+        QTest::keyClick(field, Qt::Key_Return);
+        QVERIFY(!browsed);
+        QVERIFY(finished.count() == 1 || finished.wait(120000));
+        QVERIFY(finished.first().at(0).toBool());
+        QCOMPARE(objFiles(folder).size(), 1);
     }
 };
 

@@ -1,17 +1,27 @@
 // Keys whichever widget has focus: the frame box applies on Enter and never on the way, Space
 // plays after typing a frame, the arrows step once the number is applied; menu shortcuts.
+#include <QAbstractItemView>
+#include <QComboBox>
 #include <QDoubleSpinBox>
+#include <QInputDialog>
 #include <QLabel>
 #include <QLineEdit>
 #include <QMenuBar>
 #include <QMessageBox>
+#include <QPushButton>
 #include <QSpinBox>
+#include <QStatusBar>
+#include <QTableView>
+#include <QToolButton>
 #include <QToolTip>
 #include <QtTest>
+#include <functional>
 
 #include "ViewTestSupport.h"
 #include "boneless/ui/Document.h"
 #include "boneless/ui/MainWindow.h"
+#include "boneless/ui/MarkerListModel.h"
+#include "boneless/ui/MeshView.h"
 #include "boneless/ui/Timeline.h"
 #include "boneless/ui/TimelineStrip.h"
 #include "boneless/ui/TimelineWidget.h"
@@ -191,6 +201,270 @@ class KeysTest : public QObject {
         QVERIFY(help);
         QVERIFY2(help->text().contains("in Edit → Map Markers mode"), qPrintable(help->text()));
         help->close();
+    }
+
+    // Tab went from the filter boxes into the marker table and then from cell to cell, changing
+    // the selected marker, round and round: the buttons and the offset under it could be reached
+    // only backwards. The table is one stop (the arrows move within it), and Tab from the view
+    // visits every control once, in the order they read, back to the view.
+    void tabVisitsEveryControlOnceInReadingOrder() {
+        window_->document()->setSelectedMarker(0);  // mapped: Clear and the offset are enabled
+        QWidget* panel = window_->markerFilter()->parentWidget();
+        QToolButton* map = nullptr;
+        for (auto* button : panel->findChildren<QToolButton*>())
+            if (button->defaultAction() == window_->findChild<QAction*>("actionMapMarkers"))
+                map = button;
+        QToolButton* loopButton = nullptr;
+        for (auto* button : window_->timelineWidget()->findChildren<QToolButton*>())
+            if (button->text() == "Loop") loopButton = button;
+        const QList<QWidget*> expected = {window_->meshView(),
+                                          window_->timelineWidget()->frameBox(),
+                                          loopButton,
+                                          window_->timelineWidget()->speedBox(),
+                                          window_->markerFilter(),
+                                          panel->findChild<QComboBox*>(),
+                                          window_->markerTable(),
+                                          map,
+                                          window_->findChild<QWidget*>("clearMarker"),
+                                          window_->findChild<QWidget*>("suggestRest"),
+                                          window_->findChild<QWidget*>("alignTake"),
+                                          window_->findChild<QWidget*>("offsetSpin"),
+                                          window_->findChild<QWidget*>("offsetAll")};
+        QVERIFY(!expected.contains(nullptr));
+        QWidget* view = window_->meshView();
+        view->setFocus();
+        QTRY_VERIFY(view->hasFocus());
+        QList<QWidget*> cycle{view};
+        QStringList names;
+        for (int i = 0; i < 40; ++i) {
+            QTest::keyClick(window_->focusWidget(), Qt::Key_Tab);
+            QWidget* now = window_->focusWidget();
+            if (now == view) break;
+            cycle << now;
+            names << (now->objectName().isEmpty() ? now->metaObject()->className()
+                                                  : now->objectName());
+        }
+        QCOMPARE(window_->document()->selectedMarker(), 0);  // Tab selects no other marker
+        QVERIFY2(cycle == expected, qPrintable(names.join(" → ")));
+        // And back the same way.
+        for (qsizetype i = expected.size() - 1; i >= 0; --i) {
+            QTest::keyClick(window_->focusWidget(), Qt::Key_Backtab);
+            QCOMPARE(window_->focusWidget(), expected[i]);
+        }
+    }
+
+    // Space, the arrows, Home and End were the window's whatever had the focus: Space on a
+    // focused button or combo played the take instead of pressing it. A focused control keeps
+    // the keys it uses; from the view the keys move the take.
+    void aFocusedControlKeepsTheKeysItUses() {
+        Timeline* timeline = window_->timeline();
+        Document* document = window_->document();
+        document->setSelectedMarker(0);
+        timeline->scrubTo(30);
+        auto* align = window_->findChild<QPushButton*>("alignTake");
+        QSignalSpy aligned(align, &QPushButton::clicked);
+        align->setFocus();
+        QTRY_VERIFY(align->hasFocus());
+        QTest::keyClick(align, Qt::Key_Space);
+        QCOMPARE(aligned.count(), 1);
+        QVERIFY(!timeline->isPlaying());
+        QTest::keyClick(align, Qt::Key_Return);  // Enter presses it too
+        QCOMPARE(aligned.count(), 2);
+
+        QComboBox* state = window_->markerFilter()->parentWidget()->findChild<QComboBox*>();
+        state->setFocus();
+        QTRY_VERIFY(state->hasFocus());
+        QTest::keyClick(state, Qt::Key_Space);
+        QTRY_VERIFY(state->view()->isVisible());
+        state->hidePopup();
+        QVERIFY(!timeline->isPlaying());
+
+        QWidget* boxes[] = {window_->findChild<QWidget*>("offsetSpin"), window_->markerFilter()};
+        for (QWidget* box : boxes) {
+            box->setFocus();
+            QTRY_VERIFY(box->hasFocus());
+            for (Qt::Key key : {Qt::Key_Home, Qt::Key_End, Qt::Key_Left, Qt::Key_Right})
+                QTest::keyClick(box, key);
+            QCOMPARE(timeline->frame(), 30);
+        }
+
+        QTableView* table = window_->markerTable();
+        table->setFocus();
+        QTRY_VERIFY(table->hasFocus());
+        QTest::keyClick(table, Qt::Key_Right);  // the table's cell cursor, not the next frame
+        QCOMPARE(timeline->frame(), 30);
+        QCOMPARE(table->currentIndex().column(), 1);
+        QTest::keyClick(table, Qt::Key_End, Qt::ControlModifier);  // its last marker
+        QCOMPARE(table->currentIndex().row(), table->model()->rowCount() - 1);
+        QCOMPARE(timeline->frame(), 30);
+        // Home and End move across a row's cells in a table, nothing a row selection shows:
+        // they stay the first and last frame.
+        QTest::keyClick(table, Qt::Key_End);
+        QCOMPARE(timeline->frame(), timeline->frameCount() - 1);
+        timeline->scrubTo(30);
+
+        QWidget* view = window_->meshView();
+        view->setFocus();
+        QTRY_VERIFY(view->hasFocus());
+        QTest::keyClick(view, Qt::Key_Right);
+        QCOMPARE(timeline->frame(), 31);
+        QTest::keyClick(view, Qt::Key_Home);
+        QCOMPARE(timeline->frame(), 0);
+        QTest::keyClick(view, Qt::Key_Space);
+        QVERIFY(timeline->isPlaying());
+        QTest::keyClick(view, Qt::Key_Space);
+        QVERIFY(!timeline->isPlaying());
+    }
+
+    // "All mapped" was the one panel button with no menu item: without the pointer or a long
+    // walk of Tab it could not be reached.
+    void everyPanelButtonHasAMenuItem() {
+        QMenu* edit = nullptr;
+        for (QAction* action : window_->menuBar()->actions())
+            if (action->text() == "&Edit") edit = action->menu();
+        QVERIFY(edit);
+        QAction* all = window_->findChild<QAction*>("actionOffsetAll");
+        QVERIFY(all && edit->actions().contains(all));
+        for (const char* name :
+             {"actionMapMarkers", "actionClearMapping", "actionSuggestRest", "actionAlign"})
+            QVERIFY2(edit->actions().contains(window_->findChild<QAction*>(name)), name);
+        Document* document = window_->document();
+        document->setSelectedMarker(0);
+        auto* offset = window_->findChild<QDoubleSpinBox*>("offsetSpin");
+        offset->setValue(12.5);
+        QVERIFY(all->isEnabled());
+        all->trigger();
+        for (int m = 0; m < document->markerCount(); ++m)
+            if (document->mappedVertex(m) >= 0) QCOMPARE(document->markerOffsetMm(m), 12.5);
+    }
+
+    // Loop and the playback speed could not be reached from the keyboard: not focusable, in no
+    // menu. Playback has them, with keys; the timeline's Loop and speed box are Tab stops.
+    void loopAndSpeedHaveMenuItemsAndKeys() {
+        Timeline* timeline = window_->timeline();
+        QAction* loop = window_->findChild<QAction*>("actionLoop");
+        QVERIFY(loop);
+        QMenu* playback = nullptr;
+        for (QAction* action : window_->menuBar()->actions())
+            if (action->text() == "&Playback") playback = action->menu();
+        QVERIFY(playback && playback->actions().contains(loop));
+        const bool looped = timeline->loops();
+        QTest::keyClick(window_.get(), Qt::Key_L, Qt::ControlModifier);
+        QCOMPARE(timeline->loops(), !looped);
+        QCOMPARE(loop->isChecked(), !looped);
+        const std::tuple<Qt::Key, Timeline::Speed, const char*> speeds[] = {
+            {Qt::Key_2, Timeline::Speed::Half, "speedHalf"},
+            {Qt::Key_3, Timeline::Speed::Quarter, "speedQuarter"},
+            {Qt::Key_4, Timeline::Speed::EveryFrame, "speedEveryFrame"},
+            {Qt::Key_1, Timeline::Speed::Realtime, "speedRealtime"}};
+        QComboBox* box = window_->timelineWidget()->speedBox();
+        for (const auto& [key, speed, name] : speeds) {
+            QTest::keyClick(window_.get(), key, Qt::ControlModifier);
+            QCOMPARE(timeline->speed(), speed);
+            QCOMPARE(box->currentData().toInt(), int(speed));
+            QAction* action = window_->findChild<QAction*>(name);
+            QVERIFY2(action && action->isChecked(), name);
+        }
+        timeline->setSpeed(Timeline::Speed::Quarter);  // the menu follows the box and a project
+        QVERIFY(window_->findChild<QAction*>("speedQuarter")->isChecked());
+        QVERIFY(box->focusPolicy() & Qt::TabFocus);
+        // A focused Loop is pressed by Space, not the take played.
+        QToolButton* loopButton = nullptr;
+        for (auto* button : window_->timelineWidget()->findChildren<QToolButton*>())
+            if (button->text() == "Loop") loopButton = button;
+        QVERIFY(loopButton && (loopButton->focusPolicy() & Qt::TabFocus));
+        loopButton->setFocus();
+        QTRY_VERIFY(loopButton->hasFocus());
+        QTest::keyClick(loopButton, Qt::Key_Space);
+        QCOMPARE(timeline->loops(), looped);
+        QVERIFY(!timeline->isPlaying());
+    }
+
+    // The letter after a single '&', lower case; none for "&&" alone.
+    static QChar mnemonic(const QString& text) {
+        for (qsizetype i = 0; i + 1 < text.size(); ++i) {
+            if (text[i] != '&') continue;
+            if (text[i + 1] == '&') {
+                ++i;
+                continue;
+            }
+            return text[i + 1].toLower();
+        }
+        return {};
+    }
+
+    // Edit had U for Undo, Calibrate Automatically and Mesh Up, A for Align and Clear All
+    // Mappings; File had R for Recent Files and Save Correspondence As: Alt and the letter went
+    // to the first, or only highlighted, and a keyboard user could not tell which.
+    void noTwoItemsOfAMenuShareAMnemonic() {
+        QStringList clashes;
+        int menus = 0;
+        std::function<void(const QString&, const QList<QAction*>&)> walk =
+            [&](const QString& where, const QList<QAction*>& actions) {
+                ++menus;
+                QMap<QChar, QString> taken;
+                for (QAction* action : actions) {
+                    if (action->isSeparator() || !action->isVisible()) continue;
+                    const QChar letter = mnemonic(action->text());
+                    if (!letter.isNull()) {
+                        if (taken.contains(letter))
+                            clashes << QString("%1: %2 and %3")
+                                           .arg(where, taken[letter], action->text());
+                        else
+                            taken[letter] = action->text();
+                    }
+                    if (QMenu* sub = action->menu()) {
+                        emit sub->aboutToShow();  // the recent files are listed then
+                        walk(where + " → " + action->text(), sub->actions());
+                    }
+                }
+            };
+        walk("menu bar", window_->menuBar()->actions());
+        QVERIFY(menus >= 8);  // the bar, File, Recent Files, Edit, Mesh Up, View, Show, Help
+        QVERIFY2(clashes.isEmpty(), qPrintable(clashes.join("\n")));
+    }
+
+    // A marker could be mapped only by a click on the mesh: the first markers Suggest needs
+    // could not be mapped from the keyboard. Edit → Map Selected Marker to Vertex asks for the
+    // vertex's number, within the mesh's, and maps as a click does: one undoable edit.
+    void theSelectedMarkerIsMappedToAVertexTypedIn() {
+        Document* document = window_->document();
+        const int marker = 0;  // the demo maps every marker: this one is unmapped first
+        document->clearMapping(marker);
+        QCOMPARE(document->mappedVertex(marker), -1);
+        int vertex = 0;
+        while (document->markerForVertex(vertex) >= 0) ++vertex;
+        document->setSelectedMarker(marker);
+        QAction* action = window_->findChild<QAction*>("actionMapToVertex");
+        QVERIFY(action && action->isEnabled());
+        int lowest = -1, highest = -1;
+        QTimer answer;
+        connect(&answer, &QTimer::timeout, [&] {
+            auto* dialog = qobject_cast<QInputDialog*>(QApplication::activeModalWidget());
+            if (!dialog) return;
+            lowest = dialog->intMinimum();
+            highest = dialog->intMaximum();
+            dialog->setIntValue(vertex);
+            dialog->accept();
+        });
+        answer.start(50);
+        QTest::keyClick(window_.get(), Qt::Key_M, Qt::ControlModifier | Qt::ShiftModifier);
+        QTRY_COMPARE(document->mappedVertex(marker), vertex);
+        QCOMPARE(lowest, 0);
+        QCOMPARE(highest, document->mesh().vertexCount() - 1);
+        QVERIFY2(window_->statusBar()->currentMessage().contains(
+                     QString("mapped to vertex %1").arg(vertex)),
+                 qPrintable(window_->statusBar()->currentMessage()));
+        window_->findChild<QAction*>("actionUndo")->trigger();
+        QCOMPARE(document->mappedVertex(marker), -1);
+
+        // No marker selected: it says what to do, and asks nothing.
+        document->setSelectedMarker(-1);
+        lowest = -1;
+        action->trigger();
+        QCOMPARE(lowest, -1);
+        QVERIFY2(window_->statusBar()->currentMessage().contains("Select a marker"),
+                 qPrintable(window_->statusBar()->currentMessage()));
     }
 
   private:

@@ -57,7 +57,7 @@ void addCalibrationActions(QMenu* edit, QMenu* view, Document* document, Timelin
     atFrame->setObjectName("calibrateAtFrame");
     atFrame->setStatusTip(QObject::tr(
         "Fit the mesh to the actor at the frame on screen, and solve every frame against it"));
-    QAction* automatic = edit->addAction(QObject::tr("Calibrate A&utomatically"), document,
+    QAction* automatic = edit->addAction(QObject::tr("Calibrate Automat&ically"), document,
                                          [=] { document->calibrateAt(-1); });
     automatic->setObjectName("calibrateAutomatically");
     // The way out when the mesh cannot reach the actor with a right map, as `solve --calibrate
@@ -94,7 +94,7 @@ void addCalibrationActions(QMenu* edit, QMenu* view, Document* document, Timelin
 
     // The mesh's up, where the take's vertical goes (mesh_up): the guess fails for an actor who
     // never stands. The choices are the option's own, from the one table of options.
-    QMenu* up = edit->addMenu(QObject::tr("Mesh &Up"));
+    QMenu* up = edit->addMenu(QObject::tr("Mesh U&p"));
     up->setObjectName("meshUp");
     enableWhile(up->menuAction(), document, hasMeshAndTake);  // the take's vertical goes there
     auto* ups = new QActionGroup(up);

@@ -161,13 +161,16 @@ ExportDialog::ExportDialog(Document* document, FrameSolver* solver, Timeline* ti
     close_ = buttons->addButton(QDialogButtonBox::Close);
     start_->setObjectName("exportStart");
     cancel_->setObjectName("exportCancel");
-    start_->setDefault(true);
 
     auto* layout = new QVBoxLayout(this);
     layout->addLayout(form);
     layout->addWidget(progress_);
     layout->addWidget(progressText_);
     layout->addWidget(buttons);
+    // Enter exports. Made default only once the dialog holds it (before, the call did nothing and
+    // the dialog took its first button, Browse…, so Enter in the folder field opened a browser).
+    browse_->setAutoDefault(false);
+    start_->setDefault(true);
     setRunning(false);
 
     connect(start_, &QPushButton::clicked, this, &ExportDialog::startExport);

@@ -1,13 +1,16 @@
 #include "boneless/ui/MainWindow.h"
 
+#include <QAbstractButton>
 #include <QAbstractSpinBox>
 #include <QAction>
+#include <QActionGroup>
 #include <QComboBox>
 #include <QDockWidget>
 #include <QFileInfo>
 #include <QFutureWatcher>
 #include <QHBoxLayout>
 #include <QHeaderView>
+#include <QInputDialog>
 #include <QItemSelectionModel>
 #include <QKeySequence>
 #include <QLabel>
@@ -142,6 +145,9 @@ void MainWindow::buildMarkerDock() {
     markerTable_->setSelectionBehavior(QAbstractItemView::SelectRows);
     markerTable_->setSelectionMode(QAbstractItemView::SingleSelection);
     markerTable_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+    // One Tab stop, the arrows moving within: Tab went from cell to cell, changing the selected
+    // marker, and never left, so the buttons under the table could not be reached.
+    markerTable_->setTabKeyNavigation(false);
     markerTable_->verticalHeader()->hide();
     // The numbers keep their width; a long label is elided instead, so the Residual column is
     // never cut off.
@@ -197,7 +203,14 @@ void MainWindow::buildMarkerDock() {
     buttons->addWidget(suggest);
     buttons->addWidget(align);
     layout->addLayout(buttons);
-    layout->addLayout(makeOffsetRow(document_));
+    // "All mapped"'s menu twin (Edit), as every panel button has one.
+    offsetAllAction_ = new QAction(tr("Give All Mapped This &Offset"), this);
+    offsetAllAction_->setObjectName("actionOffsetAll");
+    offsetAllAction_->setStatusTip(
+        tr("Give every mapped marker the offset off the skin in the Markers panel's box"));
+    layout->addLayout(makeOffsetRow(document_, offsetAllAction_));
+    // Enter presses a focused button, as Space does (only a dialog's buttons do by default).
+    for (QPushButton* button : {clear, suggest, align}) button->setAutoDefault(true);
     // Ctrl+Z after typing an offset or a filter undoes the last edit, as everywhere else; the
     // boxes' own undo of the typing took it.
     passShortcuts(filterEdit_, undoRedoKeys());
@@ -226,6 +239,7 @@ void MainWindow::buildMenus() {
     addCalibrationActions(
         edit, view, document_, timeline_, display_,
         [this](const QString& message, const QString& detail) { showError(message, detail); });
+    buildPlaybackMenu();
     buildHelpMenu();
 }
 
@@ -251,7 +265,7 @@ void MainWindow::buildFileMenu() {
     // Not QKeySequence::SaveAs: it has no key on Windows, nor on X11 without a desktop theme.
     file->addAction(tr("Save Project &As…"), QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_S), this,
                     &MainWindow::chooseSaveProjectAs);
-    file->addAction(tr("Save Co&rrespondence As…"), this, &MainWindow::chooseSaveCorrespondence);
+    file->addAction(tr("Save Correspo&ndence As…"), this, &MainWindow::chooseSaveCorrespondence);
     file->addSeparator();
     file->addAction(tr("&Export…"), QKeySequence(Qt::CTRL | Qt::Key_E), this,
                     &MainWindow::showExportDialog)
@@ -281,6 +295,12 @@ QMenu* MainWindow::buildEditMenu() {
     edit->addAction(redo);
     edit->addSeparator();
     edit->addAction(mappingAction_);
+    // Mapping without the pointer: the vertex's number, as the Vertex column shows it.
+    QAction* toVertex = edit->addAction(tr("Map Selected Marker to &Vertex…"),
+                                        QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_M), this,
+                                        &MainWindow::askVertexForSelected);
+    toVertex->setObjectName("actionMapToVertex");
+    enableWhile(toVertex, document_, hasMarkersToMap);
     QAction* suggest = edit->addAction(tr("&Suggest Rest"), this, &MainWindow::suggestMappings);
     suggest->setObjectName("actionSuggestRest");
     QAction* align = edit->addAction(tr("&Align Take to Mesh"), this, &MainWindow::alignTake);
@@ -290,8 +310,9 @@ QMenu* MainWindow::buildEditMenu() {
     });
     clear->setObjectName("actionClearMapping");
     QAction* clearAll =
-        edit->addAction(tr("Clear &All Mappings"), document_, &Document::clearAllMappings);
+        edit->addAction(tr("Clear A&ll Mappings"), document_, &Document::clearAllMappings);
     clearAll->setObjectName("actionClearAllMappings");
+    edit->addAction(offsetAllAction_);
     enableWhile(suggest, document_, hasMeshAndTake);
     enableWhile(align, document_, hasMeshAndTake);
     enableWhile(clear, document_, hasSelectedMapping);
@@ -329,6 +350,43 @@ QMenu* MainWindow::buildViewMenu() {
     return view;
 }
 
+void MainWindow::buildPlaybackMenu() {
+    // The timeline's Loop and speed box, with keys: before, only the pointer reached them.
+    QMenu* playback = menuBar()->addMenu(tr("&Playback"));
+    QAction* loop = playback->addAction(tr("&Loop"));
+    loop->setObjectName("actionLoop");
+    loop->setCheckable(true);
+    loop->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_L));
+    loop->setChecked(timeline_->loops());
+    connect(loop, &QAction::toggled, timeline_, &Timeline::setLoop);
+    connect(timeline_, &Timeline::loopChanged, loop, &QAction::setChecked);
+    QMenu* speedMenu = playback->addMenu(tr("&Speed"));
+    auto* speeds = new QActionGroup(speedMenu);
+    const std::tuple<Timeline::Speed, QString, const char*> choices[] = {
+        {Timeline::Speed::Realtime, tr("&Realtime"), "speedRealtime"},
+        {Timeline::Speed::Half, tr("&Half Speed"), "speedHalf"},
+        {Timeline::Speed::Quarter, tr("&Quarter Speed"), "speedQuarter"},
+        {Timeline::Speed::EveryFrame, tr("&Every Frame"), "speedEveryFrame"}};
+    int key = Qt::Key_1;
+    for (const auto& [speed, text, name] : choices) {
+        QAction* action = speedMenu->addAction(text);
+        action->setObjectName(name);
+        action->setCheckable(true);
+        action->setData(int(speed));
+        action->setShortcut(QKeySequence(Qt::CTRL | Qt::Key(key++)));
+        speeds->addAction(action);
+        connect(action, &QAction::triggered, timeline_,
+                [this, speed = speed] { timeline_->setSpeed(speed); });
+    }
+    // The speed in use is checked, however it was set (the box, a project).
+    const auto showSpeed = [this, speeds] {
+        for (QAction* action : speeds->actions())
+            action->setChecked(action->data().toInt() == int(timeline_->speed()));
+    };
+    connect(timeline_, &Timeline::speedChanged, speeds, showSpeed);
+    showSpeed();
+}
+
 void MainWindow::buildHelpMenu() {
     QMenu* help = menuBar()->addMenu(tr("&Help"));
     help->addAction(
@@ -356,12 +414,17 @@ void MainWindow::buildHelpMenu() {
                                "<tr><td>Shift+← →</td><td>10 frames back / on</td></tr>"
                                "<tr><td>Home / End</td><td>first / last frame</td></tr>"
                                "<tr><td>frame box, Enter</td><td>go to the frame typed</td></tr>"
+                               "<tr><td>Ctrl+L</td><td>loop on / off</td></tr>"
+                               "<tr><td>Ctrl+1 … Ctrl+4</td><td>realtime, ½, ¼ speed, every "
+                               "frame</td></tr>"
                                "<tr><td>Ctrl+O</td><td>open a project</td></tr>"
                                "<tr><td>Ctrl+M / Ctrl+T</td><td>open a mesh / a take</td></tr>"
                                "<tr><td>Ctrl+S / Ctrl+Shift+S</td><td>save / save as</td></tr>"
                                "<tr><td>Ctrl+E</td><td>export</td></tr>"
                                "<tr><td>Ctrl+Z / Ctrl+Shift+Z</td><td>undo / redo</td></tr>"
                                "<tr><td>Ctrl+R</td><td>reset the camera</td></tr>"
+                               "<tr><td>Ctrl+Shift+M</td><td>map the selected marker to a "
+                               "vertex typed</td></tr>"
                                "<tr><td>double-click a marker in the list</td><td>bring the "
                                "camera to it</td></tr>"
                                "<tr><td>mouse</td><td>left drag turns, right drag or wheel zooms, "
@@ -439,6 +502,16 @@ void MainWindow::buildShortcuts() {
     add(QKeySequence(Qt::SHIFT | Qt::Key_Left), [this] { timeline_->stepBackward(10); });
     add(QKeySequence(Qt::Key_Home), [this] { timeline_->goToFirst(); });
     add(QKeySequence(Qt::Key_End), [this] { timeline_->goToLast(); });
+    // A focused control keeps those keys it uses itself: Space presses a button or opens a
+    // combo's list, ← and → move the marker table's cell cursor. Line edits and spin boxes keep
+    // their editing keys without help; the frame box hands Space on (passShortcuts). The table's
+    // Home and End (first and last cell of a row, which a row selection does not show) stay the
+    // first and last frame; Ctrl+Home and Ctrl+End are its first and last marker.
+    const QKeySequence space(Qt::Key_Space);
+    for (auto* button : findChildren<QAbstractButton*>()) keepKeys(button, {space});
+    for (auto* combo : findChildren<QComboBox*>())
+        keepKeys(combo, {space, QKeySequence(Qt::Key_Home), QKeySequence(Qt::Key_End)});
+    keepKeys(markerTable_, {QKeySequence(Qt::Key_Left), QKeySequence(Qt::Key_Right)});
 }
 
 void MainWindow::connectDocument() {
@@ -618,10 +691,7 @@ void MainWindow::onVertexPicked(int vertex) {
         return;
     }
     if (selected >= 0) {
-        if (document_->assign(selected, vertex))
-            statusBar()->showMessage(
-                tr("%1 mapped to vertex %2").arg(document_->markerLabel(selected)).arg(vertex),
-                5000);
+        mapSelectedMarker(vertex);
         return;
     }
     const int onVertex = document_->markerForVertex(vertex);
@@ -635,6 +705,33 @@ void MainWindow::onVertexPicked(int vertex) {
                   .arg(vertex)
             : tr("Vertex %1 — Edit → Map Markers maps a marker by clicking").arg(vertex),
         8000);
+}
+
+void MainWindow::mapSelectedMarker(int vertex) {
+    const int selected = document_->selectedMarker();
+    if (document_->assign(selected, vertex))
+        statusBar()->showMessage(
+            tr("%1 mapped to vertex %2").arg(document_->markerLabel(selected)).arg(vertex), 5000);
+}
+
+void MainWindow::askVertexForSelected() {
+    const int selected = document_->selectedMarker();
+    if (selected < 0) {
+        statusBar()->showMessage(tr("Select a marker in the list first, then map it to a vertex"),
+                                 8000);
+        return;
+    }
+    // Only the mesh's vertices can be typed: the box stops at its last.
+    const int last = document_->mesh().vertexCount() - 1;
+    const int current = document_->mappedVertex(selected);
+    bool ok = false;
+    const int vertex = QInputDialog::getInt(
+        this, tr("Map to Vertex"),
+        tr("The vertex of %1 that carries %2 (0 to %3):")
+            .arg(QFileInfo(document_->meshPath()).fileName(), document_->markerLabel(selected))
+            .arg(last),
+        std::max(current, 0), 0, last, 1, &ok);
+    if (ok) mapSelectedMarker(vertex);
 }
 
 struct MainWindow::SuggestJob {

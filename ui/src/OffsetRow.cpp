@@ -1,5 +1,6 @@
 #include "OffsetRow.h"
 
+#include <QAction>
 #include <QDoubleSpinBox>
 #include <QHBoxLayout>
 #include <QLabel>
@@ -10,7 +11,7 @@
 
 namespace boneless::ui {
 
-QLayout* makeOffsetRow(Document* document) {
+QLayout* makeOffsetRow(Document* document, QAction* allMapped) {
     auto* row = new QHBoxLayout;
     auto* spin = new QDoubleSpinBox;
     spin->setObjectName("offsetSpin");
@@ -22,6 +23,7 @@ QLayout* makeOffsetRow(Document* document) {
     auto* all = new QPushButton(QObject::tr("All mapped"));
     all->setObjectName("offsetAll");
     all->setToolTip(QObject::tr("Give every mapped marker this offset off the skin"));
+    all->setAutoDefault(true);  // Enter presses it when focused, as Space does
     auto* label = new QLabel(QObject::tr("Offset off the skin"));
     label->setBuddy(spin);  // the spin box's name, for a screen reader
     row->addWidget(label);
@@ -34,7 +36,7 @@ QLayout* makeOffsetRow(Document* document) {
         const QSignalBlocker quiet(spin);
         spin->setEnabled(mapped && !document->editsHeld());
         if (mapped) spin->setValue(document->markerOffsetMm(marker));
-        all->setEnabled(document->mappedCount() > 0 && !document->editsHeld());
+        allMapped->setEnabled(document->mappedCount() > 0 && !document->editsHeld());
     };
     QObject::connect(document, &Document::selectionChanged, spin, show);
     QObject::connect(document, &Document::correspondenceChanged, spin, show);
@@ -43,13 +45,16 @@ QLayout* makeOffsetRow(Document* document) {
         if (document->selectedMarker() >= 0)
             document->setOffsetMm({document->selectedMarker()}, mm);
     });
-    QObject::connect(all, &QPushButton::clicked, document, [=] {
+    QObject::connect(allMapped, &QAction::enabledChanged, all, &QWidget::setEnabled);
+    QObject::connect(all, &QPushButton::clicked, allMapped, &QAction::trigger);
+    QObject::connect(allMapped, &QAction::triggered, document, [=] {
         std::vector<int> mapped;
         for (int m = 0; m < document->markerCount(); ++m)
             if (document->mappedVertex(m) >= 0) mapped.push_back(m);
         document->setOffsetMm(mapped, spin->value());
     });
     show();
+    all->setEnabled(allMapped->isEnabled());
     return row;
 }
 

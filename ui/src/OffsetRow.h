@@ -1,5 +1,6 @@
 #pragma once
 
+class QAction;
 class QLayout;
 
 namespace boneless::ui {
@@ -10,7 +11,7 @@ class Document;
 // correspondence file's offset_mm), editable when it is mapped, and "All mapped" to give every
 // mapped marker that value. Markers sit 5–20 mm off the skin; without it every map made in the
 // app said 0 and the solve pulled the skin out to the markers. Object names: offsetSpin,
-// offsetAll.
-QLayout* makeOffsetRow(Document* document);
+// offsetAll. `allMapped` is the button's menu twin: the row enables it and does what it says.
+QLayout* makeOffsetRow(Document* document, QAction* allMapped);
 
 }  // namespace boneless::ui

@@ -16,4 +16,9 @@ QList<QKeySequence> undoRedoKeys();
 // step frames again.
 void passShortcuts(QWidget* box, const QList<QKeySequence>& keys);
 
+// The opposite: `keys` go to `widget` while it has the focus, not to the window's shortcuts (a
+// focused button is pressed by Space, a combo opens its list, the marker table goes to its last
+// row on End). From anywhere else they stay the window's.
+void keepKeys(QWidget* widget, const QList<QKeySequence>& keys);
+
 }  // namespace boneless::ui

@@ -39,11 +39,11 @@ TimelineWidget::TimelineWidget(Timeline* timeline, QWidget* parent)
     loop_ = new QToolButton(this);
     loop_->setText(tr("Loop"));
     loop_->setCheckable(true);
-    loop_->setFocusPolicy(Qt::NoFocus);
     loop_->setChecked(timeline->loops());
 
     slider_ = new QSlider(Qt::Horizontal, this);
     slider_->setObjectName("timelineSlider");
+    // Its keys are the window's (the arrows, Home, End step the playhead from anywhere).
     slider_->setFocusPolicy(Qt::NoFocus);
     frameBox_ = new QSpinBox(this);
     frameBox_->setObjectName("frameBox");
@@ -54,8 +54,8 @@ TimelineWidget::TimelineWidget(Timeline* timeline, QWidget* parent)
     passShortcuts(frameBox_, QList<QKeySequence>{QKeySequence(Qt::Key_Space)} + undoRedoKeys());
     countLabel_ = new QLabel(this);
 
+    // Loop and the speed box are Tab stops (and in Playback, with keys): they were not.
     speed_ = new QComboBox(this);
-    speed_->setFocusPolicy(Qt::NoFocus);
     speed_->addItem(tr("Realtime"), int(Timeline::Speed::Realtime));
     speed_->addItem(tr("½ speed"), int(Timeline::Speed::Half));
     speed_->addItem(tr("¼ speed"), int(Timeline::Speed::Quarter));
@@ -87,6 +87,9 @@ TimelineWidget::TimelineWidget(Timeline* timeline, QWidget* parent)
     layout->addWidget(countLabel_);
     layout->addWidget(loop_);
     layout->addWidget(speed_);
+    // Tab in the order they read (Loop was made first).
+    setTabOrder(frameBox_, loop_);
+    setTabOrder(loop_, speed_);
 
     connect(first_, &QToolButton::clicked, timeline, &Timeline::goToFirst);
     connect(previous_, &QToolButton::clicked, timeline, [timeline] { timeline->stepBackward(); });

@@ -149,6 +149,7 @@ class MainWindow : public QMainWindow {
     void buildFileMenu();
     QMenu* buildEditMenu();  // returned for the calibration actions
     QMenu* buildViewMenu();
+    void buildPlaybackMenu();
     void buildHelpMenu();
     void buildMarkerDock();
     void buildStatusBar();
@@ -164,6 +165,10 @@ class MainWindow : public QMainWindow {
     void setUnsavedEdits(bool edited);
     void syncTableSelection(int marker);
     void onVertexPicked(int vertex);
+    // Maps the selected marker to `vertex`, one undoable edit, as a click in Map Markers does.
+    void mapSelectedMarker(int vertex);
+    // Edit → Map Selected Marker to Vertex: asks for the vertex's number, within the mesh's.
+    void askVertexForSelected();
     void onTakeLoaded();
     void startUntitled();
     // One plain sentence for a file that would not open ("garbage.c3d is not a C3D file.").
@@ -224,6 +229,7 @@ class MainWindow : public QMainWindow {
     QAction* heatMapAction_ = nullptr;
     QAction* mappingAction_ = nullptr;
     QAction* followAction_ = nullptr;
+    QAction* offsetAllAction_ = nullptr;
 
     QString projectPath_;
     bool demo_ = false;
