@@ -142,10 +142,10 @@ std::string takeUnitsName(bool keys) {
     return keys ? "\"take_units\"" : "--take-units";
 }
 
-void applyTakeUnits(C3dTake& take, const nlohmann::json& options, bool keys) {
+void applyTakeUnits(C3dTake& take, const nlohmann::json& options) {
     TakeSolveOptions o;
     fromJson(options, o, "options");
-    if (o.takeUnits != "file") setTakeUnits(take, o.takeUnits, takeUnitsName(keys));
+    setTakeUnits(take, o.takeUnits, takeUnitsName(false));  // "file" leaves a take as read
 }
 
 std::string unitsText(const C3dTake& take) {
@@ -377,8 +377,7 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
     C3dFrameReader take(job.c3d);
     // As a manifest names it in batch, which gives takeNotes.
     const bool keys = takeNotes != nullptr;
-    if (const std::string& units = request.options.takeUnits; units != "file")
-        take.setUnits(units, takeUnitsName(keys));
+    take.setUnits(request.options.takeUnits, takeUnitsName(keys));
     refuseDoubtfulUnits(take.take(), "nothing was solved", keys);
     // Said even when quiet: a truncated take solves the frames it holds, and without this only
     // `inspect` would tell.

@@ -46,9 +46,9 @@ void checkMapFitsMesh(const boneless::Correspondence& map, const boneless::TriMe
 void refuseDoubtfulUnits(const boneless::C3dTake& take, const std::string& outcome,
                          bool keys = false);
 
-// setTakeUnits with the take_units of `options` (flags or keys given, as TakeJob::options), named
-// as --take-units or, with `keys`, "take_units"; nothing for "file".
-void applyTakeUnits(boneless::C3dTake& take, const nlohmann::json& options, bool keys = false);
+// setTakeUnits with the take_units of `options` (the flags given, as TakeJob::options), named as
+// --take-units; nothing for "file".
+void applyTakeUnits(boneless::C3dTake& take, const nlohmann::json& options);
 // How the option is named: --take-units, or with `keys` "take_units" (a manifest's key).
 std::string takeUnitsName(bool keys);
 // The take's units as messages give them: "mm", or "m (--take-units; the file says mm)" when

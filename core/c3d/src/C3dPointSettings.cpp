@@ -132,8 +132,8 @@ void setTakeUnits(C3dTake& take, const std::string& units, const std::string& fr
     const bool file = units == "file";
     if (file && take.unitsFrom.empty()) return;  // read in them already, its warnings in order
     const std::optional<double> mm = file ? c3dUnitToMm(c3dFileUnits(take)) : c3dUnitToMm(units);
-    if (!file && (!mm || std::find(c3dUnitSymbols().begin(), c3dUnitSymbols().end(), units) ==
-                             c3dUnitSymbols().end()))
+    if (!file && std::find(c3dUnitSymbols().begin(), c3dUnitSymbols().end(), units) ==
+                     c3dUnitSymbols().end())
         throw C3dError(take.file, C3dError::kNoOffset,
                        "units \"" + units + "\" are none of file, " + joined(c3dUnitSymbols()));
     auto& warnings = take.warnings;
