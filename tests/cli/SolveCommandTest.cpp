@@ -1,5 +1,8 @@
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/file.h>
 #include <tiny_gltf.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -977,4 +980,30 @@ TEST(SolveCommand, ObjFramesNameTheirInputsInFullWhicheverFolderSolveRanIn) {
     EXPECT_EQ(firstLine(demo / "x" / "walker_calibrated_rest.obj")
                   .rfind("# Boneless: " + (demo / "walker.obj").string() + " fitted to " + take, 0),
               0u);
+}
+
+// Two runs solving into one folder at once (two batch runs, a shard started twice) interleaved
+// their frames under the sidecar of whichever finished last, which said complete: a later run
+// skipped the mixture. A run that finds the take's files being written leaves them.
+TEST(SolveCommand, ARunIntoFilesAnotherRunIsWritingIsRefusedNamingThem) {
+    const fs::path demo = makeDemo(3), out = demo / "out";
+    fs::create_directories(out);
+    // What a run solving into out/walker.* holds while it writes, played by the test.
+    const int held = ::open((out / ".walker.lock").c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    ASSERT_GE(held, 0);
+    ASSERT_EQ(::flock(held, LOCK_EX | LOCK_NB), 0);
+    CliResult r = runCli(solveArgs(demo, out) + " --quiet");
+    ::close(held);
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find((out / "walker.json").string() +
+                         ": another run is solving into this take's files now; nothing was "
+                         "written"),
+              std::string::npos)
+        << r.out;
+    EXPECT_FALSE(fs::exists(out / "walker_0000.obj"));
+    // Once that run has let go the take solves, and leaves no lock behind.
+    r = runCli(solveArgs(demo, out) + " --quiet");
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_TRUE(fs::exists(out / "walker_0002.obj"));
+    EXPECT_FALSE(fs::exists(out / ".walker.lock"));
 }

@@ -1,8 +1,12 @@
 #include "boneless/TakeExport.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <sys/stat.h>
+#include <unistd.h>
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
@@ -599,6 +603,54 @@ void checkRequest(const TriMesh& mesh, const Correspondence& map, const ExportRe
                   &mesh);
 }
 
+// Held from before the first output is touched until the sidecar is written: two runs solving
+// into one folder's files at once (two batch runs, a shard started twice) interleaved their frames
+// under the sidecar of whichever finished last, which then said complete. An advisory lock on a
+// hidden file beside the sidecar: the kernel lets go when its holder dies, whatever killed it.
+class OutputLock {
+  public:
+    explicit OutputLock(const ExportRequest& request) {
+        const std::string stem = exportStem(request);
+        path_ = (fs::path(request.outDir) / ("." + stem + ".lock")).string();
+        for (;;) {
+            fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+            // A folder that takes no new file fails as the outputs are written, naming them.
+            if (fd_ < 0) return;
+            if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+                const int error = errno;
+                ::close(fd_);
+                fd_ = -1;
+                if (error == EWOULDBLOCK)
+                    throw Error((fs::path(request.outDir) / (stem + ".json")).string() +
+                                ": another run is solving into this take's files now; nothing "
+                                "was written: let it finish (a run after it skips or solves the "
+                                "take as its sidecar says), or solve into another folder");
+                return;  // a file system without locks: solved as before
+            }
+            // The holder before us removes the file as it lets go: a lock on that removed file
+            // would exclude no one, so lock the file of that name now.
+            struct stat held = {};
+            struct stat named = {};
+            if (::fstat(fd_, &held) == 0 && ::stat(path_.c_str(), &named) == 0 &&
+                held.st_dev == named.st_dev && held.st_ino == named.st_ino)
+                return;
+            ::close(fd_);
+        }
+    }
+    ~OutputLock() {
+        if (fd_ < 0) return;
+        // While still held: a run that opens it now finds it locked, or once we let go, removed.
+        ::unlink(path_.c_str());
+        ::close(fd_);
+    }
+    OutputLock(const OutputLock&) = delete;
+    OutputLock& operator=(const OutputLock&) = delete;
+
+  private:
+    std::string path_;
+    int fd_ = -1;
+};
+
 // take: what the sidecar says of the take (its samples are not read).
 ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake& take,
                           const Correspondence& map, const ExportRequest& request,
@@ -614,6 +666,7 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
     std::error_code ec;
     fs::create_directories(request.outDir, ec);
     if (ec) throw Error(request.outDir + ": cannot create the folder (" + ec.message() + ")");
+    const OutputLock lock(request);
     const std::string stem = exportStem(request);
     const fs::path out(request.outDir);
     ExportResult result;
