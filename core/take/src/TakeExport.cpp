@@ -671,8 +671,6 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
     const fs::path out(request.outDir);
     ExportResult result;
     result.sidecarPath = (out / (stem + ".json")).string();
-    // While the outputs are being rewritten, no earlier sidecar may say they are complete.
-    fs::remove(result.sidecarPath, ec);
     // Taken before solving: a map corrected while the take solves is not the one solved.
     json fingerprints = {
         {"mesh", fileFingerprint(request.meshPath, true)},
@@ -685,6 +683,19 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
         if (mesh.sourceFaces)
             for (const std::string& file : materialFiles(*mesh.sourceFaces))
                 materials[validUtf8(file)] = fileFingerprint(file, true);
+    }
+    // While the outputs are being rewritten no earlier sidecar may say they are complete: one
+    // saying "complete": false stands in until the last. Removed instead, a run that then failed
+    // (a full disk) left the earlier export's cache named by no sidecar, and every later run
+    // refused it as no Boneless export's.
+    {
+        ExportResult started;
+        started.first = request.first;
+        started.cancelled = true;
+        json placeholder = sidecarJson(take, request, solver.calibration(), started, fingerprints,
+                                       calibrationJson(request, mesh, solver, ""), json::object());
+        placeholder["vertices"] = mesh.vertexCount();
+        writeFileAtomically(result.sidecarPath, placeholder.dump(2) + "\n");
     }
     FrameOutput output = openFrameOutput(
         request.format, request.outDir, stem, mesh, request.first, take.rate,
