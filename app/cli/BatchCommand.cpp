@@ -573,6 +573,13 @@ void run(const BatchArgs& args) {
         } catch (const TakeJobInterrupted& e) {
             std::printf("interrupted\n");
             underTheLine();  // an earlier run's frames past the stop, named as after a finished one
+            // The last line sums up here too: a log cut by a time limit said nothing of the takes
+            // solved, skipped or failed before the stop.
+            std::printf(
+                "batch: %d of %zu takes in shard %d/%d: %d solved, %d skipped, %d failed, "
+                "1 interrupted, %d not reached\n",
+                mine, jobs.size(), shard, shards, solved, skipped, failed, mine - done);
+            std::fflush(stdout);
             throw;
         } catch (const Error& e) {
             std::printf("FAILED: %s\n", e.what());

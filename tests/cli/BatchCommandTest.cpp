@@ -1035,3 +1035,37 @@ TEST(Batch, ACacheWhosePointCountIsNotTheMeshsIsSolvedAgainNamingBothCounts) {
               std::string::npos)
         << third.out;
 }
+
+// A run stopped by Slurm's time limit (SIGTERM) ended its log with the stopped take's line: the
+// count of takes solved, skipped or failed before it, which a finished run's last line gives, was
+// nowhere.
+TEST(Batch, ARunStoppedPartWayStillEndsWithItsSums) {
+    const fs::path dir = makeLibrary();
+    ASSERT_EQ(runCli("demo --out " + (dir / "long").string() + " --frame-count 3000").exitCode, 0);
+    const json finished = {{"mesh", "walker.obj"},
+                           {"map", "walker.map.json"},
+                           {"c3d", "takes/walk_a.c3d"},
+                           {"out", "out/walk_a"}};
+    ASSERT_EQ(
+        runCli("batch " + writeManifest(dir, "m.json", {{"takes", {finished}}}).string()).exitCode,
+        0);
+    const json manifest = {{"takes",
+                            {finished,
+                             {{"mesh", "walker.obj"},
+                              {"map", "walker.map.json"},
+                              {"c3d", "long/walker.c3d"},
+                              {"format", "mdd"},
+                              {"out", "out/long"}},
+                             {{"mesh", "walker.obj"},
+                              {"map", "walker.map.json"},
+                              {"c3d", "takes/walk_b.c3d"},
+                              {"out", "out/walk_b"}}}}};
+    const CliResult r =
+        runShell("timeout --preserve-status -s TERM 3 " + std::string(BONELESS_CLI) + " batch " +
+                 writeManifest(dir, "m.json", manifest).string() + " 2>&1");
+    EXPECT_EQ(r.exitCode, 143) << r.out;
+    EXPECT_NE(r.out.find("batch: 3 of 3 takes in shard 1/1: 0 solved, 1 skipped, 0 failed, 1 "
+                         "interrupted, 1 not reached\n"),
+              std::string::npos)
+        << r.out;
+}
