@@ -502,8 +502,26 @@ Sidecar sidecarState(const TakeJob& job, Fingerprints& known, VertexCounts& mesh
         if (recorded.is_object() && !recorded.contains("mesh_up")) recorded["mesh_up"] = "auto";
         if (recorded.is_object() && !recorded.contains("take_units"))
             recorded["take_units"] = "file";
-        if (!(sameFrames && sameRest && recorded == toJson(options)))
-            why = "its sidecar is from other frames or options";
+        // Each difference named: a library solved again after an edit of its defaults said only
+        // "other frames or options" of every take, which left the user to guess what changed.
+        std::vector<std::string> changed;
+        const auto asRange = [](const json& r) {
+            return r.is_array() && r.size() == 2 ? r[0].dump() + ":" + r[1].dump() : r.dump();
+        };
+        if (!sameFrames)
+            changed.push_back("frames " + asRange(s.at("frame_range")) + ", now " +
+                              std::to_string(range.first) + ":" + std::to_string(end));
+        if (!sameRest) changed.push_back("write_calibrated_rest false, now true");
+        const json asked = toJson(options);
+        for (const auto& [key, value] : asked.items())
+            if (!recorded.contains(key) || recorded.at(key) != value)
+                changed.push_back(key + " " +
+                                  (recorded.contains(key) ? recorded.at(key).dump() : "unset") +
+                                  ", now " + value.dump());
+        for (const auto& [key, value] : recorded.items())
+            if (!asked.contains(key)) changed.push_back(key + " " + value.dump() + ", now unset");
+        if (!changed.empty())
+            why = "its sidecar is from other frames or options (" + joined(changed, "; ") + ")";
         if (why.empty())
             why = damagedOutputs(job, s.at("frame_range"), cachePoints(job, s, meshes));
         if (why.empty()) why = changedInputs(s.value("source_fingerprints", json()), job, known);
