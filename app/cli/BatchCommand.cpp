@@ -537,7 +537,10 @@ Sidecar sidecarState(const TakeJob& job, Fingerprints& known, VertexCounts& mesh
 void run(const BatchArgs& args) {
     const auto [shard, shards] = args.shard.empty() ? std::pair{1, 1} : parseShard(args.shard);
     std::vector<TakeJob> jobs = readManifest(args.manifest);
-    for (TakeJob& job : jobs) job.force = args.force;
+    for (TakeJob& job : jobs) {
+        job.force = args.force;
+        job.replacesOtherTakes = true;  // readManifest refuses two entries into one out
+    }
     int mine = 0, solved = 0, skipped = 0, failed = 0;
     for (std::size_t k = 0; k < jobs.size(); ++k)
         if (static_cast<int>(k % shards) == shard - 1) ++mine;

@@ -1007,3 +1007,31 @@ TEST(SolveCommand, ARunIntoFilesAnotherRunIsWritingIsRefusedNamingThem) {
     EXPECT_TRUE(fs::exists(out / "walker_0002.obj"));
     EXPECT_FALSE(fs::exists(out / ".walker.lock"));
 }
+
+// `for t in takes/*.c3d; do solve --c3d $t --out solved; done` left only the last take's solve:
+// each run replaced the one before, whose sidecar named another take, and said nothing of it.
+TEST(SolveCommand, ASolveOfAnotherTakeInOutIsNotReplacedUnlessForced) {
+    const fs::path demo = makeDemo(3), out = demo / "solved";
+    fs::copy_file(demo / "walker.c3d", demo / "walk_a.c3d");
+    fs::copy_file(demo / "walker.c3d", demo / "walk_b.c3d");
+    const auto solve = [&](const std::string& take) {
+        return runCli("solve --quiet --format pc2 --mesh " + (demo / "walker.obj").string() +
+                      " --map " + (demo / "walker.map.json").string() + " --out " + out.string() +
+                      " --c3d " + (demo / take).string());
+    };
+    ASSERT_EQ(solve("walk_a.c3d").exitCode, 0);
+    CliResult r = solve("walk_b.c3d");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find((out / "walker.json").string() + " is the solve of " +
+                         (demo / "walk_a.c3d").string() + ", another take"),
+              std::string::npos)
+        << r.out;
+    EXPECT_EQ(sidecar(out)["source"]["c3d"], (demo / "walk_a.c3d").string());
+    // The same take again is replaced, as ever; another with --force too.
+    EXPECT_EQ(solve("walk_a.c3d").exitCode, 0);
+    r = runCli("solve --quiet --force --format pc2 --mesh " + (demo / "walker.obj").string() +
+               " --map " + (demo / "walker.map.json").string() + " --out " + out.string() +
+               " --c3d " + (demo / "walk_b.c3d").string());
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_EQ(sidecar(out)["source"]["c3d"], (demo / "walk_b.c3d").string());
+}
