@@ -1035,3 +1035,16 @@ TEST(SolveCommand, ASolveOfAnotherTakeInOutIsNotReplacedUnlessForced) {
     EXPECT_EQ(r.exitCode, 0) << r.out;
     EXPECT_EQ(sidecar(out)["source"]["c3d"], (demo / "walk_b.c3d").string());
 }
+
+// A rest asked for without calibration was refused only once the solver was prepared, after the
+// earlier run's sidecar had gone: its complete solve was then solved again by the next batch run.
+TEST(SolveCommand, ACalibratedRestWithoutCalibrationIsRefusedBeforeTheEarlierSolveIsTouched) {
+    const fs::path demo = makeDemo(3), out = demo / "out";
+    ASSERT_EQ(runCli(solveArgs(demo, out) + " --quiet --format pc2").exitCode, 0);
+    const CliResult r = runCli(solveArgs(demo, out) +
+                               " --quiet --format pc2 --calibrate none --write-calibrated-rest");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("writing the calibrated rest needs calibration"), std::string::npos)
+        << r.out;
+    EXPECT_TRUE(sidecar(out)["complete"].get<bool>());
+}

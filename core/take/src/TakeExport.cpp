@@ -583,6 +583,10 @@ void requireFrameRate(const ExportRequest& request, const C3dTake& take) {
 void checkRequest(const TriMesh& mesh, const Correspondence& map, const ExportRequest& request,
                   const C3dTake& take, int frames) {
     validate(request.options);
+    // Here, before anything is written: refused once the solver was prepared, the earlier run's
+    // complete sidecar had already given way to an incomplete one.
+    if (request.writeCalibratedRest && request.options.calibrate == CalibrateMode::None)
+        throw Error("writing the calibrated rest needs calibration (calibrate: none was given)");
     // The sidecar records take_units: a take read in other units than it says would lie there.
     const std::string& units = request.options.takeUnits;
     if (units == "file" ? !take.unitsFrom.empty() : take.unitsFrom.empty() || take.units != units)
@@ -704,9 +708,6 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
 
     std::string restFile;
     if (request.writeCalibratedRest) {
-        if (request.options.calibrate == CalibrateMode::None)
-            throw Error(
-                "writing the calibrated rest needs calibration (calibrate: none was given)");
         restFile = stem + "_calibrated_rest.obj";
         writeObj((out / restFile).string(), solver.rest().V, mesh.F,
                  "Boneless: " + fullPath(request.meshPath) + " fitted to " +
