@@ -502,8 +502,26 @@ Sidecar sidecarState(const TakeJob& job, Fingerprints& known, VertexCounts& mesh
         if (recorded.is_object() && !recorded.contains("mesh_up")) recorded["mesh_up"] = "auto";
         if (recorded.is_object() && !recorded.contains("take_units"))
             recorded["take_units"] = "file";
-        if (!(sameFrames && sameRest && recorded == toJson(options)))
-            why = "its sidecar is from other frames or options";
+        // Each difference named: a library solved again after an edit of its defaults said only
+        // "other frames or options" of every take, which left the user to guess what changed.
+        std::vector<std::string> changed;
+        const auto asRange = [](const json& r) {
+            return r.is_array() && r.size() == 2 ? r[0].dump() + ":" + r[1].dump() : r.dump();
+        };
+        if (!sameFrames)
+            changed.push_back("frames " + asRange(s.at("frame_range")) + ", now " +
+                              std::to_string(range.first) + ":" + std::to_string(end));
+        if (!sameRest) changed.push_back("write_calibrated_rest false, now true");
+        const json asked = toJson(options);
+        for (const auto& [key, value] : asked.items())
+            if (!recorded.contains(key) || recorded.at(key) != value)
+                changed.push_back(key + " " +
+                                  (recorded.contains(key) ? recorded.at(key).dump() : "unset") +
+                                  ", now " + value.dump());
+        for (const auto& [key, value] : recorded.items())
+            if (!asked.contains(key)) changed.push_back(key + " " + value.dump() + ", now unset");
+        if (!changed.empty())
+            why = "its sidecar is from other frames or options (" + joined(changed, "; ") + ")";
         if (why.empty())
             why = damagedOutputs(job, s.at("frame_range"), cachePoints(job, s, meshes));
         if (why.empty()) why = changedInputs(s.value("source_fingerprints", json()), job, known);
@@ -519,7 +537,10 @@ Sidecar sidecarState(const TakeJob& job, Fingerprints& known, VertexCounts& mesh
 void run(const BatchArgs& args) {
     const auto [shard, shards] = args.shard.empty() ? std::pair{1, 1} : parseShard(args.shard);
     std::vector<TakeJob> jobs = readManifest(args.manifest);
-    for (TakeJob& job : jobs) job.force = args.force;
+    for (TakeJob& job : jobs) {
+        job.force = args.force;
+        job.replacesOtherTakes = true;  // readManifest refuses two entries into one out
+    }
     int mine = 0, solved = 0, skipped = 0, failed = 0;
     for (std::size_t k = 0; k < jobs.size(); ++k)
         if (static_cast<int>(k % shards) == shard - 1) ++mine;
@@ -573,6 +594,13 @@ void run(const BatchArgs& args) {
         } catch (const TakeJobInterrupted& e) {
             std::printf("interrupted\n");
             underTheLine();  // an earlier run's frames past the stop, named as after a finished one
+            // The last line sums up here too: a log cut by a time limit said nothing of the takes
+            // solved, skipped or failed before the stop.
+            std::printf(
+                "batch: %d of %zu takes in shard %d/%d: %d solved, %d skipped, %d failed, "
+                "1 interrupted, %d not reached\n",
+                mine, jobs.size(), shard, shards, solved, skipped, failed, mine - done);
+            std::fflush(stdout);
             throw;
         } catch (const Error& e) {
             std::printf("FAILED: %s\n", e.what());

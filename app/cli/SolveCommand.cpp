@@ -26,8 +26,8 @@ void registerSolveCommand(CLI::App& app) {
     cmd->add_flag("--quiet", args->quiet, "No progress on stderr");
     cmd->add_flag("--force", args->job.force,
                   "Replace files in --out of the outputs' names that no Boneless export wrote "
-                  "(another tool's OBJ frames, the demo's truth/); an earlier export's are "
-                  "replaced without it");
+                  "(another tool's OBJ frames, the demo's truth/), or another take's solve; an "
+                  "earlier export of this take is replaced without it");
     cmd->callback([args] {
         refuseUnusedExactOptions(args->job.options, boneless::TakeSolveOptions{}.solver);
         runTakeJob(args->job, args->quiet);

@@ -342,6 +342,29 @@ void refuseToReplaceOthersFiles(const ExportRequest& request, int end) {
                 (one ? "it" : "them") + ", or another output folder");
 }
 
+// A shell loop solving each take with one --out left only the last take's solve, each run
+// replacing the one before in silence: the folder's sidecar of another take refuses the job.
+void refuseToReplaceAnotherTake(const ExportRequest& request) {
+    namespace fs = std::filesystem;
+    const fs::path sidecar = fs::path(request.outDir) / (exportStem(request) + ".json");
+    std::ifstream in(sidecar);
+    if (!in) return;
+    nlohmann::json s;
+    try {
+        s = nlohmann::json::parse(in);
+    } catch (const nlohmann::json::exception&) {
+        return;  // no Boneless sidecar: refuseToReplaceOthersFiles's to name
+    }
+    if (!s.is_object() || s.value("format", nlohmann::json()) != "boneless-solve") return;
+    const nlohmann::json c3d =
+        s.value("source", nlohmann::json::object()).value("c3d", nlohmann::json());
+    if (!c3d.is_string() || sameFile(c3d.get<std::string>(), request.c3dPath)) return;
+    throw Error(sidecar.string() + " is the solve of " + c3d.get<std::string>() +
+                ", another take, and solving " + request.c3dPath + " into " + request.outDir +
+                " would replace it; nothing was written: give each take its own --out, or --force "
+                "to replace it");
+}
+
 }  // namespace
 
 ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>* meshWarnings,
@@ -435,6 +458,7 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
     if (!job.force)
         refuseToReplaceOthersFiles(
             request, within.end < 0 ? static_cast<int>(take.frameCount()) : within.end);
+    if (!job.force && !job.replacesOtherTakes) refuseToReplaceAnotherTake(request);
 
     // Preparing (the alignment, the calibration, the factorisation) takes seconds on a large
     // mesh: said as it starts and ends, and kept out of the seconds a frame takes.

@@ -22,8 +22,12 @@ struct TakeJob {
     std::string mesh, group, c3d, map, out, format = "obj", frames;
     bool writeCalibratedRest = false;
     // Replace files of the outputs' names in `out` that no Boneless export wrote (the demo's
-    // truth/, another tool's frames): without it, such files refuse the job before it solves.
+    // truth/, another tool's frames), and the solve of another take: without it, such files
+    // refuse the job before it solves.
     bool force = false;
+    // Replace the solve of another take that `out` holds without `force`: batch's, which refuses
+    // two entries into one out before solving and solves an entry whose take changed again.
+    bool replacesOtherTakes = false;
     // The solve options given (core's table, TakeOptionsJson: flags and manifest keys alike);
     // the others keep TakeSolveOptions' defaults.
     nlohmann::json options = nlohmann::json::object();

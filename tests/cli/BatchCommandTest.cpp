@@ -147,7 +147,9 @@ TEST(Batch, ATakeAskedForOtherFramesOrOptionsIsSolvedAgain) {
     writeManifest(dir, "m.json", manifest);
     CliResult r = runCli("batch " + path.string());
     ASSERT_EQ(r.exitCode, 0) << r.out;
-    EXPECT_NE(r.out.find("other frames or options, solving again"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("other frames or options (frames 0:3, now 0:6), solving again"),
+              std::string::npos)
+        << r.out;
     EXPECT_EQ(range(), json::array({0, 6}));
     // The same again is done; another marker weight is not.
     r = runCli("batch " + path.string());
@@ -1034,4 +1036,62 @@ TEST(Batch, ACacheWhosePointCountIsNotTheMeshsIsSolvedAgainNamingBothCounts) {
     EXPECT_NE(third.out.find("3 of 3 takes in shard 1/1: 0 solved, 3 skipped, 0 failed"),
               std::string::npos)
         << third.out;
+}
+
+// A run stopped by Slurm's time limit (SIGTERM) ended its log with the stopped take's line: the
+// count of takes solved, skipped or failed before it, which a finished run's last line gives, was
+// nowhere.
+TEST(Batch, ARunStoppedPartWayStillEndsWithItsSums) {
+    const fs::path dir = makeLibrary();
+    ASSERT_EQ(runCli("demo --out " + (dir / "long").string() + " --frame-count 3000").exitCode, 0);
+    const json finished = {{"mesh", "walker.obj"},
+                           {"map", "walker.map.json"},
+                           {"c3d", "takes/walk_a.c3d"},
+                           {"out", "out/walk_a"}};
+    ASSERT_EQ(
+        runCli("batch " + writeManifest(dir, "m.json", {{"takes", {finished}}}).string()).exitCode,
+        0);
+    const json manifest = {{"takes",
+                            {finished,
+                             {{"mesh", "walker.obj"},
+                              {"map", "walker.map.json"},
+                              {"c3d", "long/walker.c3d"},
+                              {"format", "mdd"},
+                              {"out", "out/long"}},
+                             {{"mesh", "walker.obj"},
+                              {"map", "walker.map.json"},
+                              {"c3d", "takes/walk_b.c3d"},
+                              {"out", "out/walk_b"}}}}};
+    const CliResult r =
+        runShell("timeout --preserve-status -s TERM 3 " + std::string(BONELESS_CLI) + " batch " +
+                 writeManifest(dir, "m.json", manifest).string() + " 2>&1");
+    EXPECT_EQ(r.exitCode, 143) << r.out;
+    EXPECT_NE(r.out.find("batch: 3 of 3 takes in shard 1/1: 0 solved, 1 skipped, 0 failed, 1 "
+                         "interrupted, 1 not reached\n"),
+              std::string::npos)
+        << r.out;
+}
+
+// A library solved again after its defaults were edited said of every take only "its sidecar is
+// from other frames or options": which frames, which option and what it was went unsaid.
+TEST(Batch, ATakeSolvedAgainForOtherFramesOrOptionsSaysWhichAndWhatTheyWere) {
+    const fs::path dir = makeLibrary();
+    json manifest = {{"defaults", {{"format", "pc2"}}},
+                     {"takes",
+                      {{{"mesh", "walker.obj"},
+                        {"map", "walker.map.json"},
+                        {"c3d", "takes/walk_c.c3d"},
+                        {"out", "one"},
+                        {"frames", "0:3"}}}}};
+    const fs::path path = writeManifest(dir, "m.json", manifest);
+    ASSERT_EQ(runCli("batch " + path.string()).exitCode, 0);
+    manifest["takes"][0].erase("frames");
+    manifest["defaults"]["marker_weight"] = 5;
+    writeManifest(dir, "m.json", manifest);
+    const CliResult r = runCli("batch " + path.string());
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("its sidecar is from other frames or options (frames 0:3, now 0:6; "
+                         "marker_weight 100.0, now 5.0), solving again"),
+              std::string::npos)
+        << r.out;
 }

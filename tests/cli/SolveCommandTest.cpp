@@ -1,5 +1,8 @@
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/file.h>
 #include <tiny_gltf.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -977,4 +980,71 @@ TEST(SolveCommand, ObjFramesNameTheirInputsInFullWhicheverFolderSolveRanIn) {
     EXPECT_EQ(firstLine(demo / "x" / "walker_calibrated_rest.obj")
                   .rfind("# Boneless: " + (demo / "walker.obj").string() + " fitted to " + take, 0),
               0u);
+}
+
+// Two runs solving into one folder at once (two batch runs, a shard started twice) interleaved
+// their frames under the sidecar of whichever finished last, which said complete: a later run
+// skipped the mixture. A run that finds the take's files being written leaves them.
+TEST(SolveCommand, ARunIntoFilesAnotherRunIsWritingIsRefusedNamingThem) {
+    const fs::path demo = makeDemo(3), out = demo / "out";
+    fs::create_directories(out);
+    // What a run solving into out/walker.* holds while it writes, played by the test.
+    const int held = ::open((out / ".walker.lock").c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    ASSERT_GE(held, 0);
+    ASSERT_EQ(::flock(held, LOCK_EX | LOCK_NB), 0);
+    CliResult r = runCli(solveArgs(demo, out) + " --quiet");
+    ::close(held);
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find((out / "walker.json").string() +
+                         ": another run is solving into this take's files now; nothing was "
+                         "written"),
+              std::string::npos)
+        << r.out;
+    EXPECT_FALSE(fs::exists(out / "walker_0000.obj"));
+    // Once that run has let go the take solves, and leaves no lock behind.
+    r = runCli(solveArgs(demo, out) + " --quiet");
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_TRUE(fs::exists(out / "walker_0002.obj"));
+    EXPECT_FALSE(fs::exists(out / ".walker.lock"));
+}
+
+// `for t in takes/*.c3d; do solve --c3d $t --out solved; done` left only the last take's solve:
+// each run replaced the one before, whose sidecar named another take, and said nothing of it.
+TEST(SolveCommand, ASolveOfAnotherTakeInOutIsNotReplacedUnlessForced) {
+    const fs::path demo = makeDemo(3), out = demo / "solved";
+    fs::copy_file(demo / "walker.c3d", demo / "walk_a.c3d");
+    fs::copy_file(demo / "walker.c3d", demo / "walk_b.c3d");
+    const auto solve = [&](const std::string& take) {
+        return runCli("solve --quiet --format pc2 --mesh " + (demo / "walker.obj").string() +
+                      " --map " + (demo / "walker.map.json").string() + " --out " + out.string() +
+                      " --c3d " + (demo / take).string());
+    };
+    ASSERT_EQ(solve("walk_a.c3d").exitCode, 0);
+    CliResult r = solve("walk_b.c3d");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find((out / "walker.json").string() + " is the solve of " +
+                         (demo / "walk_a.c3d").string() + ", another take"),
+              std::string::npos)
+        << r.out;
+    EXPECT_EQ(sidecar(out)["source"]["c3d"], (demo / "walk_a.c3d").string());
+    // The same take again is replaced, as ever; another with --force too.
+    EXPECT_EQ(solve("walk_a.c3d").exitCode, 0);
+    r = runCli("solve --quiet --force --format pc2 --mesh " + (demo / "walker.obj").string() +
+               " --map " + (demo / "walker.map.json").string() + " --out " + out.string() +
+               " --c3d " + (demo / "walk_b.c3d").string());
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_EQ(sidecar(out)["source"]["c3d"], (demo / "walk_b.c3d").string());
+}
+
+// A rest asked for without calibration was refused only once the solver was prepared, after the
+// earlier run's sidecar had gone: its complete solve was then solved again by the next batch run.
+TEST(SolveCommand, ACalibratedRestWithoutCalibrationIsRefusedBeforeTheEarlierSolveIsTouched) {
+    const fs::path demo = makeDemo(3), out = demo / "out";
+    ASSERT_EQ(runCli(solveArgs(demo, out) + " --quiet --format pc2").exitCode, 0);
+    const CliResult r = runCli(solveArgs(demo, out) +
+                               " --quiet --format pc2 --calibrate none --write-calibrated-rest");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("writing the calibrated rest needs calibration"), std::string::npos)
+        << r.out;
+    EXPECT_TRUE(sidecar(out)["complete"].get<bool>());
 }

@@ -1,8 +1,12 @@
 #include "boneless/TakeExport.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <sys/stat.h>
+#include <unistd.h>
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
@@ -579,6 +583,10 @@ void requireFrameRate(const ExportRequest& request, const C3dTake& take) {
 void checkRequest(const TriMesh& mesh, const Correspondence& map, const ExportRequest& request,
                   const C3dTake& take, int frames) {
     validate(request.options);
+    // Here, before anything is written: refused once the solver was prepared, the earlier run's
+    // complete sidecar had already given way to an incomplete one.
+    if (request.writeCalibratedRest && request.options.calibrate == CalibrateMode::None)
+        throw Error("writing the calibrated rest needs calibration (calibrate: none was given)");
     // The sidecar records take_units: a take read in other units than it says would lie there.
     const std::string& units = request.options.takeUnits;
     if (units == "file" ? !take.unitsFrom.empty() : take.unitsFrom.empty() || take.units != units)
@@ -599,6 +607,54 @@ void checkRequest(const TriMesh& mesh, const Correspondence& map, const ExportRe
                   &mesh);
 }
 
+// Held from before the first output is touched until the sidecar is written: two runs solving
+// into one folder's files at once (two batch runs, a shard started twice) interleaved their frames
+// under the sidecar of whichever finished last, which then said complete. An advisory lock on a
+// hidden file beside the sidecar: the kernel lets go when its holder dies, whatever killed it.
+class OutputLock {
+  public:
+    explicit OutputLock(const ExportRequest& request) {
+        const std::string stem = exportStem(request);
+        path_ = (fs::path(request.outDir) / ("." + stem + ".lock")).string();
+        for (;;) {
+            fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+            // A folder that takes no new file fails as the outputs are written, naming them.
+            if (fd_ < 0) return;
+            if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+                const int error = errno;
+                ::close(fd_);
+                fd_ = -1;
+                if (error == EWOULDBLOCK)
+                    throw Error((fs::path(request.outDir) / (stem + ".json")).string() +
+                                ": another run is solving into this take's files now; nothing "
+                                "was written: let it finish (a run after it skips or solves the "
+                                "take as its sidecar says), or solve into another folder");
+                return;  // a file system without locks: solved as before
+            }
+            // The holder before us removes the file as it lets go: a lock on that removed file
+            // would exclude no one, so lock the file of that name now.
+            struct stat held = {};
+            struct stat named = {};
+            if (::fstat(fd_, &held) == 0 && ::stat(path_.c_str(), &named) == 0 &&
+                held.st_dev == named.st_dev && held.st_ino == named.st_ino)
+                return;
+            ::close(fd_);
+        }
+    }
+    ~OutputLock() {
+        if (fd_ < 0) return;
+        // While still held: a run that opens it now finds it locked, or once we let go, removed.
+        ::unlink(path_.c_str());
+        ::close(fd_);
+    }
+    OutputLock(const OutputLock&) = delete;
+    OutputLock& operator=(const OutputLock&) = delete;
+
+  private:
+    std::string path_;
+    int fd_ = -1;
+};
+
 // take: what the sidecar says of the take (its samples are not read).
 ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake& take,
                           const Correspondence& map, const ExportRequest& request,
@@ -614,12 +670,11 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
     std::error_code ec;
     fs::create_directories(request.outDir, ec);
     if (ec) throw Error(request.outDir + ": cannot create the folder (" + ec.message() + ")");
+    const OutputLock lock(request);
     const std::string stem = exportStem(request);
     const fs::path out(request.outDir);
     ExportResult result;
     result.sidecarPath = (out / (stem + ".json")).string();
-    // While the outputs are being rewritten, no earlier sidecar may say they are complete.
-    fs::remove(result.sidecarPath, ec);
     // Taken before solving: a map corrected while the take solves is not the one solved.
     json fingerprints = {
         {"mesh", fileFingerprint(request.meshPath, true)},
@@ -633,6 +688,19 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
             for (const std::string& file : materialFiles(*mesh.sourceFaces))
                 materials[validUtf8(file)] = fileFingerprint(file, true);
     }
+    // While the outputs are being rewritten no earlier sidecar may say they are complete: one
+    // saying "complete": false stands in until the last. Removed instead, a run that then failed
+    // (a full disk) left the earlier export's cache named by no sidecar, and every later run
+    // refused it as no Boneless export's.
+    {
+        ExportResult started;
+        started.first = request.first;
+        started.cancelled = true;
+        json placeholder = sidecarJson(take, request, solver.calibration(), started, fingerprints,
+                                       calibrationJson(request, mesh, solver, ""), json::object());
+        placeholder["vertices"] = mesh.vertexCount();
+        writeFileAtomically(result.sidecarPath, placeholder.dump(2) + "\n");
+    }
     FrameOutput output = openFrameOutput(
         request.format, request.outDir, stem, mesh, request.first, take.rate,
         "Boneless: " + fullPath(request.c3dPath),
@@ -640,9 +708,6 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
 
     std::string restFile;
     if (request.writeCalibratedRest) {
-        if (request.options.calibrate == CalibrateMode::None)
-            throw Error(
-                "writing the calibrated rest needs calibration (calibrate: none was given)");
         restFile = stem + "_calibrated_rest.obj";
         writeObj((out / restFile).string(), solver.rest().V, mesh.F,
                  "Boneless: " + fullPath(request.meshPath) + " fitted to " +

@@ -1,5 +1,6 @@
 // exportTake's sidecar: what was solved, traceable afterwards.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -107,4 +108,34 @@ TEST(TakeExport, AShortTakeIsSolvedByOneWorkerAndALongerOneByOnePerCore) {
     };
     EXPECT_EQ(workersFor(2), 1);
     EXPECT_EQ(workersFor(24), solverThreadCount());
+}
+
+// A run solving a take again removed the earlier sidecar as it began: when it then failed (a full
+// disk), the earlier export's cache was named by no sidecar, and every later run refused it as no
+// Boneless export's until --force. A sidecar saying "complete": false stands in while it runs.
+TEST(TakeExport, ARunThatFailsPartWayLeavesTheEarlierCacheTheToolsOwn) {
+    const DemoFiles files = writeDemoFiles(freshTestDir("export-fails"), 3, 10.0, false);
+    const TriMesh mesh = readMesh(files.mesh).mesh;
+    const C3dTake take = readC3d(files.take);
+    const Correspondence map = Correspondence::read(files.map);
+    ExportRequest request;
+    request.meshPath = files.mesh;
+    request.c3dPath = files.take;
+    request.mapPath = files.map;
+    request.outDir = freshTestDir("export-fails-out");
+    request.format = ExportFormat::Pc2;
+    exportTake(mesh, take, map, request);
+    const std::filesystem::path out(request.outDir);
+    const std::string cache = (out / (exportStem(request) + ".pc2")).string();
+    // The cache's temporary cannot be made, as on a full disk: a folder has its name.
+    const std::string temporary = cache + ".tmp" + std::to_string(::getpid());
+    ASSERT_TRUE(std::filesystem::create_directory(temporary));
+    EXPECT_THROW(exportTake(mesh, take, map, request), Error);
+    std::error_code ec;
+    std::filesystem::remove(temporary, ec);
+    ASSERT_TRUE(std::filesystem::exists(cache));
+    EXPECT_EQ(filesNoExportWrote(request, 3), std::vector<std::string>{});
+    const std::filesystem::path sidecar = out / (exportStem(request) + ".json");
+    ASSERT_TRUE(std::filesystem::exists(sidecar));
+    EXPECT_FALSE(json::parse(std::ifstream(sidecar))["complete"].get<bool>());
 }
