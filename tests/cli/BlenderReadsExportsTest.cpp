@@ -118,3 +118,27 @@ TEST(BlenderReads, TheGlbWithTheObjsMaterialAndItsTexture) {
     EXPECT_EQ(obj.exitCode, 0) << obj.out;
     EXPECT_NE(obj.out.find("roughness 0.50, normal map 0.50"), std::string::npos) << obj.out;
 }
+
+// OBJ frames of a mesh in a folder named with a space name a copy of its library beside them
+// (ObjFrameMaterials): Blender finds the material and its texture through it.
+TEST(BlenderReads, ObjFramesOfAMeshInAFolderWithASpaceWithTheirMaterialAndTexture) {
+    if (!haveBlender()) GTEST_SKIP() << "blender is not installed (scripts/install-deps.sh)";
+    const fs::path dir = freshTestDir("blender-obj-material");
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frame-count 3").exitCode, 0);
+    const fs::path src = dir / "src dir";
+    fs::create_directories(src);
+    fs::rename(dir / "walker.obj", src / "walker.obj");
+    addTextureCoordinatesAndMaterial((src / "walker.obj").string(), "walker.mtl", "skin");
+    std::ofstream(src / "walker.mtl") << "newmtl skin\nKd 0.8 0.6 0.5\nmap_Kd skin.png\n";
+    std::ofstream(src / "skin.png", std::ios::binary) << twoByTwoPng();
+    const CliResult solved =
+        runCli("solve --quiet --frames 1:2 --mesh '" + (src / "walker.obj").string() + "' --c3d " +
+               (dir / "walker.c3d").string() + " --map " + (dir / "walker.map.json").string() +
+               " --out " + (dir / "out").string());
+    ASSERT_EQ(solved.exitCode, 0) << solved.out;
+    const CliResult r = runShell("blender -b --factory-startup --python " BONELESS_SOURCE_DIR
+                                 "/tests/blender/read_glb_material.py -- " +
+                                 (dir / "out" / "walker_0001.obj").string() + " 2>&1");
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("material skin: image 2x2 packed False"), std::string::npos) << r.out;
+}

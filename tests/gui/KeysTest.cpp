@@ -9,6 +9,7 @@
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QPushButton>
+#include <QSlider>
 #include <QSpinBox>
 #include <QStatusBar>
 #include <QTableView>
@@ -218,6 +219,7 @@ class KeysTest : public QObject {
         for (auto* button : window_->timelineWidget()->findChildren<QToolButton*>())
             if (button->text() == "Loop") loopButton = button;
         const QList<QWidget*> expected = {window_->meshView(),
+                                          window_->findChild<QWidget*>("timelineSlider"),
                                           window_->timelineWidget()->frameBox(),
                                           loopButton,
                                           window_->timelineWidget()->speedBox(),
@@ -314,6 +316,39 @@ class KeysTest : public QObject {
         QVERIFY(timeline->isPlaying());
         QTest::keyClick(view, Qt::Key_Space);
         QVERIFY(!timeline->isPlaying());
+    }
+
+    // The slider took no focus, so Tab never reached it and PageUp and PageDown did nothing. It
+    // is a Tab stop: PageUp and PageDown move a tenth of the take, its other keys are the
+    // window's (the arrows step one frame, not two; Home and End, Space plays).
+    void theFocusedSliderPagesATenthOfTheTake() {
+        Timeline* timeline = window_->timeline();
+        auto* slider = window_->findChild<QSlider*>("timelineSlider");
+        QVERIFY(slider);
+        timeline->scrubTo(30);
+        QWidget* view = window_->meshView();
+        view->setFocus();
+        QTRY_VERIFY(view->hasFocus());
+        QTest::keyClick(view, Qt::Key_Tab);  // as a user reaches it
+        QCOMPARE(window_->focusWidget(), static_cast<QWidget*>(slider));
+        const int tenth = timeline->frameCount() / 10;
+        QVERIFY(tenth > 1);
+        QTest::keyClick(slider, Qt::Key_PageUp);
+        QCOMPARE(timeline->frame(), 30 + tenth);
+        QTest::keyClick(slider, Qt::Key_PageDown);
+        QTest::keyClick(slider, Qt::Key_PageDown);
+        QCOMPARE(timeline->frame(), 30 - tenth);
+        QTest::keyClick(slider, Qt::Key_Right);
+        QCOMPARE(timeline->frame(), 31 - tenth);
+        QTest::keyClick(slider, Qt::Key_End);
+        QCOMPARE(timeline->frame(), timeline->frameCount() - 1);
+        QTest::keyClick(slider, Qt::Key_Home);
+        QCOMPARE(timeline->frame(), 0);
+        QTest::keyClick(slider, Qt::Key_Space);
+        QVERIFY(timeline->isPlaying());
+        QTest::keyClick(slider, Qt::Key_Space);
+        QVERIFY(!timeline->isPlaying());
+        QVERIFY(slider->hasFocus());
     }
 
     // "All mapped" was the one panel button with no menu item: without the pointer or a long

@@ -801,6 +801,36 @@ class ProjectSessionTest : public QObject {
         RecentFiles::clear();
     }
 
+    // "walk & run.boneless" read "walk  run.boneless" in Recent Files with the space after it
+    // underlined: the & became the entry's Alt key. Names (and the folders two share) are
+    // escaped, so they read as they are and give no Alt key.
+    void aRecentFileNamedWithAnAmpersandReadsAsItIsNamed() {
+        const QString a = folder_ + "/R&D one", b = folder_ + "/R&D two";
+        QVERIFY(QDir().mkpath(a) && QDir().mkpath(b));
+        const QStringList paths{a + "/walk & run.boneless", b + "/walk & run.boneless",
+                                a + "/Q&A.boneless"};
+        for (const QString& path : paths) {
+            QFile file(path);
+            QVERIFY(file.open(QIODevice::WriteOnly));
+        }
+        RecentFiles::clear();
+        for (const QString& path : paths) RecentFiles::add(path);
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        auto* menu = window.findChild<QMenu*>("recentMenu");
+        QVERIFY(menu);
+        emit menu->aboutToShow();
+        QStringList shown;
+        for (QAction* action : menu->actions().mid(0, 3)) {
+            shown << action->iconText();  // the text as the menu draws it, mnemonics taken out
+            QVERIFY2(QKeySequence::mnemonic(action->text()).isEmpty(), qPrintable(action->text()));
+        }
+        QCOMPARE(shown, (QStringList{"Q&A.boneless",
+                                     "walk & run.boneless — " + QDir::toNativeSeparators(b),
+                                     "walk & run.boneless — " + QDir::toNativeSeparators(a)}));
+        RecentFiles::clear();
+    }
+
     // kill -9 after untitled edits, then `boneless` with no file: the demo's edits leave that
     // work alone, and the next start asks to reopen it, once.
     void workLeftByACrashIsOfferedAtStartAndNotOverwrittenByTheDemo() {

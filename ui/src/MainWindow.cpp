@@ -413,6 +413,8 @@ void MainWindow::buildHelpMenu() {
                                "<tr><td>← →</td><td>previous / next frame</td></tr>"
                                "<tr><td>Shift+← →</td><td>10 frames back / on</td></tr>"
                                "<tr><td>Home / End</td><td>first / last frame</td></tr>"
+                               "<tr><td>PageUp / PageDown (slider focused)</td><td>a tenth "
+                               "of the take on / back</td></tr>"
                                "<tr><td>frame box, Enter</td><td>go to the frame typed</td></tr>"
                                "<tr><td>Ctrl+L</td><td>loop on / off</td></tr>"
                                "<tr><td>Ctrl+1 … Ctrl+4</td><td>realtime, ½, ¼ speed, every "

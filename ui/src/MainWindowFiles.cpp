@@ -707,7 +707,9 @@ void MainWindow::rebuildRecentMenu() {
             named[file.fileName()] > 1
                 ? tr("%1 — %2").arg(file.fileName(), QDir::toNativeSeparators(file.absolutePath()))
                 : file.fileName();
-        recentMenu_->addAction(text, this, [this, path] { openFile(path); })
+        // An & in a menu item marks its Alt key: "walk & run.boneless" read "walk  run.boneless".
+        recentMenu_
+            ->addAction(QString(text).replace('&', "&&"), this, [this, path] { openFile(path); })
             ->setToolTip(QDir::toNativeSeparators(path));
     }
     if (files.isEmpty()) recentMenu_->addAction(tr("(none)"))->setEnabled(false);

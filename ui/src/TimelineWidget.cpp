@@ -43,8 +43,9 @@ TimelineWidget::TimelineWidget(Timeline* timeline, QWidget* parent)
 
     slider_ = new QSlider(Qt::Horizontal, this);
     slider_->setObjectName("timelineSlider");
-    // Its keys are the window's (the arrows, Home, End step the playhead from anywhere).
-    slider_->setFocusPolicy(Qt::NoFocus);
+    // A Tab stop for PageUp and PageDown (a tenth of the take); its arrows, Home and End stay the
+    // window's, which step the playhead from anywhere.
+    slider_->setFocusPolicy(Qt::StrongFocus);
     frameBox_ = new QSpinBox(this);
     frameBox_->setObjectName("frameBox");
     // Typing "100" must not visit frames 1 and 10 on the way: the box applies on Enter.
@@ -145,7 +146,7 @@ void TimelineWidget::syncRange(int frames) {
         const QSignalBlocker blockBox(frameBox_);
         slider_->setRange(0, std::max(0, frames - 1));
         frameBox_->setRange(0, std::max(0, frames - 1));
-        slider_->setPageStep(std::max(1, frames / 20));
+        slider_->setPageStep(std::max(1, frames / 10));
     }
     // The last frame's number, as the status bar gives it: frames are numbered from 0, as
     // --frame, the export's range and its files number them, so a 60-frame take ends at "59 / 59"

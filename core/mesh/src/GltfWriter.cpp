@@ -292,6 +292,20 @@ void layOut(const TriMesh& rest, std::vector<int>& meshVertexOf, std::vector<flo
         }
 }
 
+// What a .glb's length depends on, from layOut's results: the check before solving and the
+// writer's own must count the same file.
+GlbShape glbShape(const std::vector<int>& meshVertexOf, const std::vector<float>& uv,
+                  const std::vector<std::uint32_t>& triangles,
+                  const std::vector<std::pair<int, size_t>>& groups, std::uint64_t textureBytes) {
+    GlbShape s;
+    s.vertices = meshVertexOf.size();
+    s.triangles = triangles.size() / 3;
+    s.uvFloats = uv.size();
+    s.textureBytes = textureBytes;
+    s.primitives = std::max<std::uint64_t>(groups.size(), 1);
+    return s;
+}
+
 }  // namespace
 
 void checkGlbFits(const std::string& path, const TriMesh& mesh, int frames) {
@@ -300,12 +314,9 @@ void checkGlbFits(const std::string& path, const TriMesh& mesh, int frames) {
     std::vector<std::uint32_t> triangles;
     std::vector<ObjMaterial> usedMaterials;
     std::vector<std::pair<int, size_t>> groups;
-    GlbShape shape;
-    layOut(mesh, meshVertexOf, uv, triangles, usedMaterials, groups, shape.textureBytes);
-    shape.vertices = meshVertexOf.size();
-    shape.triangles = triangles.size() / 3;
-    shape.uvFloats = uv.size();
-    shape.primitives = std::max<std::uint64_t>(groups.size(), 1);
+    std::uint64_t textureBytes = 0;
+    layOut(mesh, meshVertexOf, uv, triangles, usedMaterials, groups, textureBytes);
+    const GlbShape shape = glbShape(meshVertexOf, uv, triangles, groups, textureBytes);
     if (frames > 0 && glbBytes(shape, frames) > kMaxGlbBytes)
         throw Error(tooLarge(path, shape, frames));
 }
@@ -353,13 +364,7 @@ void GltfWriter::append(int frame, double seconds, const Positions& positions) {
 }
 
 GlbShape GltfWriter::shape() const {
-    GlbShape s;
-    s.vertices = meshVertexOf_.size();
-    s.triangles = triangles_.size() / 3;
-    s.uvFloats = uv_.size();
-    s.textureBytes = textureBytes_;
-    s.primitives = std::max<std::uint64_t>(groups_.size(), 1);
-    return s;
+    return glbShape(meshVertexOf_, uv_, triangles_, groups_, textureBytes_);
 }
 
 void GltfWriter::finish() {

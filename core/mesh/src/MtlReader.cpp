@@ -68,6 +68,12 @@ MapStatement mapStatement(std::string rest) {
     }
 }
 
+// Where a map statement's file is: named relative to the library's folder, '\\' as '/'.
+std::filesystem::path texturePath(const std::filesystem::path& folder, std::string name) {
+    std::replace(name.begin(), name.end(), '\\', '/');
+    return (folder / name).lexically_normal();
+}
+
 bool glTFImage(const std::filesystem::path& file) {
     std::ifstream in(file, std::ios::binary);
     std::string head(8, '\0');
@@ -136,9 +142,8 @@ void readLibrary(const std::string& path, std::vector<ObjMaterial>& materials,
                 std::string rest;
                 std::getline(words, rest);
                 const MapStatement map = mapStatement(rest);
-                std::string name = map.file;
-                std::replace(name.begin(), name.end(), '\\', '/');
-                const std::filesystem::path file = (folder / name).lexically_normal();
+                const std::string& name = map.file;
+                const std::filesystem::path file = texturePath(folder, name);
                 if (textures && !name.empty()) textures->push_back(file.string());
                 if (name.empty())
                     note(key + " names no file");
@@ -190,6 +195,31 @@ std::vector<ObjMaterial> readMaterialLibraries(const std::vector<std::string>& p
         if (std::find(paths.begin(), paths.begin() + k, paths[k]) == paths.begin() + k)
             readLibrary(paths[k], materials, warnings, textures);
     return materials;
+}
+
+std::string relocatedLibrary(const std::string& path,
+                             const std::function<std::string(const std::string&)>& name) {
+    std::ifstream in(path, std::ios::binary);
+    const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+    std::string text, line;
+    while (std::getline(in, line)) {
+        std::istringstream words(line);
+        std::string key;
+        words >> key;
+        const bool map = key.rfind("map_", 0) == 0 || key == "bump" || key == "disp" ||
+                         key == "decal" || key == "refl" || key == "norm";
+        const size_t keyEnd = line.find(key) + key.size();
+        const std::string rest = map ? line.substr(keyEnd) : std::string();
+        const std::string file = map ? mapStatement(rest).file : std::string();
+        if (file.empty()) {
+            text += line + "\n";
+            continue;
+        }
+        // The options are kept as they were; the file is the end of the line.
+        const std::string options = rest.substr(0, rest.rfind(file));
+        text += line.substr(0, keyEnd) + options + name(texturePath(folder, file).string()) + "\n";
+    }
+    return text;
 }
 
 std::string imageMimeType(const std::string& head) {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,12 @@ namespace boneless::detail {
 std::vector<ObjMaterial> readMaterialLibraries(const std::vector<std::string>& paths,
                                                std::vector<std::string>& warnings,
                                                std::vector<std::string>* textures = nullptr);
+
+// The library at `path` (absolute) as a copy of it elsewhere is written: every map statement's
+// file (map_Kd, map_Bump, bump, disp, ...: what follows its options) replaced by what `name`
+// gives for its absolute path, every other line as it was.
+std::string relocatedLibrary(const std::string& path,
+                             const std::function<std::string(const std::string&)>& name);
 
 // "image/png" or "image/jpeg" by the file's signature (its first bytes), empty for anything else.
 std::string imageMimeType(const std::string& head);

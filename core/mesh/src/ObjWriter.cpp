@@ -1,13 +1,17 @@
 #include "boneless/ObjWriter.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <system_error>
 
+#include "MtlReader.h"
 #include "boneless/Error.h"
 #include "boneless/SpoolFile.h"
 
@@ -55,15 +59,54 @@ void appendNumber(std::string& text, double value) {
     text.append(buffer, end);
 }
 
+bool isWhitespace(char c) {
+    return std::isspace(static_cast<unsigned char>(c)) != 0;
+}
+
+bool hasWhitespace(const std::string& name) {
+    return std::any_of(name.begin(), name.end(), isWhitespace);
+}
+
+std::string contentsOf(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+// How a file written into `folder` names `file` (absolute): relative to the folder where it can.
+std::string nameFrom(const std::filesystem::path& folder, const std::string& file) {
+    const std::filesystem::path relative = std::filesystem::path(file).lexically_relative(folder);
+    return relative.empty() ? file : relative.string();
+}
+
+// `contents` as a file of `folder` named like `name` without whitespace: the first of name,
+// name_2, ... that is free or already holds them. Its file name.
+std::string placeCopy(const std::filesystem::path& folder, std::string name,
+                      const std::string& contents) {
+    std::replace_if(name.begin(), name.end(), isWhitespace, '_');
+    const std::filesystem::path base(name);
+    for (int k = 1;; ++k) {
+        const std::string candidate =
+            k == 1 ? name
+                   : base.stem().string() + "_" + std::to_string(k) + base.extension().string();
+        const std::filesystem::path file = folder / candidate;
+        std::error_code error;
+        if (!std::filesystem::exists(file, error)) {
+            writeFileAtomically(file.string(), contents);
+            return candidate;
+        }
+        if (std::filesystem::is_regular_file(file, error) && contentsOf(file) == contents)
+            return candidate;
+    }
+}
+
 void appendPolygons(std::string& text, const SourceFaces& source, const std::string& path) {
     // Normalised first: lexically_relative does not resolve "out/../x" in the base.
     const std::filesystem::path folder =
         std::filesystem::absolute(path).lexically_normal().parent_path();
-    for (const std::string& lib : source.materialLibraries) {
-        const std::filesystem::path relative =
-            std::filesystem::path(lib).lexically_relative(folder);
-        text += "mtllib " + (relative.empty() ? lib : relative.string()) + "\n";
-    }
+    for (const std::string& lib : source.materialLibraries)
+        text += "mtllib " + nameFrom(folder, lib) + "\n";
     for (size_t t = 0; t < source.uv.size(); t += 2) {
         text += "vt ";
         appendNumber(text, source.uv[t]);
@@ -88,6 +131,32 @@ void appendPolygons(std::string& text, const SourceFaces& source, const std::str
 }
 
 }  // namespace
+
+SourceFaces withLibraryCopies(const SourceFaces& source, const std::string& folder) {
+    SourceFaces out = source;
+    const std::filesystem::path dir = std::filesystem::absolute(folder).lexically_normal();
+    // A texture keeps its path from the copy unless that path holds whitespace too.
+    const auto textureName = [&](const std::string& texture) {
+        const std::string named = nameFrom(dir, texture);
+        std::error_code error;
+        if (!hasWhitespace(named) || !std::filesystem::is_regular_file(texture, error))
+            return named;
+        return placeCopy(dir, std::filesystem::path(texture).filename().string(),
+                         contentsOf(texture));
+    };
+    for (std::string& library : out.materialLibraries) {
+        std::error_code error;
+        if (!hasWhitespace(nameFrom(dir, library)) ||
+            !std::filesystem::is_regular_file(library, error))
+            continue;
+        const std::string copy = "# Boneless: a copy of " + library +
+                                 " named without spaces, which an OBJ's mtllib cannot hold\n" +
+                                 detail::relocatedLibrary(library, textureName);
+        library = (dir / placeCopy(dir, std::filesystem::path(library).filename().string(), copy))
+                      .string();
+    }
+    return out;
+}
 
 std::string objText(const std::string& path, const Positions& positions, const Faces& faces,
                     const std::string& comment, const SourceFaces* source) {

@@ -13,7 +13,8 @@ namespace boneless {
 
 FrameOutput openFrameOutput(ExportFormat format, const std::string& outDir, const std::string& stem,
                             const TriMesh& mesh, int first, double rate,
-                            const std::string& objComment, const GltfPlacement& glb) {
+                            const std::string& objComment, const GltfPlacement& glb,
+                            std::shared_ptr<const SourceFaces> objFaces) {
     const std::filesystem::path out(outDir);
     const std::string path = (out / (stem + exportFormatInfo(format).extension)).string();
     // Times in the take: frame f is at f / rate seconds, whatever range is exported.
@@ -21,9 +22,9 @@ FrameOutput openFrameOutput(ExportFormat format, const std::string& outDir, cons
     FrameOutput o;
     switch (format) {
         case ExportFormat::Obj:
-            o.append = [out, stem, &mesh, objComment](int f, const Positions& V) {
+            o.append = [out, stem, &mesh, objComment, objFaces](int f, const Positions& V) {
                 writeObj((out / objFrameFile(stem, f)).string(), V, mesh.F,
-                         objComment + " frame " + std::to_string(f), mesh.sourceFaces.get());
+                         objComment + " frame " + std::to_string(f), objFaces.get());
             };
             o.finish = [] {};
             break;

@@ -20,9 +20,11 @@ struct FrameOutput {
 };
 
 // `first` is the first take frame to be written; `rate` the take's frames per second; `glb` where
-// a glb's node puts the mesh.
+// a glb's node puts the mesh; `objFaces` the faces OBJ frames are written with (the mesh's, its
+// libraries as the output folder names them: withLibraryCopies).
 FrameOutput openFrameOutput(ExportFormat format, const std::string& outDir, const std::string& stem,
                             const TriMesh& mesh, int first, double rate,
-                            const std::string& objComment, const GltfPlacement& glb);
+                            const std::string& objComment, const GltfPlacement& glb,
+                            std::shared_ptr<const SourceFaces> objFaces);
 
 }  // namespace boneless

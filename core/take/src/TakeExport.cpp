@@ -701,10 +701,15 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
         placeholder["vertices"] = mesh.vertexCount();
         writeFileAtomically(result.sidecarPath, placeholder.dump(2) + "\n");
     }
+    // Made once, not per frame: a library the OBJ files could not name is copied beside them.
+    std::shared_ptr<const SourceFaces> objFaces = mesh.sourceFaces;
+    if (objFaces && (request.format == ExportFormat::Obj || request.writeCalibratedRest))
+        objFaces =
+            std::make_shared<const SourceFaces>(withLibraryCopies(*objFaces, request.outDir));
     FrameOutput output = openFrameOutput(
         request.format, request.outDir, stem, mesh, request.first, take.rate,
         "Boneless: " + fullPath(request.c3dPath),
-        gltfPlacement(solver.calibration().takeToMesh, take.unitToMm, take.vertical));
+        gltfPlacement(solver.calibration().takeToMesh, take.unitToMm, take.vertical), objFaces);
 
     std::string restFile;
     if (request.writeCalibratedRest) {
@@ -713,7 +718,7 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
                  "Boneless: " + fullPath(request.meshPath) + " fitted to " +
                      fullPath(request.c3dPath) + " at frame " +
                      std::to_string(solver.calibration().frame),
-                 mesh.sourceFaces.get());
+                 objFaces.get());
     }
     if (calibrated) calibrated(solver.calibration());
     result.first = request.first;
