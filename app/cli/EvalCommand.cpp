@@ -104,6 +104,18 @@ nlohmann::json perFrameJson(const std::vector<FrameEvaluation>& frames) {
     return list;
 }
 
+// The first of the solver options given whose value, as read, is not its default: "" when each
+// is at its default ("--fold-guard 0.010" as 0.01).
+std::string firstChangedSolverOption(const nlohmann::json& given) {
+    const SolverOptions defaults = EvaluationOptions{}.solver;
+    SolverOptions read = defaults;
+    fromJson(given, read, "eval");
+    const nlohmann::json now = toJson(read), before = toJson(defaults);
+    for (const auto& item : given.items())
+        if (now.at(item.key()) != before.at(item.key())) return item.key();
+    return {};
+}
+
 void printSummary(const char* name, const EvaluationSummary& s) {
     std::printf(
         "%-9s frames %d  markers used %d  RMS %% mean %.3f  RMS %% worst frame %.3f  max %% worst "
@@ -267,10 +279,13 @@ void registerEvalCommand(CLI::App& app) {
         if (k->count() == 0 && file->count() == 0)
             throw CLI::RequiredError("--markers or --markers-file");
         // The solver flags set how Boneless solves: on ARAP alone they would change nothing.
-        if (args->method == "arap" && !args->options.empty())
-            throw CLI::ValidationError(optionFlag(*findTakeOption(args->options.begin().key())),
-                                       "sets how Boneless solves, and --method arap runs ARAP "
-                                       "alone");
+        // At their defaults they change nothing anywhere, so that one command line serves every
+        // --method (a value the local/global solver does not read is taken so too).
+        if (args->method == "arap")
+            if (const std::string key = firstChangedSolverOption(args->options); !key.empty())
+                throw CLI::ValidationError(optionFlag(*findTakeOption(key)),
+                                           "sets how Boneless solves, and --method arap runs "
+                                           "ARAP alone");
         refuseUnusedExactOptions(args->options, EvaluationOptions{}.solver);
         run(*args);
     });

@@ -297,6 +297,27 @@ TEST(EvalCommand, FlagsThatCannotActAreRefusedNamingWhatTheyNeed) {
     }
 }
 
+// A script that runs one command line for each --method (boneless, arap, both) gives the solver's
+// flags to all three: at their defaults they change nothing for ARAP, as an exact-only flag at its
+// default changes nothing for the local/global solver, and both are taken. ARAP refused them all.
+TEST(EvalCommand, ArapTakesTheSolverFlagsAtTheirDefaultsAndRefusesOthers) {
+    const std::string given = " --solver local-global --fold-guard 0.01 --max-iterations 10";
+    for (const char* method : {"boneless", "arap", "both"}) {
+        const CliResult r = runCli("eval --sequence " + demoFolder() +
+                                   " --markers 20 --frames 0:2 --quiet --method " + method + given);
+        EXPECT_EQ(r.exitCode, 0) << method << ": " << r.out;
+        EXPECT_NE(r.out.find("summary over the frames after the rest pose"), std::string::npos)
+            << r.out;
+    }
+    const CliResult r = runCli("eval --sequence " + demoFolder() +
+                               " --markers 20 --frames 0:2 --method arap --max-iterations 12");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("--max-iterations: sets how Boneless solves, and --method arap runs ARAP "
+                         "alone"),
+              std::string::npos)
+        << r.out;
+}
+
 // The header gave the percentage as std::to_string writes it: "94.000000 % dropped per frame".
 TEST(EvalCommand, TheDropIsPrintedAsTyped) {
     const CliResult r =
