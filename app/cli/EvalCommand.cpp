@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -20,6 +21,7 @@
 #include "boneless/Text.h"
 
 using namespace boneless;
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -89,10 +91,14 @@ nlohmann::json summaryJson(const EvaluationSummary& s) {
             {"iterations_mean", s.iterationsMean}};
 }
 
-nlohmann::json perFrameJson(const std::vector<FrameEvaluation>& frames) {
+// Each frame names its OBJ: "frame" is its place in the folder from 0, not the number in its
+// name (horse-gallop's frame 0 is 0001.obj), and a figure is recomputed from the file.
+nlohmann::json perFrameJson(const std::vector<FrameEvaluation>& frames,
+                            const std::vector<std::string>& files) {
     nlohmann::json list = nlohmann::json::array();
     for (const auto& f : frames)
         list.push_back({{"frame", f.frame},
+                        {"file", validUtf8(fs::path(files.at(f.frame)).filename().string())},
                         {"rms_pct", f.rmsPct},
                         {"max_pct", f.maxPct},
                         {"flipped_faces", f.flippedFaces},
@@ -224,11 +230,11 @@ void run(const EvalArgs& args) {
         // ARAP alone uses none of Boneless's solver options.
         if (methods[0] == EvaluationOptions::Method::Boneless)
             out["options"] = toJson(options.solver);
-        out["per_frame"] = perFrameJson(results[0].frames);
+        out["per_frame"] = perFrameJson(results[0].frames, sequence.files);
         // With both, the top level is Boneless's and ARAP's figures are under its name.
         for (size_t i = 1; i < results.size(); ++i) {
             nlohmann::json other = summaryJson(results[i].summary);
-            other["per_frame"] = perFrameJson(results[i].frames);
+            other["per_frame"] = perFrameJson(results[i].frames, sequence.files);
             out[methodName(methods[i])] = other;
         }
         std::cout << out.dump(2) << "\n";
