@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -20,6 +21,7 @@
 #include "boneless/Text.h"
 
 using namespace boneless;
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -89,10 +91,14 @@ nlohmann::json summaryJson(const EvaluationSummary& s) {
             {"iterations_mean", s.iterationsMean}};
 }
 
-nlohmann::json perFrameJson(const std::vector<FrameEvaluation>& frames) {
+// Each frame names its OBJ: "frame" is its place in the folder from 0, not the number in its
+// name (horse-gallop's frame 0 is 0001.obj), and a figure is recomputed from the file.
+nlohmann::json perFrameJson(const std::vector<FrameEvaluation>& frames,
+                            const std::vector<std::string>& files) {
     nlohmann::json list = nlohmann::json::array();
     for (const auto& f : frames)
         list.push_back({{"frame", f.frame},
+                        {"file", validUtf8(fs::path(files.at(f.frame)).filename().string())},
                         {"rms_pct", f.rmsPct},
                         {"max_pct", f.maxPct},
                         {"flipped_faces", f.flippedFaces},
@@ -102,6 +108,18 @@ nlohmann::json perFrameJson(const std::vector<FrameEvaluation>& frames) {
                         {"iterations", f.iterations},
                         {"ms", f.milliseconds}});
     return list;
+}
+
+// The first of the solver options given whose value, as read, is not its default: "" when each
+// is at its default ("--fold-guard 0.010" as 0.01).
+std::string firstChangedSolverOption(const nlohmann::json& given) {
+    const SolverOptions defaults = EvaluationOptions{}.solver;
+    SolverOptions read = defaults;
+    fromJson(given, read, "eval");
+    const nlohmann::json now = toJson(read), before = toJson(defaults);
+    for (const auto& item : given.items())
+        if (now.at(item.key()) != before.at(item.key())) return item.key();
+    return {};
 }
 
 void printSummary(const char* name, const EvaluationSummary& s) {
@@ -212,11 +230,11 @@ void run(const EvalArgs& args) {
         // ARAP alone uses none of Boneless's solver options.
         if (methods[0] == EvaluationOptions::Method::Boneless)
             out["options"] = toJson(options.solver);
-        out["per_frame"] = perFrameJson(results[0].frames);
+        out["per_frame"] = perFrameJson(results[0].frames, sequence.files);
         // With both, the top level is Boneless's and ARAP's figures are under its name.
         for (size_t i = 1; i < results.size(); ++i) {
             nlohmann::json other = summaryJson(results[i].summary);
-            other["per_frame"] = perFrameJson(results[i].frames);
+            other["per_frame"] = perFrameJson(results[i].frames, sequence.files);
             out[methodName(methods[i])] = other;
         }
         std::cout << out.dump(2) << "\n";
@@ -267,10 +285,13 @@ void registerEvalCommand(CLI::App& app) {
         if (k->count() == 0 && file->count() == 0)
             throw CLI::RequiredError("--markers or --markers-file");
         // The solver flags set how Boneless solves: on ARAP alone they would change nothing.
-        if (args->method == "arap" && !args->options.empty())
-            throw CLI::ValidationError(optionFlag(*findTakeOption(args->options.begin().key())),
-                                       "sets how Boneless solves, and --method arap runs ARAP "
-                                       "alone");
+        // At their defaults they change nothing anywhere, so that one command line serves every
+        // --method (a value the local/global solver does not read is taken so too).
+        if (args->method == "arap")
+            if (const std::string key = firstChangedSolverOption(args->options); !key.empty())
+                throw CLI::ValidationError(optionFlag(*findTakeOption(key)),
+                                           "sets how Boneless solves, and --method arap runs "
+                                           "ARAP alone");
         refuseUnusedExactOptions(args->options, EvaluationOptions{}.solver);
         run(*args);
     });

@@ -297,6 +297,48 @@ TEST(EvalCommand, FlagsThatCannotActAreRefusedNamingWhatTheyNeed) {
     }
 }
 
+// A script that runs one command line for each --method (boneless, arap, both) gives the solver's
+// flags to all three: at their defaults they change nothing for ARAP, as an exact-only flag at its
+// default changes nothing for the local/global solver, and both are taken. ARAP refused them all.
+TEST(EvalCommand, ArapTakesTheSolverFlagsAtTheirDefaultsAndRefusesOthers) {
+    const std::string given = " --solver local-global --fold-guard 0.01 --max-iterations 10";
+    for (const char* method : {"boneless", "arap", "both"}) {
+        const CliResult r = runCli("eval --sequence " + demoFolder() +
+                                   " --markers 20 --frames 0:2 --quiet --method " + method + given);
+        EXPECT_EQ(r.exitCode, 0) << method << ": " << r.out;
+        EXPECT_NE(r.out.find("summary over the frames after the rest pose"), std::string::npos)
+            << r.out;
+    }
+    const CliResult r = runCli("eval --sequence " + demoFolder() +
+                               " --markers 20 --frames 0:2 --method arap --max-iterations 12");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("--max-iterations: sets how Boneless solves, and --method arap runs ARAP "
+                         "alone"),
+              std::string::npos)
+        << r.out;
+}
+
+// per_frame's "frame" is the frame's place in the folder, from 0, not the number in its name
+// (horse-gallop's frame 0 is 0001.obj): to recompute a figure from a frame's OBJ, a researcher
+// had to redo the ordering. Each entry names its file, ARAP's too.
+TEST(EvalCommand, EachFrameOfTheJsonNamesItsFile) {
+    const boneless::TriMesh mesh = icosphere(2);
+    const fs::path dir = freshTestDir("eval-frame-files");
+    for (int n = 1; n <= 3; ++n)
+        writeSequenceFrame(dir / ("walk_" + std::to_string(n) + ".obj"),
+                           bent(mesh.V, 0.1 * (n - 1)), mesh);
+    const CliResult r = runCli("eval --sequence " + dir.string() +
+                               " --markers 12 --frames 1:3 --method both --json");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    const auto j = nlohmann::json::parse(r.out);
+    for (const auto* frames : {&j["per_frame"], &j["arap"]["per_frame"]}) {
+        ASSERT_EQ(frames->size(), 2u);
+        EXPECT_EQ((*frames)[0]["frame"], 1);
+        EXPECT_EQ((*frames)[0].value("file", std::string()), "walk_2.obj");
+        EXPECT_EQ((*frames)[1].value("file", std::string()), "walk_3.obj");
+    }
+}
+
 // The header gave the percentage as std::to_string writes it: "94.000000 % dropped per frame".
 TEST(EvalCommand, TheDropIsPrintedAsTyped) {
     const CliResult r =
