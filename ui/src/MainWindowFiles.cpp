@@ -275,8 +275,14 @@ bool MainWindow::openProject(const QString& path, const QMap<QString, QString>& 
         if (!missingFile.isEmpty()) {
             if (recovery.isEmpty())
                 box->setInformativeText(
-                    tr("The file is left as it is. Locate… opens it with %1 where it is now.")
-                        .arg(QFileInfo(missingFile).fileName()));
+                    QFileInfo::exists(missingFile)
+                        // there, but not the mesh the map was made for
+                        ? tr("The file is left as it is. Locate… opens it with the mesh the map "
+                             "was made for, in place of %1.")
+                              .arg(QFileInfo(missingFile).fileName())
+                        : tr("The file is left as it is. Locate… opens it with %1 where it is "
+                             "now.")
+                              .arg(QFileInfo(missingFile).fileName()));
             QPushButton* locateButton = box->addButton(tr("Locate…"), QMessageBox::ActionRole);
             locateButton->setObjectName("locateButton");
             connect(locateButton, &QPushButton::clicked, this, [this, path, missingFile, located] {
@@ -310,7 +316,7 @@ bool MainWindow::openProject(const QString& path, const QMap<QString, QString>& 
         autosave_->schedule();
         QStringList names;
         for (const QString& file : located) names << QFileInfo(file).fileName();
-        statusBar()->showMessage(tr("Opened %1 with %2 in place of the missing file; the project "
+        statusBar()->showMessage(tr("Opened %1 with %2 in place of the file it named; the project "
                                     "names it from now on")
                                      .arg(QFileInfo(path).fileName(), names.join(", ")),
                                  10000);

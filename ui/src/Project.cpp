@@ -274,6 +274,25 @@ bool load(Document& document, const QString& path, QString* error, QString* miss
             return fail(QString::fromStdString(e.what()));
         }
     }
+    // A mesh re-exported since with other vertices (the map records how many it was made for):
+    // the headline said only that the project could not be opened. It names the map and the
+    // mesh, and like a missing mesh the one the map was made for can be located in its place.
+    // Other misfits (an entry edited out of range) are the map's, and say so in the details.
+    if (state.hasMesh && state.map.meshVertices != 0 &&
+        state.map.meshVertices != state.mesh.vertexCount()) {
+        try {
+            state.map.checkMesh(state.mesh.vertexCount(), state.meshPath.toStdString());
+        } catch (const std::exception& e) {
+            if (missing)
+                *missing = QObject::tr(
+                               "The map in %1 was made for another mesh than %2, which has "
+                               "%3 vertices now.")
+                               .arg(project, state.meshPath)
+                               .arg(state.mesh.vertexCount());
+            if (missingFile) *missingFile = resolve(dir, mesh["file"].toString());
+            return fail(QString::fromStdString(e.what()));
+        }
+    }
     if (root["alignment"].isObject()) {
         Calibration c;
         const QString wrong = readAlignment(root["alignment"].toObject(), c);
