@@ -342,6 +342,21 @@ class ProjectTest : public QObject {
         QVERIFY(!d.hasMesh() && !d.hasTake());
     }
 
+    // A trailing comma left by a hand edit was "not JSON (object is missing after a comma at
+    // byte 6322)": a text editor counts lines. It says the line and column, as a map file's does.
+    void aProjectThatIsNotJsonSaysTheLineAndColumn() {
+        const QString path = work_ + "/trailing-comma.boneless";
+        QFile f(path);
+        QVERIFY(f.open(QIODevice::WriteOnly));
+        f.write("{\n  \"format\": \"boneless-project\",\n  \"version\": 1,\n}\n");
+        f.close();
+        Document d;
+        QString error;
+        QVERIFY(!Project::load(d, path, &error));
+        QVERIFY2(error.startsWith(path + ": not JSON (") && error.contains("at line 4, column 2)"),
+                 qPrintable(error));
+    }
+
     void aSaveThatCannotBeWrittenLeavesTheProjectAsItWasAndSaysSo() {
         const QString folder = work_ + "/full";
         copyFolder(demo_, folder);

@@ -229,11 +229,17 @@ bool load(Document& document, const QString& path, QString* error, QString* miss
     QFile file(path);
     if (!file.open(QIODevice::ReadOnly)) return fail(file.errorString());
     QJsonParseError parseError;
-    const QJsonDocument json = QJsonDocument::fromJson(file.readAll(), &parseError);
-    if (json.isNull())
-        return fail(QObject::tr("not JSON (%1 at byte %2)")
+    const QByteArray bytes = file.readAll();
+    const QJsonDocument json = QJsonDocument::fromJson(bytes, &parseError);
+    if (json.isNull()) {
+        // A line and column, as the map reader gives them: a project fixed by hand is fixed in
+        // a text editor, which counts lines, not bytes.
+        const QByteArray before = bytes.left(parseError.offset);
+        return fail(QObject::tr("not JSON (%1 at line %2, column %3)")
                         .arg(parseError.errorString())
-                        .arg(parseError.offset));
+                        .arg(before.count('\n') + 1)
+                        .arg(before.size() - before.lastIndexOf('\n')));
+    }
     if (!json.isObject()) return fail(QObject::tr("not a Boneless project (not a JSON object)"));
     const QJsonObject root = json.object();
     if (root["format"].toString() != kFormat)
