@@ -252,6 +252,75 @@ class LostWorkTest : public QObject {
         c.close();
     }
 
+    // Killed, then its folder renamed: Reopen said "The last autosave could not be opened
+    // either." with the missing mesh under Show Details, offered nothing, and gave the work up:
+    // the next change in the session removed it. It is now kept (offered again at the next
+    // start), the message names the file, and Locate… opens the work with the files where they
+    // are now.
+    void aCrashsWorkWhoseFilesMovedIsKeptAndOpensOnceTheyAreLocated() {
+        const QString before = folder_ + "/moved-before", after = folder_ + "/moved-after";
+        QDir(after).removeRecursively();
+        test::writeDemoProject(before);
+        int mapped = -1;
+        {
+            MainWindow crashed;
+            crashed.setMessageBoxesEnabled(false);
+            QVERIFY(crashed.openFiles(
+                {before + "/walker.obj", before + "/walker.c3d", before + "/walker.map.json"}));
+            QVERIFY(crashed.document()->clearMapping(0));
+            QVERIFY(crashed.autosave()->saveNow());
+            mapped = crashed.document()->mappedCount();
+        }
+        const QString instance = "999999998-1";
+        const QString file = recoveryFolder() + "/" + instance + ".boneless";
+        QVERIFY(QFile::rename(ProjectAutosave::recoveryPath(), file));
+        QSettings().setValue("autosave/" + instance + "/session", "{crashed} " + instance);
+        QSettings().setValue("autosave/" + instance + "/project", QString());
+        QVERIFY(QDir().rename(before, after));
+
+        QTimer answering;
+        connect(&answering, &QTimer::timeout, [&] {
+            auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+            if (box && box->objectName() == "recoveryQuestion")
+                box->findChild<QPushButton*>("reopenButton")->click();
+        });
+        answering.start(100);
+        {
+            MainWindow b;
+            QVERIFY(!b.offerRecovery());
+            QMessageBox* box = shownBox(b, "recoveryErrorMessage");
+            QVERIFY(box);
+            QVERIFY2(box->text() == "The mesh " + before +
+                                        "/walker.obj named by the last autosave is missing.",
+                     qPrintable(box->text()));
+            QVERIFY(box->findChild<QPushButton*>("locateButton"));
+            box->close();
+            // A change in this session does not replace the crash's work.
+            b.setMessageBoxesEnabled(false);
+            QVERIFY(b.openDemo());
+            QVERIFY(b.document()->clearMapping(5));
+            QVERIFY(b.autosave()->saveNow());
+            QVERIFY(QFileInfo::exists(file));
+            b.close();
+        }
+        MainWindow c;
+        QVERIFY(!c.offerRecovery());  // offered again
+        answering.stop();
+        // Located one by one: the mesh, then the take.
+        for (const QString name : {"walker.obj", "walker.c3d"}) {
+            QMessageBox* box = shownBox(c, "recoveryErrorMessage");
+            QVERIFY2(box && box->text().contains(before + "/" + name), name.toUtf8());
+            answerFileDialog(after + "/" + name);
+            box->findChild<QPushButton*>("locateButton")->click();
+            QTest::qWait(50);
+        }
+        QVERIFY(!shownBox(c, "recoveryErrorMessage"));
+        QCOMPARE(c.document()->meshPath(), after + "/walker.obj");
+        QCOMPARE(c.document()->mappedCount(), mapped);
+        c.setMessageBoxesEnabled(false);
+        c.close();
+    }
+
     // A project open in two windows: the second's edit was autosaved, then the first's autosave
     // wrote over it, and neither said a word. The first now leaves the file alone, names it in
     // a question, and Reload opens what the second saved.

@@ -630,6 +630,43 @@ class ProjectSessionTest : public QObject {
         for (auto* shown : window.findChildren<QMessageBox*>()) shown->close();
     }
 
+    // A mesh re-exported with other vertices: "p1.boneless could not be opened as a Boneless
+    // project.", the cause under Show Details and nothing offered. The message names the map
+    // and the mesh, and Locate… opens the project with the mesh the map was made for.
+    void aProjectWhoseMeshNoLongerFitsItsMapSaysSoAndTheMeshCanBeLocated() {
+        const QString project = test::writeDemoProject(folder_ + "/reexported");
+        const QString mesh = folder_ + "/reexported/walker.obj";
+        const QString old = folder_ + "/reexported/walker-old.obj";
+        QVERIFY(QFile::rename(mesh, old));
+        writeAll(mesh, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+        MainWindow window;
+        window.autosave()->setDelay(60000);
+        QVERIFY(!window.openProject(project));
+        auto* box = window.findChild<QMessageBox*>("projectErrorMessage");
+        QVERIFY(box);
+        QCOMPARE(box->text(), "The map in demo.boneless was made for another mesh than " + mesh +
+                                  ", which has 4 vertices now.");
+        QVERIFY2(box->detailedText().contains("has 4"), qPrintable(box->detailedText()));
+        auto* locate = box->findChild<QPushButton*>("locateButton");
+        QVERIFY(locate);
+        QTimer::singleShot(0, [&] {
+            QVERIFY(QTest::qWaitFor(
+                [] { return qobject_cast<QFileDialog*>(QApplication::activeModalWidget()); },
+                5000));
+            auto* dialog = qobject_cast<QFileDialog*>(QApplication::activeModalWidget());
+            dialog->selectFile(old);
+            QMetaObject::invokeMethod(dialog, "accept");
+        });
+        locate->click();
+        QCOMPARE(window.projectPath(), QFileInfo(project).absoluteFilePath());
+        QCOMPARE(window.document()->meshPath(), old);
+        QVERIFY(window.document()->mappedCount() > 0);
+        QVERIFY(window.autosave()->saveNow());
+        const QJsonObject saved = QJsonDocument::fromJson(readAll(project)).object();
+        QCOMPARE(saved["mesh"].toObject()["file"].toString(), QString("walker-old.obj"));
+        for (auto* shown : window.findChildren<QMessageBox*>()) shown->close();
+    }
+
     // A map opened into a saved project went in as a load: the title was not marked and its
     // autosave was dropped, so closing without another change left the project with its old map,
     // unasked. It is an edit like any other: marked, autosaved into the project.

@@ -5,6 +5,7 @@
 #include <QDir>
 #include <QFile>
 #include <QFileInfo>
+#include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QSignalSpy>
@@ -277,6 +278,83 @@ class ProjectTest : public QObject {
         QCOMPARE(d.takePath(), QFileInfo(demo_ + "/walker.c3d").absoluteFilePath());
         QCOMPARE(d.frameCount(), 60);
         QVERIFY(d.canSolve());
+    }
+
+    // A project edited by hand: "mesh": "walker.obj" opened without the mesh, a map pasted as
+    // an array opened with the map file's markers in place of the project's, and the next save
+    // wrote the project without them. A key of the wrong type is now refused by name.
+    void aKeyOfTheWrongTypeIsRefusedByNameNotReadAsAbsent() {
+        const QString folder = work_ + "/hand-edited";
+        copyFolder(demo_, folder);
+        const QString path = folder + "/demo.boneless";
+        const QJsonObject original = readJson(path);
+        auto with = [&](const QString& key, const QString& inner, const QJsonValue& value) {
+            QJsonObject root = original;
+            if (inner.isEmpty()) {
+                root[key] = value;
+            } else {
+                QJsonObject o = root[key].toObject();
+                o[inner] = value;
+                root[key] = o;
+            }
+            return root;
+        };
+        QJsonObject noMeshFile = original;
+        noMeshFile["mesh"] = QJsonObject{{"fiel", "walker.obj"}};
+        const QJsonArray markers =
+            original["correspondence"].toObject()["map"].toObject()["markers"].toArray();
+        const std::pair<QJsonObject, const char*> cases[] = {
+            {with("mesh", {}, "walker.obj"), "\"mesh\" is a string, not an object"},
+            {with("take", {}, "walker.c3d"), "\"take\" is a string, not an object"},
+            {with("mesh", "file", 5), "\"mesh\"'s \"file\" is a number, not a string"},
+            {with("mesh", "group", 5), "\"mesh\"'s \"group\" is a number, not a string"},
+            {noMeshFile, "\"mesh\" has no \"file\""},
+            {with("correspondence", "map", markers),
+             "\"correspondence\"'s \"map\" is an array, not an object"},
+            {with("correspondence", {}, "walker.map.json"),
+             "\"correspondence\" is a string, not an object"},
+            {with("alignment", {}, "none"), "\"alignment\" is a string, not an object or null"},
+            {with("settings", {}, QJsonArray()), "\"settings\" is an array, not an object"},
+            {with("view", {}, 3), "\"view\" is a number, not an object"},
+            {with("version", {}, "1"), "\"version\" is a string, not a number"}};
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        const int mapped = d.mappedCount();
+        QVERIFY(d.clearMapping(0));
+        for (const auto& [root, why] : cases) {
+            QFile f(path);
+            QVERIFY(f.open(QIODevice::WriteOnly | QIODevice::Truncate));
+            f.write(QJsonDocument(root).toJson());
+            f.close();
+            QString error;
+            QVERIFY2(!Project::load(d, path, &error), why);
+            QVERIFY2(error.startsWith(path + ": ") && error.contains(why), qPrintable(error));
+            QCOMPARE(d.mappedCount(), mapped - 1);  // the document is left as it was
+        }
+        // Absent keys still read as nothing there: a project of an empty session.
+        QJsonObject bare{{"format", "boneless-project"}, {"version", 1}};
+        QFile f(path);
+        QVERIFY(f.open(QIODevice::WriteOnly | QIODevice::Truncate));
+        f.write(QJsonDocument(bare).toJson());
+        f.close();
+        QString error;
+        QVERIFY2(Project::load(d, path, &error), qPrintable(error));
+        QVERIFY(!d.hasMesh() && !d.hasTake());
+    }
+
+    // A trailing comma left by a hand edit was "not JSON (object is missing after a comma at
+    // byte 6322)": a text editor counts lines. It says the line and column, as a map file's does.
+    void aProjectThatIsNotJsonSaysTheLineAndColumn() {
+        const QString path = work_ + "/trailing-comma.boneless";
+        QFile f(path);
+        QVERIFY(f.open(QIODevice::WriteOnly));
+        f.write("{\n  \"format\": \"boneless-project\",\n  \"version\": 1,\n}\n");
+        f.close();
+        Document d;
+        QString error;
+        QVERIFY(!Project::load(d, path, &error));
+        QVERIFY2(error.startsWith(path + ": not JSON (") && error.contains("at line 4, column 2)"),
+                 qPrintable(error));
     }
 
     void aSaveThatCannotBeWrittenLeavesTheProjectAsItWasAndSaysSo() {

@@ -187,6 +187,21 @@ class ScreenshotTest : public QObject {
         QVERIFY(!QFileInfo::exists(out));
     }
 
+    // A take and its map without a mesh (a project whose mesh key was lost) said "preparing
+    // the solver for  (calibrating, factorising)…" for ever, and a screenshot run waited its
+    // 300 s out. Now it fails at once with the reason the status bar gives.
+    void aTakeWithoutAMeshFailsAtOnceSayingSo() {
+        const QString demo = QFileInfo(project_).absolutePath();
+        const QString out = folder_ + "/never.png";
+        const test::AppRun run = test::runBoneless(
+            {demo + "/walker.c3d", demo + "/walker.map.json", "--screenshot", out}, folder_,
+            QProcessEnvironment::systemEnvironment(), 60000);
+        QVERIFY2(run.exitCode != 0, qPrintable(run.output));
+        QVERIFY2(run.output.contains("walker.c3d: not solving: No mesh is loaded."),
+                 qPrintable(run.output));
+        QVERIFY(!QFileInfo::exists(out));
+    }
+
     void frameOutsideTheTakeFails() {
         const test::AppRun run = test::runBoneless(
             {"--project", project_, "--frame", "600", "--screenshot", folder_ + "/never.png"},

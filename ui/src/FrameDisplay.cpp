@@ -135,6 +135,7 @@ void FrameDisplay::updateUpAxis(bool force) {
 void FrameDisplay::rebuildProblem() {
     QString why;
     solving_ = document_->hasMesh() && solver_->setProblem(*document_, &why);
+    if (!document_->hasMesh()) document_->canSolve(&why);  // "No mesh is loaded."
     notSolvingReason_ = solving_ ? QString() : why;
     notSolvingDetail_.clear();
     if (!solving_) document_->canSolve(nullptr, &notSolvingDetail_);
@@ -164,7 +165,13 @@ void FrameDisplay::onFrameChanged(int frame) {
         return;
     }
     markers_->setFrame(frame);
-    if (!document_->hasMesh()) return;
+    if (!document_->hasMesh()) {
+        // Nothing to pose: the frame is shown as it is (the take's markers), and the status
+        // says why, where "preparing the solver" stayed up for ever.
+        displayedFrame_ = frame;
+        emitStatus();
+        return;
+    }
     if (!solving_) {
         showUnsolved(frame);
         return;

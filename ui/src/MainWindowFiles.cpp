@@ -275,8 +275,14 @@ bool MainWindow::openProject(const QString& path, const QMap<QString, QString>& 
         if (!missingFile.isEmpty()) {
             if (recovery.isEmpty())
                 box->setInformativeText(
-                    tr("The file is left as it is. Locate… opens it with %1 where it is now.")
-                        .arg(QFileInfo(missingFile).fileName()));
+                    QFileInfo::exists(missingFile)
+                        // there, but not the mesh the map was made for
+                        ? tr("The file is left as it is. Locate… opens it with the mesh the map "
+                             "was made for, in place of %1.")
+                              .arg(QFileInfo(missingFile).fileName())
+                        : tr("The file is left as it is. Locate… opens it with %1 where it is "
+                             "now.")
+                              .arg(QFileInfo(missingFile).fileName()));
             QPushButton* locateButton = box->addButton(tr("Locate…"), QMessageBox::ActionRole);
             locateButton->setObjectName("locateButton");
             connect(locateButton, &QPushButton::clicked, this, [this, path, missingFile, located] {
@@ -310,7 +316,7 @@ bool MainWindow::openProject(const QString& path, const QMap<QString, QString>& 
         autosave_->schedule();
         QStringList names;
         for (const QString& file : located) names << QFileInfo(file).fileName();
-        statusBar()->showMessage(tr("Opened %1 with %2 in place of the missing file; the project "
+        statusBar()->showMessage(tr("Opened %1 with %2 in place of the file it named; the project "
                                     "names it from now on")
                                      .arg(QFileInfo(path).fileName(), names.join(", ")),
                                  10000);
@@ -364,17 +370,47 @@ bool MainWindow::askMapLoad(const QString& path, Document::MapLoad& mode) {
     return true;
 }
 
-bool MainWindow::openRecovery(const QString& path) {
+bool MainWindow::openRecovery(const QString& path, const QMap<QString, QString>& located) {
     const QString recovery = path.isEmpty() ? ProjectAutosave::lastAutosave() : path;
-    const Loading loading(this);
-    QString error;
+    std::optional<Loading> loading(std::in_place, this);
+    QString error, missing, missingFile;
     bool loaded = false;
     {
         const QScopedValueRollback<bool> quiet(loadingProject_, true);
-        loaded = Project::load(*document_, recovery, &error);
+        loaded = Project::load(*document_, recovery, &error, &missing, &missingFile, located);
     }
     if (!loaded) {
-        showError(tr("The last autosave could not be opened either."), error);
+        // The files it names moved after the crash (a folder renamed, a copy elsewhere): the
+        // sentence names the file, not the recovery file's PID-START name, and Locate… reads it
+        // where it is now. The work is kept either way: offerRecovery does not give it up.
+        const QString message = !missing.isEmpty() ? missing.replace(QFileInfo(recovery).fileName(),
+                                                                     tr("the last autosave"))
+                                                   : tr("The last autosave could not be opened.");
+        if (!messageBoxes_ || asking_) {  // no box, or one held until the question is answered
+            showError(message, error);
+            return false;
+        }
+        statusBar()->showMessage(message, 15000);
+        emit errorShown(message + "\n" + error);
+        QMessageBox* box = errorBox(message, error);
+        box->setObjectName("recoveryErrorMessage");
+        QString kept = tr("The autosave is left as it is.");
+        if (!missingFile.isEmpty()) {
+            kept += " " + tr("Locate… opens it with %1 where it is now.")
+                              .arg(QFileInfo(missingFile).fileName());
+            QPushButton* locateButton = box->addButton(tr("Locate…"), QMessageBox::ActionRole);
+            locateButton->setObjectName("locateButton");
+            connect(locateButton, &QPushButton::clicked, this,
+                    [this, recovery, missingFile, located] {
+                        const QString chosen = locate(missingFile);
+                        if (chosen.isEmpty() || !keepUnsavedWork(false)) return;
+                        QMap<QString, QString> next = located;
+                        next[missingFile] = QFileInfo(chosen).absoluteFilePath();
+                        openRecovery(recovery, next);
+                    });
+        }
+        box->setInformativeText(kept);
+        box->show();
         return false;
     }
     startUntitled();
@@ -386,6 +422,10 @@ bool MainWindow::openRecovery(const QString& path) {
     startFrame_ = -1;  // --frame is for the files named with it: this opens where it was left
     restoreSession();
     statusBar()->showMessage(tr("Opened the last autosave, untitled: Save As keeps it"), 10000);
+    if (!located.isEmpty()) {
+        loading.reset();
+        autosave_->schedule();  // the autosave names the files located from now on
+    }
     return true;
 }
 
@@ -433,8 +473,14 @@ bool MainWindow::offerRecovery(const QString& path, const QStringList& named) {
         autosave_->release(path);  // unanswered: offered again at the next start
         return false;
     }
-    if (box.clickedButton() == reopen && openRecovery(path)) return true;  // held while its own
-    // Discarded, or it would not open (openRecovery said why): a change may replace it.
+    if (box.clickedButton() == reopen) {
+        if (openRecovery(path)) return true;  // held while its own
+        // It would not open (openRecovery said why, and offers Locate… for a file moved since):
+        // still the crash's work, offered at the next start, which no change here replaces.
+        autosave_->release(path);
+        return false;
+    }
+    // Discarded: a change may replace it.
     autosave_->discardRecovery(path);
     autosave_->release(path);
     return false;

@@ -7,8 +7,11 @@
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QSaveFile>
+#include <QStringList>
 #include <cmath>
+#include <initializer_list>
 #include <nlohmann/json.hpp>
+#include <string_view>
 
 #include "boneless/Correspondence.h"
 #include "boneless/InputFile.h"
@@ -105,6 +108,71 @@ bool readEmbeddedMap(const QJsonObject& o, Correspondence& map, QString* error) 
     return true;
 }
 
+// What a JSON value is, in the words of the messages below.
+QString kindOf(const QJsonValue& v) {
+    switch (v.type()) {
+        case QJsonValue::Null:
+            return QObject::tr("null");
+        case QJsonValue::Bool:
+            return QObject::tr("true or false");
+        case QJsonValue::Double:
+            return QObject::tr("a number");
+        case QJsonValue::String:
+            return QObject::tr("a string");
+        case QJsonValue::Array:
+            return QObject::tr("an array");
+        case QJsonValue::Object:
+            return QObject::tr("an object");
+        default:
+            return QObject::tr("missing");
+    }
+}
+
+// Empty when `v` is absent or of one of `types`; otherwise what it is and what belongs there.
+QString wrongType(const QString& name, const QJsonValue& v,
+                  std::initializer_list<QJsonValue::Type> types) {
+    if (v.isUndefined()) return {};
+    QStringList wanted;
+    for (const QJsonValue::Type type : types) {
+        if (v.type() == type) return {};
+        wanted << (type == QJsonValue::Null ? QObject::tr("null") : kindOf(QJsonValue(type)));
+    }
+    return QObject::tr("%1 is %2, not %3").arg(name, kindOf(v), wanted.join(QObject::tr(" or ")));
+}
+
+// A key the app writes as one type, edited by hand into another ("mesh": "walker.obj", a map
+// pasted as an array) read as absent: the project opened without that part, or with the map
+// file's markers for the project's, and the next save wrote it so. Absent keys are an empty
+// session's; a "mesh" or "take" without its "file" is a typo.
+QString wrongKey(const QJsonObject& root) {
+    using T = QJsonValue::Type;
+    const auto quoted = [](const char* key) { return QStringLiteral("\"%1\"").arg(key); };
+    const auto inner = [&](const char* outer, const char* key) {
+        return QObject::tr("%1's %2").arg(quoted(outer), quoted(key));
+    };
+    QString why = wrongType(quoted("version"), root["version"], {T::Double});
+    for (const char* key : {"mesh", "take", "correspondence"}) {
+        if (why.isEmpty()) why = wrongType(quoted(key), root[key], {T::Object});
+        if (why.isEmpty() && root[key].isObject()) {
+            const QJsonObject o = root[key].toObject();
+            if (key != std::string_view("correspondence") && !o.contains("file"))
+                why = QObject::tr("%1 has no %2").arg(quoted(key), quoted("file"));
+            if (why.isEmpty()) why = wrongType(inner(key, "file"), o["file"], {T::String});
+        }
+    }
+    const QJsonObject mesh = root["mesh"].toObject(), map = root["correspondence"].toObject();
+    if (why.isEmpty()) why = wrongType(inner("mesh", "group"), mesh["group"], {T::String});
+    if (why.isEmpty())
+        why = wrongType(inner("correspondence", "modified"), map["modified"], {T::Bool});
+    if (why.isEmpty())
+        why = wrongType(inner("correspondence", "map"), map["map"], {T::Object, T::Null});
+    if (why.isEmpty())
+        why = wrongType(quoted("alignment"), root["alignment"], {T::Object, T::Null});
+    if (why.isEmpty()) why = wrongType(quoted("settings"), root["settings"], {T::Object});
+    if (why.isEmpty()) why = wrongType(quoted("view"), root["view"], {T::Object});
+    return why;
+}
+
 }  // namespace
 
 QByteArray toJson(const Document& document, const QString& path) {
@@ -161,15 +229,22 @@ bool load(Document& document, const QString& path, QString* error, QString* miss
     QFile file(path);
     if (!file.open(QIODevice::ReadOnly)) return fail(file.errorString());
     QJsonParseError parseError;
-    const QJsonDocument json = QJsonDocument::fromJson(file.readAll(), &parseError);
-    if (json.isNull())
-        return fail(QObject::tr("not JSON (%1 at byte %2)")
+    const QByteArray bytes = file.readAll();
+    const QJsonDocument json = QJsonDocument::fromJson(bytes, &parseError);
+    if (json.isNull()) {
+        // A line and column, as the map reader gives them: a project fixed by hand is fixed in
+        // a text editor, which counts lines, not bytes.
+        const QByteArray before = bytes.left(parseError.offset);
+        return fail(QObject::tr("not JSON (%1 at line %2, column %3)")
                         .arg(parseError.errorString())
-                        .arg(parseError.offset));
+                        .arg(before.count('\n') + 1)
+                        .arg(before.size() - before.lastIndexOf('\n')));
+    }
     if (!json.isObject()) return fail(QObject::tr("not a Boneless project (not a JSON object)"));
     const QJsonObject root = json.object();
     if (root["format"].toString() != kFormat)
         return fail(QObject::tr("not a Boneless project (format is not \"%1\")").arg(kFormat));
+    if (const QString why = wrongKey(root); !why.isEmpty()) return fail(why);
     if (root["version"].toInt() != kVersion)
         return fail(QObject::tr("project version %1 is not supported (this Boneless reads %2)")
                         .arg(root["version"].toInt())
@@ -202,6 +277,25 @@ bool load(Document& document, const QString& path, QString* error, QString* miss
         try {
             state.map = Correspondence::read(state.mapPath.toStdString());
         } catch (const std::exception& e) {
+            return fail(QString::fromStdString(e.what()));
+        }
+    }
+    // A mesh re-exported since with other vertices (the map records how many it was made for):
+    // the headline said only that the project could not be opened. It names the map and the
+    // mesh, and like a missing mesh the one the map was made for can be located in its place.
+    // Other misfits (an entry edited out of range) are the map's, and say so in the details.
+    if (state.hasMesh && state.map.meshVertices != 0 &&
+        state.map.meshVertices != state.mesh.vertexCount()) {
+        try {
+            state.map.checkMesh(state.mesh.vertexCount(), state.meshPath.toStdString());
+        } catch (const std::exception& e) {
+            if (missing)
+                *missing = QObject::tr(
+                               "The map in %1 was made for another mesh than %2, which has "
+                               "%3 vertices now.")
+                               .arg(project, state.meshPath)
+                               .arg(state.mesh.vertexCount());
+            if (missingFile) *missingFile = resolve(dir, mesh["file"].toString());
             return fail(QString::fromStdString(e.what()));
         }
     }

@@ -67,8 +67,10 @@ class MainWindow : public QMainWindow {
     bool openDemo();
     bool isDemoOpen() const { return demo_; }
     // Opens the recovery file `path` (by default ProjectAutosave::lastAutosave()) as an untitled
-    // project, this session's from then on.
-    bool openRecovery(const QString& path = {});
+    // project, this session's from then on. One that will not open is kept (offered again at the
+    // next start); a file it names that has moved since can be located (Locate…), as a project's.
+    bool openRecovery(const QString& path = {}) { return openRecovery(path, {}); }
+    bool openRecovery(const QString& path, const QMap<QString, QString>& located);
     // At start-up: for each recovery file holding work that no project file holds, left by a
     // session that did not close (ProjectAutosave::unfinishedRecoveries(), newest first), asks
     // Reopen or Discard (recoveryQuestion), saying that reopened it opens instead of the files

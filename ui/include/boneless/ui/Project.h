@@ -32,8 +32,11 @@ bool save(const Document& document, const QString& path, QString* error = nullpt
 // document is left as it was and *error holds a message naming the project and the cause.
 // When it failed because a file the project names is not there, *missing (if given) says which,
 // in a plain sentence: "The mesh /data/walker.obj named by walk.boneless is missing."
-// *missingFile (if given) is that file's path. `located` gives files found elsewhere (Locate…):
-// a path the project names, resolved, to the one read instead (and saved next).
+// A mesh that no longer fits the map (re-exported since) is said so too: "The map in walk.boneless
+// was made for another mesh than /data/walker.obj, which has 3083 vertices now."
+// *missingFile (if given) is that file's path, the one to locate. `located` gives files found
+// elsewhere (Locate…): a path the project names, resolved, to the one read instead (and saved
+// next).
 bool load(Document& document, const QString& path, QString* error = nullptr,
           QString* missing = nullptr, QString* missingFile = nullptr,
           const QMap<QString, QString>& located = {});
