@@ -542,6 +542,7 @@ void run(const BatchArgs& args) {
         job.replacesOtherTakes = true;  // readManifest refuses two entries into one out
     }
     int mine = 0, solved = 0, skipped = 0, failed = 0;
+    std::vector<std::string> failedTakes;  // named on the last line, so no one searches the log
     for (std::size_t k = 0; k < jobs.size(); ++k)
         if (static_cast<int>(k % shards) == shard - 1) ++mine;
     int done = 0;
@@ -605,18 +606,28 @@ void run(const BatchArgs& args) {
         } catch (const Error& e) {
             std::printf("FAILED: %s\n", e.what());
             ++failed;
+            failedTakes.push_back(job.c3d);
         } catch (const std::exception& e) {
             // Whatever went wrong with one take (a bug included), the others are still to solve.
             std::printf("FAILED: internal error: %s\n", e.what());
             ++failed;
+            failedTakes.push_back(job.c3d);
         }
         underTheLine();
     }
     std::printf("batch: %d of %zu takes in shard %d/%d: %d solved, %d skipped, %d failed\n", mine,
                 jobs.size(), shard, shards, solved, skipped, failed);
     std::fflush(stdout);
-    if (failed)
-        throw Error(std::to_string(failed) + " of " + std::to_string(mine) + " takes failed");
+    if (failed) {
+        // A library's worth would drown the line: the first ten, then how many more.
+        constexpr std::size_t kNamed = 10;
+        std::vector<std::string> named(failedTakes.begin(),
+                                       failedTakes.begin() + std::min(kNamed, failedTakes.size()));
+        if (failedTakes.size() > kNamed)
+            named.push_back("and " + std::to_string(failedTakes.size() - kNamed) + " more");
+        throw Error(std::to_string(failed) + " of " + std::to_string(mine) +
+                    " takes failed: " + joined(named));
+    }
 }
 
 }  // namespace

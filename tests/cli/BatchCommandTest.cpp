@@ -328,6 +328,25 @@ TEST(Batch, ASidecarFromBeforeTakeUnitsIsSkippedAsAFileOne) {
     EXPECT_NE(r.out.find("3 solved, 0 skipped"), std::string::npos) << r.out;
 }
 
+// The morning's reader had "2 of 3 takes failed" and had to search the log for which.
+TEST(Batch, TheLastLineOfAFailedRunNamesTheTakesThatFailed) {
+    const fs::path dir = makeLibrary();
+    std::ofstream(dir / "takes" / "broken.c3d") << "not a c3d file";
+    std::ofstream(dir / "takes" / "empty.c3d");
+    const json manifest = {
+        {"defaults", {{"mesh", "walker.obj"}, {"map", "walker.map.json"}, {"format", "pc2"}}},
+        {"takes",
+         {{{"c3d", "takes/broken.c3d"}, {"out", "out/broken"}},
+          {{"c3d", "takes/walk_a.c3d"}, {"out", "out/walk_a"}},
+          {{"c3d", "takes/empty.c3d"}, {"out", "out/empty"}}}}};
+    const CliResult r = runCli("batch " + writeManifest(dir, "m.json", manifest).string());
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("2 of 3 takes failed: " + (dir / "takes" / "broken.c3d").string() + ", " +
+                         (dir / "takes" / "empty.c3d").string()),
+              std::string::npos)
+        << r.out;
+}
+
 TEST(Batch, AFailingTakeDoesNotStopTheOthersButFailsTheRun) {
     const fs::path dir = makeLibrary();
     std::ofstream(dir / "takes" / "broken.c3d") << "not a c3d file";
