@@ -77,6 +77,17 @@ std::map<std::string, std::string> contents(const fs::path& root) {
     return files;
 }
 
+// One take, its first 3 frames, into "one": a run that a manifest edited after it solves again.
+json firstFramesOfWalkC() {
+    return {{"defaults", {{"format", "pc2"}}},
+            {"takes",
+             {{{"mesh", "walker.obj"},
+               {"map", "walker.map.json"},
+               {"c3d", "takes/walk_c.c3d"},
+               {"out", "one"},
+               {"frames", "0:3"}}}}};
+}
+
 }  // namespace
 
 TEST(Batch, TwoShardsTogetherWriteExactlyWhatOneRunWrites) {
@@ -130,13 +141,7 @@ TEST(Batch, ARunAgainSkipsTheTakesItFinished) {
 
 TEST(Batch, ATakeAskedForOtherFramesOrOptionsIsSolvedAgain) {
     const fs::path dir = makeLibrary();
-    json manifest = {{"defaults", {{"format", "pc2"}}},
-                     {"takes",
-                      {{{"mesh", "walker.obj"},
-                        {"map", "walker.map.json"},
-                        {"c3d", "takes/walk_c.c3d"},
-                        {"out", "one"},
-                        {"frames", "0:3"}}}}};
+    json manifest = firstFramesOfWalkC();
     const fs::path path = writeManifest(dir, "m.json", manifest);
     ASSERT_EQ(runCli("batch " + path.string()).exitCode, 0);
     const fs::path sidecar = dir / "one" / "walker.json";
@@ -1095,13 +1100,7 @@ TEST(Batch, ARunStoppedPartWayStillEndsWithItsSums) {
 // from other frames or options": which frames, which option and what it was went unsaid.
 TEST(Batch, ATakeSolvedAgainForOtherFramesOrOptionsSaysWhichAndWhatTheyWere) {
     const fs::path dir = makeLibrary();
-    json manifest = {{"defaults", {{"format", "pc2"}}},
-                     {"takes",
-                      {{{"mesh", "walker.obj"},
-                        {"map", "walker.map.json"},
-                        {"c3d", "takes/walk_c.c3d"},
-                        {"out", "one"},
-                        {"frames", "0:3"}}}}};
+    json manifest = firstFramesOfWalkC();
     const fs::path path = writeManifest(dir, "m.json", manifest);
     ASSERT_EQ(runCli("batch " + path.string()).exitCode, 0);
     manifest["takes"][0].erase("frames");
