@@ -81,10 +81,10 @@ nlohmann::json summaryJson(const EvaluationSummary& s) {
             {"rms_pct_mean", s.rmsPctMean},
             {"rms_pct_worst_frame", s.rmsPctWorstFrame},
             {"max_pct_worst_frame", s.maxPctWorstFrame},
-            {"flipped_faces_max", s.flippedFacesMax},
+            {"flipped_faces_worst_frame", s.flippedFacesWorstFrame},
             {"flipped_faces_mean", s.flippedFacesMean},
-            {"folded_faces_max", s.foldedFacesMax},
-            {"truth_folded_faces_max", s.truthFoldedFacesMax},
+            {"folded_faces_worst_frame", s.foldedFacesWorstFrame},
+            {"truth_folded_faces_worst_frame", s.truthFoldedFacesWorstFrame},
             {"ms_per_frame_mean", s.msPerFrameMean},
             {"ms_per_frame_worst", s.msPerFrameWorst},
             {"ms_per_frame_median", s.msPerFrameMedian},
@@ -129,8 +129,8 @@ void printSummary(const char* name, const EvaluationSummary& s) {
         "flipped max %d (mean %.1f)  folded max %d (truth folded max %d)  ms/frame mean %.1f worst "
         "%.1f median %.1f\n",
         name, s.frames, s.markersUsed, s.rmsPctMean, s.rmsPctWorstFrame, s.maxPctWorstFrame,
-        s.flippedFacesMax, s.flippedFacesMean, s.foldedFacesMax, s.truthFoldedFacesMax,
-        s.msPerFrameMean, s.msPerFrameWorst, s.msPerFrameMedian);
+        s.flippedFacesWorstFrame, s.flippedFacesMean, s.foldedFacesWorstFrame,
+        s.truthFoldedFacesWorstFrame, s.msPerFrameMean, s.msPerFrameWorst, s.msPerFrameMedian);
 }
 
 void run(const EvalArgs& args) {

@@ -32,10 +32,10 @@ EvaluationSummary summarise(const std::vector<FrameEvaluation>& frames) {
         s.rmsPctMean += f.rmsPct;
         s.rmsPctWorstFrame = std::max(s.rmsPctWorstFrame, f.rmsPct);
         s.maxPctWorstFrame = std::max(s.maxPctWorstFrame, f.maxPct);
-        s.flippedFacesMax = std::max(s.flippedFacesMax, f.flippedFaces);
+        s.flippedFacesWorstFrame = std::max(s.flippedFacesWorstFrame, f.flippedFaces);
         s.flippedFacesMean += f.flippedFaces;
-        s.foldedFacesMax = std::max(s.foldedFacesMax, f.foldedFaces);
-        s.truthFoldedFacesMax = std::max(s.truthFoldedFacesMax, f.truthFoldedFaces);
+        s.foldedFacesWorstFrame = std::max(s.foldedFacesWorstFrame, f.foldedFaces);
+        s.truthFoldedFacesWorstFrame = std::max(s.truthFoldedFacesWorstFrame, f.truthFoldedFaces);
         iterations += f.iterations;
         ms.push_back(f.milliseconds);
     }

@@ -55,10 +55,10 @@ struct EvaluationSummary {
     int frames = 0;       // frames summarised: those after the rest pose
     int markersUsed = 0;  // the fewest markers any of them was reconstructed from
     double rmsPctMean = 0, rmsPctWorstFrame = 0, maxPctWorstFrame = 0;
-    int flippedFacesMax = 0;
+    int flippedFacesWorstFrame = 0;
     double flippedFacesMean = 0;
-    int foldedFacesMax = 0;
-    int truthFoldedFacesMax = 0;
+    int foldedFacesWorstFrame = 0;
+    int truthFoldedFacesWorstFrame = 0;
     double msPerFrameMean = 0, msPerFrameWorst = 0, msPerFrameMedian = 0, iterationsMean = 0;
 };
 
