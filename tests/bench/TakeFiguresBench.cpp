@@ -1,11 +1,11 @@
 // boneless-bench-take: the quality figures of solved takes, issue 28's targets beside them. Each
 // --solved DIR is a `boneless-cli solve --format pc2` output (the cache and its sidecar) of the
 // same mesh, take and map; each is measured by the same code, so that a run before a change and
-// one after it compare directly. Per frame: the 95th percentile edge strain |len/rest − 1|, the
-// edge distortion (RMS of the same), folded faces (Metrics' foldedFaces, refitted from scratch),
-// the dent ratio (DentGauge), the sidecar's marker residual, and the share of edges bent by more
-// than 20° (bentEdgeShare: the kinks that the strain and the dent ratio cannot see; the issue sets
-// no target for it); printed as worst frame and mean.
+// one after it compare directly. Per frame: the 95th percentile edge strain |len/rest − 1| (the
+// sidecar's edgeStrains and quantile), the edge distortion (RMS of the same), folded faces
+// (Metrics' foldedFaces, refitted from scratch), the dent ratio (DentGauge), the sidecar's marker
+// residual, and the share of edges bent by more than 20° (bentEdgeShare: the kinks that the strain
+// and the dent ratio cannot see; the issue sets no target for it); printed as worst frame and mean.
 // A take solved with calibration is measured against its calibrated rest, as the sidecar measures
 // it (solve it with --write-calibrated-rest); the actor's proportions are not a stretch.
 // Nothing is asserted.
@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "boneless/ActorCalibration.h"
 #include "boneless/Correspondence.h"
 #include "boneless/DentGauge.h"
 #include "boneless/Error.h"
@@ -40,13 +41,6 @@ namespace {
 constexpr double kTargetStrainP95 = 0.15, kTargetDistortion = 0.08, kTargetResidualMm = 2.0,
                  kTargetDent = 2.0;
 constexpr double kBendDegrees = 20;  // a kink: more than skin's soft bend across one edge
-
-double percentile95(std::vector<double> x) {
-    if (x.empty()) return 0;
-    const size_t i = static_cast<size_t>(0.95 * static_cast<double>(x.size() - 1));
-    std::nth_element(x.begin(), x.begin() + i, x.end());
-    return x[i];
-}
 
 struct Worst {
     double worst = 0, sum = 0;
@@ -92,12 +86,6 @@ int measure(int argc, char** argv) {
     const Correspondence map = Correspondence::read(mapPath);
     const std::vector<SurfacePoint> points = surfacePoints(map);
     const MeshTopology topology(input);
-    std::vector<std::pair<int, int>> edges;
-    for (int f = 0; f < input.faceCount(); ++f)
-        for (int c = 0; c < 3; ++c) {
-            const int a = input.F(f, c), b = input.F(f, (c + 1) % 3);
-            if (a < b) edges.emplace_back(a, b);  // each interior edge once (closed: both ways)
-        }
 
     for (const std::string& dir : solved) {
         const std::string stem = group.empty() ? fs::path(meshPath).stem().string() : group;
@@ -140,12 +128,8 @@ int measure(int argc, char** argv) {
         for (size_t i = 0; i < frames.size(); ++i) {
             const Positions& V = frames[i];
             const int f = first + static_cast<int>(i);
-            std::vector<double> e;
-            e.reserve(edges.size());
-            for (const auto& [a, b] : edges)
-                e.push_back(std::abs(
-                    (V.row(a) - V.row(b)).norm() / (rest.V.row(a) - rest.V.row(b)).norm() - 1));
-            strain.add(percentile95(e), f);
+            // The sidecar's own gauge: its edge_strain_p95, to the last digit.
+            strain.add(quantile(edgeStrains(rest.F, V, rest.V), 0.95), f);
             distortion.add(edgeLengthDistortion(rest.F, V, rest.V), f);
             const int fold = foldedFaceCount(rest.F, V, rest.V);
             folded.add(fold, f);
