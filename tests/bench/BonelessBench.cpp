@@ -29,6 +29,7 @@
 #include "boneless/MeshTopology.h"
 #include "boneless/ObjWriter.h"
 #include "boneless/Reconstruction.h"
+#include "boneless/Statistics.h"
 
 using namespace boneless;
 using nlohmann::json;
@@ -82,10 +83,9 @@ double msSince(Clock::time_point t0) {
 json stats(std::vector<double> v) {
     if (v.empty()) return {{"mean", 0}, {"worst", 0}, {"median", 0}};
     std::sort(v.begin(), v.end());
-    const size_t m = v.size() / 2;
     return {{"mean", std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size())},
             {"worst", v.back()},
-            {"median", v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m])}};
+            {"median", median(v)}};
 }
 
 double largestMove(const Positions& a, const Positions& b) {

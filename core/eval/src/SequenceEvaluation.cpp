@@ -8,6 +8,7 @@
 #include "boneless/ArapDeformer.h"
 #include "boneless/Error.h"
 #include "boneless/Metrics.h"
+#include "boneless/Statistics.h"
 
 namespace boneless {
 
@@ -45,12 +46,7 @@ EvaluationSummary summarise(const std::vector<FrameEvaluation>& frames) {
         s.iterationsMean = iterations / s.frames;
         s.msPerFrameMean = std::accumulate(ms.begin(), ms.end(), 0.0) / s.frames;
         s.msPerFrameWorst = *std::max_element(ms.begin(), ms.end());
-        std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
-        s.msPerFrameMedian = ms[ms.size() / 2];
-        if (ms.size() % 2 == 0) {
-            const double lower = *std::max_element(ms.begin(), ms.begin() + ms.size() / 2);
-            s.msPerFrameMedian = 0.5 * (s.msPerFrameMedian + lower);
-        }
+        s.msPerFrameMedian = median(ms);
     }
     return s;
 }

@@ -36,6 +36,7 @@
 #include "boneless/Parallel.h"
 #include "boneless/SolveFits.h"
 #include "boneless/SpoolFile.h"
+#include "boneless/Statistics.h"
 #include "boneless/TakeOptionsJson.h"
 #include "boneless/Text.h"
 
@@ -305,13 +306,6 @@ class PerFrameFigures {
             throw Error("cannot write the sidecar's figures to a temporary file (" +
                         writeFailure() + ")");
     }
-    // Of an even count, the mean of the two middle times, as eval and boneless-bench take it:
-    // the upper one alone gave one key two figures for the same frames.
-    static double median(const std::vector<double>& sorted) {
-        const std::size_t n = sorted.size(), m = n / 2;
-        if (n == 0) return 0.0;
-        return n % 2 ? sorted[m] : 0.5 * (sorted[m - 1] + sorted[m]);
-    }
     json summary() const {
         std::vector<double> ms = ms_;
         std::sort(ms.begin(), ms.end());
@@ -378,8 +372,11 @@ json recordedPath(const std::string& path) {
     return validUtf8(fullPath(path));
 }
 
+// vertices: the points a frame of the outputs holds; batch checks a cache's header against it and
+// the mesh, as a cache of another mesh is the right size for its own header.
 json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibration& c,
-                 const ExportResult& result, json fingerprints, json calibration, json summary) {
+                 const ExportResult& result, json fingerprints, json calibration, json summary,
+                 int vertices) {
     const Similarity& s = c.takeToMesh;
     const double meshUnitsPerMm = s.scale / take.unitToMm;
     const TakeSolveOptions& o = request.options;
@@ -415,6 +412,7 @@ json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibr
             {"calibration", std::move(calibration)},
             {"options", toJson(o)},
             {"summary", std::move(summary)},
+            {"vertices", vertices},
             {"per_frame", json::array()}};
 }
 
@@ -703,9 +701,9 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
         ExportResult started;
         started.first = request.first;
         started.cancelled = true;
-        json placeholder = sidecarJson(take, request, solver.calibration(), started, fingerprints,
-                                       calibrationJson(request, mesh, solver, ""), json::object());
-        placeholder["vertices"] = mesh.vertexCount();
+        const json placeholder = sidecarJson(
+            take, request, solver.calibration(), started, fingerprints,
+            calibrationJson(request, mesh, solver, ""), json::object(), mesh.vertexCount());
         writeFileAtomically(result.sidecarPath, placeholder.dump(2) + "\n");
     }
     // Made once, not per frame: a library the OBJ files could not name is copied beside them.
@@ -761,12 +759,9 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
         });
     output.finish();
     result.held = perFrame.held();
-    json sidecar =
-        sidecarJson(take, request, solver.calibration(), result, fingerprints,
-                    calibrationJson(request, mesh, solver, restFile), perFrame.summary());
-    // The points a frame of the outputs holds: batch checks a cache's header against it and the
-    // mesh, as a cache of another mesh is the right size for its own header.
-    sidecar["vertices"] = mesh.vertexCount();
+    json sidecar = sidecarJson(take, request, solver.calibration(), result, fingerprints,
+                               calibrationJson(request, mesh, solver, restFile), perFrame.summary(),
+                               mesh.vertexCount());
     // The app's map may be in no file (edited, or kept in the project): the sidecar then holds
     // the map that was solved, so the frames can be traced and solved again.
     if (request.mapPath.empty()) sidecar["map"] = json::parse(map.toJson());
