@@ -277,6 +277,22 @@ std::string worseAlignmentWarning(const TriMesh& mesh, const C3dFrameReader& tak
            " (a pose far from the rest's, or a wrong up, turns the body against its markers)";
 }
 
+// A calibration frame that misses mapped markers fits the rest without them: a limb there keeps
+// the mesh's length in every frame, and the alignment's residual does not show it.
+std::string unseenAtCalibrationWarning(const Correspondence& map, const Calibration& c) {
+    if (c.unseen.empty()) return "";
+    std::vector<std::string> labels;
+    for (const int k : c.unseen) labels.push_back(map.markers[k].label);
+    constexpr std::size_t kListed = 5;
+    std::string named = joined({labels.begin(), labels.begin() + std::min(kListed, labels.size())});
+    if (labels.size() > kListed)
+        named += " and " + std::to_string(labels.size() - kListed) + " more";
+    return "calibration frame " + std::to_string(c.frame) + " does not show " + named + " (" +
+           std::to_string(labels.size()) + " of the " + std::to_string(map.markers.size()) +
+           " mapped markers), so the rest is fitted to the actor without " +
+           (labels.size() == 1 ? "it" : "them") + "; a frame that shows every one fits it whole";
+}
+
 // A solve this far from a body's is a wrong map far more often than a wrong take: measured on CMU
 // 85_02 and MakeHuman, a right map leaves an edge distortion of 0.14 (calibrate none) and aligns to
 // 102 mm at a pose far from the rest's; the binary STL of that body with the OBJ's map (another
@@ -513,8 +529,10 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
         const std::string scale =
             meshScaleWarning(mesh, c.takeToMesh, take.take().unitToMm, take.take().vertical);
         if (!scale.empty() && takeWarnings) takeWarnings->push_back(scale);
+        const std::string unseen = unseenAtCalibrationWarning(map, c);
+        if (!unseen.empty() && takeWarnings) takeWarnings->push_back(unseen);
         const auto warnOfWorse = [&] {
-            for (const std::string& w : {worse, scale})
+            for (const std::string& w : {worse, scale, unseen})
                 if (!w.empty() && !takeWarnings)
                     std::fprintf(stderr, "warning: %s: %s\n", job.c3d.c_str(), w.c_str());
         };

@@ -1093,6 +1093,29 @@ TEST(SolveCommand, AnotherActorsSolveOfTheSameTakeInOutIsNotReplacedUnlessForced
     EXPECT_EQ(sidecar(out)["subjects"], nlohmann::json({"walker"}));
 }
 
+// A calibration frame that misses a mapped marker fits the rest to the actor without it (the limb
+// keeps the mesh's length in every frame), and nothing said so: the alignment's residual looked
+// fine.
+TEST(SolveCommand, ACalibrationFrameMissingAMappedMarkerIsSaidToFitTheRestWithoutIt) {
+    const fs::path demo = makeDemo(3), out = demo / "solved";
+    const std::string c3d = (demo / "walker.c3d").string();
+    C3dTake take = readC3d(c3d);
+    take.samples.setMissing(1, *take.findPoint("LKNE"));
+    writeC3d(take, c3d);
+    CliResult r = runCli(solveArgs(demo, out) +
+                         " --quiet --format pc2 --fill-gaps-s 0 --calibration-frame 1");
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("warning: " + c3d +
+                         ": calibration frame 1 does not show LKNE (1 of the 39 mapped markers), "
+                         "so the rest is fitted to the actor without it"),
+              std::string::npos)
+        << r.out;
+    // The automatic choice is a frame that shows every one.
+    r = runCli(solveArgs(demo, out) + " --quiet --format pc2 --fill-gaps-s 0");
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_EQ(r.out.find("does not show"), std::string::npos) << r.out;
+}
+
 // A rest asked for without calibration was refused only once the solver was prepared, after the
 // earlier run's sidecar had gone: its complete solve was then solved again by the next batch run.
 TEST(SolveCommand, ACalibratedRestWithoutCalibrationIsRefusedBeforeTheEarlierSolveIsTouched) {
