@@ -277,6 +277,22 @@ std::string worseAlignmentWarning(const TriMesh& mesh, const C3dFrameReader& tak
            " (a pose far from the rest's, or a wrong up, turns the body against its markers)";
 }
 
+// A calibration frame that misses mapped markers fits the rest without them: a limb there keeps
+// the mesh's length in every frame, and the alignment's residual does not show it.
+std::string unseenAtCalibrationWarning(const Correspondence& map, const Calibration& c) {
+    if (c.unseen.empty()) return "";
+    std::vector<std::string> labels;
+    for (const int k : c.unseen) labels.push_back(map.markers[k].label);
+    constexpr std::size_t kListed = 5;
+    std::string named = joined({labels.begin(), labels.begin() + std::min(kListed, labels.size())});
+    if (labels.size() > kListed)
+        named += " and " + std::to_string(labels.size() - kListed) + " more";
+    return "calibration frame " + std::to_string(c.frame) + " does not show " + named + " (" +
+           std::to_string(labels.size()) + " of the " + std::to_string(map.markers.size()) +
+           " mapped markers), so the rest is fitted to the actor without " +
+           (labels.size() == 1 ? "it" : "them") + "; a frame that shows every one fits it whole";
+}
+
 // A solve this far from a body's is a wrong map far more often than a wrong take: measured on CMU
 // 85_02 and MakeHuman, a right map leaves an edge distortion of 0.14 (calibrate none) and aligns to
 // 102 mm at a pose far from the rest's; the binary STL of that body with the OBJ's map (another
@@ -342,9 +358,22 @@ void refuseToReplaceOthersFiles(const ExportRequest& request, int end) {
                 (one ? "it" : "them") + ", or another output folder");
 }
 
+// Whether two sidecars' "subjects" name the same actors, as labels compare (case aside).
+bool sameSubjects(const nlohmann::json& earlier, const std::vector<std::string>& now) {
+    if (!earlier.is_array() || earlier.size() != now.size()) return false;
+    for (const nlohmann::json& s : earlier)
+        if (!s.is_string() || std::none_of(now.begin(), now.end(), [&](const std::string& n) {
+                return c3dNameEquals(s.get<std::string>(), n);
+            }))
+            return false;
+    return true;
+}
+
 // A shell loop solving each take with one --out left only the last take's solve, each run
-// replacing the one before in silence: the folder's sidecar of another take refuses the job.
-void refuseToReplaceAnotherTake(const ExportRequest& request) {
+// replacing the one before in silence: the folder's sidecar of another take refuses the job, and
+// so does one of another actor of the same take (`subjects`: the actors this solve animates).
+void refuseToReplaceAnotherTake(const ExportRequest& request,
+                                const std::vector<std::string>& subjects) {
     namespace fs = std::filesystem;
     const fs::path sidecar = fs::path(request.outDir) / (exportStem(request) + ".json");
     std::ifstream in(sidecar);
@@ -358,7 +387,25 @@ void refuseToReplaceAnotherTake(const ExportRequest& request) {
     if (!s.is_object() || s.value("format", nlohmann::json()) != "boneless-solve") return;
     const nlohmann::json c3d =
         s.value("source", nlohmann::json::object()).value("c3d", nlohmann::json());
-    if (!c3d.is_string() || sameFile(c3d.get<std::string>(), request.c3dPath)) return;
+    if (!c3d.is_string()) return;
+    if (sameFile(c3d.get<std::string>(), request.c3dPath)) {
+        // Sidecars before 1 December 2026 name no subjects, nor does a take without prefixes.
+        const nlohmann::json earlier = s.value("subjects", nlohmann::json());
+        if (!earlier.is_array() || earlier.empty() || subjects.empty() ||
+            sameSubjects(earlier, subjects))
+            return;
+        std::vector<std::string> named;
+        for (const nlohmann::json& e : earlier)
+            named.push_back(e.is_string() ? e.get<std::string>() : e.dump());
+        const auto subjectText = [](const std::vector<std::string>& list) {
+            return (list.size() == 1 ? "subject " : "subjects ") + joined(list);
+        };
+        throw Error(sidecar.string() + " is the solve of " + subjectText(named) + " of " +
+                    c3d.get<std::string>() + ", and solving " + subjectText(subjects) + " into " +
+                    request.outDir +
+                    " would replace it; nothing was written: give each subject its own --out, or "
+                    "--force to replace it");
+    }
     throw Error(sidecar.string() + " is the solve of " + c3d.get<std::string>() +
                 ", another take, and solving " + request.c3dPath + " into " + request.outDir +
                 " would replace it; nothing was written: give each take its own --out, or --force "
@@ -458,7 +505,8 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
     if (!job.force)
         refuseToReplaceOthersFiles(
             request, within.end < 0 ? static_cast<int>(take.frameCount()) : within.end);
-    if (!job.force && !job.replacesOtherTakes) refuseToReplaceAnotherTake(request);
+    if (!job.force && !job.replacesOtherTakes)
+        refuseToReplaceAnotherTake(request, map.subjects(take.take()));
 
     // Preparing (the alignment, the calibration, the factorisation) takes seconds on a large
     // mesh: said as it starts and ends, and kept out of the seconds a frame takes.
@@ -481,8 +529,10 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
         const std::string scale =
             meshScaleWarning(mesh, c.takeToMesh, take.take().unitToMm, take.take().vertical);
         if (!scale.empty() && takeWarnings) takeWarnings->push_back(scale);
+        const std::string unseen = unseenAtCalibrationWarning(map, c);
+        if (!unseen.empty() && takeWarnings) takeWarnings->push_back(unseen);
         const auto warnOfWorse = [&] {
-            for (const std::string& w : {worse, scale})
+            for (const std::string& w : {worse, scale, unseen})
                 if (!w.empty() && !takeWarnings)
                     std::fprintf(stderr, "warning: %s: %s\n", job.c3d.c_str(), w.c_str());
         };

@@ -1036,6 +1036,86 @@ TEST(SolveCommand, ASolveOfAnotherTakeInOutIsNotReplacedUnlessForced) {
     EXPECT_EQ(sidecar(out)["source"]["c3d"], (demo / "walk_b.c3d").string());
 }
 
+// The demo's take worn by two actors, walker: and other: (1.5 m beside it), and a map of each.
+fs::path makeTwoActorDemo() {
+    const fs::path demo = makeDemo(3);
+    const C3dTake one = readC3d((demo / "walker.c3d").string());
+    C3dTake two = one;
+    const std::size_t n = one.points.size();
+    two.points.clear();
+    two.samples = C3dSamples(one.frameCount(), 2 * n);
+    for (const std::string subject : {"walker", "other"}) {
+        const std::size_t base = two.points.size();
+        for (std::size_t p = 0; p < n; ++p) {
+            C3dPoint point = one.points[p];
+            point.subject = subject;
+            point.label = subject + ":" + point.name;
+            two.points.push_back(point);
+            for (std::size_t f = 0; f < one.frameCount(); ++f)
+                if (const auto x = one.samples.position(f, p))
+                    two.samples.set(f, base + p, x->x() + (base ? 1500.0 : 0.0), x->y(), x->z());
+        }
+    }
+    writeC3d(two, (demo / "two.c3d").string());
+    const nlohmann::json bare = nlohmann::json::parse(std::ifstream(demo / "walker.map.json"));
+    for (const std::string subject : {"walker", "other"}) {
+        nlohmann::json map = bare;
+        for (auto& m : map["markers"]) m["label"] = subject + ":" + m["label"].get<std::string>();
+        std::ofstream(demo / (subject + ".map.json")) << map.dump(2);
+    }
+    return demo;
+}
+
+// Solving a second actor of a take into the folder of the first's solve replaced the first in
+// silence: the sidecar named the same take, and only another take was refused.
+TEST(SolveCommand, AnotherActorsSolveOfTheSameTakeInOutIsNotReplacedUnlessForced) {
+    const fs::path demo = makeTwoActorDemo(), out = demo / "solved";
+    const auto solve = [&](const std::string& subject, const std::string& more = "") {
+        return runCli("solve --quiet --format pc2 --mesh " + (demo / "walker.obj").string() +
+                      " --c3d " + (demo / "two.c3d").string() + " --map " +
+                      (demo / (subject + ".map.json")).string() + " --out " + out.string() + more);
+    };
+    CliResult r = solve("other");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_EQ(sidecar(out)["subjects"], nlohmann::json({"other"}));
+    r = solve("walker");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find((out / "walker.json").string() + " is the solve of subject other of " +
+                         (demo / "two.c3d").string() + ", and solving subject walker into " +
+                         out.string() + " would replace it; nothing was written"),
+              std::string::npos)
+        << r.out;
+    EXPECT_EQ(sidecar(out)["subjects"], nlohmann::json({"other"}));
+    // The same actor again is replaced, as ever; the other with --force too.
+    EXPECT_EQ(solve("other").exitCode, 0);
+    r = solve("walker", " --force");
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_EQ(sidecar(out)["subjects"], nlohmann::json({"walker"}));
+}
+
+// A calibration frame that misses a mapped marker fits the rest to the actor without it (the limb
+// keeps the mesh's length in every frame), and nothing said so: the alignment's residual looked
+// fine.
+TEST(SolveCommand, ACalibrationFrameMissingAMappedMarkerIsSaidToFitTheRestWithoutIt) {
+    const fs::path demo = makeDemo(3), out = demo / "solved";
+    const std::string c3d = (demo / "walker.c3d").string();
+    C3dTake take = readC3d(c3d);
+    take.samples.setMissing(1, *take.findPoint("LKNE"));
+    writeC3d(take, c3d);
+    CliResult r = runCli(solveArgs(demo, out) +
+                         " --quiet --format pc2 --fill-gaps-s 0 --calibration-frame 1");
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("warning: " + c3d +
+                         ": calibration frame 1 does not show LKNE (1 of the 39 mapped markers), "
+                         "so the rest is fitted to the actor without it"),
+              std::string::npos)
+        << r.out;
+    // The automatic choice is a frame that shows every one.
+    r = runCli(solveArgs(demo, out) + " --quiet --format pc2 --fill-gaps-s 0");
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_EQ(r.out.find("does not show"), std::string::npos) << r.out;
+}
+
 // A rest asked for without calibration was refused only once the solver was prepared, after the
 // earlier run's sidecar had gone: its complete solve was then solved again by the next batch run.
 TEST(SolveCommand, ACalibratedRestWithoutCalibrationIsRefusedBeforeTheEarlierSolveIsTouched) {

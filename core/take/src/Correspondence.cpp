@@ -264,6 +264,20 @@ std::string Correspondence::labelProblem(const C3dTake& take, const std::string&
     return {};
 }
 
+std::vector<std::string> Correspondence::subjects(const C3dTake& take) const {
+    std::vector<std::size_t> points = resolve(take);
+    std::sort(points.begin(), points.end());
+    std::vector<std::string> out;
+    for (const std::size_t p : points) {
+        const std::string& subject = take.points[p].subject;
+        if (!subject.empty() && std::none_of(out.begin(), out.end(), [&](const std::string& s) {
+                return c3dNameEquals(s, subject);
+            }))
+            out.push_back(subject);
+    }
+    return out;
+}
+
 std::vector<std::size_t> Correspondence::resolve(const C3dTake& take) const {
     const std::string file = source_.empty() ? "correspondence" : source_;
     std::vector<std::size_t> points;

@@ -374,9 +374,9 @@ json recordedPath(const std::string& path) {
 
 // vertices: the points a frame of the outputs holds; batch checks a cache's header against it and
 // the mesh, as a cache of another mesh is the right size for its own header.
-json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibration& c,
-                 const ExportResult& result, json fingerprints, json calibration, json summary,
-                 int vertices) {
+json sidecarJson(const C3dTake& take, const Correspondence& map, const ExportRequest& request,
+                 const Calibration& c, const ExportResult& result, json fingerprints,
+                 json calibration, json summary, int vertices) {
     const Similarity& s = c.takeToMesh;
     const double meshUnitsPerMm = s.scale / take.unitToMm;
     const TakeSolveOptions& o = request.options;
@@ -393,6 +393,7 @@ json sidecarJson(const C3dTake& take, const ExportRequest& request, const Calibr
               {"group", validUtf8(request.group)},
               {"c3d", recordedPath(request.c3dPath)},
               {"map", recordedPath(request.mapPath)}}},
+            {"subjects", map.subjects(take)},
             {"source_fingerprints", std::move(fingerprints)},
             {"units",
              {{"take", take.units},
@@ -702,7 +703,7 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
         started.first = request.first;
         started.cancelled = true;
         const json placeholder = sidecarJson(
-            take, request, solver.calibration(), started, fingerprints,
+            take, map, request, solver.calibration(), started, fingerprints,
             calibrationJson(request, mesh, solver, ""), json::object(), mesh.vertexCount());
         writeFileAtomically(result.sidecarPath, placeholder.dump(2) + "\n");
     }
@@ -759,7 +760,7 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
         });
     output.finish();
     result.held = perFrame.held();
-    json sidecar = sidecarJson(take, request, solver.calibration(), result, fingerprints,
+    json sidecar = sidecarJson(take, map, request, solver.calibration(), result, fingerprints,
                                calibrationJson(request, mesh, solver, restFile), perFrame.summary(),
                                mesh.vertexCount());
     // The app's map may be in no file (edited, or kept in the project): the sidecar then holds

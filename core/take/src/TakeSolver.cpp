@@ -157,8 +157,11 @@ void TakeSolver::prepare(const Correspondence& map) {
         } else {
             std::vector<std::string> labels;
             for (const auto& m : map.markers) labels.push_back(m.label);
-            rest_.V = fitActorShape(solver_, targets(calibration_.frame, true), labels,
-                                    1.0 / meshUnitsPerMm_);
+            const Positions T = targets(calibration_.frame, true);
+            calibration_.unseen.clear();
+            for (int k = 0; k < T.rows(); ++k)
+                if (!T.row(k).allFinite()) calibration_.unseen.push_back(k);
+            rest_.V = fitActorShape(solver_, T, labels, 1.0 / meshUnitsPerMm_);
         }
         followWelds(rest_, rest_.V);
         encoding_ = std::make_unique<ShapeEncoding>(rest_, *topology_);

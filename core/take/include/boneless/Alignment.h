@@ -19,6 +19,10 @@ struct Calibration {
     Similarity takeToMesh;
     double residual = 0;     // RMS marker distance after alignment, in mesh units
     int visibleMarkers = 0;  // markers seen at that frame (all of them unless the take is gappy)
+    // The map's entries (0-based) the frame does not show, gaps filled as solving fills them: the
+    // rest is fitted to the actor without them (calibrate shape), so a limb there keeps the
+    // mesh's length in every frame. Solve and batch warn.
+    std::vector<int> unseen;
     // `residual` in millimetres, for a take whose unit is takeUnitToMm mm (C3dTake::unitToMm).
     double residualMm(double takeUnitToMm) const {
         return residual / (takeToMesh.scale / takeUnitToMm);  // as sidecars always wrote it

@@ -64,6 +64,10 @@ class Correspondence {
     // The take's point index for each marker, in order; throws Error listing unknown labels, or
     // naming a label whose point is no marker (an angle, a force, a virtual point).
     std::vector<std::size_t> resolve(const C3dTake& take) const;
+    // The subject prefixes of the points resolve finds ("other" of a take two actors wear), each
+    // once, in the order of their first points; empty when their labels carry none. The sidecar
+    // records them: another actor's solve of the same take is not the one it replaces.
+    std::vector<std::string> subjects(const C3dTake& take) const;
     // Why `label` names no one marker of `take`, in resolve's words without the map's file name:
     // two points share its full label, two subjects wear it ("marker LFHD is worn by more than
     // one subject in pair.c3d (A:LFHD, B:LFHD); write the subject prefix"), or it names a model
