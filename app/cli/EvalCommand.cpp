@@ -15,6 +15,8 @@
 #include "OptionFlags.h"
 #include "boneless/Error.h"
 #include "boneless/InputFile.h"
+#include "boneless/MeshReader.h"
+#include "boneless/ObjWriter.h"
 #include "boneless/Sampling.h"
 #include "boneless/SequenceEvaluation.h"
 #include "boneless/TakeOptionsJson.h"
@@ -34,6 +36,8 @@ struct EvalArgs {
     double drop = 0;
     unsigned seed = 1;
     nlohmann::json options = nlohmann::json::object();  // the solver's options given
+    std::string out;                                    // each method's answers go to out/<method>/
+    std::string reconstruction;  // a folder of answers found elsewhere, judged instead
     bool json = false;
     bool quiet = false;
 };
@@ -94,19 +98,24 @@ nlohmann::json summaryJson(const EvaluationSummary& s) {
 // Each frame names its OBJ: "frame" is its place in the folder from 0, not the number in its
 // name (horse-gallop's frame 0 is 0001.obj), and a figure is recomputed from the file.
 nlohmann::json perFrameJson(const std::vector<FrameEvaluation>& frames,
-                            const std::vector<std::string>& files) {
+                            const std::vector<std::string>& files, bool timed = true) {
     nlohmann::json list = nlohmann::json::array();
-    for (const auto& f : frames)
-        list.push_back({{"frame", f.frame},
-                        {"file", validUtf8(fs::path(files.at(f.frame)).filename().string())},
-                        {"rms_pct", f.rmsPct},
-                        {"max_pct", f.maxPct},
-                        {"flipped_faces", f.flippedFaces},
-                        {"folded_faces", f.foldedFaces},
-                        {"truth_folded_faces", f.truthFoldedFaces},
-                        {"markers_used", f.markersUsed},
-                        {"iterations", f.iterations},
-                        {"ms", f.milliseconds}});
+    for (const auto& f : frames) {
+        nlohmann::json item = {{"frame", f.frame},
+                               {"file", validUtf8(fs::path(files.at(f.frame)).filename().string())},
+                               {"rms_pct", f.rmsPct},
+                               {"max_pct", f.maxPct},
+                               {"flipped_faces", f.flippedFaces},
+                               {"folded_faces", f.foldedFaces},
+                               {"truth_folded_faces", f.truthFoldedFaces},
+                               {"markers_used", f.markersUsed},
+                               {"iterations", f.iterations},
+                               {"ms", f.milliseconds}};
+        // Answers found elsewhere have no solve of ours to count or time.
+        if (!timed)
+            for (const char* key : {"markers_used", "iterations", "ms"}) item.erase(key);
+        list.push_back(item);
+    }
     return list;
 }
 
@@ -133,6 +142,93 @@ void printSummary(const char* name, const EvaluationSummary& s) {
         s.truthFoldedFacesWorstFrame, s.msPerFrameMean, s.msPerFrameWorst, s.msPerFrameMedian);
 }
 
+// Where --out writes a method's answer for `frame`: out/<method>/ under the truth's file name, so
+// that the folder is what --reconstruction reads back.
+fs::path answerPath(const std::string& out, const char* method, const MeshSequence& sequence,
+                    int frame) {
+    return fs::path(out) / method / fs::path(sequence.files.at(frame)).filename();
+}
+
+// Refuses before any solve an --out that would write over a file already there: nothing a user
+// made is replaced.
+void refuseAnswersThere(const std::string& out, const std::vector<const char*>& methods,
+                        const MeshSequence& sequence, int first, int end) {
+    for (const char* method : methods)
+        for (int frame = first; frame < end; ++frame)
+            if (const fs::path path = answerPath(out, method, sequence, frame); fs::exists(path))
+                throw Error(path.string() +
+                            " already exists: --out writes each frame's answer into a new "
+                            "folder, never over a file");
+}
+
+// --reconstruction DIR: judges the answers another program wrote, one OBJ per frame evaluated,
+// named as the truth's frame (as --out writes them); the rest pose's is optional.
+void judge(const EvalArgs& args, const MeshSequence& sequence, const FrameRange& range,
+           int frameCount) {
+    if (!fs::is_directory(args.reconstruction))
+        throw Error(args.reconstruction + ": not a folder (--reconstruction names a folder of " +
+                    "one OBJ per frame, named as the sequence's)");
+    std::vector<FrameEvaluation> frames;
+    for (int frame = range.first; frame < range.end; ++frame) {
+        const std::string name = fs::path(sequence.files.at(frame)).filename().string();
+        const fs::path path = fs::path(args.reconstruction) / name;
+        if (!fs::exists(path)) {
+            if (frame == 0) continue;  // the rest pose is not summarised
+            throw Error(path.string() + ": no answer for frame " + std::to_string(frame) +
+                        " (--reconstruction needs one OBJ per frame evaluated, named as the "
+                        "sequence's " +
+                        name + ")");
+        }
+        const TriMesh answer = readMesh(path.string()).mesh;
+        if (answer.vertexCount() != sequence.rest.vertexCount() || answer.F != sequence.rest.F)
+            throw Error(path.string() + ": " + std::to_string(answer.vertexCount()) +
+                        " vertices and " + std::to_string(answer.faceCount()) +
+                        " faces, not the sequence's " +
+                        std::to_string(sequence.rest.vertexCount()) + " and " +
+                        std::to_string(sequence.rest.faceCount()) +
+                        (answer.vertexCount() == sequence.rest.vertexCount() &&
+                                 answer.faceCount() == sequence.rest.faceCount()
+                             ? " (its faces differ)"
+                             : ""));
+        frames.push_back(measureFrame(sequence, frame, answer.V));
+    }
+    const EvaluationSummary summary = summarise(frames);
+    if (args.json) {
+        nlohmann::json out = summaryJson(summary);
+        for (const char* key : {"markers_used", "ms_per_frame_mean", "ms_per_frame_worst",
+                                "ms_per_frame_median", "iterations_mean"})
+            out.erase(key);
+        out["method"] = "reconstruction";
+        out["reconstruction"] = validUtf8(args.reconstruction);
+        out["sequence"] = validUtf8(args.sequence);
+        out["vertices"] = sequence.rest.vertexCount();
+        out["faces"] = sequence.rest.faceCount();
+        out["bbox_diagonal"] = boundingBoxDiagonal(sequence.rest.V);
+        out["frame_range"] = {range.first, range.end};
+        out["per_frame"] = perFrameJson(frames, sequence.files, false);
+        std::cout << out.dump(2) << "\n";
+        return;
+    }
+    std::printf("%s: frames %d:%d of %d, %d vertices, %d faces, the answers in %s\n",
+                args.sequence.c_str(), range.first, range.end, frameCount,
+                sequence.rest.vertexCount(), sequence.rest.faceCount(),
+                args.reconstruction.c_str());
+    if (!args.quiet) {
+        std::printf("%-14s %6s %9s %9s %8s %7s %13s\n", "reconstruction", "frame", "RMS %", "max %",
+                    "flipped", "folded", "truth folded");
+        for (const auto& f : frames)
+            std::printf("%-14s %6d %9.4f %9.4f %8d %7d %13d\n", "", f.frame, f.rmsPct, f.maxPct,
+                        f.flippedFaces, f.foldedFaces, f.truthFoldedFaces);
+    }
+    std::printf("summary over the frames after the rest pose:\n");
+    std::printf(
+        "reconstruction frames %d  RMS %% mean %.3f  RMS %% worst frame %.3f  max %% worst frame "
+        "%.3f  flipped max %d (mean %.1f)  folded max %d (truth folded max %d)\n",
+        summary.frames, summary.rmsPctMean, summary.rmsPctWorstFrame, summary.maxPctWorstFrame,
+        summary.flippedFacesWorstFrame, summary.flippedFacesMean, summary.foldedFacesWorstFrame,
+        summary.truthFoldedFacesWorstFrame);
+}
+
 void run(const EvalArgs& args) {
     const int frameCount = static_cast<int>(meshSequenceFiles(args.sequence).size());
     // The summaries run over the frames after the rest pose: with none, they are all zeros.
@@ -147,10 +243,11 @@ void run(const EvalArgs& args) {
                     ": no frame after it to evaluate");
     // Only the frames evaluated are read (and, for ARAP's chain, those before them), not the
     // whole folder: 2 frames of samba's 175 read 3 files.
-    const bool arapRuns = args.method != "boneless";
+    const bool arapRuns = args.reconstruction.empty() && args.method != "boneless";
     const MeshSequence sequence = readMeshSequence(args.sequence, [&](int frame) {
         return frame < range.end && (frame >= range.first || arapRuns);
     });
+    if (!args.reconstruction.empty()) return judge(args, sequence, range, frameCount);
     const int vertices = sequence.rest.vertexCount();
     if (args.markersFile.empty() && args.markers >= vertices)
         throw Error("--markers " + std::to_string(args.markers) +
@@ -201,6 +298,14 @@ void run(const EvalArgs& args) {
                     methods[0] == EvaluationOptions::Method::Boneless
                         ? (std::string(methodName(options.solver.method)) + " solver").c_str()
                         : "ARAP alone");
+    if (!args.out.empty()) {
+        std::vector<const char*> names;
+        for (auto method : methods) names.push_back(methodName(method));
+        refuseAnswersThere(args.out, names, sequence, range.first, range.end);
+        for (const char* name : names) fs::create_directories(fs::path(args.out) / name);
+    }
+    // The truth's own polygons, UVs and materials, so that an answer opens as the truth does.
+    const SourceFaces* source = sequence.rest.sourceFaces.get();
     std::vector<Evaluation> results;
     for (auto method : methods) {
         options.method = method;
@@ -208,12 +313,19 @@ void run(const EvalArgs& args) {
         if (perFrame)
             std::printf("%-9s %6s %9s %9s %8s %7s %13s %6s %9s\n", methodName(method), "frame",
                         "RMS %", "max %", "flipped", "folded", "truth folded", "iters", "ms");
-        results.push_back(evaluateSequence(sequence, options, [&](const FrameEvaluation& f) {
-            if (perFrame)
-                std::printf("%-9s %6d %9.4f %9.4f %8d %7d %13d %6d %9.1f\n", "", f.frame, f.rmsPct,
-                            f.maxPct, f.flippedFaces, f.foldedFaces, f.truthFoldedFaces,
-                            f.iterations, f.milliseconds);
-        }));
+        results.push_back(
+            evaluateSequence(sequence, options, [&](const FrameEvaluation& f, const Positions& V) {
+                if (!args.out.empty())
+                    writeObj(answerPath(args.out, methodName(method), sequence, f.frame).string(),
+                             V, sequence.rest.F,
+                             std::string("boneless-cli eval, ") + methodName(method) + ", frame " +
+                                 std::to_string(f.frame),
+                             source);
+                if (perFrame)
+                    std::printf("%-9s %6d %9.4f %9.4f %8d %7d %13d %6d %9.1f\n", "", f.frame,
+                                f.rmsPct, f.maxPct, f.flippedFaces, f.foldedFaces,
+                                f.truthFoldedFaces, f.iterations, f.milliseconds);
+            }));
     }
     if (args.json) {
         nlohmann::json out = summaryJson(results[0].summary);
@@ -279,9 +391,33 @@ void registerEvalCommand(CLI::App& app) {
         ->check(numberFrom(0, 4294967295.0, true))  // CLI11 read 010 as octal 8, 0x10 as 16
         ->needs("--drop");
     addOptionFlags(cmd, args->options, toJson(EvaluationOptions{}.solver), true);
+    auto* out = cmd->add_option("--out", args->out,
+                                "Also write each frame's answer: DIR/<method>/ one OBJ per frame, "
+                                "named as the sequence's")
+                    ->check(aPath());
+    auto* given = cmd->add_option("--reconstruction", args->reconstruction,
+                                  "Judge the answers in this folder (one OBJ per frame, named as "
+                                  "the sequence's) instead of reconstructing")
+                      ->check(aPath());
+    given->excludes(k)->excludes(file)->excludes(out);
     cmd->add_flag("--json", args->json, "Print one JSON object");
     cmd->add_flag("--quiet", args->quiet, "No per-frame lines");
-    cmd->callback([args, k, file] {
+    cmd->callback([args, k, file, given, cmd] {
+        if (given->count() > 0) {
+            // Answers found elsewhere: nothing here solves, so nothing sets how.
+            for (const char* flag : {"--method", "--drop", "--seed"})
+                if (cmd->count(flag) > 0)
+                    throw CLI::ValidationError(flag,
+                                               "sets how eval reconstructs, and "
+                                               "--reconstruction judges answers found "
+                                               "elsewhere");
+            if (!args->options.empty())
+                throw CLI::ValidationError(optionFlag(*findTakeOption(args->options.begin().key())),
+                                           "sets how Boneless solves, and --reconstruction "
+                                           "judges answers found elsewhere");
+            run(*args);
+            return;
+        }
         if (k->count() == 0 && file->count() == 0)
             throw CLI::RequiredError("--markers or --markers-file");
         // The solver flags set how Boneless solves: on ARAP alone they would change nothing.

@@ -515,3 +515,105 @@ TEST(EvalCommand, TheTruthsOwnFoldedFacesAreGivenBesideTheAnswers) {
     const CliResult text = runCli("eval --sequence " + dir.string() + " --markers 30");
     EXPECT_NE(text.out.find("truth folded"), std::string::npos) << text.out;
 }
+
+namespace {
+
+// A small sequence: an icosphere bent further each frame, walk_1.obj the rest pose.
+fs::path bentSphereSequence(const std::string& name, int frames) {
+    const boneless::TriMesh mesh = icosphere(2);
+    const fs::path dir = freshTestDir(name);
+    for (int n = 1; n <= frames; ++n)
+        writeSequenceFrame(dir / ("walk_" + std::to_string(n) + ".obj"),
+                           bent(mesh.V, 0.1 * (n - 1)), mesh);
+    return dir;
+}
+
+}  // namespace
+
+// A researcher compares a method of their own with Boneless's and ARAP on the same figures:
+// eval writes each method's answers (--out), and judges a folder of answers found elsewhere
+// (--reconstruction) as it judges its own. Until 30 November 2026 it could do neither.
+TEST(EvalCommand, OutWritesEachMethodsAnswersAndReconstructionJudgesThemAlike) {
+    const fs::path seq = bentSphereSequence("eval-out-seq", 4);
+    const fs::path out = fs::path(freshTestDir("eval-out")) / "answers";
+    const CliResult solved = runCli("eval --sequence " + seq.string() +
+                                    " --markers 12 --method both --json --out " + out.string());
+    ASSERT_EQ(solved.exitCode, 0) << solved.out;
+    const auto s = nlohmann::json::parse(solved.out);
+    for (const char* method : {"boneless", "arap"})
+        for (int n = 1; n <= 4; ++n)
+            EXPECT_TRUE(fs::exists(out / method / ("walk_" + std::to_string(n) + ".obj")))
+                << method << " " << n;
+
+    const CliResult judged = runCli("eval --sequence " + seq.string() + " --reconstruction " +
+                                    (out / "arap").string() + " --json");
+    ASSERT_EQ(judged.exitCode, 0) << judged.out;
+    const auto j = nlohmann::json::parse(judged.out);
+    EXPECT_EQ(j["method"], "reconstruction");
+    EXPECT_EQ(j["frame_count"], 3);
+    // The answers were written at full precision: read back, they measure as they did.
+    EXPECT_NEAR(j["rms_pct_mean"].get<double>(), s["arap"]["rms_pct_mean"].get<double>(), 1e-9);
+    EXPECT_NEAR(j["max_pct_worst_frame"].get<double>(),
+                s["arap"]["max_pct_worst_frame"].get<double>(), 1e-9);
+    EXPECT_EQ(j["flipped_faces_worst_frame"], s["arap"]["flipped_faces_worst_frame"]);
+    EXPECT_GT(j["rms_pct_mean"].get<double>(), 0.0);
+    ASSERT_EQ(j["per_frame"].size(), 4u);
+    EXPECT_EQ(j["per_frame"][2]["file"], "walk_3.obj");
+    // Nothing was solved here: no time or iteration count pretends otherwise.
+    EXPECT_FALSE(j.contains("ms_per_frame_mean"));
+    EXPECT_FALSE(j["per_frame"][2].contains("ms"));
+}
+
+TEST(EvalCommand, TheTruthItselfJudgedAsAnAnswerHasNoErrorAndAMissingFrameIsNamed) {
+    const fs::path seq = bentSphereSequence("eval-judge-seq", 3);
+    const fs::path answers = freshTestDir("eval-judge-answers");
+    for (int n = 2; n <= 3; ++n)  // the rest pose's answer may be left out
+        fs::copy_file(seq / ("walk_" + std::to_string(n) + ".obj"),
+                      answers / ("walk_" + std::to_string(n) + ".obj"));
+    const CliResult r = runCli("eval --sequence " + seq.string() + " --reconstruction " +
+                               answers.string() + " --json");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["frame_count"], 2);
+    EXPECT_LT(j["max_pct_worst_frame"].get<double>(), 1e-9);
+
+    fs::remove(answers / "walk_3.obj");
+    const CliResult missing =
+        runCli("eval --sequence " + seq.string() + " --reconstruction " + answers.string());
+    EXPECT_NE(missing.exitCode, 0);
+    EXPECT_NE(missing.out.find((answers / "walk_3.obj").string()), std::string::npos)
+        << missing.out;
+    EXPECT_NE(missing.out.find("frame 2"), std::string::npos) << missing.out;
+
+    // An answer on another mesh is named, not measured.
+    const boneless::TriMesh other = icosphere(1);
+    writeSequenceFrame(answers / "walk_3.obj", other.V, other);
+    const CliResult wrong =
+        runCli("eval --sequence " + seq.string() + " --reconstruction " + answers.string());
+    EXPECT_NE(wrong.exitCode, 0);
+    EXPECT_NE(wrong.out.find("walk_3.obj: 42 vertices"), std::string::npos) << wrong.out;
+}
+
+TEST(EvalCommand, OutNeverWritesOverAFileAndReconstructionRefusesHowToSolve) {
+    const fs::path seq = bentSphereSequence("eval-out-twice", 3);
+    const fs::path out = freshTestDir("eval-out-twice-answers");
+    fs::create_directories(out / "boneless");
+    { std::ofstream(out / "boneless" / "walk_2.obj") << "mine\n"; }
+    const CliResult r =
+        runCli("eval --sequence " + seq.string() + " --markers 12 --out " + out.string());
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.out.find("walk_2.obj already exists"), std::string::npos) << r.out;
+    std::ifstream kept(out / "boneless" / "walk_2.obj");
+    std::string line;
+    std::getline(kept, line);
+    EXPECT_EQ(line, "mine");
+
+    for (const char* flag : {"--method arap", "--drop 10", "--max-iterations 3", "--markers 5"}) {
+        const CliResult refused = runCli("eval --sequence " + seq.string() + " --reconstruction " +
+                                         seq.string() + " " + flag);
+        EXPECT_NE(refused.exitCode, 0) << flag;
+        EXPECT_NE(refused.out.find(std::string(flag).substr(0, std::string(flag).find(' '))),
+                  std::string::npos)
+            << flag << ": " << refused.out;
+    }
+}

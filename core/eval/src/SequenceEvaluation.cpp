@@ -20,8 +20,6 @@ const char* methodName(EvaluationOptions::Method method) {
     return method == EvaluationOptions::Method::Arap ? "arap" : "boneless";
 }
 
-namespace {
-
 EvaluationSummary summarise(const std::vector<FrameEvaluation>& frames) {
     EvaluationSummary s;
     std::vector<double> ms;
@@ -51,10 +49,49 @@ EvaluationSummary summarise(const std::vector<FrameEvaluation>& frames) {
     return s;
 }
 
+namespace {
+
+// The truth of `frame`, refused when it was not read.
+const Positions& truthOf(const MeshSequence& sequence, int frame) {
+    const Positions& truth = sequence.frames.at(frame);
+    if (truth.rows() != sequence.rest.V.rows())
+        throw Error("frame " + std::to_string(frame) +
+                    (frame < static_cast<int>(sequence.files.size())
+                         ? " (" + sequence.files[frame] + ")"
+                         : std::string()) +
+                    " was not read, and the evaluation needs it");
+    return truth;
+}
+
+FrameEvaluation measure(const MeshSequence& sequence, int frame, const Positions& V,
+                        const Positions& truth, double diagonal) {
+    FrameEvaluation f;
+    f.frame = frame;
+    f.rmsPct = 100.0 * rmsVertexError(V, truth) / diagonal;
+    f.maxPct = 100.0 * maxVertexError(V, truth) / diagonal;
+    f.flippedFaces = flippedFaceCount(sequence.rest.F, V, truth);
+    f.foldedFaces = foldedFaceCount(sequence.rest.F, V, sequence.rest.V);
+    f.truthFoldedFaces = foldedFaceCount(sequence.rest.F, truth, sequence.rest.V);
+    return f;
+}
+
 }  // namespace
 
-Evaluation evaluateSequence(const MeshSequence& sequence, const EvaluationOptions& options,
-                            const std::function<void(const FrameEvaluation&)>& onFrame) {
+FrameEvaluation measureFrame(const MeshSequence& sequence, int frame, const Positions& V) {
+    if (frame < 0 || frame >= static_cast<int>(sequence.frames.size()))
+        throw Error("frame " + std::to_string(frame) + " is not in the sequence (it has " +
+                    std::to_string(sequence.frames.size()) + " frames)");
+    const Positions& truth = truthOf(sequence, frame);
+    if (V.rows() != truth.rows())
+        throw Error("the answer for frame " + std::to_string(frame) + " has " +
+                    std::to_string(V.rows()) + " vertices, the sequence " +
+                    std::to_string(truth.rows()));
+    return measure(sequence, frame, V, truth, boundingBoxDiagonal(sequence.rest.V));
+}
+
+Evaluation evaluateSequence(
+    const MeshSequence& sequence, const EvaluationOptions& options,
+    const std::function<void(const FrameEvaluation&, const Positions&)>& onFrame) {
     const int frameCount = static_cast<int>(sequence.frames.size());
     const int end = options.endFrame < 0 ? frameCount : std::min(options.endFrame, frameCount);
     if (options.firstFrame < 0 || options.firstFrame >= end)
@@ -90,13 +127,7 @@ Evaluation evaluateSequence(const MeshSequence& sequence, const EvaluationOption
     Evaluation evaluation;
     evaluation.bboxDiagonal = diagonal;
     for (int frame = useArap ? 0 : options.firstFrame; frame < end; ++frame) {
-        const Positions& truth = sequence.frames[frame];
-        if (truth.rows() != sequence.rest.V.rows())
-            throw Error("frame " + std::to_string(frame) +
-                        (frame < static_cast<int>(sequence.files.size())
-                             ? " (" + sequence.files[frame] + ")"
-                             : std::string()) +
-                        " was not read, and the evaluation needs it");
+        const Positions& truth = truthOf(sequence, frame);
         Positions targets(K, 3);
         for (int k = 0; k < K; ++k) targets.row(k) = truth.row(markers[k]);
         if (dropCount > 0) {
@@ -125,18 +156,12 @@ Evaluation evaluateSequence(const MeshSequence& sequence, const EvaluationOption
             result = boneless.solve(targets);
         }
 
-        FrameEvaluation f;
-        f.frame = frame;
-        f.rmsPct = 100.0 * rmsVertexError(result.V, truth) / diagonal;
-        f.maxPct = 100.0 * maxVertexError(result.V, truth) / diagonal;
-        f.flippedFaces = flippedFaceCount(sequence.rest.F, result.V, truth);
-        f.foldedFaces = foldedFaceCount(sequence.rest.F, result.V, sequence.rest.V);
-        f.truthFoldedFaces = foldedFaceCount(sequence.rest.F, truth, sequence.rest.V);
+        FrameEvaluation f = measure(sequence, frame, result.V, truth, diagonal);
         f.iterations = result.report.iterations;
         f.milliseconds = result.report.milliseconds;
         f.markersUsed = K - dropCount;
         evaluation.frames.push_back(f);
-        if (onFrame) onFrame(f);
+        if (onFrame) onFrame(f, result.V);
         previous = std::move(result.V);
     }
     evaluation.summary = summarise(evaluation.frames);

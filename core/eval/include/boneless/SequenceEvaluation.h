@@ -71,7 +71,21 @@ struct Evaluation {
 
 const char* methodName(EvaluationOptions::Method method);
 
-Evaluation evaluateSequence(const MeshSequence& sequence, const EvaluationOptions& options,
-                            const std::function<void(const FrameEvaluation&)>& onFrame = {});
+// Expensive: prepares the method once (Boneless: encoding, coarse level, factorisation), then
+// solves every frame of the range. onFrame (optional) is given each frame's figures and its
+// answer (#V by 3, the rest pose's vertex order) as they come, to print or write them.
+// Throws Error when the range is empty or a frame it needs was not read.
+Evaluation evaluateSequence(
+    const MeshSequence& sequence, const EvaluationOptions& options,
+    const std::function<void(const FrameEvaluation&, const Positions& V)>& onFrame = {});
+
+// The figures of an answer V (#V by 3) found elsewhere, by a method of one's own, for the
+// sequence's frame `frame`: measured as evaluateSequence measures its own (iterations,
+// milliseconds and markersUsed stay 0). Throws Error when V's row count is not the mesh's or the
+// frame was not read.
+FrameEvaluation measureFrame(const MeshSequence& sequence, int frame, const Positions& V);
+
+// The summary of frames measured one by one: over those after the rest pose.
+EvaluationSummary summarise(const std::vector<FrameEvaluation>& frames);
 
 }  // namespace boneless

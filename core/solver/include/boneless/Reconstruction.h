@@ -69,8 +69,8 @@ const char* methodName(SolverOptions::Method method);
 bool parseMethod(const std::string& name, SolverOptions::Method& method);
 
 struct SolveReport {
-    int iterations = 0;  // on the input mesh
-    double milliseconds = 0;
+    int iterations = 0;       // on the input mesh
+    double milliseconds = 0;  // this solve() call, wall clock; the preparation is not in it
     // The last step moved no vertex by more than 1e-7 of the bounding-box diagonal, or (Exact)
     // the relative-decrease test was met.
     bool converged = false;
@@ -110,18 +110,24 @@ class Reconstruction {
     Reconstruction(Reconstruction&&) noexcept;
     Reconstruction& operator=(Reconstruction&&) noexcept;
 
-    // markerVertices: K distinct vertex ids, the k-th marker drives vertex markerVertices[k].
+    // The expensive call, once per mesh and marker set: shape encoding, coarse level and one
+    // sparse factorisation (0.4 s on a 100K-face mesh, docs/benchmarks.md). markerVertices: K
+    // distinct vertex ids, the k-th marker drives vertex markerVertices[k]. Throws SolverError
+    // naming the marker for an id out of range or carried twice, and for offsets or face points
+    // with hard constraints.
     void prepare(const TriMesh& rest, std::vector<int> markerVertices, SolverOptions options = {});
     // The same with each marker at a surface point (their vertices distinct). The exact method
     // pulls each point's vertex.
     void prepare(const TriMesh& rest, std::vector<SurfacePoint> markers,
                  SolverOptions options = {});
 
-    // targets: K by 3; a row with a NaN is a missing marker, whose vertex is then solved for like
-    // any other. guess (Exact only; LocalGlobal needs none): #V by 3, where Gauss–Newton starts;
-    // without one, the rest pose moved rigidly onto the markers. stop (optional): read between
-    // iterations; once true, the solve returns at once with report.stopped (for a caller whose
-    // request has been superseded, such as a scrub that moved on).
+    // Per frame (LocalGlobal: tens of ms on a 100K-face mesh; Exact: seconds). targets: K by 3, in
+    // the rest mesh's units; a row with a NaN is a missing marker, whose vertex is then solved for
+    // like any other. guess (Exact only; LocalGlobal needs none): #V by 3, where Gauss–Newton
+    // starts; without one, the rest pose moved rigidly onto the markers. stop (optional): read
+    // between iterations; once true, the solve returns at once with report.stopped (for a caller
+    // whose request has been superseded, such as a scrub that moved on). Throws SolverError before
+    // prepare(), or when targets is not K rows or guess not #V rows.
     SolveResult solve(const Positions& targets, const Positions* guess = nullptr,
                       const std::atomic<bool>* stop = nullptr);
 
@@ -136,6 +142,8 @@ class Reconstruction {
     // rest normal turned as the surface around it turned.
     Positions markerPositions(const Positions& V) const;
     const SolverOptions& options() const;
+    // Cheap for the exact method's knobs and the offsets; prepares again (expensive) when the
+    // method, the constraints or LocalGlobal's marker weight change.
     void setOptions(const SolverOptions& options);
 
   private:
