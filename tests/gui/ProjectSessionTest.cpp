@@ -3,6 +3,7 @@
 // project, a damaged or hostile project file gives one message, offers the last autosave when it
 // was made from that project and is itself left alone, and closing asks before edits that no
 // project file holds are left behind.
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -22,6 +23,7 @@
 #include <QStatusBar>
 #include <QUndoStack>
 #include <QtTest>
+#include <csignal>
 #include <cstdio>
 
 #include "ViewTestSupport.h"
@@ -1186,6 +1188,55 @@ class ProjectSessionTest : public QObject {
         answerClose("discardButton");
         window.close();
         QVERIFY(!window.isVisible());
+    }
+
+    // A full disk made every edit bring up another error box. Said once while it stays full; the
+    // edits wait in memory and reach the project once space returns, with no edit needed.
+    void aFullDiskIsSaidOnceAndTheEditsReachTheProjectWhenSpaceReturns() {
+        const QString path = folder_ + "/mine/full.boneless";
+        QFile::remove(path);
+        QVERIFY(QFile::copy(project_, path));
+        MainWindow window;
+        QVERIFY(window.openProject(path));
+        QVERIFY(test::showAndWait(window));
+        window.autosave()->setRetryDelay(0);
+        QSignalSpy failed(window.autosave(), &ProjectAutosave::failed);
+        QSignalSpy saved(window.autosave(), &ProjectAutosave::saved);
+        // A full disk as this process sees it: no file grows past 64 bytes (EFBIG).
+        std::signal(SIGXFSZ, SIG_IGN);
+        rlimit normal{};
+        QCOMPARE(getrlimit(RLIMIT_FSIZE, &normal), 0);
+        rlimit small = normal;
+        small.rlim_cur = 64;
+        QCOMPARE(setrlimit(RLIMIT_FSIZE, &small), 0);
+        for (int marker = 0; marker < 3; ++marker) {
+            QVERIFY(window.document()->clearMapping(marker));
+            QVERIFY(!window.autosave()->saveNow());
+        }
+        const int boxes = window.findChildren<QMessageBox*>("errorMessage").size();
+        QCOMPARE(setrlimit(RLIMIT_FSIZE, &normal), 0);
+        QCOMPARE(failed.count(), 1);
+        QCOMPARE(boxes, 1);
+        QVERIFY(window.autosave()->isPending());
+        // Space again: the retry saves what was made meanwhile.
+        QVERIFY(saved.wait(5000));
+        Document reopened;
+        QVERIFY(Project::load(reopened, path));
+        QCOMPARE(reopened.mappedCount(), window.document()->mappedCount());
+        QVERIFY2(window.statusBar()->currentMessage().contains("Saved again"),
+                 qPrintable(window.statusBar()->currentMessage()));
+        // Full again: said again.
+        QCOMPARE(setrlimit(RLIMIT_FSIZE, &small), 0);
+        QVERIFY(window.document()->clearMapping(3));
+        const bool savedFull = window.autosave()->saveNow();
+        QCOMPARE(setrlimit(RLIMIT_FSIZE, &normal), 0);
+        QVERIFY(!savedFull);
+        QCOMPARE(failed.count(), 2);
+        for (auto* box : window.findChildren<QMessageBox*>("errorMessage")) box->close();
+        window.autosave()->setRetryDelay(60000);
+        QVERIFY(window.autosave()->saveNow());
+        window.setMessageBoxesEnabled(false);
+        window.close();
     }
 
     // A frame that fails to solve while the close question is up: its message waits for the

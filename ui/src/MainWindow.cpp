@@ -534,6 +534,10 @@ void MainWindow::connectDocument() {
     });
     connect(autosave_, &ProjectAutosave::failed, this,
             [this](const QString& message) { showError(message); });
+    connect(autosave_, &ProjectAutosave::savedAgain, this, [this](const QString& path) {
+        statusBar()->showMessage(tr("Saved again: the edits made meanwhile are in %1").arg(path),
+                                 15000);
+    });
     connect(autosave_, &ProjectAutosave::changedOnDisk, this, &MainWindow::askChangedOnDisk);
     connect(autosave_, &ProjectAutosave::aboutToSave, this, &MainWindow::storeSession,
             Qt::DirectConnection);

@@ -75,6 +75,9 @@ class ProjectAutosave : public QObject {
     void setProjectPath(const QString& path);
     QString projectPath() const { return path_; }
     void setDelay(int ms);  // default 1000
+    // After a failed save (a full disk), the next try comes this long after, edit or not: the
+    // edits reach the files once space returns. Default 10000.
+    void setRetryDelay(int ms);
     // false: nothing is saved or recorded, the project file, the recovery file and the settings
     // are left as they are (a scripted run).
     void setEnabled(bool enabled) { enabled_ = enabled; }
@@ -130,7 +133,10 @@ class ProjectAutosave : public QObject {
     void saved(const QString& path);
     // The project file `path` changed on disk since this session read or wrote it: not written.
     void changedOnDisk(const QString& path);
+    // Said once while saves keep failing alike (a full disk): again only when the message changes.
     void failed(const QString& message);
+    // A save succeeded after failed(): the edits made meanwhile are in `path` now.
+    void savedAgain(const QString& path);
 
   private:
     QPointer<Document> document_;
@@ -154,7 +160,11 @@ class ProjectAutosave : public QObject {
     std::map<QString, std::unique_ptr<QLockFile>> held_;  // recovery file -> its lock, held
     QString adopted_;            // another Boneless's recovery file reopened, until saved here
     bool heldBackSaid_ = false;  // failed() said the recovery file is another session's
+    // Says `message` unless it is the failure said last, and tries again later (retry_).
+    void fail(const QString& message);
+    QString failureSaid_;  // the last failed() message, until a save succeeds
     QTimer* timer_;
+    QTimer* retry_;
     QTimer* markTimer_;  // markUnfinished() once the event loop runs: not in the middle of a load
     bool enabled_ = true;
     bool pending_ = false;
