@@ -34,12 +34,17 @@ bool save(const Document& document, const QString& path, QString* error = nullpt
 // in a plain sentence: "The mesh /data/walker.obj named by walk.boneless is missing."
 // A mesh that no longer fits the map (re-exported since) is said so too: "The map in walk.boneless
 // was made for another mesh than /data/walker.obj, which has 3083 vertices now."
+// So is a map with an entry past the mesh's last vertex: "The map walk.map.json named by
+// walk.boneless points past /data/walker.obj: marker LFHD is on vertex 4000, and it has 3426."
 // *missingFile (if given) is that file's path, the one to locate. `located` gives files found
 // elsewhere (Locate…): a path the project names, resolved, to the one read instead (and saved
-// next).
+// next). `setMapAside` opens a project whose map does not fit its mesh without the map (and its
+// alignment), to be mapped anew; *setAside (if given) then says where the map is kept: its own
+// file, left as it is, or for a map only the project held, a copy written beside the project.
 bool load(Document& document, const QString& path, QString* error = nullptr,
           QString* missing = nullptr, QString* missingFile = nullptr,
-          const QMap<QString, QString>& located = {});
+          const QMap<QString, QString>& located = {}, bool setMapAside = false,
+          QString* setAside = nullptr);
 // The project's JSON text (what save() writes), for tests and comparisons.
 QByteArray toJson(const Document& document, const QString& path);
 
