@@ -685,6 +685,8 @@ class ProjectSessionTest : public QObject {
         QVERIFY(!window.openProject(project));
         auto* box = window.findChild<QMessageBox*>("projectErrorMessage");
         QVERIFY(box);
+        QVERIFY2(box->informativeText().contains("Open Without the Map opens it unmapped"),
+                 qPrintable(box->informativeText()));
         auto* aside = box->findChild<QPushButton*>("openWithoutMapButton");
         QVERIFY(aside);
         aside->click();

@@ -280,7 +280,8 @@ bool MainWindow::openProject(const QString& path, const QMap<QString, QString>& 
                     QFileInfo::exists(missingFile)
                         // there, but not the mesh the map was made for
                         ? tr("The file is left as it is. Locate… opens it with the mesh the map "
-                             "was made for, in place of %1.")
+                             "was made for, in place of %1; Open Without the Map opens it "
+                             "unmapped, the map kept.")
                               .arg(QFileInfo(missingFile).fileName())
                         : tr("The file is left as it is. Locate… opens it with %1 where it is "
                              "now.")
