@@ -726,7 +726,7 @@ class ProjectSessionTest : public QObject {
         QVERIFY(Project::load(d, test::writeDemoProject(folder_ + "/pastMeshCount")));
         QCOMPARE(box->text(),
                  QString("The map past.map.json named by demo.boneless points past %1: "
-                         "marker %2 is on vertex 4000, and it has %3.")
+                         "marker %2 is on vertex 4000, and it has %3 vertices.")
                      .arg(mesh, QString::fromStdString(map.markers[5].label))
                      .arg(d.mesh().vertexCount()));
         QVERIFY(box->findChild<QPushButton*>("openWithoutMapButton"));

@@ -306,7 +306,7 @@ bool load(Document& document, const QString& path, QString* error, QString* miss
                                 .arg(count)
                           : QObject::tr(
                                 "%1 points past %2: marker %3 is on vertex %4, and it has "
-                                "%5.")
+                                "%5 vertices.")
                                 .arg(map, state.meshPath, QString::fromStdString(past->label))
                                 .arg(past->vertex)
                                 .arg(count);

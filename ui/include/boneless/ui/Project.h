@@ -35,7 +35,8 @@ bool save(const Document& document, const QString& path, QString* error = nullpt
 // A mesh that no longer fits the map (re-exported since) is said so too: "The map in walk.boneless
 // was made for another mesh than /data/walker.obj, which has 3083 vertices now."
 // So is a map with an entry past the mesh's last vertex: "The map walk.map.json named by
-// walk.boneless points past /data/walker.obj: marker LFHD is on vertex 4000, and it has 3426."
+// walk.boneless points past /data/walker.obj: marker LFHD is on vertex 4000, and it has 3426
+// vertices."
 // *missingFile (if given) is that file's path, the one to locate. `located` gives files found
 // elsewhere (Locate…): a path the project names, resolved, to the one read instead (and saved
 // next). `setMapAside` opens a project whose map does not fit its mesh without the map (and its
