@@ -3,6 +3,8 @@
 #include <QAbstractItemView>
 #include <QComboBox>
 #include <QDoubleSpinBox>
+#include <QFile>
+#include <QFileInfo>
 #include <QInputDialog>
 #include <QLabel>
 #include <QLineEdit>
@@ -500,6 +502,58 @@ class KeysTest : public QObject {
         QCOMPARE(lowest, -1);
         QVERIFY2(window_->statusBar()->currentMessage().contains("Select a marker"),
                  qPrintable(window_->statusBar()->currentMessage()));
+    }
+
+    // An "&" in an edit's name, or in the mesh's or marker's name in Map to Vertex, underlined
+    // the next letter and was gone: "Undo Units RD". What the menu or the label shows is its
+    // text with Qt's mnemonic marks taken out, which QAction::iconText() does.
+    void anAmpersandInAnEditsOrTheMeshsNameIsShownAsWritten() {
+        const auto shown = [](const QString& text) { return QAction(text).iconText(); };
+        Document* document = window_->document();
+        boneless::TakeSolveOptions settings = document->settings();
+        settings.markerWeight *= 2;
+        document->setSettings(settings, "Weights for R&D");
+        QAction* undo = window_->findChild<QAction*>("actionUndo");
+        QAction* redo = window_->findChild<QAction*>("actionRedo");
+        QCOMPARE(shown(undo->text()), QString("Undo Weights for R&D"));
+        undo->trigger();
+        QCOMPARE(shown(redo->text()), QString("Redo Weights for R&D"));
+        QCOMPARE(shown(undo->text()), QString("Undo"));
+
+        // The mesh as "R&D walker.obj": the dialog's label is its spin box's buddy.
+        const QString folder = QFileInfo(project_).absolutePath();
+        const QString mesh = folder + "/R&D walker.obj";
+        QFile::remove(mesh);
+        QVERIFY(QFile::copy(folder + "/walker.obj", mesh));
+        QVERIFY(window_->openFiles({mesh, folder + "/walker.c3d", folder + "/walker.map.json"}));
+        window_->document()->setSelectedMarker(0);
+        QString label;
+        QTimer answer;
+        connect(&answer, &QTimer::timeout, [&] {
+            auto* dialog = qobject_cast<QInputDialog*>(QApplication::activeModalWidget());
+            if (!dialog) return;
+            for (auto* l : dialog->findChildren<QLabel*>())
+                if (l->buddy()) label = shown(l->text());
+            dialog->reject();
+        });
+        answer.start(50);
+        window_->findChild<QAction*>("actionMapToVertex")->trigger();
+        QVERIFY2(label.startsWith("The vertex of R&D walker.obj that carries "), qPrintable(label));
+    }
+
+    // The slider's PageUp and PageDown (a tenth of the take) were in the help's table and
+    // docs/view.md but not in the README's Timeline row, the manual's list of the keys there;
+    // the README stays within its 15,000 bytes.
+    void theReadmesTimelineRowNamesThePageKeys() {
+        QFile readme(QStringLiteral(BONELESS_SOURCE_DIR) + "/README.md");
+        QVERIFY(readme.open(QIODevice::ReadOnly));
+        const QString text = QString::fromUtf8(readme.readAll());
+        QVERIFY2(readme.size() <= 15000, qPrintable(QString::number(readme.size())));
+        const qsizetype start = text.indexOf("- **Timeline**");
+        QVERIFY(start >= 0);
+        const QString row = text.mid(start, text.indexOf("\n- **", start + 1) - start);
+        QVERIFY2(row.contains("PageUp/PageDown") && row.contains("a tenth of the take"),
+                 qPrintable(row));
     }
 
   private:

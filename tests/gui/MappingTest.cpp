@@ -511,6 +511,51 @@ class MappingTest : public QObject {
             QVERIFY2(solve->toolTip().contains(label), qPrintable(label));
     }
 
+    // A mesh with a part no marker is on (a prop beside the body): the CLI notes that it is
+    // carried rigidly, the app said nothing. The status bar says so, its tooltip as the CLI does.
+    void aPartWithNoMarkerIsSaidToBeCarriedRigidly() {
+        const QDir dir = QFileInfo(freshProject()).dir();
+        QFile walker(dir.filePath("walker.obj"));
+        QVERIFY(walker.open(QIODevice::ReadOnly));
+        QByteArray obj = walker.readAll();
+        const int n = obj.count("\nv ") + (obj.startsWith("v ") ? 1 : 0);
+        obj += "v 1 1 0\nv 1.1 1 0\nv 1 1.1 0\nv 1 1 0.1\n";
+        for (const char* face : {"1 3 2", "1 2 4", "1 4 3", "2 3 4"}) {
+            const QStringList corners = QString(face).split(' ');
+            obj += "f";
+            for (const QString& c : corners) obj += " " + QByteArray::number(n + c.toInt());
+            obj += "\n";
+        }
+        const QString prop = dir.filePath("walker-prop.obj");
+        QFile out(prop);
+        QVERIFY(out.open(QIODevice::WriteOnly));
+        out.write(obj);
+        out.close();
+        boneless::Correspondence map =
+            boneless::Correspondence::read(dir.filePath("walker.map.json").toStdString());
+        map.meshVertices = n + 4;
+        map.meshFile = "walker-prop.obj";
+        map.write(dir.filePath("prop.map.json").toStdString());
+
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        QVERIFY(
+            window.openFiles({prop, dir.filePath("walker.c3d"), dir.filePath("prop.map.json")}));
+        QVERIFY(test::showAndWait(window));
+        auto* solve = window.findChild<QLabel*>("solveLabel");
+        QVERIFY(solve);
+        QTRY_VERIFY2(solve->text().contains("1 part carried rigidly"), qPrintable(solve->text()));
+        QVERIFY2(solve->toolTip().contains("follows the nearest marked part rigidly"),
+                 qPrintable(solve->toolTip()));
+
+        // The walker alone: nothing carried, nothing said.
+        QVERIFY(window.openFiles({dir.filePath("walker.obj"), dir.filePath("walker.c3d"),
+                                  dir.filePath("walker.map.json")}));
+        QTRY_VERIFY2(solve->text().startsWith("solved") || solve->text().startsWith("cached"),
+                     qPrintable(solve->text()));
+        QVERIFY2(!solve->text().contains("carried"), qPrintable(solve->text()));
+    }
+
     void whileMappingTheMeshAndCameraHoldStillAndLeavingShowsThePlayhead() {
         MainWindow window;
         window.setMessageBoxesEnabled(false);

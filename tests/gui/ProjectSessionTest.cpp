@@ -3,6 +3,7 @@
 // project, a damaged or hostile project file gives one message, offers the last autosave when it
 // was made from that project and is itself left alone, and closing asks before edits that no
 // project file holds are left behind.
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -22,6 +23,7 @@
 #include <QStatusBar>
 #include <QUndoStack>
 #include <QtTest>
+#include <csignal>
 #include <cstdio>
 
 #include "ViewTestSupport.h"
@@ -404,8 +406,7 @@ class ProjectSessionTest : public QObject {
         QVERIFY(!window.openFiles({path}));  // as the command line opens it
         QCOMPARE(errors.size(), 1);
         const QString said = errors.last().at(0).toString();
-        QVERIFY2(said.startsWith("far-vertex.boneless could not be opened as a Boneless project."),
-                 qPrintable(said));
+        QVERIFY2(said.startsWith("The map in far-vertex.boneless points past "), qPrintable(said));
         QVERIFY2(said.contains("999999"), qPrintable(said));
         QVERIFY(!window.openProject(path));
         QCOMPARE(errors.size(), 2);
@@ -664,6 +665,71 @@ class ProjectSessionTest : public QObject {
         QVERIFY(window.autosave()->saveNow());
         const QJsonObject saved = QJsonDocument::fromJson(readAll(project)).object();
         QCOMPARE(saved["mesh"].toObject()["file"].toString(), QString("walker-old.obj"));
+        for (auto* shown : window.findChildren<QMessageBox*>()) shown->close();
+    }
+
+    // A map made for another mesh could only be located with that mesh: the project could not
+    // be opened to map the mesh it names anew. Open Without the Map opens it unmapped, says so,
+    // and keeps the map (only the project held it) in a file beside it; the project is untouched.
+    void aProjectWhoseMapDoesNotFitItsMeshOpensWithTheMapSetAside() {
+        const QString project = test::writeDemoProject(folder_ + "/setAside");
+        const QString mesh = folder_ + "/setAside/walker.obj";
+        const int mapped =
+            boneless::Correspondence::read((folder_ + "/setAside/walker.map.json").toStdString())
+                .markers.size();
+        QVERIFY(QFile::remove(mesh));
+        writeAll(mesh, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+        const QByteArray before = readAll(project);
+        MainWindow window;
+        window.autosave()->setDelay(60000);
+        QVERIFY(!window.openProject(project));
+        auto* box = window.findChild<QMessageBox*>("projectErrorMessage");
+        QVERIFY(box);
+        QVERIFY2(box->informativeText().contains("Open Without the Map opens it unmapped"),
+                 qPrintable(box->informativeText()));
+        auto* aside = box->findChild<QPushButton*>("openWithoutMapButton");
+        QVERIFY(aside);
+        aside->click();
+        QCOMPARE(window.projectPath(), QFileInfo(project).absoluteFilePath());
+        QCOMPARE(window.document()->meshPath(), mesh);
+        QVERIFY(window.document()->hasTake());
+        QCOMPARE(window.document()->mappedCount(), 0);
+        const QString kept = folder_ + "/setAside/demo.set-aside.map.json";
+        const QString said = window.statusBar()->currentMessage();
+        QVERIFY2(said.contains("made for another mesh") && said.contains(kept), qPrintable(said));
+        QCOMPARE(readAll(project), before);
+        const boneless::Correspondence map = boneless::Correspondence::read(kept.toStdString());
+        QCOMPARE(int(map.markers.size()), mapped);
+        for (auto* shown : window.findChildren<QMessageBox*>()) shown->close();
+    }
+
+    // A map file with no vertex count whose entry points past the mesh: "demo.boneless could not
+    // be opened as a Boneless project." The headline names the map, the entry and the mesh.
+    void aMapPointingPastTheMeshIsNamedWithItsEntryAndTheMeshsVertexCount() {
+        const QString project = test::writeDemoProject(folder_ + "/pastMesh");
+        const QString mesh = folder_ + "/pastMesh/walker.obj";
+        boneless::Correspondence map =
+            boneless::Correspondence::read((folder_ + "/pastMesh/walker.map.json").toStdString());
+        map.meshVertices = 0;
+        map.markers[5].vertex = 4000;
+        map.markers[9].vertex = 4100;
+        map.write((folder_ + "/pastMesh/past.map.json").toStdString());
+        QJsonObject root = QJsonDocument::fromJson(readAll(project)).object();
+        root["correspondence"] = QJsonObject{{"file", "past.map.json"}, {"modified", false}};
+        writeAll(project, QJsonDocument(root).toJson());
+        MainWindow window;
+        window.autosave()->setDelay(60000);
+        QVERIFY(!window.openProject(project));
+        auto* box = window.findChild<QMessageBox*>("projectErrorMessage");
+        QVERIFY(box);
+        Document d;
+        QVERIFY(Project::load(d, test::writeDemoProject(folder_ + "/pastMeshCount")));
+        QCOMPARE(box->text(),
+                 QString("The map past.map.json named by demo.boneless points past %1: "
+                         "marker %2 is on vertex 4000, and it has %3 vertices.")
+                     .arg(mesh, QString::fromStdString(map.markers[5].label))
+                     .arg(d.mesh().vertexCount()));
+        QVERIFY(box->findChild<QPushButton*>("openWithoutMapButton"));
         for (auto* shown : window.findChildren<QMessageBox*>()) shown->close();
     }
 
@@ -1186,6 +1252,55 @@ class ProjectSessionTest : public QObject {
         answerClose("discardButton");
         window.close();
         QVERIFY(!window.isVisible());
+    }
+
+    // A full disk made every edit bring up another error box. Said once while it stays full; the
+    // edits wait in memory and reach the project once space returns, with no edit needed.
+    void aFullDiskIsSaidOnceAndTheEditsReachTheProjectWhenSpaceReturns() {
+        const QString path = folder_ + "/mine/full.boneless";
+        QFile::remove(path);
+        QVERIFY(QFile::copy(project_, path));
+        MainWindow window;
+        QVERIFY(window.openProject(path));
+        QVERIFY(test::showAndWait(window));
+        window.autosave()->setRetryDelay(0);
+        QSignalSpy failed(window.autosave(), &ProjectAutosave::failed);
+        QSignalSpy saved(window.autosave(), &ProjectAutosave::saved);
+        // A full disk as this process sees it: no file grows past 64 bytes (EFBIG).
+        std::signal(SIGXFSZ, SIG_IGN);
+        rlimit normal{};
+        QCOMPARE(getrlimit(RLIMIT_FSIZE, &normal), 0);
+        rlimit small = normal;
+        small.rlim_cur = 64;
+        QCOMPARE(setrlimit(RLIMIT_FSIZE, &small), 0);
+        for (int marker = 0; marker < 3; ++marker) {
+            QVERIFY(window.document()->clearMapping(marker));
+            QVERIFY(!window.autosave()->saveNow());
+        }
+        const int boxes = window.findChildren<QMessageBox*>("errorMessage").size();
+        QCOMPARE(setrlimit(RLIMIT_FSIZE, &normal), 0);
+        QCOMPARE(failed.count(), 1);
+        QCOMPARE(boxes, 1);
+        QVERIFY(window.autosave()->isPending());
+        // Space again: the retry saves what was made meanwhile.
+        QVERIFY(saved.wait(5000));
+        Document reopened;
+        QVERIFY(Project::load(reopened, path));
+        QCOMPARE(reopened.mappedCount(), window.document()->mappedCount());
+        QVERIFY2(window.statusBar()->currentMessage().contains("Saved again"),
+                 qPrintable(window.statusBar()->currentMessage()));
+        // Full again: said again.
+        QCOMPARE(setrlimit(RLIMIT_FSIZE, &small), 0);
+        QVERIFY(window.document()->clearMapping(3));
+        const bool savedFull = window.autosave()->saveNow();
+        QCOMPARE(setrlimit(RLIMIT_FSIZE, &normal), 0);
+        QVERIFY(!savedFull);
+        QCOMPARE(failed.count(), 2);
+        for (auto* box : window.findChildren<QMessageBox*>("errorMessage")) box->close();
+        window.autosave()->setRetryDelay(60000);
+        QVERIFY(window.autosave()->saveNow());
+        window.setMessageBoxesEnabled(false);
+        window.close();
     }
 
     // A frame that fails to solve while the close question is up: its message waits for the

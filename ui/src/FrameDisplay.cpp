@@ -8,7 +8,9 @@
 #include <cmath>
 #include <limits>
 
+#include "Counted.h"
 #include "FloorGrid.h"
+#include "boneless/Reconstruction.h"
 #include "boneless/TakeExport.h"
 #include "boneless/ui/Document.h"
 #include "boneless/ui/MarkerListModel.h"
@@ -144,6 +146,16 @@ void FrameDisplay::rebuildProblem() {
     refusalShown_ = refusal;
     result_.reset();
     if (!solving_) solver_->clearProblem();
+    // A part with no marker (a prop, a detached eye) is not solved but carried: the CLI says so,
+    // and the view alone showed it moving stiffly with nothing to say why.
+    carriedParts_ = 0;
+    if (solving_) {
+        std::vector<int> markerVertices;
+        for (int k = 0; k < document_->markerCount(); ++k)
+            if (document_->mappedVertex(k) >= 0)
+                markerVertices.push_back(document_->mappedVertex(k));
+        carriedParts_ = componentsWithoutMarkers(document_->mesh(), markerVertices);
+    }
     updateFloor();
     onFrameChanged(timeline_->frame());
 }
@@ -355,6 +367,15 @@ void FrameDisplay::emitStatus() {
     } else {
         solve = result_->fromCache ? tr("cached")
                                    : tr("solved in %1 ms").arg(result_->solveMs, 0, 'f', 0);
+        if (carriedParts_ > 0) {
+            solve += ", " + counted(carriedParts_, tr("%n part carried rigidly"),
+                                    tr("%n parts carried rigidly"));
+            solveDetail = counted(carriedParts_,
+                                  tr("%n component of the mesh carries no marker: it follows the "
+                                     "nearest marked part rigidly."),
+                                  tr("%n components of the mesh carry no marker: each follows the "
+                                     "nearest marked part rigidly."));
+        }
         // Frames meet their markers even on a take aligned 200 mm off: the alignment's own
         // residual says that. The solver measures it, found or given: a project's stored
         // residual is only what the file says.

@@ -100,6 +100,7 @@ class FrameDisplay : public QObject {
     QString notSolvingReason_;
     QString notSolvingDetail_;  // the reason's whole list
     QString refusalShown_;      // the last solveRefused() message, while it still holds
+    int carriedParts_ = 0;  // the mesh's parts with no marker, carried rigidly (as the CLI says)
     bool trails_ = false, heatMap_ = false;
     Shown shown_ = Shown::Frame;
     bool frozen_ = false;

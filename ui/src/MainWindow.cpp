@@ -52,6 +52,15 @@
 
 namespace boneless::ui {
 
+namespace {
+
+// `text` as written where an "&" marks a mnemonic (a menu's action, a buddy label).
+QString asWritten(QString text) {
+    return text.replace('&', "&&");
+}
+
+}  // namespace
+
 MainWindow::MainWindow(QWidget* parent)
     : QMainWindow(parent),
       document_(new Document(this)),
@@ -282,6 +291,16 @@ QMenu* MainWindow::buildEditMenu() {
     QAction* redo = document_->undoStack()->createRedoAction(this, tr("&Redo"));
     redo->setObjectName("actionRedo");
     redo->setShortcut(undoRedoKeys()[1]);
+    // The stack's own text takes an edit's "&" (a marker or file named "R&D") for a mnemonic:
+    // "Undo Clear RD", the D underlined. Set after the stack's, so this one is what shows.
+    connect(document_->undoStack(), &QUndoStack::undoTextChanged, undo, [this, undo] {
+        const QString text = document_->undoStack()->undoText();
+        undo->setText(text.isEmpty() ? tr("&Undo") : tr("&Undo %1").arg(asWritten(text)));
+    });
+    connect(document_->undoStack(), &QUndoStack::redoTextChanged, redo, [this, redo] {
+        const QString text = document_->undoStack()->redoText();
+        redo->setText(text.isEmpty() ? tr("&Redo") : tr("&Redo %1").arg(asWritten(text)));
+    });
     // Undo and redo are edits too: held while an export runs (after the stack's own enabling).
     QUndoStack* stack = document_->undoStack();
     const auto holdUndo = [this, stack, undo, redo] {
@@ -534,6 +553,10 @@ void MainWindow::connectDocument() {
     });
     connect(autosave_, &ProjectAutosave::failed, this,
             [this](const QString& message) { showError(message); });
+    connect(autosave_, &ProjectAutosave::savedAgain, this, [this](const QString& path) {
+        statusBar()->showMessage(tr("Saved again: the edits made meanwhile are in %1").arg(path),
+                                 15000);
+    });
     connect(autosave_, &ProjectAutosave::changedOnDisk, this, &MainWindow::askChangedOnDisk);
     connect(autosave_, &ProjectAutosave::aboutToSave, this, &MainWindow::storeSession,
             Qt::DirectConnection);
@@ -729,8 +752,10 @@ void MainWindow::askVertexForSelected() {
     bool ok = false;
     const int vertex = QInputDialog::getInt(
         this, tr("Map to Vertex"),
+        // The dialog's label is its spin box's buddy: an "&" in a name would be a mnemonic.
         tr("The vertex of %1 that carries %2 (0 to %3):")
-            .arg(QFileInfo(document_->meshPath()).fileName(), document_->markerLabel(selected))
+            .arg(asWritten(QFileInfo(document_->meshPath()).fileName()),
+                 asWritten(document_->markerLabel(selected)))
             .arg(last),
         std::max(current, 0), 0, last, 1, &ok);
     if (ok) mapSelectedMarker(vertex);

@@ -234,7 +234,8 @@ void MainWindow::showOpened(const QString& path, const QStringList& notes) {
     box->show();
 }
 
-bool MainWindow::openProject(const QString& path, const QMap<QString, QString>& located) {
+bool MainWindow::openProject(const QString& path, const QMap<QString, QString>& located,
+                             bool setMapAside) {
     // Refused before asking about the work open now: nothing would replace it.
     if (const QString why = notARegularFileSentence(path, FileKind::Project); !why.isEmpty()) {
         showError(why, path);
@@ -242,11 +243,12 @@ bool MainWindow::openProject(const QString& path, const QMap<QString, QString>& 
     }
     if (!keepUnsavedWork(false)) return false;
     std::optional<Loading> loading(std::in_place, this);
-    QString error, missing, missingFile;
+    QString error, missing, missingFile, setAside;
     bool loaded = false;
     {
         const QScopedValueRollback<bool> quiet(loadingProject_, true);
-        loaded = Project::load(*document_, path, &error, &missing, &missingFile, located);
+        loaded = Project::load(*document_, path, &error, &missing, &missingFile, located,
+                               setMapAside, &setAside);
     }
     if (!loaded) {
         const QString message = !missing.isEmpty()
@@ -278,7 +280,8 @@ bool MainWindow::openProject(const QString& path, const QMap<QString, QString>& 
                     QFileInfo::exists(missingFile)
                         // there, but not the mesh the map was made for
                         ? tr("The file is left as it is. Locate… opens it with the mesh the map "
-                             "was made for, in place of %1.")
+                             "was made for, in place of %1; Open Without the Map opens it "
+                             "unmapped, the map kept.")
                               .arg(QFileInfo(missingFile).fileName())
                         : tr("The file is left as it is. Locate… opens it with %1 where it is "
                              "now.")
@@ -292,6 +295,14 @@ bool MainWindow::openProject(const QString& path, const QMap<QString, QString>& 
                 next[missingFile] = QFileInfo(chosen).absoluteFilePath();
                 openProject(path, next);
             });
+            // The mesh is the one wanted and the map is to be made anew for it.
+            if (QFileInfo::exists(missingFile)) {
+                QPushButton* aside =
+                    box->addButton(tr("Open Without the Map"), QMessageBox::ActionRole);
+                aside->setObjectName("openWithoutMapButton");
+                connect(aside, &QPushButton::clicked, this,
+                        [this, path, located] { openProject(path, located, true); });
+            }
         }
         box->show();
         return false;
@@ -307,7 +318,9 @@ bool MainWindow::openProject(const QString& path, const QMap<QString, QString>& 
     applyViewSettings();
     restoreSession();
     updateTitle();
-    showOpened(path, document_->takeNotes());  // a take cut short since, as the take says
+    QStringList notes = document_->takeNotes();  // a take cut short since, as the take says
+    if (!setAside.isEmpty()) notes.prepend(setAside);
+    showOpened(path, notes);
     if (!located.isEmpty()) {
         // The project names the files located: an edit, marked and saved into it (once the
         // load's own autosave is dropped).

@@ -1,5 +1,7 @@
 #include "boneless/ui/Project.h"
 
+#include <algorithm>
+
 #include <QDir>
 #include <QFile>
 #include <QFileInfo>
@@ -209,7 +211,8 @@ bool save(const Document& document, const QString& path, QString* error) {
 }
 
 bool load(Document& document, const QString& path, QString* error, QString* missing,
-          QString* missingFile, const QMap<QString, QString>& located) {
+          QString* missingFile, const QMap<QString, QString>& located, bool setMapAside,
+          QString* setAside) {
     auto fail = [&](const QString& why) {
         if (error) *error = path + ": " + why;
         return false;
@@ -280,26 +283,70 @@ bool load(Document& document, const QString& path, QString* error, QString* miss
             return fail(QString::fromStdString(e.what()));
         }
     }
-    // A mesh re-exported since with other vertices (the map records how many it was made for):
-    // the headline said only that the project could not be opened. It names the map and the
-    // mesh, and like a missing mesh the one the map was made for can be located in its place.
-    // Other misfits (an entry edited out of range) are the map's, and say so in the details.
-    if (state.hasMesh && state.map.meshVertices != 0 &&
-        state.map.meshVertices != state.mesh.vertexCount()) {
-        try {
-            state.map.checkMesh(state.mesh.vertexCount(), state.meshPath.toStdString());
-        } catch (const std::exception& e) {
-            if (missing)
-                *missing = QObject::tr(
-                               "The map in %1 was made for another mesh than %2, which has "
-                               "%3 vertices now.")
-                               .arg(project, state.meshPath)
-                               .arg(state.mesh.vertexCount());
-            if (missingFile) *missingFile = resolve(dir, mesh["file"].toString());
-            return fail(QString::fromStdString(e.what()));
+    // A mesh re-exported since with other vertices (the map records how many it was made for),
+    // or a map with an entry past the mesh's last vertex: the headline said only that the project
+    // could not be opened. It names the map and the mesh, the one the map was made for can be
+    // located in its place, or the project opened without the map to map the mesh anew.
+    bool mapSetAside = false;
+    if (state.hasMesh && !state.map.markers.empty()) {
+        const int count = state.mesh.vertexCount();
+        const bool otherMesh = state.map.meshVertices != 0 && state.map.meshVertices != count;
+        const auto past = std::find_if(state.map.markers.begin(), state.map.markers.end(),
+                                       [count](const auto& m) { return m.vertex >= count; });
+        if (otherMesh || past != state.map.markers.end()) {
+            const bool inProject = correspondence["map"].isObject();
+            const QString map = inProject ? QObject::tr("The map in %1").arg(project)
+                                          : QObject::tr("The map %1 named by %2")
+                                                .arg(QFileInfo(state.mapPath).fileName(), project);
+            const QString why =
+                otherMesh ? QObject::tr(
+                                "%1 was made for another mesh than %2, which has %3 "
+                                "vertices now.")
+                                .arg(map, state.meshPath)
+                                .arg(count)
+                          : QObject::tr(
+                                "%1 points past %2: marker %3 is on vertex %4, and it has "
+                                "%5 vertices.")
+                                .arg(map, state.meshPath, QString::fromStdString(past->label))
+                                .arg(past->vertex)
+                                .arg(count);
+            if (!setMapAside) {
+                if (missing) *missing = why;
+                if (missingFile) *missingFile = resolve(dir, mesh["file"].toString());
+                try {
+                    state.map.checkMesh(count, state.meshPath.toStdString());
+                } catch (const std::exception& e) {
+                    return fail(QString::fromStdString(e.what()));
+                }
+                return fail(why);
+            }
+            // Kept where it is: its own file left as it was, or a copy of the project's, which
+            // the next save would write over.
+            QString keptIn = state.mapPath;
+            if (inProject || !QFileInfo::exists(keptIn)) {
+                const QString stem = QFileInfo(path).completeBaseName();
+                keptIn = dir.absoluteFilePath(stem + ".set-aside.map.json");
+                for (int n = 2; QFileInfo::exists(keptIn); ++n)
+                    keptIn =
+                        dir.absoluteFilePath(QString("%1.set-aside-%2.map.json").arg(stem).arg(n));
+                try {
+                    state.map.write(keptIn.toStdString());
+                } catch (const std::exception& e) {
+                    return fail(QString::fromStdString(e.what()));
+                }
+            }
+            if (setAside)
+                *setAside = QObject::tr(
+                                "%1 Opened without it, to be mapped anew; the map is kept "
+                                "in %2.")
+                                .arg(why, keptIn);
+            state.map = Correspondence();
+            state.mapPath.clear();
+            mapSetAside = true;
         }
     }
-    if (root["alignment"].isObject()) {
+    // The alignment was fitted with the map set aside.
+    if (root["alignment"].isObject() && !mapSetAside) {
         Calibration c;
         const QString wrong = readAlignment(root["alignment"].toObject(), c);
         if (!wrong.isEmpty()) return fail(QObject::tr("the alignment's %1").arg(wrong));

@@ -131,7 +131,11 @@ ProjectAutosave::ProjectAutosave(Document* document, QObject* parent)
       // The instance too: a session whose Boneless still runs (a second window) has not crashed.
       session_(QUuid::createUuid().toString() + " " + thisInstance()),
       timer_(new QTimer(this)),
+      retry_(new QTimer(this)),
       markTimer_(new QTimer(this)) {
+    retry_->setSingleShot(true);
+    retry_->setInterval(10000);
+    connect(retry_, &QTimer::timeout, this, &ProjectAutosave::saveNow);
     markTimer_->setSingleShot(true);
     markTimer_->setInterval(0);
     connect(markTimer_, &QTimer::timeout, this, &ProjectAutosave::markUnfinished);
@@ -215,12 +219,24 @@ void ProjectAutosave::setDelay(int ms) {
     timer_->setInterval(std::max(0, ms));
 }
 
+void ProjectAutosave::setRetryDelay(int ms) {
+    retry_->setInterval(std::max(0, ms));
+}
+
+void ProjectAutosave::fail(const QString& message) {
+    // A box on every edit while the disk stays full said nothing new and buried the window.
+    if (message != failureSaid_) emit failed(message);
+    failureSaid_ = message;
+    if (pending_) retry_->start();
+}
+
 bool ProjectAutosave::isPending() const {
     return pending_;
 }
 
 void ProjectAutosave::discardPending() {
     timer_->stop();
+    retry_->stop();
     markTimer_->stop();
     pending_ = false;
     // The project file holds the state kept: nothing to offer after a crash.
@@ -322,6 +338,7 @@ void ProjectAutosave::replaceFinishedAutosaves() {
 
 bool ProjectAutosave::saveNow() {
     timer_->stop();
+    retry_->stop();
     if (!enabled_) return true;
     if (!pending_ || !document_) return true;
     pending_ = false;
@@ -382,16 +399,18 @@ bool ProjectAutosave::saveNow() {
     markedUnfinished_ = false;
     if (changedElsewhere) {
         pending_ = true;  // saved once the user chose (overwriteProject, or another path)
-        if (!errors.isEmpty()) emit failed(errors.join("\n"));
+        if (!errors.isEmpty()) fail(errors.join("\n"));
         return false;
     }
     if (!errors.isEmpty()) {
         pending_ = true;  // try again after the next change
         if (!kept && recovered)
             errors << tr("The changes are kept in the last autosave, %1.").arg(recoveryPath());
-        emit failed(errors.join("\n"));
+        fail(errors.join("\n"));
         return kept;
     }
+    if (!failureSaid_.isEmpty()) emit savedAgain(targets.front());
+    failureSaid_.clear();
     emit saved(targets.front());
     return true;
 }

@@ -60,8 +60,11 @@ class MainWindow : public QMainWindow {
     // A file it names that is missing can be located (Locate…): the project then opens with the
     // file chosen, as an edit, saved into the project next.
     bool openProject(const QString& path) { return openProject(path, {}); }
+    // A map that does not fit the mesh can be set aside (Open Without the Map): the project
+    // opens unmapped, the map kept on disk (Project::load's setMapAside), and says so.
     // `located`: files the project names (resolved) that are read from elsewhere.
-    bool openProject(const QString& path, const QMap<QString, QString>& located);
+    bool openProject(const QString& path, const QMap<QString, QString>& located,
+                     bool setMapAside = false);
     // Writes the demo afresh and opens it. The demo is never saved into: Save goes to Save As,
     // autosave to the recovery file.
     bool openDemo();

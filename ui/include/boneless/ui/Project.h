@@ -34,12 +34,18 @@ bool save(const Document& document, const QString& path, QString* error = nullpt
 // in a plain sentence: "The mesh /data/walker.obj named by walk.boneless is missing."
 // A mesh that no longer fits the map (re-exported since) is said so too: "The map in walk.boneless
 // was made for another mesh than /data/walker.obj, which has 3083 vertices now."
+// So is a map with an entry past the mesh's last vertex: "The map walk.map.json named by
+// walk.boneless points past /data/walker.obj: marker LFHD is on vertex 4000, and it has 3426
+// vertices."
 // *missingFile (if given) is that file's path, the one to locate. `located` gives files found
 // elsewhere (Locate…): a path the project names, resolved, to the one read instead (and saved
-// next).
+// next). `setMapAside` opens a project whose map does not fit its mesh without the map (and its
+// alignment), to be mapped anew; *setAside (if given) then says where the map is kept: its own
+// file, left as it is, or for a map only the project held, a copy written beside the project.
 bool load(Document& document, const QString& path, QString* error = nullptr,
           QString* missing = nullptr, QString* missingFile = nullptr,
-          const QMap<QString, QString>& located = {});
+          const QMap<QString, QString>& located = {}, bool setMapAside = false,
+          QString* setAside = nullptr);
 // The project's JSON text (what save() writes), for tests and comparisons.
 QByteArray toJson(const Document& document, const QString& path);
 
@@ -75,6 +81,9 @@ class ProjectAutosave : public QObject {
     void setProjectPath(const QString& path);
     QString projectPath() const { return path_; }
     void setDelay(int ms);  // default 1000
+    // After a failed save (a full disk), the next try comes this long after, edit or not: the
+    // edits reach the files once space returns. Default 10000.
+    void setRetryDelay(int ms);
     // false: nothing is saved or recorded, the project file, the recovery file and the settings
     // are left as they are (a scripted run).
     void setEnabled(bool enabled) { enabled_ = enabled; }
@@ -130,7 +139,10 @@ class ProjectAutosave : public QObject {
     void saved(const QString& path);
     // The project file `path` changed on disk since this session read or wrote it: not written.
     void changedOnDisk(const QString& path);
+    // Said once while saves keep failing alike (a full disk): again only when the message changes.
     void failed(const QString& message);
+    // A save succeeded after failed(): the edits made meanwhile are in `path` now.
+    void savedAgain(const QString& path);
 
   private:
     QPointer<Document> document_;
@@ -154,7 +166,11 @@ class ProjectAutosave : public QObject {
     std::map<QString, std::unique_ptr<QLockFile>> held_;  // recovery file -> its lock, held
     QString adopted_;            // another Boneless's recovery file reopened, until saved here
     bool heldBackSaid_ = false;  // failed() said the recovery file is another session's
+    // Says `message` unless it is the failure said last, and tries again later (retry_).
+    void fail(const QString& message);
+    QString failureSaid_;  // the last failed() message, until a save succeeds
     QTimer* timer_;
+    QTimer* retry_;
     QTimer* markTimer_;  // markUnfinished() once the event loop runs: not in the middle of a load
     bool enabled_ = true;
     bool pending_ = false;
