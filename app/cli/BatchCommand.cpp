@@ -591,6 +591,8 @@ void run(const BatchArgs& args) {
         std::vector<std::string> mapWarnings;   // and the map's once it is read
         std::vector<std::string> takeNotes;     // a note on its "frames", on earlier exports
         // Under the take's line, solved or not: a truncated take solves the frames it holds.
+        // Every note and warning on stderr, each take's line (its result) on stdout: the Unix
+        // rule, so `batch m.json > results.txt` keeps a take's diagnostics in one place.
         const auto underTheLine = [&] {
             std::fflush(stdout);
             for (const std::string& w : takeWarnings)
@@ -604,7 +606,7 @@ void run(const BatchArgs& args) {
             // A library of takes shares a few meshes: what one lacks is said once, solved or not.
             if (!meshWarnings.empty() && notedMeshes.insert(job.mesh + "\n" + job.group).second)
                 for (const std::string& w : meshWarnings)
-                    std::printf("  note: %s: %s\n", job.mesh.c_str(), w.c_str());
+                    std::fprintf(stderr, "  note: %s: %s\n", job.mesh.c_str(), w.c_str());
             std::fflush(stdout);
         };
         try {

@@ -1175,3 +1175,32 @@ TEST(Batch, AHundredTakesSpreadOverFourShards) {
     }
     EXPECT_EQ(total, 100);
 }
+
+// One rule for the log (the Unix one): each take's line, its result, on stdout; every note and
+// warning under it on stderr. The mesh's notes went to stdout while the take's warnings went to
+// stderr, so `batch m.json > results.txt` split one take's diagnostics over two places.
+TEST(Batch, EveryNoteAndWarningGoesToStderrAndEachTakesLineToStdout) {
+    const fs::path dir = makeLibrary();
+    std::ostringstream obj;
+    obj << std::ifstream(dir / "walker.obj").rdbuf();
+    std::ofstream(dir / "walker.obj") << "mtllib gone.mtl\nusemtl skin\n" << obj.str();
+    const fs::path take = dir / "takes" / "walk_c.c3d";
+    fs::resize_file(take, fs::file_size(take) * 2 / 3);
+    const std::string run = std::string(BONELESS_CLI) + " batch " +
+                            writeManifest(dir, "m.json", folderManifest("out")).string();
+    const CliResult out = runShell(run + " 2>/dev/null");
+    fs::remove_all(dir / "out");
+    const CliResult err = runShell(run + " 2>&1 >/dev/null");
+    ASSERT_EQ(out.exitCode, 0) << out.out;
+    ASSERT_EQ(err.exitCode, 0) << err.out;
+    EXPECT_NE(out.out.find("walk_a.c3d -> "), std::string::npos) << out.out;
+    EXPECT_NE(out.out.find("3 of 3 takes in shard 1/1: 3 solved"), std::string::npos) << out.out;
+    EXPECT_EQ(out.out.find("note:"), std::string::npos) << out.out;
+    EXPECT_EQ(out.out.find("warning:"), std::string::npos) << out.out;
+    EXPECT_NE(err.out.find("note: " + (dir / "walker.obj").string() + ": "), std::string::npos)
+        << err.out;
+    EXPECT_NE(err.out.find("gone.mtl: material library cannot be read"), std::string::npos)
+        << err.out;
+    EXPECT_NE(err.out.find("file is truncated"), std::string::npos) << err.out;
+    EXPECT_EQ(err.out.find(" -> "), std::string::npos) << err.out;
+}
