@@ -1048,3 +1048,30 @@ TEST(SolveCommand, ACalibratedRestWithoutCalibrationIsRefusedBeforeTheEarlierSol
         << r.out;
     EXPECT_TRUE(sidecar(out)["complete"].get<bool>());
 }
+
+// The second of two runs into one take found the lock only once its solver was prepared (the
+// alignment, the calibration, the factorisation: seconds to minutes on a large mesh) and then
+// threw that work away. A calibration frame past the take's end is refused by that preparation
+// alone, so which refusal comes says which was checked first.
+TEST(SolveCommand, ARunIntoFilesAnotherRunIsWritingIsRefusedBeforeItsSolverIsPrepared) {
+    const fs::path demo = makeDemo(3), out = demo / "out";
+    fs::create_directories(out);
+    const int held = ::open((out / ".walker.lock").c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    ASSERT_GE(held, 0);
+    ASSERT_EQ(::flock(held, LOCK_EX | LOCK_NB), 0);
+    const CliResult r = runCli(solveArgs(demo, out) + " --quiet --calibration-frame 99");
+    ::close(held);
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("another run is solving into this take's files now"), std::string::npos)
+        << r.out;
+    EXPECT_EQ(r.out.find("calibration frame 99"), std::string::npos) << r.out;
+}
+
+// A run whose solver cannot be prepared leaves no folder behind that it made to hold the lock.
+TEST(SolveCommand, ARunThatFailsBeforeWritingLeavesNoFolderItMade) {
+    const fs::path demo = makeDemo(3), out = demo / "new" / "out";
+    const CliResult r = runCli(solveArgs(demo, out) + " --quiet --calibration-frame 99");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("calibration frame 99"), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(out)) << r.out;
+}

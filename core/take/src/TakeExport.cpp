@@ -612,15 +612,27 @@ void checkRequest(const TriMesh& mesh, const Correspondence& map, const ExportRe
                   &mesh);
 }
 
-// Held from before the first output is touched until the sidecar is written: two runs solving
-// into one folder's files at once (two batch runs, a shard started twice) interleaved their frames
-// under the sidecar of whichever finished last, which then said complete. An advisory lock on a
-// hidden file beside the sidecar: the kernel lets go when its holder dies, whatever killed it.
+// Held from before the solver is prepared until the sidecar is written: two runs solving into one
+// folder's files at once (two batch runs, a shard started twice) interleaved their frames under
+// the sidecar of whichever finished last, which then said complete; and taken after preparing,
+// the second run threw away seconds to minutes of work per take. An advisory lock on a hidden
+// file beside the sidecar: the kernel lets go when its holder dies, whatever killed it. Makes the
+// output folder, and removes what it made if it is still empty when let go (a solve that failed
+// before writing).
 class OutputLock {
   public:
-    explicit OutputLock(const ExportRequest& request) {
+    explicit OutputLock(const ExportRequest& request) : outDir_(request.outDir) {
+        std::error_code ec;
+        // The first missing folder of the path, so that all it made can go again.
+        for (fs::path p = fs::path(outDir_).lexically_normal(); !p.empty() && !fs::exists(p, ec);
+             p = p.parent_path()) {
+            made_ = p;
+            if (p == p.parent_path()) break;
+        }
+        fs::create_directories(outDir_, ec);
+        if (ec) throw Error(outDir_ + ": cannot create the folder (" + ec.message() + ")");
         const std::string stem = exportStem(request);
-        path_ = (fs::path(request.outDir) / ("." + stem + ".lock")).string();
+        path_ = (fs::path(outDir_) / ("." + stem + ".lock")).string();
         for (;;) {
             fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
             // A folder that takes no new file fails as the outputs are written, naming them.
@@ -630,7 +642,7 @@ class OutputLock {
                 ::close(fd_);
                 fd_ = -1;
                 if (error == EWOULDBLOCK)
-                    throw Error((fs::path(request.outDir) / (stem + ".json")).string() +
+                    throw Error((fs::path(outDir_) / (stem + ".json")).string() +
                                 ": another run is solving into this take's files now; nothing "
                                 "was written: let it finish (a run after it skips or solves the "
                                 "take as its sidecar says), or solve into another folder");
@@ -642,25 +654,35 @@ class OutputLock {
             struct stat named = {};
             if (::fstat(fd_, &held) == 0 && ::stat(path_.c_str(), &named) == 0 &&
                 held.st_dev == named.st_dev && held.st_ino == named.st_ino)
-                return;
+                break;
             ::close(fd_);
         }
     }
     ~OutputLock() {
-        if (fd_ < 0) return;
-        // While still held: a run that opens it now finds it locked, or once we let go, removed.
-        ::unlink(path_.c_str());
-        ::close(fd_);
+        if (fd_ >= 0) {
+            // While still held: a run that opens it now finds it locked, or once we let go,
+            // removed.
+            ::unlink(path_.c_str());
+            ::close(fd_);
+        }
+        // Only folders still empty go: anything a solve wrote keeps them.
+        std::error_code ec;
+        if (!made_.empty())
+            for (fs::path p = fs::path(outDir_).lexically_normal(); fs::remove(p, ec) && p != made_;
+                 p = p.parent_path()) {
+            }
     }
     OutputLock(const OutputLock&) = delete;
     OutputLock& operator=(const OutputLock&) = delete;
 
   private:
-    std::string path_;
+    std::string outDir_, path_;
+    fs::path made_;  // the first folder of outDir_ this made; empty if none
     int fd_ = -1;
 };
 
-// take: what the sidecar says of the take (its samples are not read).
+// take: what the sidecar says of the take (its samples are not read). The caller holds the
+// outputs' OutputLock.
 ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake& take,
                           const Correspondence& map, const ExportRequest& request,
                           const ExportProgress& progress, const ExportCalibrated& calibrated) {
@@ -672,10 +694,6 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
                     " select no frame of " + request.c3dPath + " (" + std::to_string(count) +
                     " frames)");
 
-    std::error_code ec;
-    fs::create_directories(request.outDir, ec);
-    if (ec) throw Error(request.outDir + ": cannot create the folder (" + ec.message() + ")");
-    const OutputLock lock(request);
     const std::string stem = exportStem(request);
     const fs::path out(request.outDir);
     ExportResult result;
@@ -816,6 +834,7 @@ ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspo
                         const ExportCalibrated& calibrated) {
     checkRequest(mesh, map, request, take, static_cast<int>(take.frameCount()));
     requireMarkersToAlign(map, request, take);
+    const OutputLock lock(request);
     TakeSolver solver(mesh, take, map, firstSolverOptions(request));
     return exportSolved(solver, mesh, take, map, request, progress, calibrated);
 }
@@ -825,6 +844,7 @@ ExportResult exportTake(const TriMesh& mesh, const C3dFrameReader& take, const C
                         const ExportCalibrated& calibrated) {
     checkRequest(mesh, map, request, take.take(), static_cast<int>(take.frameCount()));
     requireMarkersToAlign(map, request, take.take());
+    const OutputLock lock(request);
     TakeSolver solver(mesh, take, map, firstSolverOptions(request));
     return exportSolved(solver, mesh, take.take(), map, request, progress, calibrated);
 }
