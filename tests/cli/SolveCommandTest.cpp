@@ -1075,3 +1075,34 @@ TEST(SolveCommand, ARunThatFailsBeforeWritingLeavesNoFolderItMade) {
     EXPECT_NE(r.out.find("calibration frame 99"), std::string::npos) << r.out;
     EXPECT_FALSE(fs::exists(out)) << r.out;
 }
+
+namespace {
+// The pid of a process that has run and is gone.
+std::string deadPid() {
+    const CliResult r = runShell("sh -c 'echo $$'");
+    return r.out.substr(0, r.out.find('\n'));
+}
+}  // namespace
+
+// kill -9 (the OOM killer, a node lost) leaves a writer's <output>.tmp<pid> beside its outputs; it
+// was removed only when that very output was written again, so a take solved again as OBJ kept a
+// killed pc2 run's cache of hundreds of megabytes for ever. A run removes every such file of its
+// take's outputs whose process is gone, and nothing else.
+TEST(SolveCommand, ARunRemovesItsTakesTemporariesLeftByKilledRunsAndNothingElse) {
+    const fs::path demo = makeDemo(3), out = demo / "out";
+    fs::create_directories(out);
+    const std::string dead = deadPid(), alive = std::to_string(::getpid());
+    const std::vector<std::string> leftovers = {
+        "walker.pc2.tmp" + dead, "walker.mdd.frames.tmp" + dead, "walker.glb.tmp" + dead,
+        "walker_0007.obj.tmp" + dead, "walker_calibrated_rest.obj.tmp" + dead};
+    const std::vector<std::string> kept = {"walker.pc2.tmp" + alive,  // a run still writing it
+                                           "walker.pc2.tmpnotes",     // not a writer's name
+                                           "other.pc2.tmp" + dead,    // not this take's output
+                                           "walker.txt.tmp" + dead};
+    for (const auto& name : leftovers) std::ofstream(out / name) << "partial";
+    for (const auto& name : kept) std::ofstream(out / name) << "someone's";
+    const CliResult r = runCli(solveArgs(demo, out) + " --quiet --frames 0:2");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    for (const auto& name : leftovers) EXPECT_FALSE(fs::exists(out / name)) << name;
+    for (const auto& name : kept) EXPECT_TRUE(fs::exists(out / name)) << name;
+}

@@ -612,6 +612,16 @@ void checkRequest(const TriMesh& mesh, const Correspondence& map, const ExportRe
                   &mesh);
 }
 
+// Whether `name` is one of the files an export of `stem` writes (its temporaries aside).
+bool isOutputOf(const std::string& name, const std::string& stem) {
+    if (name == stem + ".json" || name == stem + "_calibrated_rest.obj" || objFrameOf(name, stem))
+        return true;
+    // Not <stem>.obj: an OBJ export writes frames, and that name is the mesh's (the demo's).
+    for (const ExportFormatInfo& f : exportFormats())
+        if (f.format != ExportFormat::Obj && name == stem + f.extension) return true;
+    return false;
+}
+
 // Held from before the solver is prepared until the sidecar is written: two runs solving into one
 // folder's files at once (two batch runs, a shard started twice) interleaved their frames under
 // the sidecar of whichever finished last, which then said complete; and taken after preparing,
@@ -657,6 +667,11 @@ class OutputLock {
                 break;
             ::close(fd_);
         }
+        // Held, so no other run writes this take's outputs now: the temporaries of gone writers
+        // (kill -9 of a pc2 run leaves its cache of hundreds of MB) were removed only when that
+        // very output was written again, and a take solved again in another format kept them.
+        removeStaleTemporariesIn(
+            outDir_, [&](const std::string& output) { return isOutputOf(output, stem); });
     }
     ~OutputLock() {
         if (fd_ >= 0) {
