@@ -1106,3 +1106,22 @@ TEST(SolveCommand, ARunRemovesItsTakesTemporariesLeftByKilledRunsAndNothingElse)
     for (const auto& name : leftovers) EXPECT_FALSE(fs::exists(out / name)) << name;
     for (const auto& name : kept) EXPECT_TRUE(fs::exists(out / name)) << name;
 }
+
+// On a full disk an OBJ take failed part-way and its frames stayed, filling the disk for every
+// take after it. A failed take's frames that this run wrote are removed; a file this run did not
+// write (another run's frame, what stood in its way) is left.
+TEST(SolveCommand, AFailedObjTakeRemovesTheFramesThisRunWroteAndNothingElse) {
+    const fs::path demo = makeDemo(12), out = demo / "out";
+    ASSERT_EQ(runCli(solveArgs(demo, out) + " --quiet --frames 9:10").exitCode, 0);
+    fs::create_directories(out / "walker_0002.obj");  // frame 2 cannot be written
+    const CliResult r = runCli(solveArgs(demo, out) + " --quiet --force --frames 0:4");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("walker_0002.obj"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("the 2 OBJ frames this run wrote were removed"), std::string::npos)
+        << r.out;
+    EXPECT_FALSE(fs::exists(out / "walker_0000.obj"));
+    EXPECT_FALSE(fs::exists(out / "walker_0001.obj"));
+    EXPECT_TRUE(fs::is_directory(out / "walker_0002.obj"));
+    EXPECT_TRUE(fs::exists(out / "walker_0009.obj"));  // the earlier run's
+    EXPECT_FALSE(sidecar(out)["complete"].get<bool>());
+}

@@ -696,6 +696,20 @@ class OutputLock {
     int fd_ = -1;
 };
 
+// Removes the files a failed take wrote (its OBJ frames, its calibrated rest: "" for none) and
+// says so, for the take's error: "the 9 OBJ frames this run wrote were removed", or "".
+std::string removeWritten(const std::vector<fs::path>& frames, const fs::path& rest) {
+    std::error_code ec;
+    for (const fs::path& file : frames) fs::remove(file, ec);
+    if (!rest.empty()) fs::remove(rest, ec);
+    std::vector<std::string> what;
+    if (!frames.empty()) what.push_back("the " + plural(long(frames.size()), "OBJ frame"));
+    if (!rest.empty()) what.push_back("the calibrated rest");
+    if (what.empty()) return "";
+    const bool one = frames.size() + (rest.empty() ? 0 : 1) == 1;
+    return joined(what, " and ") + " this run wrote " + (one ? "was" : "were") + " removed";
+}
+
 // take: what the sidecar says of the take (its samples are not read). The caller holds the
 // outputs' OutputLock.
 ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake& take,
@@ -744,61 +758,77 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
     if (objFaces && (request.format == ExportFormat::Obj || request.writeCalibratedRest))
         objFaces =
             std::make_shared<const SourceFaces>(withLibraryCopies(*objFaces, request.outDir));
-    FrameOutput output = openFrameOutput(
-        request.format, request.outDir, stem, mesh, request.first, take.rate,
-        "Boneless: " + fullPath(request.c3dPath),
-        gltfPlacement(solver.calibration().takeToMesh, take.unitToMm, take.vertical), objFaces);
+    // The OBJ frames and calibrated rest this run wrote: a take that fails part-way (a full disk)
+    // removes them, or they filled the disk for every take after it. Never a file it did not write.
+    std::vector<fs::path> framesWritten;
+    fs::path restWritten;
+    try {
+        FrameOutput output = openFrameOutput(
+            request.format, request.outDir, stem, mesh, request.first, take.rate,
+            "Boneless: " + fullPath(request.c3dPath),
+            gltfPlacement(solver.calibration().takeToMesh, take.unitToMm, take.vertical), objFaces);
 
-    std::string restFile;
-    if (request.writeCalibratedRest) {
-        restFile = stem + "_calibrated_rest.obj";
-        writeObj((out / restFile).string(), solver.rest().V, mesh.F,
-                 "Boneless: " + fullPath(request.meshPath) + " fitted to " +
-                     fullPath(request.c3dPath) + " at frame " +
-                     std::to_string(solver.calibration().frame),
-                 objFaces.get());
+        std::string restFile;
+        if (request.writeCalibratedRest) {
+            restFile = stem + "_calibrated_rest.obj";
+            writeObj((out / restFile).string(), solver.rest().V, mesh.F,
+                     "Boneless: " + fullPath(request.meshPath) + " fitted to " +
+                         fullPath(request.c3dPath) + " at frame " +
+                         std::to_string(solver.calibration().frame),
+                     objFaces.get());
+            restWritten = out / restFile;
+        }
+        if (calibrated) calibrated(solver.calibration());
+        result.first = request.first;
+        PerFrameFigures perFrame;
+        result.workers = solveInOrder(
+            solver, mesh, map, request.options, request.first, end,
+            solversThatFit(solveMemory(mesh, request), solverThreadCount()),
+            [&](int f, const Positions& V, const FrameReport& report, double distortion,
+                double strainP95) {
+                output.append(f, V);
+                if (request.format == ExportFormat::Obj)
+                    framesWritten.push_back(out / objFrameFile(stem, f));
+                // Quality a user checks before importing: stretch against the rest pose,
+                // and folds.
+                const bool seen = report.visibleMarkers > 0;
+                json figures = {{"frame", f},
+                                {"visible_markers", report.visibleMarkers},
+                                {"residual_rms_mm", seen ? json(report.residualRmsMm) : json()},
+                                {"residual_max_mm", seen ? json(report.residualMaxMm) : json()},
+                                {"edge_distortion", distortion},
+                                {"edge_strain_p95", strainP95},
+                                {"folded_faces", report.foldedFaces},
+                                {"dent_ratio", report.dentRatio},
+                                {"iterations", report.iterations},
+                                {"ms", report.milliseconds}};
+                if (report.heldFrom >= 0) figures["held_from"] = report.heldFrom;
+                perFrame.add(figures);
+                ++result.framesWritten;
+                if (progress && !progress(result.framesWritten, end - request.first, report) &&
+                    f + 1 < end) {
+                    result.cancelled = true;
+                    return false;
+                }
+                return true;
+            });
+        output.finish();
+        result.held = perFrame.held();
+        json sidecar = sidecarJson(take, request, solver.calibration(), result, fingerprints,
+                                   calibrationJson(request, mesh, solver, restFile),
+                                   perFrame.summary(), mesh.vertexCount());
+        // The app's map may be in no file (edited, or kept in the project): the sidecar then holds
+        // the map that was solved, so the frames can be traced and solved again.
+        if (request.mapPath.empty()) sidecar["map"] = json::parse(map.toJson());
+        perFrame.write(result.sidecarPath, std::move(sidecar));
+    } catch (const Error& e) {
+        const std::string removed = removeWritten(framesWritten, restWritten);
+        if (removed.empty()) throw;
+        throw Error(std::string(e.what()) + "; " + removed);
+    } catch (...) {
+        removeWritten(framesWritten, restWritten);
+        throw;
     }
-    if (calibrated) calibrated(solver.calibration());
-    result.first = request.first;
-    PerFrameFigures perFrame;
-    result.workers = solveInOrder(
-        solver, mesh, map, request.options, request.first, end,
-        solversThatFit(solveMemory(mesh, request), solverThreadCount()),
-        [&](int f, const Positions& V, const FrameReport& report, double distortion,
-            double strainP95) {
-            output.append(f, V);
-            // Quality a user checks before importing: stretch against the rest pose,
-            // and folds.
-            const bool seen = report.visibleMarkers > 0;
-            json figures = {{"frame", f},
-                            {"visible_markers", report.visibleMarkers},
-                            {"residual_rms_mm", seen ? json(report.residualRmsMm) : json()},
-                            {"residual_max_mm", seen ? json(report.residualMaxMm) : json()},
-                            {"edge_distortion", distortion},
-                            {"edge_strain_p95", strainP95},
-                            {"folded_faces", report.foldedFaces},
-                            {"dent_ratio", report.dentRatio},
-                            {"iterations", report.iterations},
-                            {"ms", report.milliseconds}};
-            if (report.heldFrom >= 0) figures["held_from"] = report.heldFrom;
-            perFrame.add(figures);
-            ++result.framesWritten;
-            if (progress && !progress(result.framesWritten, end - request.first, report) &&
-                f + 1 < end) {
-                result.cancelled = true;
-                return false;
-            }
-            return true;
-        });
-    output.finish();
-    result.held = perFrame.held();
-    json sidecar = sidecarJson(take, request, solver.calibration(), result, fingerprints,
-                               calibrationJson(request, mesh, solver, restFile), perFrame.summary(),
-                               mesh.vertexCount());
-    // The app's map may be in no file (edited, or kept in the project): the sidecar then holds
-    // the map that was solved, so the frames can be traced and solved again.
-    if (request.mapPath.empty()) sidecar["map"] = json::parse(map.toJson());
-    perFrame.write(result.sidecarPath, std::move(sidecar));
     return result;
 }
 
