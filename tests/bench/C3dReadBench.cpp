@@ -1,5 +1,6 @@
 // C3D read throughput on a generated ~100 MB take (the bar: under one second).
 
+#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -45,6 +46,13 @@ double bestSeconds(int repeats, F&& f) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    // No options, but --help says what it does, and a mistyped argument is refused, rather than
+    // writing 100 MB to the temporary folder and reading it three times.
+    CLI::App app{
+        "Reads a generated 100 MB C3D take (60,000 frames x 110 points) from memory and from a "
+        "file in the temporary folder, best of 3, and says whether the file reads in under a "
+        "second"};
+    CLI11_PARSE(app, argc, argv);
     const std::size_t frames = 60000, points = 110;  // 60000 x 110 x 16 bytes = 105.6 MB
     const std::vector<std::uint8_t> bytes = encodeC3d(largeTake(frames, points));
     const double mb = double(bytes.size()) / 1e6;
@@ -63,7 +71,5 @@ int main(int argc, char** argv) {
     std::printf("  read from file:   %.3f s  %.0f MB/s\n", file, mb / file);
     const bool ok = file < 1.0 && frameCount == frames;
     std::printf("  %s: a 100 MB take parses in under a second\n", ok ? "PASS" : "FAIL");
-    (void)argc;
-    (void)argv;
     return ok ? 0 : 1;
 }

@@ -3,6 +3,7 @@
 // Usage: boneless-bench-export [REPEATS]   (needs ../shared/data; docs/export.md has the figures)
 
 #include <unistd.h>
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -21,7 +22,14 @@ using namespace boneless;
 namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
-    const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 5;
+    // Read by CLI11, not atoi: "--help" was read as 0 repeats, made 1, and the benchmark ran.
+    int repeats = 5;
+    CLI::App app{
+        "Write time and size of each single-file export format (pc2, mdd, glb) for CMU 85_02 on "
+        "the MakeHuman body, needs ../shared/data"};
+    app.add_option("REPEATS", repeats, "Runs of each writer, the best kept")
+        ->check(CLI::Range(1, 1000));
+    CLI11_PARSE(app, argc, argv);
     const fs::path data(BONELESS_SHARED_DATA);
     const fs::path meshPath = data / "meshes" / "makehuman" / "makehuman_base.obj";
     const fs::path takePath = data / "c3d" / "cmu" / "85_02.c3d";

@@ -1128,3 +1128,80 @@ TEST(SolveCommand, ACalibratedRestWithoutCalibrationIsRefusedBeforeTheEarlierSol
         << r.out;
     EXPECT_TRUE(sidecar(out)["complete"].get<bool>());
 }
+
+// The second of two runs into one take found the lock only once its solver was prepared (the
+// alignment, the calibration, the factorisation: seconds to minutes on a large mesh) and then
+// threw that work away. A calibration frame past the take's end is refused by that preparation
+// alone, so which refusal comes says which was checked first.
+TEST(SolveCommand, ARunIntoFilesAnotherRunIsWritingIsRefusedBeforeItsSolverIsPrepared) {
+    const fs::path demo = makeDemo(3), out = demo / "out";
+    fs::create_directories(out);
+    const int held = ::open((out / ".walker.lock").c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    ASSERT_GE(held, 0);
+    ASSERT_EQ(::flock(held, LOCK_EX | LOCK_NB), 0);
+    const CliResult r = runCli(solveArgs(demo, out) + " --quiet --calibration-frame 99");
+    ::close(held);
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("another run is solving into this take's files now"), std::string::npos)
+        << r.out;
+    EXPECT_EQ(r.out.find("calibration frame 99"), std::string::npos) << r.out;
+}
+
+// A run whose solver cannot be prepared leaves no folder behind that it made to hold the lock.
+TEST(SolveCommand, ARunThatFailsBeforeWritingLeavesNoFolderItMade) {
+    const fs::path demo = makeDemo(3), out = demo / "new" / "out";
+    const CliResult r = runCli(solveArgs(demo, out) + " --quiet --calibration-frame 99");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("calibration frame 99"), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(out)) << r.out;
+}
+
+namespace {
+// The pid of a process that has run and is gone.
+std::string deadPid() {
+    const CliResult r = runShell("sh -c 'echo $$'");
+    return r.out.substr(0, r.out.find('\n'));
+}
+}  // namespace
+
+// kill -9 (the OOM killer, a node lost) leaves a writer's <output>.tmp<pid> beside its outputs; it
+// was removed only when that very output was written again, so a take solved again as OBJ kept a
+// killed pc2 run's cache of hundreds of megabytes for ever. A run removes every such file of its
+// take's outputs whose process is gone, and nothing else.
+TEST(SolveCommand, ARunRemovesItsTakesTemporariesLeftByKilledRunsAndNothingElse) {
+    const fs::path demo = makeDemo(3), out = demo / "out";
+    fs::create_directories(out);
+    const std::string dead = deadPid(), alive = std::to_string(::getpid());
+    const std::vector<std::string> leftovers = {
+        "walker.pc2.tmp" + dead, "walker.mdd.frames.tmp" + dead, "walker.glb.tmp" + dead,
+        "walker_0007.obj.tmp" + dead, "walker_calibrated_rest.obj.tmp" + dead};
+    const std::vector<std::string> kept = {"walker.pc2.tmp" + alive,  // a run still writing it
+                                           "walker.pc2.tmpnotes",     // not a writer's name
+                                           "other.pc2.tmp" + dead,    // not this take's output
+                                           "walker.txt.tmp" + dead};
+    for (const auto& name : leftovers) std::ofstream(out / name) << "partial";
+    for (const auto& name : kept) std::ofstream(out / name) << "someone's";
+    const CliResult r = runCli(solveArgs(demo, out) + " --quiet --frames 0:2");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    for (const auto& name : leftovers) EXPECT_FALSE(fs::exists(out / name)) << name;
+    for (const auto& name : kept) EXPECT_TRUE(fs::exists(out / name)) << name;
+}
+
+// On a full disk an OBJ take failed part-way and its frames stayed, filling the disk for every
+// take after it. A failed take's frames that this run wrote are removed; a file this run did not
+// write (another run's frame, what stood in its way) is left.
+TEST(SolveCommand, AFailedObjTakeRemovesTheFramesThisRunWroteAndNothingElse) {
+    const fs::path demo = makeDemo(12), out = demo / "out";
+    ASSERT_EQ(runCli(solveArgs(demo, out) + " --quiet --frames 9:10").exitCode, 0);
+    fs::create_directories(out / "walker_0002.obj");  // frame 2 cannot be written
+    const CliResult r = runCli(solveArgs(demo, out) + " --quiet --force --frames 0:4");
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_NE(r.out.find("walker_0002.obj"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("the 2 OBJ frames this run wrote were removed"), std::string::npos)
+        << r.out;
+    EXPECT_FALSE(fs::exists(out / "walker_0000.obj"));
+    EXPECT_FALSE(fs::exists(out / "walker_0001.obj"));
+    EXPECT_TRUE(fs::is_directory(out / "walker_0002.obj"));
+    EXPECT_TRUE(fs::exists(out / "walker_0009.obj"));  // the earlier run's
+    EXPECT_FALSE(sidecar(out)["complete"].get<bool>());
+}

@@ -103,6 +103,27 @@ void removeStaleTemporaries(const std::string& path) {
 
 }  // namespace
 
+void removeStaleTemporariesIn(const std::string& folder,
+                              const std::function<bool(const std::string& output)>& ours) {
+    std::vector<fs::path> stale;
+    std::error_code ec;
+    for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        std::string_view output;
+        const pid_t pid = temporaryPid(name, output);
+        constexpr std::string_view spool = ".frames";
+        if (output.size() > spool.size() && output.substr(output.size() - spool.size()) == spool)
+            output.remove_suffix(spool.size());
+        std::error_code typeError;
+        // Only a regular file: a folder or link of that name was never a writer's.
+        if (pid != 0 && ours(std::string(output)) &&
+            fs::symlink_status(it->path(), typeError).type() == fs::file_type::regular &&
+            processIsGone(pid))
+            stale.push_back(it->path());
+    }
+    for (const fs::path& file : stale) fs::remove(file, ec);
+}
+
 std::string temporaryFor(const std::string& path) {
     removeStaleTemporaries(path);
     return path + ".tmp" + std::to_string(::getpid());

@@ -613,15 +613,37 @@ void checkRequest(const TriMesh& mesh, const Correspondence& map, const ExportRe
                   &mesh);
 }
 
-// Held from before the first output is touched until the sidecar is written: two runs solving
-// into one folder's files at once (two batch runs, a shard started twice) interleaved their frames
-// under the sidecar of whichever finished last, which then said complete. An advisory lock on a
-// hidden file beside the sidecar: the kernel lets go when its holder dies, whatever killed it.
+// Whether `name` is one of the files an export of `stem` writes (its temporaries aside).
+bool isOutputOf(const std::string& name, const std::string& stem) {
+    if (name == stem + ".json" || name == stem + "_calibrated_rest.obj" || objFrameOf(name, stem))
+        return true;
+    // Not <stem>.obj: an OBJ export writes frames, and that name is the mesh's (the demo's).
+    for (const ExportFormatInfo& f : exportFormats())
+        if (f.format != ExportFormat::Obj && name == stem + f.extension) return true;
+    return false;
+}
+
+// Held from before the solver is prepared until the sidecar is written: two runs solving into one
+// folder's files at once (two batch runs, a shard started twice) interleaved their frames under
+// the sidecar of whichever finished last, which then said complete; and taken after preparing,
+// the second run threw away seconds to minutes of work per take. An advisory lock on a hidden
+// file beside the sidecar: the kernel lets go when its holder dies, whatever killed it. Makes the
+// output folder, and removes what it made if it is still empty when let go (a solve that failed
+// before writing).
 class OutputLock {
   public:
-    explicit OutputLock(const ExportRequest& request) {
+    explicit OutputLock(const ExportRequest& request) : outDir_(request.outDir) {
+        std::error_code ec;
+        // The first missing folder of the path, so that all it made can go again.
+        for (fs::path p = fs::path(outDir_).lexically_normal(); !p.empty() && !fs::exists(p, ec);
+             p = p.parent_path()) {
+            made_ = p;
+            if (p == p.parent_path()) break;
+        }
+        fs::create_directories(outDir_, ec);
+        if (ec) throw Error(outDir_ + ": cannot create the folder (" + ec.message() + ")");
         const std::string stem = exportStem(request);
-        path_ = (fs::path(request.outDir) / ("." + stem + ".lock")).string();
+        path_ = (fs::path(outDir_) / ("." + stem + ".lock")).string();
         for (;;) {
             fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
             // A folder that takes no new file fails as the outputs are written, naming them.
@@ -631,7 +653,7 @@ class OutputLock {
                 ::close(fd_);
                 fd_ = -1;
                 if (error == EWOULDBLOCK)
-                    throw Error((fs::path(request.outDir) / (stem + ".json")).string() +
+                    throw Error((fs::path(outDir_) / (stem + ".json")).string() +
                                 ": another run is solving into this take's files now; nothing "
                                 "was written: let it finish (a run after it skips or solves the "
                                 "take as its sidecar says), or solve into another folder");
@@ -643,25 +665,54 @@ class OutputLock {
             struct stat named = {};
             if (::fstat(fd_, &held) == 0 && ::stat(path_.c_str(), &named) == 0 &&
                 held.st_dev == named.st_dev && held.st_ino == named.st_ino)
-                return;
+                break;
             ::close(fd_);
         }
+        // Held, so no other run writes this take's outputs now: the temporaries of gone writers
+        // (kill -9 of a pc2 run leaves its cache of hundreds of MB) were removed only when that
+        // very output was written again, and a take solved again in another format kept them.
+        removeStaleTemporariesIn(
+            outDir_, [&](const std::string& output) { return isOutputOf(output, stem); });
     }
     ~OutputLock() {
-        if (fd_ < 0) return;
-        // While still held: a run that opens it now finds it locked, or once we let go, removed.
-        ::unlink(path_.c_str());
-        ::close(fd_);
+        if (fd_ >= 0) {
+            // While still held: a run that opens it now finds it locked, or once we let go,
+            // removed.
+            ::unlink(path_.c_str());
+            ::close(fd_);
+        }
+        // Only folders still empty go: anything a solve wrote keeps them.
+        std::error_code ec;
+        if (!made_.empty())
+            for (fs::path p = fs::path(outDir_).lexically_normal(); fs::remove(p, ec) && p != made_;
+                 p = p.parent_path()) {
+            }
     }
     OutputLock(const OutputLock&) = delete;
     OutputLock& operator=(const OutputLock&) = delete;
 
   private:
-    std::string path_;
+    std::string outDir_, path_;
+    fs::path made_;  // the first folder of outDir_ this made; empty if none
     int fd_ = -1;
 };
 
-// take: what the sidecar says of the take (its samples are not read).
+// Removes the files a failed take wrote (its OBJ frames, its calibrated rest: "" for none) and
+// says so, for the take's error: "the 9 OBJ frames this run wrote were removed", or "".
+std::string removeWritten(const std::vector<fs::path>& frames, const fs::path& rest) {
+    std::error_code ec;
+    for (const fs::path& file : frames) fs::remove(file, ec);
+    if (!rest.empty()) fs::remove(rest, ec);
+    std::vector<std::string> what;
+    if (!frames.empty()) what.push_back("the " + plural(long(frames.size()), "OBJ frame"));
+    if (!rest.empty()) what.push_back("the calibrated rest");
+    if (what.empty()) return "";
+    const bool one = frames.size() + (rest.empty() ? 0 : 1) == 1;
+    return joined(what, " and ") + " this run wrote " + (one ? "was" : "were") + " removed";
+}
+
+// take: what the sidecar says of the take (its samples are not read). The caller holds the
+// outputs' OutputLock.
 ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake& take,
                           const Correspondence& map, const ExportRequest& request,
                           const ExportProgress& progress, const ExportCalibrated& calibrated) {
@@ -673,10 +724,6 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
                     " select no frame of " + request.c3dPath + " (" + std::to_string(count) +
                     " frames)");
 
-    std::error_code ec;
-    fs::create_directories(request.outDir, ec);
-    if (ec) throw Error(request.outDir + ": cannot create the folder (" + ec.message() + ")");
-    const OutputLock lock(request);
     const std::string stem = exportStem(request);
     const fs::path out(request.outDir);
     ExportResult result;
@@ -712,61 +759,77 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
     if (objFaces && (request.format == ExportFormat::Obj || request.writeCalibratedRest))
         objFaces =
             std::make_shared<const SourceFaces>(withLibraryCopies(*objFaces, request.outDir));
-    FrameOutput output = openFrameOutput(
-        request.format, request.outDir, stem, mesh, request.first, take.rate,
-        "Boneless: " + fullPath(request.c3dPath),
-        gltfPlacement(solver.calibration().takeToMesh, take.unitToMm, take.vertical), objFaces);
+    // The OBJ frames and calibrated rest this run wrote: a take that fails part-way (a full disk)
+    // removes them, or they filled the disk for every take after it. Never a file it did not write.
+    std::vector<fs::path> framesWritten;
+    fs::path restWritten;
+    try {
+        FrameOutput output = openFrameOutput(
+            request.format, request.outDir, stem, mesh, request.first, take.rate,
+            "Boneless: " + fullPath(request.c3dPath),
+            gltfPlacement(solver.calibration().takeToMesh, take.unitToMm, take.vertical), objFaces);
 
-    std::string restFile;
-    if (request.writeCalibratedRest) {
-        restFile = stem + "_calibrated_rest.obj";
-        writeObj((out / restFile).string(), solver.rest().V, mesh.F,
-                 "Boneless: " + fullPath(request.meshPath) + " fitted to " +
-                     fullPath(request.c3dPath) + " at frame " +
-                     std::to_string(solver.calibration().frame),
-                 objFaces.get());
+        std::string restFile;
+        if (request.writeCalibratedRest) {
+            restFile = stem + "_calibrated_rest.obj";
+            writeObj((out / restFile).string(), solver.rest().V, mesh.F,
+                     "Boneless: " + fullPath(request.meshPath) + " fitted to " +
+                         fullPath(request.c3dPath) + " at frame " +
+                         std::to_string(solver.calibration().frame),
+                     objFaces.get());
+            restWritten = out / restFile;
+        }
+        if (calibrated) calibrated(solver.calibration());
+        result.first = request.first;
+        PerFrameFigures perFrame;
+        result.workers = solveInOrder(
+            solver, mesh, map, request.options, request.first, end,
+            solversThatFit(solveMemory(mesh, request), solverThreadCount()),
+            [&](int f, const Positions& V, const FrameReport& report, double distortion,
+                double strainP95) {
+                output.append(f, V);
+                if (request.format == ExportFormat::Obj)
+                    framesWritten.push_back(out / objFrameFile(stem, f));
+                // Quality a user checks before importing: stretch against the rest pose,
+                // and folds.
+                const bool seen = report.visibleMarkers > 0;
+                json figures = {{"frame", f},
+                                {"visible_markers", report.visibleMarkers},
+                                {"residual_rms_mm", seen ? json(report.residualRmsMm) : json()},
+                                {"residual_max_mm", seen ? json(report.residualMaxMm) : json()},
+                                {"edge_distortion", distortion},
+                                {"edge_strain_p95", strainP95},
+                                {"folded_faces", report.foldedFaces},
+                                {"dent_ratio", report.dentRatio},
+                                {"iterations", report.iterations},
+                                {"ms", report.milliseconds}};
+                if (report.heldFrom >= 0) figures["held_from"] = report.heldFrom;
+                perFrame.add(figures);
+                ++result.framesWritten;
+                if (progress && !progress(result.framesWritten, end - request.first, report) &&
+                    f + 1 < end) {
+                    result.cancelled = true;
+                    return false;
+                }
+                return true;
+            });
+        output.finish();
+        result.held = perFrame.held();
+        json sidecar = sidecarJson(take, map, request, solver.calibration(), result, fingerprints,
+                                   calibrationJson(request, mesh, solver, restFile),
+                                   perFrame.summary(), mesh.vertexCount());
+        // The app's map may be in no file (edited, or kept in the project): the sidecar then holds
+        // the map that was solved, so the frames can be traced and solved again.
+        if (request.mapPath.empty()) sidecar["map"] = json::parse(map.toJson());
+        perFrame.write(result.sidecarPath, std::move(sidecar));
+    } catch (const Error& e) {
+        const std::string removed = removeWritten(framesWritten, restWritten);
+        if (removed.empty()) throw;
+        throw Error(std::string(e.what()) + "; " + removed);
+    } catch (...) {
+        removeWritten(framesWritten, restWritten);
+        throw;
     }
-    if (calibrated) calibrated(solver.calibration());
-    result.first = request.first;
-    PerFrameFigures perFrame;
-    result.workers = solveInOrder(
-        solver, mesh, map, request.options, request.first, end,
-        solversThatFit(solveMemory(mesh, request), solverThreadCount()),
-        [&](int f, const Positions& V, const FrameReport& report, double distortion,
-            double strainP95) {
-            output.append(f, V);
-            // Quality a user checks before importing: stretch against the rest pose,
-            // and folds.
-            const bool seen = report.visibleMarkers > 0;
-            json figures = {{"frame", f},
-                            {"visible_markers", report.visibleMarkers},
-                            {"residual_rms_mm", seen ? json(report.residualRmsMm) : json()},
-                            {"residual_max_mm", seen ? json(report.residualMaxMm) : json()},
-                            {"edge_distortion", distortion},
-                            {"edge_strain_p95", strainP95},
-                            {"folded_faces", report.foldedFaces},
-                            {"dent_ratio", report.dentRatio},
-                            {"iterations", report.iterations},
-                            {"ms", report.milliseconds}};
-            if (report.heldFrom >= 0) figures["held_from"] = report.heldFrom;
-            perFrame.add(figures);
-            ++result.framesWritten;
-            if (progress && !progress(result.framesWritten, end - request.first, report) &&
-                f + 1 < end) {
-                result.cancelled = true;
-                return false;
-            }
-            return true;
-        });
-    output.finish();
-    result.held = perFrame.held();
-    json sidecar = sidecarJson(take, map, request, solver.calibration(), result, fingerprints,
-                               calibrationJson(request, mesh, solver, restFile), perFrame.summary(),
-                               mesh.vertexCount());
-    // The app's map may be in no file (edited, or kept in the project): the sidecar then holds
-    // the map that was solved, so the frames can be traced and solved again.
-    if (request.mapPath.empty()) sidecar["map"] = json::parse(map.toJson());
-    perFrame.write(result.sidecarPath, std::move(sidecar));
     return result;
 }
 
@@ -817,6 +880,7 @@ ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspo
                         const ExportCalibrated& calibrated) {
     checkRequest(mesh, map, request, take, static_cast<int>(take.frameCount()));
     requireMarkersToAlign(map, request, take);
+    const OutputLock lock(request);
     TakeSolver solver(mesh, take, map, firstSolverOptions(request));
     return exportSolved(solver, mesh, take, map, request, progress, calibrated);
 }
@@ -826,6 +890,7 @@ ExportResult exportTake(const TriMesh& mesh, const C3dFrameReader& take, const C
                         const ExportCalibrated& calibrated) {
     checkRequest(mesh, map, request, take.take(), static_cast<int>(take.frameCount()));
     requireMarkersToAlign(map, request, take.take());
+    const OutputLock lock(request);
     TakeSolver solver(mesh, take, map, firstSolverOptions(request));
     return exportSolved(solver, mesh, take.take(), map, request, progress, calibrated);
 }

@@ -13,6 +13,14 @@ namespace boneless {
 // runs. A running export's temporary, for this path too, and any other file are left alone.
 std::string temporaryFor(const std::string& path);
 
+// Removes from `folder` the temporaries killed writers left of the outputs `ours` accepts (by
+// file name: "walker.pc2"): each `<output>.tmp<pid>` and `<output>.frames.tmp<pid>` that is a
+// regular file and whose process `pid` no longer runs on this machine. A running writer's
+// temporary, and any other file, are left alone. Only for a caller that holds the outputs' lock:
+// a writer on another machine sharing the folder is not known to be gone.
+void removeStaleTemporariesIn(const std::string& folder,
+                              const std::function<bool(const std::string& output)>& ours);
+
 // A spool for frames that are copied into `path` at the end, opened for reading and writing: a
 // file beside `path` (on its disk, not /tmp's, which may be too small) that has no name, so
 // nothing is left behind whatever ends the process. Removes the stale temporaries of `path` as
