@@ -267,7 +267,7 @@ std::vector<TakeJob> readManifest(const std::string& file) {
     return jobs;
 }
 
-// "I/N", 1-based: which of N shards this run is (shardOf says which entries are its).
+// "I/N", 1-based: entry k (0-based) belongs to shard k mod N + 1.
 std::pair<int, int> parseShard(const std::string& text) {
     int i = 0, n = 0;
     const auto slash = text.find('/');
@@ -275,22 +275,6 @@ std::pair<int, int> parseShard(const std::string& text) {
         !readWholeNumber(text.substr(slash + 1), n) || n < 1 || i < 1 || i > n)
         throw Error("--shard expects I/N with 1 <= I <= N, got \"" + text + "\"");
     return {i, n};
-}
-
-// The shard (1-based, of `shards`) that solves the entry whose sidecar is `sidecar`: by a hash of
-// that path relative to the manifest's folder `base`, not by the entry's position, so a take added
-// to or removed from the manifest between a job array's tasks moves no other take (by position,
-// every later one moved: some were solved by no shard, some by two). FNV-1a, then mixed
-// (splitmix64's finaliser: FNV-1a's low bits follow the bytes' parity), not std::hash, which may
-// differ between builds and machines.
-int shardOf(const std::string& sidecar, const fs::path& base, int shards) {
-    const std::string key = fs::path(sidecar).lexically_relative(base).generic_string();
-    std::uint64_t h = 14695981039346656037ull;
-    for (const unsigned char c : key) h = (h ^ c) * 1099511628211ull;
-    h = (h ^ (h >> 30)) * 0xbf58476d1ce4e5b9ull;
-    h = (h ^ (h >> 27)) * 0x94d049bb133111ebull;
-    h ^= h >> 31;
-    return static_cast<int>(h % static_cast<std::uint64_t>(shards)) + 1;
 }
 
 enum class Sidecar { Missing, Complete, Stale };
@@ -559,21 +543,15 @@ void run(const BatchArgs& args) {
     }
     int mine = 0, solved = 0, skipped = 0, failed = 0;
     std::vector<std::string> failedTakes;  // named on the last line, so no one searches the log
-    // As readManifest makes the entries' paths absolute: the same key however the manifest is
-    // named.
-    const fs::path base = fs::absolute(args.manifest).parent_path().lexically_normal();
-    std::vector<bool> ours(jobs.size());
-    for (std::size_t k = 0; k < jobs.size(); ++k) {
-        ours[k] = shardOf(takeJobSidecar(jobs[k]), base, shards) == shard;
-        if (ours[k]) ++mine;
-    }
+    for (std::size_t k = 0; k < jobs.size(); ++k)
+        if (static_cast<int>(k % shards) == shard - 1) ++mine;
     int done = 0;
     std::set<std::string> notedMeshes;  // mesh and group
     std::set<std::string> notedMaps;
     Fingerprints fingerprints;
     VertexCounts vertexCounts;
     for (std::size_t k = 0; k < jobs.size(); ++k) {
-        if (!ours[k]) continue;
+        if (static_cast<int>(k % shards) != shard - 1) continue;
         const TakeJob& job = jobs[k];
         std::printf("[%d/%d] %s -> %s: ", ++done, mine, job.c3d.c_str(), job.out.c_str());
         std::string why;
@@ -664,8 +642,7 @@ void registerBatchCommand(CLI::App& app) {
         ->check(aPath())
         ->required();
     cmd->add_option("--shard", args->shard,
-                    "I/N: only the I-th of N shards of the entries, each entry's shard fixed by "
-                    "its output's path (for job arrays)");
+                    "I/N: only every N-th entry, starting at the I-th (for job arrays)");
     cmd->add_flag("--force", args->force,
                   "Let a take replace files in its \"out\" of its outputs' names that no Boneless "
                   "export wrote (another tool's OBJ frames); complete takes are still skipped");

@@ -90,7 +90,7 @@ json firstFramesOfWalkC() {
 
 }  // namespace
 
-TEST(Batch, ShardsTogetherWriteExactlyWhatOneRunWrites) {
+TEST(Batch, TwoShardsTogetherWriteExactlyWhatOneRunWrites) {
     const fs::path dir = makeLibrary();
     const fs::path whole = writeManifest(dir, "whole.json", folderManifest("whole"));
     const fs::path split = writeManifest(dir, "split.json", folderManifest("split"));
@@ -99,15 +99,14 @@ TEST(Batch, ShardsTogetherWriteExactlyWhatOneRunWrites) {
     EXPECT_NE(one.out.find("3 of 3 takes in shard 1/1: 3 solved, 0 skipped, 0 failed"),
               std::string::npos)
         << one.out;
-    // Three shards, one take each: an entry's shard goes by a hash of its sidecar's path
-    // (split/walk_a/walker.json), and these three fall one in each.
-    for (const char* shard : {"1/3", "2/3", "3/3"}) {
-        const CliResult r = runCli("batch " + split.string() + " --shard " + shard);
-        ASSERT_EQ(r.exitCode, 0) << r.out;
-        EXPECT_NE(r.out.find(std::string("1 of 3 takes in shard ") + shard + ": 1 solved"),
-                  std::string::npos)
-            << r.out;
-    }
+    const CliResult first = runCli("batch " + split.string() + " --shard 1/2");
+    const CliResult second = runCli("batch " + split.string() + " --shard 2/2");
+    ASSERT_EQ(first.exitCode, 0) << first.out;
+    ASSERT_EQ(second.exitCode, 0) << second.out;
+    EXPECT_NE(first.out.find("2 of 3 takes in shard 1/2: 2 solved"), std::string::npos)
+        << first.out;
+    EXPECT_NE(second.out.find("1 of 3 takes in shard 2/2: 1 solved"), std::string::npos)
+        << second.out;
 
     const auto a = contents(dir / "whole"), b = contents(dir / "split");
     EXPECT_EQ(a.size(), 3u + 4u + 5u + 6u);  // a sidecar and the OBJ frames per take
@@ -1115,41 +1114,10 @@ TEST(Batch, ATakeSolvedAgainForOtherFramesOrOptionsSaysWhichAndWhatTheyWere) {
         << r.out;
 }
 
-// A job array's tasks start minutes apart; a take added to the library in between moved every
-// later take to another shard when shards went by position: some were solved by none, some twice.
-// Now each keeps its shard, and the new take is solved by its own shard, this run or the next.
-TEST(Batch, ATakeAddedBetweenTheShardsOfAJobArrayMovesNoOtherTake) {
-    const fs::path dir = makeLibrary();
-    const fs::path manifest = writeManifest(dir, "m.json", folderManifest("out"));
-    const CliResult first = runCli("batch " + manifest.string() + " --shard 1/2");
-    ASSERT_EQ(first.exitCode, 0) << first.out;
-    // Named to come first in the folder, before every take the first shard saw.
-    fs::copy_file(dir / "takes" / "walk_a.c3d", dir / "takes" / "a_new.c3d");
-    const CliResult second = runCli("batch " + manifest.string() + " --shard 2/2");
-    ASSERT_EQ(second.exitCode, 0) << second.out;
-    EXPECT_EQ(second.out.find("skipped (its sidecar says it is complete)"), std::string::npos)
-        << "a take the first shard solved came to the second: " << second.out;
-    for (const char* take : {"walk_a", "walk_b", "walk_c"}) {
-        std::ifstream sidecar(dir / "out" / take / "walker.json");
-        ASSERT_TRUE(sidecar) << take << " was solved by no shard\n" << first.out << second.out;
-        EXPECT_TRUE(json::parse(sidecar)["complete"]) << take;
-    }
-    // The new take is one shard's: solved by the array's next run, by one of its tasks.
-    const CliResult again[] = {runCli("batch " + manifest.string() + " --shard 1/2"),
-                               runCli("batch " + manifest.string() + " --shard 2/2")};
-    int solved = 0;
-    for (const CliResult& r : again) {
-        ASSERT_EQ(r.exitCode, 0) << r.out;
-        // "batch: 2 of 4 takes in shard 1/2: 1 solved, ..."
-        solved += std::stoi(r.out.substr(r.out.find(": ", r.out.find("takes in shard")) + 2));
-    }
-    EXPECT_EQ(solved, 1) << again[0].out << again[1].out;
-    EXPECT_TRUE(json::parse(std::ifstream(dir / "out" / "a_new" / "walker.json"))["complete"]);
-}
-
-// By a hash of each entry's outputs: a library's shards are as even as a fair draw makes them
-// (25 each on average, 4.3 either way), and a shard never gets all or none of a hundred takes.
-TEST(Batch, AHundredTakesSpreadOverFourShards) {
+// By position: a job array's tasks take as long as its largest shard, so the shards are even.
+// (A hash of each entry's outputs, tried on 1 December 2026, kept a take's shard when the manifest
+// changed, but gave these 100 takes 23, 20, 35 and 22.)
+TEST(Batch, AHundredTakesSpreadEvenlyOverFourShards) {
     const fs::path dir = freshTestDir("hundred");
     json takes = json::array();
     for (int i = 0; i < 100; ++i) {
@@ -1169,8 +1137,7 @@ TEST(Batch, AHundredTakesSpreadOverFourShards) {
         const auto at = r.out.find("batch: ");
         ASSERT_NE(at, std::string::npos) << r.out;
         const int mine = std::stoi(r.out.substr(at + 7));
-        EXPECT_GE(mine, 12) << r.out.substr(at);
-        EXPECT_LE(mine, 38) << r.out.substr(at);
+        EXPECT_EQ(mine, 25) << r.out.substr(at);
         total += mine;
     }
     EXPECT_EQ(total, 100);
