@@ -3,7 +3,6 @@
 // project, a damaged or hostile project file gives one message, offers the last autosave when it
 // was made from that project and is itself left alone, and closing asks before edits that no
 // project file holds are left behind.
-#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -23,9 +22,9 @@
 #include <QStatusBar>
 #include <QUndoStack>
 #include <QtTest>
-#include <csignal>
 #include <cstdio>
 
+#include "../support/FileSizeLimit.h"
 #include "ViewTestSupport.h"
 #include "boneless/Correspondence.h"
 #include "boneless/Process.h"
@@ -1267,18 +1266,14 @@ class ProjectSessionTest : public QObject {
         QSignalSpy failed(window.autosave(), &ProjectAutosave::failed);
         QSignalSpy saved(window.autosave(), &ProjectAutosave::saved);
         // A full disk as this process sees it: no file grows past 64 bytes (EFBIG).
-        std::signal(SIGXFSZ, SIG_IGN);
         rlimit normal{};
-        QCOMPARE(getrlimit(RLIMIT_FSIZE, &normal), 0);
-        rlimit small = normal;
-        small.rlim_cur = 64;
-        QCOMPARE(setrlimit(RLIMIT_FSIZE, &small), 0);
+        QVERIFY(boneless::test::limitFileSize(normal, 64));
         for (int marker = 0; marker < 3; ++marker) {
             QVERIFY(window.document()->clearMapping(marker));
             QVERIFY(!window.autosave()->saveNow());
         }
         const int boxes = window.findChildren<QMessageBox*>("errorMessage").size();
-        QCOMPARE(setrlimit(RLIMIT_FSIZE, &normal), 0);
+        QVERIFY(boneless::test::restoreFileSize(normal));
         QCOMPARE(failed.count(), 1);
         QCOMPARE(boxes, 1);
         QVERIFY(window.autosave()->isPending());
@@ -1290,10 +1285,10 @@ class ProjectSessionTest : public QObject {
         QVERIFY2(window.statusBar()->currentMessage().contains("Saved again"),
                  qPrintable(window.statusBar()->currentMessage()));
         // Full again: said again.
-        QCOMPARE(setrlimit(RLIMIT_FSIZE, &small), 0);
+        QVERIFY(boneless::test::limitFileSize(normal, 64));
         QVERIFY(window.document()->clearMapping(3));
         const bool savedFull = window.autosave()->saveNow();
-        QCOMPARE(setrlimit(RLIMIT_FSIZE, &normal), 0);
+        QVERIFY(boneless::test::restoreFileSize(normal));
         QVERIFY(!savedFull);
         QCOMPARE(failed.count(), 2);
         for (auto* box : window.findChildren<QMessageBox*>("errorMessage")) box->close();
