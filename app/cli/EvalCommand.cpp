@@ -79,20 +79,25 @@ std::vector<int> readMarkerFile(const std::string& path, int vertexCount) {
     return ids;
 }
 
-nlohmann::json summaryJson(const EvaluationSummary& s) {
-    return {{"frame_count", s.frames},
-            {"markers_used", s.markersUsed},
-            {"rms_pct_mean", s.rmsPctMean},
-            {"rms_pct_worst_frame", s.rmsPctWorstFrame},
-            {"max_pct_worst_frame", s.maxPctWorstFrame},
-            {"flipped_faces_worst_frame", s.flippedFacesWorstFrame},
-            {"flipped_faces_mean", s.flippedFacesMean},
-            {"folded_faces_worst_frame", s.foldedFacesWorstFrame},
-            {"truth_folded_faces_worst_frame", s.truthFoldedFacesWorstFrame},
-            {"ms_per_frame_mean", s.msPerFrameMean},
-            {"ms_per_frame_worst", s.msPerFrameWorst},
-            {"ms_per_frame_median", s.msPerFrameMedian},
-            {"iterations_mean", s.iterationsMean}};
+// `timed` is false for answers found elsewhere: nothing of ours solved them, so no marker count,
+// iteration or time pretends otherwise.
+nlohmann::json summaryJson(const EvaluationSummary& s, bool timed = true) {
+    nlohmann::json out = {{"frame_count", s.frames},
+                          {"rms_pct_mean", s.rmsPctMean},
+                          {"rms_pct_worst_frame", s.rmsPctWorstFrame},
+                          {"max_pct_worst_frame", s.maxPctWorstFrame},
+                          {"flipped_faces_worst_frame", s.flippedFacesWorstFrame},
+                          {"flipped_faces_mean", s.flippedFacesMean},
+                          {"folded_faces_worst_frame", s.foldedFacesWorstFrame},
+                          {"truth_folded_faces_worst_frame", s.truthFoldedFacesWorstFrame}};
+    if (timed) {
+        out["markers_used"] = s.markersUsed;
+        out["ms_per_frame_mean"] = s.msPerFrameMean;
+        out["ms_per_frame_worst"] = s.msPerFrameWorst;
+        out["ms_per_frame_median"] = s.msPerFrameMedian;
+        out["iterations_mean"] = s.iterationsMean;
+    }
+    return out;
 }
 
 // Each frame names its OBJ: "frame" is its place in the folder from 0, not the number in its
@@ -107,13 +112,12 @@ nlohmann::json perFrameJson(const std::vector<FrameEvaluation>& frames,
                                {"max_pct", f.maxPct},
                                {"flipped_faces", f.flippedFaces},
                                {"folded_faces", f.foldedFaces},
-                               {"truth_folded_faces", f.truthFoldedFaces},
-                               {"markers_used", f.markersUsed},
-                               {"iterations", f.iterations},
-                               {"ms", f.milliseconds}};
-        // Answers found elsewhere have no solve of ours to count or time.
-        if (!timed)
-            for (const char* key : {"markers_used", "iterations", "ms"}) item.erase(key);
+                               {"truth_folded_faces", f.truthFoldedFaces}};
+        if (timed) {
+            item["markers_used"] = f.markersUsed;
+            item["iterations"] = f.iterations;
+            item["ms"] = f.milliseconds;
+        }
         list.push_back(item);
     }
     return list;
@@ -131,15 +135,34 @@ std::string firstChangedSolverOption(const nlohmann::json& given) {
     return {};
 }
 
-void printSummary(const char* name, const EvaluationSummary& s) {
+// The per-frame table: the method's name heads its first column, which the rows leave blank.
+void printFrameHeader(const char* name, bool timed) {
+    std::printf("%-9s %6s %9s %9s %8s %7s %13s", name, "frame", "RMS %", "max %", "flipped",
+                "folded", "truth folded");
+    if (timed) std::printf(" %6s %9s", "iters", "ms");
+    std::printf("\n");
+}
+
+void printFrameRow(const char* name, const FrameEvaluation& f, bool timed) {
+    const int width = std::max<int>(9, static_cast<int>(std::strlen(name)));
+    std::printf("%-*s %6d %9.4f %9.4f %8d %7d %13d", width, "", f.frame, f.rmsPct, f.maxPct,
+                f.flippedFaces, f.foldedFaces, f.truthFoldedFaces);
+    if (timed) std::printf(" %6d %9.1f", f.iterations, f.milliseconds);
+    std::printf("\n");
+}
+
+void printSummary(const char* name, const EvaluationSummary& s, bool timed = true) {
+    std::printf("%-9s frames %d  ", name, s.frames);
+    if (timed) std::printf("markers used %d  ", s.markersUsed);
     std::printf(
-        "%-9s frames %d  markers used %d  RMS %% mean %.3f  RMS %% worst frame %.3f  max %% worst "
-        "frame %.3f  "
-        "flipped max %d (mean %.1f)  folded max %d (truth folded max %d)  ms/frame mean %.1f worst "
-        "%.1f median %.1f\n",
-        name, s.frames, s.markersUsed, s.rmsPctMean, s.rmsPctWorstFrame, s.maxPctWorstFrame,
-        s.flippedFacesWorstFrame, s.flippedFacesMean, s.foldedFacesWorstFrame,
-        s.truthFoldedFacesWorstFrame, s.msPerFrameMean, s.msPerFrameWorst, s.msPerFrameMedian);
+        "RMS %% mean %.3f  RMS %% worst frame %.3f  max %% worst frame %.3f  flipped max %d (mean "
+        "%.1f)  folded max %d (truth folded max %d)",
+        s.rmsPctMean, s.rmsPctWorstFrame, s.maxPctWorstFrame, s.flippedFacesWorstFrame,
+        s.flippedFacesMean, s.foldedFacesWorstFrame, s.truthFoldedFacesWorstFrame);
+    if (timed)
+        std::printf("  ms/frame mean %.1f worst %.1f median %.1f", s.msPerFrameMean,
+                    s.msPerFrameWorst, s.msPerFrameMedian);
+    std::printf("\n");
 }
 
 // Where --out writes a method's answer for `frame`: out/<method>/ under the truth's file name, so
@@ -194,10 +217,7 @@ void judge(const EvalArgs& args, const MeshSequence& sequence, const FrameRange&
     }
     const EvaluationSummary summary = summarise(frames);
     if (args.json) {
-        nlohmann::json out = summaryJson(summary);
-        for (const char* key : {"markers_used", "ms_per_frame_mean", "ms_per_frame_worst",
-                                "ms_per_frame_median", "iterations_mean"})
-            out.erase(key);
+        nlohmann::json out = summaryJson(summary, false);
         out["method"] = "reconstruction";
         out["reconstruction"] = validUtf8(args.reconstruction);
         out["sequence"] = validUtf8(args.sequence);
@@ -214,19 +234,11 @@ void judge(const EvalArgs& args, const MeshSequence& sequence, const FrameRange&
                 sequence.rest.vertexCount(), sequence.rest.faceCount(),
                 args.reconstruction.c_str());
     if (!args.quiet) {
-        std::printf("%-14s %6s %9s %9s %8s %7s %13s\n", "reconstruction", "frame", "RMS %", "max %",
-                    "flipped", "folded", "truth folded");
-        for (const auto& f : frames)
-            std::printf("%-14s %6d %9.4f %9.4f %8d %7d %13d\n", "", f.frame, f.rmsPct, f.maxPct,
-                        f.flippedFaces, f.foldedFaces, f.truthFoldedFaces);
+        printFrameHeader("reconstruction", false);
+        for (const auto& f : frames) printFrameRow("reconstruction", f, false);
     }
     std::printf("summary over the frames after the rest pose:\n");
-    std::printf(
-        "reconstruction frames %d  RMS %% mean %.3f  RMS %% worst frame %.3f  max %% worst frame "
-        "%.3f  flipped max %d (mean %.1f)  folded max %d (truth folded max %d)\n",
-        summary.frames, summary.rmsPctMean, summary.rmsPctWorstFrame, summary.maxPctWorstFrame,
-        summary.flippedFacesWorstFrame, summary.flippedFacesMean, summary.foldedFacesWorstFrame,
-        summary.truthFoldedFacesWorstFrame);
+    printSummary("reconstruction", summary, false);
 }
 
 void run(const EvalArgs& args) {
@@ -310,9 +322,7 @@ void run(const EvalArgs& args) {
     for (auto method : methods) {
         options.method = method;
         const bool perFrame = !args.json && !args.quiet;
-        if (perFrame)
-            std::printf("%-9s %6s %9s %9s %8s %7s %13s %6s %9s\n", methodName(method), "frame",
-                        "RMS %", "max %", "flipped", "folded", "truth folded", "iters", "ms");
+        if (perFrame) printFrameHeader(methodName(method), true);
         results.push_back(
             evaluateSequence(sequence, options, [&](const FrameEvaluation& f, const Positions& V) {
                 if (!args.out.empty())
@@ -321,10 +331,7 @@ void run(const EvalArgs& args) {
                              std::string("boneless-cli eval, ") + methodName(method) + ", frame " +
                                  std::to_string(f.frame),
                              source);
-                if (perFrame)
-                    std::printf("%-9s %6d %9.4f %9.4f %8d %7d %13d %6d %9.1f\n", "", f.frame,
-                                f.rmsPct, f.maxPct, f.flippedFaces, f.foldedFaces,
-                                f.truthFoldedFaces, f.iterations, f.milliseconds);
+                if (perFrame) printFrameRow(methodName(method), f, true);
             }));
     }
     if (args.json) {

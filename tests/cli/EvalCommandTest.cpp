@@ -576,6 +576,14 @@ TEST(EvalCommand, TheTruthItselfJudgedAsAnAnswerHasNoErrorAndAMissingFrameIsName
     const auto j = nlohmann::json::parse(r.out);
     EXPECT_EQ(j["frame_count"], 2);
     EXPECT_LT(j["max_pct_worst_frame"].get<double>(), 1e-9);
+    // Its text is eval's own summary line, with no marker count or time of a solve it did not run.
+    const CliResult text =
+        runCli("eval --sequence " + seq.string() + " --reconstruction " + answers.string());
+    ASSERT_EQ(text.exitCode, 0) << text.out;
+    EXPECT_NE(text.out.find("reconstruction frames 2  RMS % mean 0.000"), std::string::npos)
+        << text.out;
+    EXPECT_EQ(text.out.find("ms/frame"), std::string::npos) << text.out;
+    EXPECT_EQ(text.out.find("markers used"), std::string::npos) << text.out;
 
     fs::remove(answers / "walk_3.obj");
     const CliResult missing =
