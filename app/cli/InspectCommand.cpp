@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -10,6 +11,7 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <utility>
 
 #include "Commands.h"
@@ -68,13 +70,77 @@ std::int64_t lastFrame(const boneless::C3dTake& t) {
     return t.firstFrame + static_cast<std::int64_t>(t.frameCount()) - 1;
 }
 
-nlohmann::json toJson(const boneless::C3dTake& t) {
+// A run of frames [first, first + frames) where a point is missing.
+struct Gap {
+    std::size_t first = 0, frames = 0;
+    std::string range() const {  // as solve's --frames takes it
+        return std::to_string(first) + ":" + std::to_string(first + frames);
+    }
+};
+
+// What inspect says of each point's samples, found in one pass over the frames: a 25-minute take
+// was scanned once per point, and once more for the total.
+struct PointGaps {
+    std::vector<std::size_t> missing;  // frames missing, per point
+    std::vector<Gap> longest;          // the longest gap per point (the earliest of equal ones)
+    std::size_t missingTotal = 0;
+    // The longest gap of any marker (the first such marker's): none when no marker has a gap.
+    std::optional<std::size_t> longestMarker;
+};
+
+PointGaps pointGaps(const boneless::C3dTake& t) {
+    const std::size_t points = t.points.size(), frames = t.frameCount();
+    PointGaps g;
+    g.missing.assign(points, 0);
+    g.longest.assign(points, Gap());
+    std::vector<std::size_t> runStart(points, 0);
+    for (std::size_t f = 0; f <= frames; ++f)
+        for (std::size_t k = 0; k < points; ++k) {
+            // Past the last frame every open gap ends.
+            if (f < frames && !t.samples.valid(f, k)) {
+                ++g.missing[k];
+                continue;
+            }
+            if (f > runStart[k] && f - runStart[k] > g.longest[k].frames)
+                g.longest[k] = {runStart[k], f - runStart[k]};
+            runStart[k] = f + 1;
+        }
+    for (std::size_t k = 0; k < points; ++k) {
+        g.missingTotal += g.missing[k];
+        if (t.points[k].kind == boneless::C3dPointKind::Marker && g.longest[k].frames > 0 &&
+            (!g.longestMarker || g.longest[k].frames > g.longest[*g.longestMarker].frames))
+            g.longestMarker = k;
+    }
+    return g;
+}
+
+// A length of time as a person reads it: "0.083 s", "42.5 s", "25 min 0.0 s".
+std::string durationText(double seconds) {
+    char text[64];
+    if (seconds < 60)
+        std::snprintf(text, sizeof text, "%.3g s", seconds);
+    else
+        std::snprintf(text, sizeof text, "%d min %.1f s", static_cast<int>(seconds / 60),
+                      seconds - 60 * std::floor(seconds / 60));
+    return text;
+}
+
+nlohmann::json gapJson(const Gap& gap) {
+    if (gap.frames == 0) return nullptr;
+    return {{"frames", gap.frames}, {"frame_range", {gap.first, gap.first + gap.frames}}};
+}
+
+nlohmann::json toJson(const boneless::C3dTake& t, const PointGaps& gaps) {
     using boneless::toString;
     nlohmann::json j;
     j["file"] = t.file;
     j["frame_count"] = t.frameCount();
     j["fps"] =
         t.hasFrameRate() ? nlohmann::json(t.rate) : nlohmann::json(nullptr);  // as the sidecar
+    // The frames' count over the rate: null without a rate, as fps.
+    j["duration_s"] = t.hasFrameRate() ? nlohmann::json(double(t.frameCount()) / t.rate)
+                                       : nlohmann::json(nullptr);
+    j["subjects"] = t.subjects();
     j["units"] = t.units;  // the units used: the file's, or --take-units
     // What the file's POINT:UNITS says (null without one), which --take-units may overrule.
     const std::string file = boneless::c3dFileUnits(t);
@@ -101,16 +167,27 @@ nlohmann::json toJson(const boneless::C3dTake& t) {
                                {"name", p.name},
                                {"description", p.description},
                                {"kind", toString(p.kind)},
-                               {"missing_frames", t.samples.missingFrames(i)}});
+                               {"missing_frames", gaps.missing[i]},
+                               {"longest_gap", gapJson(gaps.longest[i])}});
+    }
+    // The longest gap of any marker, naming it; null when no marker has a gap.
+    j["longest_gap"] = nullptr;
+    if (gaps.longestMarker) {
+        const Gap& gap = gaps.longest[*gaps.longestMarker];
+        j["longest_gap"] = gapJson(gap);
+        j["longest_gap"]["point"] = *gaps.longestMarker;
+        j["longest_gap"]["label"] = t.points[*gaps.longestMarker].label;
+        j["longest_gap"]["seconds"] = t.hasFrameRate() ? nlohmann::json(double(gap.frames) / t.rate)
+                                                       : nlohmann::json(nullptr);
     }
     j["warnings"] = t.warnings;
     return j;
 }
 
-void printSummary(const boneless::C3dTake& t, std::ostream& out) {
+void printSummary(const boneless::C3dTake& t, const PointGaps& gaps, std::ostream& out) {
     using boneless::toString;
     const std::size_t samples = t.frameCount() * t.points.size();
-    const std::size_t missing = t.samples.missingCount();
+    const std::size_t missing = gaps.missingTotal;
     std::size_t byKind[7] = {};
     for (const auto& p : t.points) ++byKind[static_cast<int>(p.kind)];
     out << t.file << "\n";
@@ -124,6 +201,16 @@ void printSummary(const boneless::C3dTake& t, std::ostream& out) {
         out << ", no frame rate";
     if (t.frameCount()) out << ", numbered " << t.firstFrame << ".." << lastFrame(t);
     out << " (header frames " << t.firstFrameWord << ".." << t.lastFrameWord << ")\n";
+    if (t.hasFrameRate()) {
+        const double seconds = double(t.frameCount()) / t.rate;
+        char text[32];
+        std::snprintf(text, sizeof text, "%.6g s", seconds);
+        out << "  duration  " << text;
+        if (seconds >= 60) out << " (" << durationText(seconds) << ")";
+        out << "\n";
+    }
+    if (const std::vector<std::string> subjects = t.subjects(); !subjects.empty())
+        out << "  subjects  " << boneless::joined(subjects) << "\n";
     out << "  units     " << unitsText(t) << " (x" << t.unitToMm << " to mm)";
     if (const boneless::MarkerSpan& span = t.markerSpan; span.mm > 0)
         out << ", markers span " << boneless::lengthText(span.mm)
@@ -143,14 +230,24 @@ void printSummary(const boneless::C3dTake& t, std::ostream& out) {
     std::snprintf(pct, sizeof pct, "%.1f",
                   samples ? 100.0 * double(missing) / double(samples) : 0.0);
     out << "  missing   " << missing << " of " << samples << " samples (" << pct << " %)\n";
+    // The frames as solve's --frames names them (0-based, the end excluded), to look at or solve.
+    if (gaps.longestMarker) {
+        const Gap& gap = gaps.longest[*gaps.longestMarker];
+        out << "  gaps      longest " << t.points[*gaps.longestMarker].label << ", frames "
+            << gap.range() << " (" << boneless::plural(long(gap.frames), "frame");
+        if (t.hasFrameRate()) out << ", " << durationText(double(gap.frames) / t.rate);
+        out << ")\n";
+    }
     for (const auto& w : t.warnings) out << "  warning   " << w << "\n";
-    out << "\n  #    label                          kind     missing\n";
+    out << "\n  #    label                          kind     missing  longest gap\n";
     for (std::size_t i = 0; i < t.points.size(); ++i) {
-        char line[64];
+        char line[96];
         std::snprintf(line, sizeof line, "  %-4zu ", i);
         out << line << padded(t.points[i].label, 30);
-        std::snprintf(line, sizeof line, " %-8s %zu\n", toString(t.points[i].kind),
-                      t.samples.missingFrames(i));
+        const Gap& gap = gaps.longest[i];
+        std::snprintf(
+            line, sizeof line, " %-8s %-8zu %s\n", toString(t.points[i].kind), gaps.missing[i],
+            gap.frames ? (std::to_string(gap.frames) + " at " + gap.range()).c_str() : "-");
         out << line;
     }
 }
@@ -235,11 +332,13 @@ void registerInspectCommand(CLI::App& app) {
                 throw boneless::Error(opts->csv + ": writing failed (" + std::strerror(errno) +
                                       ")");
         }
+        const PointGaps gaps = pointGaps(take);
         if (opts->json)
             // Labels are UTF-8 already (the reader converts them); a path need not be.
-            std::cout << toJson(take).dump(2, ' ', false, nlohmann::json::error_handler_t::replace)
-                      << "\n";
+            std::cout
+                << toJson(take, gaps).dump(2, ' ', false, nlohmann::json::error_handler_t::replace)
+                << "\n";
         else
-            printSummary(take, std::cout);
+            printSummary(take, gaps, std::cout);
     });
 }

@@ -286,3 +286,89 @@ TEST(C3dInspect, ThePointTableStaysAlignedForLabelsOutsideAscii) {
         EXPECT_EQ(r.out.find_first_not_of(' ', after) - after, spaces) << label << " in\n" << r.out;
     }
 }
+
+namespace {
+
+// 15,000 frames at 120 Hz (125 s) of two subjects' markers and an angle: bob:LFHD misses frames
+// 100 to 339 (240), frame 2 and the last 10; ann:RFHD misses 1000 to 1239 too (as long: bob's,
+// the first, is named); the angle misses every frame, which no marker's gap is.
+std::string gappyFile() {
+    C3dTake t = c3dtest::syntheticTake(15000, {"bob:LFHD", "ann:RFHD", "bob:LKneeAngles"});
+    t.points[2].kind = C3dPointKind::Angle;
+    t.rate = 120.0;
+    for (std::size_t f = 0; f < 15000; ++f) {
+        t.samples.set(f, 0, 1.5, -2.25, 3.0);
+        t.samples.set(f, 1, 4.5, -2.25, 3.0);
+        t.samples.setMissing(f, 2);
+    }
+    for (std::size_t f = 100; f < 340; ++f) t.samples.setMissing(f, 0);
+    t.samples.setMissing(2, 0);
+    for (std::size_t f = 14990; f < 15000; ++f) t.samples.setMissing(f, 0);
+    for (std::size_t f = 1000; f < 1240; ++f) t.samples.setMissing(f, 1);
+    const std::string path = (c3dtest::workDir() / "inspect-gappy.c3d").string();
+    writeC3d(t, path);
+    return path;
+}
+
+}  // namespace
+
+// A 25-minute take's summary gave its frames and rate but not how long it is, which subjects it
+// holds, or where its longest gap is: the frames given as solve's --frames takes them.
+TEST(C3dInspect, TheSummarySaysTheDurationTheSubjectsAndTheLongestGap) {
+    const CliRun r = inspect(quoted(gappyFile()));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("  duration  125 s (2 min 5.0 s)\n"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("  subjects  bob, ann\n"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("  gaps      longest bob:LFHD, frames 100:340 (240 frames, 2 s)\n"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("kind     missing  longest gap\n"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(" marker   251      240 at 100:340\n"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(" marker   240      240 at 1000:1240\n"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(" angle    15000    15000 at 0:15000\n"), std::string::npos) << r.out;
+    // A short take without subjects or gaps says neither; its duration in seconds alone.
+    C3dTake plain = c3dtest::syntheticTake(6, {"LFHD", "RFHD"});
+    plain.rate = 60.0;
+    for (std::size_t f = 0; f < 6; ++f)
+        for (std::size_t k = 0; k < 2; ++k) plain.samples.set(f, k, 1.0 + k, 2.0, 3.0);
+    const std::string file = (c3dtest::workDir() / "inspect-plain.c3d").string();
+    writeC3d(plain, file);
+    const CliRun p = inspect(quoted(file));
+    ASSERT_EQ(p.exitCode, 0) << p.err;
+    EXPECT_NE(p.out.find("  duration  0.1 s\n"), std::string::npos) << p.out;
+    EXPECT_EQ(p.out.find("subjects"), std::string::npos) << p.out;
+    EXPECT_EQ(p.out.find("  gaps "), std::string::npos) << p.out;
+    EXPECT_NE(p.out.find(" marker   0        -\n"), std::string::npos) << p.out;
+}
+
+TEST(C3dInspect, JsonGivesTheDurationTheSubjectsAndTheLongestGaps) {
+    const CliRun r = inspect(quoted(gappyFile()) + " --json");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["duration_s"], 125.0);
+    EXPECT_EQ(j["subjects"], nlohmann::json({"bob", "ann"}));
+    EXPECT_EQ(j["longest_gap"], nlohmann::json({{"point", 0},
+                                                {"label", "bob:LFHD"},
+                                                {"frames", 240},
+                                                {"frame_range", {100, 340}},
+                                                {"seconds", 2.0}}));
+    EXPECT_EQ(j["points"][0]["missing_frames"], 251);
+    EXPECT_EQ(j["points"][0]["longest_gap"],
+              nlohmann::json({{"frames", 240}, {"frame_range", {100, 340}}}));
+    EXPECT_EQ(j["points"][1]["longest_gap"]["frame_range"], nlohmann::json({1000, 1240}));
+    EXPECT_EQ(j["points"][2]["longest_gap"]["frames"], 15000);
+    // Without a rate, no duration; without gaps or subjects, none.
+    C3dTake plain = c3dtest::syntheticTake(6, {"LFHD", "RFHD"});
+    plain.rate = 0;
+    for (std::size_t f = 0; f < 6; ++f)
+        for (std::size_t k = 0; k < 2; ++k) plain.samples.set(f, k, 1.0 + k, 2.0, 3.0);
+    const std::string file = (c3dtest::workDir() / "inspect-plain.c3d").string();
+    writeC3d(plain, file);
+    const CliRun p = inspect(quoted(file) + " --json");
+    ASSERT_EQ(p.exitCode, 0) << p.err;
+    const auto q = nlohmann::json::parse(p.out);
+    EXPECT_TRUE(q["duration_s"].is_null()) << p.out;
+    EXPECT_EQ(q["subjects"], nlohmann::json::array());
+    EXPECT_TRUE(q["longest_gap"].is_null()) << p.out;
+    EXPECT_TRUE(q["points"][0]["longest_gap"].is_null()) << p.out;
+}

@@ -638,6 +638,27 @@ TEST(SolveCommand, FramesThatShowNoMarkerHoldANeighboursPoseAndAreNamed) {
     EXPECT_EQ(held.V, seen.V);
 }
 
+// The calibration frame is chosen from the whole take, not the frames solved: a range solved
+// alone fits the rest the take's other ranges are solved against, and its sidecar says so. The
+// rest pose (frame 0) is hidden, so that the choice falls between the ranges.
+TEST(SolveCommand, TheCalibrationFrameIsTheSameWhicheverFramesAreSolved) {
+    const fs::path demo = makeDemo(60);
+    const fs::path take = demo / "walker.c3d";
+    C3dTake t = readC3d(take.string());
+    for (std::size_t f = 0; f < 5; ++f) t.samples.setMissing(f, 0);
+    writeC3d(t, take.string());
+    std::vector<int> frames;
+    for (const std::string range : {"", "0:3", "57:60", "20:22"}) {
+        const fs::path out = demo / ("x" + std::to_string(frames.size()));
+        const CliResult r = runCli(solveArgs(demo, out) + " --quiet --format pc2" +
+                                   (range.empty() ? "" : " --frames " + range));
+        ASSERT_EQ(r.exitCode, 0) << r.out;
+        frames.push_back(sidecar(out)["calibration"]["frame"].get<int>());
+        EXPECT_EQ(frames.back(), frames.front()) << "--frames " << range;
+    }
+    EXPECT_GE(frames.front(), 5) << "frame 0 shows every marker";
+}
+
 // The glb's morph targets carry the take's frame numbers, as the OBJ files of the same range do:
 // before, frames 2:4 were frame_0000 and frame_0001.
 TEST(SolveCommand, GlbMorphTargetsAreNamedByTheTakesFrameNumbersAsObjFramesAre) {

@@ -69,32 +69,103 @@ Calibration calibrate(const C3dTake& take, const std::vector<std::size_t>& point
 
 Calibration calibrate(int frames, const std::function<Positions(int)>& frameAt,
                       const std::string& file, const Positions& restPositions) {
+    return CalibrationSearch(frames, frameAt, file).find(restPositions);
+}
+
+CalibrationSearch::CalibrationSearch(int frames, std::function<Positions(int)> frameAt,
+                                     std::string file)
+    : frames_(std::max(0, frames)), frameAt_(std::move(frameAt)), file_(std::move(file)) {}
+
+namespace {
+// `x` as a float no greater than it: a bound kept in 4 bytes stays a bound.
+float floatBelow(double x) {
+    float f = static_cast<float>(x);
+    if (static_cast<double>(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+    return f;
+}
+}  // namespace
+
+Calibration CalibrationSearch::find(const Positions& restPositions) {
+    constexpr float kNone = std::numeric_limits<float>::quiet_NaN();
     // Frames showing the most mapped markers are the candidates: all of them when such frames
-    // exist, as in the specification; otherwise the best a gappy take has to offer.
-    std::vector<int> visible(frames, 0);
-    int mostVisible = 0;
-    for (int f = 0; f < frames; ++f) {
-        visible[f] = visibleRows(frameAt(f));
-        mostVisible = std::max(mostVisible, visible[f]);
-    }
+    // exist, as in the specification; otherwise the best a gappy take has to offer. Among them
+    // the smallest residual, the earliest frame of equal ones.
     Calibration best;
     best.residual = std::numeric_limits<double>::infinity();
-    for (int f = 0; f < frames && mostVisible >= 3; ++f) {
-        if (visible[f] != mostVisible) continue;
-        const Positions P = frameAt(f);
+    const auto fit = [&](int f, const Positions& P, int visible) {
+        ++framesRead_;
+        bound_[f] = kNone;
         Similarity s;
         try {
             s = fitSimilarity(P, restPositions);
         } catch (const Error&) {
-            continue;
+            return;  // collinear: no candidate for any rest
         }
         const double r = alignmentResidual(s, P, restPositions);
-        if (r < best.residual) best = {f, s, r, mostVisible};
+        if (std::isnan(r)) return;
+        bound_[f] = floatBelow(r);
+        if (r < best.residual || (r == best.residual && f < best.frame)) {
+            best.frame = f;
+            best.takeToMesh = s;
+            best.residual = r;
+            best.visibleMarkers = visible;
+        }
+    };
+    if (!previous_) {
+        // One read: a frame is fitted when it shows as many markers as any before it; those
+        // before the first frame that shows the most are no candidates after all.
+        bound_.assign(frames_, kNone);
+        int firstOfMost = 0;
+        for (int f = 0; f < frames_; ++f) {
+            const Positions P = frameAt_(f);
+            const int visible = visibleRows(P);
+            if (visible < std::max(3, mostVisible_)) {
+                ++framesRead_;
+                mostVisible_ = std::max(mostVisible_, visible);
+                continue;
+            }
+            if (visible > mostVisible_) {
+                mostVisible_ = visible;
+                firstOfMost = f;
+                best = Calibration();
+                best.residual = std::numeric_limits<double>::infinity();
+            }
+            fit(f, P, visible);
+        }
+        std::fill(bound_.begin(), bound_.begin() + firstOfMost, kNone);
+    } else {
+        // A frame's best fit to this rest is no better than its best fit to the last one less the
+        // largest distance between the two rests' rows (the triangle inequality, for the fit to
+        // the last rest moved onto this one); `margin` covers the rounding.
+        // Rests of other sizes bound nothing: every candidate is fitted again.
+        double apart = previous_->rows() == restPositions.rows()
+                           ? 0.0
+                           : std::numeric_limits<double>::infinity();
+        for (Eigen::Index k = 0; k < restPositions.rows() && std::isfinite(apart); ++k) {
+            const double d = (restPositions.row(k) - previous_->row(k)).norm();
+            apart = std::isfinite(d) ? std::max(apart, d) : std::numeric_limits<double>::infinity();
+        }
+        const double margin = 1e-9 * (1.0 + restPositions.cwiseAbs().maxCoeff());
+        const auto tryFrame = [&](int f) {
+            if (std::isnan(bound_[f])) return;
+            const double bound = double(bound_[f]) - apart - margin;
+            if (bound > best.residual)
+                bound_[f] = floatBelow(bound);  // a bound at this rest, for the next find
+            else
+                fit(f, frameAt_(f), mostVisible_);
+        };
+        // The last find's frame first: its residual is near the best, so the bound rules out
+        // most frames before they are read.
+        if (best_ >= 0) tryFrame(best_);
+        for (int f = 0; f < frames_; ++f)
+            if (f != best_) tryFrame(f);
     }
+    previous_ = restPositions;
     if (best.frame < 0)
-        throw Error(file +
+        throw Error(file_ +
                     ": no frame shows three or more of the mapped markers in general "
                     "position, so the take cannot be aligned automatically");
+    best_ = best.frame;
     return best;
 }
 

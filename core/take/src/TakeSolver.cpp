@@ -65,10 +65,11 @@ TakeSolver::TakeSolver(const TriMesh& rest, const TakeSolver& same, const Corres
 
 void TakeSolver::prepare(const Correspondence& map) {
     followWelds(rest_, rest_.V);  // copies within the weld's tolerance: exactly together
-    auto calibrateTrack = [&](const Positions& R) {
-        return calibrate(
-            frameCount(), [&](int f) { return trackFrame(f, false); }, track_->file(), R);
-    };
+    // One search for every alignment below: the take is read whole once, and the later searches
+    // read only the frames the earlier ones leave in the running.
+    CalibrationSearch search(
+        frameCount(), [&](int f) { return trackFrame(f, false); }, track_->file());
+    auto calibrateTrack = [&](const Positions& R) { return search.find(R); };
     SolverOptions solverOptions = options_.solver;
     solverOptions.method = SolverOptions::Method::LocalGlobal;
     solverOptions.constraints = SolverOptions::Constraints::Soft;

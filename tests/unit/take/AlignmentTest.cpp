@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <random>
 
 #include "TestMeshes.h"
@@ -326,4 +327,145 @@ TEST(Alignment, LevelledTurnsTheTakesOwnVerticalOntoTheMeshsUp) {
     EXPECT_LT((s.R * Vec3::UnitY() - Vec3::UnitZ()).norm(), 1e-12);
     const Similarity told = levelled(free, take, mesh, Vec3::UnitY(), -Vec3::UnitZ());
     EXPECT_LT((told.R * Vec3::UnitY() + Vec3::UnitZ()).norm(), 1e-12);
+}
+
+namespace {
+
+// calibrate as it was specified and first written: every frame's visibility, then a fit of every
+// frame that shows the most; the smallest residual, the earliest of equal ones.
+Calibration calibrationFoundFrameByFrame(int frames, const std::function<Positions(int)>& frameAt,
+                                         const Positions& rest) {
+    std::vector<int> visible(frames);
+    int most = 0;
+    for (int f = 0; f < frames; ++f) most = std::max(most, visible[f] = visibleRows(frameAt(f)));
+    Calibration best;
+    best.residual = INFINITY;
+    for (int f = 0; f < frames && most >= 3; ++f) {
+        if (visible[f] != most) continue;
+        const Positions P = frameAt(f);
+        Similarity s;
+        try {
+            s = fitSimilarity(P, rest);
+        } catch (const Error&) {
+            continue;
+        }
+        const double r = alignmentResidual(s, P, rest);
+        if (r < best.residual) {
+            best.frame = f;
+            best.takeToMesh = s;
+            best.residual = r;
+            best.visibleMarkers = most;
+        }
+    }
+    return best;
+}
+
+// A take of `frames` frames of 10 markers: the rest's rows bent by a pose that differs frame by
+// frame, turned, scaled to millimetres and moved, with noise; two markers missing for stretches,
+// frames where all but two are missing, a collinear frame, and the best pose twice.
+struct GappyTake {
+    Positions rest;                 // the mesh's rows, 10 by 3
+    std::vector<Positions> frames;  // the take's, NaN rows where missing
+    Positions at(int f) const { return frames[f]; }
+};
+
+GappyTake gappyTake(int frames) {
+    GappyTake t;
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(-1, 1);
+    std::normal_distribution<double> noise(0, 0.5);
+    t.rest.resize(10, 3);
+    for (int k = 0; k < 10; ++k) t.rest.row(k) << 0.3 * u(rng), 0.2 * u(rng), 0.9 + 0.9 * u(rng);
+    for (int f = 0; f < frames; ++f) {
+        const Mat3 R = randomRotation(rng);
+        const Vec3 origin(1000 * u(rng), 1000 * u(rng), 0);
+        const double bend = 0.05 + 0.25 * (0.5 + 0.5 * std::sin(0.05 * f));
+        Positions P(10, 3);
+        for (int k = 0; k < 10; ++k) {
+            Vec3 p = t.rest.row(k).transpose();
+            p.x() += bend * p.z() * p.z();
+            P.row(k) =
+                (1000.0 * (R * p) + origin + Vec3(noise(rng), noise(rng), noise(rng))).transpose();
+        }
+        if (f % 7 < 3) P.row(2).setConstant(NAN);
+        if (f % 11 == 0) P.row(5).setConstant(NAN);
+        if (f % 13 == 0)
+            for (int k = 2; k < 10; ++k) P.row(k).setConstant(NAN);
+        t.frames.push_back(P);
+    }
+    // The best pose twice, the earlier one chosen: frames 40 and 90 are one and the same.
+    for (int k = 0; k < 10; ++k)
+        t.frames[40].row(k) = 1000.0 * t.rest.row(k) + Vec3(5, 5, 5).transpose();
+    t.frames[90] = t.frames[40];
+    // Collinear markers fit no rotation: never a candidate.
+    for (int k = 0; k < 10; ++k) t.frames[60].row(k) << 10.0 * k, 0, 0;
+    return t;
+}
+
+// The rest's rows `offset` off along fixed directions: as TakeSolver places the markers off the
+// skin once the mesh's scale is known.
+Positions offsetRest(const Positions& rest, double offset) {
+    Positions R = rest;
+    for (int k = 0; k < R.rows(); ++k)
+        R.row(k) += offset * Vec3(std::sin(k), std::cos(k), 0.3).normalized().transpose();
+    return R;
+}
+
+}  // namespace
+
+// TakeSolver aligns three times (markers on the skin, then off it at the scale found): each search
+// must find the frame, fit and residual that a search of every frame finds.
+TEST(CalibrationSearch, EachSearchFindsWhatASearchOfEveryFrameFinds) {
+    const GappyTake take = gappyTake(400);
+    const auto frameAt = [&](int f) { return take.at(f); };
+    CalibrationSearch search(400, frameAt, "gappy.c3d");
+    for (const double offset : {0.0, 0.01, 0.0101, 0.2, 0.0}) {
+        const Positions R = offsetRest(take.rest, offset);
+        const Calibration expected = calibrationFoundFrameByFrame(400, frameAt, R);
+        const Calibration found = search.find(R);
+        ASSERT_GE(expected.frame, 0);
+        EXPECT_EQ(found.frame, expected.frame) << "offset " << offset;
+        EXPECT_EQ(found.residual, expected.residual) << "offset " << offset;
+        EXPECT_EQ(found.takeToMesh.scale, expected.takeToMesh.scale);
+        EXPECT_EQ(found.visibleMarkers, expected.visibleMarkers);
+        EXPECT_EQ(calibrate(400, frameAt, "gappy.c3d", R).frame, expected.frame);
+    }
+    // The twin frames of the best pose: the earlier.
+    EXPECT_EQ(calibrationFoundFrameByFrame(400, frameAt, take.rest).frame, 40);
+}
+
+// The take was read whole twice per search, three searches per solve (a 25-minute take: 20 s
+// before the first frame of any range): the first search reads each frame once, and a search
+// for a rest near an earlier one reads few.
+TEST(CalibrationSearch, ATakeIsReadOnceAndLaterSearchesReadOnlyFramesStillInTheRunning) {
+    const GappyTake take = gappyTake(400);
+    int reads = 0;
+    CalibrationSearch search(
+        400,
+        [&](int f) {
+            ++reads;
+            return take.at(f);
+        },
+        "gappy.c3d");
+    search.find(offsetRest(take.rest, 0.0));
+    EXPECT_EQ(reads, 400);
+    EXPECT_EQ(search.framesRead(), 400);
+    search.find(offsetRest(take.rest, 0.01));
+    search.find(offsetRest(take.rest, 0.0101));
+    EXPECT_EQ(search.framesRead(), reads);
+    EXPECT_LT(reads, 400 + 400 / 4) << "the later searches read most of the take again";
+}
+
+TEST(CalibrationSearch, ATakeWithoutThreeMarkersSeenAtOnceIsRefusedNamingIt) {
+    std::vector<Positions> frames(5, Positions::Constant(4, 3, NAN));
+    frames[2].topRows(2).setZero();
+    CalibrationSearch search(
+        5, [&](int f) { return frames[f]; }, "two.c3d");
+    try {
+        search.find(Positions::Zero(4, 3));
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("two.c3d: no frame shows three"), std::string::npos)
+            << e.what();
+    }
 }

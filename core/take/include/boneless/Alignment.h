@@ -51,6 +51,32 @@ Calibration calibrate(const C3dTake& take, const std::vector<std::size_t>& point
 Calibration calibrate(int frames, const std::function<Positions(int)>& frameAt,
                       const std::string& file, const Positions& restPositions);
 
+// calibrate's search over one take for several rest positions in turn, as TakeSolver aligns
+// three times while the markers' offsets take the mesh's scale: each find() gives what calibrate
+// gives, but the take is not read whole for each. The first find reads every frame once (the
+// frames' visibility and their fits in one go); a later one reads and fits only the frames an
+// earlier residual leaves in the running: a frame's best fit to one rest is within the largest
+// distance between the two rests' rows of its best fit to the other. Holds 4 bytes a frame.
+class CalibrationSearch {
+  public:
+    CalibrationSearch(int frames, std::function<Positions(int)> frameAt, std::string file);
+    Calibration find(const Positions& restPositions);
+    // How many frames have been read (frameAt called) so far, over every find.
+    long framesRead() const { return framesRead_; }
+
+  private:
+    int frames_;
+    std::function<Positions(int)> frameAt_;
+    std::string file_;
+    long framesRead_ = 0;
+    int mostVisible_ = 0;
+    std::optional<Positions> previous_;  // the last find's rest
+    // Per frame: at most its residual at the last find's rest, or NaN for a frame that is no
+    // candidate (fewer markers seen than the most, or no fit).
+    std::vector<float> bound_;
+    int best_ = -1;  // the last find's frame
+};
+
 // Where the view draws the take before three markers are mapped, from conventions alone. The
 // take's vertical (C3dTake::vertical) goes to the mesh's up: +Y, else +Z, when that axis is at
 // least 0.6 of the mesh's longest (a T-posed body is about as wide as tall), else +X. The actor's
