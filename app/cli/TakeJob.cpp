@@ -358,56 +358,20 @@ void refuseToReplaceOthersFiles(const ExportRequest& request, int end) {
                 (one ? "it" : "them") + ", or another output folder");
 }
 
-// Whether two sidecars' "subjects" name the same actors, as labels compare (case aside).
-bool sameSubjects(const nlohmann::json& earlier, const std::vector<std::string>& now) {
-    if (!earlier.is_array() || earlier.size() != now.size()) return false;
-    for (const nlohmann::json& s : earlier)
-        if (!s.is_string() || std::none_of(now.begin(), now.end(), [&](const std::string& n) {
-                return c3dNameEquals(s.get<std::string>(), n);
-            }))
-            return false;
-    return true;
-}
-
 // A shell loop solving each take with one --out left only the last take's solve, each run
-// replacing the one before in silence: the folder's sidecar of another take refuses the job, and
-// so does one of another actor of the same take (`subjects`: the actors this solve animates).
+// replacing the one before in silence: core's otherSolveIn refuses it (`subjects`: the actors
+// this solve animates), as the app asks before its Export replaces it.
 void refuseToReplaceAnotherTake(const ExportRequest& request,
                                 const std::vector<std::string>& subjects) {
-    namespace fs = std::filesystem;
-    const fs::path sidecar = fs::path(request.outDir) / (exportStem(request) + ".json");
-    std::ifstream in(sidecar);
-    if (!in) return;
-    nlohmann::json s;
-    try {
-        s = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::exception&) {
-        return;  // no Boneless sidecar: refuseToReplaceOthersFiles's to name
-    }
-    if (!s.is_object() || s.value("format", nlohmann::json()) != "boneless-solve") return;
-    const nlohmann::json c3d =
-        s.value("source", nlohmann::json::object()).value("c3d", nlohmann::json());
-    if (!c3d.is_string()) return;
-    if (sameFile(c3d.get<std::string>(), request.c3dPath)) {
-        // Sidecars before 1 December 2026 name no subjects, nor does a take without prefixes.
-        const nlohmann::json earlier = s.value("subjects", nlohmann::json());
-        if (!earlier.is_array() || earlier.empty() || subjects.empty() ||
-            sameSubjects(earlier, subjects))
-            return;
-        std::vector<std::string> named;
-        for (const nlohmann::json& e : earlier)
-            named.push_back(e.is_string() ? e.get<std::string>() : e.dump());
-        const auto subjectText = [](const std::vector<std::string>& list) {
-            return (list.size() == 1 ? "subject " : "subjects ") + joined(list);
-        };
-        throw Error(sidecar.string() + " is the solve of " + subjectText(named) + " of " +
-                    c3d.get<std::string>() + ", and solving " + subjectText(subjects) + " into " +
-                    request.outDir +
+    const std::optional<OtherSolve> other = otherSolveIn(request, subjects);
+    if (!other) return;
+    if (other->sameTake)
+        throw Error(other->sidecar + " is the solve of " + other->whose() + ", and solving " +
+                    subjectsText(subjects) + " into " + request.outDir +
                     " would replace it; nothing was written: give each subject its own --out, or "
                     "--force to replace it");
-    }
-    throw Error(sidecar.string() + " is the solve of " + c3d.get<std::string>() +
-                ", another take, and solving " + request.c3dPath + " into " + request.outDir +
+    throw Error(other->sidecar + " is the solve of " + other->whose() + ", and solving " +
+                request.c3dPath + " into " + request.outDir +
                 " would replace it; nothing was written: give each take its own --out, or --force "
                 "to replace it");
 }

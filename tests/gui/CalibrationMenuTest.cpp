@@ -382,6 +382,49 @@ class CalibrationMenuTest : public QObject {
         QCOMPARE(said.count(), 1);
     }
 
+    // Calibrate at This Frame on a frame that shows two mapped markers was taken, and every frame
+    // then said only "Not solving: the take could not be solved with this map and settings", the
+    // reason under Show Details. It is refused, naming the frame and how many it shows, and the
+    // calibration stays as it was, with or without a fixed alignment.
+    void aFrameShowingTooFewMappedMarkersIsRefusedAndTheCalibrationKept() {
+        Document* document = window_->document();
+        C3dTake take = document->take();
+        constexpr int kBare = 30;
+        const std::vector<std::size_t> markers = take.markerIndices();
+        for (std::size_t k = 2; k < markers.size(); ++k) take.samples.setMissing(kBare, markers[k]);
+        const QString bare = folder_ + "/bare.c3d";
+        writeC3d(take, bare.toStdString());
+        QVERIFY(window_->openFile(bare));  // the mesh and the map stay
+        QVERIFY(test::waitForFrame(*window_));
+        const int mapped = document->mappedCount();
+        QVERIFY(mapped > 3);
+
+        window_->timeline()->scrubTo(25);
+        QVERIFY(trigger(*window_, "calibrateAtFrame"));
+        QCOMPARE(document->settings().calibrationFrame, 25);
+        const int steps = document->undoStack()->count();
+        QSignalSpy said(window_.get(), &MainWindow::errorShown);
+        window_->timeline()->scrubTo(kBare);
+        window_->findChild<QAction*>("calibrateAtFrame")->trigger();
+        QCOMPARE(document->settings().calibrationFrame, 25);
+        QCOMPARE(document->undoStack()->count(), steps);
+        QVERIFY(window_->findChild<QAction*>("calibrateAtFrame")->isChecked());
+        QCOMPARE(said.count(), 1);
+        QCOMPARE(said.first().at(0).toString(),
+                 "Frame " + named(kBare) + " shows 2 of the " + QString::number(mapped) +
+                     " mapped markers: calibrating needs at least 3 seen at once. The "
+                     "calibration is kept as it was; choose a frame that shows more.");
+
+        QVERIFY(document->align(25));  // a fixed alignment is refitted at the frame: refused alike
+        said.clear();
+        window_->findChild<QAction*>("calibrateAtFrame")->trigger();
+        QCOMPARE(document->settings().calibrationFrame, 25);
+        QCOMPARE(document->alignment()->frame, 25);
+        QCOMPARE(said.count(), 1);
+        QVERIFY2(said.first().at(0).toString().startsWith("Frame " + named(kBare) + " shows 2 of"),
+                 qPrintable(said.first().at(0).toString()));
+    }
+
     // The solver aligns and fits at one frame: Align must not move the user's calibration frame.
     void aligningTheTakeKeepsTheCalibrationFrameTheUserSet() {
         window_ = test::openShown(test::writeDemoProject(folder_ + "/alignAtFrame"));

@@ -20,6 +20,8 @@
 #include <QtTest>
 
 #include "ModelTestFixtures.h"
+#include "boneless/C3dReader.h"
+#include "boneless/C3dWriter.h"
 #include "boneless/Parallel.h"
 #include "boneless/ui/ExportDialog.h"
 #include "boneless/ui/ExportRunner.h"
@@ -293,6 +295,82 @@ class ExportDialogTest : public QObject {
         QVERIFY(exportInto(dialog, out));
         QCOMPARE(objFiles(out), QStringList{"walker_0003.obj"});
         QCOMPARE(readJson(out + "/walker.json")["frame_range"].toArray(), (QJsonArray{3, 4}));
+    }
+
+    // The demo's take worn by two actors, walker: and other:, each mapped in its own file: an
+    // export of walker's solve into the folder of other's replaced it with a question that said
+    // only "an earlier export", where `solve` refuses naming whose solve it is. The app asks with
+    // core's own check, naming the sidecar and the actor it animates; Cancel writes nothing.
+    void anotherActorsSolveInTheFolderIsReplacedOnlyWhenTheUserSaysSo() {
+        const QString demo = work_ + "/demo";
+        const C3dTake one = readC3d((demo + "/walker.c3d").toStdString());
+        C3dTake two = one;
+        const std::size_t n = one.points.size();
+        two.points.clear();
+        two.samples = C3dSamples(one.frameCount(), 2 * n);
+        for (const std::string subject : {"walker", "other"}) {
+            const std::size_t base = two.points.size();
+            for (std::size_t p = 0; p < n; ++p) {
+                C3dPoint point = one.points[p];
+                point.subject = subject;
+                point.label = subject + ":" + point.name;
+                two.points.push_back(point);
+                for (std::size_t f = 0; f < one.frameCount(); ++f)
+                    if (const auto x = one.samples.position(f, p))
+                        two.samples.set(f, base + p, x->x() + (base ? 1500.0 : 0.0), x->y(),
+                                        x->z());
+            }
+        }
+        const QString take = work_ + "/two.c3d";
+        writeC3d(two, take.toStdString());
+        const Correspondence bare = Correspondence::read((demo + "/walker.map.json").toStdString());
+        for (const std::string subject : {"walker", "other"}) {
+            Correspondence map = bare;
+            for (auto& m : map.markers) m.label = subject + ":" + m.label;
+            map.write((work_ + "/" + QString::fromStdString(subject) + ".map.json").toStdString());
+        }
+        Document document;
+        QVERIFY(document.loadMesh(demo + "/walker.obj"));
+        QVERIFY(document.loadTake(take));
+        QVERIFY(document.loadCorrespondence(work_ + "/other.map.json"));
+        FrameSolver solver;
+        QVERIFY(solver.setProblem(document));
+        ExportDialog dialog(&document, &solver, &timeline_);
+        dialog.show();
+        dialog.setFormat(ExportFormat::Pc2);
+        timeline_.setFrame(4);
+        dialog.setRange(ExportDialog::Range::Current);
+        const QString out = work_ + "/twoActors";
+        QVERIFY(exportInto(dialog, out));
+        QCOMPARE(readJson(out + "/walker.json")["subjects"].toArray(), QJsonArray{"other"});
+
+        QVERIFY(document.loadCorrespondence(work_ + "/walker.map.json"));
+        QVERIFY(solver.setProblem(document));
+        QString asked, question;
+        // Answered whichever question it is, or a failure would wait for the watchdog.
+        auto answer = [&](bool replace) {
+            QTimer::singleShot(300, [&, replace] {
+                auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+                if (!box) return;
+                question = box->objectName();
+                asked = box->text();
+                (replace ? box->findChild<QPushButton*>("replaceButton")
+                         : box->button(QMessageBox::Cancel))
+                    ->click();
+            });
+        };
+        answer(false);
+        dialog.setFolder(out);
+        QVERIFY(!dialog.startExport());
+        QCOMPARE(question, QString("replaceOtherSolveQuestion"));
+        QCOMPARE(asked, out + "/walker.json is the solve of subject other of " + take +
+                            ". Replace it with the solve of subject walker?");
+        QCOMPARE(progressText(dialog)->text(),
+                 QString("Not exported: the folder keeps the solve of subject other."));
+        QCOMPARE(readJson(out + "/walker.json")["subjects"].toArray(), QJsonArray{"other"});
+        answer(true);
+        QVERIFY(exportInto(dialog, out));
+        QCOMPARE(readJson(out + "/walker.json")["subjects"].toArray(), QJsonArray{"walker"});
     }
 
     // A glb export, then an MDD one into its folder, Replace, and Cancel part-way: the old

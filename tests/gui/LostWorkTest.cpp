@@ -9,6 +9,7 @@
 #include <QPushButton>
 #include <QSettings>
 #include <QSignalSpy>
+#include <QStatusBar>
 #include <QUndoStack>
 #include <QtTest>
 #include <cstdio>
@@ -319,6 +320,59 @@ class LostWorkTest : public QObject {
         QCOMPARE(c.document()->mappedCount(), mapped);
         c.setMessageBoxesEnabled(false);
         c.close();
+    }
+
+    // A crash's work whose mesh was re-exported since (another vertex count): a project's
+    // message offered Open Without the Map, the autosave's only Locate…, which opens it only with
+    // the mesh the map was made for. Open Without the Map opens the work unmapped, its take and
+    // settings kept, and says where the map is kept.
+    void aCrashsWorkWhoseMapNoLongerFitsItsMeshOpensWithTheMapSetAside() {
+        const QString dir = folder_ + "/refitted";
+        QDir(dir).removeRecursively();
+        test::writeDemoProject(dir);
+        int mapped = -1;
+        {
+            MainWindow crashed;
+            crashed.setMessageBoxesEnabled(false);
+            QVERIFY(crashed.openFiles(
+                {dir + "/walker.obj", dir + "/walker.c3d", dir + "/walker.map.json"}));
+            QVERIFY(crashed.document()->clearMapping(0));  // the map lives in the autosave alone
+            QVERIFY(crashed.autosave()->saveNow());
+            mapped = crashed.document()->mappedCount();
+        }
+        const QString instance = "999999997-1";
+        const QString file = recoveryFolder() + "/" + instance + ".boneless";
+        QFile::remove(file);
+        QVERIFY(QFile::rename(ProjectAutosave::recoveryPath(), file));
+        QFile mesh(dir + "/walker.obj");
+        QVERIFY(mesh.open(QIODevice::WriteOnly | QIODevice::Truncate));
+        mesh.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+        mesh.close();
+
+        MainWindow b;
+        b.autosave()->setDelay(60000);
+        QVERIFY(!b.openRecovery(file));
+        QMessageBox* box = shownBox(b, "recoveryErrorMessage");
+        QVERIFY(box);
+        QVERIFY2(box->text().contains("made for another mesh than " + dir + "/walker.obj"),
+                 qPrintable(box->text()));
+        QVERIFY2(box->informativeText().contains("Open Without the Map opens it unmapped"),
+                 qPrintable(box->informativeText()));
+        auto* aside = box->findChild<QPushButton*>("openWithoutMapButton");
+        QVERIFY(aside);
+        aside->click();
+        QCOMPARE(b.document()->meshPath(), dir + "/walker.obj");
+        QCOMPARE(b.document()->mesh().vertexCount(), 4);
+        QVERIFY(b.document()->hasTake());
+        QCOMPARE(b.document()->mappedCount(), 0);
+        const QString kept = recoveryFolder() + "/" + instance + ".set-aside.map.json";
+        const QString said = b.statusBar()->currentMessage();
+        QVERIFY2(said.contains("made for another mesh") && said.contains(kept), qPrintable(said));
+        QCOMPARE(int(boneless::Correspondence::read(kept.toStdString()).markers.size()), mapped);
+        for (auto* shown : b.findChildren<QMessageBox*>()) shown->close();
+        b.setMessageBoxesEnabled(false);
+        b.close();
+        QFile::remove(kept);
     }
 
     // A project open in two windows: the second's edit was autosaved, then the first's autosave

@@ -322,6 +322,20 @@ void Document::setSettings(const TakeSolveOptions& settings, const QString& text
 
 bool Document::calibrateAt(int frame) {
     if (refusedWhileHeld()) return false;
+    // Taken, a frame that aligns nothing left every frame unsolved, the reason under Show Details.
+    if (frame >= 0 && hasTake_) {
+        int seen = 0;
+        for (int r = 0; r < markerCount(); ++r)
+            seen += markers_[r].mapping >= 0 && markerVisible(r, frame);
+        if (seen < kMinAlignmentMarkers)
+            return fail(tr("Frame %1 shows %2 of the %3 mapped markers: calibrating needs at least "
+                           "%4 seen at once. The calibration is kept as it was; choose a frame "
+                           "that shows more.")
+                            .arg(frameName(frame, take_.firstFrame))
+                            .arg(seen)
+                            .arg(mappedCount())
+                            .arg(kMinAlignmentMarkers));
+    }
     EditState after = editState();
     after.settings.calibrationFrame = frame;
     after.settings.calibrate = CalibrateMode::Shape;

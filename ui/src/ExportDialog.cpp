@@ -394,8 +394,24 @@ bool ExportDialog::startExport() {
     if (r.options.calibrate == CalibrateMode::Shape)
         if (const auto rest = solver_->calibratedRestFor(*document_)) r.fittedRest = *rest;
     const std::vector<std::string> earlier = exportFilesIn(r.outDir, exportStem(r));
-    if (!earlier.empty() && !askToReplace(earlier)) {
-        progressText_->setText(tr("Not exported: the folder keeps its earlier export."));
+    // Another take's or actor's solve, found by the check `solve` refuses it with: said whose it
+    // is, or Replace read as replacing an earlier export of this take (lost work).
+    std::vector<std::string> subjects;
+    try {
+        subjects = document_->correspondence().subjects(document_->take());
+    } catch (const std::exception&) {
+        // A map the take does not resolve: the runner refuses it below, saying why.
+    }
+    const std::optional<OtherSolve> other = otherSolveIn(r, subjects);
+    if ((other || !earlier.empty()) &&
+        !askToReplace(earlier, other ? &*other : nullptr, subjects)) {
+        const QString whose = !other ? QString()
+                              : other->sameTake
+                                  ? QString::fromStdString(subjectsText(other->subjects))
+                                  : QFileInfo(QString::fromStdString(other->c3d)).fileName();
+        progressText_->setText(
+            other ? tr("Not exported: the folder keeps the solve of %1.").arg(whose)
+                  : tr("Not exported: the folder keeps its earlier export."));
         return false;
     }
     QString error;
@@ -483,7 +499,8 @@ void ExportDialog::onProgress(int done, int total) {
     progressText_->setText(tr("%1 left").arg(duration(msPerFrame * (total - done))));
 }
 
-bool ExportDialog::askToReplace(const std::vector<std::string>& names) {
+bool ExportDialog::askToReplace(const std::vector<std::string>& names, const OtherSolve* other,
+                                const std::vector<std::string>& subjects) {
     QStringList listed;
     for (std::size_t i = 0; i < names.size() && i < 3; ++i)
         listed << QString::fromStdString(names[i]);
@@ -491,10 +508,15 @@ bool ExportDialog::askToReplace(const std::vector<std::string>& names) {
     if (names.size() > 3)
         text = counted(int(names.size() - 3), tr("%1 and %n more file"), tr("%1 and %n more files"))
                    .arg(text);
+    const QString mine = other && other->sameTake ? QString::fromStdString(subjectsText(subjects))
+                                                  : QFileInfo(document_->takePath()).fileName();
     QMessageBox box(QMessageBox::Question, tr("Export"),
-                    tr("%1 holds an earlier export (%2). Replace it?").arg(folder(), text),
+                    other ? tr("%1 is the solve of %2. Replace it with the solve of %3?")
+                                .arg(QString::fromStdString(other->sidecar),
+                                     QString::fromStdString(other->whose()), mine)
+                          : tr("%1 holds an earlier export (%2). Replace it?").arg(folder(), text),
                     QMessageBox::Cancel, this);
-    box.setObjectName("replaceExportQuestion");
+    box.setObjectName(other ? "replaceOtherSolveQuestion" : "replaceExportQuestion");
     box.setInformativeText(
         tr("Its files are removed once this export is written, or stopped part-way, so that "
            "the folder holds this export alone. Choose another folder to keep it."));

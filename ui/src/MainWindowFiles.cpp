@@ -272,37 +272,14 @@ bool MainWindow::openProject(const QString& path, const QMap<QString, QString>& 
             connect(open, &QPushButton::clicked, this,
                     [this, recovery] { openRecovery(recovery); });
         }
-        // A take or mesh renamed or moved: the map that lives only in the project is reached by
-        // saying where the file is now.
         if (!missingFile.isEmpty()) {
+            const QString offered = offerMissingFile(
+                box, missingFile, located,
+                [this, path](const QMap<QString, QString>& next, bool setMapAside) {
+                    openProject(path, next, setMapAside);
+                });
             if (recovery.isEmpty())
-                box->setInformativeText(
-                    QFileInfo::exists(missingFile)
-                        // there, but not the mesh the map was made for
-                        ? tr("The file is left as it is. Locate… opens it with the mesh the map "
-                             "was made for, in place of %1; Open Without the Map opens it "
-                             "unmapped, the map kept.")
-                              .arg(QFileInfo(missingFile).fileName())
-                        : tr("The file is left as it is. Locate… opens it with %1 where it is "
-                             "now.")
-                              .arg(QFileInfo(missingFile).fileName()));
-            QPushButton* locateButton = box->addButton(tr("Locate…"), QMessageBox::ActionRole);
-            locateButton->setObjectName("locateButton");
-            connect(locateButton, &QPushButton::clicked, this, [this, path, missingFile, located] {
-                const QString chosen = locate(missingFile);
-                if (chosen.isEmpty()) return;
-                QMap<QString, QString> next = located;
-                next[missingFile] = QFileInfo(chosen).absoluteFilePath();
-                openProject(path, next);
-            });
-            // The mesh is the one wanted and the map is to be made anew for it.
-            if (QFileInfo::exists(missingFile)) {
-                QPushButton* aside =
-                    box->addButton(tr("Open Without the Map"), QMessageBox::ActionRole);
-                aside->setObjectName("openWithoutMapButton");
-                connect(aside, &QPushButton::clicked, this,
-                        [this, path, located] { openProject(path, located, true); });
-            }
+                box->setInformativeText(tr("The file is left as it is. %1").arg(offered));
         }
         box->show();
         return false;
@@ -335,6 +312,33 @@ bool MainWindow::openProject(const QString& path, const QMap<QString, QString>& 
                                  10000);
     }
     return true;
+}
+
+QString MainWindow::offerMissingFile(
+    QMessageBox* box, const QString& missingFile, const QMap<QString, QString>& located,
+    const std::function<void(const QMap<QString, QString>&, bool)>& reopen) {
+    // A take or mesh renamed or moved: the map that lives only in the project is reached by
+    // saying where the file is now.
+    QPushButton* locateButton = box->addButton(tr("Locate…"), QMessageBox::ActionRole);
+    locateButton->setObjectName("locateButton");
+    connect(locateButton, &QPushButton::clicked, this, [this, missingFile, located, reopen] {
+        const QString chosen = locate(missingFile);
+        if (chosen.isEmpty()) return;
+        QMap<QString, QString> next = located;
+        next[missingFile] = QFileInfo(chosen).absoluteFilePath();
+        reopen(next, false);
+    });
+    const QString name = QFileInfo(missingFile).fileName();
+    if (!QFileInfo::exists(missingFile))
+        return tr("Locate… opens it with %1 where it is now.").arg(name);
+    // There, but not the mesh the map was made for: the mesh is the one wanted, and the map is
+    // to be made anew for it.
+    QPushButton* aside = box->addButton(tr("Open Without the Map"), QMessageBox::ActionRole);
+    aside->setObjectName("openWithoutMapButton");
+    connect(aside, &QPushButton::clicked, this, [located, reopen] { reopen(located, true); });
+    return tr("Locate… opens it with the mesh the map was made for, in place of %1; Open Without "
+              "the Map opens it unmapped, the map kept.")
+        .arg(name);
 }
 
 QString MainWindow::locate(const QString& file) {
@@ -383,14 +387,16 @@ bool MainWindow::askMapLoad(const QString& path, Document::MapLoad& mode) {
     return true;
 }
 
-bool MainWindow::openRecovery(const QString& path, const QMap<QString, QString>& located) {
+bool MainWindow::openRecovery(const QString& path, const QMap<QString, QString>& located,
+                              bool setMapAside) {
     const QString recovery = path.isEmpty() ? ProjectAutosave::lastAutosave() : path;
     std::optional<Loading> loading(std::in_place, this);
-    QString error, missing, missingFile;
+    QString error, missing, missingFile, setAside;
     bool loaded = false;
     {
         const QScopedValueRollback<bool> quiet(loadingProject_, true);
-        loaded = Project::load(*document_, recovery, &error, &missing, &missingFile, located);
+        loaded = Project::load(*document_, recovery, &error, &missing, &missingFile, located,
+                               setMapAside, &setAside);
     }
     if (!loaded) {
         // The files it names moved after the crash (a folder renamed, a copy elsewhere): the
@@ -408,20 +414,13 @@ bool MainWindow::openRecovery(const QString& path, const QMap<QString, QString>&
         QMessageBox* box = errorBox(message, error);
         box->setObjectName("recoveryErrorMessage");
         QString kept = tr("The autosave is left as it is.");
-        if (!missingFile.isEmpty()) {
-            kept += " " + tr("Locate… opens it with %1 where it is now.")
-                              .arg(QFileInfo(missingFile).fileName());
-            QPushButton* locateButton = box->addButton(tr("Locate…"), QMessageBox::ActionRole);
-            locateButton->setObjectName("locateButton");
-            connect(locateButton, &QPushButton::clicked, this,
-                    [this, recovery, missingFile, located] {
-                        const QString chosen = locate(missingFile);
-                        if (chosen.isEmpty() || !keepUnsavedWork(false)) return;
-                        QMap<QString, QString> next = located;
-                        next[missingFile] = QFileInfo(chosen).absoluteFilePath();
-                        openRecovery(recovery, next);
-                    });
-        }
+        if (!missingFile.isEmpty())
+            kept += " " + offerMissingFile(box, missingFile, located,
+                                           [this, recovery](const QMap<QString, QString>& next,
+                                                            bool setMapAside) {
+                                               if (keepUnsavedWork(false))
+                                                   openRecovery(recovery, next, setMapAside);
+                                           });
         box->setInformativeText(kept);
         box->show();
         return false;
@@ -435,6 +434,10 @@ bool MainWindow::openRecovery(const QString& path, const QMap<QString, QString>&
     startFrame_ = -1;  // --frame is for the files named with it: this opens where it was left
     restoreSession();
     statusBar()->showMessage(tr("Opened the last autosave, untitled: Save As keeps it"), 10000);
+    // Named as its message names it, not by the recovery file's PID-START name.
+    if (!setAside.isEmpty())
+        showOpened(tr("the last autosave"),
+                   {setAside.replace(QFileInfo(recovery).fileName(), tr("the last autosave"))});
     if (!located.isEmpty()) {
         loading.reset();
         autosave_->schedule();  // the autosave names the files located from now on

@@ -29,6 +29,7 @@
 #include "SolveMemory.h"
 #include "boneless/ActorCalibration.h"
 #include "boneless/C3dFrameReader.h"
+#include "boneless/C3dParameters.h"
 #include "boneless/Error.h"
 #include "boneless/MaterialFiles.h"
 #include "boneless/Metrics.h"
@@ -262,6 +263,59 @@ bool sameFile(const std::string& a, const std::string& b) {
     std::error_code ea, eb;
     const fs::path x = fs::weakly_canonical(a, ea), y = fs::weakly_canonical(b, eb);
     return !ea && !eb && x == y;
+}
+
+namespace {
+
+// Whether a sidecar's "subjects" name the same actors as `now`, as labels compare (case aside).
+bool sameSubjects(const json& earlier, const std::vector<std::string>& now) {
+    if (!earlier.is_array() || earlier.size() != now.size()) return false;
+    for (const json& s : earlier)
+        if (!s.is_string() || std::none_of(now.begin(), now.end(), [&](const std::string& n) {
+                return c3dNameEquals(s.get<std::string>(), n);
+            }))
+            return false;
+    return true;
+}
+
+}  // namespace
+
+std::string subjectsText(const std::vector<std::string>& subjects) {
+    return (subjects.size() == 1 ? "subject " : "subjects ") + joined(subjects);
+}
+
+std::string OtherSolve::whose() const {
+    return sameTake ? subjectsText(subjects) + " of " + c3d : c3d + ", another take";
+}
+
+std::optional<OtherSolve> otherSolveIn(const ExportRequest& request,
+                                       const std::vector<std::string>& subjects) {
+    const fs::path sidecar = fs::path(request.outDir) / (exportStem(request) + ".json");
+    std::ifstream in(sidecar);
+    if (!in) return std::nullopt;
+    // No Boneless sidecar, or one damaged (a "source" that is no object): filesNoExportWrote
+    // names the first, and the app's Export must not end on the second.
+    try {
+        const json s = json::parse(in);
+        if (!s.is_object() || s.value("format", json()) != "boneless-solve") return std::nullopt;
+        const json source = s.value("source", json::object());
+        const json c3d = source.is_object() ? source.value("c3d", json()) : json();
+        if (!c3d.is_string()) return std::nullopt;
+        OtherSolve other;
+        other.sidecar = sidecar.string();
+        other.c3d = c3d.get<std::string>();
+        other.sameTake = sameFile(other.c3d, request.c3dPath);
+        if (!other.sameTake) return other;
+        const json earlier = s.value("subjects", json());
+        if (!earlier.is_array() || earlier.empty() || subjects.empty() ||
+            sameSubjects(earlier, subjects))
+            return std::nullopt;
+        for (const json& e : earlier)
+            other.subjects.push_back(e.is_string() ? e.get<std::string>() : e.dump());
+        return other;
+    } catch (const json::exception&) {
+        return std::nullopt;
+    }
 }
 
 namespace {

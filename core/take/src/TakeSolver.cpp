@@ -114,11 +114,12 @@ void TakeSolver::prepare(const Correspondence& map) {
             const Positions R = restMarkers(meshUnitsPerMm);
             if (options_.calibrationFrame >= 0) {
                 const Positions P = trackFrame(options_.calibrationFrame, false);
-                if (const int seen = visibleRows(P); seen < 3)
+                if (const int seen = visibleRows(P); seen < kMinAlignmentMarkers)
                     throw Error(track_->file() + ": calibration frame " +
                                 std::to_string(options_.calibrationFrame) + " shows " +
                                 std::to_string(seen) + " of the " + std::to_string(P.rows()) +
-                                " mapped markers; aligning needs at least 3 seen at once");
+                                " mapped markers; aligning needs at least " +
+                                std::to_string(kMinAlignmentMarkers) + " seen at once");
                 calibration_.frame = options_.calibrationFrame;
                 calibration_.takeToMesh = fitSimilarity(P, R);
                 calibration_.residual = alignmentResidual(calibration_.takeToMesh, P, R);

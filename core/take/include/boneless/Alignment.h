@@ -29,6 +29,10 @@ struct Calibration {
     }
 };
 
+// The fewest mapped markers a frame must show to be aligned at: a similarity is fitted from 3.
+// The solver refuses a calibration frame that shows fewer, and the app's Calibrate at This Frame.
+constexpr int kMinAlignmentMarkers = 3;
+
 // A frame whose pose is far from the rest's (a stride) can align the body turned against its
 // markers, as can a wrong mesh up: CMU 85_02 on MakeHuman aligns at 104.6 mm (RMS) at the automatic
 // frame 171, at 256.3 mm at frame 300, and at 743.6 mm with the mesh's up given as +z. An alignment

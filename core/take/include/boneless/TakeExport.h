@@ -85,6 +85,26 @@ std::vector<std::string> filesNoExportWrote(const ExportRequest& request, int en
 // hard link); a path that does not exist yet is compared by where it would be.
 bool sameFile(const std::string& a, const std::string& b);
 
+// The solve of another take, or of other actors of the same take, that an export of `request`
+// would replace: the folder's sidecar (<stem>.json) names another take, or the same take with
+// other "subjects" than `subjects` (Correspondence::subjects of the map solved). `solve` refuses
+// it unless --force, and the app's Export asks first: one shell loop over takes into one folder
+// kept the last take's solve alone, in silence. A sidecar of the same take that names no subjects
+// (written before 1 December 2026, or of a take without prefixes) is no other actor's.
+struct OtherSolve {
+    std::string sidecar;  // its path
+    std::string c3d;      // the take it solved, as its sidecar names it
+    bool sameTake = false;
+    std::vector<std::string> subjects;  // the actors it animates, of the same take
+    // Whose solve it is, as messages say it: "subject other of /lib/two.c3d", or
+    // "/lib/walk_a.c3d, another take".
+    std::string whose() const;
+};
+std::optional<OtherSolve> otherSolveIn(const ExportRequest& request,
+                                       const std::vector<std::string>& subjects);
+// Actors as messages name them: "subject walker", "subjects walker, other".
+std::string subjectsText(const std::vector<std::string>& subjects);
+
 // Told the alignment once it is found, before the first frame is solved.
 using ExportCalibrated = std::function<void(const Calibration&)>;
 

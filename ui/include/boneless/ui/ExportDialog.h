@@ -101,8 +101,11 @@ class ExportDialog : public QDialog {
     void onFinished(bool ok, const QString& message);
     // The bar counts the frames to write again, not the last run's.
     void forgetLastRun();
-    // Asks whether to replace the earlier export's files `names` in the folder.
-    bool askToReplace(const std::vector<std::string>& names);
+    // Asks whether to replace the earlier export's files `names` in the folder: by whose solve
+    // it is when `other`, another take's or actor's (core's otherSolveIn, as `solve` refuses it),
+    // this export animating `subjects`.
+    bool askToReplace(const std::vector<std::string>& names, const OtherSolve* other = nullptr,
+                      const std::vector<std::string>& subjects = {});
     // Asks whether to stop the running export, over the dialog or, when the app's window
     // `closing` closes, over it naming how far the export got; true for Stop Export.
     bool askToStop(QWidget* closing = nullptr);

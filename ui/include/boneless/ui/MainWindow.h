@@ -3,6 +3,7 @@
 #include <QMainWindow>
 #include <QMap>
 #include <QString>
+#include <functional>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -72,8 +73,10 @@ class MainWindow : public QMainWindow {
     // Opens the recovery file `path` (by default ProjectAutosave::lastAutosave()) as an untitled
     // project, this session's from then on. One that will not open is kept (offered again at the
     // next start); a file it names that has moved since can be located (Locate…), as a project's.
+    // A map that does not fit its mesh can be set aside, as a project's (openProject()).
     bool openRecovery(const QString& path = {}) { return openRecovery(path, {}); }
-    bool openRecovery(const QString& path, const QMap<QString, QString>& located);
+    bool openRecovery(const QString& path, const QMap<QString, QString>& located,
+                      bool setMapAside = false);
     // At start-up: for each recovery file holding work that no project file holds, left by a
     // session that did not close (ProjectAutosave::unfinishedRecoveries(), newest first), asks
     // Reopen or Discard (recoveryQuestion), saying that reopened it opens instead of the files
@@ -150,6 +153,13 @@ class MainWindow : public QMainWindow {
   private:
     // Asks where the missing file `file` is now; empty when not chosen.
     QString locate(const QString& file);
+    // The buttons of a project's or the last autosave's message for the file it named that is
+    // missing, or that the map does not fit: Locate…, and Open Without the Map for a mesh there.
+    // Each calls `reopen` with the files located and whether to set the map aside. Returns the
+    // sentence that says what they do.
+    QString offerMissingFile(
+        QMessageBox* box, const QString& missingFile, const QMap<QString, QString>& located,
+        const std::function<void(const QMap<QString, QString>&, bool)>& reopen);
     void buildMenus();
     void buildFileMenu();
     QMenu* buildEditMenu();  // returned for the calibration actions
