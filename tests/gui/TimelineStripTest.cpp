@@ -6,6 +6,7 @@
 #include <set>
 
 #include "ModelTestFixtures.h"
+#include "boneless/C3dWriter.h"
 #include "boneless/ui/FrameSolver.h"
 #include "boneless/ui/Timeline.h"
 #include "boneless/ui/TimelineStrip.h"
@@ -167,6 +168,60 @@ class TimelineStripTest : public QObject {
         for (int y : {cacheY, gapY})
             QCOMPARE(QColor(image.pixel(x, y)), TimelineStrip::calibrationColour());
         document_.setSelectedMarker(-1);
+    }
+
+    // A 25-minute take puts 300 frames in a pixel: any gap among them painted the pixel as
+    // though all were missing, and the strip was solid red. A pixel now shows how many of its
+    // frames have the gap: a long gap solid, a short one faint.
+    void onALongTakeAShortGapIsFaintAndALongOneSolid() {
+        C3dTake take;
+        take.rate = 120;
+        for (const char* label : {"A", "B", "C"}) {
+            C3dPoint p;
+            p.label = p.name = label;
+            take.points.push_back(p);
+        }
+        const int frames = 18000;  // 30 frames a pixel over 600 pixels
+        take.samples = C3dSamples(frames, 3);
+        for (int f = 0; f < frames; ++f)
+            for (int k = 0; k < 3; ++k) take.samples.set(f, k, 100.0 * k, f * 0.1, 1000.0);
+        const int shortGap = 4000, longGap = 9000, longEnd = 12000;  // A: 2 frames, 3,000 frames
+        for (int f : {shortGap, shortGap + 1}) take.samples.setMissing(f, 0);
+        for (int f = longGap; f < longEnd; ++f) take.samples.setMissing(f, 0);
+        const QString path = work_ + "/gaps.c3d";
+        writeC3d(take, path.toStdString());
+        Document document;
+        QVERIFY(document.loadTake(path));
+        StripRig rig(document);
+        auto& [solver, timeline, strip] = rig;
+        strip.resize(600, strip.sizeHint().height());
+        strip.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&strip));
+        const QRgb background = strip.palette().color(QPalette::Window).rgb();
+        const QRgb gap = qRgb(200, 40, 40);
+        const int gapY = strip.height() - 3;
+        const int atShort = strip.xOfFrame(shortGap),
+                  atLong = strip.xOfFrame((longGap + longEnd) / 2);
+        const int clear = strip.xOfFrame(15000);
+        for (int selected : {0, -1}) {
+            document.setSelectedMarker(selected);
+            const QImage image = strip.grab().toImage();
+            const QRgb shortPixel = image.pixel(atShort, gapY),
+                       longPixel = image.pixel(atLong, gapY);
+            const QString at = QString("selected %1: short gap %2, long gap %3, no gap %4")
+                                   .arg(selected)
+                                   .arg(shortPixel, 0, 16)
+                                   .arg(longPixel, 0, 16)
+                                   .arg(image.pixel(clear, gapY), 0, 16);
+            QVERIFY2(image.pixel(clear, gapY) == background, qPrintable(at));
+            if (selected == 0) QVERIFY2(longPixel == gap, qPrintable(at));
+            // Both show, the short one much fainter: nearer the background than the gap colour.
+            QVERIFY2(qGreen(longPixel) < qGreen(background) - 10, qPrintable(at));
+            QVERIFY2(qGreen(shortPixel) < qGreen(background) - 2, qPrintable(at));
+            QVERIFY2(qGreen(shortPixel) - qGreen(longPixel) >
+                         (qGreen(background) - qGreen(longPixel)) / 2,
+                     qPrintable(at));
+        }
     }
 
     void aClickOnTheStripScrubsThere() {

@@ -18,6 +18,8 @@ namespace boneless::ui {
 namespace {
 constexpr int kCacheRow = 3;  // pixels
 constexpr int kGapRow = 8;
+// The least share of a pixel's frames a gap among them is drawn as (TimelineStrip::paintEvent).
+constexpr double kLeastShare = 0.25;
 }  // namespace
 
 TimelineStrip::TimelineStrip(Document* document, FrameSolver* solver, Timeline* timeline,
@@ -146,16 +148,51 @@ void TimelineStrip::paintEvent(QPaintEvent*) {
         if (cached_[f]) painter.fillRect(frameRect(f, f, 0, kCacheRow), cached);
     const int top = kCacheRow + 1;
     const int markers = std::max(1, document_->markerCount());
-    for (int f = 0; f < frames; ++f) {
-        if (missingCount_[f] == 0) continue;
-        QColor faint = gap;
-        faint.setAlphaF(0.15 + 0.45 * missingCount_[f] / markers);
-        painter.fillRect(frameRect(f, f, top, kGapRow), faint);
-    }
+    // Other markers' gaps faintly, darker where more are missing.
+    auto faintness = [&](int f) { return 0.15 + 0.45 * missingCount_[f] / markers; };
     const int selected = document_->selectedMarker();
-    if (selected >= 0 && selected < int(gaps_.size()))
-        for (const auto& [first, last] : gaps_[selected])
-            painter.fillRect(frameRect(first, last, top, kGapRow), gap);
+    const Gaps* selectedGaps =
+        selected >= 0 && selected < int(gaps_.size()) ? &gaps_[selected] : nullptr;
+    if (step >= 1.0) {
+        for (int f = 0; f < frames; ++f) {
+            if (missingCount_[f] == 0) continue;
+            QColor faint = gap;
+            faint.setAlphaF(faintness(f));
+            painter.fillRect(frameRect(f, f, top, kGapRow), faint);
+        }
+        if (selectedGaps)
+            for (const auto& [first, last] : *selectedGaps)
+                painter.fillRect(frameRect(first, last, top, kGapRow), gap);
+    } else {
+        // More frames than pixels (a long take): a pixel painted as a frame's would be red for
+        // any one frame of its hundreds missing, and a strip of short gaps solid red. A pixel
+        // shows instead the share of its frames with a gap: a long gap solid, a short one faint.
+        const int columns = right - left + 1;
+        std::vector<int> count(columns, 0), selectedMissing(columns, 0);
+        std::vector<double> faintSum(columns, 0.0);
+        std::vector<int> withGap(columns, 0);
+        auto column = [&](int f) { return std::clamp(int(f * step + 0.5), 0, columns - 1); };
+        for (int f = 0; f < frames; ++f) {
+            const int c = column(f);
+            ++count[c];
+            if (missingCount_[f] > 0) ++withGap[c], faintSum[c] += faintness(f);
+        }
+        if (selectedGaps)
+            for (const auto& [first, last] : *selectedGaps)
+                for (int f = first; f <= last; ++f) ++selectedMissing[column(f)];
+        auto fill = [&](int c, int n, double strength) {
+            if (n == 0) return;
+            // A gap of one frame in hundreds still shows, faintly.
+            const double share = std::max(double(n) / count[c], kLeastShare);
+            QColor colour = gap;
+            colour.setAlphaF(std::min(1.0, strength * share));
+            painter.fillRect(QRect(left + c, top, 1, kGapRow), colour);
+        };
+        for (int c = 0; c < columns; ++c) {
+            if (withGap[c] > 0) fill(c, withGap[c], faintSum[c] / withGap[c]);
+            fill(c, selectedMissing[c], 1.0);
+        }
+    }
     if (calibrationFrame_ >= 0 && calibrationFrame_ < frames)
         painter.fillRect(QRect(xOfFrame(calibrationFrame_) - 1, 0, 3, height()),
                          calibrationColour());

@@ -55,18 +55,23 @@ std::size_t sampleCount(std::size_t frames, std::size_t points) {
 }
 }  // namespace
 
-C3dSamples::C3dSamples(std::size_t frames, std::size_t points)
-    : frames_(frames),
-      points_(points),
-      xyz_(3 * sampleCount(frames, points), std::numeric_limits<double>::quiet_NaN()),
-      valid_(frames * points, 0),
-      residual_(frames * points, -1.0f) {}
+C3dSamples::C3dSamples(std::size_t frames, std::size_t points, Precision precision)
+    : frames_(frames), points_(points), block_(std::make_shared<Block>()) {
+    const std::size_t n = 3 * sampleCount(frames, points);
+    if (precision == Precision::Double)
+        block_->wide.assign(n, std::numeric_limits<double>::quiet_NaN());
+    else
+        block_->xyz.assign(n, std::numeric_limits<float>::quiet_NaN());
+}
 
 void C3dSamples::setMissingAt(std::size_t i) {
-    const double nan = std::numeric_limits<double>::quiet_NaN();
-    xyz_[3 * i] = xyz_[3 * i + 1] = xyz_[3 * i + 2] = nan;
-    valid_[i] = 0;
-    residual_[i] = -1.0f;
+    Block& b = own();
+    if (b.wide.empty())
+        b.xyz[3 * i] = b.xyz[3 * i + 1] = b.xyz[3 * i + 2] =
+            std::numeric_limits<float>::quiet_NaN();
+    else
+        b.wide[3 * i] = b.wide[3 * i + 1] = b.wide[3 * i + 2] =
+            std::numeric_limits<double>::quiet_NaN();
 }
 
 void C3dSamples::check(std::size_t frame, std::size_t point) const {
@@ -78,32 +83,42 @@ void C3dSamples::check(std::size_t frame, std::size_t point) const {
 
 bool C3dSamples::valid(std::size_t frame, std::size_t point) const {
     check(frame, point);
-    return valid_[frame * points_ + point] != 0;
+    return validAt(frame * points_ + point);
 }
 
 std::optional<Eigen::Vector3d> C3dSamples::position(std::size_t frame, std::size_t point) const {
     check(frame, point);
     const std::size_t i = frame * points_ + point;
-    if (!valid_[i]) return std::nullopt;
-    return Eigen::Vector3d(xyz_[3 * i], xyz_[3 * i + 1], xyz_[3 * i + 2]);
+    if (!validAt(i)) return std::nullopt;
+    const Block& b = *block_;
+    if (b.wide.empty()) return Eigen::Vector3d(b.xyz[3 * i], b.xyz[3 * i + 1], b.xyz[3 * i + 2]);
+    return Eigen::Vector3d(b.wide[3 * i], b.wide[3 * i + 1], b.wide[3 * i + 2]);
 }
 
 float C3dSamples::residual(std::size_t frame, std::size_t point) const {
     check(frame, point);
-    return residual_[frame * points_ + point];
+    const std::size_t i = frame * points_ + point;
+    if (!validAt(i)) return -1.0f;
+    return block_->residual.empty() ? 0.0f : block_->residual[i];
 }
 
 std::size_t C3dSamples::missingFrames(std::size_t point) const {
     if (point >= points_) throw std::out_of_range("C3dSamples: point index out of range");
     std::size_t n = 0;
-    for (std::size_t f = 0; f < frames_; ++f) n += valid_[f * points_ + point] ? 0 : 1;
+    for (std::size_t f = 0; f < frames_; ++f) n += validAt(f * points_ + point) ? 0 : 1;
     return n;
 }
 
 std::size_t C3dSamples::missingCount() const {
     std::size_t n = 0;
-    for (std::uint8_t v : valid_) n += v ? 0 : 1;
+    for (std::size_t i = 0; i < frames_ * points_; ++i) n += validAt(i) ? 0 : 1;
     return n;
+}
+
+std::size_t C3dSamples::bytes() const {
+    if (!block_) return 0;
+    return sizeof(Block) + block_->xyz.capacity() * sizeof(float) +
+           block_->wide.capacity() * sizeof(double) + block_->residual.capacity() * sizeof(float);
 }
 
 void splitC3dLabel(std::string_view label, std::string& subject, std::string& name) {

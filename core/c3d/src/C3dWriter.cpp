@@ -283,22 +283,22 @@ void putHeader(std::uint8_t* out, const Layout& l, std::size_t dataBlock) {
 // Float samples: x, y, z, then the residual in scale units (-1: not seen).
 void putFrames(std::uint8_t* w, const C3dTake& take, const Layout& l) {
     const float residualStep = std::fabs(l.scale);
-    const double* xyz = take.samples.xyzData();
     for (std::size_t f = 0; f < l.frames && l.points > 0; ++f) {
-        for (std::size_t k = 0; k < l.points; ++k, w += 16, xyz += 3) {
-            if (!take.samples.valid(f, k)) {
+        for (std::size_t k = 0; k < l.points; ++k, w += 16) {
+            const auto xyz = take.samples.position(f, k);
+            if (!xyz) {
                 c3d::putF32(w, 0.0f);
                 c3d::putF32(w + 4, 0.0f);
                 c3d::putF32(w + 8, 0.0f);
                 c3d::putF32(w + 12, -1.0f);
                 continue;
             }
-            if (!fitsFloat(xyz[0]) || !fitsFloat(xyz[1]) || !fitsFloat(xyz[2]))
+            if (!fitsFloat(xyz->x()) || !fitsFloat(xyz->y()) || !fitsFloat(xyz->z()))
                 throw std::invalid_argument("C3D writer: sample (" + std::to_string(f) + ", " +
                                             std::to_string(k) + ") is outside the float range");
-            c3d::putF32(w, static_cast<float>(xyz[0]));
-            c3d::putF32(w + 4, static_cast<float>(xyz[1]));
-            c3d::putF32(w + 8, static_cast<float>(xyz[2]));
+            c3d::putF32(w, static_cast<float>(xyz->x()));
+            c3d::putF32(w + 4, static_cast<float>(xyz->y()));
+            c3d::putF32(w + 8, static_cast<float>(xyz->z()));
             const double r = std::round(take.samples.residual(f, k) / residualStep);
             c3d::putF32(w + 12, static_cast<float>(std::clamp(r, 0.0, 255.0)));
         }

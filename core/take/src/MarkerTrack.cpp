@@ -37,19 +37,20 @@ void MarkerTrack::describe(const C3dTake& take, std::size_t frames, std::size_t 
 MarkerTrack::MarkerTrack(const C3dTake& take, const std::vector<std::size_t>& points,
                          double lowPassHz) {
     describe(take, take.frameCount(), points.size(), lowPassHz);
-    memory_ = C3dSamples(frames_, markers_);
+    recorded_ = take.samples;
+    columns_ = points;
     for (std::size_t f = 0; f < frames_; ++f)
         for (std::size_t k = 0; k < markers_; ++k)
-            if (const auto p = take.samples.position(f, points[k]))
-                memory_.set(f, k, p->x(), p->y(), p->z());
-    for (std::size_t f = 0; f < frames_; ++f)
-        for (std::size_t k = 0; k < markers_; ++k)
-            if (memory_.valid(f, k)) {
+            if (recorded_.valid(f, columns_[k])) {
                 seen_.push_back(static_cast<int>(f));
                 break;
             }
     if (lowPassHz > 0) {
-        recorded_ = memory_;
+        memory_ = C3dSamples(frames_, markers_, C3dSamples::Precision::Double);
+        for (std::size_t f = 0; f < frames_; ++f)
+            for (std::size_t k = 0; k < markers_; ++k)
+                if (const auto p = recorded_.position(f, columns_[k]))
+                    memory_.set(f, k, p->x(), p->y(), p->z());
         lowPassFilter(memory_, rate_, lowPassHz);
         layer_ = 1;
     }
@@ -86,7 +87,7 @@ MarkerTrack::MarkerTrack(const C3dFrameReader& reader, const std::vector<std::si
     // The filter runs over whole runs of a trajectory: one marker's at a time is in memory. The
     // filtered trajectories go to a second layer; the recorded ones stay for the residuals.
     for (std::size_t k = 0; k < markers_; ++k) {
-        C3dSamples column(frames_, 1);
+        C3dSamples column(frames_, 1, C3dSamples::Precision::Double);
         for (std::size_t first = 0; first < frames_; first += kSpoolBlock) {
             const std::size_t count = std::min(kSpoolBlock, frames_ - first);
             xyz.assign(3 * count, kNaN);
@@ -97,7 +98,10 @@ MarkerTrack::MarkerTrack(const C3dFrameReader& reader, const std::vector<std::si
         lowPassFilter(column, rate_, lowPassHz);
         for (std::size_t first = 0; first < frames_; first += kSpoolBlock) {
             const std::size_t count = std::min(kSpoolBlock, frames_ - first);
-            xyz.assign(column.xyzData() + 3 * first, column.xyzData() + 3 * (first + count));
+            xyz.assign(3 * count, kNaN);
+            for (std::size_t f = 0; f < count; ++f)
+                if (const auto p = column.position(first + f, 0))
+                    for (int c = 0; c < 3; ++c) xyz[3 * f + c] = (*p)[c];
             spoolColumn(markers_ + k, first, xyz);
         }
     }
@@ -158,12 +162,13 @@ C3dSamples MarkerTrack::readLayer(std::size_t layer, std::size_t first, std::siz
     if (first > frames_ || count > frames_ - first)
         throw std::out_of_range("MarkerTrack: frames " + std::to_string(first) + "+" +
                                 std::to_string(count) + " outside " + std::to_string(frames_));
-    C3dSamples out(count, markers_);
+    // Double: the filtered trajectories as computed.
+    C3dSamples out(count, markers_, C3dSamples::Precision::Double);
     if (!spool_) {
-        const C3dSamples& from = layer == 0 && recorded_.frames() ? recorded_ : memory_;
         for (std::size_t f = 0; f < count; ++f)
             for (std::size_t k = 0; k < markers_; ++k)
-                if (const auto p = from.position(first + f, k))
+                if (const auto p = layer == 0 ? recorded_.position(first + f, columns_[k])
+                                              : memory_.position(first + f, k))
                     out.set(f, k, p->x(), p->y(), p->z());
         return out;
     }

@@ -73,7 +73,14 @@ TEST(TakeStreaming, AStreamedTakeSolvesEveryFrameAsTheTakeReadWhole) {
     EXPECT_EQ(streamed.calibration().frame, whole.calibration().frame);
     EXPECT_TRUE(streamed.rest().V == whole.rest().V);
     // The reference: the whole take filtered, its gaps filled from all of its samples.
+    // In double, as the solver filters (a take read whole holds floats).
     C3dTake reference = readC3d(t.c3d);
+    C3dSamples wide(reference.frameCount(), reference.points.size(), C3dSamples::Precision::Double);
+    for (std::size_t f = 0; f < reference.frameCount(); ++f)
+        for (std::size_t k = 0; k < reference.points.size(); ++k)
+            if (const auto x = reference.samples.position(f, k))
+                wide.set(f, k, x->x(), x->y(), x->z());
+    reference.samples = wide;
     lowPassFilter(reference.samples, reference.rate, options.lowPassHz);
     const std::vector<std::size_t> points = t.map.resolve(reference);
     const int maxFrames = static_cast<int>(std::floor(options.fillGapSeconds * reference.rate));

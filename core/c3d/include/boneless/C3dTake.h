@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -27,15 +28,26 @@ const char* toString(C3dStorage storage);      // "int16", "float"
 const char* toString(C3dPointKind kind);       // "marker", "angle", ...
 
 // Frames x points samples. A missing sample has no position: position() returns nullopt and the
-// raw coordinate block holds NaN there, so forgetting to check validity poisons results instead
-// of silently using a stale or (0,0,0) position.
+// coordinate block holds NaN there, so forgetting to check validity poisons results instead of
+// silently using a stale or (0,0,0) position.
+//
+// A take read whole is held at about its file's size (docs/c3d.md, "A take in memory"): the
+// coordinates as float (what a C3D file stores; Double keeps what a filter computes), NaN as the
+// mark of a missing sample, and residuals only once one is not 0. Copies share the block until
+// one of them is changed, so the app's solver and export hold the take without a second copy.
 class C3dSamples {
   public:
+    enum class Precision { Float, Double };
+
     C3dSamples() = default;
-    C3dSamples(std::size_t frames, std::size_t points);  // all missing
+    C3dSamples(std::size_t frames, std::size_t points,
+               Precision precision = Precision::Float);  // all missing
 
     std::size_t frames() const { return frames_; }
     std::size_t points() const { return points_; }
+    Precision precision() const {
+        return block_ && !block_->wide.empty() ? Precision::Double : Precision::Float;
+    }
 
     bool valid(std::size_t frame, std::size_t point) const;
     std::optional<Eigen::Vector3d> position(std::size_t frame, std::size_t point) const;
@@ -44,33 +56,63 @@ class C3dSamples {
     std::size_t missingFrames(std::size_t point) const;
     std::size_t missingCount() const;
 
-    // A non-finite position is stored as missing: it is not a position either.
+    // A non-finite position (also one past the float range in a Float block) is stored as
+    // missing: it is not a position either.
     void set(std::size_t frame, std::size_t point, double x, double y, double z,
              float residual = 0.0f) {
         const std::size_t i = frame * points_ + point;
-        if (!(std::isfinite(x) && std::isfinite(y) && std::isfinite(z))) {
-            setMissingAt(i);
-            return;
+        Block& b = own();
+        if (b.wide.empty()) {
+            const float fx = static_cast<float>(x), fy = static_cast<float>(y),
+                        fz = static_cast<float>(z);
+            if (!(std::isfinite(fx) && std::isfinite(fy) && std::isfinite(fz)))
+                return setMissingAt(i);
+            b.xyz[3 * i] = fx;
+            b.xyz[3 * i + 1] = fy;
+            b.xyz[3 * i + 2] = fz;
+        } else {
+            if (!(std::isfinite(x) && std::isfinite(y) && std::isfinite(z))) return setMissingAt(i);
+            b.wide[3 * i] = x;
+            b.wide[3 * i + 1] = y;
+            b.wide[3 * i + 2] = z;
         }
-        xyz_[3 * i] = x;
-        xyz_[3 * i + 1] = y;
-        xyz_[3 * i + 2] = z;
-        valid_[i] = 1;
-        residual_[i] = residual < 0.0f ? 0.0f : residual;
+        setResidualAt(i, residual < 0.0f ? 0.0f : residual);
     }
     void setMissing(std::size_t frame, std::size_t point) { setMissingAt(frame * points_ + point); }
 
-    // Row-major frame, point, xyz; NaN where missing.
-    const double* xyzData() const { return xyz_.data(); }
+    // Whether the two hold one block (a copy not changed since): the same samples, unread.
+    bool sharesData(const C3dSamples& other) const { return block_ == other.block_; }
+    // Bytes the samples hold (their block, whether shared or not).
+    std::size_t bytes() const;
 
   private:
+    struct Block {
+        std::vector<float> xyz;       // Float: row-major frame, point, xyz; NaN where missing
+        std::vector<double> wide;     // Double: the same
+        std::vector<float> residual;  // empty while every valid sample's is 0
+    };
+    // The block, copied first when another C3dSamples shares it.
+    Block& own() {
+        if (block_.use_count() > 1) block_ = std::make_shared<Block>(*block_);
+        return *block_;
+    }
+    bool validAt(std::size_t i) const {
+        return block_->wide.empty() ? !std::isnan(block_->xyz[3 * i])
+                                    : !std::isnan(block_->wide[3 * i]);
+    }
+    void setResidualAt(std::size_t i, float residual) {
+        Block& b = *block_;  // owned: set() called own()
+        if (b.residual.empty()) {
+            if (residual == 0.0f) return;
+            b.residual.assign(frames_ * points_, 0.0f);
+        }
+        b.residual[i] = residual;
+    }
     void setMissingAt(std::size_t i);
     void check(std::size_t frame, std::size_t point) const;
 
     std::size_t frames_ = 0, points_ = 0;
-    std::vector<double> xyz_;
-    std::vector<std::uint8_t> valid_;
-    std::vector<float> residual_;
+    std::shared_ptr<Block> block_;
 };
 
 struct C3dPoint {

@@ -58,8 +58,12 @@ class MarkerTrack {
     Eigen::Vector3d vertical_ = Eigen::Vector3d::UnitZ();
     std::size_t frames_ = 0, markers_ = 0;
     std::vector<int> seen_;  // the frames where some marker is seen, ascending
-    C3dSamples memory_;      // when built from a take in memory
-    C3dSamples recorded_;    // layer 0 when filtered: memory_ before the filter (else empty)
+    // Built from a take in memory: layer 0 is the take's own samples (a copy sharing their
+    // block, so a long take is not held twice), column k being point columns_[k]; layer 1, when
+    // filtered, the low-passed trajectories in double, one column per marker.
+    C3dSamples recorded_;
+    std::vector<std::size_t> columns_;
+    C3dSamples memory_;
     // When streamed: marker-major, xyz doubles, NaN where missing; the recorded samples, then,
     // when filtered, the low-passed ones (layer 1).
     std::FILE* spool_ = nullptr;
