@@ -1,9 +1,11 @@
 # The licence and docs go beside the binaries; `cpack -G DEB` packs everything install() names
 # into a Debian package whose dependencies dpkg-shlibdeps reads from the binaries.
 include(GNUInstallDirs)
-install(FILES ${CMAKE_SOURCE_DIR}/LICENSE ${CMAKE_SOURCE_DIR}/README.md
-              ${CMAKE_SOURCE_DIR}/docs/licence.md
-        DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/boneless)
+if(BONELESS_INSTALL)
+  install(FILES ${CMAKE_SOURCE_DIR}/LICENSE ${CMAKE_SOURCE_DIR}/README.md
+                ${CMAKE_SOURCE_DIR}/docs/licence.md
+          DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/boneless)
+endif()
 
 set(CPACK_PACKAGE_NAME boneless)
 set(CPACK_PACKAGE_VENDOR "The Boneless authors")
