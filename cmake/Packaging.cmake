@@ -25,4 +25,7 @@ set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 # An OpenGL driver and a font are loaded at run time, so they are not in the binaries' library list.
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "libgl1-mesa-dri, fonts-dejavu-core")
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
+configure_file(${PROJECT_SOURCE_DIR}/cmake/PackageVersion.cmake.in
+               ${PROJECT_BINARY_DIR}/PackageVersion.cmake @ONLY)
+set(CPACK_PROJECT_CONFIG_FILE ${PROJECT_BINARY_DIR}/PackageVersion.cmake)
 include(CPack)
