@@ -24,6 +24,7 @@ contents=$(dpkg-deb -c "$deb")
 for f in ./usr/bin/boneless ./usr/bin/boneless-cli \
          ./usr/share/applications/org.boneless.Boneless.desktop \
          ./usr/share/metainfo/org.boneless.Boneless.metainfo.xml \
+         ./usr/share/mime/packages/org.boneless.Boneless.xml \
          ./usr/share/icons/hicolor/256x256/apps/org.boneless.Boneless.png \
          ./usr/share/doc/boneless/LICENSE; do
   grep -q " $f\$" <<<"$contents" || fail "$(basename "$deb") has no $f"

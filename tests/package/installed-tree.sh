@@ -19,6 +19,29 @@ desktop-file-validate "$root/usr/share/applications/org.boneless.Boneless.deskto
 appstreamcli validate --no-net "$root/usr/share/metainfo/org.boneless.Boneless.metainfo.xml" \
   >/dev/null || fail "the AppStream metainfo does not validate"
 
+# Double-clicking a project or a take opens Boneless: the desktop's own look-ups (GIO's, as a
+# file manager makes them) find the file's type by its extension and Boneless as its application.
+# Until 1 December 2026 a .boneless was plain text to them, opened by a text editor.
+share="$root/usr/share"
+[ -e "$share/mime/packages/org.boneless.Boneless.xml" ] || fail "the install has no MIME types"
+update-mime-database "$share/mime"
+XDG_DATA_DIRS="$share" update-desktop-database "$share/applications"
+opens_with() {  # FILE: the content type and the default application the desktop gives it
+  ( export XDG_DATA_DIRS="$share:/usr/share" XDG_DATA_HOME="$root/none" XDG_CONFIG_HOME="$root/none"
+    export PATH="$root/usr/bin:$PATH"
+    type=$(gio info -a standard::content-type "$1" | sed -n 's/.*content-type: //p')
+    echo "$type $(gio mime "$type" | sed -n 's/^Default application for .*: //p')" )
+}
+mkdir "$root/files"
+echo '{"format": "boneless-project", "version": 1}' >"$root/files/walk.boneless"
+printf '\x02\x50' >"$root/files/walk.c3d"
+for f in walk.boneless walk.c3d; do
+  got=$(opens_with "$root/files/$f")
+  [[ "$got" == *" org.boneless.Boneless.desktop" ]] || fail "$f opens as '$got', not in Boneless"
+done
+[[ "$(opens_with "$root/files/walk.boneless")" == "application/x-boneless-project "* ]] ||
+  fail "a .boneless is not a Boneless project to the desktop"
+
 printed=$("$root/usr/bin/boneless-cli" --version)
 [ "$printed" = "boneless-cli $version" ] || fail "boneless-cli --version printed '$printed'"
 printed=$(QT_QPA_PLATFORM=offscreen "$root/usr/bin/boneless" --version)
