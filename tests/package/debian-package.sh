@@ -29,8 +29,23 @@ for f in ./usr/bin/boneless ./usr/bin/boneless-cli \
          ./usr/share/doc/boneless/LICENSE; do
   grep -q " $f\$" <<<"$contents" || fail "$(basename "$deb") has no $f"
 done
+# What lintian holds a package to: a copyright file, stripped binaries, a description of lines
+# under 80 columns (the description's lines began with the ";" of a CMake list until 1 December
+# 2026).
+grep -q " ./usr/share/doc/boneless/copyright\$" <<<"$contents" || fail "no copyright file"
+description=$(dpkg-deb -f "$deb" Description)
+if grep -nE '^ ;|.{81}' <<<"$description"; then fail "the description is mangled: $description"; fi
+unpacked="$out/unpacked"
+dpkg-deb -x "$deb" "$unpacked"
+for program in boneless boneless-cli; do
+  if readelf -S "$unpacked/usr/bin/$program" | grep -q '\.symtab'; then
+    fail "$program is not stripped"
+  fi
+done
 # Nothing of the build tree (static libraries, headers, tests) is shipped.
-if grep -E '\.a$|/include/|boneless_tests|bench' <<<"$contents"; then fail "ships build files"; fi
+if grep -E '\.a$|/include/|boneless_tests|boneless-bench' <<<"$contents"; then
+  fail "ships build files"
+fi
 depends=$(dpkg-deb -f "$deb" Depends)
 for lib in libqt6widgets6 libvtk9.1 libcholmod3 libopenmesh; do
   grep -q "$lib" <<<"$depends" || fail "Depends lacks $lib: $depends"

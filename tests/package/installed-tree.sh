@@ -15,6 +15,12 @@ for f in bin/boneless bin/boneless-cli share/applications/org.boneless.Boneless.
          share/icons/hicolor/48x48/apps/org.boneless.Boneless.png share/doc/boneless/LICENSE; do
   [ -e "$root/usr/$f" ] || fail "the install has no $f"
 done
+# The README is installed as the manual (Help → Getting Started says so): every page it links to
+# is installed beside it.
+doc="$root/usr/share/doc/boneless"
+for link in $(grep -oE '\]\(docs/[^)#]+' "$doc/README.md" | cut -c3- | sort -u); do
+  [ -e "$doc/$link" ] || fail "the installed README links to $link, which is not installed"
+done
 desktop-file-validate "$root/usr/share/applications/org.boneless.Boneless.desktop"
 appstreamcli validate --no-net "$root/usr/share/metainfo/org.boneless.Boneless.metainfo.xml" \
   >/dev/null || fail "the AppStream metainfo does not validate"
