@@ -58,4 +58,12 @@ export XDG_DATA_HOME="$root/data" XDG_CONFIG_HOME="$root/config"
 "$source/tests/gui/run-with-display.sh" "$root/usr/bin/boneless" --size 160x120 \
   --screenshot "$root/shot.png"
 [ -s "$root/shot.png" ] || fail "the installed boneless wrote no screenshot"
+# A dock matches the running window to its menu entry, on X11 by the window's class, the entry's
+# StartupWMClass (until 1 December 2026 the entry had none, and a dock showed the window as an
+# application apart from its launcher).
+entry="$share/applications/org.boneless.Boneless.desktop"
+class=$("$source/tests/gui/run-with-display.sh" "$source/tests/package/window-identity.sh" \
+        "$root/usr") || fail "could not read the window's class"
+wmclass=$(sed -n 's/^StartupWMClass=//p' "$entry")
+[ "$class" = "$wmclass" ] || fail "the window's class is '$class', its entry's '$wmclass'"
 echo "installed-tree: $root/usr runs boneless-cli $version and renders the demo"
