@@ -10,8 +10,9 @@ packages=(
   nlohmann-json3-dev libcli11-dev
   # application: Qt6 and VTK 9.1 (never libvtk9-qt-dev: Debian builds it for Qt5)
   qt6-base-dev libqt6opengl6-dev libvtk9-dev fonts-dejavu-core
-  # desktop integration: the icon's PNG sizes, and the checks of the .desktop, metainfo and .deb
-  librsvg2-bin desktop-file-utils appstream dpkg-dev
+  # desktop integration: the icon's PNG sizes, and the checks of the .desktop, metainfo, MIME types
+  # (opened as a file manager opens them) and .deb
+  librsvg2-bin desktop-file-utils appstream dpkg-dev shared-mime-info libglib2.0-bin
   # GUI tests: a virtual X server with Mesa's software OpenGL
   xvfb xauth x11-utils libgl1-mesa-dri mesa-utils
   # tests, benchmarks, fuzzing (clang's libFuzzer and sanitizer runtimes)

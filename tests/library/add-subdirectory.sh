@@ -2,6 +2,8 @@
 # Another project adds a clone of Boneless with add_subdirectory, as docs/library.md says, and its
 # configure step succeeds and offers boneless_core (until 30 November 2026 it failed: the clone
 # looked for its CMake modules and LICENSE in the other project's folder).
+# Its install brings none of Boneless's files unless asked (until 1 December 2026 it installed
+# boneless-cli).
 # Usage: add-subdirectory.sh SOURCE_DIR BUILD_DIR
 set -euo pipefail
 source=$1 build=$2
@@ -20,4 +22,17 @@ if grep -q "boneless_tests\|CPackConfig" "$work/build.ninja"; then
   exit 1
 fi
 [ ! -e "$work/CPackConfig.cmake" ] || { echo "add-subdirectory: CPack configured in the other project" >&2; exit 1; }
+# The other project's `cmake --install` installs its own files, not boneless-cli or Boneless's
+# docs, unless it asks with BONELESS_INSTALL=ON (the consumer has no install rule of its own).
+installs() { grep -rhoE 'file\(INSTALL DESTINATION [^ ]+ TYPE [A-Z]+ FILES "[^"]*"' \
+               --include=cmake_install.cmake "$work"; }
+if rules=$(installs); then
+  echo "add-subdirectory: the other project's install brings Boneless's files:" >&2
+  echo "$rules" >&2
+  exit 1
+fi
+cmake -S "$source/tests/library/consumer" -B "$work" -DBONELESS_INSTALL=ON >"$work/configure.log" 2>&1 ||
+  { cat "$work/configure.log" >&2; exit 1; }
+installs | grep -q 'boneless-cli"' ||
+  { echo "add-subdirectory: BONELESS_INSTALL=ON does not install boneless-cli" >&2; exit 1; }
 echo "add-subdirectory: ok"

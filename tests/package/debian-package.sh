@@ -1,27 +1,53 @@
 #!/usr/bin/env bash
 # Builds the .deb with CPack and checks what it holds and what it depends on.
-# Usage: debian-package.sh BUILD_DIR VERSION
+# Usage: debian-package.sh BUILD_DIR VERSION [SOURCE_DIR]
 set -euo pipefail
-build=$1 version=$2
+build=$1 version=$2 source=${3:-}
 out=$(mktemp -d "$build/deb-test.XXXXXX")
 trap 'rm -rf "$out"' EXIT
-cpack --config "$build/CPackConfig.cmake" -G DEB -B "$out" >/dev/null
-deb=$(ls "$out"/boneless_"$version"_*.deb)
-
 fail() { echo "debian-package: $*" >&2; exit 1; }
+
+# Built from a git checkout, the package's version names the commit, later commits sorting
+# higher: with the bare project version, a package of a newer commit left the older installed
+# ("boneless is already the newest version (0.1.0)" from apt-get install ./boneless.deb).
+if [ -n "$source" ] && git -C "$source" rev-parse HEAD >/dev/null 2>&1; then
+  stamp=$(TZ=UTC git -C "$source" log -1 --format=%cd.%h --abbrev=7 \
+          --date=format-local:%Y%m%d.%H%M%S)
+  dpkg --compare-versions "$version+git$stamp" gt "$version" || fail "$stamp sorts below $version"
+  version="$version+git$stamp"
+fi
+cpack --config "$build/CPackConfig.cmake" -G DEB -B "$out" >/dev/null
+deb=$(ls "$out"/boneless_*.deb)
+[ "$(dpkg-deb -f "$deb" Version)" = "$version" ] ||
+  fail "version $(dpkg-deb -f "$deb" Version), expected $version"
 contents=$(dpkg-deb -c "$deb")
 for f in ./usr/bin/boneless ./usr/bin/boneless-cli \
          ./usr/share/applications/org.boneless.Boneless.desktop \
          ./usr/share/metainfo/org.boneless.Boneless.metainfo.xml \
+         ./usr/share/mime/packages/org.boneless.Boneless.xml \
          ./usr/share/icons/hicolor/256x256/apps/org.boneless.Boneless.png \
          ./usr/share/doc/boneless/LICENSE; do
   grep -q " $f\$" <<<"$contents" || fail "$(basename "$deb") has no $f"
 done
+# What lintian holds a package to: a copyright file, stripped binaries, a description of lines
+# under 80 columns (the description's lines began with the ";" of a CMake list until 1 December
+# 2026).
+grep -q " ./usr/share/doc/boneless/copyright\$" <<<"$contents" || fail "no copyright file"
+description=$(dpkg-deb -f "$deb" Description)
+if grep -nE '^ ;|.{81}' <<<"$description"; then fail "the description is mangled: $description"; fi
+unpacked="$out/unpacked"
+dpkg-deb -x "$deb" "$unpacked"
+for program in boneless boneless-cli; do
+  if readelf -S "$unpacked/usr/bin/$program" | grep -q '\.symtab'; then
+    fail "$program is not stripped"
+  fi
+done
 # Nothing of the build tree (static libraries, headers, tests) is shipped.
-if grep -E '\.a$|/include/|boneless_tests|bench' <<<"$contents"; then fail "ships build files"; fi
+if grep -E '\.a$|/include/|boneless_tests|boneless-bench' <<<"$contents"; then
+  fail "ships build files"
+fi
 depends=$(dpkg-deb -f "$deb" Depends)
 for lib in libqt6widgets6 libvtk9.1 libcholmod3 libopenmesh; do
   grep -q "$lib" <<<"$depends" || fail "Depends lacks $lib: $depends"
 done
-[ "$(dpkg-deb -f "$deb" Version)" = "$version" ] || fail "wrong version"
 echo "debian-package: $(basename "$deb") ($(du -k "$deb" | cut -f1) KiB), Depends: $depends"

@@ -15,9 +15,38 @@ for f in bin/boneless bin/boneless-cli share/applications/org.boneless.Boneless.
          share/icons/hicolor/48x48/apps/org.boneless.Boneless.png share/doc/boneless/LICENSE; do
   [ -e "$root/usr/$f" ] || fail "the install has no $f"
 done
+# The README is installed as the manual (Help → Getting Started says so): every page it links to
+# is installed beside it.
+doc="$root/usr/share/doc/boneless"
+for link in $(grep -oE '\]\(docs/[^)#]+' "$doc/README.md" | cut -c3- | sort -u); do
+  [ -e "$doc/$link" ] || fail "the installed README links to $link, which is not installed"
+done
 desktop-file-validate "$root/usr/share/applications/org.boneless.Boneless.desktop"
 appstreamcli validate --no-net "$root/usr/share/metainfo/org.boneless.Boneless.metainfo.xml" \
   >/dev/null || fail "the AppStream metainfo does not validate"
+
+# Double-clicking a project or a take opens Boneless: the desktop's own look-ups (GIO's, as a
+# file manager makes them) find the file's type by its extension and Boneless as its application.
+# Until 1 December 2026 a .boneless was plain text to them, opened by a text editor.
+share="$root/usr/share"
+[ -e "$share/mime/packages/org.boneless.Boneless.xml" ] || fail "the install has no MIME types"
+update-mime-database "$share/mime"
+XDG_DATA_DIRS="$share" update-desktop-database "$share/applications"
+opens_with() {  # FILE: the content type and the default application the desktop gives it
+  ( export XDG_DATA_DIRS="$share:/usr/share" XDG_DATA_HOME="$root/none" XDG_CONFIG_HOME="$root/none"
+    export PATH="$root/usr/bin:$PATH"
+    type=$(gio info -a standard::content-type "$1" | sed -n 's/.*content-type: //p')
+    echo "$type $(gio mime "$type" | sed -n 's/^Default application for .*: //p')" )
+}
+mkdir "$root/files"
+echo '{"format": "boneless-project", "version": 1}' >"$root/files/walk.boneless"
+printf '\x02\x50' >"$root/files/walk.c3d"
+for f in walk.boneless walk.c3d; do
+  got=$(opens_with "$root/files/$f")
+  [[ "$got" == *" org.boneless.Boneless.desktop" ]] || fail "$f opens as '$got', not in Boneless"
+done
+[[ "$(opens_with "$root/files/walk.boneless")" == "application/x-boneless-project "* ]] ||
+  fail "a .boneless is not a Boneless project to the desktop"
 
 printed=$("$root/usr/bin/boneless-cli" --version)
 [ "$printed" = "boneless-cli $version" ] || fail "boneless-cli --version printed '$printed'"
@@ -29,4 +58,12 @@ export XDG_DATA_HOME="$root/data" XDG_CONFIG_HOME="$root/config"
 "$source/tests/gui/run-with-display.sh" "$root/usr/bin/boneless" --size 160x120 \
   --screenshot "$root/shot.png"
 [ -s "$root/shot.png" ] || fail "the installed boneless wrote no screenshot"
+# A dock matches the running window to its menu entry, on X11 by the window's class, the entry's
+# StartupWMClass (until 1 December 2026 the entry had none, and a dock showed the window as an
+# application apart from its launcher).
+entry="$share/applications/org.boneless.Boneless.desktop"
+class=$("$source/tests/gui/run-with-display.sh" "$source/tests/package/window-identity.sh" \
+        "$root/usr") || fail "could not read the window's class"
+wmclass=$(sed -n 's/^StartupWMClass=//p' "$entry")
+[ "$class" = "$wmclass" ] || fail "the window's class is '$class', its entry's '$wmclass'"
 echo "installed-tree: $root/usr runs boneless-cli $version and renders the demo"
