@@ -101,8 +101,9 @@ TEST(Alignment, CalibrationPicksTheFrameClosestToTheRestPose) {
     for (size_t k = 0; k < points.size(); ++k) points[k] = k;
     const Calibration c = calibrate(take, points, rest);
     EXPECT_EQ(c.frame, 3);
-    EXPECT_NEAR(c.takeToMesh.scale, 0.1, 1e-12);
-    EXPECT_LT(c.residual, 1e-9);
+    // The take holds its samples as float, as a C3D file does: exact to about 1e-7 of their size.
+    EXPECT_NEAR(c.takeToMesh.scale, 0.1, 1e-7);
+    EXPECT_LT(c.residual, 1e-6);
     EXPECT_EQ(c.visibleMarkers, 6);
 }
 
