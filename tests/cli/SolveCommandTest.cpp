@@ -12,6 +12,7 @@
 
 #include "CliRunner.h"
 #include "TestFiles.h"
+#include "TwoActorTake.h"
 #include "boneless/C3dReader.h"
 #include "boneless/C3dWriter.h"
 #include "boneless/MeshReader.h"
@@ -1061,22 +1062,7 @@ TEST(SolveCommand, ASolveOfAnotherTakeInOutIsNotReplacedUnlessForced) {
 fs::path makeTwoActorDemo() {
     const fs::path demo = makeDemo(3);
     const C3dTake one = readC3d((demo / "walker.c3d").string());
-    C3dTake two = one;
-    const std::size_t n = one.points.size();
-    two.points.clear();
-    two.samples = C3dSamples(one.frameCount(), 2 * n);
-    for (const std::string subject : {"walker", "other"}) {
-        const std::size_t base = two.points.size();
-        for (std::size_t p = 0; p < n; ++p) {
-            C3dPoint point = one.points[p];
-            point.subject = subject;
-            point.label = subject + ":" + point.name;
-            two.points.push_back(point);
-            for (std::size_t f = 0; f < one.frameCount(); ++f)
-                if (const auto x = one.samples.position(f, p))
-                    two.samples.set(f, base + p, x->x() + (base ? 1500.0 : 0.0), x->y(), x->z());
-        }
-    }
+    const C3dTake two = taketest::wornByTwoActors(one);
     writeC3d(two, (demo / "two.c3d").string());
     const nlohmann::json bare = nlohmann::json::parse(std::ifstream(demo / "walker.map.json"));
     for (const std::string subject : {"walker", "other"}) {

@@ -19,6 +19,7 @@
 #include <QSpinBox>
 #include <QtTest>
 
+#include "../support/TwoActorTake.h"
 #include "ModelTestFixtures.h"
 #include "boneless/C3dReader.h"
 #include "boneless/C3dWriter.h"
@@ -304,23 +305,7 @@ class ExportDialogTest : public QObject {
     void anotherActorsSolveInTheFolderIsReplacedOnlyWhenTheUserSaysSo() {
         const QString demo = work_ + "/demo";
         const C3dTake one = readC3d((demo + "/walker.c3d").toStdString());
-        C3dTake two = one;
-        const std::size_t n = one.points.size();
-        two.points.clear();
-        two.samples = C3dSamples(one.frameCount(), 2 * n);
-        for (const std::string subject : {"walker", "other"}) {
-            const std::size_t base = two.points.size();
-            for (std::size_t p = 0; p < n; ++p) {
-                C3dPoint point = one.points[p];
-                point.subject = subject;
-                point.label = subject + ":" + point.name;
-                two.points.push_back(point);
-                for (std::size_t f = 0; f < one.frameCount(); ++f)
-                    if (const auto x = one.samples.position(f, p))
-                        two.samples.set(f, base + p, x->x() + (base ? 1500.0 : 0.0), x->y(),
-                                        x->z());
-            }
-        }
+        const C3dTake two = taketest::wornByTwoActors(one);
         const QString take = work_ + "/two.c3d";
         writeC3d(two, take.toStdString());
         const Correspondence bare = Correspondence::read((demo + "/walker.map.json").toStdString());
