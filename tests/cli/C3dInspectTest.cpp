@@ -372,3 +372,40 @@ TEST(C3dInspect, JsonGivesTheDurationTheSubjectsAndTheLongestGaps) {
     EXPECT_TRUE(q["longest_gap"].is_null()) << p.out;
     EXPECT_TRUE(q["points"][0]["longest_gap"].is_null()) << p.out;
 }
+
+// A take whose labels are Latin-1 (older Vicon files): inspect writes its JSON and CSV in UTF-8.
+TEST(C3dInspect, JsonAndCsvOfALatin1FileAreUtf8) {
+    const std::string file = (c3dtest::workDir() / "latin1-labels.c3d").string();
+    writeC3d(c3dtest::latin1Take(), file);
+    const auto csv = c3dtest::workDir() / "latin1-labels.csv";
+    const CliRun r = inspect(quoted(file) + " --json --csv " + quoted(csv.string()));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);  // throws on invalid UTF-8
+    EXPECT_EQ(j["points"][0]["label"], c3dtest::kLatin1Subject + ":LFHD");
+    EXPECT_EQ(j["points"][1]["description"], c3dtest::kLatin1Description);
+    const std::string rows = slurp(csv);
+    EXPECT_NE(rows.find("0," + c3dtest::kLatin1Subject + ":LFHD,"), std::string::npos);
+    EXPECT_EQ(rows.find("M\xFCller"), std::string::npos);
+}
+
+// Every real file the project has, and a generated Latin-1 one: inspect --json is UTF-8 JSON.
+TEST(C3dInspect, JsonIsValidUtf8ForEveryFile) {
+    const std::string latin1 = (c3dtest::workDir() / "latin1-every.c3d").string();
+    writeC3d(c3dtest::latin1Take(), latin1);
+    std::vector<std::string> files{latin1};
+    const auto shared = c3dtest::sharedC3d();
+    if (std::filesystem::is_directory(shared))
+        for (const auto& e : std::filesystem::recursive_directory_iterator(shared))
+            if (e.is_regular_file() && e.path().extension() == ".c3d")
+                files.push_back(e.path().string());
+    if (files.size() == 1) std::cout << "no shared data in " << shared << "; generated file only\n";
+    std::size_t read = 0;
+    for (const auto& f : files) {
+        const CliRun r = inspect(quoted(f) + " --json");
+        ASSERT_TRUE(r.exitCode == 0 || r.exitCode == 1) << f;  // read, or refused with a message
+        if (r.exitCode != 0) continue;
+        ++read;
+        EXPECT_NO_THROW((void)nlohmann::json::parse(r.out)) << f;
+    }
+    EXPECT_GE(read, 1u);
+}

@@ -63,6 +63,20 @@ inline std::vector<std::string> numberedLabels(std::size_t n, const std::string&
     return out;
 }
 
+// "Müller" and "Kniewinkel ä" as this source file spells them (UTF-8), for the Latin-1 tests.
+inline const std::string kLatin1Subject = "M\xC3\xBCller";
+inline const std::string kLatin1Description = "Kniewinkel \xC3\xA4";
+
+// A take whose labels and descriptions are written in Latin-1, as older Vicon files are.
+inline boneless::C3dTake latin1Take() {
+    boneless::C3dTake t =
+        syntheticTake(4, {kLatin1Subject + ":LFHD", kLatin1Subject + ":LKneeAngles", "RFHD"});
+    t.points[1].kind = boneless::C3dPointKind::Angle;
+    t.points[1].description = kLatin1Description;
+    t.textEncoding = boneless::C3dTextEncoding::Latin1;
+    return t;
+}
+
 inline boneless::C3dTake roundTrip(const boneless::C3dTake& t,
                                    const boneless::C3dWriteOptions& w = {},
                                    const boneless::C3dReadOptions& r = {}) {

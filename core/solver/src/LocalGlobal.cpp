@@ -38,7 +38,6 @@ LocalGlobalSolver::LocalGlobalSolver(const TriMesh& rest, const MeshTopology& to
                                      const ShapeEncoding& encoding,
                                      std::vector<MarkerPatch> markers, Settings settings)
     : rest_(rest),
-      topology_(topology),
       encoding_(encoding),
       markers_(std::move(markers)),
       settings_(settings),

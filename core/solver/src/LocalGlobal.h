@@ -36,7 +36,7 @@ class LocalGlobalSolver {
         bool repairFolds = false;  // FoldRepair on the answer
     };
 
-    // rest, topology and encoding must outlive the solver.
+    // rest and encoding must outlive the solver; topology is read only while it is built.
     // Hard markers hold one vertex each (their patches of radius 0 at a vertex).
     LocalGlobalSolver(const TriMesh& rest, const MeshTopology& topology,
                       const ShapeEncoding& encoding, std::vector<MarkerPatch> markers,
@@ -96,7 +96,6 @@ class LocalGlobalSolver {
     Eigen::SparseMatrix<double> frameMatrix(const std::vector<int>& missing) const;
 
     const TriMesh& rest_;
-    const MeshTopology& topology_;
     const ShapeEncoding& encoding_;
     std::vector<MarkerPatch> markers_;
     Settings settings_;
