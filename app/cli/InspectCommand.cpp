@@ -70,45 +70,36 @@ std::int64_t lastFrame(const boneless::C3dTake& t) {
     return t.firstFrame + static_cast<std::int64_t>(t.frameCount()) - 1;
 }
 
-// A run of frames [first, first + frames) where a point is missing.
-struct Gap {
-    std::size_t first = 0, frames = 0;
-    std::string range() const {  // as solve's --frames takes it
-        return std::to_string(first) + ":" + std::to_string(first + frames);
-    }
-};
+// A gap as solve's --frames takes it.
+std::string frameRange(const boneless::C3dGap& gap) {
+    return std::to_string(gap.first) + ":" + std::to_string(gap.first + gap.frames);
+}
 
-// What inspect says of each point's samples, found in one pass over the frames: a 25-minute take
-// was scanned once per point, and once more for the total.
+// What inspect says of each point's samples.
 struct PointGaps {
     std::vector<std::size_t> missing;  // frames missing, per point
-    std::vector<Gap> longest;          // the longest gap per point (the earliest of equal ones)
+    std::vector<boneless::C3dGap>
+        longest;  // the longest gap per point (the earliest of equal ones)
     std::size_t missingTotal = 0;
     // The longest gap of any marker (the first such marker's): none when no marker has a gap.
     std::optional<std::size_t> longestMarker;
 };
 
 PointGaps pointGaps(const boneless::C3dTake& t) {
-    const std::size_t points = t.points.size(), frames = t.frameCount();
     PointGaps g;
-    g.missing.assign(points, 0);
-    g.longest.assign(points, Gap());
-    std::vector<std::size_t> runStart(points, 0);
-    for (std::size_t f = 0; f <= frames; ++f)
-        for (std::size_t k = 0; k < points; ++k) {
-            // Past the last frame every open gap ends.
-            if (f < frames && !t.samples.valid(f, k)) {
-                ++g.missing[k];
-                continue;
-            }
-            if (f > runStart[k] && f - runStart[k] > g.longest[k].frames)
-                g.longest[k] = {runStart[k], f - runStart[k]};
-            runStart[k] = f + 1;
+    const std::vector<std::vector<boneless::C3dGap>> gaps = t.samples.gaps();
+    for (std::size_t k = 0; k < t.points.size(); ++k) {
+        std::size_t missing = 0;
+        boneless::C3dGap longest;
+        for (const boneless::C3dGap& gap : gaps[k]) {
+            missing += gap.frames;
+            if (gap.frames > longest.frames) longest = gap;
         }
-    for (std::size_t k = 0; k < points; ++k) {
-        g.missingTotal += g.missing[k];
-        if (t.points[k].kind == boneless::C3dPointKind::Marker && g.longest[k].frames > 0 &&
-            (!g.longestMarker || g.longest[k].frames > g.longest[*g.longestMarker].frames))
+        g.missing.push_back(missing);
+        g.longest.push_back(longest);
+        g.missingTotal += missing;
+        if (t.points[k].kind == boneless::C3dPointKind::Marker && longest.frames > 0 &&
+            (!g.longestMarker || longest.frames > g.longest[*g.longestMarker].frames))
             g.longestMarker = k;
     }
     return g;
@@ -125,7 +116,7 @@ std::string durationText(double seconds) {
     return text;
 }
 
-nlohmann::json gapJson(const Gap& gap) {
+nlohmann::json gapJson(const boneless::C3dGap& gap) {
     if (gap.frames == 0) return nullptr;
     return {{"frames", gap.frames}, {"frame_range", {gap.first, gap.first + gap.frames}}};
 }
@@ -173,7 +164,7 @@ nlohmann::json toJson(const boneless::C3dTake& t, const PointGaps& gaps) {
     // The longest gap of any marker, naming it; null when no marker has a gap.
     j["longest_gap"] = nullptr;
     if (gaps.longestMarker) {
-        const Gap& gap = gaps.longest[*gaps.longestMarker];
+        const boneless::C3dGap& gap = gaps.longest[*gaps.longestMarker];
         j["longest_gap"] = gapJson(gap);
         j["longest_gap"]["point"] = *gaps.longestMarker;
         j["longest_gap"]["label"] = t.points[*gaps.longestMarker].label;
@@ -232,9 +223,9 @@ void printSummary(const boneless::C3dTake& t, const PointGaps& gaps, std::ostrea
     out << "  missing   " << missing << " of " << samples << " samples (" << pct << " %)\n";
     // The frames as solve's --frames names them (0-based, the end excluded), to look at or solve.
     if (gaps.longestMarker) {
-        const Gap& gap = gaps.longest[*gaps.longestMarker];
+        const boneless::C3dGap& gap = gaps.longest[*gaps.longestMarker];
         out << "  gaps      longest " << t.points[*gaps.longestMarker].label << ", frames "
-            << gap.range() << " (" << boneless::plural(long(gap.frames), "frame");
+            << frameRange(gap) << " (" << boneless::plural(long(gap.frames), "frame");
         if (t.hasFrameRate()) out << ", " << durationText(double(gap.frames) / t.rate);
         out << ")\n";
     }
@@ -244,10 +235,10 @@ void printSummary(const boneless::C3dTake& t, const PointGaps& gaps, std::ostrea
         char line[96];
         std::snprintf(line, sizeof line, "  %-4zu ", i);
         out << line << padded(t.points[i].label, 30);
-        const Gap& gap = gaps.longest[i];
+        const boneless::C3dGap& gap = gaps.longest[i];
         std::snprintf(
             line, sizeof line, " %-8s %-8zu %s\n", toString(t.points[i].kind), gaps.missing[i],
-            gap.frames ? (std::to_string(gap.frames) + " at " + gap.range()).c_str() : "-");
+            gap.frames ? (std::to_string(gap.frames) + " at " + frameRange(gap)).c_str() : "-");
         out << line;
     }
 }

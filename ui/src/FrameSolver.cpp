@@ -376,12 +376,8 @@ bool sameTake(const C3dTake& a, const C3dTake& b) {
     for (std::size_t i = 0; i < a.points.size(); ++i)
         if (a.points[i].label != b.points[i].label) return false;
     // The problem's take is the document's copy, sharing its samples until the document reads
-    // another: comparing them frame by frame is for a take read again.
-    if (x.sharesData(y)) return true;
-    for (std::size_t f = 0; f < x.frames(); ++f)
-        for (std::size_t k = 0; k < x.points(); ++k)
-            if (x.position(f, k) != y.position(f, k)) return false;
-    return true;
+    // another (samePositions compares sample by sample only a take read again).
+    return x.samePositions(y);
 }
 
 }  // namespace

@@ -68,14 +68,18 @@ void TimelineStrip::rebuildGaps() {
     const int frames = document_->frameCount();
     gaps_.assign(document_->markerCount(), {});
     missingCount_.assign(frames, 0);
+    const std::vector<std::vector<C3dGap>> pointGaps = document_->take().samples.gaps();
+    const std::vector<C3dGap> throughout{{0, std::size_t(frames)}};
     for (int k = 0; k < document_->markerCount(); ++k) {
-        for (int f = 0; f < frames; ++f) {
-            if (document_->markerVisible(k, f)) continue;
-            ++missingCount_[f];
-            if (!gaps_[k].empty() && gaps_[k].back().second == f - 1)
-                gaps_[k].back().second = f;
-            else
-                gaps_[k].push_back({f, f});
+        const int point = document_->markerPoint(k);
+        // A marker the take does not hold is missing throughout.
+        const auto& runs =
+            point >= 0 && point < int(pointGaps.size()) ? pointGaps[point] : throughout;
+        for (const C3dGap& run : runs) {
+            if (run.frames == 0) continue;
+            const int first = int(run.first), last = int(run.first + run.frames) - 1;
+            gaps_[k].push_back({first, last});
+            for (int f = first; f <= last; ++f) ++missingCount_[f];
         }
     }
     cached_.assign(frames, false);

@@ -90,9 +90,7 @@ std::optional<Eigen::Vector3d> C3dSamples::position(std::size_t frame, std::size
     check(frame, point);
     const std::size_t i = frame * points_ + point;
     if (!validAt(i)) return std::nullopt;
-    const Block& b = *block_;
-    if (b.wide.empty()) return Eigen::Vector3d(b.xyz[3 * i], b.xyz[3 * i + 1], b.xyz[3 * i + 2]);
-    return Eigen::Vector3d(b.wide[3 * i], b.wide[3 * i + 1], b.wide[3 * i + 2]);
+    return at(i);
 }
 
 float C3dSamples::residual(std::size_t frame, std::size_t point) const {
@@ -113,6 +111,30 @@ std::size_t C3dSamples::missingCount() const {
     std::size_t n = 0;
     for (std::size_t i = 0; i < frames_ * points_; ++i) n += validAt(i) ? 0 : 1;
     return n;
+}
+
+std::vector<std::vector<C3dGap>> C3dSamples::gaps() const {
+    std::vector<std::vector<C3dGap>> out(points_);
+    for (std::size_t f = 0; f < frames_; ++f)
+        for (std::size_t k = 0; k < points_; ++k) {
+            if (validAt(f * points_ + k)) continue;
+            std::vector<C3dGap>& runs = out[k];
+            if (!runs.empty() && runs.back().first + runs.back().frames == f)
+                ++runs.back().frames;
+            else
+                runs.push_back({f, 1});
+        }
+    return out;
+}
+
+bool C3dSamples::samePositions(const C3dSamples& other) const {
+    if (frames_ != other.frames_ || points_ != other.points_) return false;
+    if (sharesData(other) || frames_ * points_ == 0) return true;
+    for (std::size_t i = 0; i < frames_ * points_; ++i) {
+        const bool seen = validAt(i);
+        if (seen != other.validAt(i) || (seen && at(i) != other.at(i))) return false;
+    }
+    return true;
 }
 
 std::size_t C3dSamples::bytes() const {

@@ -27,6 +27,11 @@ const char* toString(C3dProcessor processor);  // "intel", "dec", "mips"
 const char* toString(C3dStorage storage);      // "int16", "float"
 const char* toString(C3dPointKind kind);       // "marker", "angle", ...
 
+// A run of frames [first, first + frames) in which a point is missing.
+struct C3dGap {
+    std::size_t first = 0, frames = 0;
+};
+
 // Frames x points samples. A missing sample has no position: position() returns nullopt and the
 // coordinate block holds NaN there, so forgetting to check validity poisons results instead of
 // silently using a stale or (0,0,0) position.
@@ -55,6 +60,11 @@ class C3dSamples {
     float residual(std::size_t frame, std::size_t point) const;
     std::size_t missingFrames(std::size_t point) const;
     std::size_t missingCount() const;
+    // Per point, its gaps in frame order (inspect's table, the app's timeline), in one pass over
+    // the frames: a pass per point read a 25-minute take from memory once for each.
+    std::vector<std::vector<C3dGap>> gaps() const;
+    // The same positions, missing where the other's are missing (a take read again, say).
+    bool samePositions(const C3dSamples& other) const;
 
     // A non-finite position (also one past the float range in a Float block) is stored as
     // missing: it is not a position either.
@@ -107,6 +117,11 @@ class C3dSamples {
             b.residual.assign(frames_ * points_, 0.0f);
         }
         b.residual[i] = residual;
+    }
+    Eigen::Vector3d at(std::size_t i) const {  // a valid sample's position
+        const Block& b = *block_;
+        if (b.wide.empty()) return {b.xyz[3 * i], b.xyz[3 * i + 1], b.xyz[3 * i + 2]};
+        return {b.wide[3 * i], b.wide[3 * i + 1], b.wide[3 * i + 2]};
     }
     void setMissingAt(std::size_t i);
     void check(std::size_t frame, std::size_t point) const;
