@@ -8,6 +8,7 @@
 #include "Commands.h"
 #include "OptionFlags.h"
 #include "TakeJob.h"
+#include "BonelessVersion.h"
 #include "boneless/Error.h"
 
 namespace {

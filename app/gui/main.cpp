@@ -10,6 +10,7 @@
 #include <QTimer>
 #include <cstdio>
 
+#include "BonelessVersion.h"
 #include "boneless/ui/Document.h"
 #include "boneless/ui/MainWindow.h"
 #include "boneless/ui/MeshView.h"
@@ -73,6 +74,8 @@ int runScreenshot(QApplication& app, boneless::ui::MainWindow& window, const QSt
 int main(int argc, char** argv) {
     QCoreApplication::setApplicationName("Boneless");
     QCoreApplication::setOrganizationName("Boneless");
+    // A Wayland desktop matches the window to its menu entry by this name (X11 by WM_CLASS).
+    QGuiApplication::setDesktopFileName("org.boneless.Boneless");
     QCoreApplication::setApplicationVersion(BONELESS_VERSION);
 
     QCommandLineParser parser;

@@ -42,6 +42,10 @@ for program in boneless boneless-cli; do
     fail "$program is not stripped"
   fi
 done
+# A user's report quotes --version: it names the package's version, commit and all (until
+# 1 December 2026 the binaries printed 0.1.0 whichever commit they were built from).
+printed=$("$unpacked/usr/bin/boneless-cli" --version)
+[ "$printed" = "boneless-cli $version" ] || fail "boneless-cli --version printed '$printed'"
 # Nothing of the build tree (static libraries, headers, tests) is shipped.
 if grep -E '\.a$|/include/|boneless_tests|boneless-bench' <<<"$contents"; then
   fail "ships build files"

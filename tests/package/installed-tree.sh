@@ -48,6 +48,11 @@ done
 [[ "$(opens_with "$root/files/walk.boneless")" == "application/x-boneless-project "* ]] ||
   fail "a .boneless is not a Boneless project to the desktop"
 
+# From a git checkout the version names the commit (cmake/GitVersion.cmake).
+if git -C "$source" rev-parse HEAD >/dev/null 2>&1; then
+  version="$version+git$(TZ=UTC git -C "$source" log -1 --format=%cd.%h --abbrev=7 \
+                         --date=format-local:%Y%m%d.%H%M%S)"
+fi
 printed=$("$root/usr/bin/boneless-cli" --version)
 [ "$printed" = "boneless-cli $version" ] || fail "boneless-cli --version printed '$printed'"
 printed=$(QT_QPA_PLATFORM=offscreen "$root/usr/bin/boneless" --version)
