@@ -78,8 +78,8 @@ std::string frameRange(const boneless::C3dGap& gap) {
 // What inspect says of each point's samples.
 struct PointGaps {
     std::vector<std::size_t> missing;  // frames missing, per point
-    std::vector<boneless::C3dGap>
-        longest;  // the longest gap per point (the earliest of equal ones)
+    // The longest gap per point (the earliest of equal ones).
+    std::vector<boneless::C3dGap> longest;
     std::size_t missingTotal = 0;
     // The longest gap of any marker (the first such marker's): none when no marker has a gap.
     std::optional<std::size_t> longestMarker;

@@ -46,6 +46,22 @@ done
 # 1 December 2026 the binaries printed 0.1.0 whichever commit they were built from).
 printed=$("$unpacked/usr/bin/boneless-cli" --version)
 [ "$printed" = "boneless-cli $version" ] || fail "boneless-cli --version printed '$printed'"
+# Each program's manual page, and in boneless-cli's a section for every command its --help lists
+# (there were no pages until 1 December 2026).
+for program in boneless boneless-cli; do
+  page="$unpacked/usr/share/man/man1/$program.1.gz"
+  [ -s "$page" ] || fail "no manual page for $program"
+  text=$(zcat "$page")
+  grep -q "^\.TH \"${program^^}\" 1 \"\" \"[^\"]* $version\"" <<<"$text" ||
+    fail "$program's manual page does not name version $version"
+done
+commands=$("$unpacked/usr/bin/boneless-cli" --help | sed -n '/^Subcommands:/,/^$/p' |
+           awk 'NR > 1 && NF { print $1 }')
+[ -n "$commands" ] || fail "boneless-cli --help lists no commands"
+text=$(zcat "$unpacked/usr/share/man/man1/boneless-cli.1.gz")
+for command in $commands; do
+  grep -q "^\.SS \"boneless-cli $command\"" <<<"$text" || fail "man boneless-cli has no $command"
+done
 # Nothing of the build tree (static libraries, headers, tests) is shipped.
 if grep -E '\.a$|/include/|boneless_tests|boneless-bench' <<<"$contents"; then
   fail "ships build files"
