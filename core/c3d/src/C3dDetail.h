@@ -75,13 +75,23 @@ struct DecodeStats {
     std::size_t zeroSamples = 0;  // (0,0,0) with a valid residual
 };
 
-// The caller guarantees dataStart + frames * frameBytes() <= src.size.
-DecodeStats decodePoints(const Source& src, const PointLayout& layout, C3dSamples& samples);
+// Decodes layout.frames frames into samples' frames from firstFrame on. The caller guarantees
+// dataStart + frames * frameBytes() <= src.size.
+DecodeStats decodePoints(const Source& src, const PointLayout& layout, C3dSamples& samples,
+                         std::size_t firstFrame = 0);
 
 // Everything of a take but its samples: validates the header and parameters, fills `take`
 // (file, header fields, parameters, points, warnings) and returns where the frames lie, the
 // complete frames only. Throws C3dError as readC3dMemory does.
 PointLayout readTakeLayout(const Source& src, const C3dReadOptions& options, C3dTake& take);
+// readTakeLayout of the open file fd (size bytes): on a mapping of it, of which the header and
+// the parameters alone are read, so the 3D data is not brought into memory.
+PointLayout readFileLayout(int fd, std::size_t size, const std::string& path,
+                           const C3dReadOptions& options, C3dTake& take);
+// n bytes of fd from offset, with pread: a file cut short meanwhile throws, where a mapping of
+// it would have ended the program (SIGBUS).
+void readFileBytes(int fd, const std::string& path, std::size_t offset, std::uint8_t* out,
+                   std::size_t n);
 // The warnings readC3dMemory gives for what decoding the samples found.
 void noteDecodeStats(const DecodeStats& stats, const C3dReadOptions& options,
                      std::vector<std::string>& warnings);

@@ -23,6 +23,38 @@ namespace {
 }
 }  // namespace
 
+namespace c3d_detail {
+
+PointLayout readFileLayout(int fd, std::size_t size, const std::string& path,
+                           const C3dReadOptions& options, C3dTake& take) {
+    void* map = size ? ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0) : nullptr;
+    if (map == MAP_FAILED) failSystem(path, "cannot map");
+    try {
+        const PointLayout L =
+            readTakeLayout({static_cast<const std::uint8_t*>(map), size, path}, options, take);
+        if (map) ::munmap(map, size);
+        return L;
+    } catch (...) {
+        if (map) ::munmap(map, size);
+        throw;
+    }
+}
+
+void readFileBytes(int fd, const std::string& path, std::size_t offset, std::uint8_t* out,
+                   std::size_t n) {
+    for (std::size_t done = 0; done < n;) {
+        const ssize_t got = ::pread(fd, out + done, n - done, offset + done);
+        if (got < 0 && errno == EINTR) continue;
+        if (got <= 0)
+            throw C3dError(path, offset + done,
+                           got == 0 ? std::string("the file became shorter while being read")
+                                    : std::string("read error: ") + std::strerror(errno));
+        done += static_cast<std::size_t>(got);
+    }
+}
+
+}  // namespace c3d_detail
+
 C3dFrameReader::C3dFrameReader(const std::string& path, const C3dReadOptions& options)
     : options_(options) {
     if (const std::string why = notARegularFile(path, "C3D"); !why.empty())
@@ -33,18 +65,7 @@ C3dFrameReader::C3dFrameReader(const std::string& path, const C3dReadOptions& op
         struct stat st {};
         if (::fstat(fd_, &st) != 0) failSystem(path, "cannot determine the file size");
         const std::size_t size = static_cast<std::size_t>(st.st_size);
-        // The reader's checks run on a mapping of the file: they touch the header and the
-        // parameters only, so the 3D data is never brought into memory here.
-        void* map = size ? ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd_, 0) : nullptr;
-        if (map == MAP_FAILED) failSystem(path, "cannot map");
-        PointLayout L;
-        try {
-            L = readTakeLayout({static_cast<const std::uint8_t*>(map), size, path}, options, take_);
-        } catch (...) {
-            if (map) ::munmap(map, size);
-            throw;
-        }
-        if (map) ::munmap(map, size);
+        const PointLayout L = readFileLayout(fd_, size, path, options, take_);
         frames_ = L.frames;
         points_ = L.points;
         dataStart_ = L.dataStart;
@@ -73,16 +94,7 @@ C3dSamples C3dFrameReader::read(std::size_t first, std::size_t count) const {
     C3dSamples samples(count, points_);
     if (count == 0 || points_ == 0) return samples;
     std::vector<std::uint8_t> bytes(count * frameBytes_);
-    const std::size_t offset = dataStart_ + first * frameBytes_;
-    for (std::size_t done = 0; done < bytes.size();) {
-        const ssize_t n = ::pread(fd_, bytes.data() + done, bytes.size() - done, offset + done);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0)
-            throw C3dError(take_.file, offset + done,
-                           n == 0 ? std::string("the file became shorter while being read")
-                                  : std::string("read error: ") + std::strerror(errno));
-        done += static_cast<std::size_t>(n);
-    }
+    readFileBytes(fd_, take_.file, dataStart_ + first * frameBytes_, bytes.data(), bytes.size());
     PointLayout L;
     L.frames = count;
     L.points = points_;

@@ -11,7 +11,8 @@ namespace {
 // One instantiation per processor and storage keeps the per-sample loop free of branches on
 // the format, which is what lets a 100 MB take decode well under a second.
 template <C3dProcessor P, C3dStorage S>
-DecodeStats decode(const Source& src, const PointLayout& L, C3dSamples& samples) {
+DecodeStats decode(const Source& src, const PointLayout& L, C3dSamples& samples,
+                   std::size_t first) {
     DecodeStats stats;
     const std::size_t frameBytes = L.frameBytes();
     const double scale = L.scale;
@@ -38,42 +39,44 @@ DecodeStats decode(const Source& src, const PointLayout& L, C3dSamples& samples)
                 p += 16;
             }
             if (word < 0) {
-                samples.setMissing(f, k);
+                samples.setMissing(first + f, k);
                 continue;
             }
             if (x == 0.0 && y == 0.0 && z == 0.0) {
                 ++stats.zeroSamples;
                 if (!L.keepZeroSamples) {
-                    samples.setMissing(f, k);
+                    samples.setMissing(first + f, k);
                     continue;
                 }
             }
             if (!(std::isfinite(x) && std::isfinite(y) && std::isfinite(z))) ++stats.nonFinite;
-            samples.set(f, k, x, y, z, static_cast<float>(word & 0xFF) * residualScale);
+            samples.set(first + f, k, x, y, z, static_cast<float>(word & 0xFF) * residualScale);
         }
     }
     return stats;
 }
 
 template <C3dProcessor P>
-DecodeStats decodeFor(const Source& src, const PointLayout& L, C3dSamples& samples) {
-    if (L.storage == C3dStorage::Int16) return decode<P, C3dStorage::Int16>(src, L, samples);
-    return decode<P, C3dStorage::Float>(src, L, samples);
+DecodeStats decodeFor(const Source& src, const PointLayout& L, C3dSamples& samples,
+                      std::size_t first) {
+    if (L.storage == C3dStorage::Int16) return decode<P, C3dStorage::Int16>(src, L, samples, first);
+    return decode<P, C3dStorage::Float>(src, L, samples, first);
 }
 
 }  // namespace
 
-DecodeStats decodePoints(const Source& src, const PointLayout& layout, C3dSamples& samples) {
+DecodeStats decodePoints(const Source& src, const PointLayout& layout, C3dSamples& samples,
+                         std::size_t firstFrame) {
     // A file may declare two billion frames of nothing; do not walk them.
     if (layout.points == 0) return {};
     switch (layout.processor) {
         case C3dProcessor::Dec:
-            return decodeFor<C3dProcessor::Dec>(src, layout, samples);
+            return decodeFor<C3dProcessor::Dec>(src, layout, samples, firstFrame);
         case C3dProcessor::Mips:
-            return decodeFor<C3dProcessor::Mips>(src, layout, samples);
+            return decodeFor<C3dProcessor::Mips>(src, layout, samples, firstFrame);
         case C3dProcessor::Intel:
         default:
-            return decodeFor<C3dProcessor::Intel>(src, layout, samples);
+            return decodeFor<C3dProcessor::Intel>(src, layout, samples, firstFrame);
     }
 }
 
