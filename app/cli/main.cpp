@@ -5,10 +5,10 @@
 #include <string>
 #include <system_error>
 
+#include "BonelessVersion.h"
 #include "Commands.h"
 #include "OptionFlags.h"
 #include "TakeJob.h"
-#include "BonelessVersion.h"
 #include "boneless/Error.h"
 
 namespace {

@@ -310,6 +310,17 @@ std::string gappyFile() {
     return path;
 }
 
+// A short take of two markers seen in every frame, no subjects, at `rate` (0: none).
+std::string plainFile(double rate) {
+    C3dTake plain = c3dtest::syntheticTake(6, {"LFHD", "RFHD"});
+    plain.rate = rate;
+    for (std::size_t f = 0; f < 6; ++f)
+        for (std::size_t k = 0; k < 2; ++k) plain.samples.set(f, k, 1.0 + k, 2.0, 3.0);
+    const std::string file = (c3dtest::workDir() / "inspect-plain.c3d").string();
+    writeC3d(plain, file);
+    return file;
+}
+
 }  // namespace
 
 // A 25-minute take's summary gave its frames and rate but not how long it is, which subjects it
@@ -327,13 +338,7 @@ TEST(C3dInspect, TheSummarySaysTheDurationTheSubjectsAndTheLongestGap) {
     EXPECT_NE(r.out.find(" marker   240      240 at 1000:1240\n"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find(" angle    15000    15000 at 0:15000\n"), std::string::npos) << r.out;
     // A short take without subjects or gaps says neither; its duration in seconds alone.
-    C3dTake plain = c3dtest::syntheticTake(6, {"LFHD", "RFHD"});
-    plain.rate = 60.0;
-    for (std::size_t f = 0; f < 6; ++f)
-        for (std::size_t k = 0; k < 2; ++k) plain.samples.set(f, k, 1.0 + k, 2.0, 3.0);
-    const std::string file = (c3dtest::workDir() / "inspect-plain.c3d").string();
-    writeC3d(plain, file);
-    const CliRun p = inspect(quoted(file));
+    const CliRun p = inspect(quoted(plainFile(60.0)));
     ASSERT_EQ(p.exitCode, 0) << p.err;
     EXPECT_NE(p.out.find("  duration  0.1 s\n"), std::string::npos) << p.out;
     EXPECT_EQ(p.out.find("subjects"), std::string::npos) << p.out;
@@ -358,13 +363,7 @@ TEST(C3dInspect, JsonGivesTheDurationTheSubjectsAndTheLongestGaps) {
     EXPECT_EQ(j["points"][1]["longest_gap"]["frame_range"], nlohmann::json({1000, 1240}));
     EXPECT_EQ(j["points"][2]["longest_gap"]["frames"], 15000);
     // Without a rate, no duration; without gaps or subjects, none.
-    C3dTake plain = c3dtest::syntheticTake(6, {"LFHD", "RFHD"});
-    plain.rate = 0;
-    for (std::size_t f = 0; f < 6; ++f)
-        for (std::size_t k = 0; k < 2; ++k) plain.samples.set(f, k, 1.0 + k, 2.0, 3.0);
-    const std::string file = (c3dtest::workDir() / "inspect-plain.c3d").string();
-    writeC3d(plain, file);
-    const CliRun p = inspect(quoted(file) + " --json");
+    const CliRun p = inspect(quoted(plainFile(0)) + " --json");
     ASSERT_EQ(p.exitCode, 0) << p.err;
     const auto q = nlohmann::json::parse(p.out);
     EXPECT_TRUE(q["duration_s"].is_null()) << p.out;
