@@ -2,7 +2,7 @@
 // --solved DIR is a `boneless-cli solve --format pc2` output (the cache and its sidecar) of the
 // same mesh, take and map; each is measured by the same code, so that a run before a change and
 // one after it compare directly. Per frame: the 95th percentile edge strain |len/rest − 1| (the
-// sidecar's edgeStrains and quantile), the edge distortion (RMS of the same), folded faces
+// sidecar's EdgeStrain and quantile), the edge distortion (RMS of the same), folded faces
 // (Metrics' foldedFaces, refitted from scratch), the dent ratio (DentGauge), the sidecar's marker
 // residual, and the share of edges bent by more than 20° (bentEdgeShare: the kinks that the strain
 // and the dent ratio cannot see; the issue sets no target for it); printed as worst frame and mean.
@@ -120,6 +120,7 @@ int measure(int argc, char** argv) {
         const double unitsPerMm = sidecar["units"]["mesh_units_per_mm"].get<double>();
         const DentGauge dents(rest, topology, encoding, points,
                               TakeSolver::kDentRadiusMm * unitsPerMm);
+        const EdgeStrain edgeStrain(rest.F, rest.V);
         const std::vector<Positions> frames = readPointCache(cachePath);
         const int first = sidecar["frame_range"][0].get<int>();
         Worst strain, distortion, folded, dent, residual, bent;
@@ -129,8 +130,9 @@ int measure(int argc, char** argv) {
             const Positions& V = frames[i];
             const int f = first + static_cast<int>(i);
             // The sidecar's own gauge: its edge_strain_p95, to the last digit.
-            strain.add(quantile(edgeStrains(rest.F, V, rest.V), 0.95), f);
-            distortion.add(edgeLengthDistortion(rest.F, V, rest.V), f);
+            std::vector<double> strains = edgeStrain.strains(V);
+            distortion.add(rootMeanSquare(strains), f);
+            strain.add(quantile(std::move(strains), 0.95), f);
             const int fold = foldedFaceCount(rest.F, V, rest.V);
             folded.add(fold, f);
             foldedFrames += fold > 0;

@@ -23,17 +23,29 @@ bool parseCalibrateMode(const std::string& name, CalibrateMode& mode) {
     return false;
 }
 
-std::vector<double> edgeStrains(const Faces& F, const Positions& V, const Positions& rest) {
-    std::vector<double> strains;
-    strains.reserve(3 * F.rows());
+EdgeStrain::EdgeStrain(const Faces& F, const Positions& rest) {
     for (int f = 0; f < F.rows(); ++f)
         for (int c = 0; c < 3; ++c) {
             const int a = F(f, c), b = F(f, (c + 1) % 3);
-            const double restLength = (rest.row(a) - rest.row(b)).norm();
-            if (restLength > 0)
-                strains.push_back(std::abs((V.row(a) - V.row(b)).norm() / restLength - 1.0));
+            const double length = (rest.row(a) - rest.row(b)).norm();
+            if (!(length > 0)) continue;
+            ends_.insert(ends_.end(), {a, b});
+            restLength_.push_back(length);
         }
+}
+
+std::vector<double> EdgeStrain::strains(const Positions& V) const {
+    std::vector<double> strains(restLength_.size());
+    for (size_t e = 0; e < strains.size(); ++e)
+        strains[e] =
+            std::abs((V.row(ends_[2 * e]) - V.row(ends_[2 * e + 1])).norm() / restLength_[e] - 1.0);
     return strains;
+}
+
+double rootMeanSquare(const std::vector<double>& values) {
+    double sum = 0;
+    for (double v : values) sum += v * v;
+    return values.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(values.size()));
 }
 
 double quantile(std::vector<double> values, double q) {

@@ -513,6 +513,7 @@ int solveInOrder(TakeSolver& first, const TriMesh& mesh, const Correspondence& m
                 own = std::make_unique<TakeSolver>(mesh, first, map, same);
             }
             TakeSolver& solver = worker > 0 ? *own : first;
+            const EdgeStrain edgeStrain(mesh.F, solver.rest().V);
             for (;;) {
                 int f;
                 {
@@ -527,11 +528,11 @@ int solveInOrder(TakeSolver& first, const TriMesh& mesh, const Correspondence& m
                 if (s.report.stopped) return;
                 // Measured against what the frame was solved from: the calibrated rest when
                 // calibrating, since the actor's proportions are not a stretch.
-                const Positions& rest = solver.rest().V;
-                s.distortion = edgeLengthDistortion(mesh.F, s.V, rest);
-                s.strainP95 = quantile(edgeStrains(mesh.F, s.V, rest), 0.95);
+                std::vector<double> strains = edgeStrain.strains(s.V);
+                s.distortion = rootMeanSquare(strains);
+                s.strainP95 = quantile(std::move(strains), 0.95);
                 if (s.report.foldedFaces < 0)
-                    s.report.foldedFaces = foldedFaceCount(mesh.F, s.V, rest);
+                    s.report.foldedFaces = foldedFaceCount(mesh.F, s.V, solver.rest().V);
                 std::lock_guard<std::mutex> lock(mutex);
                 solved.emplace(f, std::move(s));
                 changed.notify_all();

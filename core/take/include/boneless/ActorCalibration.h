@@ -29,9 +29,19 @@ constexpr double kUnreachableMm = 300.0;    // the marker this far from where it
 Positions fitActorShape(Reconstruction& solver, const Positions& targets,
                         const std::vector<std::string>& labels, double mmPerMeshUnit);
 
-// Per-edge strain |len/restLen − 1| of V against `rest`, one entry per face corner's edge
-// (interior edges twice): the distribution the sidecar summarises.
-std::vector<double> edgeStrains(const Faces& F, const Positions& V, const Positions& rest);
+// Per-edge strain |len/restLen − 1| against a rest, one entry per face corner's edge (interior
+// edges twice): the distribution the sidecar summarises. The rest lengths are measured once, for
+// all the frames of a take.
+class EdgeStrain {
+  public:
+    EdgeStrain(const Faces& F, const Positions& rest);      // rest: #V by 3
+    std::vector<double> strains(const Positions& V) const;  // V: #V by 3, posed
+  private:
+    std::vector<int> ends_;  // 2 per edge with a length at rest
+    std::vector<double> restLength_;
+};
+// The root mean square of the values (0 when empty): of the strains, edgeLengthDistortion().
+double rootMeanSquare(const std::vector<double>& values);
 // The q-quantile (0..1) of the values (nearest rank; 0 when empty).
 double quantile(std::vector<double> values, double q);
 
