@@ -45,10 +45,7 @@ bool positiveDefinite(const Mat3& H) {
 // nearly rank-2 S of a flat one-ring. Returns false when it does not converge (the caller then
 // uses the SVD). This runs for every vertex twice an iteration: it is written out by hand.
 bool refineRotation(const Mat3& S, Mat3& R, double tolerance) {
-    const Mat3 A = S.transpose();
-    const double scale = A.norm();
-    if (!(scale > 0)) return false;
-    Mat3 B = A * R.transpose();
+    Mat3 B = S.transpose() * R.transpose();
     for (int it = 0; it < 30; ++it) {
         const Vec3 g(B(2, 1) - B(1, 2), B(0, 2) - B(2, 0), B(1, 0) - B(0, 1));
         const double t = B.trace();
@@ -66,9 +63,9 @@ bool refineRotation(const Mat3& S, Mat3& R, double tolerance) {
                                           c01 * g.x() + c11 * g.y() + c12 * g.z(),
                                           c02 * g.x() + c12 * g.y() + c22 * g.z()) /
                                      det)
-                              : Vec3(g / (std::abs(t) + 1e-9 * scale));
+                              : Vec3(g / (std::abs(t) + 1e-9 * S.norm()));
         const double angle2 = d.squaredNorm();
-        if (!std::isfinite(angle2)) return false;
+        if (!std::isfinite(angle2)) return false;  // S is zero or not finite
         if (angle2 > 0) {
             // The Cayley map (the unit quaternion (1, d/2)): I + 2([w]× + [w]×²) / (1 + |w|²)
             // with w = d/2 agrees with exp([d]) to second order, without trigonometry, so Newton
