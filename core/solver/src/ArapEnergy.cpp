@@ -187,24 +187,25 @@ double ArapEnergy::energy(const Positions& V, const std::vector<Mat3>& R) const 
     return e;
 }
 
-void ArapEnergy::sumFaceRotations(const std::vector<Mat3>& R,
-                                  std::vector<Mat3>& faceRotations) const {
+void ArapEnergy::turnCornerEdges(const std::vector<Mat3>& R, std::vector<Vec3>& cornerEdges) const {
     const TriMesh& rest = *rest_;
-    faceRotations.resize(rest.faceCount());
+    cornerEdges.resize(3 * rest.faceCount());
     parallelFor(rest.faceCount(), [&](int begin, int end, int) {
-        for (int f = begin; f < end; ++f)
-            faceRotations[f] = R[rest.F(f, 0)] + R[rest.F(f, 1)] + R[rest.F(f, 2)];
+        for (int f = begin; f < end; ++f) {
+            const Mat3 sum = R[rest.F(f, 0)] + R[rest.F(f, 1)] + R[rest.F(f, 2)];
+            for (int c = 0; c < 3; ++c) cornerEdges[3 * f + c] = sum * cornerRest_[3 * f + c];
+        }
     });
 }
 
 Eigen::MatrixXd ArapEnergy::rotatedRestEdges(const std::vector<Mat3>& R) const {
-    std::vector<Mat3> faceRotations;
-    sumFaceRotations(R, faceRotations);
+    std::vector<Vec3> cornerEdges;
+    turnCornerEdges(R, cornerEdges);
     Eigen::MatrixXd b(rest_->vertexCount(), 3);
     // Gathered per vertex: corner c of face f touches the edges opposite corners c+1 (where the
     // vertex is the edge's second end) and c+2 (its first end).
     parallelFor(rest_->vertexCount(), [&](int begin, int end, int) {
-        for (int v = begin; v < end; ++v) b.row(v) = rotatedRestEdges(v, faceRotations).transpose();
+        for (int v = begin; v < end; ++v) b.row(v) = rotatedRestEdges(v, cornerEdges).transpose();
     });
     return b;
 }

@@ -28,15 +28,17 @@ class ArapEnergy {
     double energy(const Positions& V, const std::vector<Mat3>& R) const;
     // b with ∇_V E = 2 (3 L V − b) for fixed R: the rotated rest edges, summed per vertex.
     Eigen::MatrixXd rotatedRestEdges(const std::vector<Mat3>& R) const;
-    // The same for vertex v, with faceRotations[f] = R_a + R_b + R_c over face f's corners
-    // (sumFaceRotations()), so that a caller can gather it into its own per-vertex loop.
-    Vec3 rotatedRestEdges(int v, const std::vector<Mat3>& faceRotations) const {
+    // The same for vertex v, from turnCornerEdges()'s output, so that a caller can gather it
+    // into its own per-vertex loop.
+    Vec3 rotatedRestEdges(int v, const std::vector<Vec3>& cornerEdges) const {
         Vec3 s = Vec3::Zero();
         for (int i = cornerOffsets_[v]; i < cornerOffsets_[v + 1]; ++i)
-            s.noalias() += faceRotations[corners_[i] / 3] * cornerRest_[corners_[i]];
+            s += cornerEdges[corners_[i]];
         return s;
     }
-    void sumFaceRotations(const std::vector<Mat3>& R, std::vector<Mat3>& faceRotations) const;
+    // Each face corner's rest edge (corner c of face f at 3 f + c) turned by R_a + R_b + R_c over
+    // the face's corners: a vertex's gather then reads a vector a corner, not a matrix.
+    void turnCornerEdges(const std::vector<Mat3>& R, std::vector<Vec3>& cornerEdges) const;
     // L = Σ w (e_j − e_k)(e_j − e_k)ᵀ: positive semidefinite (it is the Dirichlet energy).
     const Eigen::SparseMatrix<double>& laplacian() const { return laplacian_; }
     // G_v as 3×3 blocks (vertex, block; a vertex may repeat) for v's fitted rotation R_v, so that

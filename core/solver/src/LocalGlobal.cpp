@@ -187,7 +187,7 @@ void LocalGlobalSolver::rightHandSide(const Positions& targets, const std::vecto
             for (int v = begin; v < end; ++v) rotatedDelta_[v] = rotation_[v] * delta0_[v];
         },
         kMinimumPerThread);
-    arap_.sumFaceRotations(arapRotation_, faceRotation_);
+    arap_.turnCornerEdges(arapRotation_, cornerEdges_);
     const double arapScale = arapWeight_ / 3.0;
     rhs.resize(n, 3);
     parallelFor(
@@ -198,7 +198,7 @@ void LocalGlobalSolver::rightHandSide(const Positions& targets, const std::vecto
                 for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(Lt_, v); it;
                      ++it)
                     s.noalias() += it.value() * rotatedDelta_[it.col()];
-                s.noalias() += arapScale * arap_.rotatedRestEdges(v, faceRotation_);
+                s.noalias() += arapScale * arap_.rotatedRestEdges(v, cornerEdges_);
                 rhs.row(v) = s.transpose();
             }
         },

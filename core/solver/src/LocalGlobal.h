@@ -115,7 +115,8 @@ class LocalGlobalSolver {
     SparseCholesky factor_;
     std::vector<Eigen::VectorXd> correction_;  // per marker, empty until first missing
     // The last local step's rotations, and per-iteration scratch.
-    std::vector<Mat3> rotation_, arapRotation_, faceRotation_, patchRotation_;
+    std::vector<Mat3> rotation_, arapRotation_, patchRotation_;
+    std::vector<Vec3> cornerEdges_;  // the ARAP term's turned rest edges (turnCornerEdges)
     std::vector<Vec3> rotatedDelta_;
     std::unique_ptr<FoldRepair> repair_;
 };
