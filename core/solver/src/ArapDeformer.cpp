@@ -68,9 +68,11 @@ void ArapDeformer::prepare(const TriMesh& rest, std::vector<int> markerVertices,
     impl->markers = std::move(markerVertices);
     impl->options = options;
     const int n = rest.vertexCount();
-    for (int v : impl->markers)
-        if (v < 0 || v >= n)
-            throw SolverError("marker vertex " + std::to_string(v) + " out of range");
+    for (size_t k = 0; k < impl->markers.size(); ++k)
+        if (impl->markers[k] < 0 || impl->markers[k] >= n)
+            throw SolverError("ARAP: marker " + std::to_string(k) + " is attached to vertex " +
+                              std::to_string(impl->markers[k]) + ", but the mesh has " +
+                              std::to_string(n) + " vertices");
     impl->energy = std::make_unique<ArapEnergy>(impl->rest);
     impl->laplacian = impl->energy->laplacian();
     impl_ = std::move(impl);
@@ -80,7 +82,9 @@ SolveResult ArapDeformer::solve(const Positions& targets, const Positions* guess
     Impl& s = *impl_;
     const auto start = std::chrono::steady_clock::now();
     const int n = s.rest.vertexCount(), K = static_cast<int>(s.markers.size());
-    if (targets.rows() != K) throw SolverError("ARAP: wrong number of marker targets");
+    if (targets.rows() != K)
+        throw SolverError("ARAP: expected " + std::to_string(K) + " marker targets, got " +
+                          std::to_string(targets.rows()));
     std::vector<char> active(K);
     for (int k = 0; k < K; ++k) active[k] = targets.row(k).allFinite();
     if (active != s.activeKey) s.refactorise(active);
