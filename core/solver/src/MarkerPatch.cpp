@@ -2,6 +2,7 @@
 
 #include <Eigen/SVD>
 #include <algorithm>
+#include <limits>
 
 #include "Rotation.h"
 
@@ -49,6 +50,31 @@ Vec3 surfacePosition(const TriMesh& mesh, const Positions& V, const SurfacePoint
     Vec3 x = Vec3::Zero();
     for (int i = 0; i < count; ++i) x += w[i] * V.row(c[i]).transpose();
     return x;
+}
+
+SurfacePoint surfacePointAt(const Faces& F, const Positions& V, int face, const Vec3& x) {
+    const Vec3 a = V.row(F(face, 0)).transpose(), b = V.row(F(face, 1)).transpose(),
+               c = V.row(F(face, 2)).transpose();
+    // Least squares in the triangle's plane (x off the plane projects onto it), then clamped
+    // onto the triangle: the nearest point when x lies over it, as a pick's hit does.
+    const Vec3 e1 = b - a, e2 = c - a, d = x - a;
+    const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2);
+    const double det = d11 * d22 - d12 * d12;
+    Vec3 w(1, 0, 0);
+    if (det > 0) {
+        const double u = (d22 * e1.dot(d) - d12 * e2.dot(d)) / det;
+        const double v = (d11 * e2.dot(d) - d12 * e1.dot(d)) / det;
+        w = Vec3(1 - u - v, u, v).cwiseMax(0.0);
+        w /= w.sum();
+    }
+    SurfacePoint p;
+    p.face = face;
+    p.barycentric = w;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 3; ++k)
+        if (const double dk = (V.row(F(face, k)).transpose() - x).squaredNorm(); dk < nearest)
+            nearest = dk, p.vertex = F(face, k);
+    return p;
 }
 
 Vec3 surfaceNormal(const TriMesh& mesh, const ShapeEncoding& encoding, const SurfacePoint& p) {

@@ -259,3 +259,25 @@ TEST(MarkerPatches, AMissingFacePointMarkerIsTheSolverWithoutIt) {
     EXPECT_LE(maxDistance(without.solve(fewerTargets).V, withGap),
               1e-8 * boundingBoxDiagonal(mesh.V));
 }
+
+TEST(MarkerPatches, AHitOnAPosedFaceNamesTheSamePointOfTheRestSurface) {
+    const TriMesh m = finger();
+    // A pose that no similarity gives: each corner moved on its own.
+    Positions posed = m.V;
+    for (int v = 0; v < posed.rows(); ++v)
+        posed.row(v) += Eigen::RowVector3d(0.3 * std::sin(v), 0.2 * std::cos(3 * v), 0.1 * (v % 7));
+    const int face = 17;
+    const Vec3 w(0.2, 0.7, 0.1);
+    Vec3 hit = Vec3::Zero();
+    for (int k = 0; k < 3; ++k) hit += w[k] * posed.row(m.F(face, k)).transpose();
+    const SurfacePoint p = surfacePointAt(m.F, posed, face, hit);
+    EXPECT_EQ(p.face, face);
+    EXPECT_NEAR((p.barycentric - w).norm(), 0.0, 1e-9);
+    EXPECT_EQ(p.vertex, m.F(face, 1));  // the corner nearest the hit
+    EXPECT_NEAR((surfacePosition(m, posed, p) - hit).norm(), 0.0, 1e-9);
+    // Off the triangle, beside its first corner: that corner alone.
+    const Vec3 a = posed.row(m.F(face, 0)).transpose(), b = posed.row(m.F(face, 1)).transpose();
+    const SurfacePoint beside = surfacePointAt(m.F, posed, face, a + 0.5 * (a - b));
+    EXPECT_NEAR((beside.barycentric - Vec3(1, 0, 0)).norm(), 0.0, 1e-9);
+    EXPECT_EQ(beside.vertex, m.F(face, 0));
+}

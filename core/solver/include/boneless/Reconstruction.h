@@ -21,6 +21,10 @@ struct SurfacePoint {
 
 // The point's position in V (its vertex, or the barycentric mix of its face's corners).
 Vec3 surfacePosition(const TriMesh& mesh, const Positions& V, const SurfacePoint& p);
+// The point of face `face` (a row of F) nearest x, as V poses the face (#V by 3): its
+// barycentric coordinates, and its vertex the corner nearest x. A click's hit on a drawn
+// triangle names the same point of the surface in any pose.
+SurfacePoint surfacePointAt(const Faces& F, const Positions& V, int face, const Vec3& x);
 // The point's rest normal: its corners' ring normals mixed barycentrically, normalised (zero
 // when none of them has a ring).
 Vec3 surfaceNormal(const TriMesh& mesh, const ShapeEncoding& encoding, const SurfacePoint& p);
