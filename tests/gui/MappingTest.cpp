@@ -82,7 +82,7 @@ class MappingTest : public QObject {
         QPoint at;
         for (int y = view->height() / 3; y < 2 * view->height() / 3 && at.isNull(); y += 7)
             for (int x = view->width() / 3; x < 2 * view->width() / 3 && at.isNull(); x += 7) {
-                const int v = view->pickVertex(QPoint(x, y));
+                const int v = view->pickPoint(QPoint(x, y)).vertex;
                 if (v >= 0 && d->markerForVertex(v) < 0) at = QPoint(x, y);
             }
         QVERIFY(!at.isNull());
@@ -154,7 +154,7 @@ class MappingTest : public QObject {
         int vertex = -1;
         for (int y = view->height() / 3; y < 2 * view->height() / 3 && vertex < 0; y += 7)
             for (int x = view->width() / 3; x < 2 * view->width() / 3 && vertex < 0; x += 7) {
-                const int v = view->pickVertex(QPoint(x, y));
+                const int v = view->pickPoint(QPoint(x, y)).vertex;
                 if (v >= 0 && d->markerForVertex(v) < 0) vertex = v, at = QPoint(x, y);
             }
         QVERIFY(vertex >= 0);
@@ -168,6 +168,33 @@ class MappingTest : public QObject {
         mapping->trigger();
         QTest::mouseClick(view, Qt::LeftButton, {}, at);
         QCOMPARE(d->mappedVertex(0), vertex);
+        // It sits where the click landed, a point of a face (version 2), drawn under the cursor.
+        const SurfacePoint p = d->mappedPoint(0);
+        QVERIFY(p.face >= 0);
+        const QPoint drawn = view->projectPoint(surfacePosition(d->mesh(), view->positions(), p));
+        QVERIFY2((drawn - at).manhattanLength() <= 2,
+                 qPrintable(QString("(%1, %2)").arg(drawn.x()).arg(drawn.y())));
+        QVERIFY2(window.statusBar()->currentMessage().contains(QString("face %1").arg(p.face)),
+                 qPrintable(window.statusBar()->currentMessage()));
+        const QJsonDocument written =
+            QJsonDocument::fromJson(QByteArray::fromStdString(d->correspondence().toJson()));
+        QCOMPARE(written["version"].toInt(), 2);
+        // Clicked again a little aside, by the same vertex, it moves there: one more undo step.
+        const int steps = d->undoStack()->count();
+        QPoint aside;
+        for (int dx = -3; dx <= 3 && aside.isNull(); ++dx)
+            for (int dy = -3; dy <= 3 && aside.isNull(); ++dy) {
+                const SurfacePoint q = view->pickPoint(at + QPoint(dx, dy));
+                if (q.vertex == vertex && q.face == p.face &&
+                    (q.barycentric - p.barycentric).norm() > 1e-3)
+                    aside = QPoint(dx, dy);
+            }
+        QVERIFY(!aside.isNull());
+        QTest::mouseClick(view, Qt::LeftButton, {}, at + aside);
+        QCOMPARE(d->undoStack()->count(), steps + 1);
+        QVERIFY2(d->undoStack()->undoText().startsWith("Move "),
+                 qPrintable(d->undoStack()->undoText()));
+        QVERIFY((d->mappedPoint(0).barycentric - p.barycentric).norm() > 1e-3);
     }
 
     // A head marker mapped onto a foot: the take cannot be solved with this map. The status says

@@ -59,9 +59,43 @@ class MeshViewTest : public QObject {
             const int v = order[k];
             const QPoint p = view.projectVertex(v);
             QVERIFY2(view.rect().contains(p), qPrintable(QString("vertex %1 off screen").arg(v)));
-            QCOMPARE(view.pickVertex(p), v);
+            QCOMPARE(view.pickPoint(p).vertex, v);
         }
-        QCOMPARE(view.pickVertex(QPoint(1, 1)), -1);  // the background
+        QCOMPARE(view.pickPoint(QPoint(1, 1)).vertex, -1);  // the background
+    }
+
+    // A click names the point of the surface it lands on, not only the nearest vertex: that
+    // point, drawn again, is under the cursor.
+    void aPickedPointIsWhereTheClickLanded() {
+        MeshView view;
+        view.setMultiSampling(0);
+        view.resize(640, 480);
+        const TriMesh mesh = readMesh((folder_ + "/demo/walker.obj").toStdString()).mesh;
+        view.setMesh(mesh);
+        view.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&view));
+        QVERIFY(!view.grabImage().isNull());
+        int faces = 0, offVertex = 0;
+        for (int y = view.height() / 4; y < 3 * view.height() / 4; y += 23)
+            for (int x = view.width() / 4; x < 3 * view.width() / 4; x += 19) {
+                const SurfacePoint p = view.pickPoint(QPoint(x, y));
+                if (p.vertex < 0) continue;
+                QVERIFY(p.face >= 0 && p.face < mesh.faceCount());
+                QVERIFY((mesh.F.row(p.face).array() == p.vertex).any());
+                QVERIFY(std::abs(p.barycentric.sum() - 1) < 1e-9 && p.barycentric.minCoeff() >= 0);
+                const Vec3 at = surfacePosition(mesh, view.positions(), p);
+                const QPoint back = view.projectPoint(at);
+                QVERIFY2((back - QPoint(x, y)).manhattanLength() <= 2,
+                         qPrintable(QString("(%1, %2) drawn again at (%3, %4)")
+                                        .arg(x)
+                                        .arg(y)
+                                        .arg(back.x())
+                                        .arg(back.y())));
+                ++faces;
+                offVertex += view.projectVertex(p.vertex) != QPoint(x, y);
+            }
+        QVERIFY2(faces >= 20, qPrintable(QString::number(faces)));
+        QVERIFY(offVertex > faces / 2);  // a vertex would have put most of them elsewhere
     }
 
     void clickMapsSelectedMarkerAndUndoRedo() {
@@ -99,10 +133,10 @@ class MeshViewTest : public QObject {
         auto* mapping = window.findChild<QAction*>("actionMapMarkers");  // as the README says
         QVERIFY(mapping);
         mapping->trigger();
-        QSignalSpy picked(view, &MeshView::vertexPicked);
+        QSignalSpy picked(view, &MeshView::pointPicked);
         QTest::mouseClick(view, Qt::LeftButton, {}, view->projectVertex(target));
         QCOMPARE(picked.count(), 1);
-        QCOMPARE(picked.at(0).at(0).toInt(), target);
+        QCOMPARE(picked.at(0).at(0).value<SurfacePoint>().vertex, target);
         QCOMPARE(document->mappedVertex(marker), target);
         QCOMPARE(document->markerForVertex(target), marker);
 
@@ -128,7 +162,7 @@ class MeshViewTest : public QObject {
         const int before = window.document()->mappedVertex(0);
         const Eigen::Vector3d eye = view->cameraPosition();
 
-        QSignalSpy picked(view, &MeshView::vertexPicked);
+        QSignalSpy picked(view, &MeshView::pointPicked);
         const QPoint start = view->rect().center();
         QTest::mousePress(view, Qt::LeftButton, {}, start);
         for (int step = 1; step <= 5; ++step)
@@ -148,7 +182,7 @@ class MeshViewTest : public QObject {
         MeshView* view = window.meshView();
         const QImage plain = view->grabImage();
         view->setLabelsVisible(true);
-        view->setHighlightedVertex(0);
+        view->setHighlightedPoint(SurfacePoint{0});
         std::vector<float> heat(view->positions().rows());
         for (std::size_t i = 0; i < heat.size(); ++i) heat[i] = float(i % 7);
         view->setHeatMap(heat);

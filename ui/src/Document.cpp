@@ -381,8 +381,17 @@ int Document::markerPoint(int marker) const {
 }
 
 int Document::mappedVertex(int marker) const {
-    if (marker < 0 || marker >= markerCount() || markers_[marker].mapping < 0) return -1;
-    return map_.markers[markers_[marker].mapping].vertex;
+    return mappedPoint(marker).vertex;
+}
+
+SurfacePoint Document::mappedPoint(int marker) const {
+    if (marker < 0 || marker >= markerCount() || markers_[marker].mapping < 0) return {};
+    const MarkerMapping& m = map_.markers[markers_[marker].mapping];
+    SurfacePoint p;
+    p.vertex = m.vertex;
+    p.face = m.face;
+    p.barycentric = Vec3(m.barycentric[0], m.barycentric[1], m.barycentric[2]);
+    return p;
 }
 
 QString Document::sharedLabelText(int marker) const {

@@ -100,7 +100,7 @@ void Document::discardEdits(const QString& text) {
     pushEdit(text, std::move(none));
 }
 
-bool Document::assign(int marker, int vertex) {
+bool Document::assign(int marker, const SurfacePoint& point) {
     if (refusedWhileHeld()) return false;
     if (!hasMesh_) return fail(tr("Load a mesh before mapping markers."));
     if (marker < 0 || marker >= markerCount()) return fail(tr("No marker is selected."));
@@ -109,39 +109,63 @@ bool Document::assign(int marker, int vertex) {
         return fail(tr("%1 cannot be mapped: in %2, %3, so no map label can say which; relabel one "
                        "of them in the take.")
                         .arg(markerLabel(marker), QFileInfo(takePath_).fileName(), shared));
+    const int vertex = point.vertex;
     if (vertex < 0 || vertex >= mesh_.vertexCount())
         return fail(
             tr("Vertex %1 is not on the mesh (%2 vertices).").arg(vertex).arg(mesh_.vertexCount()));
+    if (point.face >= mesh_.faceCount() ||
+        (point.face >= 0 && (mesh_.F.row(point.face).array() != vertex).all()))
+        return fail(tr("Face %1 is not a face of vertex %2.").arg(point.face).arg(vertex));
     const int other = markerForVertex(vertex);
-    if (other == marker) {
-        // Mapping a suggestion onto its own vertex is the user's word that it is right.
-        const int mapping = markers_[marker].mapping;
-        EditState after = editState();
-        std::string& extra = after.map.markers[mapping].extraJson;
-        const auto json = nlohmann::json::parse(extra.empty() ? "{}" : extra, nullptr, false);
-        if (!json.is_object() || !json.contains("suggested")) return true;
-        extra = withoutSuggested(extra);
-        pushEdit(tr("Confirm %1 on vertex %2").arg(markerLabel(marker)).arg(vertex),
-                 std::move(after));
-        return true;
-    }
-    if (other >= 0)
+    if (other >= 0 && other != marker)
         return fail(tr("Vertex %1 already carries marker %2; clear that marker first.")
                         .arg(vertex)
                         .arg(markerLabel(other)));
-    EditState after = editState();
+    // Where the entry says the marker sits: a click names a point of a face, a typed number the
+    // vertex itself (version 1's meaning, no face).
+    auto place = [&](MarkerMapping& m) {
+        m.vertex = vertex;
+        m.face = point.face;
+        m.barycentric = point.face >= 0
+                            ? std::array<double, 3>{point.barycentric[0], point.barycentric[1],
+                                                    point.barycentric[2]}
+                            : std::array<double, 3>{1.0, 0.0, 0.0};
+    };
+    const QString where = point.face >= 0 ? tr("face %1 by vertex %2").arg(point.face).arg(vertex)
+                                          : tr("vertex %1").arg(vertex);
     const int mapping = markers_[marker].mapping;
+    if (other == marker) {
+        // Mapping a suggestion again by its own vertex is the user's word that it is right.
+        EditState after = editState();
+        MarkerMapping& m = after.map.markers[mapping];
+        const bool moved =
+            m.face != point.face ||
+            (point.face >= 0 &&
+             (Vec3(m.barycentric[0], m.barycentric[1], m.barycentric[2]) - point.barycentric)
+                     .cwiseAbs()
+                     .maxCoeff() > 1e-9);
+        const auto json =
+            nlohmann::json::parse(m.extraJson.empty() ? "{}" : m.extraJson, nullptr, false);
+        const bool suggested = json.is_object() && json.contains("suggested");
+        if (!moved && !suggested) return true;
+        place(m);
+        m.extraJson = withoutSuggested(m.extraJson);
+        pushEdit(moved ? tr("Move %1 to %2").arg(markerLabel(marker), where)
+                       : tr("Confirm %1 on %2").arg(markerLabel(marker), where),
+                 std::move(after));
+        return true;
+    }
+    EditState after = editState();
     if (mapping >= 0) {
-        after.map.markers[mapping].vertex = vertex;
-        after.map.markers[mapping].face = -1;  // the vertex itself, not a point of an old face
-        after.map.markers[mapping].extraJson =
-            withoutSuggested(after.map.markers[mapping].extraJson);
+        MarkerMapping& m = after.map.markers[mapping];
+        place(m);
+        m.extraJson = withoutSuggested(m.extraJson);
     } else {
         MarkerMapping m;
         // The row's name is already the bare one ("LFHD" of "actor:LFHD") where that still names
         // this point, which keeps the map usable for other actors' takes.
         m.label = markers_[marker].label.toStdString();
-        m.vertex = vertex;
+        place(m);
         m.extraJson = "{}";
         // Markers of one set sit alike off the skin: a new one takes the median of those mapped,
         // the first kFirstOffsetMm (at 0 every later one stayed 0, the skin pulled out to them).
@@ -154,7 +178,7 @@ bool Document::assign(int marker, int vertex) {
         }
         after.map.markers.push_back(std::move(m));
     }
-    pushEdit(tr("Map %1 to vertex %2").arg(markerLabel(marker)).arg(vertex), std::move(after));
+    pushEdit(tr("Map %1 to %2").arg(markerLabel(marker), where), std::move(after));
     return true;
 }
 

@@ -262,15 +262,24 @@ void FrameDisplay::updateFloor() {
     view_->setFloor(floorOf(*document_, up_));
 }
 
+std::optional<Vec3> FrameDisplay::mappedPosition(int marker) const {
+    const SurfacePoint p = document_->mappedPoint(marker);
+    const Positions& V = view_->positions();
+    if (p.vertex < 0 || p.vertex >= V.rows() || p.face >= document_->mesh().faceCount() ||
+        V.rows() != document_->mesh().vertexCount())
+        return std::nullopt;
+    return surfacePosition(document_->mesh(), V, p);
+}
+
 bool FrameDisplay::frameMarker(int marker) {
     if (marker < 0 || marker >= document_->markerCount()) return false;
     if (marker < markerPositions_.rows() && markerPositions_.row(marker).allFinite()) {
         view_->frame(markerPositions_.row(marker).transpose());
         return true;
     }
-    const int vertex = document_->mappedVertex(marker);
-    if (vertex < 0 || vertex >= view_->positions().rows()) return false;
-    view_->frame(view_->positions().row(vertex).transpose());
+    const std::optional<Vec3> x = mappedPosition(marker);
+    if (!x) return false;
+    view_->frame(*x);
     return true;
 }
 
@@ -283,15 +292,13 @@ void FrameDisplay::onRendered() {
 void FrameDisplay::updateMarkers() {
     const int count = document_->markerCount();
     if (markersOnRest_) {  // placed anew at each map edit, so mapping can go on on the rest
-        const Positions& V = view_->positions();
         markerPositions_ = Positions::Constant(count, 3, std::numeric_limits<double>::quiet_NaN());
         for (int k = 0; k < count; ++k)
-            if (const int v = document_->mappedVertex(k); v >= 0 && v < V.rows())
-                markerPositions_.row(k) = V.row(v);
+            if (const std::optional<Vec3> x = mappedPosition(k)) markerPositions_.row(k) = *x;
     }
     if (markerPositions_.rows() != count) {
         view_->setMarkers(Positions(0, 3), {}, {});
-        view_->setHighlightedVertex(-1);
+        view_->setHighlightedPoint({});
         return;
     }
     std::vector<MarkerState> states(count, MarkerState::Unmapped);
@@ -303,7 +310,7 @@ void FrameDisplay::updateMarkers() {
     const int selected = document_->selectedMarker();
     if (selected >= 0 && selected < count) states[selected] = MarkerState::Selected;
     view_->setMarkers(markerPositions_, states, labels);
-    view_->setHighlightedVertex(selected >= 0 ? document_->mappedVertex(selected) : -1);
+    view_->setHighlightedPoint(document_->mappedPoint(selected));
 }
 
 void FrameDisplay::updateTrails(int frame) {

@@ -51,7 +51,7 @@ class FrameDisplay : public QObject {
     // The timeline's frame has been drawn (solved, or unsolved when nothing can be solved).
     bool upToDate() const;
     const std::optional<FrameResult>& lastResult() const { return result_; }
-    // Moves the camera to the marker where it is shown (or, missing this frame, to its vertex).
+    // Moves the camera to the marker where it is shown (or, missing this frame, to its point).
     // False when it has neither.
     bool frameMarker(int marker);
 
@@ -73,6 +73,8 @@ class FrameDisplay : public QObject {
     void solveRefused(const QString& message);
 
   private:
+    // Where the marker's point of the surface is as the view draws the mesh; none if unmapped.
+    std::optional<Vec3> mappedPosition(int marker) const;
     void onMeshChanged();
     void onTakeChanged();
     void onFrameChanged(int frame);

@@ -576,7 +576,7 @@ void MainWindow::connectDocument() {
     connect(document_, &Document::selectionChanged, this, &MainWindow::syncTableSelection);
     connect(document_, &Document::takeChanged, this, &MainWindow::onTakeLoaded);
     connect(document_, &Document::meshChanged, this, &MainWindow::updateTitle);
-    connect(view_, &MeshView::vertexPicked, this, &MainWindow::onVertexPicked);
+    connect(view_, &MeshView::pointPicked, this, &MainWindow::onPointPicked);
     connect(view_, &MeshView::pickMissed, this, [this] {
         // Outside Map Markers a click beside the body is no attempt to map: nothing to say.
         if (!mappingAction_->isChecked()) return;
@@ -700,7 +700,8 @@ void MainWindow::syncTableSelection(int marker) {
     markerTable_->scrollTo(index);
 }
 
-void MainWindow::onVertexPicked(int vertex) {
+void MainWindow::onPointPicked(const SurfacePoint& point) {
+    const int vertex = point.vertex;
     const int selected = document_->selectedMarker();
     // Only Map Markers maps: a click to look at the body must not move a marker.
     if (selected >= 0 && !mappingAction_->isChecked()) {
@@ -716,7 +717,7 @@ void MainWindow::onVertexPicked(int vertex) {
         return;
     }
     if (selected >= 0) {
-        mapSelectedMarker(vertex);
+        mapSelectedMarker(point);
         return;
     }
     const int onVertex = document_->markerForVertex(vertex);
@@ -732,11 +733,15 @@ void MainWindow::onVertexPicked(int vertex) {
         8000);
 }
 
-void MainWindow::mapSelectedMarker(int vertex) {
+void MainWindow::mapSelectedMarker(const SurfacePoint& point) {
     const int selected = document_->selectedMarker();
-    if (document_->assign(selected, vertex))
-        statusBar()->showMessage(
-            tr("%1 mapped to vertex %2").arg(document_->markerLabel(selected)).arg(vertex), 5000);
+    if (!document_->assign(selected, point)) return;
+    const QString label = document_->markerLabel(selected);
+    statusBar()->showMessage(
+        point.face >= 0
+            ? tr("%1 mapped to face %2 by vertex %3").arg(label).arg(point.face).arg(point.vertex)
+            : tr("%1 mapped to vertex %2").arg(label).arg(point.vertex),
+        5000);
 }
 
 void MainWindow::askVertexForSelected() {
@@ -758,7 +763,7 @@ void MainWindow::askVertexForSelected() {
                  asWritten(document_->markerLabel(selected)))
             .arg(last),
         std::max(current, 0), 0, last, 1, &ok);
-    if (ok) mapSelectedMarker(vertex);
+    if (ok) mapSelectedMarker(SurfacePoint{vertex});
 }
 
 struct MainWindow::SuggestJob {

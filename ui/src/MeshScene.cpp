@@ -175,7 +175,7 @@ void MeshScene::setMesh(const TriMesh& mesh) {
     const double r = markerRadius();
     sphere_->SetRadius(1.0);
     highlightSphere_->SetRadius(0.45 * r);
-    highlighted_ = -1;
+    highlighted_ = SurfacePoint();
     updateHighlight();
     locatorStale_ = true;
 }
@@ -392,17 +392,22 @@ QString MeshScene::legendTitle() const {
     return legend_->GetTitle() ? QString::fromStdString(legend_->GetTitle()) : QString();
 }
 
-void MeshScene::setHighlightedVertex(int vertex) {
-    highlighted_ = (vertex >= 0 && vertex < V_.rows()) ? vertex : -1;
+void MeshScene::setHighlightedPoint(const SurfacePoint& point) {
+    highlighted_ = point;
     updateHighlight();
 }
 
 void MeshScene::updateHighlight() {
-    if (highlighted_ < 0 || highlighted_ >= V_.rows()) {
+    const SurfacePoint& p = highlighted_;
+    if (p.vertex < 0 || p.vertex >= V_.rows() || p.face >= F_.rows()) {
         highlightActor_->VisibilityOff();
         return;
     }
-    highlightSphere_->SetCenter(V_(highlighted_, 0), V_(highlighted_, 1), V_(highlighted_, 2));
+    Eigen::RowVector3d x = V_.row(p.vertex);
+    if (p.face >= 0)
+        x = p.barycentric[0] * V_.row(F_(p.face, 0)) + p.barycentric[1] * V_.row(F_(p.face, 1)) +
+            p.barycentric[2] * V_.row(F_(p.face, 2));
+    highlightSphere_->SetCenter(x[0], x[1], x[2]);
     highlightSphere_->SetRadius(0.45 * markerRadius());
     highlightActor_->VisibilityOn();
 }
@@ -428,38 +433,29 @@ void MeshScene::resetCamera(const Eigen::Vector3d& up) {
     }
 }
 
-int MeshScene::pick(double x, double y) {
-    if (!hasMesh()) return -1;
+SurfacePoint MeshScene::pick(double x, double y) {
+    if (!hasMesh()) return {};
     if (locatorStale_) {
         locator_->SetDataSet(mesh_);
         locator_->BuildLocator();
         locatorStale_ = false;
     }
-    if (!picker_->Pick(x, y, 0.0, renderer_)) return -1;
+    if (!picker_->Pick(x, y, 0.0, renderer_)) return {};
     const vtkIdType cell = picker_->GetCellId();
-    if (cell < 0 || cell >= F_.rows()) return -1;
+    if (cell < 0 || cell >= F_.rows()) return {};
     double hit[3];
     picker_->GetPickPosition(hit);
-    const Eigen::RowVector3d p(hit[0], hit[1], hit[2]);
-    // GetPointId() often names a neighbour; the triangle's nearest corner is what was clicked.
-    int best = F_(cell, 0);
-    double bestDistance = (V_.row(best) - p).squaredNorm();
-    for (int k = 1; k < 3; ++k) {
-        const double d = (V_.row(F_(cell, k)) - p).squaredNorm();
-        if (d < bestDistance) bestDistance = d, best = F_(cell, k);
-    }
-    return best;
+    // The hit's place in its triangle; GetPointId() often names a neighbour, not its corner.
+    return surfacePointAt(F_, V_, static_cast<int>(cell), Vec3(hit[0], hit[1], hit[2]));
 }
 
-bool MeshScene::project(int vertex, double& x, double& y) const {
-    if (vertex < 0 || vertex >= V_.rows()) return false;
-    renderer_->SetWorldPoint(V_(vertex, 0), V_(vertex, 1), V_(vertex, 2), 1.0);
+void MeshScene::project(const Eigen::Vector3d& point, double& x, double& y) const {
+    renderer_->SetWorldPoint(point[0], point[1], point[2], 1.0);
     renderer_->WorldToDisplay();
     double display[3];
     renderer_->GetDisplayPoint(display);
     x = display[0];
     y = display[1];
-    return true;
 }
 
 }  // namespace boneless::ui

@@ -10,6 +10,7 @@
 
 #include "FloorGrid.h"
 #include "MarkerLabels.h"
+#include "boneless/Reconstruction.h"
 #include "boneless/TriMesh.h"
 #include "boneless/ui/MeshView.h"
 
@@ -63,14 +64,14 @@ class MeshScene {
     std::array<int, 4> legendBox() const;
     void setFloor(const Floor& floor) { floor_.set(floor); }
     const FloorGrid& floorGrid() const { return floor_; }
-    void setHighlightedVertex(int vertex);
+    void setHighlightedPoint(const SurfacePoint& point);
 
     // Fits the camera to the mesh, looking at its front with `up` pointing up on screen.
     void resetCamera(const Eigen::Vector3d& up);
 
     // Display coordinates are VTK's: device pixels, origin bottom-left.
-    int pick(double x, double y);
-    bool project(int vertex, double& x, double& y) const;
+    SurfacePoint pick(double x, double y);  // vertex −1: beside the mesh
+    void project(const Eigen::Vector3d& point, double& x, double& y) const;
 
   private:
     void updateNormals();
@@ -80,7 +81,7 @@ class MeshScene {
     Positions V_;
     Faces F_;
     bool locatorStale_ = true;
-    int highlighted_ = -1;
+    SurfacePoint highlighted_;  // vertex −1: none
     double legendTop_ = 0;
 
     vtkNew<vtkRenderer> renderer_;

@@ -335,8 +335,8 @@ int MeshView::hiddenLabelCount() const {
     return d_->scene.labels().hiddenCount();
 }
 
-void MeshView::setHighlightedVertex(int vertex) {
-    d_->scene.setHighlightedVertex(vertex);
+void MeshView::setHighlightedPoint(const SurfacePoint& point) {
+    d_->scene.setHighlightedPoint(point);
     update();
 }
 
@@ -395,8 +395,8 @@ QImage MeshView::grabImage() {
     return grabFramebuffer();
 }
 
-int MeshView::pickVertex(const QPoint& position) {
-    if (!hasMesh()) return -1;
+SurfacePoint MeshView::pickPoint(const QPoint& position) {
+    if (!hasMesh()) return {};
     d_->syncSize();
     // The mesh may have moved since the last render; a stale clipping range would cut the ray.
     d_->scene.renderer()->ResetCameraClippingRange();
@@ -406,9 +406,14 @@ int MeshView::pickVertex(const QPoint& position) {
 }
 
 QPoint MeshView::projectVertex(int vertex) {
+    if (vertex < 0 || vertex >= positions().rows()) return {-1, -1};
+    return projectPoint(positions().row(vertex).transpose());
+}
+
+QPoint MeshView::projectPoint(const Eigen::Vector3d& point) {
     d_->syncSize();
     double x, y;
-    if (!d_->scene.project(vertex, x, y)) return {-1, -1};
+    d_->scene.project(point, x, y);
     const double ratio = devicePixelRatioF();
     return QPoint(int(std::lround(x / ratio)),
                   int(std::lround((d_->deviceSize().y() - 1 - y) / ratio)));
@@ -499,9 +504,9 @@ void MeshView::mouseReleaseEvent(QMouseEvent* event) {
             d_->leftDown = false;
             // A press and release without a drag is a pick; a drag only turns the camera.
             if (click) {
-                const int vertex = pickVertex(event->position().toPoint());
-                if (vertex >= 0)
-                    emit vertexPicked(vertex);
+                const SurfacePoint point = pickPoint(event->position().toPoint());
+                if (point.vertex >= 0)
+                    emit pointPicked(point);
                 else
                     emit pickMissed();
             }

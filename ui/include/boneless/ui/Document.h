@@ -90,6 +90,8 @@ class Document : public QObject {
     // marker cannot be mapped.
     QString sharedLabelText(int marker) const;
     int mappedVertex(int marker) const;  // -1 when unmapped
+    // Where the marker sits: its vertex, or a point of a face (vertex −1 when unmapped).
+    SurfacePoint mappedPoint(int marker) const;
     double markerOffsetMm(int marker) const;
     bool markerSuggested(int marker) const;  // the entry came from "suggest" and was not edited
     // Why a suggested entry should be checked before it is trusted (empty: nothing to check).
@@ -146,8 +148,12 @@ class Document : public QObject {
     // base, ball and the skin's give keep it 10 to 15 mm off (the generated demo's sit at 10).
     // Later ones take the median of those mapped; the offset row changes either.
     static constexpr double kFirstOffsetMm = 10.0;
-    // Maps `marker` to `vertex`. Refused when another marker already sits on that vertex.
-    bool assign(int marker, int vertex);
+    // Maps `marker` to a point of the surface (a clicked point of a face, or a vertex): the map
+    // entry's "vertex" is its nearest corner. Refused when another marker already sits on that
+    // vertex. Mapping a marker again near its own vertex moves it there, and confirms a
+    // suggestion.
+    bool assign(int marker, const SurfacePoint& point);
+    bool assign(int marker, int vertex) { return assign(marker, SurfacePoint{vertex}); }
     bool clearMapping(int marker);
     // How far the mapped `markers` sit off the skin (mm, along the normal), one undo step.
     // Refused outside Correspondence::kMinOffsetMm to kMaxOffsetMm, as a map file would be.

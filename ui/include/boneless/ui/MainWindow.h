@@ -179,9 +179,10 @@ class MainWindow : public QMainWindow {
     // unsavedEdits_, and the title's mark of edits no project file holds.
     void setUnsavedEdits(bool edited);
     void syncTableSelection(int marker);
-    void onVertexPicked(int vertex);
-    // Maps the selected marker to `vertex`, one undoable edit, as a click in Map Markers does.
-    void mapSelectedMarker(int vertex);
+    void onPointPicked(const SurfacePoint& point);
+    // Maps the selected marker to a point (clicked in Map Markers) or a vertex (typed), one
+    // undoable edit.
+    void mapSelectedMarker(const SurfacePoint& point);
     // Edit → Map Selected Marker to Vertex: asks for the vertex's number, within the mesh's.
     void askVertexForSelected();
     void onTakeLoaded();

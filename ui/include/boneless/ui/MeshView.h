@@ -12,6 +12,7 @@
 #include <memory>
 #include <vector>
 
+#include "boneless/Reconstruction.h"
 #include "boneless/TriMesh.h"
 
 namespace boneless::ui {
@@ -75,8 +76,8 @@ class MeshView : public QOpenGLWidget {
     // those drawn at the last render (logical pixels, top-left origin), and how many were not.
     QList<QRect> labelBoxes() const;
     int hiddenLabelCount() const;
-    // The mesh vertex drawn as a small dot (the selected marker's vertex), -1 for none.
-    void setHighlightedVertex(int vertex);
+    // The point of the surface drawn as a small dot (the selected marker's), vertex −1 for none.
+    void setHighlightedPoint(const SurfacePoint& point);
 
     void setMultiSampling(int samples);  // 0 = off (tests, software GL)
     void resetCamera();
@@ -90,10 +91,13 @@ class MeshView : public QOpenGLWidget {
     Eigen::Vector3d focalPoint() const;
     QImage grabImage();
 
-    // Nearest vertex of the triangle under the widget position (logical pixels, top-left
-    // origin), or -1. Does not emit vertexPicked.
-    int pickVertex(const QPoint& position);
-    // Where vertex v appears in the widget (logical pixels, top-left origin).
+    // The point of the surface under the widget position (logical pixels, top-left origin):
+    // its face, barycentric coordinates and nearest corner; vertex −1 beside the mesh. Does not
+    // emit pointPicked.
+    SurfacePoint pickPoint(const QPoint& position);
+    // Where a point (mesh coordinates) or vertex v appears in the widget (logical pixels,
+    // top-left origin); (−1, −1) for a vertex not on the mesh.
+    QPoint projectPoint(const Eigen::Vector3d& point);
     QPoint projectVertex(int vertex);
     // The camera's position in mesh coordinates (the vertex nearest to it is never occluded).
     Eigen::Vector3d cameraPosition() const;
@@ -104,8 +108,8 @@ class MeshView : public QOpenGLWidget {
     bool setCameraState(const QVariantMap& state);
 
   signals:
-    // A click (press and release without a drag) landed on the mesh near this vertex.
-    void vertexPicked(int vertex);
+    // A click (press and release without a drag) landed on the mesh at this point.
+    void pointPicked(const boneless::SurfacePoint& point);
     // A click landed beside the mesh.
     void pickMissed();
     // Emitted after each render, with how long it took.
@@ -140,3 +144,5 @@ QColor markerColour(MarkerState state);
 Eigen::Vector3d upAxisVector(const QString& axis);
 
 }  // namespace boneless::ui
+
+Q_DECLARE_METATYPE(boneless::SurfacePoint)
