@@ -59,6 +59,13 @@ class ProjectTest : public QObject {
         while (d.markerForVertex(free) >= 0) ++free;
         QVERIFY(d.clearMapping(2));
         QVERIFY(d.assign(2, free));
+        // And one marker on a point of a face, as a click maps it (version 2).
+        SurfacePoint clicked;
+        for (int f = 0; f < d.mesh().faceCount() && clicked.face < 0; ++f)
+            if (d.markerForVertex(d.mesh().F(f, 0)) < 0)
+                clicked = SurfacePoint{d.mesh().F(f, 0), f, Vec3(0.5, 0.3, 0.2)};
+        QVERIFY(d.clearMapping(3));
+        QVERIFY(d.assign(3, clicked));
         QVERIFY(d.align(12));
         TakeSolveOptions settings = d.settings();
         settings.markerWeight = 42;
@@ -80,6 +87,9 @@ class ProjectTest : public QObject {
         QVERIFY2(Project::load(e, path, &error), qPrintable(error));
         QCOMPARE(Project::toJson(e, path), Project::toJson(d, path));
         QCOMPARE(e.mappedVertex(2), free);
+        QCOMPARE(e.mappedPoint(3).face, clicked.face);
+        QCOMPARE(e.mappedPoint(3).barycentric, clicked.barycentric);  // exact doubles
+        QCOMPARE(e.mappedVertex(3), clicked.vertex);
         QVERIFY(e.correspondenceModified());
         QVERIFY(e.alignment());
         QCOMPARE(e.alignment()->frame, 12);
