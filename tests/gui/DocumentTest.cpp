@@ -542,6 +542,19 @@ class DocumentTest : public QObject {
         QVERIFY(d.assign(7, d.mappedVertex(7)));  // no change: nothing to undo
         QVERIFY(d.clearMapping(7));               // residuals belonged to the old map
         QCOMPARE(model.index(7, MarkerListModel::ResidualColumn).data().toString(), QString());
+        // A marker on a point of a face: the column names its vertex, the tip says it is a point.
+        int face = 0;
+        while (d.markerForVertex(d.mesh().F(face, 1)) >= 0) ++face;
+        const int v = d.mesh().F(face, 1);
+        QVERIFY(d.assign(7, SurfacePoint{v, face, Vec3(0.2, 0.6, 0.2)}));
+        const QModelIndex cell = model.index(7, MarkerListModel::VertexColumn);
+        QCOMPARE(cell.data().toString(), QString::number(v));
+        QVERIFY2(cell.data(Qt::ToolTipRole)
+                     .toString()
+                     .startsWith(QString("On a point of face %1").arg(face)),
+                 qPrintable(cell.data(Qt::ToolTipRole).toString()));
+        QVERIFY(d.assign(7, v));  // typed, it sits on the vertex itself
+        QVERIFY(!cell.data(Qt::ToolTipRole).toString().contains("face"));
     }
 };
 

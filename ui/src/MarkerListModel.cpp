@@ -113,8 +113,11 @@ QVariant MarkerListModel::data(const QModelIndex& index, int role) const {
                 .arg(shared);
     }
     if (role == Qt::ToolTipRole && index.column() == VertexColumn && vertex >= 0) {
-        const QString offset =
+        QString offset =
             tr("Offset off the skin: %1 mm").arg(document_->markerOffsetMm(m), 0, 'f', 1);
+        // The column names the vertex; a clicked marker sits on a point of one of its faces.
+        if (const int face = document_->mappedPoint(m).face; face >= 0)
+            offset = tr("On a point of face %1, by this vertex.\n%2").arg(face).arg(offset);
         const QString review = document_->markerReviewReason(m);
         return review.isEmpty() ? offset : tr("Suggested, check it: %1.\n%2").arg(review, offset);
     }
