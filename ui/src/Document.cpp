@@ -386,12 +386,7 @@ int Document::mappedVertex(int marker) const {
 
 SurfacePoint Document::mappedPoint(int marker) const {
     if (marker < 0 || marker >= markerCount() || markers_[marker].mapping < 0) return {};
-    const MarkerMapping& m = map_.markers[markers_[marker].mapping];
-    SurfacePoint p;
-    p.vertex = m.vertex;
-    p.face = m.face;
-    p.barycentric = Vec3(m.barycentric[0], m.barycentric[1], m.barycentric[2]);
-    return p;
+    return surfacePoint(map_.markers[markers_[marker].mapping]);
 }
 
 QString Document::sharedLabelText(int marker) const {

@@ -138,12 +138,10 @@ bool Document::assign(int marker, const SurfacePoint& point) {
         // Mapping a suggestion again by its own vertex is the user's word that it is right.
         EditState after = editState();
         MarkerMapping& m = after.map.markers[mapping];
+        const SurfacePoint now = surfacePoint(m);
         const bool moved =
-            m.face != point.face ||
-            (point.face >= 0 &&
-             (Vec3(m.barycentric[0], m.barycentric[1], m.barycentric[2]) - point.barycentric)
-                     .cwiseAbs()
-                     .maxCoeff() > 1e-9);
+            now.face != point.face ||
+            (point.face >= 0 && (now.barycentric - point.barycentric).cwiseAbs().maxCoeff() > 1e-9);
         const auto json =
             nlohmann::json::parse(m.extraJson.empty() ? "{}" : m.extraJson, nullptr, false);
         const bool suggested = json.is_object() && json.contains("suggested");

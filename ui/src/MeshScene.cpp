@@ -403,10 +403,7 @@ void MeshScene::updateHighlight() {
         highlightActor_->VisibilityOff();
         return;
     }
-    Eigen::RowVector3d x = V_.row(p.vertex);
-    if (p.face >= 0)
-        x = p.barycentric[0] * V_.row(F_(p.face, 0)) + p.barycentric[1] * V_.row(F_(p.face, 1)) +
-            p.barycentric[2] * V_.row(F_(p.face, 2));
+    const Vec3 x = surfacePosition(F_, V_, p);
     highlightSphere_->SetCenter(x[0], x[1], x[2]);
     highlightSphere_->SetRadius(0.45 * markerRadius());
     highlightActor_->VisibilityOn();

@@ -43,13 +43,15 @@ Mat3 MarkerPatch::rotation(const Positions& rest, const Positions& V, const Mat3
     return bestRotation(S);
 }
 
-Vec3 surfacePosition(const TriMesh& mesh, const Positions& V, const SurfacePoint& p) {
-    int c[3], count;
-    double w[3];
-    corners(mesh, p, c, w, count);
+Vec3 surfacePosition(const Faces& F, const Positions& V, const SurfacePoint& p) {
+    if (p.face < 0) return V.row(p.vertex).transpose();
     Vec3 x = Vec3::Zero();
-    for (int i = 0; i < count; ++i) x += w[i] * V.row(c[i]).transpose();
+    for (int c = 0; c < 3; ++c) x += p.barycentric[c] * V.row(F(p.face, c)).transpose();
     return x;
+}
+
+Vec3 surfacePosition(const TriMesh& mesh, const Positions& V, const SurfacePoint& p) {
+    return surfacePosition(mesh.F, V, p);
 }
 
 SurfacePoint surfacePointAt(const Faces& F, const Positions& V, int face, const Vec3& x) {

@@ -15,11 +15,13 @@
 
 namespace boneless {
 
+SurfacePoint surfacePoint(const MarkerMapping& m) {
+    return {m.vertex, m.face, Vec3(m.barycentric[0], m.barycentric[1], m.barycentric[2])};
+}
+
 std::vector<SurfacePoint> surfacePoints(const Correspondence& map) {
     std::vector<SurfacePoint> points;
-    for (const auto& m : map.markers)
-        points.push_back(
-            {m.vertex, m.face, Vec3(m.barycentric[0], m.barycentric[1], m.barycentric[2])});
+    for (const auto& m : map.markers) points.push_back(surfacePoint(m));
     return points;
 }
 

@@ -21,6 +21,7 @@ struct SurfacePoint {
 
 // The point's position in V (its vertex, or the barycentric mix of its face's corners).
 Vec3 surfacePosition(const TriMesh& mesh, const Positions& V, const SurfacePoint& p);
+Vec3 surfacePosition(const Faces& F, const Positions& V, const SurfacePoint& p);  // F: #F by 3
 // The point of face `face` (a row of F) nearest x, as V poses the face (#V by 3): its
 // barycentric coordinates, and its vertex the corner nearest x. A click's hit on a drawn
 // triangle names the same point of the surface in any pose.

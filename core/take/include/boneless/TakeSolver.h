@@ -68,6 +68,7 @@ struct FrameReport {
 
 // The map's markers as the solver takes them, one per entry in order.
 std::vector<SurfacePoint> surfacePoints(const Correspondence& map);
+SurfacePoint surfacePoint(const MarkerMapping& entry);  // one entry's
 
 // Turns a take into an animation of the rest mesh: aligns the take onto the mesh (a similarity
 // applied to the take, never to the mesh, so the encoding's heights keep their meaning), filters
