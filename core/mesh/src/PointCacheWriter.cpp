@@ -38,12 +38,17 @@ PointCacheWriter::PointCacheWriter(std::string path, int pointCount, double star
     if (!file_) throw Error(path_ + ": cannot be written (" + std::strerror(errno) + ")");
     const std::int32_t version = 1, points = pointCount, samples = 0;
     const float start = static_cast<float>(startFrame), rate = static_cast<float>(sampleRate);
-    std::fwrite(kSignature, 1, sizeof kSignature, file_);
-    std::fwrite(&version, 4, 1, file_);
-    std::fwrite(&points, 4, 1, file_);
-    std::fwrite(&start, 4, 1, file_);
-    std::fwrite(&rate, 4, 1, file_);
-    std::fwrite(&samples, 4, 1, file_);
+    errno = 0;
+    if (std::fwrite(kSignature, 1, sizeof kSignature, file_) != sizeof kSignature ||
+        std::fwrite(&version, 4, 1, file_) != 1 || std::fwrite(&points, 4, 1, file_) != 1 ||
+        std::fwrite(&start, 4, 1, file_) != 1 || std::fwrite(&rate, 4, 1, file_) != 1 ||
+        std::fwrite(&samples, 4, 1, file_) != 1) {
+        const std::string why = writeFailure();
+        std::fclose(file_);
+        file_ = nullptr;
+        std::remove(temporary_.c_str());
+        throw Error(path_ + ": cannot be written (" + why + ")");
+    }
 }
 
 PointCacheWriter::~PointCacheWriter() {
@@ -69,15 +74,22 @@ void PointCacheWriter::append(const Positions& positions) {
 void PointCacheWriter::finish() {
     if (!file_) return;
     const std::int32_t samples = frames_;
+    // The frames buffered since the last append reach the disk at fclose: a full disk fails
+    // there, and says so by errno as any write does.
+    errno = 0;
     const bool ok = std::fseek(file_, kSampleCountOffset, SEEK_SET) == 0 &&
                     std::fwrite(&samples, 4, 1, file_) == 1;
+    std::string why = ok ? "" : writeFailure();
+    errno = 0;
     const bool closed = std::fclose(file_) == 0;
+    if (ok && !closed) why = writeFailure();
     file_ = nullptr;
     std::error_code ec;
     if (ok && closed) std::filesystem::rename(temporary_, path_, ec);
+    if (ec) why = ec.message();
     if (!ok || !closed || ec) {
         std::remove(temporary_.c_str());
-        throw Error(path_ + ": cannot be written" + (ec ? " (" + ec.message() + ")" : ""));
+        throw Error(path_ + ": cannot be written (" + why + ")");
     }
 }
 

@@ -279,6 +279,24 @@ TEST(FileWriters, NameTheSystemsReasonWhenAWriteFailsPartWay) {
     EXPECT_TRUE(fs::is_empty(dir)) << "a failed write leaves no file behind";
 }
 
+// The frames a PC2 buffers reach the disk as it is finished: a full disk failed there with
+// "cannot be written" and no reason. 3 frames of 504 bytes stay in the C library's buffer, and the
+// 1 KiB limit stops them at finish().
+TEST(FileWriters, NameTheSystemsReasonWhenAPointCacheFailsAsItIsFinished) {
+    const fs::path dir = freshTestDir("finish-fails");
+    const TriMesh mesh = icosphere(1);
+    rlimit normal{};
+    ASSERT_TRUE(boneless::test::limitFileSize(normal, 1024));
+    const std::string error = errorOf([&] {
+        PointCacheWriter pc2((dir / "w.pc2").string(), mesh.vertexCount(), 0, 1);
+        for (int f = 0; f < 3; ++f) pc2.append(mesh.V);
+        pc2.finish();
+    });
+    ASSERT_TRUE(boneless::test::restoreFileSize(normal));
+    EXPECT_EQ(error, (dir / "w.pc2").string() + ": cannot be written (File too large)");
+    EXPECT_TRUE(fs::is_empty(dir)) << "a failed write leaves no file behind";
+}
+
 namespace {
 
 // A pid that no process has: a child's, once it has exited and been waited for.
