@@ -197,6 +197,11 @@ std::string Correspondence::toJson() const {
         if (m.face >= 0) {
             entry["face"] = m.face;
             entry["barycentric"] = m.barycentric;
+        } else if (facePoints) {
+            // A version 1 entry's own "face" key, unread there, would place it (or, without a
+            // "barycentric", fail the file) once the map is version 2: it sits on its vertex.
+            entry.erase("face");
+            entry.erase("barycentric");
         }
         list.push_back(entry);
     }

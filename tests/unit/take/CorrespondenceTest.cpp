@@ -148,6 +148,30 @@ TEST(Correspondence, AVersion1EntryWithAFaceNumberIsReadWithAWarningNamingIt) {
     EXPECT_TRUE(left.warnings.empty());
 }
 
+// Such a map, once one marker is put on a face point (a click in the app), is written as version
+// 2, where the other entries' own "face" keys would be read: T10's, without a "barycentric", made
+// the file (and the project holding it) unreadable. They keep sitting on their vertices.
+TEST(Correspondence, AVersion1EntrysFaceKeyIsNotCarriedIntoAVersion2Map) {
+    Correspondence c = Correspondence::fromJson(R"({"format": "boneless-correspondence",
+      "version": 1, "markers": [{"label": "A", "vertex": 3, "face": 12,
+                                 "barycentric": [0.5, 0.5, 0]},
+                                {"label": "B", "vertex": 4, "face": "left"},
+                                {"label": "T10", "vertex": 5, "face": 7}]})",
+                                                "v1face.json");
+    EXPECT_NE(c.toJson().find("\"face\": 7"), std::string::npos)
+        << "version 1 keeps its own keys as they were";
+    c.markers[1].face = 2;
+    c.markers[1].barycentric = {0.2, 0.3, 0.5};
+    const Correspondence again = Correspondence::fromJson(c.toJson(), "again.json");
+    ASSERT_EQ(again.markers.size(), 3u);
+    EXPECT_EQ(again.markers[0].face, -1);
+    EXPECT_EQ(again.markers[0].vertex, 3);
+    EXPECT_EQ(again.markers[1].face, 2);
+    EXPECT_EQ(again.markers[2].face, -1);
+    EXPECT_EQ(again.markers[2].vertex, 5);
+    EXPECT_TRUE(again.warnings.empty());
+}
+
 TEST(Correspondence, ChecksTheMeshAndTheTake) {
     const Correspondence c = Correspondence::read(writeTestFile("valid2.json", kValid));
     EXPECT_NO_THROW(c.checkMesh(100, "body.obj"));
