@@ -89,7 +89,7 @@ void resolveMaterials(const std::string& path, const PolygonSoup& soup, SourceFa
                       std::vector<std::string>& warnings) {
     const std::filesystem::path folder = std::filesystem::absolute(path).parent_path();
     for (const std::string& lib : soup.materialLibraries)
-        out.materialLibraries.push_back((folder / lib).lexically_normal().string());
+        out.materialLibraries.push_back(detail::resolvedPath(folder / lib).string());
     out.materialDefinitions = detail::readMaterialLibraries(out.materialLibraries, warnings);
     if (out.materialLibraries.empty())
         warnings.push_back("uses materials (usemtl) but names no material library (mtllib)");

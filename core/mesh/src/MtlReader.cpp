@@ -11,6 +11,15 @@
 
 namespace boneless::detail {
 
+std::filesystem::path resolvedPath(const std::filesystem::path& path) {
+    std::error_code error;
+    const std::filesystem::path full = std::filesystem::absolute(path, error);
+    if (error || !full.has_filename()) return full.lexically_normal();
+    const std::filesystem::path folder =
+        std::filesystem::weakly_canonical(full.parent_path(), error);
+    return error ? full.lexically_normal() : folder / full.filename();
+}
+
 namespace {
 
 // The arguments each map option takes before the file name (the .mtl format of Wavefront's
@@ -71,7 +80,7 @@ MapStatement mapStatement(std::string rest) {
 // Where a map statement's file is: named relative to the library's folder, '\\' as '/'.
 std::filesystem::path texturePath(const std::filesystem::path& folder, std::string name) {
     std::replace(name.begin(), name.end(), '\\', '/');
-    return (folder / name).lexically_normal();
+    return resolvedPath(folder / name);
 }
 
 bool glTFImage(const std::filesystem::path& file) {

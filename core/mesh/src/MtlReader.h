@@ -1,5 +1,6 @@
 #pragma once
 
+#include <filesystem>
 #include <functional>
 #include <string>
 #include <vector>
@@ -23,6 +24,12 @@ std::vector<ObjMaterial> readMaterialLibraries(const std::vector<std::string>& p
 // gives for its absolute path, every other line as it was.
 std::string relocatedLibrary(const std::string& path,
                              const std::function<std::string(const std::string&)>& name);
+
+// Where `path` is as the system finds it, absolute: its folder's links and ".." resolved in
+// turn, as opening it resolves them ("lnk/../mats" is beside lnk's target, not beside lnk, where
+// a textual ".." put it), and the part that does not exist yet normalised as text. The file's own
+// name is kept: a library that is itself a link is named as the OBJ names it.
+std::filesystem::path resolvedPath(const std::filesystem::path& path);
 
 // "image/png" or "image/jpeg" by the file's signature (its first bytes), empty for anything else.
 std::string imageMimeType(const std::string& head);

@@ -102,9 +102,9 @@ std::string placeCopy(const std::filesystem::path& folder, std::string name,
 }
 
 void appendPolygons(std::string& text, const SourceFaces& source, const std::string& path) {
-    // Normalised first: lexically_relative does not resolve "out/../x" in the base.
-    const std::filesystem::path folder =
-        std::filesystem::absolute(path).lexically_normal().parent_path();
+    // Resolved first, as the library paths are: lexically_relative does not resolve "out/../x"
+    // or a link in the base.
+    const std::filesystem::path folder = detail::resolvedPath(path).parent_path();
     for (const std::string& lib : source.materialLibraries)
         text += "mtllib " + nameFrom(folder, lib) + "\n";
     for (size_t t = 0; t < source.uv.size(); t += 2) {
@@ -134,7 +134,7 @@ void appendPolygons(std::string& text, const SourceFaces& source, const std::str
 
 SourceFaces withLibraryCopies(const SourceFaces& source, const std::string& folder) {
     SourceFaces out = source;
-    const std::filesystem::path dir = std::filesystem::absolute(folder).lexically_normal();
+    const std::filesystem::path dir = detail::resolvedPath(folder);
     // A texture keeps its path from the copy unless that path holds whitespace too.
     const auto textureName = [&](const std::string& texture) {
         const std::string named = nameFrom(dir, texture);

@@ -6,6 +6,7 @@
 
 #include "TestFiles.h"
 #include "boneless/MeshReader.h"
+#include "boneless/ObjWriter.h"
 
 using namespace boneless;
 using namespace boneless::testing;
@@ -127,4 +128,38 @@ TEST(MaterialLibrary, ShortFormsAreReadAndABrokenLibraryGivesAFewNotesNotOneALin
     for (const std::string& w : r.warnings) kd += w.find("Kd needs one or three") != w.npos;
     EXPECT_EQ(kd, 5);
     EXPECT_TRUE(anyWarningHas(r, "m.mtl: 15 more lines", ""));
+}
+
+// A folder reached through a link: "lnk/../mats" is beside the link's target, where opening it
+// looks, and the paths were tidied as text to "mats" beside the link. The mesh in a linked folder
+// lost its library ("cannot be read", naming a path the file never gave), and OBJ frames written
+// into a linked folder named theirs by a path that led nowhere.
+TEST(MaterialLibrary, AFolderReachedThroughALinkIsFollowedAsTheSystemFollowsIt) {
+    const fs::path dir = fs::absolute(freshTestDir("mtl-link"));
+    fs::create_directories(dir / "real" / "deep");
+    fs::create_directories(dir / "real" / "mats");
+    fs::create_directory_symlink(dir / "real" / "deep", dir / "lnk");
+    std::ofstream(dir / "real" / "mats" / "w.mtl") << "newmtl skin\nKd 0.9 0.7 0.6\n";
+    std::ofstream(dir / "real" / "deep" / "body.obj")
+        << "mtllib ../mats/w.mtl\n"
+        << kTriangle << "usemtl skin\nf 1/1 2/2 3/3\n";
+    const MeshReadResult r = readMesh((dir / "lnk" / "body.obj").string());
+    EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
+    ASSERT_NE(r.mesh.sourceFaces, nullptr);
+    ASSERT_EQ(r.mesh.sourceFaces->materialDefinitions.size(), 1u);
+    EXPECT_EQ(r.mesh.sourceFaces->materialDefinitions[0].colour,
+              (std::array<double, 3>{0.9, 0.7, 0.6}));
+
+    // Written into another link to the same folder, and into the folder itself: each frame's
+    // mtllib opens the library from where the frame is.
+    fs::create_directory_symlink(dir / "real" / "deep", dir / "out");
+    for (const fs::path& frame : {dir / "out" / "f.obj", dir / "real" / "f2.obj"}) {
+        writeObj(frame.string(), r.mesh.V, r.mesh.F, "test", r.mesh.sourceFaces.get());
+        std::ifstream in(frame);
+        std::string line;
+        while (std::getline(in, line) && line.rfind("mtllib ", 0) != 0) {
+        }
+        ASSERT_EQ(line.rfind("mtllib ", 0), 0u) << frame;
+        EXPECT_TRUE(fs::is_regular_file(frame.parent_path() / line.substr(7))) << line;
+    }
 }
