@@ -298,6 +298,69 @@ class ExportDialogTest : public QObject {
         QCOMPARE(readJson(out + "/walker.json")["frame_range"].toArray(), (QJsonArray{3, 4}));
     }
 
+    // The mesh's folder holds the user's own walker.glb: an OBJ export there asked to replace "an
+    // earlier export (walker.glb)", and Replace removed it once the frames were written. A file of
+    // an output's name that no export wrote is no earlier export: an export that does not write
+    // it leaves it unasked, and one that would write over it asks in those words.
+    void aFileNoExportWroteIsNeverRemovedAsAnEarlierExport() {
+        ExportDialog dialog(&document_, &solver_, &timeline_);
+        dialog.show();
+        const QString out = work_ + "/usersOwn";
+        QVERIFY(QDir().mkpath(out));
+        const QByteArray mine = "the user's own model, not an export";
+        auto glb = [&] {
+            QFile f(out + "/walker.glb");
+            return f.open(QIODevice::ReadOnly) ? f.readAll() : QByteArray();
+        };
+        {
+            QFile f(out + "/walker.glb");
+            QVERIFY(f.open(QIODevice::WriteOnly));
+            f.write(mine);
+        }
+        QString question, asked;
+        auto answerCancel = [&] {
+            QTimer::singleShot(300, [&] {
+                auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+                if (!box) return;
+                question = box->objectName();
+                asked = box->text();
+                box->button(QMessageBox::Cancel)->click();
+            });
+        };
+        dialog.setFormat(ExportFormat::Obj);
+        timeline_.setFrame(5);
+        dialog.setRange(ExportDialog::Range::Current);
+        answerCancel();
+        QVERIFY(exportInto(dialog, out));
+        QCOMPARE(question, QString());
+        QCOMPARE(glb(), mine);
+        QCOMPARE(objFiles(out), QStringList{"walker_0005.obj"});
+
+        // The same frame again: the earlier export is asked about, the glb is not among it.
+        QTimer::singleShot(300, [&] {
+            auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+            if (!box) return;
+            question = box->objectName();
+            asked = box->text();
+            box->findChild<QPushButton*>("replaceButton")->click();
+        });
+        QVERIFY(exportInto(dialog, out));
+        QCOMPARE(question, QString("replaceExportQuestion"));
+        QVERIFY2(!asked.contains("walker.glb"), qPrintable(asked));
+        QCOMPARE(glb(), mine);
+
+        question.clear();
+        dialog.setFormat(ExportFormat::Glb);
+        answerCancel();
+        dialog.setFolder(out);
+        QVERIFY(!dialog.startExport());
+        QCOMPARE(question, QString("replaceOthersFilesQuestion"));
+        QCOMPARE(asked, out + " holds walker.glb, which no Boneless export wrote. Replace it?");
+        QCOMPARE(progressText(dialog)->text(),
+                 QString("Not exported: the folder keeps its files."));
+        QCOMPARE(glb(), mine);
+    }
+
     // The demo's take worn by two actors, walker: and other:, each mapped in its own file: an
     // export of walker's solve into the folder of other's replaced it with a question that said
     // only "an earlier export", where `solve` refuses naming whose solve it is. The app asks with

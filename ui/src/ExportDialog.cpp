@@ -393,7 +393,28 @@ bool ExportDialog::startExport() {
     // export's preparation on a large mesh.
     if (r.options.calibrate == CalibrateMode::Shape)
         if (const auto rest = solver_->calibratedRestFor(*document_)) r.fittedRest = *rest;
-    const std::vector<std::string> earlier = exportFilesIn(r.outDir, exportStem(r));
+    // Files of the outputs' names that no export wrote (the mesh's own walker.glb beside it, a map
+    // saved as walker.json) are the user's: asked about as such, and never removed as an earlier
+    // export's (Replace removed them once this export was written).
+    const int frames = document_->frameCount();
+    const std::vector<std::string> foreign =
+        filesNoExportWrote(r, r.end < 0 ? frames : std::min(r.end, frames));
+    const QString map = QFileInfo(document_->correspondencePath()).canonicalFilePath();
+    for (const std::string& name : foreign)
+        if (!map.isEmpty() &&
+            QFileInfo(QDir(folder()).filePath(QString::fromStdString(name))).canonicalFilePath() ==
+                map) {
+            progressText_->setText(
+                tr("Not exported: %1 is this document's correspondence file, which the export's "
+                   "sidecar would replace. Choose another folder.")
+                    .arg(QString::fromStdString(name)));
+            return false;
+        }
+    if (!foreign.empty() && !askToReplaceOthersFiles(foreign)) {
+        progressText_->setText(tr("Not exported: the folder keeps its files."));
+        return false;
+    }
+    const std::vector<std::string> earlier = exportFilesWrittenIn(r.outDir, exportStem(r));
     // Another take's or actor's solve, found by the check `solve` refuses it with: said whose it
     // is, or Replace read as replacing an earlier export of this take (lost work).
     std::vector<std::string> subjects;
@@ -499,15 +520,38 @@ void ExportDialog::onProgress(int done, int total) {
     progressText_->setText(tr("%1 left").arg(duration(msPerFrame * (total - done))));
 }
 
+// "walker.json, walker_0001.obj, walker_0002.obj and 5 more files"
+QString ExportDialog::listed(const std::vector<std::string>& names) const {
+    QStringList first;
+    for (std::size_t i = 0; i < names.size() && i < 3; ++i)
+        first << QString::fromStdString(names[i]);
+    const QString text = first.join(", ");
+    if (names.size() <= 3) return text;
+    return counted(int(names.size() - 3), tr("%1 and %n more file"), tr("%1 and %n more files"))
+        .arg(text);
+}
+
+bool ExportDialog::askToReplaceOthersFiles(const std::vector<std::string>& names) {
+    QMessageBox box(
+        QMessageBox::Question, tr("Export"),
+        counted(int(names.size()), tr("%1 holds %2, which no Boneless export wrote. Replace it?"),
+                tr("%1 holds %2, which no Boneless export wrote. Replace them?"))
+            .arg(folder(), listed(names)),
+        QMessageBox::Cancel, this);
+    box.setObjectName("replaceOthersFilesQuestion");
+    box.setInformativeText(
+        tr("A file of the name an export writes, made by another program or by you: this export "
+           "would write over it. Choose another folder to keep it."));
+    QPushButton* replace = box.addButton(tr("Replace"), QMessageBox::AcceptRole);
+    replace->setObjectName("replaceButton");
+    box.setDefaultButton(QMessageBox::Cancel);
+    box.exec();
+    return box.clickedButton() == replace;
+}
+
 bool ExportDialog::askToReplace(const std::vector<std::string>& names, const OtherSolve* other,
                                 const std::vector<std::string>& subjects) {
-    QStringList listed;
-    for (std::size_t i = 0; i < names.size() && i < 3; ++i)
-        listed << QString::fromStdString(names[i]);
-    QString text = listed.join(", ");
-    if (names.size() > 3)
-        text = counted(int(names.size() - 3), tr("%1 and %n more file"), tr("%1 and %n more files"))
-                   .arg(text);
+    const QString text = listed(names);
     const QString mine = other && other->sameTake ? QString::fromStdString(subjectsText(subjects))
                                                   : QFileInfo(document_->takePath()).fileName();
     QMessageBox box(QMessageBox::Question, tr("Export"),

@@ -125,41 +125,62 @@ std::optional<SidecarOutputs> sidecarOutputs(const fs::path& outDir, const std::
 
 }  // namespace
 
+namespace {
+
+// Whether `name`, one of exportFilesIn's, is an export's by what the folder shows: `sidecar` (its
+// Boneless sidecar, if any) names it, however it reads now (a frame or a rest cut short or
+// overwritten since is the tool's own to replace), or it is an OBJ starting with the line a solve
+// writes.
+bool writtenByExport(const fs::path& out, const std::string& stem, const std::string& name,
+                     const std::optional<SidecarOutputs>& sidecar) {
+    if (name == stem + ".json") return sidecar.has_value();
+    const fs::path path = out / name;
+    if (name == stem + "_calibrated_rest.obj")
+        return (sidecar && name == sidecar->rest) || objWrittenBySolve(path.string());
+    if (const std::optional<int> frame = objFrameOf(path, stem))
+        return (sidecar && sidecar->output == exportFormatInfo(ExportFormat::Obj).name &&
+                *frame >= sidecar->first && *frame < sidecar->end) ||
+               objWrittenBySolve(path.string());
+    for (const ExportFormatInfo& f : exportFormats())
+        if (f.format != ExportFormat::Obj && name == stem + f.extension)
+            return sidecar && sidecar->output == f.name;
+    return false;
+}
+
+}  // namespace
+
+std::vector<std::string> exportFilesWrittenIn(const std::string& outDir, const std::string& stem) {
+    const std::optional<SidecarOutputs> sidecar = sidecarOutputs(outDir, stem);
+    std::vector<std::string> names = exportFilesIn(outDir, stem);
+    names.erase(std::remove_if(names.begin(), names.end(),
+                               [&](const std::string& name) {
+                                   return !writtenByExport(outDir, stem, name, sidecar);
+                               }),
+                names.end());
+    return names;
+}
+
 std::vector<std::string> filesNoExportWrote(const ExportRequest& request, int end) {
     const fs::path out(request.outDir);
     const std::string stem = exportStem(request);
     std::error_code ec;
     if (!fs::is_directory(out, ec)) return {};
     const std::optional<SidecarOutputs> sidecar = sidecarOutputs(out, stem);
-    // The files the folder's own sidecar names are an export's however they read now: a frame or
-    // a rest cut short or overwritten since is the tool's own to replace.
-    const auto named = [&](const std::string& name, std::optional<int> frame) {
-        if (!sidecar) return false;
-        if (frame)
-            return sidecar->output == exportFormatInfo(ExportFormat::Obj).name &&
-                   *frame >= sidecar->first && *frame < sidecar->end;
-        return name == sidecar->rest;
-    };
     std::vector<std::string> foreign;
     for (const std::string& name : exportFilesIn(request.outDir, stem)) {
         const fs::path path = out / name;
         // An input there (a map kept as <stem>.json) is exportTake's to refuse, naming both.
         if (sameFile(path.string(), request.meshPath) || sameFile(path.string(), request.c3dPath) ||
-            sameFile(path.string(), request.mapPath))
+            sameFile(path.string(), request.mapPath) || writtenByExport(out, stem, name, sidecar))
             continue;
-        if (name == stem + ".json") {
-            if (!sidecar) foreign.push_back(name);  // any Boneless sidecar is replaced
-        } else if (name == stem + "_calibrated_rest.obj") {
-            if (request.writeCalibratedRest && !named(name, std::nullopt) &&
-                !objWrittenBySolve(path.string()))
-                foreign.push_back(name);
-        } else if (const std::optional<int> frame = objFrameOf(path, stem)) {
-            if (request.format == ExportFormat::Obj && *frame >= request.first && *frame < end &&
-                !named(name, frame) && !objWrittenBySolve(path.string()))
-                foreign.push_back(name);
-        } else if (name == stem + exportFormatInfo(request.format).extension &&
-                   (!sidecar || sidecar->output != exportFormatInfo(request.format).name))
-            foreign.push_back(name);
+        const std::optional<int> frame = objFrameOf(path, stem);
+        const bool replaced =
+            name == stem + ".json" ||
+            (name == stem + "_calibrated_rest.obj" && request.writeCalibratedRest) ||
+            (frame && request.format == ExportFormat::Obj && *frame >= request.first &&
+             *frame < end) ||
+            name == stem + exportFormatInfo(request.format).extension;
+        if (replaced) foreign.push_back(name);
     }
     return foreign;
 }

@@ -66,6 +66,12 @@ std::vector<int> objFramesIn(const std::string& outDir, const std::string& stem)
 // file names, not paths.
 std::vector<std::string> exportFilesIn(const std::string& outDir, const std::string& stem);
 
+// Those of exportFilesIn's files that an export wrote, as far as the folder shows: the Boneless
+// sidecar, the files it names (its output, its OBJ frames within its "frame_range", its calibrated
+// rest), and OBJs starting with the line a solve writes. Not another program's (or the user's own)
+// file of an output's name, nor a point cache or glb that the sidecar does not name.
+std::vector<std::string> exportFilesWrittenIn(const std::string& outDir, const std::string& stem);
+
 // Whether the OBJ `path` starts with the "# Boneless: " line a solve writes (a frame, the
 // calibrated rest).
 bool objWrittenBySolve(const std::string& path);

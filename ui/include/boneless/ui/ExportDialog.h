@@ -106,6 +106,9 @@ class ExportDialog : public QDialog {
     // this export animating `subjects`.
     bool askToReplace(const std::vector<std::string>& names, const OtherSolve* other = nullptr,
                       const std::vector<std::string>& subjects = {});
+    // Asks whether to write over `names`, files of the outputs' names that no export wrote.
+    bool askToReplaceOthersFiles(const std::vector<std::string>& names);
+    QString listed(const std::vector<std::string>& names) const;
     // Asks whether to stop the running export, over the dialog or, when the app's window
     // `closing` closes, over it naming how far the export got; true for Stop Export.
     bool askToStop(QWidget* closing = nullptr);
