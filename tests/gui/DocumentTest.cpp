@@ -325,6 +325,14 @@ class DocumentTest : public QObject {
         QVERIFY(!d.correspondenceModified());
         QCOMPARE(d.correspondencePath(), saved);
         QCOMPARE(Correspondence::read(saved.toStdString()).markers.size(), std::size_t(38));
+        // Undo and redo across the save bring back the demo's map file with the edit: the demo's
+        // file does not hold it, so the export must not cite that file for it.
+        d.undoStack()->undo();
+        QVERIFY(d.correspondenceModified());
+        d.undoStack()->redo();
+        QCOMPARE(d.mappedCount(), 38);
+        QVERIFY(d.correspondenceModified());
+        QVERIFY(d.exportRequest(work_ + "/out", ExportFormat::Pc2).mapPath.empty());
     }
 
     void selectionIsShared() {

@@ -16,6 +16,7 @@
 
 #include "AppRun.h"
 #include "ViewTestSupport.h"
+#include "boneless/Correspondence.h"
 #include "boneless/ui/Document.h"
 #include "boneless/ui/ExportDialog.h"
 #include "boneless/ui/ExportRunner.h"
@@ -583,6 +584,72 @@ class LostWorkTest : public QObject {
         Document saved;
         QVERIFY(Project::load(saved, map + ".boneless"));
         QCOMPARE(saved.mappedCount(), window.document()->mappedCount());
+        window.setMessageBoxesEnabled(false);
+        window.close();
+    }
+
+    // Save Correspondence As with "keep" typed asked whether "keep" existed, then wrote keep.json,
+    // a map of the user's, unasked; "walker.map" was written as it was, and Open Correspondence
+    // then refused it. The name saved to is a .json, asked about when it exists, and never the
+    // document's mesh, take or project.
+    void saveCorrespondenceAsAsksAboutTheFileItWritesAndKeepsTheDocumentsFiles() {
+        const QString mine = folder_ + "/mapAs";
+        QVERIFY(QDir().mkpath(mine));
+        for (const QString& name : {"walker.obj", "walker.c3d", "walker.map.json"}) {
+            QFile::remove(mine + "/" + name);
+            QVERIFY(QFile::copy(folder_ + "/mine/" + name, mine + "/" + name));
+        }
+        const QString keep = mine + "/keep.json", mesh = mine + "/walker.obj";
+        QFile::remove(keep);
+        QVERIFY(QFile::copy(mine + "/walker.map.json", keep));
+        const QByteArray keepBytes = readAll(keep), meshBytes = readAll(mesh);
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        QVERIFY(window.openFiles({mesh, mine + "/walker.c3d", mine + "/walker.map.json"}));
+        QVERIFY(window.document()->clearMapping(0));
+        const int mapped = window.document()->mappedCount();
+
+        QSignalSpy errors(&window, &MainWindow::errorShown);
+        QVERIFY(!window.saveCorrespondenceAs(mesh));
+        QCOMPARE(readAll(mesh), meshBytes);
+        QCOMPARE(errors.count(), 1);
+        QVERIFY2(errors.at(0).at(0).toString().startsWith("walker.obj is this document's mesh"),
+                 qPrintable(errors.at(0).at(0).toString()));
+
+        window.setMessageBoxesEnabled(true);
+        QAction* saveAs = nullptr;
+        for (QAction* action : window.findChildren<QAction*>())
+            if (action->text().startsWith("Save Correspo&ndence As")) saveAs = action;
+        QVERIFY(saveAs);
+        QStringList asked;
+        QMessageBox::StandardButton reply = QMessageBox::No;
+        QTimer answering;
+        connect(&answering, &QTimer::timeout, [&] {
+            auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+            if (!box) return;
+            asked << box->text();
+            box->button(reply)->click();
+        });
+        answering.start(100);
+        answerFileDialog(mine + "/keep");
+        saveAs->trigger();
+        QCOMPARE(asked, QStringList{"keep.json already exists. Replace it?"});
+        QCOMPARE(readAll(keep), keepBytes);
+        reply = QMessageBox::Yes;
+        answerFileDialog(mine + "/keep");
+        saveAs->trigger();
+        QCOMPARE(asked.size(), 2);
+        QCOMPARE(boneless::Correspondence::read(keep.toStdString()).markers.size(),
+                 std::size_t(mapped));
+        QFile::remove(mine + "/fresh.map.json");
+        answerFileDialog(mine + "/fresh.map");
+        saveAs->trigger();
+        answering.stop();
+        QCOMPARE(asked.size(), 2);  // a new file: nothing to ask
+        QCOMPARE(window.document()->correspondencePath(), mine + "/fresh.map.json");
+        QCOMPARE(
+            boneless::Correspondence::read((mine + "/fresh.map.json").toStdString()).markers.size(),
+            std::size_t(mapped));
         window.setMessageBoxesEnabled(false);
         window.close();
     }

@@ -4,6 +4,9 @@
 #include <QComboBox>
 #include <QDir>
 #include <QFile>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
 #include <QLabel>
 #include <QMenu>
 #include <QMessageBox>
@@ -105,6 +108,37 @@ class MainWindowTest : public QObject {
         QVERIFY(window.openFile(folder_ + "/demo/walker.c3d"));
         QVERIFY(window.openFile(folder_ + "/demo/walker.map.json"));
         QVERIFY(window.meshView()->upAxis().isApprox(Eigen::Vector3d::UnitZ()));
+    }
+
+    // A version 1 map whose entry gives a "face" (which only version 2 reads) opened in silence:
+    // `solve` warned, naming the file and the entry, and the app said "Opened" alone, the marker
+    // sitting on its vertex unknown to the user. The map's own notes are said as a take's are.
+    void aMapsOwnWarningIsSaidWhenItOpens() {
+        QFile in(folder_ + "/demo/walker.map.json");
+        QVERIFY(in.open(QIODevice::ReadOnly));
+        QJsonObject map = QJsonDocument::fromJson(in.readAll()).object();
+        QJsonArray markers = map["markers"].toArray();
+        QJsonObject first = markers[0].toObject();
+        first["face"] = 7;
+        markers[0] = first;
+        map["markers"] = markers;
+        map["version"] = 1;
+        const QString path = folder_ + "/v1face.map.json";
+        QFile out(path);
+        QVERIFY(out.open(QIODevice::WriteOnly));
+        out.write(QJsonDocument(map).toJson());
+        out.close();
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        QVERIFY(window.openFile(folder_ + "/demo/walker.obj"));
+        QVERIFY(window.openFile(folder_ + "/demo/walker.c3d"));
+        QVERIFY(window.openFile(path));
+        const QString said = window.statusBar()->currentMessage();
+        QVERIFY2(said.startsWith("Opened v1face.map.json, with a note: " + path + ": marker " +
+                                 first["label"].toString() + " has \"face\": 7"),
+                 qPrintable(said));
+        QVERIFY(window.openFile(folder_ + "/demo/walker.map.json"));
+        QCOMPARE(window.statusBar()->currentMessage(), QString("Opened walker.map.json"));
     }
 
     void aTakeWhoseYScreenSaysPlusYStandsTheMeshUpAsItsZUpTwin() {

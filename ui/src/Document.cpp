@@ -106,6 +106,7 @@ bool Document::loadMesh(const QString& path, const QString& group) {
         map_ = emptyMap();
         mapPath_.clear();
         savedMapJson_.clear();
+        savedMapPath_.clear();
     }
     if (map_.markers.empty()) map_ = emptyMap();
     alignment_.reset();
@@ -161,12 +162,15 @@ bool Document::loadCorrespondence(const QString& path, MapLoad mode, int* added,
     } catch (const std::exception& e) {
         return fail(QString::fromStdString(e.what()));
     }
+    mapNotes_.clear();
+    for (const std::string& w : file.warnings) mapNotes_ << QString::fromStdString(w);
     if (replaced) *replaced = 0;
     if (mode == MapLoad::Replace) {
         if (added) *added = int(file.markers.size());
         after.map = std::move(file);
         after.mapPath = path;
         savedMapJson_ = after.map.toJson();
+        savedMapPath_ = path;
         pushEdit(tr("Open Correspondence"), std::move(after));  // as File names it
         return true;
     }
@@ -212,6 +216,7 @@ bool Document::saveCorrespondence(const QString& path) {
     map_ = map;
     mapPath_ = path;
     savedMapJson_ = map_.toJson();
+    savedMapPath_ = path;
     emit correspondenceChanged();
     emit changed();
     return true;
@@ -229,6 +234,7 @@ void Document::reset() {
     map_ = emptyMap();
     mapPath_.clear();
     savedMapJson_.clear();
+    savedMapPath_.clear();
     alignment_.reset();
     autoAlignment_.reset();
     settings_ = TakeSolveOptions();
@@ -256,9 +262,11 @@ bool Document::restoreState(State state) {
     if (map_.markers.empty()) map_ = emptyMap();
     mapPath_ = state.mapPath;
     savedMapJson_.clear();
+    savedMapPath_.clear();
     if (!mapPath_.isEmpty() && QFileInfo::exists(mapPath_)) {
         try {
             savedMapJson_ = Correspondence::read(std8(mapPath_)).toJson();
+            savedMapPath_ = mapPath_;
         } catch (const std::exception&) {
             // An unreadable file just means the project's map counts as unsaved.
         }

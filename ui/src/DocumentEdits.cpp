@@ -473,7 +473,9 @@ QString Document::memoryRefusal() const {
 }
 
 bool Document::correspondenceModified() const {
-    return mapPath_.isEmpty() || map_.toJson() != savedMapJson_;
+    // Undo and redo across a Save Correspondence As bring back the path before it, and the map of
+    // either side: compared with the file it was not read from, it passed for that file's.
+    return mapPath_.isEmpty() || mapPath_ != savedMapPath_ || map_.toJson() != savedMapJson_;
 }
 
 ExportRequest Document::exportRequest(const QString& outDir, ExportFormat format) const {

@@ -175,6 +175,10 @@ bool MainWindow::openFile(const QString& path) {
             int added = 0, replaced = 0;
             ok = document_->loadCorrespondence(path, mode, &added, &replaced);
             if (ok && asOpened) document_->undoStack()->setClean();
+            // A merge's own message says what it did; what the file said of itself comes first.
+            if (ok && mode == Document::MapLoad::Merge &&
+                !document_->correspondenceNotes().isEmpty())
+                break;
             if (ok && mode == Document::MapLoad::Merge && replaced > 0) {
                 addRecentFile(QFileInfo(path).absoluteFilePath());
                 statusBar()->showMessage(
@@ -209,7 +213,10 @@ bool MainWindow::openFile(const QString& path) {
     // The document has already reported a failure through errorOccurred.
     if (ok) {
         addRecentFile(QFileInfo(path).absoluteFilePath());
-        showOpened(path, kindOf(path) == FileKind::Take ? document_->takeNotes() : QStringList());
+        showOpened(path, kindOf(path) == FileKind::Take ? document_->takeNotes()
+                         : kindOf(path) == FileKind::Correspondence
+                             ? document_->correspondenceNotes()
+                             : QStringList());
     }
     return ok;
 }
@@ -724,26 +731,55 @@ bool MainWindow::chooseSaveProjectAs() {
         tr("Boneless projects (*.boneless)"), nullptr, QFileDialog::DontConfirmOverwrite);
     if (path.isEmpty()) return false;
     if (QFileInfo(path).suffix().compare("boneless", Qt::CaseInsensitive) != 0) path += ".boneless";
-    if (messageBoxes_ && QFileInfo::exists(path) &&
-        QFileInfo(path).absoluteFilePath() != projectPath_) {
-        QMessageBox box(QMessageBox::Question, tr("Save Project As"),
-                        tr("%1 already exists. Replace it?").arg(QFileInfo(path).fileName()),
-                        QMessageBox::Yes | QMessageBox::No, this);
-        box.setObjectName("replaceQuestion");
-        box.setDefaultButton(QMessageBox::No);
-        if (box.exec() != QMessageBox::Yes) return false;
-    }
+    if (QFileInfo(path).absoluteFilePath() != projectPath_ &&
+        !askToReplace(tr("Save Project As"), path))
+        return false;
     return saveProjectAs(path);
 }
 
+bool MainWindow::askToReplace(const QString& title, const QString& path) {
+    if (!messageBoxes_ || !QFileInfo::exists(path)) return true;
+    QMessageBox box(QMessageBox::Question, title,
+                    tr("%1 already exists. Replace it?").arg(QFileInfo(path).fileName()),
+                    QMessageBox::Yes | QMessageBox::No, this);
+    box.setObjectName("replaceQuestion");
+    box.setDefaultButton(QMessageBox::No);
+    return box.exec() == QMessageBox::Yes;
+}
+
 void MainWindow::chooseSaveCorrespondence() {
-    QString path = QFileDialog::getSaveFileName(this, tr("Save Correspondence As"),
-                                                document_->correspondencePath(),
-                                                tr("Correspondence files (*.json)"));
+    // As a project: the name saved to is the one asked about (walker typed, walker.json replaced
+    // unasked), it is a .json that Open Correspondence opens (walker.map was refused), and it is
+    // none of the document's other files.
+    QString path = QFileDialog::getSaveFileName(
+        this, tr("Save Correspondence As"), document_->correspondencePath(),
+        tr("Correspondence files (*.json)"), nullptr, QFileDialog::DontConfirmOverwrite);
     if (path.isEmpty()) return;
-    if (QFileInfo(path).suffix().isEmpty()) path += ".json";
-    if (document_->saveCorrespondence(path))
+    if (QFileInfo(path).suffix().compare("json", Qt::CaseInsensitive) != 0) path += ".json";
+    if (saveCorrespondenceAs(path))
         statusBar()->showMessage(tr("Saved %1").arg(QFileInfo(path).fileName()), 5000);
+}
+
+bool MainWindow::saveCorrespondenceAs(const QString& path) {
+    if (const QString target = QFileInfo(path).canonicalFilePath(); !target.isEmpty()) {
+        const std::pair<QString, QString> others[] = {{document_->meshPath(), tr("mesh")},
+                                                      {document_->takePath(), tr("take")},
+                                                      {projectPath_, tr("project")}};
+        for (const auto& [other, what] : others) {
+            if (other.isEmpty() || QFileInfo(other).canonicalFilePath() != target) continue;
+            showError(tr("%1 is this document's %2 file: a correspondence saved there would "
+                         "replace it. Save the correspondence under another name.")
+                          .arg(QFileInfo(path).fileName(), what),
+                      path);
+            return false;
+        }
+    }
+    const QString own = document_->correspondencePath();
+    if ((own.isEmpty() ||
+         QFileInfo(own).absoluteFilePath() != QFileInfo(path).absoluteFilePath()) &&
+        !askToReplace(tr("Save Correspondence As"), path))
+        return false;
+    return document_->saveCorrespondence(path);
 }
 
 void MainWindow::setRecordsSession(bool records) {

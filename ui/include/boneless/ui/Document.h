@@ -78,6 +78,9 @@ class Document : public QObject {
     double frameRate() const;  // frames per second, 0 without a take
 
     const Correspondence& correspondence() const { return map_; }
+    // What the map file opened last said of itself (Correspondence::warnings: a version 1 entry's
+    // "face", which only version 2 reads), naming the file.
+    QStringList correspondenceNotes() const { return mapNotes_; }
     // The correspondence file the map came from or was last saved to (may be empty).
     QString correspondencePath() const { return mapPath_; }
 
@@ -281,7 +284,9 @@ class Document : public QObject {
     QStringList takeNotes_;
     Correspondence map_;
     QString mapPath_;
-    std::string savedMapJson_;  // the map as in mapPath_'s file, to tell unsaved edits
+    QStringList mapNotes_;
+    std::string savedMapJson_;  // the map as in savedMapPath_'s file, to tell unsaved edits
+    QString savedMapPath_;
     std::optional<Calibration> alignment_;
     mutable std::optional<Calibration> autoAlignment_;  // cache of displayAlignment()'s fallback
     TakeSolveOptions settings_;

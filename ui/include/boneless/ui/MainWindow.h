@@ -91,6 +91,9 @@ class MainWindow : public QMainWindow {
     bool openAtStart(const QString& project, const QStringList& files);
     bool saveProject();  // Save As when untitled or the demo
     bool saveProjectAs(const QString& path);
+    // Writes the map to `path` (Save Correspondence As, once a name is chosen): never over the
+    // mesh, the take or the project, and an existing file only after asking. True when saved.
+    bool saveCorrespondenceAs(const QString& path);
     QString projectPath() const { return projectPath_; }
     ProjectAutosave* autosave() const { return autosave_; }
     // File → Export: range, format, folder, estimate, progress.
@@ -221,6 +224,9 @@ class MainWindow : public QMainWindow {
     void chooseProject();
     bool chooseSaveProjectAs();  // true when it saved
     void chooseSaveCorrespondence();
+    // Asks whether to replace the file `path` that a Save As (`title`) would write over; true when
+    // it may (no such file, or Yes).
+    bool askToReplace(const QString& title, const QString& path);
 
     Document* document_;
     FrameSolver* solver_;
