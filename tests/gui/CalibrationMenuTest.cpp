@@ -425,6 +425,35 @@ class CalibrationMenuTest : public QObject {
                  qPrintable(said.first().at(0).toString()));
     }
 
+    // The calibration frame chosen on one take was kept when another was opened: where that
+    // frame of the new take shows too few mapped markers (which Calibrate at This Frame refuses),
+    // every frame then failed. The take is calibrated automatically, and its notes say why.
+    void anotherTakeWhoseCalibrationFrameShowsTooFewMarkersIsCalibratedAutomatically() {
+        Document* document = window_->document();
+        const QString original = document->takePath();
+        window_->timeline()->scrubTo(30);
+        QVERIFY(trigger(*window_, "calibrateAtFrame"));
+        QCOMPARE(document->settings().calibrationFrame, 30);
+        C3dTake take = document->take();
+        const std::vector<std::size_t> markers = take.markerIndices();
+        for (std::size_t k = 2; k < markers.size(); ++k) take.samples.setMissing(30, markers[k]);
+        const QString bare = folder_ + "/bareAt30.c3d";
+        writeC3d(take, bare.toStdString());
+        QVERIFY(document->loadTake(bare));
+        QCOMPARE(document->settings().calibrationFrame, -1);
+        const QString notes = document->takeNotes().join("\n");
+        QVERIFY2(notes.contains("The calibration frame " + named(30) + " shows 2 of the") &&
+                     notes.contains("calibrated automatically"),
+                 qPrintable(notes));
+        // A take that shows enough markers there keeps the frame chosen.
+        QVERIFY(document->loadTake(original));
+        QVERIFY(test::waitForFrame(*window_));
+        window_->timeline()->scrubTo(30);
+        QVERIFY(trigger(*window_, "calibrateAtFrame"));
+        QVERIFY(document->loadTake(original));
+        QCOMPARE(document->settings().calibrationFrame, 30);
+    }
+
     // The solver aligns and fits at one frame: Align must not move the user's calibration frame.
     void aligningTheTakeKeepsTheCalibrationFrameTheUserSet() {
         window_ = test::openShown(test::writeDemoProject(folder_ + "/alignAtFrame"));

@@ -139,6 +139,40 @@ class DocumentTest : public QObject {
         QVERIFY(d.canSolve());
     }
 
+    // A map's face points were checked against the vertex count alone: an entry on a face the
+    // mesh lacks, or on a face its vertex is not a corner of (faces triangulated otherwise since),
+    // was taken, and every frame then failed as "could not be solved". Refused when opened,
+    // naming the marker, as `solve` refuses it; the map in use stays.
+    void aMapWhoseFacePointDoesNotFitTheMeshIsRefusedWhenOpened() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        QSignalSpy errors(&d, &Document::errorOccurred);
+        Correspondence map = Correspondence::read((demo_ + "/walker.map.json").toStdString());
+        MarkerMapping& m = map.markers[0];
+        int other = 0;  // a face that does not have m's vertex as a corner
+        while ((d.mesh().F.row(other).array() == m.vertex).any()) ++other;
+        m.face = other;
+        m.barycentric = {0.2, 0.3, 0.5};
+        const QString notACorner = work_ + "/not-a-corner.map.json";
+        map.write(notACorner.toStdString());
+        QVERIFY(!d.loadCorrespondence(notACorner));
+        QCOMPARE(errors.count(), 1);
+        const QString said = errors.last().at(0).toString();
+        QVERIFY2(said.contains("not-a-corner.map.json") &&
+                     said.contains("marker " + QString::fromStdString(m.label) + ": vertex " +
+                                   QString::number(m.vertex) + " is not a corner of face " +
+                                   QString::number(other)),
+                 qPrintable(said));
+        m.face = int(d.mesh().F.rows());
+        const QString past = work_ + "/past.map.json";
+        map.write(past.toStdString());
+        QVERIFY(!d.loadCorrespondence(past));
+        QVERIFY2(errors.last().at(0).toString().contains("is out of range"),
+                 qPrintable(errors.last().at(0).toString()));
+        QCOMPARE(d.mappedCount(), 39);
+        QVERIFY(d.canSolve());
+    }
+
     // The first marker mapped by clicking took offset 0 (the median of none), and so every later
     // one too: a reviewer's 7 clicks and 34 suggestions all said 0, where markers sit 10 to 15 mm
     // off the skin. The first takes 10 mm; the next the median of those mapped.

@@ -9,6 +9,7 @@
 
 #include "Counted.h"
 #include "EditCommand.h"
+#include "boneless/Alignment.h"
 #include "boneless/C3dReader.h"
 #include "boneless/Error.h"
 #include "boneless/MarkerSuggestion.h"
@@ -97,7 +98,7 @@ bool Document::loadMesh(const QString& path, const QString& group) {
     meshWarnings_ = s.meshWarnings;
     // A map made for another mesh means nothing on this one.
     try {
-        map_.checkMesh(mesh_.vertexCount(), std8(path));
+        map_.checkMesh(mesh_.vertexCount(), std8(path), &mesh_);
     } catch (const Error&) {
         meshWarnings_ << counted(
             int(map_.markers.size()),
@@ -127,16 +128,33 @@ bool Document::loadTake(const QString& path) {
     take_ = std::move(s.take);
     takePath_ = path;
     applyTakeUnits();  // the session's, as the project keeps them
-    const bool pastEnd = noteTake();
+    bool calibrationReset = noteTake();
     alignment_.reset();
     undoStack_->clear();
     selected_ = -1;
     rebuildMarkers();
+    // A calibration frame chosen on the take before: the same number here may show too few of
+    // the mapped markers to align at, which Calibrate at This Frame refuses and which left every
+    // frame unsolved.
+    if (const int frame = settings_.calibrationFrame;
+        frame >= 0 && mappedCount() >= kMinAlignmentMarkers) {
+        if (const int seen = mappedSeenAt(frame); seen < kMinAlignmentMarkers) {
+            takeNotes_ << tr("The calibration frame %1 shows %2 of the %3 mapped markers in this "
+                             "take, fewer than the %4 it is aligned at: the take is calibrated "
+                             "automatically.")
+                              .arg(frameName(frame, take_.firstFrame))
+                              .arg(seen)
+                              .arg(mappedCount())
+                              .arg(kMinAlignmentMarkers);
+            settings_.calibrationFrame = -1;
+            calibrationReset = true;
+        }
+    }
     emit takeChanged();
     emit correspondenceChanged();
     emit alignmentChanged();
     emit selectionChanged(-1);
-    if (pastEnd) emit settingsChanged();
+    if (calibrationReset) emit settingsChanged();
     emit changed();
     return true;
 }
@@ -145,7 +163,7 @@ bool Document::checkCorrespondence(const QString& path) {
     if (refusedWhileHeld()) return false;
     try {
         const Correspondence file = Correspondence::read(std8(path));
-        if (hasMesh_) file.checkMesh(mesh_.vertexCount(), std8(meshPath_));
+        if (hasMesh_) file.checkMesh(mesh_.vertexCount(), std8(meshPath_), &mesh_);
     } catch (const std::exception& e) {
         return fail(QString::fromStdString(e.what()));
     }
@@ -158,7 +176,7 @@ bool Document::loadCorrespondence(const QString& path, MapLoad mode, int* added,
     Correspondence file;
     try {
         file = Correspondence::read(std8(path));
-        if (hasMesh_) file.checkMesh(mesh_.vertexCount(), std8(meshPath_));
+        if (hasMesh_) file.checkMesh(mesh_.vertexCount(), std8(meshPath_), &mesh_);
     } catch (const std::exception& e) {
         return fail(QString::fromStdString(e.what()));
     }
@@ -245,7 +263,7 @@ void Document::reset() {
 bool Document::restoreState(State state) {
     if (state.hasMesh) {
         try {
-            state.map.checkMesh(state.mesh.vertexCount(), std8(state.meshPath));
+            state.map.checkMesh(state.mesh.vertexCount(), std8(state.meshPath), &state.mesh);
         } catch (const std::exception& e) {
             return fail(QString::fromStdString(e.what()));
         }

@@ -342,13 +342,18 @@ void Document::setSettings(const TakeSolveOptions& settings, const QString& text
     pushEdit(text.isEmpty() ? tr("Change the solver settings") : text, std::move(after));
 }
 
+int Document::mappedSeenAt(int frame) const {
+    int seen = 0;
+    for (int r = 0; r < markerCount(); ++r)
+        seen += markers_[r].mapping >= 0 && markerVisible(r, frame);
+    return seen;
+}
+
 bool Document::calibrateAt(int frame) {
     if (refusedWhileHeld()) return false;
     // Taken, a frame that aligns nothing left every frame unsolved, the reason under Show Details.
     if (frame >= 0 && hasTake_) {
-        int seen = 0;
-        for (int r = 0; r < markerCount(); ++r)
-            seen += markers_[r].mapping >= 0 && markerVisible(r, frame);
+        const int seen = mappedSeenAt(frame);
         if (seen < kMinAlignmentMarkers)
             return fail(tr("Frame %1 shows %2 of the %3 mapped markers: calibrating needs at least "
                            "%4 seen at once. The calibration is kept as it was; choose a frame "

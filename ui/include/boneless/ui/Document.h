@@ -266,6 +266,8 @@ class Document : public QObject {
     // takeNotes_ from the take's warnings, and a calibration frame past its end set back to
     // automatic with a note (true then).
     bool noteTake();
+    // How many mapped markers the take shows at `frame`.
+    int mappedSeenAt(int frame) const;
     // The take read in the settings' take_units (setTakeUnits), its marker span judged in them.
     void applyTakeUnits();
     bool fail(const QString& message);
