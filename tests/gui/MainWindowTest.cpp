@@ -216,6 +216,27 @@ class MainWindowTest : public QObject {
         QVERIFY(test::waitForFrame(*window_));
     }
 
+    // Every Frame waits for each frame to be shown. A take with no mesh, or with too few markers
+    // mapped to solve (where a user scrubs to find frames to map on), reported no frame shown,
+    // and play stood still on its first frame.
+    void everyFramePlaysATakeThatIsNotSolved() {
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        QVERIFY(window.openFile(folder_ + "/demo/walker.c3d"));
+        Timeline* timeline = window.timeline();
+        timeline->setSpeed(Timeline::Speed::EveryFrame);
+        timeline->setLoop(false);
+        for (const QString& mesh : {QString(), folder_ + "/demo/walker.obj"}) {
+            if (!mesh.isEmpty()) QVERIFY(window.openFile(mesh));
+            QVERIFY(!window.document()->canSolve());
+            timeline->setFrame(0);
+            timeline->play();
+            QVERIFY2(QTest::qWaitFor([&] { return timeline->frame() >= 5; }, 10000),
+                     qPrintable(mesh));
+            timeline->pause();
+        }
+    }
+
     void corruptTakeGivesMessageAndWindowKeepsWorking() {
         window_->setMessageBoxesEnabled(true);
         QSignalSpy errors(window_.get(), &MainWindow::errorShown);

@@ -181,6 +181,7 @@ void FrameDisplay::onFrameChanged(int frame) {
         // Nothing to pose: the frame is shown as it is (the take's markers), and the status
         // says why, where "preparing the solver" stayed up for ever.
         displayedFrame_ = frame;
+        timeline_->frameShown(frame);  // Every Frame playback waits for it
         emitStatus();
         return;
     }
@@ -202,6 +203,9 @@ void FrameDisplay::showUnsolved(int frame) {
     updateMarkers();
     updateTrails(frame);
     view_->setHeatMap({}, {});
+    // Shown as it is: Every Frame playback, waiting for each frame to be shown, stood still
+    // on a take with too few markers mapped to solve (when a user scrubs it to map them).
+    timeline_->frameShown(frame);
     emitStatus();
     emit frameDisplayed(frame);
 }
