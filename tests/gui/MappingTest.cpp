@@ -3,6 +3,7 @@
 // mapping (each mapping re-solves the frame, which would move the surface under the cursor) and
 // leaving shows the playhead's frame, and suggestions to review stand out.
 #include <QAction>
+#include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QElapsedTimer>
 #include <QFile>
@@ -195,6 +196,33 @@ class MappingTest : public QObject {
         QVERIFY2(d->undoStack()->undoText().startsWith("Move "),
                  qPrintable(d->undoStack()->undoText()));
         QVERIFY((d->mappedPoint(0).barycentric - p.barycentric).norm() > 1e-3);
+    }
+
+    // With the list showing Unmapped markers, selecting a mapped one on the mesh hid its row and
+    // cleared the highlight, but the table's current row stayed on the marker chosen before:
+    // clicking that row again changed nothing, and Map Markers then moved the hidden marker.
+    void aRowClickedAgainAfterTheSelectionWasFilteredOutSelectsItsMarker() {
+        const auto shown = test::openShown(freshProject());
+        QVERIFY(shown);
+        MainWindow& window = *shown;
+        Document* d = window.document();
+        QVERIFY(d->clearMapping(0));
+        QComboBox* states = nullptr;
+        for (QComboBox* box : window.findChildren<QComboBox*>())
+            if (box->accessibleName() == "Markers shown") states = box;
+        QVERIFY(states);
+        states->setCurrentIndex(states->findText("Unmapped"));
+        QTableView* table = window.markerTable();
+        QCOMPARE(table->model()->rowCount(), 1);
+        const QModelIndex row = table->model()->index(0, 0);
+        const QPoint onRow = table->visualRect(row).center();
+        QTest::mouseClick(table->viewport(), Qt::LeftButton, {}, onRow);
+        QCOMPARE(d->selectedMarker(), 0);
+        d->setSelectedMarker(1);  // as a click on marker 1's vertex does, Map Markers off
+        QCOMPARE(d->selectedMarker(), 1);
+        QVERIFY(!table->selectionModel()->currentIndex().isValid());
+        QTest::mouseClick(table->viewport(), Qt::LeftButton, {}, onRow);
+        QCOMPARE(d->selectedMarker(), 0);
     }
 
     // A head marker mapped onto a foot: the take cannot be solved with this map. The status says

@@ -174,6 +174,7 @@ void MainWindow::buildMarkerDock() {
     connect(
         markerTable_->selectionModel(), &QItemSelectionModel::currentRowChanged, this,
         [this](const QModelIndex& current) {
+            if (syncingTable_) return;  // the document's selection, shown: not a choice
             document_->setSelectedMarker(current.isValid() ? proxy_->markerAt(current.row()) : -1);
         });
 
@@ -691,7 +692,12 @@ void MainWindow::syncTableSelection(int marker) {
     const QModelIndex current = selection->currentIndex();
     if (current.isValid() && current.row() == row) return;
     if (row < 0) {
-        selection->clearSelection();
+        // The current row goes too: left on the marker selected before, a click on that row
+        // again changed nothing, and Map Markers then moved the hidden marker, not the one the
+        // list showed selected.
+        syncingTable_ = true;
+        selection->setCurrentIndex(QModelIndex(), QItemSelectionModel::Clear);
+        syncingTable_ = false;
         return;
     }
     const QModelIndex index = proxy_->index(row, 0);

@@ -267,6 +267,7 @@ class MainWindow : public QMainWindow {
     int startFrame_ = -1;
     QString startGroup_;
     bool messageBoxes_ = true;
+    bool syncingTable_ = false;  // syncTableSelection is moving the table's current row
     bool recordsSession_ = true;
     bool endedBySignal_ = false;
     // While keepUnsavedWork's question waits, error boxes are held (one over the question would
