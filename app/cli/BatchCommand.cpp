@@ -241,9 +241,14 @@ std::vector<TakeJob> readManifest(const std::string& file) {
             // Hidden, or another tool's: macOS's ._take.c3d holds Finder's metadata, not a take.
             if (e.path().filename().string().front() == '.') continue;
             const std::string ext = asciiLower(e.path().extension().string());
-            // A link whose take is gone was meant as a take: its entry fails, naming it.
-            const bool dangling = e.is_symlink() && !e.exists();
-            if ((e.is_regular_file() || dangling) && ext == ".c3d") found.push_back(e.path());
+            if (ext != ".c3d") continue;
+            // A link whose take is gone (or a loop of links) was meant as a take: its entry
+            // fails, naming it. Asked with an error_code: a loop anywhere in the folder threw,
+            // and stopped the whole run before its first take.
+            std::error_code status;
+            const bool regular = e.is_regular_file(status);
+            const bool broken = e.is_symlink(status) && !e.exists(status);
+            if (regular || broken) found.push_back(e.path());
         }
         if (ec) throw Error(where + ": cannot list " + pattern.c3d + " (" + ec.message() + ")");
         std::sort(found.begin(), found.end());

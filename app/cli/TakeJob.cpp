@@ -156,7 +156,7 @@ std::string unitsText(const C3dTake& take) {
 }
 
 void checkMapFitsMesh(const Correspondence& map, const TriMesh& mesh, const std::string& meshPath,
-                      const std::string& group) {
+                      const std::string& group, bool keys) {
     try {
         map.checkMesh(mesh.vertexCount(), meshPath, &mesh);
     } catch (const Error& e) {
@@ -166,7 +166,9 @@ void checkMapFitsMesh(const Correspondence& map, const TriMesh& mesh, const std:
         if (std::none_of(groups.begin(), groups.end(),
                          [&](const ObjGroup& g) { return g.name == map.meshGroup; }))
             throw;
-        throw Error(std::string(e.what()) + "; open it with --group " + map.meshGroup);
+        // A manifest's entry takes a key, not a flag.
+        throw Error(std::string(e.what()) + "; open it with " +
+                    (keys ? "\"group\": \"" + map.meshGroup + "\"" : "--group " + map.meshGroup));
     }
 }
 
@@ -421,7 +423,7 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
         for (const std::string& w : take.take().warnings)
             std::fprintf(stderr, "warning: %s: %s\n", job.c3d.c_str(), w.c_str());
     const Correspondence map = Correspondence::read(job.map);
-    checkMapFitsMesh(map, mesh, job.mesh, job.group);
+    checkMapFitsMesh(map, mesh, job.mesh, job.group, keys);
     // In batch under the take's line, once it is finished (docs/batch.md).
     const auto note = [&](const std::string& text) {
         if (text.empty()) return;

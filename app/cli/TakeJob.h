@@ -38,9 +38,10 @@ struct TakeJob {
 void addTakeJobOptions(CLI::App* command, TakeJob& job);
 
 // Checks the map against the mesh read from `meshPath` (Correspondence::checkMesh), and when the
-// map was made on another OBJ group than `group`, says which --group to open the mesh with.
+// map was made on another OBJ group than `group`, says which --group to open the mesh with (with
+// `keys`, the "group" of a manifest's entry, as batch reads it).
 void checkMapFitsMesh(const boneless::Correspondence& map, const boneless::TriMesh& mesh,
-                      const std::string& meshPath, const std::string& group);
+                      const std::string& meshPath, const std::string& group, bool keys = false);
 
 // A take whose markers span no body in the units it states (C3dTake::markerSpan) is refused before
 // the mesh is read or the solver prepared: solved, CMU 85_02 in metres under "mm" aligned "at
