@@ -166,6 +166,12 @@ void registerMapCommand(CLI::App& app) {
         for (const auto& [label, mm] : c.distancesMm)
             std::printf("  %-8s %7.1f mm%s\n", label.c_str(), mm,
                         mm > args->toleranceMm ? "  off" : "");
+        // "0 of 0 within 30 mm, median 0.0 mm" read as a check that passed.
+        if (c.compared == 0 && !s.proposals.empty())
+            throw Error(args->check + ": names none of the " +
+                        plural(long(s.proposals.size()), "suggested marker") +
+                        " (as the take labels them): nothing to check them against; the map "
+                        "was written");
         std::printf("%d of %d within %g mm, median %.1f mm\n", c.within, c.compared,
                     args->toleranceMm, c.medianMm);
     });

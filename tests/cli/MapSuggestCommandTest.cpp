@@ -2,6 +2,7 @@
 // measuring the proposals against a map known to be right.
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -52,6 +53,41 @@ TEST(MapSuggestCommand, CompletesAPartialMapAndChecksItAgainstTheTrueOne) {
     int suggested = 0;
     for (const auto& m : full["markers"]) suggested += m.value("suggested", false) ? 1 : 0;
     EXPECT_EQ(suggested, total - 6);
+}
+
+// --check matched entries by their labels' text: a right reference written with the take's
+// full labels ("walker:C7") or in other case compared nothing, and printed "0 of 0 within 30 mm,
+// median 0.0 mm" with exit 0. Labels name the take's points as solve resolves them; a reference
+// that names none of the proposals is an error, naming it.
+TEST(MapSuggestCommand, CheckMatchesLabelsAsTheTakeNamesThemAndSaysWhenItComparedNothing) {
+    const fs::path dir = freshTestDir("map-suggest-check-labels");
+    const int total = demoWithSixPicks(dir);
+    nlohmann::json reference, none;
+    std::ifstream(dir / "walker.map.json") >> reference;
+    none = reference;
+    for (auto& m : reference["markers"]) {
+        std::string label = "walker:" + m["label"].get<std::string>();
+        for (char& c : label) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        m["label"] = label;
+    }
+    for (auto& m : none["markers"]) m["label"] = "X" + m["label"].get<std::string>();
+    std::ofstream(dir / "prefixed.json") << reference.dump();
+    std::ofstream(dir / "none.json") << none.dump();
+    const std::string command = "map suggest --mesh " + (dir / "walker.obj").string() + " --c3d " +
+                                (dir / "walker.c3d").string() + " --map " +
+                                (dir / "partial.json").string() + " --force --out " +
+                                (dir / "full.json").string() + " --check ";
+    const CliResult r = runCli(command + (dir / "prefixed.json").string());
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    const std::string counted = std::to_string(total - 6) + " of " + std::to_string(total - 6);
+    EXPECT_NE(r.out.find(counted + " within 30 mm, median 0.0 mm"), std::string::npos) << r.out;
+    const CliResult n = runCli(command + (dir / "none.json").string());
+    EXPECT_EQ(n.exitCode, 1) << n.out;
+    EXPECT_NE(n.out.find((dir / "none.json").string() + ": names none of the " +
+                         std::to_string(total - 6) + " suggested markers"),
+              std::string::npos)
+        << n.out;
+    EXPECT_EQ(n.out.find("0 of 0"), std::string::npos) << n.out;
 }
 
 TEST(MapSuggestCommand, MistakesNameTheFileAndTheReason) {

@@ -205,6 +205,25 @@ std::vector<Draft> draft(const TriMesh& rest, const C3dTake& take, const Corresp
                            .transpose();
                 ++seen;
             }
+        if (!seen) {
+            // Hidden in every kept fit, seen elsewhere (a gap over the stance): placed by the
+            // best-rated scanned fit that shows it, where it was left out without a word. Its
+            // entry is marked for review: it is not seen on the best fit's frame.
+            for (const auto& [quality, f] : ranked) {
+                const auto x = take.samples.position(f, p);
+                if (!std::isfinite(quality) || !x) continue;
+                if (stopped()) return {};
+                const Positions V = solver.solve(f, report, stop);
+                if (report.stopped) return {};
+                const Positions lifted = V + kLiftMm * unitsPerMm * vertexNormals(rest.F, V);
+                sum = (lifted.rowwise() - s.apply(*x).transpose())
+                          .rowwise()
+                          .squaredNorm()
+                          .transpose();
+                seen = 1;
+                break;
+            }
+        }
         cost.push_back(seen ? Eigen::VectorXd((sum / seen).cwiseSqrt())
                             : Eigen::VectorXd::Constant(rest.vertexCount(),
                                                         std::numeric_limits<double>::infinity()));

@@ -1,6 +1,7 @@
 #include "boneless/SuggestionCheck.h"
 
 #include <algorithm>
+#include <map>
 
 #include "boneless/C3dTake.h"
 
@@ -21,10 +22,18 @@ SuggestionCheck checkSuggestion(const TriMesh& rest, const C3dTake& take,
                                 const Suggestion& suggestion, const Correspondence& reference,
                                 double toleranceMm) {
     const double mmPerMeshUnit = take.unitToMm / suggestion.calibration.takeToMesh.scale;
+    // Entries match by the point of the take their labels name, as solve resolves them: a
+    // reference written "walker:C7", or "c7", compared nothing with "C7" as text.
+    std::map<std::size_t, const MarkerMapping*> referenceOf;
+    for (const MarkerMapping& m : reference.markers)
+        if (const std::vector<std::size_t> p = take.pointsNamed(m.label); p.size() == 1)
+            referenceOf[p[0]] = &m;
     SuggestionCheck check;
     std::vector<double> mm;
     for (const auto& proposal : suggestion.proposals) {
-        const MarkerMapping* truth = reference.find(proposal.label);
+        const std::vector<std::size_t> point = take.pointsNamed(proposal.label);
+        const auto found = point.size() == 1 ? referenceOf.find(point[0]) : referenceOf.end();
+        const MarkerMapping* truth = found == referenceOf.end() ? nullptr : found->second;
         const MarkerMapping* mine = suggestion.map.find(proposal.label);
         if (!truth || !mine || truth->vertex < 0 || truth->vertex >= rest.vertexCount()) continue;
         mm.push_back((restPoint(rest, *mine) - restPoint(rest, *truth)).norm() * mmPerMeshUnit);

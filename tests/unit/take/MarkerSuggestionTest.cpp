@@ -309,6 +309,32 @@ TEST(MarkerSuggestion, TheDemoWalkersSuggestionsLandOnTheirOwnVertices) {
     EXPECT_EQ(s.needsReview, 0);
 }
 
+// A marker hidden in every fit kept (a gap over the frames that fit best) but seen elsewhere in
+// the take got no entry, no review mark and no mention. It is placed from a fit that shows it,
+// and marked for review.
+TEST(MarkerSuggestion, AMarkerHiddenInTheBestFitsIsPlacedFromAFitThatShowsIt) {
+    const DemoWalker walker = makeDemoWalker();
+    DemoTake demo = makeDemoWalkerTake(walker);
+    Correspondence partial = demo.map;
+    partial.markers.clear();
+    for (const char* label : {"LFHD", "LASI", "LWRA", "RWRA", "LANK", "RANK"})
+        partial.markers.push_back(*demo.map.find(label));
+    const std::vector<std::size_t> relb = demo.take.pointsNamed("RELB");
+    ASSERT_EQ(relb.size(), 1u);
+    const std::size_t frames = demo.take.frameCount();
+    for (std::size_t f = 0; f < 2 * frames / 3; ++f) demo.take.samples.setMissing(f, relb[0]);
+    const Suggestion s = suggestMappings(walker.rest, demo.take, partial);
+    const MarkerMapping* entry = nullptr;
+    for (const MarkerMapping& m : s.map.markers)
+        if (m.label == "RELB" || m.label == "walker:RELB") entry = &m;
+    ASSERT_NE(entry, nullptr) << "RELB was left out";
+    EXPECT_EQ(entry->vertex, demo.map.find("RELB")->vertex);
+    bool reviewed = false;
+    for (const Proposal& p : s.proposals)
+        if (p.label == entry->label) reviewed = p.needsReview;
+    EXPECT_TRUE(reviewed);
+}
+
 TEST(MarkerSuggestion, OnATakeTwoSubjectsWearItWritesTheSubjectWhereTheBareNameIsAmbiguous) {
     const DemoWalker walker = makeDemoWalker();
     const DemoTake demo = makeDemoWalkerTake(walker);
