@@ -14,6 +14,9 @@ struct MeshUnit {
     double perMm;
 };
 
+// Heights a body of the take may have, mm: a small animal's to a horse's.
+constexpr double kBodyMm[2] = {300, 4000};
+
 MeshUnit nearestUnit(double meshUnitsPerMm) {
     const auto gap = [&](const MeshUnit& u) {
         return std::abs(std::log(meshUnitsPerMm / u.perMm));
@@ -58,12 +61,20 @@ std::string meshScaleWarning(const TriMesh& rest, const Similarity& takeToMesh, 
         const double h = rest.V.row(rest.F.data()[i]).dot(up);
         low = std::min(low, h), high = std::max(high, h);
     }
+    const auto length = [](double mm) {
+        return mm >= 1000 ? shortNumber(mm / 1000, 2) + " m"
+               : mm >= 10 ? shortNumber(mm / 10, 2) + " cm"
+                          : shortNumber(mm, 2) + " mm";
+    };
     const double mm = (high - low) / unit.perMm;
-    const std::string height = mm >= 1000 ? shortNumber(mm / 1000, 2) + " m"
-                               : mm >= 10 ? shortNumber(mm / 10, 2) + " cm"
-                                          : shortNumber(mm, 2) + " mm";
-    return std::string("mesh units look like ") + unit.name + ", but the body would be " + height +
-           " tall: check its scale (a .glb export places it by that unit)";
+    // A body's size in that unit: the mesh is right, and the take's markers are ten or a hundred
+    // times its size (a take in mm given as cm), where "check its scale" blamed the mesh.
+    if (mm >= kBodyMm[0] && mm <= kBodyMm[1])
+        return "the take's markers make the body " + length((high - low) / meshUnitsPerMm) +
+               " tall, where the mesh is " + length(mm) + " tall in " + unit.name +
+               ": check the take's units";
+    return std::string("mesh units look like ") + unit.name + ", but the body would be " +
+           length(mm) + " tall: check its scale (a .glb export places it by that unit)";
 }
 
 std::string guessUpAxis(const Similarity& s, const Vec3& takeUp) {

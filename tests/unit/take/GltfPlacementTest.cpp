@@ -86,6 +86,13 @@ TEST(GltfPlacement, AMeshThatNoUnitMakesTheActorsSizeIsSaidToBeWronglyScaled) {
     EXPECT_NE(meshScaleWarning(huge, takeOnto(Vec3::UnitY(), actorMm / 17400), 1.0, Vec3::UnitZ())
                   .find("mesh units look like mm, but the body would be 17 m tall"),
               std::string::npos);
+    // A body's size in its unit (metres), and the take read ten times the actor's size (in mm,
+    // given as cm): the take's units are what to check, not the mesh's scale.
+    TriMesh metres = body;
+    metres.V *= 0.1;
+    EXPECT_EQ(meshScaleWarning(metres, takeOnto(Vec3::UnitY(), 1000.0), 10.0, Vec3::UnitZ()),
+              "the take's markers make the body 17 m tall, where the mesh is 1.7 m tall in m: "
+              "check the take's units");
     // Every unit between mm and m, and a child's body driven by an adult, says nothing.
     for (double unitMm : {1.0, 10.0, 100.0, 1000.0, 25.4, 304.8})
         for (double actorOverMesh : {0.6, 1.0, 1.7}) {

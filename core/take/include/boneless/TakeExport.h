@@ -137,7 +137,10 @@ const char* guessMeshUnits(double meshUnitsPerMm);
 
 // "" when the mesh, read in its guessed unit, is about the size of the actor the take aligns onto
 // it; else a warning that no common unit makes it a body's size ("mesh units look like m, but
-// the body would be 17 cm tall: check its scale ..."), with its height along the guessed up axis.
+// the body would be 17 cm tall: check its scale ..."), with its height along the guessed up axis,
+// or, when the mesh is a body's size in that unit, that the take's markers make it ten or more
+// times that ("the take's markers make the body 19 m tall, where the mesh is 1.9 m tall in m:
+// check the take's units").
 std::string meshScaleWarning(const TriMesh& rest, const Similarity& takeToMesh, double takeUnitToMm,
                              const Vec3& takeUp);
 
