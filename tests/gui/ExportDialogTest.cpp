@@ -317,45 +317,43 @@ class ExportDialogTest : public QObject {
             QVERIFY(f.open(QIODevice::WriteOnly));
             f.write(mine);
         }
-        QString question, asked;
-        auto answerCancel = [&] {
-            QTimer::singleShot(300, [&] {
-                auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
-                if (!box) return;
-                question = box->objectName();
-                asked = box->text();
-                box->button(QMessageBox::Cancel)->click();
-            });
-        };
+        // Every question is answered as `replace` says, and recorded.
+        QStringList questions, asked;
+        bool replace = false;
+        QTimer answering;
+        connect(&answering, &QTimer::timeout, [&] {
+            auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+            if (!box) return;
+            questions << box->objectName();
+            asked << box->text();
+            (replace ? box->findChild<QPushButton*>("replaceButton")
+                     : box->button(QMessageBox::Cancel))
+                ->click();
+        });
+        answering.start(100);
         dialog.setFormat(ExportFormat::Obj);
         timeline_.setFrame(5);
         dialog.setRange(ExportDialog::Range::Current);
-        answerCancel();
         QVERIFY(exportInto(dialog, out));
-        QCOMPARE(question, QString());
+        QCOMPARE(questions, QStringList());
         QCOMPARE(glb(), mine);
         QCOMPARE(objFiles(out), QStringList{"walker_0005.obj"});
 
         // The same frame again: the earlier export is asked about, the glb is not among it.
-        QTimer::singleShot(300, [&] {
-            auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
-            if (!box) return;
-            question = box->objectName();
-            asked = box->text();
-            box->findChild<QPushButton*>("replaceButton")->click();
-        });
+        replace = true;
         QVERIFY(exportInto(dialog, out));
-        QCOMPARE(question, QString("replaceExportQuestion"));
-        QVERIFY2(!asked.contains("walker.glb"), qPrintable(asked));
+        QCOMPARE(questions, QStringList{"replaceExportQuestion"});
+        QVERIFY2(!asked.last().contains("walker.glb"), qPrintable(asked.last()));
         QCOMPARE(glb(), mine);
 
-        question.clear();
+        replace = false;
         dialog.setFormat(ExportFormat::Glb);
-        answerCancel();
         dialog.setFolder(out);
         QVERIFY(!dialog.startExport());
-        QCOMPARE(question, QString("replaceOthersFilesQuestion"));
-        QCOMPARE(asked, out + " holds walker.glb, which no Boneless export wrote. Replace it?");
+        answering.stop();
+        QCOMPARE(questions.last(), QString("replaceOthersFilesQuestion"));
+        QCOMPARE(asked.last(),
+                 out + " holds walker.glb, which no Boneless export wrote. Replace it?");
         QCOMPARE(progressText(dialog)->text(),
                  QString("Not exported: the folder keeps its files."));
         QCOMPARE(glb(), mine);

@@ -144,7 +144,8 @@ TEST(MaterialLibrary, AFolderReachedThroughALinkIsFollowedAsTheSystemFollowsIt) 
         << "mtllib ../mats/w.mtl\n"
         << kTriangle << "usemtl skin\nf 1/1 2/2 3/3\n";
     const MeshReadResult r = readMesh((dir / "lnk" / "body.obj").string());
-    EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
+    for (const std::string& w : r.warnings)  // a lone triangle's open surface aside
+        EXPECT_EQ(w.find("material"), std::string::npos) << w;
     ASSERT_NE(r.mesh.sourceFaces, nullptr);
     ASSERT_EQ(r.mesh.sourceFaces->materialDefinitions.size(), 1u);
     EXPECT_EQ(r.mesh.sourceFaces->materialDefinitions[0].colour,
