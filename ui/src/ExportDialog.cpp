@@ -532,38 +532,33 @@ QString ExportDialog::listed(const std::vector<std::string>& names) const {
 }
 
 bool ExportDialog::askToReplaceOthersFiles(const std::vector<std::string>& names) {
-    QMessageBox box(
-        QMessageBox::Question, tr("Export"),
+    return askReplace(
         counted(int(names.size()), tr("%1 holds %2, which no Boneless export wrote. Replace it?"),
                 tr("%1 holds %2, which no Boneless export wrote. Replace them?"))
             .arg(folder(), listed(names)),
-        QMessageBox::Cancel, this);
-    box.setObjectName("replaceOthersFilesQuestion");
-    box.setInformativeText(
+        "replaceOthersFilesQuestion",
         tr("A file of the name an export writes, made by another program or by you: this export "
            "would write over it. Choose another folder to keep it."));
-    QPushButton* replace = box.addButton(tr("Replace"), QMessageBox::AcceptRole);
-    replace->setObjectName("replaceButton");
-    box.setDefaultButton(QMessageBox::Cancel);
-    box.exec();
-    return box.clickedButton() == replace;
 }
 
 bool ExportDialog::askToReplace(const std::vector<std::string>& names, const OtherSolve* other,
                                 const std::vector<std::string>& subjects) {
-    const QString text = listed(names);
     const QString mine = other && other->sameTake ? QString::fromStdString(subjectsText(subjects))
                                                   : QFileInfo(document_->takePath()).fileName();
-    QMessageBox box(QMessageBox::Question, tr("Export"),
-                    other ? tr("%1 is the solve of %2. Replace it with the solve of %3?")
-                                .arg(QString::fromStdString(other->sidecar),
-                                     QString::fromStdString(other->whose()), mine)
-                          : tr("%1 holds an earlier export (%2). Replace it?").arg(folder(), text),
-                    QMessageBox::Cancel, this);
-    box.setObjectName(other ? "replaceOtherSolveQuestion" : "replaceExportQuestion");
-    box.setInformativeText(
+    return askReplace(
+        other ? tr("%1 is the solve of %2. Replace it with the solve of %3?")
+                    .arg(QString::fromStdString(other->sidecar),
+                         QString::fromStdString(other->whose()), mine)
+              : tr("%1 holds an earlier export (%2). Replace it?").arg(folder(), listed(names)),
+        other ? "replaceOtherSolveQuestion" : "replaceExportQuestion",
         tr("Its files are removed once this export is written, or stopped part-way, so that "
            "the folder holds this export alone. Choose another folder to keep it."));
+}
+
+bool ExportDialog::askReplace(const QString& text, const char* name, const QString& informative) {
+    QMessageBox box(QMessageBox::Question, tr("Export"), text, QMessageBox::Cancel, this);
+    box.setObjectName(name);
+    box.setInformativeText(informative);
     QPushButton* replace = box.addButton(tr("Replace"), QMessageBox::AcceptRole);
     replace->setObjectName("replaceButton");
     box.setDefaultButton(QMessageBox::Cancel);

@@ -564,19 +564,12 @@ bool MainWindow::saveProjectAs(const QString& path) {
     }
     // Never over the document's own files: saved as its map, the project replaced the user's
     // correspondence file, and its autosaves went on rewriting it.
-    if (const QString target = QFileInfo(path).canonicalFilePath(); !target.isEmpty()) {
-        const std::pair<QString, QString> inputs[] = {
-            {document_->meshPath(), tr("mesh")},
-            {document_->takePath(), tr("take")},
-            {document_->correspondencePath(), tr("correspondence")}};
-        for (const auto& [input, what] : inputs) {
-            if (input.isEmpty() || QFileInfo(input).canonicalFilePath() != target) continue;
-            showError(tr("%1 is this project's %2 file: a project saved there would replace it. "
-                         "Save the project under another name.")
-                          .arg(QFileInfo(path).fileName(), what),
-                      path);
-            return false;
-        }
+    if (const QString what = ownFileAt(path, projectPath_); !what.isEmpty()) {
+        showError(tr("%1 is this project's %2 file: a project saved there would replace it. "
+                     "Save the project under another name.")
+                      .arg(QFileInfo(path).fileName(), what),
+                  path);
+        return false;
     }
     // Save into the project open: not over what another Boneless or program wrote there since.
     if (QFileInfo(path).absoluteFilePath() == projectPath_ && autosave_->projectChangedOnDisk()) {
@@ -760,19 +753,27 @@ void MainWindow::chooseSaveCorrespondence() {
         statusBar()->showMessage(tr("Saved %1").arg(QFileInfo(path).fileName()), 5000);
 }
 
+QString MainWindow::ownFileAt(const QString& path, const QString& except) const {
+    const QString target = QFileInfo(path).canonicalFilePath();
+    if (target.isEmpty() || (!except.isEmpty() && QFileInfo(except).canonicalFilePath() == target))
+        return {};
+    const std::pair<QString, QString> own[] = {
+        {document_->meshPath(), tr("mesh")},
+        {document_->takePath(), tr("take")},
+        {document_->correspondencePath(), tr("correspondence")},
+        {projectPath_, tr("project")}};
+    for (const auto& [file, what] : own)
+        if (!file.isEmpty() && QFileInfo(file).canonicalFilePath() == target) return what;
+    return {};
+}
+
 bool MainWindow::saveCorrespondenceAs(const QString& path) {
-    if (const QString target = QFileInfo(path).canonicalFilePath(); !target.isEmpty()) {
-        const std::pair<QString, QString> others[] = {{document_->meshPath(), tr("mesh")},
-                                                      {document_->takePath(), tr("take")},
-                                                      {projectPath_, tr("project")}};
-        for (const auto& [other, what] : others) {
-            if (other.isEmpty() || QFileInfo(other).canonicalFilePath() != target) continue;
-            showError(tr("%1 is this document's %2 file: a correspondence saved there would "
-                         "replace it. Save the correspondence under another name.")
-                          .arg(QFileInfo(path).fileName(), what),
-                      path);
-            return false;
-        }
+    if (const QString what = ownFileAt(path, document_->correspondencePath()); !what.isEmpty()) {
+        showError(tr("%1 is this document's %2 file: a correspondence saved there would replace "
+                     "it. Save the correspondence under another name.")
+                      .arg(QFileInfo(path).fileName(), what),
+                  path);
+        return false;
     }
     const QString own = document_->correspondencePath();
     if ((own.isEmpty() ||

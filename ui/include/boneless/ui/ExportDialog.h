@@ -108,6 +108,8 @@ class ExportDialog : public QDialog {
                       const std::vector<std::string>& subjects = {});
     // Asks whether to write over `names`, files of the outputs' names that no export wrote.
     bool askToReplaceOthersFiles(const std::vector<std::string>& names);
+    // The question both ask (Replace / Cancel, Cancel the default), named `name`: true for Replace.
+    bool askReplace(const QString& text, const char* name, const QString& informative);
     QString listed(const std::vector<std::string>& names) const;
     // Asks whether to stop the running export, over the dialog or, when the app's window
     // `closing` closes, over it naming how far the export got; true for Stop Export.

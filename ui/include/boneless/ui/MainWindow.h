@@ -227,6 +227,9 @@ class MainWindow : public QMainWindow {
     // Asks whether to replace the file `path` that a Save As (`title`) would write over; true when
     // it may (no such file, or Yes).
     bool askToReplace(const QString& title, const QString& path);
+    // Which of the window's own files `path` is ("mesh", "take", "correspondence", "project",
+    // however either is spelled), "" for none or for `except`, the file being saved again.
+    QString ownFileAt(const QString& path, const QString& except) const;
 
     Document* document_;
     FrameSolver* solver_;
