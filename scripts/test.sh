@@ -4,6 +4,7 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${BONELESS_BUILD_DIR:-$root/build}
+build=${build%/}  # build-asan beside it, not build/-asan inside it
 "$root/scripts/build.sh"
 # CHOLMOD's OpenMP threads and OpenBLAS's would otherwise compete for the same cores.
 export OPENBLAS_NUM_THREADS=1
