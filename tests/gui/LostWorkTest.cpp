@@ -51,6 +51,16 @@ void answerFileDialog(const QString& path, int tries = 50) {
     });
 }
 
+// The demo's mesh, take and map copied from folder_/mine into `folder`, afresh.
+bool copyFiles(const QString& from, const QString& folder) {
+    if (!QDir().mkpath(folder)) return false;
+    for (const QString& name : {"walker.obj", "walker.c3d", "walker.map.json"}) {
+        QFile::remove(folder + "/" + name);
+        if (!QFile::copy(from + "/" + name, folder + "/" + name)) return false;
+    }
+    return true;
+}
+
 // The open questions of `window` (boxes shown, not exec'd) named `name`.
 QMessageBox* shownBox(const MainWindow& window, const QString& name) {
     for (QMessageBox* box : window.findChildren<QMessageBox*>(name))
@@ -542,11 +552,7 @@ class LostWorkTest : public QObject {
     // now always a .boneless, and none is saved over the document's mesh, take or map.
     void aProjectIsNeverSavedOverItsOwnFiles() {
         const QString mine = folder_ + "/own";
-        QVERIFY(QDir().mkpath(mine));
-        for (const QString& name : {"walker.obj", "walker.c3d", "walker.map.json"}) {
-            QFile::remove(mine + "/" + name);
-            QVERIFY(QFile::copy(folder_ + "/mine/" + name, mine + "/" + name));
-        }
+        QVERIFY(copyFiles(folder_ + "/mine", mine));
         const QString map = mine + "/walker.map.json", mesh = mine + "/walker.obj";
         const QByteArray mapBytes = readAll(map), meshBytes = readAll(mesh);
         MainWindow window;
@@ -594,11 +600,7 @@ class LostWorkTest : public QObject {
     // document's mesh, take or project.
     void saveCorrespondenceAsAsksAboutTheFileItWritesAndKeepsTheDocumentsFiles() {
         const QString mine = folder_ + "/mapAs";
-        QVERIFY(QDir().mkpath(mine));
-        for (const QString& name : {"walker.obj", "walker.c3d", "walker.map.json"}) {
-            QFile::remove(mine + "/" + name);
-            QVERIFY(QFile::copy(folder_ + "/mine/" + name, mine + "/" + name));
-        }
+        QVERIFY(copyFiles(folder_ + "/mine", mine));
         const QString keep = mine + "/keep.json", mesh = mine + "/walker.obj";
         QFile::remove(keep);
         QVERIFY(QFile::copy(mine + "/walker.map.json", keep));

@@ -293,24 +293,22 @@ bool load(Document& document, const QString& path, QString* error, QString* miss
         const bool otherMesh = state.map.meshVertices != 0 && state.map.meshVertices != count;
         const auto past = std::find_if(state.map.markers.begin(), state.map.markers.end(),
                                        [count](const auto& m) { return m.vertex >= count; });
-        // A face point on a face the mesh does not have, or whose corners are other vertices
-        // now (the same vertices, faces triangulated otherwise): the solve failed on it later.
-        QString faceMisfit;
-        if (!otherMesh && past == state.map.markers.end()) {
-            try {
-                state.map.checkMesh(count, state.meshPath.toStdString(), &state.mesh);
-            } catch (const std::exception& e) {
-                faceMisfit = QString::fromStdString(e.what());
-            }
+        // Core's own check, in its words: also a face point on a face the mesh does not have, or
+        // whose corners are other vertices now (the same vertices, faces triangulated otherwise).
+        QString misfit;
+        try {
+            state.map.checkMesh(count, state.meshPath.toStdString(), &state.mesh);
+        } catch (const std::exception& e) {
+            misfit = QString::fromStdString(e.what());
         }
-        if (otherMesh || past != state.map.markers.end() || !faceMisfit.isEmpty()) {
+        if (!misfit.isEmpty()) {
             const bool inProject = correspondence["map"].isObject();
             const QString map = inProject ? QObject::tr("The map in %1").arg(project)
                                           : QObject::tr("The map %1 named by %2")
                                                 .arg(QFileInfo(state.mapPath).fileName(), project);
             const QString why =
-                !faceMisfit.isEmpty()
-                    ? QObject::tr("%1 does not fit %2: %3").arg(map, state.meshPath, faceMisfit)
+                !otherMesh && past == state.map.markers.end()
+                    ? QObject::tr("%1 does not fit %2: %3").arg(map, state.meshPath, misfit)
                 : otherMesh ? QObject::tr(
                                   "%1 was made for another mesh than %2, which has %3 "
                                   "vertices now.")
@@ -325,12 +323,7 @@ bool load(Document& document, const QString& path, QString* error, QString* miss
             if (!setMapAside) {
                 if (missing) *missing = why;
                 if (missingFile) *missingFile = resolve(dir, mesh["file"].toString());
-                try {
-                    state.map.checkMesh(count, state.meshPath.toStdString(), &state.mesh);
-                } catch (const std::exception& e) {
-                    return fail(QString::fromStdString(e.what()));
-                }
-                return fail(why);
+                return fail(misfit);
             }
             // Kept where it is: its own file left as it was, or a copy of the project's, which
             // the next save would write over.

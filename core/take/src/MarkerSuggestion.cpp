@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
@@ -194,6 +195,7 @@ std::vector<Draft> draft(const TriMesh& rest, const C3dTake& take, const Corresp
     fittedFrame = fits.front().frame;
 
     std::vector<Eigen::VectorXd> cost;
+    std::map<int, Positions> liftedAt;  // the fits solved for markers no kept fit shows
     for (std::size_t p : wanted) {
         Eigen::VectorXd sum = Eigen::VectorXd::Zero(rest.vertexCount());
         int seen = 0;
@@ -212,10 +214,15 @@ std::vector<Draft> draft(const TriMesh& rest, const C3dTake& take, const Corresp
             for (const auto& [quality, f] : ranked) {
                 const auto x = take.samples.position(f, p);
                 if (!std::isfinite(quality) || !x) continue;
-                if (stopped()) return {};
-                const Positions V = solver.solve(f, report, stop);
-                if (report.stopped) return {};
-                const Positions lifted = V + kLiftMm * unitsPerMm * vertexNormals(rest.F, V);
+                auto fit = liftedAt.find(f);  // markers hidden alike share the frame's fit
+                if (fit == liftedAt.end()) {
+                    if (stopped()) return {};
+                    const Positions V = solver.solve(f, report, stop);
+                    if (report.stopped) return {};
+                    fit = liftedAt.emplace(f, V + kLiftMm * unitsPerMm * vertexNormals(rest.F, V))
+                              .first;
+                }
+                const Positions& lifted = fit->second;
                 sum = (lifted.rowwise() - s.apply(*x).transpose())
                           .rowwise()
                           .squaredNorm()
