@@ -2,6 +2,8 @@
 #include <cctype>
 
 #include <QFile>
+#include <QJsonDocument>
+#include <QJsonObject>
 #include <QSignalSpy>
 #include <QUndoStack>
 #include <QtTest>
@@ -367,6 +369,40 @@ class DocumentTest : public QObject {
         QCOMPARE(d.mappedCount(), 38);
         QVERIFY(d.correspondenceModified());
         QVERIFY(d.exportRequest(work_ + "/out", ExportFormat::Pc2).mapPath.empty());
+    }
+
+    // A map that names no mesh (written by hand, or by another tool) gets this mesh's name when
+    // edited; opening it is no edit, so closing the window asked to save a map nobody changed.
+    void aMapNamingNoMeshOpensUnedited() {
+        Document d;
+        QVERIFY(test::loadDemo(d, demo_));
+        QFile demoMap(d.correspondencePath());
+        QVERIFY(demoMap.open(QIODevice::ReadOnly));
+        QJsonObject json = QJsonDocument::fromJson(demoMap.readAll()).object();
+        QVERIFY(json.contains("mesh"));
+        json.remove("mesh");
+        const QString path = work_ + "/no-mesh.map.json";
+        QFile noMesh(path);
+        QVERIFY(noMesh.open(QIODevice::WriteOnly));
+        noMesh.write(QJsonDocument(json).toJson());
+        noMesh.close();
+        QVERIFY(d.loadCorrespondence(path));
+        QVERIFY(!d.correspondenceModified());
+        QVERIFY(d.clearMapping(0));
+        QVERIFY(d.correspondenceModified());
+
+        // The same of a project whose map file names no mesh.
+        const QString project = test::writeDemoProject(work_ + "/no-mesh-project");
+        Document e;
+        QString error;
+        QVERIFY2(Project::load(e, project, &error), qPrintable(error));
+        QFile projectMap(e.correspondencePath());
+        QVERIFY(projectMap.open(QIODevice::WriteOnly | QIODevice::Truncate));
+        projectMap.write(QJsonDocument(json).toJson());
+        projectMap.close();
+        Document f;
+        QVERIFY2(Project::load(f, project, &error), qPrintable(error));
+        QVERIFY(!f.correspondenceModified());
     }
 
     void selectionIsShared() {

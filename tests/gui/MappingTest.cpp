@@ -404,6 +404,37 @@ class MappingTest : public QObject {
         QCOMPARE(d->mappedCount(), 4);
     }
 
+    // Saving the map changes no entry: until 2 December 2026 it counted as a new map, so a save
+    // cleared every solved frame (the app solved them all again) and dropped a running suggestion.
+    void savingTheMapKeepsTheSolvedFramesAndARunningSuggestion() {
+        MainWindow window;
+        window.setMessageBoxesEnabled(false);
+        QVERIFY(window.openProject(freshProject()));
+        Document* d = window.document();
+        FrameSolver* solver = window.frameSolver();
+        QTRY_VERIFY_WITH_TIMEOUT(solver->hasProblem(), 30000);  // set a turn of the loop later
+        solver->requestFrame(5);
+        QTRY_VERIFY_WITH_TIMEOUT(solver->isCached(5), 30000);
+        const quint64 generation = solver->generation();
+        const QString saved = QFileInfo(d->correspondencePath()).dir().filePath("saved.map.json");
+        QVERIFY(window.saveCorrespondenceAs(saved));
+        QCOMPARE(d->correspondencePath(), saved);
+        QVERIFY(!d->correspondenceModified());
+        QTest::qWait(200);  // a refresh of the solver's problem is queued, not run at once
+        QCOMPARE(solver->generation(), generation);
+        QVERIFY(solver->isCached(5));
+
+        keepFourPicks(d);
+        suggestButton(window)->click();
+        QVERIFY(window.isSuggesting());
+        QVERIFY(window.saveCorrespondenceAs(saved));
+        QTRY_VERIFY_WITH_TIMEOUT(!window.isSuggesting(), 30000);
+        QCOMPARE(d->mappedCount(), d->markerCount());
+        QVERIFY(d->undoStack()->undoText().startsWith("Suggest"));
+        QVERIFY(d->correspondenceModified());  // the suggestion is not in the saved file
+        QCOMPARE(Correspondence::read(saved.toStdString()).markers.size(), std::size_t(4));
+    }
+
     // Four picks cleared down to none: Suggest Rest says it needs four, and maps nothing.
     void suggestRestNeedsFourMarkers() {
         MainWindow window;

@@ -52,6 +52,12 @@ void Document::stampMesh(Correspondence& map) const {
     map.meshVertices = mesh_.vertexCount();
 }
 
+void Document::stampEdit(Correspondence& map) const {
+    if (!hasMesh_) return;
+    map.meshVertices = mesh_.vertexCount();
+    if (map.meshFile.empty()) stampMesh(map);
+}
+
 bool Document::readMeshFile(const QString& path, const QString& group, State& state,
                             QString* error) {
     try {
@@ -187,6 +193,8 @@ bool Document::loadCorrespondence(const QString& path, MapLoad mode, int* added,
         if (added) *added = int(file.markers.size());
         after.map = std::move(file);
         after.mapPath = path;
+        // As the edit will stamp it: a file naming no mesh is not edited by being opened.
+        stampEdit(after.map);
         savedMapJson_ = after.map.toJson();
         savedMapPath_ = path;
         pushEdit(tr("Open Correspondence"), std::move(after));  // as File names it
@@ -226,6 +234,8 @@ bool Document::loadCorrespondence(const QString& path, MapLoad mode, int* added,
 bool Document::saveCorrespondence(const QString& path) {
     Correspondence map = map_;
     stampMesh(map);
+    // Only a map made for another file or group of the mesh changes by being saved.
+    const bool restamped = map.toJson() != map_.toJson();
     try {
         map.write(std8(path));
     } catch (const std::exception& e) {
@@ -235,7 +245,9 @@ bool Document::saveCorrespondence(const QString& path) {
     mapPath_ = path;
     savedMapJson_ = map_.toJson();
     savedMapPath_ = path;
-    emit correspondenceChanged();
+    // The entries are as they were: the solved frames and a running suggestion still hold, so a
+    // save is no correspondenceChanged (it cleared every solved frame and dropped the suggestion).
+    if (restamped) emit correspondenceChanged();
     emit changed();
     return true;
 }
@@ -278,12 +290,15 @@ bool Document::restoreState(State state) {
     takePath_ = state.takePath;
     map_ = std::move(state.map);
     if (map_.markers.empty()) map_ = emptyMap();
+    stampEdit(map_);  // both sides stamped alike: a file naming no mesh is not an edit
     mapPath_ = state.mapPath;
     savedMapJson_.clear();
     savedMapPath_.clear();
     if (!mapPath_.isEmpty() && QFileInfo::exists(mapPath_)) {
         try {
-            savedMapJson_ = Correspondence::read(std8(mapPath_)).toJson();
+            Correspondence saved = Correspondence::read(std8(mapPath_));
+            stampEdit(saved);
+            savedMapJson_ = saved.toJson();
             savedMapPath_ = mapPath_;
         } catch (const std::exception&) {
             // An unreadable file just means the project's map counts as unsaved.

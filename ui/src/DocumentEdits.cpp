@@ -66,13 +66,7 @@ void Document::applyEditState(const EditState& state) {
 }
 
 void Document::pushEdit(const QString& text, EditState after) {
-    if (hasMesh_) {
-        after.map.meshVertices = mesh_.vertexCount();
-        if (after.map.meshFile.empty()) {
-            after.map.meshFile = QFileInfo(meshPath_).fileName().toStdString();
-            after.map.meshGroup = meshGroup_.toStdString();
-        }
-    }
+    stampEdit(after.map);
     undoStack_->push(new EditCommand(this, text, editState(), std::move(after)));
 }
 

@@ -276,6 +276,8 @@ class Document : public QObject {
     Correspondence emptyMap() const;
     // The map names this mesh: its file, group and vertex count.
     void stampMesh(Correspondence& map) const;
+    // The same for an edit: the vertex count, and the file and group where the map names none.
+    void stampEdit(Correspondence& map) const;
 
     bool hasMesh_ = false, hasTake_ = false;
     TriMesh mesh_;
