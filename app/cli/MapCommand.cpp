@@ -16,6 +16,7 @@
 #include "boneless/InputFile.h"
 #include "boneless/MarkerSuggestion.h"
 #include "boneless/MeshReader.h"
+#include "boneless/ObjWriter.h"
 #include "boneless/SuggestionCheck.h"
 #include "boneless/TakeExport.h"
 #include "boneless/TakeOptionsJson.h"
@@ -96,6 +97,7 @@ void registerMapCommand(CLI::App& app) {
                 throw refuse();
             }
         }
+        checkWritable(args->out);  // not after the fit's minute
         // The take first: one in other units than it says is refused before the mesh is read.
         C3dTake take = readC3d(args->c3d);
         applyTakeUnits(take, args->options);

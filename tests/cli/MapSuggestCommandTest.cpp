@@ -251,6 +251,20 @@ TEST(MapSuggestCommand, AnOutputThatWouldReplaceAnInputIsRefusedBeforeAnyWorkNam
         << r.out;
 }
 
+// An --out in a folder that does not exist failed only once the fit was done (a minute on a large
+// mesh); it is refused before anything is read, as an output over an input is.
+TEST(MapSuggestCommand, AnOutputThatCannotBeWrittenIsRefusedBeforeAnyWork) {
+    const fs::path dir = freshTestDir("map-suggest-unwritable");
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frame-count 3").exitCode, 0);
+    const fs::path out = dir / "no-such-folder" / "full.json";
+    const CliResult r = runCli("map suggest --mesh " + (dir / "walker.obj").string() + " --c3d " +
+                               (dir / "absent.c3d").string() + " --map " +
+                               (dir / "walker.map.json").string() + " --out " + out.string());
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_EQ(r.out, "boneless-cli: " + out.string() +
+                         ": cannot be written (No such file or directory)\n");
+}
+
 // Before, a NaN tolerance printed "0 of 33 within nan mm".
 TEST(MapSuggestCommand, AToleranceThatIsNoSensibleDistanceIsRefusedNamingTheFlag) {
     const fs::path dir = freshTestDir("map-suggest-tolerance");

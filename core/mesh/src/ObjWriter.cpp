@@ -50,6 +50,13 @@ void writeFileAtomically(const std::string& path, const std::function<void(std::
     }
 }
 
+void checkWritable(const std::string& path) {
+    const std::string temporary = temporaryFor(path);
+    if (!std::ofstream(temporary, std::ios::binary | std::ios::trunc))
+        throw Error(path + ": cannot be written (" + std::strerror(errno) + ")");
+    std::remove(temporary.c_str());
+}
+
 namespace {
 
 // Shortest representation that reads back to the same double.

@@ -35,5 +35,9 @@ SourceFaces withLibraryCopies(const SourceFaces& source, const std::string& fold
 void writeFileAtomically(const std::string& path, const std::string& contents);
 // The same for contents too long to hold at once (a take's CSV): `write` puts them on the stream.
 void writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write);
+// Throws the Error writeFileAtomically would when `path` cannot be written (its folder missing or
+// read-only), by creating and removing its temporary: asked before a long computation whose
+// result goes there.
+void checkWritable(const std::string& path);
 
 }  // namespace boneless
