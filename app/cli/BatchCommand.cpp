@@ -470,6 +470,10 @@ Sidecar sidecarState(const TakeJob& job, Fingerprints& known, VertexCounts& mesh
     if (!in) return Sidecar::Missing;
     try {
         const json s = json::parse(in);
+        // Another program's file of the sidecar's name is no sidecar of a solve to repeat: the
+        // solve says it is not replaced unasked ("cannot be read, solving again" said otherwise).
+        if (!s.is_object() || s.value("format", json()) != "boneless-solve")
+            return Sidecar::Missing;
         const json& src = s.at("source");
         // Said, as every reason to solve again is: a take re-solved in silence looks like a bug.
         const auto other = [](const char* what, const json& recorded) {
@@ -531,8 +535,10 @@ Sidecar sidecarState(const TakeJob& job, Fingerprints& known, VertexCounts& mesh
             why = damagedOutputs(job, s.at("frame_range"), cachePoints(job, s, meshes));
         if (why.empty()) why = changedInputs(s.value("source_fingerprints", json()), job, known);
         return why.empty() ? Sidecar::Complete : Sidecar::Stale;
+    } catch (const json::parse_error&) {
+        return Sidecar::Missing;  // no JSON: the solve says whose it is
     } catch (const json::exception&) {
-        why = "its sidecar cannot be read (cut short, or from an older Boneless)";
+        why = "its sidecar cannot be read (from an older Boneless)";
         return Sidecar::Stale;
     } catch (const Error&) {
         return Sidecar::Missing;  // the take is unreadable now: solving says why
@@ -551,7 +557,7 @@ void run(const BatchArgs& args) {
     for (std::size_t k = 0; k < jobs.size(); ++k)
         if (static_cast<int>(k % shards) == shard - 1) ++mine;
     int done = 0;
-    std::set<std::string> notedMeshes;  // mesh and group
+    std::set<std::string> notedMeshes;  // mesh, group and note
     std::set<std::string> notedMaps;
     Fingerprints fingerprints;
     VertexCounts vertexCounts;
@@ -587,8 +593,9 @@ void run(const BatchArgs& args) {
                 for (const std::string& w : mapWarnings)
                     std::fprintf(stderr, "  warning: %s\n", w.c_str());
             // A library of takes shares a few meshes: what one lacks is said once, solved or not.
-            if (!meshWarnings.empty() && notedMeshes.insert(job.mesh + "\n" + job.group).second)
-                for (const std::string& w : meshWarnings)
+            // Each note once, not each mesh's: a second map leaves other parts without a marker.
+            for (const std::string& w : meshWarnings)
+                if (notedMeshes.insert(job.mesh + "\n" + job.group + "\n" + w).second)
                     std::fprintf(stderr, "  note: %s: %s\n", job.mesh.c_str(), w.c_str());
             std::fflush(stdout);
         };

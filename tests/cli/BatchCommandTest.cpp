@@ -243,6 +243,25 @@ TEST(Batch, AnOutHoldingFramesNoBonelessExportWroteFailsItsTakeUntilForce) {
     EXPECT_NE(again.out.find("0 solved, 2 skipped, 0 failed"), std::string::npos) << again.out;
 }
 
+// A file of the sidecar's name that is another program's is not a sidecar that "cannot be read":
+// the take fails saying the file is not Boneless's, and is not called a solve to repeat.
+TEST(Batch, AnOutHoldingAnotherProgramsJsonOfTheSidecarsNameFailsSayingSo) {
+    const fs::path dir = makeLibrary();
+    fs::create_directories(dir / "b");
+    std::ofstream(dir / "b" / "walker.json") << R"({"notes": "the user's own"})";
+    const fs::path path =
+        writeManifest(dir, "m.json",
+                      {{"defaults", {{"mesh", "walker.obj"}, {"map", "walker.map.json"}}},
+                       {"takes", {{{"c3d", "takes/walk_b.c3d"}, {"out", "b"}}}}});
+    const CliResult r = runCli("batch " + path.string());
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_EQ(r.out.find("solving again"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(": walker.json was not written by a Boneless export"), std::string::npos)
+        << r.out;
+    EXPECT_EQ(json::parse(std::ifstream(dir / "b" / "walker.json")).value("notes", ""),
+              "the user's own");
+}
+
 // The user corrects the map and runs the manifest again: before, every take was skipped, since
 // its sidecar said complete, and the frames solved with the wrong map stayed.
 TEST(Batch, ATakeWhoseMapMeshOrFileChangedIsSolvedAgainSayingWhich) {
@@ -1177,6 +1196,46 @@ TEST(Batch, EveryNoteAndWarningGoesToStderrAndEachTakesLineToStdout) {
         << err.out;
     EXPECT_NE(err.out.find("file is truncated"), std::string::npos) << err.out;
     EXPECT_EQ(err.out.find(" -> "), std::string::npos) << err.out;
+}
+
+// The mesh's notes are said once each: the first map's "components carry no marker" hid the note
+// of a second map of the same mesh, whose marker on one of them leaves one fewer (the notes were
+// said once per mesh).
+TEST(Batch, EachMapsNoteOfPartsWithoutAMarkerIsSaidOnce) {
+    const fs::path dir = makeLibrary();
+    std::ostringstream obj;
+    obj << std::ifstream(dir / "walker.obj").rdbuf();
+    int vertices = 0;
+    std::istringstream lines(obj.str());
+    for (std::string line; std::getline(lines, line);) vertices += line.rfind("v ", 0) == 0;
+    std::ofstream out(dir / "walker.obj");
+    out << obj.str();
+    for (int t = 0; t < 3; ++t)  // three lone triangles far from the body
+        out << "v " << 5 + t << " 0 0\nv " << 5 + t << " 0.1 0\nv " << 5 + t
+            << " 0 0.1\nf -3 -2 -1\n";
+    out.close();
+    json map = json::parse(std::ifstream(dir / "walker.map.json"));
+    map["mesh"]["vertices"] = vertices + 9;
+    std::ofstream(dir / "walker.map.json") << map.dump(2);
+    map["markers"][0]["vertex"] = vertices;  // one marker on the first triangle
+    std::ofstream(dir / "other.map.json") << map.dump(2);
+    const fs::path path =
+        writeManifest(dir, "m.json",
+                      {{"defaults", {{"mesh", "walker.obj"}, {"format", "pc2"}}},
+                       {"takes",
+                        {{{"c3d", "takes/walk_a.c3d"}, {"map", "walker.map.json"}, {"out", "a"}},
+                         {{"c3d", "takes/walk_b.c3d"}, {"map", "walker.map.json"}, {"out", "b"}},
+                         {{"c3d", "takes/walk_c.c3d"}, {"map", "other.map.json"}, {"out", "c"}}}}});
+    const CliResult r = runCli("batch " + path.string());
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    const auto count = [&](const std::string& text) {
+        int n = 0;
+        for (auto at = r.out.find(text); at != std::string::npos; at = r.out.find(text, at + 1))
+            ++n;
+        return n;
+    };
+    // Two notes, the two maps' (three and two triangles without a marker), each once.
+    EXPECT_EQ(count("no marker: each follows the nearest marked part rigidly"), 2) << r.out;
 }
 
 // A map made on group 'body' of an OBJ that holds another group too: batch said "open it with
