@@ -41,7 +41,9 @@ opens_with() {  # FILE: the content type and the default application the desktop
 mkdir "$root/files"
 echo '{"format": "boneless-project", "version": 1}' >"$root/files/walk.boneless"
 printf '\x02\x50' >"$root/files/walk.c3d"
-for f in walk.boneless walk.c3d; do
+printf 'ply\nformat ascii 1.0\n' >"$root/files/body.ply"
+printf 'OFF\n3 1 0\n' >"$root/files/body.off"
+for f in walk.boneless walk.c3d body.ply body.off; do
   got=$(opens_with "$root/files/$f")
   [[ "$got" == *" org.boneless.Boneless.desktop" ]] || fail "$f opens as '$got', not in Boneless"
 done
