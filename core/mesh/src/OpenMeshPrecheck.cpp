@@ -57,6 +57,12 @@ bool isInteger(const std::string& t) {
     return ec == std::errc() && end == t.data() + t.size();
 }
 
+double number(const std::string& t) {
+    double v = 0;
+    std::from_chars(t.data() + (t[0] == '+'), t.data() + t.size(), v);
+    return v;
+}
+
 std::string at(int line) {
     return "line " + std::to_string(line);
 }
@@ -161,13 +167,6 @@ namespace {
 
 using namespace precheck;
 
-// A token classify() found finite.
-double number(const std::string& t) {
-    double v = 0;
-    std::from_chars(t.data() + (t[0] == '+'), t.data() + t.size(), v);
-    return v;
-}
-
 // Binary OFF as OpenMesh reads it: after the keyword line, 32-bit little-endian vertex, face and
 // edge counts; per vertex its floats (position, then normal, colour, texture coordinates when the
 // keyword's [ST][C][N] prefix says so); per face a corner count and the indices. OpenMesh reads a
@@ -256,7 +255,7 @@ Precheck checkOff(const std::string& path) {
                             "OFF header: the " + std::string(what) + " count " +
                                 std::to_string(count) + " is negative",
                             at(lines[next - 1].first));
-    PolygonSoup& soup = p.offSoup.emplace();
+    PolygonSoup& soup = p.soup.emplace();
     for (long long v = 0; v < p.declaredVertices; ++v, ++next) {
         if (next >= lines.size())
             throw MeshError(path, "file ends after " + std::to_string(v) + " of " +

@@ -17,13 +17,11 @@ struct Precheck {
     long long triangles = -1;         // STL: triangles in the file
     long long declaredVertices = -1;  // OFF/PLY header counts (-1: not known)
     long long declaredFaces = -1;
-    // Text OFF, read here in full from the tokens this pass checked. OpenMesh's OFF reader takes
-    // neither comments nor "OFF nv nf ne", and read from a stream it parses with the header flags
-    // (binary, colours, normals) of the previous file it opened; it only reads binary OFF.
-    std::optional<PolygonSoup> offSoup;
-    // PLY: the words of its "obj_info" lines, a standard header line OpenMesh does not know and
-    // reports word by word ("Unsupported keyword : obj_info"), which is no news to the user.
-    std::vector<std::string> objInfoWords;
+    // Text OFF and PLY, read here in full from the values this pass checked. OpenMesh's OFF
+    // reader takes neither comments nor "OFF nv nf ne", and read from a stream it parses with the
+    // header flags (binary, colours, normals) of the previous file it opened; it only reads binary
+    // OFF. Its PLY reader misread valid files (PlyPrecheck.cpp).
+    std::optional<PolygonSoup> soup;
 };
 
 Precheck precheckForOpenMesh(const std::string& path);

@@ -1,4 +1,4 @@
-// Binary OFF, PLY and STL through OpenMesh's readers (text OFF is read by the precheck), into a
+// Binary OFF and STL through OpenMesh's readers (text OFF and PLY are read by the precheck), into a
 // PolygonSoup. The importer below records what the readers deliver and builds no topology, so
 // vertex order stays the file's and non-manifold input reaches our own checks instead of
 // OpenMesh's silent vertex duplication.
@@ -142,7 +142,7 @@ std::string joined(const std::vector<std::string>& lines) {
 
 PolygonSoup readWithOpenMesh(const std::string& path) {
     Precheck facts = precheckForOpenMesh(path);
-    if (facts.offSoup) return std::move(*facts.offSoup);
+    if (facts.soup) return std::move(*facts.soup);
     PolygonSoup soup;
     std::error_code ec;
     const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
@@ -165,15 +165,10 @@ PolygonSoup readWithOpenMesh(const std::string& path) {
         throw MeshError(path, "OpenMesh could not read the file",
                         messages.empty() ? std::string() : joined(messages));
     }
-    // OpenMesh parses a PLY header twice (once to see whether it can read the file), saying the
-    // same things twice; "obj_info" is a standard PLY header line it merely does not know.
+    // Said once each: a reader may parse a header twice (once to see whether it can read it).
     for (size_t i = 0; i < messages.size(); ++i) {
         const std::string& m = messages[i];
-        const bool objInfo =
-            std::any_of(facts.objInfoWords.begin(), facts.objInfoWords.end(),
-                        [&](const std::string& w) { return m == "Unsupported keyword : " + w; });
-        if (!objInfo &&
-            std::find(messages.begin(), messages.begin() + i, m) == messages.begin() + i)
+        if (std::find(messages.begin(), messages.begin() + i, m) == messages.begin() + i)
             soup.warnings.push_back("OpenMesh: " + m);
     }
     if (facts.stl && facts.triangles > soup.faceCount()) {

@@ -1,9 +1,13 @@
-// PLY before OpenMesh reads it: the header walked word by word as OpenMesh's reader walks it, then
-// the body (ascii or binary) checked against what the header announces.
+// PLY, read here in full: the header walked word by word (as OpenMesh's reader walked it, whose
+// quirks the fuzzing found), then every element of the body, ascii or binary, in the header's
+// types and byte order. OpenMesh misread valid files: integer coordinates in binary, a face's
+// properties besides its vertex indices (MeshLab's per-face texture coordinates).
 #include <algorithm>
 #include <charconv>
+#include <climits>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <sstream>
 #include <vector>
 
@@ -20,21 +24,33 @@ bool isCount(const std::string& t) {
     return ec == std::errc() && end == t.data() + t.size();
 }
 
-// Bytes of a PLY value type, 0 for a type OpenMesh does not know.
-int plyTypeBytes(const std::string& type) {
-    static const std::pair<const char*, int> sizes[] = {
-        {"char", 1},  {"uchar", 1},   {"int8", 1},   {"uint8", 1},  {"short", 2}, {"ushort", 2},
-        {"int16", 2}, {"uint16", 2},  {"int", 4},    {"uint", 4},   {"int32", 4}, {"uint32", 4},
-        {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
-    for (const auto& [name, bytes] : sizes)
-        if (type == name) return bytes;
-    return 0;
+enum class Kind { Signed, Unsigned, Float };
+
+struct PlyType {
+    int bytes = 0;  // 0: no PLY type
+    Kind kind = Kind::Signed;
+};
+
+PlyType plyType(const std::string& type) {
+    static const std::pair<const char*, PlyType> types[] = {
+        {"char", {1, Kind::Signed}},  {"uchar", {1, Kind::Unsigned}},
+        {"int8", {1, Kind::Signed}},  {"uint8", {1, Kind::Unsigned}},
+        {"short", {2, Kind::Signed}}, {"ushort", {2, Kind::Unsigned}},
+        {"int16", {2, Kind::Signed}}, {"uint16", {2, Kind::Unsigned}},
+        {"int", {4, Kind::Signed}},   {"uint", {4, Kind::Unsigned}},
+        {"int32", {4, Kind::Signed}}, {"uint32", {4, Kind::Unsigned}},
+        {"float", {4, Kind::Float}},  {"float32", {4, Kind::Float}},
+        {"double", {8, Kind::Float}}, {"float64", {8, Kind::Float}}};
+    for (const auto& [name, t] : types)
+        if (type == name) return t;
+    return {};
 }
 
 struct PlyProperty {
+    std::string name;
     int countBytes = 0;  // 0: a single value; else a list whose length takes this many bytes
-    int valueBytes = 0;
-    bool integer = false;  // ascii: OpenMesh reads the value with >> into an integer
+    PlyType value;
+    std::string valueType;  // as the header names it, for messages
 };
 struct PlyElement {
     std::string name;
@@ -42,12 +58,13 @@ struct PlyElement {
     std::vector<PlyProperty> properties;
 };
 
-// The header as OpenMesh's PLY reader walks it, word by word up to the word "end_header". That
-// reader never stops on a number it cannot read or a missing end_header: it loops for ever.
+// The header, walked word by word up to the word "end_header" (OpenMesh's reader, which this
+// replaced, looped for ever on a number it could not read or a missing end_header).
 struct PlyHeader {
     std::string format;  // ascii, binary_little_endian, binary_big_endian
     std::vector<PlyElement> elements;
-    std::vector<std::string> objInfoWords;
+    size_t end = 0;                     // just after the word end_header
+    std::vector<std::string> warnings;  // header lines not understood, skipped
 };
 PlyHeader readPlyHeader(const std::string& path, const std::string& text) {
     size_t at = text.find('\n');
@@ -57,16 +74,19 @@ PlyHeader readPlyHeader(const std::string& path, const std::string& text) {
         at = std::min(text.find_first_of(" \t\r\n\v\f", b), text.size());
         return text.substr(b, at - b);
     };
-    const auto bytesOf = [&](const std::string& type) {
-        const int bytes = plyTypeBytes(type);
-        if (!bytes) throw MeshError(path, "PLY header: unknown type '" + type + "'");
-        return bytes;
+    const auto skipLine = [&] { at = std::min(text.find('\n', at), text.size()); };
+    const auto typeOf = [&](const std::string& type) {
+        const PlyType t = plyType(type);
+        if (!t.bytes) throw MeshError(path, "PLY header: unknown type '" + type + "'");
+        return t;
     };
     PlyHeader header;
     if (word() != "format") throw MeshError(path, "PLY header: no format line after 'ply'");
     header.format = word();
-    // OpenMesh reads the version with >> into a float; one that fails (".", or out of a float's
-    // range) leaves its stream failed and loops it for ever. Read it the same way.
+    if (header.format != "ascii" && header.format != "binary_little_endian" &&
+        header.format != "binary_big_endian")
+        throw MeshError(path, "PLY header: format '" + header.format +
+                                  "' is none of ascii, binary_little_endian, binary_big_endian");
     const std::string version = word();
     std::istringstream versionStream(version);
     float versionNumber = 0;
@@ -75,13 +95,8 @@ PlyHeader readPlyHeader(const std::string& path, const std::string& text) {
         throw MeshError(path, "PLY header: version '" + version + "' is not a number");
     std::vector<PlyElement>& elements = header.elements;
     for (std::string w = word(); w != "end_header"; w = word()) {
-        if (w == "comment") {
-            at = std::min(text.find('\n', at), text.size());
-        } else if (w == "obj_info") {
-            // Walked on word by word, as OpenMesh does; its words noted to keep it quiet on them.
-            header.objInfoWords.push_back(w);
-            for (const std::string& t : tokens(text.substr(at, text.find('\n', at) - at)))
-                header.objInfoWords.push_back(t);
+        if (w == "comment" || w == "obj_info") {
+            skipLine();
         } else if (w == "element") {
             const std::string name = word(), count = word();
             if (!isCount(count))
@@ -93,26 +108,46 @@ PlyHeader readPlyHeader(const std::string& path, const std::string& text) {
                 throw MeshError(path, "PLY header: a property before any element");
             PlyProperty property;
             std::string type = word();
-            if (type == "list") property.countBytes = bytesOf(word()), type = word();
-            // OpenMesh takes "name type" as well as "type name" for a single value.
-            const std::string name = word();
-            const std::string& valueType = plyTypeBytes(type) ? type : name;
-            property.valueBytes = bytesOf(valueType);
-            property.integer =
-                valueType.find("float") == std::string::npos && valueType != "double";
+            if (type == "list") {
+                const PlyType count = typeOf(word());
+                if (count.kind == Kind::Float)
+                    throw MeshError(path, "PLY header: a list's length of type float");
+                property.countBytes = count.bytes;
+                type = word();
+            }
+            property.valueType = type;
+            property.value = typeOf(type);
+            property.name = word();
             elements.back().properties.push_back(property);
+        } else {
+            header.warnings.push_back("PLY header: '" + w +
+                                      "' is no PLY keyword; its line skipped");
+            skipLine();
         }
     }
+    header.end = at;
     return header;
 }
 
-// A list's length from the binary body, in the file's byte order.
-uint64_t plyListLength(const std::string& data, size_t at, int bytes, bool bigEndian) {
-    uint64_t n = 0;
-    for (int k = 0; k < bytes; ++k)
-        n |= uint64_t(uint8_t(data[at + (bigEndian ? bytes - 1 - k : k)])) << (8 * k);
-    if (bytes == 4 && (n & 0x80000000u)) n = ~uint64_t(0);  // a negative int: never enough bytes
-    return n;
+// The value of `bytes` bytes at `at` in the file's byte order, as its kind reads it.
+double plyBinaryValue(const std::string& data, size_t at, PlyType type, bool bigEndian) {
+    uint64_t bits = 0;
+    for (int k = 0; k < type.bytes; ++k)
+        bits |= uint64_t(uint8_t(data[at + (bigEndian ? type.bytes - 1 - k : k)])) << (8 * k);
+    if (type.kind == Kind::Float) {
+        if (type.bytes == 4) {
+            const uint32_t b = uint32_t(bits);
+            float f;
+            std::memcpy(&f, &b, 4);
+            return f;
+        }
+        double d;
+        std::memcpy(&d, &bits, 8);
+        return d;
+    }
+    if (type.kind == Kind::Signed && (bits >> (8 * type.bytes - 1)) & 1)
+        return double(int64_t(bits | (~uint64_t(0) << (8 * type.bytes))));
+    return double(bits);
 }
 
 // "3426 vertex, 6847 face": what the header announces, for messages.
@@ -128,10 +163,58 @@ bool onlyWhitespace(const std::string& text, size_t from) {
     return text.find_first_not_of(" \t\r\n\v\f", from) == std::string::npos;
 }
 
-// Ascii PLY as OpenMesh reads it: word after word with >>, whatever the lines. A word that does
-// not parse leaves its stream failed and its loops running on stale counts.
-void checkPlyAscii(const std::string& path, const std::string& text, size_t bodyStart,
-                   const std::vector<PlyElement>& elements) {
+// What the soup takes of each element: a vertex's x, y and z, a face's vertex indices; every
+// other element and property is walked over.
+struct PlyLayout {
+    int vertexElement = -1, faceElement = -1;
+    int xyz[3] = {-1, -1, -1};
+    int indices = -1;
+};
+PlyLayout layoutOf(const std::string& path, const std::vector<PlyElement>& elements) {
+    PlyLayout l;
+    for (size_t e = 0; e < elements.size(); ++e) {
+        const PlyElement& element = elements[e];
+        if (element.name == "vertex" && l.vertexElement < 0) {
+            l.vertexElement = int(e);
+            for (size_t p = 0; p < element.properties.size(); ++p)
+                for (int k = 0; k < 3; ++k)
+                    if (element.properties[p].name == std::string(1, char('x' + k)) &&
+                        !element.properties[p].countBytes)
+                        l.xyz[k] = int(p);
+            if (element.count > 0 && (l.xyz[0] < 0 || l.xyz[1] < 0 || l.xyz[2] < 0))
+                throw MeshError(path, "PLY header: element vertex lacks an x, y or z property");
+        } else if (element.name == "face" && l.faceElement < 0) {
+            l.faceElement = int(e);
+            for (size_t p = 0; p < element.properties.size(); ++p) {
+                const PlyProperty& property = element.properties[p];
+                if (property.countBytes &&
+                    (property.name == "vertex_indices" || property.name == "vertex_index"))
+                    l.indices = int(p);
+            }
+            if (element.count > 0 && l.indices < 0)
+                throw MeshError(path, "PLY header: element face has no vertex_indices list");
+            if (l.indices >= 0 && element.properties[l.indices].value.kind == Kind::Float)
+                throw MeshError(path, "PLY header: face vertex indices of type '" +
+                                          element.properties[l.indices].valueType +
+                                          "', not integers");
+        }
+    }
+    return l;
+}
+
+// A face's corner as the soup holds it; a value past int's range is refused here, a value in it
+// by the mesh reader, which knows the vertex count.
+int cornerIndex(const std::string& path, double value, const std::string& what) {
+    if (value < double(INT_MIN) || value > double(INT_MAX))
+        throw MeshError(
+            path, what + ": vertex index " + std::to_string((long long)value) + " is out of range");
+    return int(value);
+}
+
+// Ascii PLY: word after word, whatever the lines, as writers put them.
+void readPlyAscii(const std::string& path, const std::string& text, size_t bodyStart,
+                  const std::vector<PlyElement>& elements, const PlyLayout& layout,
+                  PolygonSoup& soup) {
     std::vector<std::pair<std::string, int>> words;  // with their line numbers
     int line = static_cast<int>(std::count(text.begin(), text.begin() + bodyStart, '\n'));
     for (const auto& [n, content] : contentLines(text.substr(bodyStart), 0))
@@ -158,22 +241,41 @@ void checkPlyAscii(const std::string& path, const std::string& text, size_t body
                        ? ": is the header's count of " + elements[ei - 1].name + " elements (" +
                              std::to_string(elements[ei - 1].count) + ") too small?"
                        : "";
-            for (const PlyProperty& p : e.properties) {
-                long long values = 1;
-                if (p.countBytes) {
-                    const std::string length = next(what, true);
-                    values = std::stoll(length);
-                    if (values < 0 || uint64_t(values) > words.size() - k)
-                        throw MeshError(
-                            path,
-                            what + ": list length '" + length + "' is more than the file holds",
-                            at(words[k - 1].second));
+            const bool isVertex = int(ei) == layout.vertexElement;
+            const bool isFace = int(ei) == layout.faceElement;
+            double xyz[3] = {0, 0, 0};
+            for (size_t pi = 0; pi < e.properties.size(); ++pi) {
+                const PlyProperty& p = e.properties[pi];
+                const bool integer = p.value.kind != Kind::Float;
+                if (!p.countBytes) {
+                    const std::string w = next(what, integer);
+                    for (int c = 0; c < 3; ++c)
+                        if (isVertex && layout.xyz[c] == int(pi)) xyz[c] = number(w);
+                    continue;
                 }
-                for (long long v = 0; v < values; ++v) next(what, p.integer);
+                const std::string length = next(what, true);
+                const long long values = std::stoll(length);
+                if (values < 0 || uint64_t(values) > words.size() - k)
+                    throw MeshError(
+                        path, what + ": list length '" + length + "' is more than the file holds",
+                        at(words[k - 1].second));
+                const bool corners = isFace && layout.indices == int(pi);
+                for (long long v = 0; v < values; ++v) {
+                    const std::string w = next(what, integer);
+                    if (corners) soup.faceIndex.push_back(cornerIndex(path, number(w), what));
+                }
+                if (corners) {
+                    soup.endFace();
+                    soup.faceLine.push_back(words[k - 1].second);
+                }
+            }
+            if (isVertex) {
+                soup.xyz.insert(soup.xyz.end(), xyz, xyz + 3);
+                soup.vertexLine.push_back(words[k - 1].second);
             }
         }
-    // OpenMesh stops after the announced elements: more after them (a header counting one face
-    // too few) would be dropped silently. Comment lines at the end are no data.
+    // More after the announced elements (a header counting one face too few) would be dropped
+    // silently. Comment lines at the end are no data.
     while (k < words.size()) {
         const auto& [w, n] = words[k];
         const bool lineStart = k == 0 || words[k - 1].second != n;
@@ -186,27 +288,51 @@ void checkPlyAscii(const std::string& path, const std::string& text, size_t body
     }
 }
 
-// Binary PLY: OpenMesh reads a list length the file cannot hold as that many stale values
-// (billions for a 32-bit length), so each element is walked here first.
-void checkPlyBinary(const std::string& path, const std::string& text, size_t bodyStart,
-                    const std::vector<PlyElement>& elements, bool bigEndian) {
+// Binary PLY, each value in the header's type and the file's byte order. A list length the file
+// cannot hold is refused before its values are read.
+void readPlyBinary(const std::string& path, const std::string& text, size_t bodyStart,
+                   const std::vector<PlyElement>& elements, const PlyLayout& layout, bool bigEndian,
+                   PolygonSoup& soup) {
     size_t pos = bodyStart;
-    for (const PlyElement& e : elements)
+    for (size_t ei = 0; ei < elements.size(); ++ei) {
+        const PlyElement& e = elements[ei];
+        const bool isVertex = int(ei) == layout.vertexElement;
+        const bool isFace = int(ei) == layout.faceElement;
         for (long long i = 0; i < e.count; ++i) {
             const std::string what = e.name + " " + std::to_string(i);
-            for (const PlyProperty& p : e.properties) {
+            double xyz[3] = {0, 0, 0};
+            for (size_t pi = 0; pi < e.properties.size(); ++pi) {
+                const PlyProperty& p = e.properties[pi];
                 uint64_t values = 1;
                 if (p.countBytes) {
                     if (text.size() - pos < size_t(p.countBytes))
-                        throw MeshError(path, "file ends in " + what);
-                    values = plyListLength(text, pos, p.countBytes, bigEndian);
+                        throw MeshError(path, "file ends in " + what + " (the header announces " +
+                                                  announced(elements) + ")");
+                    const double length =
+                        plyBinaryValue(text, pos, {p.countBytes, Kind::Unsigned}, bigEndian);
                     pos += p.countBytes;
+                    values = uint64_t(length);
                 }
-                if (values > (text.size() - pos) / p.valueBytes)
-                    throw MeshError(path, what + " lists more values than the file holds");
-                pos += values * p.valueBytes;
+                if (values > (text.size() - pos) / p.value.bytes)
+                    throw MeshError(path, what +
+                                              " lists more values than the file holds (the "
+                                              "header announces " +
+                                              announced(elements) + ")");
+                const bool corners = isFace && layout.indices == int(pi);
+                for (uint64_t v = 0; v < values; ++v, pos += p.value.bytes) {
+                    if (corners)
+                        soup.faceIndex.push_back(
+                            cornerIndex(path, plyBinaryValue(text, pos, p.value, bigEndian), what));
+                    else if (isVertex && !p.countBytes)
+                        for (int c = 0; c < 3; ++c)
+                            if (layout.xyz[c] == int(pi))
+                                xyz[c] = plyBinaryValue(text, pos, p.value, bigEndian);
+                }
+                if (corners) soup.endFace();
             }
+            if (isVertex) soup.xyz.insert(soup.xyz.end(), xyz, xyz + 3);
         }
+    }
     if (!onlyWhitespace(text, pos))
         throw MeshError(path, std::to_string(text.size() - pos) +
                                   " bytes follow the elements the header announces (" +
@@ -219,30 +345,28 @@ Precheck checkPly(const std::string& path) {
     const std::string text = readAll(path);
     refuseOtherFormat(path, text, "PLY");
     if (startsWithByteOrderMark(text)) throw MeshError(path, byteOrderMarkRefused("PLY"));
-    const size_t headerEnd = text.find("end_header");
-    if (text.compare(0, 3, "ply") != 0 || headerEnd == std::string::npos)
+    if (text.compare(0, 3, "ply") != 0 || text.find("end_header") == std::string::npos)
         throw MeshError(path, "not a PLY file (no 'ply' ... 'end_header' header)");
     const PlyHeader header = readPlyHeader(path, text);
     const std::vector<PlyElement>& elements = header.elements;
-    Precheck p;
-    p.objInfoWords = header.objInfoWords;
-    for (const PlyElement& e : elements) {
-        if (e.name == "vertex") p.declaredVertices = e.count;
-        if (e.name == "face") p.declaredFaces = e.count;
-    }
     // Every element takes at least one byte (binary) or one line (ascii); more than that is a
-    // broken header, on which OpenMesh would try to reserve absurd amounts of memory.
-    const size_t bodySize = text.size() - headerEnd;
+    // broken header, which would have the soup reserve absurd amounts of memory.
+    const size_t bodySize = text.size() - header.end;
     for (const PlyElement& e : elements)
         if (static_cast<unsigned long long>(e.count) > bodySize)
             throw MeshError(path, "header announces " + std::to_string(e.count) + " " + e.name +
                                       " elements, more than the file holds");
-    const size_t newline = text.find('\n', headerEnd);
+    const PlyLayout layout = layoutOf(path, elements);
+    const size_t newline = text.find('\n', header.end);
     const size_t bodyStart = newline == std::string::npos ? text.size() : newline + 1;
+    Precheck p;
+    PolygonSoup& soup = p.soup.emplace();
+    soup.warnings = header.warnings;
     if (header.format == "ascii")
-        checkPlyAscii(path, text, bodyStart, elements);
+        readPlyAscii(path, text, bodyStart, elements, layout, soup);
     else
-        checkPlyBinary(path, text, bodyStart, elements, header.format == "binary_big_endian");
+        readPlyBinary(path, text, bodyStart, elements, layout, header.format == "binary_big_endian",
+                      soup);
     return p;
 }
 

@@ -339,8 +339,8 @@ TEST(MeshReaderFormats, ObjWithAByteOrderMarkOrOldMacLineEndsReadsEveryVertex) {
     EXPECT_CONTAINS(errorOf(writeFile("mac.obj", "v 0 0 0\rv 1 0 0\r\nv 0 x 0\r")), "(line 3)");
 }
 
-// OFF is read here in full and takes the mark; PLY goes to OpenMesh, which does not, so the
-// refusal names it (it said "not a PLY file", the culprit invisible).
+// OFF takes the mark; a PLY file must start with "ply", so the refusal names the mark (it said
+// "not a PLY file", the culprit invisible).
 TEST(MeshReaderFormats, OffWithAByteOrderMarkReadsAndPlyWithOneSaysSo) {
     const Positions V = tentV();
     const MeshReadResult r = readMesh(writeFile("marked.off", "\xEF\xBB\xBF" + offText(V, tentP)));
@@ -701,26 +701,122 @@ TEST(MeshReaderErrors, PlyListLongerThanTheFile) {
     EXPECT_CONTAINS(errorOf(writeFile("word.ply", word)), "face 3: '3J' is not a number");
 }
 
-TEST(MeshReaderErrors, OpenMeshMessagesEndUpInTheErrorNotOnTheConsole) {
-    std::string bytes = plyBinary(tentV(), tentP);
-    bytes.replace(bytes.find("little"), 6, "middle");
-    const std::string path = writeFile("middle_endian.ply", bytes);
-    ::testing::internal::CaptureStderr();
-    const std::string msg = errorOf(path);
-    const std::string console = ::testing::internal::GetCapturedStderr();
-    EXPECT_CONTAINS(msg, "OpenMesh could not read the file");
-    EXPECT_CONTAINS(msg, "Unsupported PLY format: binary_middle_endian");
-    EXPECT_EQ(console, "");
+// A format word that is none of the three was read as binary ("file ends in face 1422" of
+// "format asci"); it is named, and nothing reaches the console.
+TEST(MeshReaderErrors, APlyFormatThatIsNoneOfTheThreeIsNamed) {
+    for (const char* format : {"binary_middle_endian", "asci"}) {
+        std::string bytes = plyAscii(tentV(), tentP);
+        bytes.replace(bytes.find("ascii"), 5, format);
+        const std::string path = writeFile("format.ply", bytes);
+        ::testing::internal::CaptureStderr();
+        const std::string msg = errorOf(path);
+        EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
+        EXPECT_CONTAINS(msg, "PLY header: format '" + std::string(format) +
+                                 "' is none of ascii, binary_little_endian, binary_big_endian");
+    }
 }
 
-// OpenMesh parses a PLY header twice and said each thing twice; "obj_info" is a standard PLY
-// header line, not worth a note.
-TEST(MeshReaderWarnings, OpenMeshNotesComeOnceAndObjInfoIsNoNote) {
+// "obj_info" is a standard PLY header line, not worth a note; a word no PLY header holds is.
+TEST(MeshReaderWarnings, AnUnknownPlyHeaderLineIsANoteAndObjInfoIsNone) {
     std::string ply = plyAscii(tentV(), tentP);
-    ply.insert(ply.find("element"), "obj_info scanned 2026\nfoo\n");
+    ply.insert(ply.find("element"), "obj_info scanned 2026\nfoo bar\n");
     const MeshReadResult r = readMesh(writeFile("obj_info.ply", ply));
-    EXPECT_EQ(r.warnings, (std::vector<std::string>{"OpenMesh: Unsupported keyword : foo",
-                                                    "open surface: 4 boundary edges in 1 loop"}));
+    EXPECT_EQ(r.mesh.F, toFaces(tentP));
+    EXPECT_EQ(r.warnings,
+              (std::vector<std::string>{"PLY header: 'foo' is no PLY keyword; its line skipped",
+                                        "open surface: 4 boundary edges in 1 loop"}));
+}
+
+// Valid files OpenMesh misread, from a user's probe (2 December 2026): MeshLab's per-face texture
+// coordinates ("face 1056964608" was 0.5 read as an index, or "face with 0 corners"), integer
+// coordinates in binary (10,278 console lines, then a nonsense vertex index), and a comment that
+// says "end_header" (the body was taken to start there).
+TEST(MeshReaderFormats, PlyWithFacePropertiesIntegerCoordinatesAndEitherByteOrderReads) {
+    const Positions V = 2.0 * tentV();  // whole numbers, for the integer coordinates
+    const auto header = [&](const char* format, const char* coordinate, const char* faceFirst,
+                            const char* faceAfter) {
+        return std::string("ply\nformat ") + format +
+               " 1.0\ncomment end_header is a word like any\nelement vertex " +
+               std::to_string(V.rows()) + "\nproperty " + coordinate + " x\nproperty " +
+               coordinate + " y\nproperty " + coordinate + " z\nproperty float nx\nelement face " +
+               std::to_string(tentP.size()) + "\n" + faceFirst +
+               "property list uchar uint vertex_indices\n" + faceAfter + "end_header\n";
+    };
+    const char* texcoords = "property list uchar float texcoord\n";
+    const char* flags = "property uchar flags\n";
+    // Little and big endian, short and float coordinates, a list and a value before and after.
+    for (const bool big : {false, true})
+        for (const bool shorts : {false, true}) {
+            std::string s = header(big ? "binary_big_endian" : "binary_little_endian",
+                                   shorts ? "short" : "float", flags, texcoords);
+            const auto bytes = [&](const void* p, size_t n) {
+                const char* c = static_cast<const char*>(p);
+                for (size_t k = 0; k < n; ++k) s += c[big ? n - 1 - k : k];
+            };
+            for (int i = 0; i < V.rows(); ++i) {
+                for (int k = 0; k < 3; ++k) {
+                    const float f = float(V(i, k));
+                    const int16_t h = int16_t(V(i, k));
+                    shorts ? bytes(&h, 2) : bytes(&f, 4);
+                }
+                const float normal = 1;
+                bytes(&normal, 4);
+            }
+            for (const auto& f : tentP) {
+                s += char(7);  // flags
+                s += char(f.size());
+                for (int v : f) {
+                    const uint32_t u = uint32_t(v);
+                    bytes(&u, 4);
+                }
+                s += char(2 * f.size());
+                for (size_t k = 0; k < 2 * f.size(); ++k) {
+                    const float uv = 0.5f;
+                    bytes(&uv, 4);
+                }
+            }
+            const MeshReadResult r = readMesh(writeFile("meshlab.ply", s));
+            EXPECT_EQ(r.mesh.V, V) << big << shorts;
+            EXPECT_EQ(r.mesh.F, toFaces(tentP)) << big << shorts;
+        }
+    std::ostringstream ascii;
+    ascii << header("ascii", "int", texcoords, flags);
+    for (int i = 0; i < V.rows(); ++i)
+        ascii << int(V(i, 0)) << ' ' << int(V(i, 1)) << ' ' << int(V(i, 2)) << " 1\n";
+    for (const auto& f : tentP) {
+        ascii << 2 * f.size();
+        for (size_t k = 0; k < 2 * f.size(); ++k) ascii << " 0.5";
+        ascii << ' ' << f.size();
+        for (int v : f) ascii << ' ' << v;
+        ascii << " 7\n";
+    }
+    const MeshReadResult r = readMesh(writeFile("meshlab_ascii.ply", ascii.str()));
+    EXPECT_EQ(r.mesh.V, V);
+    EXPECT_EQ(r.mesh.F, toFaces(tentP));
+
+    // Double coordinates keep their precision (OpenMesh rounded them to float).
+    std::string precise = plyAscii(V, tentP);
+    const std::string floats = "float x\nproperty float y\nproperty float z", first = "\n2 0 0 200";
+    precise.replace(precise.find(floats), floats.size(),
+                    "double x\nproperty double y\nproperty double z");
+    precise.replace(precise.find(first), first.size(), "\n2.1234567890123 0 0 200");
+    EXPECT_EQ(readMesh(writeFile("double.ply", precise)).mesh.V(0, 0), 2.1234567890123);
+}
+
+// What a PLY file must hold to be a mesh, said of the header.
+TEST(MeshReaderErrors, APlyWithoutCoordinatesOrIntegerIndicesSaysWhatItLacks) {
+    std::string noZ = plyAscii(tentV(), tentP);
+    noZ.replace(noZ.find("property float z"), 16, "property float w");
+    EXPECT_CONTAINS(errorOf(writeFile("no_z.ply", noZ)),
+                    "PLY header: element vertex lacks an x, y or z property");
+    std::string noIndices = plyAscii(tentV(), tentP);
+    noIndices.replace(noIndices.find("vertex_indices"), 14, "corners");
+    EXPECT_CONTAINS(errorOf(writeFile("no_indices.ply", noIndices)),
+                    "PLY header: element face has no vertex_indices list");
+    std::string floats = plyAscii(tentV(), tentP);
+    floats.replace(floats.find("list uchar int"), 14, "list uchar float");
+    EXPECT_CONTAINS(errorOf(writeFile("float_indices.ply", floats)),
+                    "PLY header: face vertex indices of type 'float', not integers");
 }
 
 TEST(MeshReaderErrors, EdgeSharedByThreeFaces) {

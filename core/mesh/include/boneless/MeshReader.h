@@ -45,8 +45,8 @@ struct MeshReadResult {
 // corner), and triangles whose corners merge are dropped (reported as a warning).
 // Copies of a vertex at one position (a file split at its UV seams) are welded for F: see
 // TriMesh::weldedTo; the vertex count and order stay the file's.
-// OFF, PLY and STL go through OpenMesh, which hands over float positions: double-precision PLY/OFF
-// coordinates arrive rounded to float. OBJ is parsed here, in double precision.
+// Binary OFF and STL go through OpenMesh, which hands over float positions. OBJ, PLY and text OFF
+// are parsed here, in double precision.
 MeshReadResult readMesh(const std::string& path, const MeshReadOptions& options = {});
 
 struct ObjGroup {
