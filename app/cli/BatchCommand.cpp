@@ -25,6 +25,7 @@
 #include "boneless/ExportFormat.h"
 #include "boneless/InputFile.h"
 #include "boneless/MeshReader.h"
+#include "boneless/OutputFolder.h"
 #include "boneless/TakeExport.h"
 #include "boneless/TakeOptionsJson.h"
 #include "boneless/Text.h"

@@ -20,6 +20,7 @@
 #include "boneless/Alignment.h"
 #include "boneless/C3dReader.h"
 #include "boneless/ObjWriter.h"
+#include "boneless/OutputFolder.h"
 #include "boneless/TakeExport.h"
 #include "boneless/TakeOptionsJson.h"
 #include "boneless/Text.h"

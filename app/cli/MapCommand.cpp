@@ -17,6 +17,7 @@
 #include "boneless/MarkerSuggestion.h"
 #include "boneless/MeshReader.h"
 #include "boneless/ObjWriter.h"
+#include "boneless/OutputFolder.h"
 #include "boneless/SuggestionCheck.h"
 #include "boneless/TakeExport.h"
 #include "boneless/TakeOptionsJson.h"

@@ -19,6 +19,7 @@
 #include "boneless/Error.h"
 #include "boneless/MarkerSuggestion.h"
 #include "boneless/MeshReader.h"
+#include "boneless/OutputFolder.h"
 #include "boneless/ProgressPace.h"
 #include "boneless/Reconstruction.h"
 #include "boneless/TakeOptionsJson.h"

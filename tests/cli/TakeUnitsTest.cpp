@@ -11,6 +11,7 @@
 #include "CliRunner.h"
 #include "boneless/C3dReader.h"
 #include "boneless/C3dWriter.h"
+#include "boneless/OutputFolder.h"
 #include "boneless/TakeExport.h"
 
 using namespace boneless;

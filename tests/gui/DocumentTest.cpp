@@ -11,6 +11,7 @@
 #include "ModelTestFixtures.h"
 #include "boneless/C3dWriter.h"
 #include "boneless/MarkerSuggestion.h"
+#include "boneless/OutputFolder.h"
 #include "boneless/ui/FrameSolver.h"
 #include "boneless/ui/MarkerListModel.h"
 

@@ -1,4 +1,5 @@
 #include "boneless/ui/ExportDialog.h"
+#include "boneless/OutputFolder.h"
 
 #include <QButtonGroup>
 #include <QCheckBox>

@@ -17,6 +17,7 @@
 #include "boneless/C3dWriter.h"
 #include "boneless/Error.h"
 #include "boneless/ObjWriter.h"
+#include "boneless/OutputFolder.h"
 #include "boneless/TakeExport.h"
 #include "boneless/Text.h"
 

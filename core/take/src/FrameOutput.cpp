@@ -6,6 +6,7 @@
 #include "boneless/GltfWriter.h"
 #include "boneless/MddWriter.h"
 #include "boneless/ObjWriter.h"
+#include "boneless/OutputFolder.h"
 #include "boneless/PointCacheWriter.h"
 #include "boneless/TakeExport.h"
 

@@ -1,5 +1,5 @@
 // The output folder of an export: which files are whose, who is writing there, what was written.
-#include "OutputFolder.h"
+#include "boneless/OutputFolder.h"
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "OutputGuards.h"
 #include "boneless/C3dParameters.h"
 #include "boneless/Error.h"
 #include "boneless/SpoolFile.h"

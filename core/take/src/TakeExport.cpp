@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "FrameOutput.h"
-#include "OutputFolder.h"
+#include "OutputGuards.h"
 #include "SolveMemory.h"
 #include "boneless/ActorCalibration.h"
 #include "boneless/C3dFrameReader.h"
@@ -28,6 +28,7 @@
 #include "boneless/MaterialFiles.h"
 #include "boneless/Metrics.h"
 #include "boneless/ObjWriter.h"
+#include "boneless/OutputFolder.h"
 #include "boneless/Parallel.h"
 #include "boneless/SolveFits.h"
 #include "boneless/SpoolFile.h"

@@ -11,6 +11,7 @@
 #include "boneless/Correspondence.h"
 #include "boneless/DemoFiles.h"
 #include "boneless/MeshReader.h"
+#include "boneless/OutputFolder.h"
 #include "boneless/TakeExport.h"
 #include "boneless/TakeSolver.h"
 

@@ -14,6 +14,7 @@
 #include "boneless/DemoFiles.h"
 #include "boneless/Error.h"
 #include "boneless/MeshReader.h"
+#include "boneless/OutputFolder.h"
 #include "boneless/Parallel.h"
 #include "boneless/TakeExport.h"
 

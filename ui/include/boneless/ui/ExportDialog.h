@@ -5,6 +5,7 @@
 #include <deque>
 #include <functional>
 
+#include "boneless/OutputFolder.h"
 #include "boneless/TakeExport.h"
 
 class QButtonGroup;

@@ -1,5 +1,8 @@
 #pragma once
 
+// The export's guards of its output folder, private to core/take: the lock, the refusal to write
+// over an input, and the removal of what a failed take wrote.
+
 #include <filesystem>
 #include <string>
 #include <vector>
