@@ -55,7 +55,9 @@ AnalogFrame readAnalog(const C3dParameters& ps, const HeaderWords& h, double rat
 }
 
 std::size_t declaredFrameCount(const C3dParameters& ps, const HeaderWords& h, C3dTake& take) {
-    // POINT:FRAMES, then the vendors' ways past 65535, then the header.
+    // POINT:LONG_FRAMES, which the standard says overrides POINT:FRAMES (a writer wraps that
+    // 16-bit count: 70000 frames read as 4464), then POINT:FRAMES, then the vendors' other ways
+    // past 65535, then the header.
     const std::size_t headerFrames =
         h.lastFrame >= h.firstFrame && h.lastFrame > 0 ? h.lastFrame - h.firstFrame + 1 : 0;
     const auto framesParam = paramNumber(ps, "POINT", "FRAMES");
@@ -65,15 +67,16 @@ std::size_t declaredFrameCount(const C3dParameters& ps, const HeaderWords& h, C3
     const auto longFrames = paramNumber(ps, "POINT", "LONG_FRAMES");
     double frames = double(headerFrames);
     const char* framesFrom = "the header";
-    if (framesParam && *framesParam != 65535.0) {
+    // A LONG_FRAMES of 0 or no number is taken for unused, not for an empty take.
+    if (longFrames && std::isfinite(*longFrames) && *longFrames > 0) {
+        frames = *longFrames;
+        framesFrom = "POINT:LONG_FRAMES";
+    } else if (framesParam && *framesParam != 65535.0) {
         frames = *framesParam;
         framesFrom = "POINT:FRAMES";
     } else if (trialOk) {
         frames = double(*trialEnd - *trialStart + 1);
         framesFrom = "TRIAL:ACTUAL_START_FIELD..ACTUAL_END_FIELD";
-    } else if (longFrames) {
-        frames = *longFrames;
-        framesFrom = "POINT:LONG_FRAMES";
     } else if (framesParam) {
         frames = 65535.0;
     }

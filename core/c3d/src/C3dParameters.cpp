@@ -22,6 +22,8 @@ std::size_t product(const std::vector<int>& dims) {
 }
 
 std::string trimmed(const std::uint8_t* p, std::size_t n) {
+    // A C string in a fixed-width field: what follows its NUL is a buffer's leftover ("LFHD\0ab").
+    n = std::find(p, p + n, std::uint8_t(0)) - p;
     while (n > 0 && (p[n - 1] == ' ' || p[n - 1] == 0)) --n;
     std::size_t b = 0;
     while (b < n && p[b] == ' ') ++b;

@@ -63,7 +63,8 @@ std::size_t pointCount(const C3dParameters& ps, const HeaderWords& h,
 
 double pointScale(const C3dParameters& ps, const HeaderWords& h, std::vector<std::string>& warn) {
     double scale = h.scale;
-    if (auto s = paramNumber(ps, "POINT", "SCALE")) {
+    // Signed: a writer storing the scale as int16 writes -1 for float storage, not 65535.
+    if (auto s = paramNumber(ps, "POINT", "SCALE", false)) {
         if (std::isfinite(*s) && *s != 0.0) {
             // Opposite signs are a disagreement on the storage, which reconcileStorage names.
             if (std::isfinite(h.scale) && h.scale != 0.0f && (h.scale < 0) == (*s < 0) &&

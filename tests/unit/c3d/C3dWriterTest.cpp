@@ -241,6 +241,51 @@ TEST(C3dWriter, APointScaleWhoseStorageTheFileCannotHoldGivesWayToTheHeaders) {
     EXPECT_TRUE(hasWarning(f, "using POINT:SCALE")) << ::testing::PrintToString(f.warnings);
 }
 
+// From a user's probe of other writers' files (2 December 2026): POINT:SCALE stored as an int16
+// -1 was read as 65535, so a short float take was read as int16 with a 3786 km span.
+TEST(C3dWriter, APointScaleStoredAsInt16IsSigned) {
+    const C3dTake t = syntheticTake(6, {"A", "B", "C"});
+    auto bytes = encodeC3d(t);
+    const std::size_t value = valueOffset(bytes, "POINT", "SCALE");
+    ASSERT_EQ(bytes[value - 2], 4);  // float, no dimensions
+    bytes[value - 2] = 2;            // int16: the record's offset still skips its 4 bytes
+    c3d::putU16(&bytes[value], 0xFFFF);
+    const C3dTake r = readC3dMemory(bytes.data(), bytes.size(), "int16scale.c3d");
+    EXPECT_EQ(r.storage, C3dStorage::Float);
+    EXPECT_DOUBLE_EQ(r.pointScale, -1.0);
+    EXPECT_FALSE(hasWarning(r, "65535")) << ::testing::PrintToString(r.warnings);
+    ASSERT_EQ(r.frameCount(), 6u);
+    for (std::size_t f = 0; f < 6; ++f)  // the residuals scale with |POINT:SCALE|, now 1
+        for (std::size_t k = 0; k < 3; ++k) {
+            ASSERT_EQ(r.samples.valid(f, k), t.samples.valid(f, k));
+            if (t.samples.valid(f, k))
+                EXPECT_EQ(*r.samples.position(f, k), *t.samples.position(f, k));
+        }
+}
+
+// The standard says POINT:LONG_FRAMES overrides POINT:FRAMES; a writer that wrapped FRAMES to
+// 16 bits (70001 as 4465) lost 65,536 frames, with a warning only that the header disagreed.
+TEST(C3dWriter, LongFramesOverridesAWrappedPointFrames) {
+    const C3dTake t = syntheticTake(70001, {"A"});
+    C3dWriteOptions w;
+    w.trialFrameRange = false;
+    auto bytes = encodeC3d(t, w);
+    c3d::putU16(&bytes[valueOffset(bytes, "POINT", "FRAMES")], 70001 % 65536);
+    const C3dTake r = readC3dMemory(bytes.data(), bytes.size(), "wrapped.c3d");
+    EXPECT_EQ(r.frameCount(), 70001u);
+    expectExactSamples(t, r);
+}
+
+// A label written as a C string in its fixed-width field kept the buffer's leftover after the NUL
+// ("LFHD\0ab"), and a map naming LFHD did not find it.
+TEST(C3dWriter, ALabelEndsAtItsFirstNul) {
+    const C3dTake t = syntheticTake(3, {std::string("LFHD\0ab", 7), "RFHD"});
+    const C3dTake r = roundTrip(t);
+    ASSERT_EQ(r.points.size(), 2u);
+    EXPECT_EQ(r.points[0].label, "LFHD");
+    EXPECT_EQ(r.points[1].label, "RFHD");
+}
+
 // CMU 85_02 with POINT:SCALE made +10 (int16) and the header's -0.05 (float) left: int16 frames
 // fit in the first half of its data, and were read so, coordinates like -133720.
 TEST(C3dWriter, AFloatFileWhosePointScaleSaysInt16IsReadAsFloatsByItsDataSize) {
