@@ -57,7 +57,8 @@ AnalogFrame readAnalog(const C3dParameters& ps, const HeaderWords& h, double rat
 std::size_t declaredFrameCount(const C3dParameters& ps, const HeaderWords& h, C3dTake& take) {
     // POINT:LONG_FRAMES, which the standard says overrides POINT:FRAMES (a writer wraps that
     // 16-bit count: 70000 frames read as 4464), then POINT:FRAMES, then the vendors' other ways
-    // past 65535, then the header.
+    // past 65535, then the header. A LONG_FRAMES that is no count (0: unused) or that a FRAMES
+    // neither saturated nor its wrap contradicts (a take trimmed by a tool that left it) is not.
     const std::size_t headerFrames =
         h.lastFrame >= h.firstFrame && h.lastFrame > 0 ? h.lastFrame - h.firstFrame + 1 : 0;
     const auto framesParam = paramNumber(ps, "POINT", "FRAMES");
@@ -67,8 +68,16 @@ std::size_t declaredFrameCount(const C3dParameters& ps, const HeaderWords& h, C3
     const auto longFrames = paramNumber(ps, "POINT", "LONG_FRAMES");
     double frames = double(headerFrames);
     const char* framesFrom = "the header";
-    // A LONG_FRAMES of 0 or no number is taken for unused, not for an empty take.
-    if (longFrames && std::isfinite(*longFrames) && *longFrames > 0) {
+    const bool longCount = longFrames && std::isfinite(*longFrames) && *longFrames > 0 &&
+                           *longFrames <= 2147483647.0 && *longFrames == std::floor(*longFrames);
+    const bool longAgrees =
+        longCount && (!framesParam || *framesParam == 65535.0 || *framesParam == *longFrames ||
+                      std::fmod(*longFrames, 65536.0) == *framesParam);
+    if (longCount && !longAgrees)
+        take.warnings.push_back("POINT:LONG_FRAMES " + shortNumber(*longFrames) +
+                                " disagrees with POINT:FRAMES " + shortNumber(*framesParam) +
+                                "; using POINT:FRAMES");
+    if (longAgrees) {
         frames = *longFrames;
         framesFrom = "POINT:LONG_FRAMES";
     } else if (framesParam && *framesParam != 65535.0) {

@@ -49,6 +49,7 @@ PlyType plyType(const std::string& type) {
 struct PlyProperty {
     std::string name;
     int countBytes = 0;  // 0: a single value; else a list whose length takes this many bytes
+    Kind countKind = Kind::Unsigned;
     PlyType value;
     std::string valueType;  // as the header names it, for messages
 };
@@ -102,6 +103,10 @@ PlyHeader readPlyHeader(const std::string& path, const std::string& text) {
             if (!isCount(count))
                 throw MeshError(path,
                                 "PLY header: element " + name + " has no count ('" + count + "')");
+            // A second vertex or face element would be dropped: which one is the mesh?
+            for (const PlyElement& e : elements)
+                if (e.name == name && (name == "vertex" || name == "face"))
+                    throw MeshError(path, "PLY header: a second element " + name);
             elements.push_back({name, std::stoll(count), {}});
         } else if (w == "property") {
             if (elements.empty())
@@ -113,11 +118,17 @@ PlyHeader readPlyHeader(const std::string& path, const std::string& text) {
                 if (count.kind == Kind::Float)
                     throw MeshError(path, "PLY header: a list's length of type float");
                 property.countBytes = count.bytes;
+                property.countKind = count.kind;
                 type = word();
             }
             property.valueType = type;
             property.value = typeOf(type);
             property.name = word();
+            skipLine();  // no more to a property than its type and name
+            for (const PlyProperty& p : elements.back().properties)
+                if (p.name == property.name)
+                    throw MeshError(path, "PLY header: element " + elements.back().name +
+                                              " has two properties " + property.name);
             elements.back().properties.push_back(property);
         } else {
             header.warnings.push_back("PLY header: '" + w +
@@ -185,12 +196,11 @@ PlyLayout layoutOf(const std::string& path, const std::vector<PlyElement>& eleme
                 throw MeshError(path, "PLY header: element vertex lacks an x, y or z property");
         } else if (element.name == "face" && l.faceElement < 0) {
             l.faceElement = int(e);
-            for (size_t p = 0; p < element.properties.size(); ++p) {
-                const PlyProperty& property = element.properties[p];
-                if (property.countBytes &&
-                    (property.name == "vertex_indices" || property.name == "vertex_index"))
-                    l.indices = int(p);
-            }
+            // vertex_indices, the standard's name, before vertex_index, some writers' name.
+            for (const char* name : {"vertex_index", "vertex_indices"})
+                for (size_t p = 0; p < element.properties.size(); ++p)
+                    if (element.properties[p].countBytes && element.properties[p].name == name)
+                        l.indices = int(p);
             if (element.count > 0 && l.indices < 0)
                 throw MeshError(path, "PLY header: element face has no vertex_indices list");
             if (l.indices >= 0 && element.properties[l.indices].value.kind == Kind::Float)
@@ -223,18 +233,24 @@ void readPlyAscii(const std::string& path, const std::string& text, size_t bodyS
     // At an element's first item: a wrong word there most likely belongs to the element before,
     // whose count in the header is too small.
     std::string hint;
-    const auto next = [&](const std::string& what, bool integer) {
+    // A coordinate must be finite; another property (a normal) may be nan, as in binary files.
+    const auto next = [&](const std::string& what, bool integer, bool coordinate = false) {
         if (k >= words.size())
             throw MeshError(path, "file ends in " + what + " (the header announces " +
                                       announced(elements) + ")");
         const auto& [w, n] = words[k++];
-        requireNumbers(path, {w}, n, what);
+        if (coordinate || integer) requireNumbers(path, {w}, n, what);
+        double v;
+        const char* b = w.data() + (w[0] == '+');
+        const auto [end, ec] = std::from_chars(b, w.data() + w.size(), v);
+        if (ec != std::errc() || end != w.data() + w.size())
+            throw MeshError(path, what + ": '" + w + "' is not a number" + hint, at(n));
         if (integer && !isInteger(w))
             throw MeshError(path, what + ": '" + w + "' is not an integer" + hint, at(n));
         return w;
     };
     for (size_t ei = 0; ei < elements.size(); ++ei)
-        for (long long i = 0; i < elements[ei].count; ++i) {
+        for (long long i = 0; i < elements[ei].count && !elements[ei].properties.empty(); ++i) {
             const PlyElement& e = elements[ei];
             const std::string what = e.name + " " + std::to_string(i);
             hint = i == 0 && ei > 0
@@ -248,14 +264,18 @@ void readPlyAscii(const std::string& path, const std::string& text, size_t bodyS
                 const PlyProperty& p = e.properties[pi];
                 const bool integer = p.value.kind != Kind::Float;
                 if (!p.countBytes) {
-                    const std::string w = next(what, integer);
-                    for (int c = 0; c < 3; ++c)
-                        if (isVertex && layout.xyz[c] == int(pi)) xyz[c] = number(w);
+                    int c = 0;
+                    while (c < 3 && !(isVertex && layout.xyz[c] == int(pi))) ++c;
+                    const std::string w = next(what, integer, c < 3);
+                    if (c < 3) xyz[c] = number(w);
                     continue;
                 }
                 const std::string length = next(what, true);
                 const long long values = std::stoll(length);
-                if (values < 0 || uint64_t(values) > words.size() - k)
+                if (values < 0)
+                    throw MeshError(path, what + ": list length '" + length + "' is negative",
+                                    at(words[k - 1].second));
+                if (uint64_t(values) > words.size() - k)
                     throw MeshError(
                         path, what + ": list length '" + length + "' is more than the file holds",
                         at(words[k - 1].second));
@@ -298,7 +318,7 @@ void readPlyBinary(const std::string& path, const std::string& text, size_t body
         const PlyElement& e = elements[ei];
         const bool isVertex = int(ei) == layout.vertexElement;
         const bool isFace = int(ei) == layout.faceElement;
-        for (long long i = 0; i < e.count; ++i) {
+        for (long long i = 0; i < e.count && !e.properties.empty(); ++i) {
             const std::string what = e.name + " " + std::to_string(i);
             double xyz[3] = {0, 0, 0};
             for (size_t pi = 0; pi < e.properties.size(); ++pi) {
@@ -309,10 +329,17 @@ void readPlyBinary(const std::string& path, const std::string& text, size_t body
                         throw MeshError(path, "file ends in " + what + " (the header announces " +
                                                   announced(elements) + ")");
                     const double length =
-                        plyBinaryValue(text, pos, {p.countBytes, Kind::Unsigned}, bigEndian);
+                        plyBinaryValue(text, pos, {p.countBytes, p.countKind}, bigEndian);
                     pos += p.countBytes;
+                    if (length < 0)
+                        throw MeshError(path, what + ": list length " +
+                                                  std::to_string((long long)length) +
+                                                  " is negative");
                     values = uint64_t(length);
                 }
+                if (!p.countBytes && text.size() - pos < size_t(p.value.bytes))
+                    throw MeshError(path, "file ends in " + what + " (the header announces " +
+                                              announced(elements) + ")");
                 if (values > (text.size() - pos) / p.value.bytes)
                     throw MeshError(path, what +
                                               " lists more values than the file holds (the "
@@ -349,11 +376,12 @@ Precheck checkPly(const std::string& path) {
         throw MeshError(path, "not a PLY file (no 'ply' ... 'end_header' header)");
     const PlyHeader header = readPlyHeader(path, text);
     const std::vector<PlyElement>& elements = header.elements;
-    // Every element takes at least one byte (binary) or one line (ascii); more than that is a
-    // broken header, which would have the soup reserve absurd amounts of memory.
+    // An element with a property takes at least one byte (binary) or one word (ascii); more than
+    // that is a broken header. One without properties takes nothing and is skipped: walking its
+    // count made reading quadratic.
     const size_t bodySize = text.size() - header.end;
     for (const PlyElement& e : elements)
-        if (static_cast<unsigned long long>(e.count) > bodySize)
+        if (!e.properties.empty() && static_cast<unsigned long long>(e.count) > bodySize)
             throw MeshError(path, "header announces " + std::to_string(e.count) + " " + e.name +
                                       " elements, more than the file holds");
     const PlyLayout layout = layoutOf(path, elements);

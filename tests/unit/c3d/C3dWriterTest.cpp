@@ -274,6 +274,13 @@ TEST(C3dWriter, LongFramesOverridesAWrappedPointFrames) {
     const C3dTake r = readC3dMemory(bytes.data(), bytes.size(), "wrapped.c3d");
     EXPECT_EQ(r.frameCount(), 70001u);
     expectExactSamples(t, r);
+    // A FRAMES that is neither saturated nor the wrap (a tool trimmed the take and left
+    // LONG_FRAMES) is the count, with a warning.
+    c3d::putU16(&bytes[valueOffset(bytes, "POINT", "FRAMES")], 100);
+    const C3dTake trimmed = readC3dMemory(bytes.data(), bytes.size(), "trimmed.c3d");
+    EXPECT_EQ(trimmed.frameCount(), 100u);
+    EXPECT_TRUE(hasWarning(trimmed, "POINT:LONG_FRAMES 70001 disagrees with POINT:FRAMES 100"))
+        << ::testing::PrintToString(trimmed.warnings);
 }
 
 // A label written as a C string in its fixed-width field kept the buffer's leftover after the NUL

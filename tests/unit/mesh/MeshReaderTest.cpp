@@ -803,6 +803,61 @@ TEST(MeshReaderFormats, PlyWithFacePropertiesIntegerCoordinatesAndEitherByteOrde
     EXPECT_EQ(readMesh(writeFile("double.ply", precise)).mesh.V(0, 0), 2.1234567890123);
 }
 
+// From a review of the reader (2 December 2026): elements without properties take no data (walking
+// their counts made reading quadratic), a list length is read in its own (signed) type, the
+// standard's vertex_indices wins over vertex_index, a normal may be nan in ascii as in binary, and
+// a header that names a vertex or face element twice, or a property twice, is refused.
+TEST(MeshReaderFormats, PlyElementsWithoutPropertiesSignedLengthsAndRepeatedNames) {
+    const Positions V = tentV();
+    std::string empty = plyAscii(V, tentP);
+    empty.insert(empty.find("element vertex"), "element nothing 1000000\n");
+    EXPECT_EQ(readMesh(writeFile("empty_elements.ply", empty)).mesh.F, toFaces(tentP));
+
+    std::string both = plyAscii(V, tentP);
+    both.replace(both.find("property list uchar int vertex_indices"), 38,
+                 "property list uchar int vertex_index\nproperty list uchar int vertex_indices");
+    std::string body = both.substr(0, both.find("end_header\n") + 11);
+    std::istringstream lines(both.substr(body.size()));
+    std::string line;
+    for (int i = 0; i < V.rows() && std::getline(lines, line);) body += line + "\n", ++i;
+    for (const auto& f : tentP)  // vertex_index: a wrong triangle; vertex_indices: the face
+        body += "3 0 1 2 3 " + std::to_string(f[0]) + " " + std::to_string(f[1]) + " " +
+                std::to_string(f[2]) + "\n";
+    EXPECT_EQ(readMesh(writeFile("both_lists.ply", body)).mesh.F, toFaces(tentP));
+
+    std::string normals = plyAscii(V, tentP);
+    normals.replace(normals.find("property uchar red"), 18, "property float nx");
+    normals.replace(normals.find(" 200\n"), 5, " nan\n");
+    EXPECT_EQ(readMesh(writeFile("nan_normal.ply", normals)).mesh.V, V);
+
+    std::string negative = plyAscii(V, tentP);
+    negative.replace(negative.rfind("\n3 "), 3, "\n-1 ");
+    EXPECT_CONTAINS(errorOf(writeFile("negative.ply", negative)),
+                    "face 3: list length '-1' is negative");
+    std::string signedBinary = plyBinary(V, tentP);
+    signedBinary.replace(signedBinary.find("list uchar int"), 14, "list char int");
+    signedBinary[signedBinary.size() - 13] = char(0xFF);  // the last face's corner count
+    EXPECT_CONTAINS(errorOf(writeFile("negative_binary.ply", signedBinary)),
+                    "face 3: list length -1 is negative");
+
+    std::string twice = plyAscii(V, tentP);
+    twice.insert(twice.find("end_header"), "element face 0\n");
+    EXPECT_CONTAINS(errorOf(writeFile("two_faces.ply", twice)),
+                    "PLY header: a second element face");
+    std::string twoX = plyAscii(V, tentP);
+    twoX.replace(twoX.find("property uchar red"), 18, "property float x");
+    EXPECT_CONTAINS(errorOf(writeFile("two_x.ply", twoX)),
+                    "PLY header: element vertex has two properties x");
+
+    std::string cut = plyBinary(V, tentP);
+    cut.resize(cut.find("end_header\n") + 11 + 2 * 13 + 6);  // in vertex 2
+    EXPECT_CONTAINS(errorOf(writeFile("cut.ply", cut)), "file ends in vertex 2");
+    std::string extra = plyAscii(V, tentP);
+    extra.replace(extra.find("property uchar red"), 18, "property uchar red  # colour");
+    for (const std::string& w : readMesh(writeFile("extra_words.ply", extra)).warnings)
+        EXPECT_EQ(w.find("PLY header"), std::string::npos) << w;
+}
+
 // What a PLY file must hold to be a mesh, said of the header.
 TEST(MeshReaderErrors, APlyWithoutCoordinatesOrIntegerIndicesSaysWhatItLacks) {
     std::string noZ = plyAscii(tentV(), tentP);
