@@ -51,6 +51,17 @@ TEST(DemoCommand, AFileItWouldChangeIsReplacedOnlyWithForce) {
     const CliResult forced = runCli(demo + " --frame-count 3 --force");
     EXPECT_EQ(forced.exitCode, 0) << forced.out;
     EXPECT_TRUE(contentsOf(dir / "walker.map.json") == written) << "the map was kept";
+    // A frame of truth past the count (the user's, or a longer demo's) is removed by the write:
+    // until 2 December 2026 without --force, and without a word.
+    std::ofstream(dir / "truth" / "walker_0100.obj") << "user data\n";
+    const CliResult past = runCli(demo + " --frame-count 3");
+    EXPECT_EQ(past.exitCode, 1) << past.out;
+    EXPECT_NE(past.out.find(": truth/walker_0100.obj differs from what this demo writes"),
+              std::string::npos)
+        << past.out;
+    EXPECT_EQ(contentsOf(dir / "truth" / "walker_0100.obj"), "user data\n");
+    EXPECT_EQ(runCli(demo + " --frame-count 3 --force").exitCode, 0);
+    EXPECT_FALSE(fs::exists(dir / "truth" / "walker_0100.obj"));
 }
 
 // Before, the demo made every frame before writing the first: 100,000 frames at detail 1 (8 GB of

@@ -173,9 +173,17 @@ std::vector<std::string> demoFilesThatDiffer(const std::string& folder, int fram
     const std::string name = subjectName(subject);
     std::vector<std::string> names = {name + ".obj", name + ".c3d", name + ".map.json"};
     for (int t = 0; withTruth && t < frames; ++t) names.push_back(truthName(name, t));
+    // Frames of truth past the count are removed by the write: the user's own, or a longer demo's
+    // (until 2 December 2026 removed without --force).
+    std::vector<std::string> pastCount;
+    for (int t :
+         withTruth ? objFramesIn((fs::path(folder) / "truth").string(), name) : std::vector<int>())
+        if (t >= frames) pastCount.push_back(truthName(name, t));
+    std::sort(pastCount.begin(), pastCount.end());
     std::error_code ec;
-    if (std::none_of(names.begin(), names.end(),
-                     [&](const std::string& n) { return fs::exists(fs::path(folder) / n, ec); }))
+    if (pastCount.empty() && std::none_of(names.begin(), names.end(), [&](const std::string& n) {
+            return fs::exists(fs::path(folder) / n, ec);
+        }))
         return {};
     std::vector<std::string> differ;
     makeDemoFiles(frames, offsetMm, withTruth, detail, subject,
@@ -189,6 +197,7 @@ std::vector<std::string> demoFilesThatDiffer(const std::string& folder, int fram
     // The take, made last, named with the map and the mesh before the frames of truth.
     std::stable_partition(differ.begin(), differ.end(),
                           [](const std::string& n) { return n.find('/') == std::string::npos; });
+    differ.insert(differ.end(), pastCount.begin(), pastCount.end());
     return differ;
 }
 

@@ -31,9 +31,9 @@ DemoFiles writeDemoFiles(const std::string& folder, int frames = 60, double offs
                          DemoSubject subject = DemoSubject::Creature);
 
 // The files writeDemoFiles with these arguments would replace in `folder` with other bytes (a
-// map edited since, a take of another length), named as in the folder ("walker.map.json",
-// "truth/walker_0003.obj"); none when the folder holds none of the demo's files, or holds them
-// as this demo would write them.
+// map edited since, a take of another length) or remove (its truth frames past `frames`, last),
+// named as in the folder ("walker.map.json", "truth/walker_0003.obj"); none when the folder
+// holds none of the demo's files, or holds them as this demo would write them.
 std::vector<std::string> demoFilesThatDiffer(const std::string& folder, int frames, double offsetMm,
                                              bool withTruth, int detail, DemoSubject subject);
 
