@@ -302,6 +302,19 @@ void run(const EvalArgs& args) {
         dropped = ", " + std::string(drop) + " % dropped per frame" +
                   (options.droppedPerFrame() == 0 ? " rounds to none" : "") + ": " +
                   std::to_string(used) + " used per frame";
+    // Before the header: a folder that cannot be made fails the run before it says it starts.
+    if (!args.out.empty()) {
+        std::vector<const char*> names;
+        for (auto method : methods) names.push_back(methodName(method));
+        refuseAnswersThere(args.out, names, sequence, range.first, range.end);
+        for (const char* name : names) {
+            std::error_code ec;
+            fs::create_directories(fs::path(args.out) / name, ec);
+            if (ec)
+                throw Error((fs::path(args.out) / name).string() + ": cannot create the folder (" +
+                            ec.message() + ")");
+        }
+    }
     if (!args.json)
         std::printf("%s: frames %d:%d of %d, %d vertices, %d faces, %zu markers%s, %s\n",
                     args.sequence.c_str(), range.first, range.end, frameCount,
@@ -310,12 +323,6 @@ void run(const EvalArgs& args) {
                     methods[0] == EvaluationOptions::Method::Boneless
                         ? (std::string(methodName(options.solver.method)) + " solver").c_str()
                         : "ARAP alone");
-    if (!args.out.empty()) {
-        std::vector<const char*> names;
-        for (auto method : methods) names.push_back(methodName(method));
-        refuseAnswersThere(args.out, names, sequence, range.first, range.end);
-        for (const char* name : names) fs::create_directories(fs::path(args.out) / name);
-    }
     // The truth's own polygons, UVs and materials, so that an answer opens as the truth does.
     const SourceFaces* source = sequence.rest.sourceFaces.get();
     std::vector<Evaluation> results;

@@ -125,7 +125,7 @@ nlohmann::json gapJson(const boneless::C3dGap& gap) {
 nlohmann::json toJson(const boneless::C3dTake& t, const PointGaps& gaps) {
     using boneless::toString;
     nlohmann::json j;
-    j["file"] = t.file;
+    j["file"] = boneless::validUtf8(t.file);  // a Latin-1 name as the sidecar records it
     j["frame_count"] = t.frameCount();
     j["fps"] =
         t.hasFrameRate() ? nlohmann::json(t.rate) : nlohmann::json(nullptr);  // as the sidecar

@@ -1,5 +1,7 @@
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <iostream>
 #include <new>
 #include <string>
@@ -20,9 +22,19 @@ namespace {
 // loops until an allocator succeeds), so a demo or solve that had written everything spun at full
 // CPU without end instead of exiting.
 [[noreturn]] void leave(int code) {
+    errno = 0;
     std::cout.flush();
+    const bool lost = std::fflush(stdout) != 0 || std::ferror(stdout) || std::cout.fail();
+    const int why = errno;  // the reason when the last bytes failed; a write before may have
     std::cerr.flush();
     std::fflush(nullptr);
+    // A result that did not reach its file (`inspect --json > take.json` on a full disk) is no
+    // success: the file is cut short.
+    if (lost && code == 0) {
+        std::fprintf(stderr, "boneless-cli: writing to standard output failed%s%s%s\n",
+                     why != 0 ? " (" : "", why != 0 ? std::strerror(why) : "", why != 0 ? ")" : "");
+        std::_Exit(1);
+    }
     std::_Exit(code);
 }
 

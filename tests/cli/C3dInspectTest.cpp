@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "C3dTestSupport.h"
+#include "CliRunner.h"
 #include "FileSizeLimit.h"
 
 using namespace boneless;
@@ -74,6 +75,17 @@ TEST(C3dInspect, JsonDescribesTheTake) {
     EXPECT_EQ(j["points"][0]["missing_frames"], 1);
     EXPECT_EQ(j["points"][1]["kind"], "angle");
     EXPECT_EQ(j["points"][2]["subject"], "");
+}
+
+// A take named in Latin-1 ("caf\xe9.c3d", an old archive's) was named "caf\uFFFD.c3d", a name
+// nothing can find again; it is read as Latin-1, as the sidecar records it.
+TEST(C3dInspect, JsonNamesALatin1TakeAsTheSidecarDoes) {
+    const std::filesystem::path take = c3dtest::workDir() / "caf\xe9.c3d";
+    writeC3d(c3dtest::syntheticTake(3, {"A"}), take.string());
+    const CliRun r = inspect(quoted(take.string()) + " --json");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string file = nlohmann::json::parse(r.out)["file"];
+    EXPECT_EQ(file.substr(file.size() - 9), "caf\xc3\xa9.c3d") << file;
 }
 
 // The frame rate has one name, the sidecar's; inspect called it "rate".
@@ -143,6 +155,21 @@ TEST(C3dInspect, ACsvGivenAsStdoutGoesDownThePipe) {
     ASSERT_EQ(std::system(cmd.c_str()), 0);
     EXPECT_EQ(slurp(err), "");
     EXPECT_EQ(slurp(out).rfind("frame,label,x,y,z,valid\n", 0), 0u) << slurp(out);
+}
+
+// `inspect --json > take.json` on a full disk left the file cut short and exited 0.
+TEST(C3dInspect, AResultThatCannotBeWrittenToStandardOutputFailsTheRun) {
+    namespace fs = std::filesystem;
+    const fs::path take = c3dtest::workDir() / "full-disk.c3d";
+    writeC3d(c3dtest::syntheticTake(5, {"A", "B"}), take.string());
+    for (const char* json : {"", " --json"}) {
+        const boneless::testing::CliResult r =
+            boneless::testing::runShell(std::string("\"") + BONELESS_CLI + "\" inspect " +
+                                        quoted(take.string()) + json + " 2>&1 >/dev/full");
+        EXPECT_EQ(r.exitCode, 1) << json << r.out;
+        EXPECT_EQ(r.out.rfind("boneless-cli: writing to standard output failed", 0), 0u)
+            << json << r.out;
+    }
 }
 
 TEST(C3dInspect, ACsvThatWouldReplaceTheTakeIsRefusedNamingBoth) {

@@ -66,6 +66,18 @@ TEST(EvalCommand, JsonReportsEverySummaryFigureAndBothMethods) {
     EXPECT_EQ(j["flipped_faces_worst_frame"], 0);
 }
 
+// An --out that is a file ended with "the system refused: … is ulimit -v or -u low?", exit 3, after
+// the run's header; it is refused as solve refuses it, before the header.
+TEST(EvalCommand, AnOutThatIsAFileIsRefusedNamingTheFolder) {
+    const fs::path dir = freshTestDir("eval-out-file");
+    std::ofstream(dir / "afile") << "mine\n";
+    const CliResult r = runCli("eval --sequence " + demoFolder() + " --markers 20 --out " +
+                               (dir / "afile").string());
+    EXPECT_EQ(r.exitCode, 1) << r.out;
+    EXPECT_EQ(r.out, "boneless-cli: " + (dir / "afile" / "boneless").string() +
+                         ": cannot create the folder (Not a directory)\n");
+}
+
 TEST(EvalCommand, MoreMarkersMeanSmallerErrors) {
     auto rms = [](int K) {
         const CliResult r = runCli("eval --sequence " + demoFolder() + " --markers " +

@@ -26,8 +26,8 @@ Biquad butterworth(double rate, double cutoffHz) {
     const double corrected = cutoffHz / kTwoPassCorrection;
     if (!(cutoffHz > 0) || !(corrected < 0.5 * rate)) {
         throw Error("low-pass cutoff " + shortNumber(cutoffHz) + " Hz must be below " +
-                    shortNumber(0.5 * rate * kTwoPassCorrection, 3) +
-                    " Hz (0.4 times the take's frame rate, " + shortNumber(rate) +
+                    shortNumber(0.5 * rate * kTwoPassCorrection, 4) +
+                    " Hz (0.401 times the take's frame rate, " + shortNumber(rate) +
                     " Hz), or 0 for no filter");
     }
     const double K = std::tan(kPi * corrected / rate);
