@@ -27,14 +27,26 @@ struct FrameRange {
     int end = -1;  // -1 = to the last frame
 };
 
+// A frame number past int's range is past every take's end: read as the largest, so that
+// "0:99999999999" is cut to the take as "0:2147483647" is, not refused as malformed.
+inline bool readFrameNumber(const std::string& text, int& value) {
+    if (readWholeNumber(text, value)) return true;
+    double x = 0;
+    if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos ||
+        boneless::readDecimal(text, x) != boneless::Decimal::Number)
+        return false;
+    value = 2147483647;
+    return true;
+}
+
 inline FrameRange parseFrameRange(const std::string& text, const std::string& name = "--frames") {
     FrameRange range;
     if (text.empty()) return range;
     const auto colon = text.find(':');
     const bool ok =
         colon != std::string::npos &&
-        (colon == 0 || readWholeNumber(text.substr(0, colon), range.first)) &&
-        (colon + 1 == text.size() || readWholeNumber(text.substr(colon + 1), range.end));
+        (colon == 0 || readFrameNumber(text.substr(0, colon), range.first)) &&
+        (colon + 1 == text.size() || readFrameNumber(text.substr(colon + 1), range.end));
     if (!ok)
         throw boneless::Error(name + " expects A:B (0-based, not negative, B excluded), got \"" +
                               text + "\"");

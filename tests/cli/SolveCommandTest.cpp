@@ -425,6 +425,11 @@ TEST(SolveCommand, SaysWhenTheRangeRunsPastTheTakeOrOldFramesStayBeside) {
     EXPECT_NE(r.out.find("runs past the end"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("solving 2:6"), std::string::npos) << r.out;
     EXPECT_EQ(sidecar(out)["frame_range"], nlohmann::json::array({2, 6}));
+    // An end past int's range is past the take's too (it was refused as "expects A:B").
+    r = runCli(solveArgs(demo, out) + " --quiet --frames 2:99999999999");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_NE(r.out.find("--frames 2:99999999999 runs past the end"), std::string::npos) << r.out;
+    EXPECT_EQ(sidecar(out)["frame_range"], nlohmann::json::array({2, 6}));
     // Solving fewer frames into the same folder leaves the earlier run's others: say so.
     r = runCli(solveArgs(demo, out) + " --quiet --frames 2:4");
     ASSERT_EQ(r.exitCode, 0) << r.out;
