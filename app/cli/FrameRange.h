@@ -30,12 +30,11 @@ struct FrameRange {
 // A frame number past int's range is past every take's end: read as the largest, so that
 // "0:99999999999" is cut to the take as "0:2147483647" is, not refused as malformed.
 inline bool readFrameNumber(const std::string& text, int& value) {
-    if (readWholeNumber(text, value)) return true;
     double x = 0;
     if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos ||
         boneless::readDecimal(text, x) != boneless::Decimal::Number)
         return false;
-    value = 2147483647;
+    value = static_cast<int>(std::min(x, 2147483647.0));
     return true;
 }
 

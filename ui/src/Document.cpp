@@ -234,8 +234,9 @@ bool Document::loadCorrespondence(const QString& path, MapLoad mode, int* added,
 bool Document::saveCorrespondence(const QString& path) {
     Correspondence map = map_;
     stampMesh(map);
+    const std::string json = map.toJson();
     // Only a map made for another file or group of the mesh changes by being saved.
-    const bool restamped = map.toJson() != map_.toJson();
+    const bool restamped = json != map_.toJson();
     try {
         map.write(std8(path));
     } catch (const std::exception& e) {
@@ -243,7 +244,7 @@ bool Document::saveCorrespondence(const QString& path) {
     }
     map_ = map;
     mapPath_ = path;
-    savedMapJson_ = map_.toJson();
+    savedMapJson_ = json;
     savedMapPath_ = path;
     // The entries are as they were: the solved frames and a running suggestion still hold, so a
     // save is no correspondenceChanged (it cleared every solved frame and dropped the suggestion).

@@ -57,12 +57,6 @@ bool isInteger(const std::string& t) {
     return ec == std::errc() && end == t.data() + t.size();
 }
 
-double number(const std::string& t) {
-    double v = 0;
-    std::from_chars(t.data() + (t[0] == '+'), t.data() + t.size(), v);
-    return v;
-}
-
 std::string at(int line) {
     return "line " + std::to_string(line);
 }
@@ -166,6 +160,13 @@ std::vector<std::pair<int, std::string>> contentLines(const std::string& text, c
 namespace {
 
 using namespace precheck;
+
+// A token classify() found finite.
+double number(const std::string& t) {
+    double v = 0;
+    std::from_chars(t.data() + (t[0] == '+'), t.data() + t.size(), v);
+    return v;
+}
 
 // Binary OFF as OpenMesh reads it: after the keyword line, 32-bit little-endian vertex, face and
 // edge counts; per vertex its floats (position, then normal, colour, texture coordinates when the

@@ -233,7 +233,8 @@ void readPlyAscii(const std::string& path, const std::string& text, size_t bodyS
     // At an element's first item: a wrong word there most likely belongs to the element before,
     // whose count in the header is too small.
     std::string hint;
-    // A coordinate must be finite; another property (a normal) may be nan, as in binary files.
+    // The next word's value. A coordinate must be finite; another property (a normal) may be nan,
+    // as in binary files.
     const auto next = [&](const std::string& what, bool integer, bool coordinate = false) {
         if (k >= words.size())
             throw MeshError(path, "file ends in " + what + " (the header announces " +
@@ -247,7 +248,7 @@ void readPlyAscii(const std::string& path, const std::string& text, size_t bodyS
             throw MeshError(path, what + ": '" + w + "' is not a number" + hint, at(n));
         if (integer && !isInteger(w))
             throw MeshError(path, what + ": '" + w + "' is not an integer" + hint, at(n));
-        return w;
+        return v;
     };
     for (size_t ei = 0; ei < elements.size(); ++ei)
         for (long long i = 0; i < elements[ei].count && !elements[ei].properties.empty(); ++i) {
@@ -266,12 +267,12 @@ void readPlyAscii(const std::string& path, const std::string& text, size_t bodyS
                 if (!p.countBytes) {
                     int c = 0;
                     while (c < 3 && !(isVertex && layout.xyz[c] == int(pi))) ++c;
-                    const std::string w = next(what, integer, c < 3);
-                    if (c < 3) xyz[c] = number(w);
+                    const double v = next(what, integer, c < 3);
+                    if (c < 3) xyz[c] = v;
                     continue;
                 }
-                const std::string length = next(what, true);
-                const long long values = std::stoll(length);
+                const long long values = static_cast<long long>(next(what, true));
+                const std::string& length = words[k - 1].first;
                 if (values < 0)
                     throw MeshError(path, what + ": list length '" + length + "' is negative",
                                     at(words[k - 1].second));
@@ -281,8 +282,8 @@ void readPlyAscii(const std::string& path, const std::string& text, size_t bodyS
                         at(words[k - 1].second));
                 const bool corners = isFace && layout.indices == int(pi);
                 for (long long v = 0; v < values; ++v) {
-                    const std::string w = next(what, integer);
-                    if (corners) soup.faceIndex.push_back(cornerIndex(path, number(w), what));
+                    const double corner = next(what, integer);
+                    if (corners) soup.faceIndex.push_back(cornerIndex(path, corner, what));
                 }
                 if (corners) {
                     soup.endFace();

@@ -14,8 +14,7 @@ namespace boneless::detail::precheck {
 std::string readAll(const std::string& path);
 std::vector<std::string> tokens(const std::string& line);
 bool isInteger(const std::string& t);
-std::string at(int line);             // "line 12", for messages
-double number(const std::string& t);  // a token requireNumbers let through
+std::string at(int line);  // "line 12", for messages
 // Checks the tokens of a line that must all be numbers; `what` names the element for messages.
 void requireNumbers(const std::string& path, const std::vector<std::string>& toks, int line,
                     const std::string& what);
