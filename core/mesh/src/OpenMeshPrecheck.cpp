@@ -23,7 +23,7 @@ namespace {
 
 enum class Number { Finite, NonFinite, Invalid };
 
-Number classify(const std::string& t) {
+Number classify(std::string_view t) {
     double v;
     const char* b = t.data() + (!t.empty() && t[0] == '+');
     const auto [end, ec] = std::from_chars(b, t.data() + t.size(), v);
@@ -51,7 +51,7 @@ std::vector<std::string> tokens(const std::string& line) {
     return out;
 }
 
-bool isInteger(const std::string& t) {
+bool isInteger(std::string_view t) {
     long long v;
     const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
     return ec == std::errc() && end == t.data() + t.size();
@@ -61,15 +61,18 @@ std::string at(int line) {
     return "line " + std::to_string(line);
 }
 
+void requireNumber(const std::string& path, std::string_view t, int line, const std::string& what) {
+    const Number n = classify(t);
+    if (n == Number::NonFinite)
+        throw MeshError(path, what + " has a non-finite coordinate '" + std::string(t) + "'",
+                        at(line));
+    if (n == Number::Invalid)
+        throw MeshError(path, what + ": '" + std::string(t) + "' is not a number", at(line));
+}
+
 void requireNumbers(const std::string& path, const std::vector<std::string>& toks, int line,
                     const std::string& what) {
-    for (const auto& t : toks) {
-        const Number n = classify(t);
-        if (n == Number::NonFinite)
-            throw MeshError(path, what + " has a non-finite coordinate '" + t + "'", at(line));
-        if (n == Number::Invalid)
-            throw MeshError(path, what + ": '" + t + "' is not a number", at(line));
-    }
+    for (const auto& t : toks) requireNumber(path, t, line, what);
 }
 
 bool startsWithByteOrderMark(const std::string& text) {

@@ -221,33 +221,64 @@ int cornerIndex(const std::string& path, double value, const std::string& what) 
     return int(value);
 }
 
+// The words of a text from `pos` on, each with its 1-based line, read in place: a scan's ascii
+// body holds tens of millions of words, and a copy of each took 6-8 times the file's size.
+class Words {
+  public:
+    Words(const std::string& text, size_t pos)
+        : text_(text),
+          pos_(pos),
+          line_(1 + int(std::count(text.begin(), text.begin() + pos, '\n'))) {}
+    // The next word and its line; false at the end of the text.
+    bool next(std::string_view& word, int& line) {
+        while (pos_ < text_.size() && isSpace(text_[pos_])) line_ += text_[pos_++] == '\n';
+        if (pos_ == text_.size()) return false;
+        const size_t begin = pos_;
+        while (pos_ < text_.size() && !isSpace(text_[pos_])) ++pos_;
+        word = std::string_view(text_).substr(begin, pos_ - begin);
+        line = line_;
+        return true;
+    }
+    void skipLine() {
+        while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
+    }
+    // At least two bytes a word (its characters, a separator) but the last.
+    size_t mostWordsLeft() const { return (text_.size() - pos_ + 1) / 2; }
+
+  private:
+    // The whitespace of `>>`, as the header's words are split.
+    static bool isSpace(char c) { return c == ' ' || (c >= '\t' && c <= '\r'); }
+    const std::string& text_;
+    size_t pos_;
+    int line_;
+};
+
 // Ascii PLY: word after word, whatever the lines, as writers put them.
 void readPlyAscii(const std::string& path, const std::string& text, size_t bodyStart,
                   const std::vector<PlyElement>& elements, const PlyLayout& layout,
                   PolygonSoup& soup) {
-    std::vector<std::pair<std::string, int>> words;  // with their line numbers
-    int line = static_cast<int>(std::count(text.begin(), text.begin() + bodyStart, '\n'));
-    for (const auto& [n, content] : contentLines(text.substr(bodyStart), 0))
-        for (const std::string& w : tokens(content)) words.emplace_back(w, line + n);
-    size_t k = 0;
+    Words words(text, bodyStart);
+    std::string_view w;  // the word last read, and its line
+    int n = 0;
     // At an element's first item: a wrong word there most likely belongs to the element before,
     // whose count in the header is too small.
     std::string hint;
     // The next word's value. A coordinate must be finite; another property (a normal) may be nan,
     // as in binary files.
     const auto next = [&](const std::string& what, bool integer, bool coordinate = false) {
-        if (k >= words.size())
+        if (!words.next(w, n))
             throw MeshError(path, "file ends in " + what + " (the header announces " +
                                       announced(elements) + ")");
-        const auto& [w, n] = words[k++];
-        if (coordinate || integer) requireNumbers(path, {w}, n, what);
+        if (coordinate || integer) requireNumber(path, w, n, what);
         double v;
         const char* b = w.data() + (w[0] == '+');
         const auto [end, ec] = std::from_chars(b, w.data() + w.size(), v);
         if (ec != std::errc() || end != w.data() + w.size())
-            throw MeshError(path, what + ": '" + w + "' is not a number" + hint, at(n));
+            throw MeshError(path, what + ": '" + std::string(w) + "' is not a number" + hint,
+                            at(n));
         if (integer && !isInteger(w))
-            throw MeshError(path, what + ": '" + w + "' is not an integer" + hint, at(n));
+            throw MeshError(path, what + ": '" + std::string(w) + "' is not an integer" + hint,
+                            at(n));
         return v;
     };
     for (size_t ei = 0; ei < elements.size(); ++ei)
@@ -272,14 +303,14 @@ void readPlyAscii(const std::string& path, const std::string& text, size_t bodyS
                     continue;
                 }
                 const long long values = static_cast<long long>(next(what, true));
-                const std::string& length = words[k - 1].first;
                 if (values < 0)
-                    throw MeshError(path, what + ": list length '" + length + "' is negative",
-                                    at(words[k - 1].second));
-                if (uint64_t(values) > words.size() - k)
                     throw MeshError(
-                        path, what + ": list length '" + length + "' is more than the file holds",
-                        at(words[k - 1].second));
+                        path, what + ": list length '" + std::string(w) + "' is negative", at(n));
+                if (uint64_t(values) > words.mostWordsLeft())
+                    throw MeshError(
+                        path,
+                        what + ": list length '" + std::string(w) + "' is more than the file holds",
+                        at(n));
                 const bool corners = isFace && layout.indices == int(pi);
                 for (long long v = 0; v < values; ++v) {
                     const double corner = next(what, integer);
@@ -287,25 +318,23 @@ void readPlyAscii(const std::string& path, const std::string& text, size_t bodyS
                 }
                 if (corners) {
                     soup.endFace();
-                    soup.faceLine.push_back(words[k - 1].second);
+                    soup.faceLine.push_back(n);
                 }
             }
             if (isVertex) {
                 soup.xyz.insert(soup.xyz.end(), xyz, xyz + 3);
-                soup.vertexLine.push_back(words[k - 1].second);
+                soup.vertexLine.push_back(n);
             }
         }
     // More after the announced elements (a header counting one face too few) would be dropped
     // silently. Comment lines at the end are no data.
-    while (k < words.size()) {
-        const auto& [w, n] = words[k];
-        const bool lineStart = k == 0 || words[k - 1].second != n;
-        if (!(lineStart && (w == "comment" || w[0] == '#')))
+    for (int last = n; words.next(w, n); last = n) {
+        if (n == last || !(w == "comment" || w[0] == '#'))
             throw MeshError(path,
                             "more data than the header announces (" + announced(elements) + "): '" +
-                                w + "' follows the last element",
+                                std::string(w) + "' follows the last element",
                             at(n));
-        while (k < words.size() && words[k].second == n) ++k;
+        words.skipLine();
     }
 }
 

@@ -4,6 +4,7 @@
 // lines and words, and refusing words that are not the numbers a format wants (with the line).
 
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -13,9 +14,11 @@ namespace boneless::detail::precheck {
 
 std::string readAll(const std::string& path);
 std::vector<std::string> tokens(const std::string& line);
-bool isInteger(const std::string& t);
+bool isInteger(std::string_view t);
 std::string at(int line);  // "line 12", for messages
-// Checks the tokens of a line that must all be numbers; `what` names the element for messages.
+// Checks a word, or the words of a line, that must be finite numbers; `what` names the element
+// for messages.
+void requireNumber(const std::string& path, std::string_view t, int line, const std::string& what);
 void requireNumbers(const std::string& path, const std::vector<std::string>& toks, int line,
                     const std::string& what);
 // Whether the text starts with a UTF-8 byte-order mark (EF BB BF), and the message refusing it.
