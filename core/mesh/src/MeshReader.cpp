@@ -33,6 +33,41 @@ bool hasRepeatedCorner(const int* c, int n) {
     return false;
 }
 
+// "f 1 2 3 3", a triangle written as a quad (as some converters write one), is read as the
+// polygon without the corner it repeats in a row, as Blender reads it: dropped, it left a hole that
+// the manifold check then refused. A face left with fewer than 3 corners is kept whole, to be
+// dropped with the warning that says so. Returns the faces changed.
+std::vector<int> collapseRepeatedCorners(PolygonSoup& soup) {
+    const auto repeats = [&](int f, int k) {
+        const int first = soup.faceStart[f], n = soup.faceStart[f + 1] - first;
+        return soup.faceIndex[first + k] == soup.faceIndex[first + (k + n - 1) % n];
+    };
+    std::vector<int> changed;
+    for (int f = 0; f < soup.faceCount(); ++f) {
+        const int n = soup.faceStart[f + 1] - soup.faceStart[f];
+        int left = 0;
+        for (int k = 0; k < n; ++k) left += !repeats(f, k);
+        if (left < n && left >= 3) changed.push_back(f);
+    }
+    if (changed.empty()) return changed;
+    std::vector<int> index, start{0}, uvOf;
+    const bool uv = !soup.uvOf.empty();
+    for (int f = 0, next = 0; f < soup.faceCount(); ++f) {
+        const bool collapse = next < int(changed.size()) && changed[next] == f;
+        next += collapse;
+        for (int k = 0, first = soup.faceStart[f]; first + k < soup.faceStart[f + 1]; ++k) {
+            if (collapse && repeats(f, k)) continue;
+            index.push_back(soup.faceIndex[first + k]);
+            if (uv) uvOf.push_back(soup.uvOf[first + k]);
+        }
+        start.push_back(static_cast<int>(index.size()));
+    }
+    soup.faceIndex = std::move(index);
+    soup.faceStart = std::move(start);
+    if (uv) soup.uvOf = std::move(uvOf);
+    return changed;
+}
+
 // Every face's corners must be vertices of the file; a face that repeats one is dropped. A corner
 // past the file's vertices is named as the file writes it: an OBJ's 1-based, at its line (it was
 // "vertex 8 ... (0-based) (face 1 (line 5))" for "f 1 3 9", where no number is 8 or face 1);
@@ -178,10 +213,16 @@ MeshReadResult readMesh(const std::string& path, const MeshReadOptions& options)
     const bool obj = lowerExtension(path) == "obj";
     if (!options.group.empty() && !obj)
         throw MeshError(path, "only OBJ files have groups", "group '" + options.group + "'");
-    const PolygonSoup soup = obj ? readObj(path, options.group) : readWithOpenMesh(path);
+    PolygonSoup soup = obj ? readObj(path, options.group) : readWithOpenMesh(path);
+    const std::vector<int> collapsed = collapseRepeatedCorners(soup);
 
     MeshReadResult r;
     r.warnings = soup.warnings;
+    if (!collapsed.empty())
+        r.warnings.push_back(plural(int(collapsed.size()), "face") +
+                             " with a corner repeated in a row (a triangle written as 'f 1 2 3 "
+                             "3'), read with it once: " +
+                             faceList(soup, collapsed));
     r.sourceVertexCount = soup.vertexCount();
     r.sourceFaceCount = soup.faceCount();
     const int nv = soup.vertexCount();

@@ -111,6 +111,8 @@ void readLibrary(const std::string& path, std::vector<ObjMaterial>& materials,
     bool roughnessGiven = false;  // the current material's Ns
     std::string line;
     for (int number = 1; std::getline(in, line); ++number) {
+        // A UTF-8 byte-order mark (.NET's writers put one) hid the first newmtl.
+        if (number == 1 && line.compare(0, 3, "\xEF\xBB\xBF") == 0) line.erase(0, 3);
         std::istringstream words(line);
         std::string key;
         words >> key;
@@ -160,7 +162,8 @@ void readLibrary(const std::string& path, std::vector<ObjMaterial>& materials,
                     note("texture " + file.string() + " not found");
                 else if (!glTFImage(file))
                     note("texture " + file.string() +
-                         " is neither PNG nor JPEG, the image formats glTF carries");
+                         " is neither PNG nor JPEG, the image formats glTF carries: a .glb export "
+                         "leaves it out");
                 else if (key == "map_Kd")
                     m.texture = file.string();
                 else {
@@ -211,7 +214,11 @@ std::string relocatedLibrary(const std::string& path,
     std::ifstream in(path, std::ios::binary);
     const std::filesystem::path folder = std::filesystem::path(path).parent_path();
     std::string text, line;
-    while (std::getline(in, line)) {
+    // Written with LF alone and no byte-order mark, which after the copy's own first line would
+    // hide the first newmtl from every reader.
+    for (bool first = true; std::getline(in, line); first = false) {
+        if (first && line.compare(0, 3, "\xEF\xBB\xBF") == 0) line.erase(0, 3);
+        if (!line.empty() && line.back() == '\r') line.pop_back();
         std::istringstream words(line);
         std::string key;
         words >> key;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -88,6 +89,14 @@ class LineReader {
     std::string joined_;
 };
 
+// A name is the rest of the line, as Blender reads it: "usemtl Material 1" is one material, and
+// "o Walker Body" and "o Walker Prop" two objects (cut at the space, they were one).
+std::string_view wholeName(std::string_view rest) {
+    while (!rest.empty() && isBlank(rest.front())) rest.remove_prefix(1);
+    while (!rest.empty() && isBlank(rest.back())) rest.remove_suffix(1);
+    return rest;
+}
+
 std::string_view nextToken(std::string_view& rest) {
     size_t i = 0;
     while (i < rest.size() && isBlank(rest[i])) ++i;
@@ -164,7 +173,7 @@ class ObjParser {
                 }
                 updateSelected();
             } else if (key == "o") {
-                currentO_ = std::string(nextToken(rest));
+                currentO_ = std::string(wholeName(rest));
                 if (!currentO_.empty()) addName(currentO_);
                 updateSelected();
             } else if (!key.empty() && !isKnownIgnored(key)) {
@@ -230,7 +239,9 @@ class ObjParser {
         for (int k = 0; k < 2; ++k) {
             const std::string_view t = beforeComment(nextToken(rest), rest);
             double value = 0;
-            if ((k == 0 || !t.empty()) && !parseDouble(t, value)) uvBroken_ = true;
+            // A nan or inf would reach a glb's TEXCOORD_0, which must be finite.
+            if ((k == 0 || !t.empty()) && (!parseDouble(t, value) || !std::isfinite(value)))
+                uvBroken_ = true;
             soup_.uv.push_back(value);
         }
     }
@@ -254,11 +265,8 @@ class ObjParser {
             soup_.materialLibraries.emplace_back(t);
     }
 
-    // The name is the rest of the line: "usemtl Material 1" is one material.
     int useMaterial(std::string_view rest) {
-        while (!rest.empty() && isBlank(rest.front())) rest.remove_prefix(1);
-        while (!rest.empty() && isBlank(rest.back())) rest.remove_suffix(1);
-        const std::string name(rest);
+        const std::string name(wholeName(rest));
         if (name.empty()) return -1;
         const auto it = std::find(soup_.materialNames.begin(), soup_.materialNames.end(), name);
         if (it != soup_.materialNames.end())

@@ -380,6 +380,17 @@ Precheck checkStl(const std::string& path) {
         }
         ++p.triangles;
     }
+    // A file cut short between its facets read as the triangles before the cut, and a map made on
+    // that fragment animated it.
+    const auto ends = [&](const char* word, const char* upper) {
+        const auto t = lines.empty() ? std::vector<std::string>{} : tokens(lines.back().second);
+        return !t.empty() && (t[0] == word || t[0] == upper);
+    };
+    if (!ends("endsolid", "ENDSOLID") && !ends("endfacet", "ENDFACET"))
+        throw MeshError(path,
+                        "ascii STL file ends without 'endsolid', and not at the end of a facet: "
+                        "it looks cut short",
+                        lines.empty() ? "" : at(lines.back().first));
     return p;
 }
 

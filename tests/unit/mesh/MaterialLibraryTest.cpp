@@ -164,3 +164,28 @@ TEST(MaterialLibrary, AFolderReachedThroughALinkIsFollowedAsTheSystemFollowsIt) 
         EXPECT_TRUE(fs::is_regular_file(frame.parent_path() / line.substr(7))) << line;
     }
 }
+
+// .NET's writers start a file with a byte-order mark: it hid the first newmtl, whose material then
+// came out grey, and the copy written for an OBJ frame kept the mark after its own first line.
+TEST(MaterialLibrary, AByteOrderMarkHidesNoMaterial) {
+    const fs::path dir = freshTestDir("mtl-bom");
+    std::ofstream(dir / "skin tone.mtl") << "\xEF\xBB\xBFnewmtl Skin\r\nKd 0.8 0.6 0.5\r\n";
+    std::ofstream(dir / "t.obj") << "mtllib skin tone.mtl\n"
+                                 << kTriangle << "usemtl Skin\nf 1/1 2/2 3/3\n";
+    const MeshReadResult r = readMesh((dir / "t.obj").string());
+    ASSERT_NE(r.mesh.sourceFaces, nullptr);
+    EXPECT_FALSE(anyWarningHas(r, "skin tone.mtl", ""));
+    const std::vector<ObjMaterial>& m = r.mesh.sourceFaces->materialDefinitions;
+    ASSERT_EQ(m.size(), 1u);
+    EXPECT_EQ(m[0].name, "Skin");
+    EXPECT_EQ(m[0].colour, (std::array<double, 3>{0.8, 0.6, 0.5}));
+    const fs::path out = dir / "out";
+    fs::create_directories(out);
+    const SourceFaces copy = withLibraryCopies(*r.mesh.sourceFaces, out.string());
+    ASSERT_EQ(copy.materialLibraries.size(), 1u);
+    std::ifstream in(copy.materialLibraries[0], std::ios::binary);
+    const std::string text{std::istreambuf_iterator<char>(in), {}};
+    EXPECT_EQ(text.find("\xEF\xBB\xBF"), std::string::npos);
+    EXPECT_EQ(text.find('\r'), std::string::npos);
+    EXPECT_NE(text.find("\nnewmtl Skin\n"), std::string::npos) << text;
+}

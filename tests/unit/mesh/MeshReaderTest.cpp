@@ -1203,3 +1203,54 @@ TEST(MeshReaderRealData, HorseThroughEveryFormat) {
     EXPECT_EQ(stl.mesh.faceCount(), obj.mesh.faceCount());
     EXPECT_EQ(stl.boundaryLoops, 2);
 }
+
+// ---- What other tools write -------------------------------------------------------------------
+
+// Blender reads an object's name to the end of the line: cut at its space, "Walker Prop" and
+// "Walker Body" were one group, and --group "Walker Body" found none.
+TEST(MeshReaderFormats, AnObjectsNameIsTheWholeLine) {
+    const std::string path = writeFile("spaced.obj", "o Walker Body\n" + objText(tentV(), tentP) +
+                                                         "v 5 0 0\nv 6 0 0\nv 5 1 0\n"
+                                                         "o Walker Prop\nf 6 7 8\n");
+    const auto groups = objGroups(path);
+    ASSERT_EQ(groups.size(), 2u);
+    EXPECT_EQ(groups[0].name, "Walker Body");
+    EXPECT_EQ(groups[1].name, "Walker Prop");
+    EXPECT_EQ(readMesh(path, {"Walker Body"}).mesh.vertexCount(), 5);
+    EXPECT_EQ(readMesh(path, {"Walker Prop"}).mesh.vertexCount(), 3);
+}
+
+// Some converters write a triangle as "f 1 2 3 3". Dropped, it left a hole whose edges the
+// manifold check refused; read as the triangle it is, the mesh is whole.
+TEST(MeshReaderFormats, ATriangleWrittenWithARepeatedLastCornerIsReadAsATriangle) {
+    Polygons P = tentP;
+    P[2].push_back(P[2].back());
+    for (const std::string& name : {"repeat.obj", "repeat.ply"}) {
+        const std::string text = name.back() == 'j' ? objText(tentV(), P) : plyAscii(tentV(), P);
+        const MeshReadResult r = readMesh(writeFile(name, text));
+        EXPECT_EQ(r.mesh.F, toFaces(tentP)) << name;
+        EXPECT_EQ(r.droppedFaces, 0) << name;
+        EXPECT_TRUE(anyWarningContains(r, "1 face with a corner repeated in a row")) << name;
+    }
+    // A face whose corners are not a polygon once read once each is still dropped.
+    P[2] = {4, 2, 4, 2};
+    const MeshReadResult r = readMesh(writeFile("bowtie.obj", objText(tentV(), P)));
+    EXPECT_EQ(r.droppedFaces, 1);
+}
+
+// glTF's TEXCOORD_0 must be finite: a "vt nan" reached the .glb.
+TEST(MeshReaderFormats, ANonFiniteTextureCoordinateDropsTheFilesCoordinatesWithAWarning) {
+    std::string text = "vt 0 0\nvt nan 1\nvt 1 1\n" + objText(tentV(), tentP);
+    const MeshReadResult r = readMesh(writeFile("uvnan.obj", text));
+    EXPECT_TRUE(anyWarningContains(r, "texture coordinates ignored"));
+}
+
+// A cut ascii STL read as the triangles before the cut, and a map made on it animated a fragment.
+TEST(MeshReaderErrors, AnAsciiStlCutShortIsRefused) {
+    const std::string whole = stlAscii(tentV(), toFaces(tentP));
+    EXPECT_NO_THROW(readMesh(writeFile("whole.stl", whole)));
+    const std::string cut = whole.substr(0, whole.rfind("outer loop") + 2);
+    EXPECT_CONTAINS(errorOf(writeFile("cut.stl", cut)), "it looks cut short");
+    const std::string noEnd = whole.substr(0, whole.rfind("endsolid"));
+    EXPECT_NO_THROW(readMesh(writeFile("noend.stl", noEnd)));  // complete facets, no endsolid
+}
