@@ -120,11 +120,11 @@ void registerMapCommand(CLI::App& app) {
         TakeSolveOptions solveOptions;
         fromJson(args->options, solveOptions, "options");
         Suggestion s = suggestMappings(mesh, take, partial, solveOptions.meshUp);
-        // The map records the mesh it was made on, as the app's maps do.
-        if (s.map.meshFile.empty())
-            s.map.meshFile = std::filesystem::path(args->mesh).filename().string();
-        if (s.map.meshGroup.empty()) s.map.meshGroup = args->group;
-        if (s.map.meshVertices == 0) s.map.meshVertices = mesh.vertexCount();
+        // The map records the mesh it was made on, as the app's maps do when saved: the partial
+        // map's own record named another file, or a group of a file that has none by that name.
+        s.map.meshFile = std::filesystem::path(args->mesh).filename().string();
+        s.map.meshGroup = args->group;
+        s.map.meshVertices = mesh.vertexCount();
         if (keep) {
             std::ifstream in(args->out, std::ios::binary);
             if (std::string{std::istreambuf_iterator<char>(in), {}} != s.map.toJson())

@@ -448,3 +448,21 @@ TEST(MapSuggestCommand, TakesTheMeshsUpAxisAsSolveDoesAndRefusesOneSolveRefuses)
     EXPECT_EQ(bad.out.substr(0, bad.out.find('\n')), solve.out.substr(0, solve.out.find('\n')));
     EXPECT_FALSE(fs::exists(dir / "bad.json"));
 }
+
+// The map records the mesh it was suggested on, not the one the partial map names: it kept
+// "walker.obj" for a run on a re-exported copy, and every solve of it then said the map was made on
+// another file.
+TEST(MapSuggestCommand, TheMapWrittenNamesTheMeshItWasSuggestedOn) {
+    const fs::path dir = freshTestDir("map-suggest-mesh-name");
+    demoWithSixPicks(dir);
+    fs::copy_file(dir / "walker.obj", dir / "re-exported.obj");
+    const CliResult r =
+        runCli("map suggest --mesh " + (dir / "re-exported.obj").string() + " --c3d " +
+               (dir / "walker.c3d").string() + " --map " + (dir / "partial.json").string() +
+               " --out " + (dir / "full.json").string());
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    nlohmann::json full;
+    std::ifstream(dir / "full.json") >> full;
+    EXPECT_EQ(full["mesh"]["file"], "re-exported.obj");
+    EXPECT_EQ(full["mesh"].value("group", ""), "");
+}
