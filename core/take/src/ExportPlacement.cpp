@@ -74,7 +74,7 @@ std::string meshScaleWarning(const TriMesh& rest, const Similarity& takeToMesh, 
                " tall, where the mesh is " + length(mm) + " tall in " + unit.name +
                ": check the take's units";
     return std::string("mesh units look like ") + unit.name + ", but the body would be " +
-           length(mm) + " tall: check its scale (a .glb export places it by that unit)";
+           length(mm) + " tall: check the mesh's scale (a .glb export places it by that unit)";
 }
 
 std::string guessUpAxis(const Similarity& s, const Vec3& takeUp) {

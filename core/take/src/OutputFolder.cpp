@@ -9,6 +9,7 @@
 #include <cerrno>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -28,10 +29,11 @@ namespace fs = std::filesystem;
 std::string exportStem(const ExportRequest& request) {
     if (request.group.empty()) return fs::path(request.meshPath).stem().string();
     // A group is a name, not a path: Blender's "Body.001" and "Body.002" keep their dots (a stem
-    // made both "Body"), and a separator cannot lead the files out of the folder.
+    // made both "Body"), and a separator cannot lead the files out of the folder. Windows' other
+    // reserved characters go too: Maya's "pCube1|body" made files Windows cannot hold.
     std::string stem = request.group;
     for (char& c : stem)
-        if (c == '/' || c == '\\' || c == ':' || static_cast<unsigned char>(c) < 32) c = '_';
+        if (std::strchr("/\\:|<>\"?*", c) || static_cast<unsigned char>(c) < 32) c = '_';
     return stem == "." || stem == ".." ? std::string(stem.size(), '_') : stem;
 }
 

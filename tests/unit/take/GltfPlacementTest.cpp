@@ -74,7 +74,8 @@ TEST(GltfPlacement, AMeshThatNoUnitMakesTheActorsSizeIsSaidToBeWronglyScaled) {
     TriMesh small = body;
     small.V *= 0.01;
     EXPECT_EQ(meshScaleWarning(small, takeOnto(Vec3::UnitY(), actorMm / 0.174), 1.0, Vec3::UnitZ()),
-              "mesh units look like m, but the body would be 17 cm tall: check its scale (a .glb "
+              "mesh units look like m, but the body would be 17 cm tall: check the mesh's scale (a "
+              ".glb "
               "export places it by that unit)");
     TriMesh tiny = body;
     tiny.V *= 0.001;

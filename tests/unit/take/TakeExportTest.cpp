@@ -89,6 +89,8 @@ TEST(TakeExport, AGroupNamesItsFilesWholeAndKeepsThemInTheFolder) {
     EXPECT_EQ(exportStem(request), ".._.._evil");
     request.group = "..";
     EXPECT_EQ(exportStem(request), "__");
+    request.group = "pCube1|body?";  // Maya's path names: Windows holds no '|' or '?'
+    EXPECT_EQ(exportStem(request), "pCube1_body_");
 }
 
 // On the 100K-face koala a 2-frame export had both frames written at 10.1 s but ended at 13.6 s:
