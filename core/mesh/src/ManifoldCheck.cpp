@@ -100,7 +100,8 @@ TopologySummary checkManifold(const std::string& file, const Faces& F, int verte
             if (F(o.tri, o.k) == a) {
                 throw MeshError(file,
                                 "inconsistent orientation: two faces run edge " + directed +
-                                    " in the same direction (flipped face or non-manifold edge)",
+                                    " in the same direction (a flipped face, or a non-manifold "
+                                    "edge; Blender: Mesh > Normals > Recalculate Outside)",
                                 faceName(e.tri) + " and " + faceName(o.tri));
             }
             // Corner at a in e.tri meets corner at a in o.tri (which runs b -> a), same for b.

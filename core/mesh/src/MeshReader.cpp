@@ -313,6 +313,15 @@ MeshReadResult readMesh(const std::string& path, const MeshReadOptions& options)
         }
 
     addWarnings(r, soup, dropped, flat, topo);
+    if (const std::vector<int> inward = insideOutPieces(V, r.mesh.F); !inward.empty()) {
+        std::vector<int> faces;
+        for (int t : inward) faces.push_back(triFace[t]);
+        r.warnings.push_back(
+            "faces wind inward, normals pointing into the body, in the piece of " +
+            faceList(soup, faces) +
+            ": a marker's offset_mm pushes it into the skin; turn the normals outward (Blender: "
+            "Mesh > Normals > Recalculate Outside) and save the mesh again");
+    }
     // The file's own corners, copies and all: their texture coordinates tell the copies apart.
     for (int i = 0; i < V.rows(); ++i) meshIndex[r.sourceVertexIndex[i]] = i;
     r.mesh.sourceFaces = sourceFaces(path, soup, kept, meshIndex, r.mesh.vertexCount(), r.warnings);

@@ -63,6 +63,10 @@ std::vector<int> weldCopies(const Positions& V, const PolygonSoup& soup,
                             const std::vector<int>& kept, const std::vector<int>& meshIndex,
                             int& welded);
 
+// The first triangle of each piece (connected through vertices) that encloses volume with its
+// faces wound inward, the normals pointing into it; F consistently oriented.
+std::vector<int> insideOutPieces(const Positions& V, const Faces& F);
+
 // Throws MeshError for non-manifold edges, inconsistent orientation and non-manifold vertices;
 // fills the boundary and component counts of `result`. F rows come from soup faces `faceOf`.
 struct TopologySummary {

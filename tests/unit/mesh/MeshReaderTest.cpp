@@ -1254,3 +1254,22 @@ TEST(MeshReaderErrors, AnAsciiStlCutShortIsRefused) {
     const std::string noEnd = whole.substr(0, whole.rfind("endsolid"));
     EXPECT_NO_THROW(readMesh(writeFile("noend.stl", noEnd)));  // complete facets, no endsolid
 }
+
+// Frozen with a negative scale (Maya), a body's faces wind inward: its normals point into it, and
+// each marker's offset pushed its point into the skin, without a word.
+TEST(MeshReaderFormats, ABodyWhoseFacesWindInwardIsSaidToBeInsideOut) {
+    Positions V(4, 3);
+    V << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1;
+    Polygons outward = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}}, inward = outward;
+    for (auto& f : inward) std::swap(f[1], f[2]);
+    EXPECT_FALSE(anyWarningContains(readMesh(writeFile("out.obj", objText(V, outward))), "inward"));
+    const MeshReadResult r = readMesh(writeFile("in.obj", objText(V, inward)));
+    EXPECT_TRUE(anyWarningContains(r,
+                                   "faces wind inward, normals pointing into the body, in the "
+                                   "piece of face 0 (line 5)"));
+    // An open sheet has no inside: either winding is the user's choice.
+    Polygons tent = tentP;
+    for (auto& f : tent) std::swap(f[1], f[2]);
+    EXPECT_FALSE(
+        anyWarningContains(readMesh(writeFile("tent.obj", objText(tentV(), tent))), "inward"));
+}
