@@ -37,7 +37,9 @@ namespace fs = std::filesystem;
 namespace {
 
 struct BatchArgs {
-    std::string manifest, shard;
+    // All of it unless given; given empty ("--shard \"$SHARD\"", unset) is refused, not all:
+    // every task of a job array then ran every take.
+    std::string manifest, shard = "1/1";
     bool quiet = false;
     bool force = false;  // each take's job.force
 };
@@ -547,7 +549,10 @@ Sidecar sidecarState(const TakeJob& job, Fingerprints& known, VertexCounts& mesh
 }
 
 void run(const BatchArgs& args) {
-    const auto [shard, shards] = args.shard.empty() ? std::pair{1, 1} : parseShard(args.shard);
+    const auto [shard, shards] = parseShard(args.shard);
+    // For the whole run: a signal while a take's files were read, or between takes, killed it
+    // with no last line.
+    const StopSignals stop;
     std::vector<TakeJob> jobs = readManifest(args.manifest);
     for (TakeJob& job : jobs) {
         job.force = args.force;
@@ -562,8 +567,21 @@ void run(const BatchArgs& args) {
     std::set<std::string> notedMaps;
     Fingerprints fingerprints;
     VertexCounts vertexCounts;
+    // The last line sums up however the run ends: a log cut by a time limit said nothing of the
+    // takes solved, skipped or failed before the stop.
+    const auto sumUpStopped = [&](int interrupted) {
+        std::printf(
+            "batch: %d of %zu takes in shard %d/%d: %d solved, %d skipped, %d failed, "
+            "%d interrupted, %d not reached\n",
+            mine, jobs.size(), shard, shards, solved, skipped, failed, interrupted, mine - done);
+        std::fflush(stdout);
+    };
     for (std::size_t k = 0; k < jobs.size(); ++k) {
         if (static_cast<int>(k % shards) != shard - 1) continue;
+        if (StopSignals::received()) {  // between takes: none begun
+            sumUpStopped(0);
+            StopSignals::throwIfReceived();
+        }
         const TakeJob& job = jobs[k];
         std::printf("[%d/%d] %s -> %s: ", ++done, mine, job.c3d.c_str(), job.out.c_str());
         std::string why;
@@ -610,13 +628,7 @@ void run(const BatchArgs& args) {
         } catch (const TakeJobInterrupted& e) {
             std::printf("interrupted\n");
             underTheLine();  // an earlier run's frames past the stop, named as after a finished one
-            // The last line sums up here too: a log cut by a time limit said nothing of the takes
-            // solved, skipped or failed before the stop.
-            std::printf(
-                "batch: %d of %zu takes in shard %d/%d: %d solved, %d skipped, %d failed, "
-                "1 interrupted, %d not reached\n",
-                mine, jobs.size(), shard, shards, solved, skipped, failed, mine - done);
-            std::fflush(stdout);
+            sumUpStopped(1);
             throw;
         } catch (const Error& e) {
             std::printf("FAILED: %s\n", e.what());

@@ -29,27 +29,15 @@ using namespace boneless;
 
 namespace {
 
-std::atomic<int> stopSignal{0};  // the signal that stopped the take; 0 while none has
+std::atomic<int> stopSignal{0};  // the signal that stopped the run; 0 while none has
+int stopSignalsHeld = 0;         // StopSignals alive; the outermost installs and restores
 extern "C" void onStopSignal(int signal) {
     stopSignal = signal;
 }
 
-// While a take is written, Ctrl-C (SIGINT) and SIGTERM (what Slurm, timeout and systemd send)
-// stop it after the frames being solved: killed outright, a run left its spool file behind and
-// no sidecar.
-struct StopSignals {
-    StopSignals() {
-        stopSignal = 0;
-        sigint = std::signal(SIGINT, onStopSignal);
-        sigterm = std::signal(SIGTERM, onStopSignal);
-    }
-    ~StopSignals() {
-        std::signal(SIGINT, sigint);
-        std::signal(SIGTERM, sigterm);
-    }
-    void (*sigint)(int);
-    void (*sigterm)(int);
-};
+std::string stoppedBy() {
+    return stopSignal == SIGTERM ? "stopped by SIGTERM" : "interrupted";
+}
 
 void progress(int done, int total, double elapsedSeconds, const FrameReport& last,
               ProgressPace& pace) {
@@ -66,6 +54,34 @@ void progress(int done, int total, double elapsedSeconds, const FrameReport& las
                  last.residualRmsMm, terminal ? " " : "\n");
     std::fflush(stderr);
 }
+
+}  // namespace
+
+StopSignals::StopSignals() {
+    if (stopSignalsHeld++ > 0) return;
+    stopSignal = 0;
+    sigint_ = std::signal(SIGINT, onStopSignal);
+    sigterm_ = std::signal(SIGTERM, onStopSignal);
+}
+
+StopSignals::~StopSignals() {
+    if (--stopSignalsHeld > 0) return;
+    std::signal(SIGINT, sigint_);
+    std::signal(SIGTERM, sigterm_);
+}
+
+int StopSignals::received() {
+    return stopSignal.load();
+}
+
+void StopSignals::throwIfReceived() {
+    if (stopSignal != 0)
+        throw TakeJobInterrupted(
+            stoppedBy() + " before any frame was written: the output folder is as it was",
+            stopSignal);
+}
+
+namespace {
 
 std::vector<std::string> formatNames() {
     std::vector<std::string> names;
@@ -385,6 +401,7 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
                         std::vector<std::string>* takeWarnings,
                         std::vector<std::string>* mapWarnings,
                         std::vector<std::string>* takeNotes) {
+    const StopSignals stop;
     ExportRequest request;
     const auto format = findExportFormat(job.format);
     if (!format) throw Error("unknown output format \"" + job.format + "\"");
@@ -523,28 +540,25 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
         const double elapsed =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         if (!pace) pace.emplace(total);
-        if (!quiet) progress(done, total, elapsed, report, *pace);
+        if (!quiet && done > 0) progress(done, total, elapsed, report, *pace);
         return stopSignal.load() == 0;
     };
 
-    ExportResult result;
-    {
-        const StopSignals stop;
-        result = exportTake(mesh, take, map, request, onFrame, announce);
-    }
+    StopSignals::throwIfReceived();  // while the inputs were read: no solver prepared for nothing
+    const ExportResult result = exportTake(mesh, take, map, request, onFrame, announce);
     if (!quiet && ::isatty(STDERR_FILENO)) std::fprintf(stderr, "\n");
     // Stopped or not: an earlier run's frames past the stop play as part of this take as much.
     if (request.format == ExportFormat::Obj)
         note(otherFramesNote(job.out, exportStem(request), result));
     note(otherOutputsNote(request));
     // The sidecar says "complete": false; the message must not call anything complete.
+    if (result.cancelled && result.sidecarPath.empty()) StopSignals::throwIfReceived();
     if (result.cancelled) {
         const int n = result.framesWritten;
         // A run again solves the take from its first frame (there is no resuming part-way): "valid"
         // frames read as kept.
         throw TakeJobInterrupted(
-            std::string(stopSignal == SIGTERM ? "stopped by SIGTERM" : "interrupted") + " after " +
-                plural(n, "frame") + ": " + exportStem(request) +
+            stoppedBy() + " after " + plural(n, "frame") + ": " + exportStem(request) +
                 ".json records the take as incomplete, and solving it again starts from its "
                 "first frame",
             stopSignal);

@@ -16,6 +16,25 @@ struct TakeJobInterrupted : boneless::Error {
     int signal;
 };
 
+// While one is alive, Ctrl-C (SIGINT) and SIGTERM (what Slurm, timeout and systemd send) are
+// recorded instead of killing the process: a take stops after the frames being solved (killed
+// outright, a run left its spool file behind and no sidecar), and a batch between takes still
+// sums up. Nested ones share the outermost's record.
+class StopSignals {
+  public:
+    StopSignals();
+    ~StopSignals();
+    StopSignals(const StopSignals&) = delete;
+    StopSignals& operator=(const StopSignals&) = delete;
+    static int received();  // the signal, 0 while none has come
+    // Throws TakeJobInterrupted, "before any frame was written", once a signal has come.
+    static void throwIfReceived();
+
+  private:
+    void (*sigint_)(int) = nullptr;
+    void (*sigterm_)(int) = nullptr;
+};
+
 // One take solved into one output folder: what `solve` runs once and `batch` runs per manifest
 // entry, so both read their inputs, align, solve and write the same way.
 struct TakeJob {

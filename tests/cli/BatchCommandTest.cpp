@@ -41,6 +41,19 @@ fs::path writeManifest(const fs::path& dir, const std::string& name, const json&
     return path;
 }
 
+// The demo at --detail 2 in `dir` (its solver takes about a second to prepare, time enough to act
+// once the run's lock appears) and a manifest solving it into `dir`/out as pc2.
+fs::path slowDemoManifest(const fs::path& dir) {
+    EXPECT_EQ(runCli("demo --out " + dir.string() + " --frame-count 3 --detail 2").exitCode, 0);
+    return writeManifest(dir, "m.json",
+                         {{"takes",
+                           {{{"mesh", "walker.obj"},
+                             {"c3d", "walker.c3d"},
+                             {"map", "walker.map.json"},
+                             {"format", "pc2"},
+                             {"out", "out"}}}}});
+}
+
 json folderManifest(const std::string& out) {
     return {
         {"defaults", {{"format", "obj"}}},
@@ -420,6 +433,11 @@ TEST(Batch, AManifestMistakeNamesTheFileAndTheEntry) {
     }
     EXPECT_NE(runCli("batch " + (dir / "m.json").string() + " --shard 3/2").out.find("--shard"),
               std::string::npos);
+    // An unset job-array variable: every task ran every take.
+    const CliResult empty = runCli("batch " + (dir / "m.json").string() + " --shard ''");
+    EXPECT_EQ(empty.exitCode, 1) << empty.out;
+    EXPECT_NE(empty.out.find("--shard expects I/N with 1 <= I <= N, got \"\""), std::string::npos)
+        << empty.out;
 }
 
 // Options go under their JSON keys (core's table), checked before anything is solved; the dashed
@@ -1266,4 +1284,43 @@ TEST(Batch, AMapMadeOnAGroupNamesTheManifestKeyToOpenItWith) {
     EXPECT_EQ(
         runCli("batch " + writeManifest(dir, "g.json", {{"takes", {grouped}}}).string()).exitCode,
         0);
+}
+
+// The batch and its take each hold the signals: a SIGINT while the take's solver is prepared stops
+// the take before it writes anything (its earlier export stays whole), and the last line sums up.
+TEST(Batch, CtrlCWhileATakeIsPreparedStopsItBeforeItWritesAndSumsUp) {
+    const fs::path dir = freshTestDir("batch-prepare-stop");
+    const fs::path manifest = slowDemoManifest(dir);
+    ASSERT_EQ(runCli("batch " + manifest.string()).exitCode, 0);
+    fs::last_write_time(dir / "walker.c3d", fs::file_time_type::clock::now());  // solve it again
+    const std::string pc2 = (dir / "out" / "walker.pc2").string();
+    const auto before = fs::file_size(pc2);
+    const CliResult r = runCliAndWhenExists(
+        "batch " + manifest.string(), (dir / "out" / ".walker.lock").string(), "kill -INT $pid");
+    EXPECT_EQ(r.exitCode, 130) << r.out;
+    EXPECT_NE(r.out.find("interrupted before any frame was written"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("batch: 1 of 1 takes in shard 1/1: 0 solved, 0 skipped, 0 failed, 1 "
+                         "interrupted, 0 not reached\n"),
+              std::string::npos)
+        << r.out;
+    EXPECT_EQ(fs::file_size(pc2), before);
+    const json sidecar = json::parse(std::ifstream(dir / "out" / "walker.json"));
+    EXPECT_TRUE(sidecar["complete"].get<bool>());
+}
+
+// The sidecar recorded the map as it was once the solver was prepared, not as it was read: a map
+// saved meanwhile was taken for the one solved, and every later run skipped the take.
+TEST(Batch, AMapSavedWhileTheTakeIsPreparedIsSolvedByTheNextRun) {
+    const fs::path dir = freshTestDir("batch-map-during-prepare");
+    const fs::path manifest = slowDemoManifest(dir);
+    json map = json::parse(std::ifstream(dir / "walker.map.json"));
+    for (auto& m : map["markers"]) m["offset_mm"] = 30;
+    const fs::path edited = dir / "edited.json";
+    std::ofstream(edited) << map.dump();
+    const CliResult r = runCliAndWhenExists(
+        "batch " + manifest.string(), (dir / "out" / ".walker.lock").string(),
+        "cp '" + edited.string() + "' '" + (dir / "walker.map.json").string() + "'");
+    ASSERT_EQ(r.exitCode, 0) << r.out;
+    const CliResult again = runCli("batch " + manifest.string());
+    EXPECT_NE(again.out.find("1 solved, 0 skipped"), std::string::npos) << again.out;
 }

@@ -176,12 +176,12 @@ TEST(SolveCommand, SaysWhatTheMeshsMaterialLibraryLacksAndSolvesAnyway) {
     EXPECT_EQ(runCli(solveArgs(demo, demo / "quiet") + " --frames 1:2 --quiet").out, "");
 }
 
-TEST(SolveCommand, CtrlCStopsCleanlyWithCompleteFilesOnly) {
-    // Long enough (a few seconds) to be stopped halfway by a SIGINT after one, as a user's Ctrl-C.
+TEST(SolveCommandSignals, CtrlCStopsCleanlyWithCompleteFilesOnly) {
+    // Long enough (a few seconds) to be stopped halfway by a SIGINT once the first frame is out.
     const fs::path demo = makeDemo(3000), out = demo / "solved";
-    const CliResult r = runShell("timeout --preserve-status -s INT 1 " + std::string(BONELESS_CLI) +
-                                 " " + solveArgs(demo, out) + " --quiet 2>&1; echo exit=$?");
-    EXPECT_NE(r.out.find("exit=130"), std::string::npos) << r.out;  // 128 + SIGINT, as shells say
+    const CliResult r = runCliAndWhenExists(solveArgs(demo, out) + " --quiet",
+                                            (out / "walker_0000.obj").string(), "kill -INT $pid");
+    EXPECT_EQ(r.exitCode, 130) << r.out;  // 128 + SIGINT, as shells say
     const auto j = sidecar(out);
     // Not "complete", which the sidecar denies.
     EXPECT_NE(r.out.find("interrupted after " + plural(j["frames_written"].get<int>(), "frame") +
@@ -1216,4 +1216,31 @@ TEST(SolveCommand, AFailedObjTakeRemovesTheFramesThisRunWroteAndNothingElse) {
     EXPECT_TRUE(fs::is_directory(out / "walker_0002.obj"));
     EXPECT_TRUE(fs::exists(out / "walker_0009.obj"));  // the earlier run's
     EXPECT_FALSE(sidecar(out)["complete"].get<bool>());
+}
+
+// Ctrl-C while the solver was prepared was noticed after the first frame, written over an earlier
+// complete export, whose sidecar then called the take incomplete: a user stopping a run started
+// by mistake lost the export before it. Now nothing is written.
+TEST(SolveCommandSignals, CtrlCWhileTheSolverIsPreparedLeavesAnEarlierExportWhole) {
+    const fs::path dir = freshTestDir("demo-detail"), out = dir / "solved";
+    ASSERT_EQ(runCli("demo --out " + dir.string() + " --frame-count 3 --detail 2").exitCode, 0);
+    const std::string args = solveArgs(dir, out) + " --format pc2";
+    ASSERT_EQ(runCli(args + " --quiet").exitCode, 0);
+    const auto bytes = [&](const char* name) {
+        std::ostringstream s;
+        s << std::ifstream(out / name, std::ios::binary).rdbuf();
+        return s.str();
+    };
+    const std::string pc2 = bytes("walker.pc2"), json = bytes("walker.json");
+    // The run's lock is taken before the solver is prepared (about a second at this detail).
+    const CliResult r =
+        runCliAndWhenExists(args + " --quiet", (out / ".walker.lock").string(), "kill -INT $pid");
+    EXPECT_EQ(r.exitCode, 130) << r.out;
+    EXPECT_NE(
+        r.out.find("interrupted before any frame was written: the output folder is as it was"),
+        std::string::npos)
+        << r.out;
+    EXPECT_EQ(bytes("walker.pc2"), pc2);
+    EXPECT_EQ(bytes("walker.json"), json);
+    EXPECT_TRUE(sidecar(out)["complete"].get<bool>());
 }

@@ -27,6 +27,15 @@ inline CliResult runShell(const std::string& command) {
     return result;
 }
 
+// Runs boneless-cli `arguments` in the background, and once `path` exists (10 s at most) the shell
+// line `then` ("kill -INT $pid": a user's Ctrl-C at that point); its exit status is the CLI's.
+inline CliResult runCliAndWhenExists(const std::string& arguments, const std::string& path,
+                                     const std::string& then) {
+    return runShell(std::string(BONELESS_CLI) + " " + arguments +
+                    " 2>&1 & pid=$!; for i in $(seq 1000); do [ -e '" + path +
+                    "' ] && break; sleep 0.01; done; " + then + "; wait $pid");
+}
+
 inline CliResult runCli(const std::string& arguments) {
     return runShell(std::string(BONELESS_CLI) + " " + arguments + " 2>&1");
 }

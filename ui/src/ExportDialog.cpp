@@ -594,7 +594,8 @@ void ExportDialog::onFinished(bool ok, const QString& message) {
     // removes nothing more.
     const ExportResult& result = runner_->result();
     QString said = message;
-    if (ok) {
+    // Cancelled while the solver was prepared, the run wrote nothing: the earlier export stays.
+    if (ok && !(result.cancelled && result.sidecarPath.empty())) {
         const QStringList removed = removeReplaced(running_, result);
         if (result.cancelled && !removed.isEmpty()) {
             const int n = int(removed.size());

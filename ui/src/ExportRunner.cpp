@@ -60,9 +60,10 @@ bool ExportRunner::start(const Document& document, const ExportRequest& request,
                 job->mesh, job->take, job->map, job->request,
                 [job, self](int done, int total, const FrameReport& last) {
                     const double residual = last.residualRmsMm;
-                    QMetaObject::invokeMethod(self.data(), [self, done, total, residual] {
-                        if (self) self->onProgress(done, total, residual);
-                    });
+                    if (done > 0)
+                        QMetaObject::invokeMethod(self.data(), [self, done, total, residual] {
+                            if (self) self->onProgress(done, total, residual);
+                        });
                     return !job->cancel.load();
                 },
                 [self](const Calibration&) {
@@ -98,6 +99,8 @@ void ExportRunner::onFinished() {
     QString message;
     if (!error_.isEmpty())
         message = error_;
+    else if (result_.cancelled && result_.sidecarPath.empty())
+        message = tr("Export cancelled before any frame was written: the folder is as it was.");
     else if (result_.cancelled)
         message = counted(result_.framesWritten,
                           tr("Export stopped after %n frame: it is valid, and %1 records "

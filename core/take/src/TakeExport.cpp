@@ -364,22 +364,10 @@ void checkRequest(const TriMesh& mesh, const Correspondence& map, const ExportRe
 
 // take: what the sidecar says of the take (its samples are not read). The caller holds the
 // outputs' OutputLock.
-ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake& take,
-                          const Correspondence& map, const ExportRequest& request,
-                          const ExportProgress& progress, const ExportCalibrated& calibrated) {
-    const int count = solver.frameCount();
-    const int end = request.end < 0 ? count : std::min(request.end, count);
-    if (request.first < 0 || request.first >= end)
-        throw Error("frames " + std::to_string(request.first) + ":" +
-                    (request.end < 0 ? std::string() : std::to_string(request.end)) +
-                    " select no frame of " + request.c3dPath + " (" + std::to_string(count) +
-                    " frames)");
-
-    const std::string stem = exportStem(request);
-    const fs::path out(request.outDir);
-    ExportResult result;
-    result.sidecarPath = (out / (stem + ".json")).string();
-    // Taken before solving: a map corrected while the take solves is not the one solved.
+// What the sidecar's "source_fingerprints" records, taken before the solver is prepared: a map
+// saved while it was (seconds, minutes on a large mesh) was recorded as the one solved, and every
+// later batch skipped the take solved from the map before.
+json sourceFingerprints(const TriMesh& mesh, const ExportRequest& request) {
     json fingerprints = {
         {"mesh", fileFingerprint(request.meshPath, true)},
         {"c3d", fileFingerprint(request.c3dPath, false)},
@@ -392,6 +380,33 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
             for (const std::string& file : materialFiles(*mesh.sourceFaces))
                 materials[validUtf8(file)] = fileFingerprint(file, true);
     }
+    return fingerprints;
+}
+
+ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake& take,
+                          const Correspondence& map, const ExportRequest& request,
+                          const json& fingerprints, const ExportProgress& progress,
+                          const ExportCalibrated& calibrated) {
+    const int count = solver.frameCount();
+    const int end = request.end < 0 ? count : std::min(request.end, count);
+    if (request.first < 0 || request.first >= end)
+        throw Error("frames " + std::to_string(request.first) + ":" +
+                    (request.end < 0 ? std::string() : std::to_string(request.end)) +
+                    " select no frame of " + request.c3dPath + " (" + std::to_string(count) +
+                    " frames)");
+
+    const std::string stem = exportStem(request);
+    const fs::path out(request.outDir);
+    ExportResult result;
+    result.first = request.first;
+    // A stop asked for while the solver was prepared (Ctrl-C, Cancel): nothing is written, and an
+    // earlier export in the folder stays whole. It was noticed after the first frame, written over
+    // that export's.
+    if (progress && !progress(0, end - request.first, FrameReport{})) {
+        result.cancelled = true;
+        return result;
+    }
+    result.sidecarPath = (out / (stem + ".json")).string();
     // While the outputs are being rewritten no earlier sidecar may say they are complete: one
     // saying "complete": false stands in until the last. Removed instead, a run that then failed
     // (a full disk) left the earlier export's cache named by no sidecar, and every later run
@@ -499,9 +514,10 @@ ExportResult exportTake(const TriMesh& mesh, const C3dTake& take, const Correspo
                         const ExportCalibrated& calibrated) {
     checkRequest(mesh, map, request, take, static_cast<int>(take.frameCount()));
     requireMarkersToAlign(map, request, take);
+    const json fingerprints = sourceFingerprints(mesh, request);
     const OutputLock lock(request);
     TakeSolver solver(mesh, take, map, firstSolverOptions(request));
-    return exportSolved(solver, mesh, take, map, request, progress, calibrated);
+    return exportSolved(solver, mesh, take, map, request, fingerprints, progress, calibrated);
 }
 
 ExportResult exportTake(const TriMesh& mesh, const C3dFrameReader& take, const Correspondence& map,
@@ -509,9 +525,11 @@ ExportResult exportTake(const TriMesh& mesh, const C3dFrameReader& take, const C
                         const ExportCalibrated& calibrated) {
     checkRequest(mesh, map, request, take.take(), static_cast<int>(take.frameCount()));
     requireMarkersToAlign(map, request, take.take());
+    const json fingerprints = sourceFingerprints(mesh, request);
     const OutputLock lock(request);
     TakeSolver solver(mesh, take, map, firstSolverOptions(request));
-    return exportSolved(solver, mesh, take.take(), map, request, progress, calibrated);
+    return exportSolved(solver, mesh, take.take(), map, request, fingerprints, progress,
+                        calibrated);
 }
 
 }  // namespace boneless

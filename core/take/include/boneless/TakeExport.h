@@ -41,7 +41,7 @@ struct ExportRequest {
 struct ExportResult {
     int first = 0;
     int framesWritten = 0;
-    bool cancelled = false;
+    bool cancelled = false;  // with sidecarPath empty: before anything was written
     // How many solvers solved frames at once, each prepared on its own (one per core, as memory
     // allows, and one alone for a take too short to repay preparing another).
     int workers = 0;
@@ -51,8 +51,9 @@ struct ExportResult {
     std::vector<std::pair<int, int>> held;
 };
 
-// Called after each frame is written; return false to stop (the frames written so far stay valid,
-// and the sidecar records the take as incomplete).
+// Called once the solver is prepared, with done 0, before anything is written (false: stop, the
+// folder as it was), then after each frame is written; return false to stop (the frames written
+// so far stay valid, and the sidecar records the take as incomplete).
 using ExportProgress = std::function<bool(int done, int total, const FrameReport& last)>;
 
 // Told the alignment once it is found, before the first frame is solved.
