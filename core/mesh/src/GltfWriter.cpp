@@ -222,6 +222,19 @@ std::vector<int> triangleMaterials(const TriMesh& mesh, std::vector<ObjMaterial>
     return out;
 }
 
+// A map's -o and -s as KHR_texture_transform, which Blender's, three.js's and Unity's glTF readers
+// apply: dropped, the glb showed another tiling than the OBJ frames. glTF's v runs down the image
+// (the writer stores 1 - v), so the v offset is 1 - s - o.
+tinygltf::ExtensionMap textureTransform(const TextureTransform& t) {
+    if (t.identity()) return {};
+    using tinygltf::Value;
+    Value::Object transform;
+    transform["offset"] =
+        Value(Value::Array{Value(t.offset[0]), Value(1 - t.scale[1] - t.offset[1])});
+    transform["scale"] = Value(Value::Array{Value(t.scale[0]), Value(t.scale[1])});
+    return {{"KHR_texture_transform", Value(transform)}};
+}
+
 // An OBJ material as glTF's metallic-roughness one: not metallic, as rough as Blender reads its
 // Ns. With a texture the colour is the texture's (OBJ importers show map_Kd in place of Kd).
 tinygltf::Material gltfMaterial(const ObjMaterial& obj, int texture, int normalTexture) {
@@ -235,12 +248,14 @@ tinygltf::Material gltfMaterial(const ObjMaterial& obj, int texture, int normalT
     if (texture >= 0) {
         pbr.baseColorFactor = {1.0, 1.0, 1.0, obj.opacity};
         pbr.baseColorTexture.index = texture;
+        pbr.baseColorTexture.extensions = textureTransform(obj.textureTransform);
     }
     pbr.metallicFactor = 0;
     pbr.roughnessFactor = obj.roughness;
     if (normalTexture >= 0) {
         m.normalTexture.index = normalTexture;
         m.normalTexture.scale = obj.normalScale;
+        m.normalTexture.extensions = textureTransform(obj.normalTransform);
     }
     if (obj.opacity < 1) m.alphaMode = "BLEND";
     return m;
@@ -440,6 +455,12 @@ void GltfWriter::finish() {
     for (const ObjMaterial& obj : usedMaterials_) {
         const int colour = textureFor(obj.texture);
         m.materials.push_back(gltfMaterial(obj, colour, textureFor(obj.normalTexture)));
+        const auto& material = m.materials.back();
+        if ((material.pbrMetallicRoughness.baseColorTexture.extensions.size() +
+                 material.normalTexture.extensions.size() >
+             0) &&
+            m.extensionsUsed.empty())
+            m.extensionsUsed.push_back("KHR_texture_transform");
     }
     std::vector<tinygltf::Value> targetNames;
     for (size_t k = 0; k < frames; ++k) {

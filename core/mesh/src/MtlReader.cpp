@@ -52,6 +52,7 @@ std::string trimmed(const std::string& s) {
 struct MapStatement {
     std::string file;
     double bumpScale = 1;
+    TextureTransform transform;
 };
 
 MapStatement mapStatement(std::string rest) {
@@ -70,8 +71,11 @@ MapStatement mapStatement(std::string rest) {
             std::istringstream in(rest);
             std::string word;
             if (!(in >> word) || (arguments < 0 && k > 0 && !asNumber(word))) break;
-            if (option == "-bm")
-                if (const auto x = asNumber(word)) out.bumpScale = *x;
+            const auto x = asNumber(word);
+            if (option == "-bm" && x) out.bumpScale = *x;
+            // The third number (w) moves a 3-D texture, which glTF has not.
+            if (option == "-o" && x && k < 2) out.transform.offset[k] = *x;
+            if (option == "-s" && x && k < 2) out.transform.scale[k] = *x;
             rest = rest.substr(rest.find(word) + word.size());
         }
     }
@@ -164,11 +168,13 @@ void readLibrary(const std::string& path, std::vector<ObjMaterial>& materials,
                     note("texture " + file.string() +
                          " is neither PNG nor JPEG, the image formats glTF carries: a .glb export "
                          "leaves it out");
-                else if (key == "map_Kd")
+                else if (key == "map_Kd") {
                     m.texture = file.string();
-                else {
+                    m.textureTransform = map.transform;
+                } else {
                     m.normalTexture = file.string();
                     m.normalScale = map.bumpScale;
+                    m.normalTransform = map.transform;
                 }
             } else if (key == "Ns" || key == "illum") {
                 std::string word;

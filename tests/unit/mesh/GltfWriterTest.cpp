@@ -135,7 +135,8 @@ TEST(GltfExport, MaterialsBecomePrimitivesWithTheirColourAndEmbeddedTexture) {
     std::ofstream(dir / "strip.mtl") << "newmtl painted\nKd 0.3 0.3 0.3\nmap_Kd paint.png\n"
                                         "Ns 250\nmap_Bump -bm 0.5 bumps.png\n"
                                         "newmtl tinted\nKd 0.2 0.4 0.6\nd 0.5\n"
-                                        "newmtl repainted\nmap_Kd ./paint.png\n";
+                                        "newmtl repainted\nmap_Kd -s 2 2 1 -o 0.5 0.25 0 "
+                                        "./paint.png\n";
     // Six quads in a row: the first without a material; "tinted" on the second and again on
     // the fourth, so its triangles are not together in the file; two materials share a texture;
     // a bare "usemtl" before the last keeps "repainted" on it, as Blender's OBJ importer does.
@@ -175,6 +176,16 @@ TEST(GltfExport, MaterialsBecomePrimitivesWithTheirColourAndEmbeddedTexture) {
     const int texture = m.materials[1].pbrMetallicRoughness.baseColorTexture.index;
     ASSERT_GE(texture, 0);
     EXPECT_EQ(m.materials[2].pbrMetallicRoughness.baseColorTexture.index, texture);
+    // Its -s and -o, which the OBJ frames keep, as KHR_texture_transform: in glTF's v, which runs
+    // down the image, the offset is 1 - 2 - 0.25. Without them the glb showed another tiling.
+    EXPECT_TRUE(m.materials[1].pbrMetallicRoughness.baseColorTexture.extensions.empty());
+    const tinygltf::Value& transform =
+        m.materials[2].pbrMetallicRoughness.baseColorTexture.extensions.at("KHR_texture_transform");
+    EXPECT_EQ(transform.Get("offset").Get(0).GetNumberAsDouble(), 0.5);
+    EXPECT_EQ(transform.Get("offset").Get(1).GetNumberAsDouble(), -1.25);
+    EXPECT_EQ(transform.Get("scale").Get(0).GetNumberAsDouble(), 2.0);
+    EXPECT_EQ(transform.Get("scale").Get(1).GetNumberAsDouble(), 2.0);
+    EXPECT_EQ(m.extensionsUsed, std::vector<std::string>{"KHR_texture_transform"});
     const int bumps = m.materials[1].normalTexture.index;
     ASSERT_GE(bumps, 0);
     EXPECT_NE(bumps, texture);

@@ -15,14 +15,24 @@ using Positions = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;  //
 using Faces = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;         // #F by 3
 
 // A material as an OBJ library (.mtl) defines it, as far as a glTF material carries it.
+// A map statement's -o and -s (offset and scale of the texture coordinates, u then v).
+struct TextureTransform {
+    std::array<double, 2> offset{0, 0}, scale{1, 1};
+    bool identity() const {
+        return offset == std::array<double, 2>{0, 0} && scale == std::array<double, 2>{1, 1};
+    }
+};
+
 struct ObjMaterial {
     std::string name;                             // "newmtl"
     std::array<double, 3> colour{0.8, 0.8, 0.8};  // "Kd", the diffuse colour
     double opacity = 1;                           // "d", or 1 − "Tr"
-    double roughness = 1;       // as Blender reads "Ns": 1 − √(Ns / 1000); "illum 2" alone: 0
-    std::string texture;        // "map_Kd": absolute path of a PNG or JPEG file, or empty
+    double roughness = 1;  // as Blender reads "Ns": 1 − √(Ns / 1000); "illum 2" alone: 0
+    std::string texture;   // "map_Kd": absolute path of a PNG or JPEG file, or empty
+    TextureTransform textureTransform;  // its -o and -s
     std::string normalTexture;  // "map_Bump", "map_bump" or "bump", a normal map (as Blender)
     double normalScale = 1;     // its "-bm" strength
+    TextureTransform normalTransform;  // its -o and -s
 };
 
 // The input file's own faces, for writers that give them back (OBJ frames): its polygons, their
