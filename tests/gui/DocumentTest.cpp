@@ -112,6 +112,26 @@ class DocumentTest : public QObject {
         QVERIFY2(near >= 35, qPrintable(QString::number(near)));  // all 39 do
     }
 
+    // Opening a second mesh said "The marker map (0 markers) was made for another mesh and was
+    // cleared": there was no map to clear. A map with markers is still cleared, and said so.
+    void aSecondMeshClearsNoEmptyMapAndSaysSoOfAFullOne() {
+        const QString tetra = work_ + "/tetra.obj";
+        QFile f(tetra);
+        QVERIFY(f.open(QIODevice::WriteOnly));
+        f.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+        f.close();
+        Document d;
+        QVERIFY(d.loadMesh(tetra));
+        QVERIFY(d.loadMesh(demo_ + "/walker.obj"));
+        QVERIFY2(!d.meshWarnings().join("\n").contains("was cleared"),
+                 qPrintable(d.meshWarnings().join("\n")));
+        QVERIFY(test::loadDemo(d, demo_));
+        QVERIFY(d.loadMesh(tetra));
+        QVERIFY2(d.meshWarnings().join("\n").contains(
+                     "The marker map (39 markers) was made for another mesh and was cleared."),
+                 qPrintable(d.meshWarnings().join("\n")));
+    }
+
     void missingFilesAndCorruptTakesAreMessages() {
         Document d;
         QVERIFY(test::loadDemo(d, demo_));

@@ -102,14 +102,16 @@ bool Document::loadMesh(const QString& path, const QString& group) {
     meshPath_ = path;
     meshGroup_ = group;
     meshWarnings_ = s.meshWarnings;
-    // A map made for another mesh means nothing on this one.
+    // A map made for another mesh means nothing on this one. An empty one is no map to clear:
+    // opening a second mesh said "The marker map (0 markers) ... was cleared".
     try {
         map_.checkMesh(mesh_.vertexCount(), std8(path), &mesh_);
     } catch (const Error&) {
-        meshWarnings_ << counted(
-            int(map_.markers.size()),
-            tr("The marker map (%n marker) was made for another mesh and was cleared."),
-            tr("The marker map (%n markers) was made for another mesh and was cleared."));
+        if (!map_.markers.empty())
+            meshWarnings_ << counted(
+                int(map_.markers.size()),
+                tr("The marker map (%n marker) was made for another mesh and was cleared."),
+                tr("The marker map (%n markers) was made for another mesh and was cleared."));
         map_ = emptyMap();
         mapPath_.clear();
         savedMapJson_.clear();

@@ -219,6 +219,11 @@ bool Document::clearAllMappings() {
 bool Document::canSuggest() {
     if (refusedWhileHeld()) return false;
     if (!hasMesh_ || !hasTake_) return fail(tr("Suggesting needs a mesh and a take."));
+    // Said here, not as "Suggest Rest failed." with the reason under Show Details.
+    if (map_.markers.size() < 4)
+        return fail(tr("Map at least 4 markers to suggest the rest: the take is aligned from them "
+                       "(%1 mapped).")
+                        .arg(map_.markers.size()));
     return true;
 }
 

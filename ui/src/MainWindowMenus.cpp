@@ -196,8 +196,9 @@ void MainWindow::buildHelpMenu() {
                     tr("Getting Started"),
                     tr("<ol><li>File → Open Mesh (Ctrl+M): the character, OBJ/PLY/OFF/STL.</li>"
                        "<li>File → Open Take (Ctrl+T): the C3D motion capture.</li>"
-                       "<li>Map markers: select one in the Markers list, click the mesh where it "
-                       "sits. After four, <i>Suggest rest</i> maps the others; <i>Align</i> fixes "
+                       "<li>Map markers: turn on Edit → Map Markers, select one in the Markers "
+                       "list, click the mesh where it sits. After four, <i>Suggest rest</i> maps "
+                       "the others; <i>Align</i> fixes "
                        "the take onto the mesh.</li>"
                        "<li>Play (Space), scrub the timeline, check the residual column.</li>"
                        "<li>File → Export (Ctrl+E): the frames, format and folder.</li></ol>"

@@ -46,6 +46,8 @@ TimelineWidget::TimelineWidget(Timeline* timeline, QWidget* parent)
     // A Tab stop for PageUp and PageDown (a tenth of the take); its arrows, Home and End stay the
     // window's, which step the playhead from anywhere.
     slider_->setFocusPolicy(Qt::StrongFocus);
+    // At the window's narrowest the side panel kept its width and the slider shrank to nothing.
+    slider_->setMinimumWidth(160);
     frameBox_ = new QSpinBox(this);
     frameBox_->setObjectName("frameBox");
     // Typing "100" must not visit frames 1 and 10 on the way: the box applies on Enter.

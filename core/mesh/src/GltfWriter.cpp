@@ -67,7 +67,9 @@ std::string tooLarge(const std::string& path, const GlbShape& s, std::uint64_t f
     return path + ": " + std::to_string(frames) + " frames make a .glb of about " + size +
            ", more than the 4.29 GB (2^32 bytes) a .glb can hold (the weight keys alone take "
            "frames² × 4 bytes); export at most " +
-           std::to_string(fit) + " frames of this mesh at a time (--frames A:B), or a point cache";
+           std::to_string(fit) +
+           " frames of this mesh at a time (solve's --frames A:B, the app's "
+           "Frames … to …), or a point cache";
 }
 
 int addView(tinygltf::Model& m, size_t offset, size_t length, int target = 0) {
