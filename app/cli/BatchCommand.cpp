@@ -580,7 +580,7 @@ void run(const BatchArgs& args) {
         if (static_cast<int>(k % shards) != shard - 1) continue;
         if (StopSignals::received()) {  // between takes: none begun
             sumUpStopped(0);
-            StopSignals::throwIfReceived();
+            StopSignals::throwIfReceived("between takes: the line above says what was done");
         }
         const TakeJob& job = jobs[k];
         std::printf("[%d/%d] %s -> %s: ", ++done, mine, job.c3d.c_str(), job.out.c_str());

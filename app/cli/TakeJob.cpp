@@ -6,6 +6,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -29,9 +30,23 @@ using namespace boneless;
 
 namespace {
 
-std::atomic<int> stopSignal{0};  // the signal that stopped the run; 0 while none has
-int stopSignalsHeld = 0;         // StopSignals alive; the outermost installs and restores
+std::atomic<int> stopSignal{0};         // the signal that stopped the run; 0 while none has
+int stopSignalsHeld = 0;                // StopSignals alive; the outermost installs and restores
+std::atomic<long long> firstStopNs{0};  // when it came (CLOCK_MONOTONIC)
 extern "C" void onStopSignal(int signal) {
+    timespec now{};
+    ::clock_gettime(CLOCK_MONOTONIC, &now);  // async-signal-safe, as raise and signal are
+    const long long ns = now.tv_sec * 1000000000LL + now.tv_nsec;
+    // A second one a second or more later is a user who will not wait for a long read or
+    // preparation to end: it ends the process, as the signal would have. One sooner is the same
+    // stop come twice (timeout sends it to the process and to its group).
+    if (stopSignal != 0) {
+        if (ns - firstStopNs.load() < 1000000000LL) return;
+        std::signal(signal, SIG_DFL);
+        std::raise(signal);
+        return;
+    }
+    firstStopNs = ns;
     stopSignal = signal;
 }
 
@@ -74,11 +89,8 @@ int StopSignals::received() {
     return stopSignal.load();
 }
 
-void StopSignals::throwIfReceived() {
-    if (stopSignal != 0)
-        throw TakeJobInterrupted(
-            stoppedBy() + " before any frame was written: the output folder is as it was",
-            stopSignal);
+void StopSignals::throwIfReceived(const std::string& when) {
+    if (stopSignal != 0) throw TakeJobInterrupted(stoppedBy() + " " + when, stopSignal);
 }
 
 namespace {
@@ -172,6 +184,17 @@ std::string unitsText(const C3dTake& take) {
            (file.empty() ? "none" : file) + ")";
 }
 
+// A word as a shell takes it back: "Walker Body" quoted, so that the hint can be pasted.
+static std::string shellWord(const std::string& word) {
+    if (!word.empty() &&
+        word.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"
+                               "0123456789._-/:+@%,") == std::string::npos)
+        return word;
+    std::string quoted = "'";
+    for (char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return quoted + "'";
+}
+
 void checkMapFitsMesh(const Correspondence& map, const TriMesh& mesh, const std::string& meshPath,
                       const std::string& group, bool keys) {
     try {
@@ -185,7 +208,8 @@ void checkMapFitsMesh(const Correspondence& map, const TriMesh& mesh, const std:
             throw;
         // A manifest's entry takes a key, not a flag.
         throw Error(std::string(e.what()) + "; open it with " +
-                    (keys ? "\"group\": \"" + map.meshGroup + "\"" : "--group " + map.meshGroup));
+                    (keys ? "\"group\": \"" + map.meshGroup + "\""
+                          : "--group " + shellWord(map.meshGroup)));
     }
 }
 
@@ -547,12 +571,12 @@ ExportResult runTakeJob(const TakeJob& job, bool quiet, std::vector<std::string>
     StopSignals::throwIfReceived();  // while the inputs were read: no solver prepared for nothing
     const ExportResult result = exportTake(mesh, take, map, request, onFrame, announce);
     if (!quiet && ::isatty(STDERR_FILENO)) std::fprintf(stderr, "\n");
+    if (result.wroteNothing()) StopSignals::throwIfReceived();  // no note on files it left
     // Stopped or not: an earlier run's frames past the stop play as part of this take as much.
     if (request.format == ExportFormat::Obj)
         note(otherFramesNote(job.out, exportStem(request), result));
     note(otherOutputsNote(request));
     // The sidecar says "complete": false; the message must not call anything complete.
-    if (result.cancelled && result.sidecarPath.empty()) StopSignals::throwIfReceived();
     if (result.cancelled) {
         const int n = result.framesWritten;
         // A run again solves the take from its first frame (there is no resuming part-way): "valid"

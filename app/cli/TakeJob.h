@@ -27,8 +27,9 @@ class StopSignals {
     StopSignals(const StopSignals&) = delete;
     StopSignals& operator=(const StopSignals&) = delete;
     static int received();  // the signal, 0 while none has come
-    // Throws TakeJobInterrupted, "before any frame was written", once a signal has come.
-    static void throwIfReceived();
+    // Throws TakeJobInterrupted ("interrupted " + when) once a signal has come.
+    static void throwIfReceived(
+        const std::string& when = "before any frame was written: the output folder is as it was");
 
   private:
     void (*sigint_)(int) = nullptr;

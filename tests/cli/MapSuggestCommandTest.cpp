@@ -456,6 +456,10 @@ TEST(MapSuggestCommand, TheMapWrittenNamesTheMeshItWasSuggestedOn) {
     const fs::path dir = freshTestDir("map-suggest-mesh-name");
     demoWithSixPicks(dir);
     fs::copy_file(dir / "walker.obj", dir / "re-exported.obj");
+    nlohmann::json partial;
+    std::ifstream(dir / "partial.json") >> partial;
+    partial["mesh"]["group"] = "Walker";  // as a map made on another file's group says
+    std::ofstream(dir / "partial.json") << partial.dump();
     const CliResult r =
         runCli("map suggest --mesh " + (dir / "re-exported.obj").string() + " --c3d " +
                (dir / "walker.c3d").string() + " --map " + (dir / "partial.json").string() +
@@ -465,4 +469,5 @@ TEST(MapSuggestCommand, TheMapWrittenNamesTheMeshItWasSuggestedOn) {
     std::ifstream(dir / "full.json") >> full;
     EXPECT_EQ(full["mesh"]["file"], "re-exported.obj");
     EXPECT_EQ(full["mesh"].value("group", ""), "");
+    EXPECT_EQ(full["mesh"]["vertices"], 3426);  // the demo walker's
 }

@@ -595,7 +595,7 @@ void ExportDialog::onFinished(bool ok, const QString& message) {
     const ExportResult& result = runner_->result();
     QString said = message;
     // Cancelled while the solver was prepared, the run wrote nothing: the earlier export stays.
-    if (ok && !(result.cancelled && result.sidecarPath.empty())) {
+    if (ok && !result.wroteNothing()) {
         const QStringList removed = removeReplaced(running_, result);
         if (result.cancelled && !removed.isEmpty()) {
             const int n = int(removed.size());

@@ -99,7 +99,7 @@ void ExportRunner::onFinished() {
     QString message;
     if (!error_.isEmpty())
         message = error_;
-    else if (result_.cancelled && result_.sidecarPath.empty())
+    else if (result_.wroteNothing())
         message = tr("Export cancelled before any frame was written: the folder is as it was.");
     else if (result_.cancelled)
         message = counted(result_.framesWritten,

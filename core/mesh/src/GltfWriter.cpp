@@ -454,16 +454,16 @@ void GltfWriter::finish() {
         m.textures.push_back(t);
         return textureOf[path] = static_cast<int>(m.textures.size()) - 1;
     };
+    bool transformed = false;  // a texture has KHR_texture_transform
     for (const ObjMaterial& obj : usedMaterials_) {
         const int colour = textureFor(obj.texture);
         m.materials.push_back(gltfMaterial(obj, colour, textureFor(obj.normalTexture)));
         const auto& material = m.materials.back();
-        if ((material.pbrMetallicRoughness.baseColorTexture.extensions.size() +
-                 material.normalTexture.extensions.size() >
-             0) &&
-            m.extensionsUsed.empty())
-            m.extensionsUsed.push_back("KHR_texture_transform");
+        transformed = transformed ||
+                      !material.pbrMetallicRoughness.baseColorTexture.extensions.empty() ||
+                      !material.normalTexture.extensions.empty();
     }
+    if (transformed) m.extensionsUsed.push_back("KHR_texture_transform");
     std::vector<tinygltf::Value> targetNames;
     for (size_t k = 0; k < frames; ++k) {
         const auto& b = bounds_[k];

@@ -2,7 +2,6 @@
 // along the normal pushed it into the skin, and no check said so (a Maya negative-scale freeze).
 
 #include <algorithm>
-#include <cstdint>
 #include <numeric>
 
 #include "PolygonSoup.h"
@@ -17,22 +16,22 @@ std::vector<int> insideOutPieces(const Positions& V, const Faces& F) {
         while (parent[x] != x) x = parent[x] = parent[parent[x]];
         return x;
     };
-    std::vector<uint64_t> keys;
-    keys.reserve(3 * size_t(T));
     for (int t = 0; t < T; ++t)
-        for (int k = 0; k < 3; ++k) {
-            const int a = F(t, k), b = F(t, (k + 1) % 3);
-            keys.push_back(edgeKey(a, b));
-            parent[find(a)] = find(b);
-        }
+        for (int k = 1; k < 3; ++k) parent[find(F(t, k))] = find(F(t, 0));
     struct Piece {
-        int first = -1, triangles = 0, edges = 0, boundary = 0;
+        int first = -1, triangles = 0;
         Vec3 sum = Vec3::Zero(), low = Vec3::Constant(1e300), high = -low;
-        double volume = 0;
+        double volume[2] = {0, 0};  // about its centre and about its box's corner
     };
-    std::vector<Piece> piece(V.rows());
+    std::vector<int> pieceOf(V.rows(), -1);
+    std::vector<Piece> pieces;
+    const auto pieceAt = [&](int t) -> Piece& {
+        int& p = pieceOf[find(F(t, 0))];
+        if (p < 0) p = static_cast<int>(pieces.size()), pieces.emplace_back();
+        return pieces[p];
+    };
     for (int t = 0; t < T; ++t) {
-        Piece& p = piece[find(F(t, 0))];
+        Piece& p = pieceAt(t);
         if (p.first < 0) p.first = t;
         ++p.triangles;
         for (int k = 0; k < 3; ++k) {
@@ -42,34 +41,37 @@ std::vector<int> insideOutPieces(const Positions& V, const Faces& F) {
             p.high = p.high.cwiseMax(x);
         }
     }
-    std::sort(keys.begin(), keys.end());
-    for (size_t i = 0; i < keys.size();) {
-        size_t j = i;
-        while (j < keys.size() && keys[j] == keys[i]) ++j;
-        Piece& p = piece[find(int(keys[i] >> 32))];
-        ++p.edges;
-        p.boundary += j - i == 1;
-        i = j;
-    }
-    // The volume the faces enclose, signed by their winding, about the piece's centre.
+    // The volume the faces enclose, signed by their winding: a closed surface's is the same about
+    // any point, an open one's is not, however finely it is tessellated (a cape, a face mask).
     for (int t = 0; t < T; ++t) {
-        Piece& p = piece[find(F(t, 0))];
-        const Vec3 c = p.sum / p.triangles;
-        const Vec3 a = V.row(F(t, 0)).transpose() - c, b = V.row(F(t, 1)).transpose() - c,
-                   d = V.row(F(t, 2)).transpose() - c;
-        p.volume += a.dot(b.cross(d)) / 6;
+        Piece& p = pieceAt(t);
+        const Vec3 about[2] = {p.sum / p.triangles, p.high};
+        for (int r = 0; r < 2; ++r) {
+            const Vec3 a = V.row(F(t, 0)).transpose() - about[r];
+            const Vec3 b = V.row(F(t, 1)).transpose() - about[r];
+            const Vec3 c = V.row(F(t, 2)).transpose() - about[r];
+            p.volume[r] += a.dot(b.cross(c)) / 6;
+        }
     }
-    // Closed, or nearly (a body's eye and mouth holes), and enclosing a hundredth of its box at
-    // least: an open sheet's sign says nothing.
-    std::vector<int> inward;
-    for (const Piece& p : piece) {
+    // Closed, or nearly (a body's eye and mouth holes change it by little), enclosing a hundredth
+    // of its box at least (a two-sided card encloses none), and inside no other piece's box that
+    // winds outward (the lining of a hollow shell).
+    const auto inward = [](const Piece& p) {
         const Vec3 size = p.high - p.low;
-        if (p.first >= 0 && p.boundary * 100 <= p.edges && p.volume < 0 &&
-            -p.volume >= 0.01 * size.prod())
-            inward.push_back(p.first);
+        return p.volume[0] < 0 && std::abs(p.volume[0] - p.volume[1]) <= 0.05 * -p.volume[0] &&
+               size.minCoeff() > 0 && -p.volume[0] >= 0.01 * size.prod();
+    };
+    std::vector<int> found;
+    for (const Piece& p : pieces) {
+        if (!inward(p)) continue;
+        const bool lining = std::any_of(pieces.begin(), pieces.end(), [&](const Piece& q) {
+            return &q != &p && q.volume[0] > 0 && (q.low.array() <= p.low.array()).all() &&
+                   (q.high.array() >= p.high.array()).all();
+        });
+        if (!lining) found.push_back(p.first);
     }
-    std::sort(inward.begin(), inward.end());
-    return inward;
+    std::sort(found.begin(), found.end());
+    return found;
 }
 
 }  // namespace boneless::detail

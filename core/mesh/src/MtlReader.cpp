@@ -7,6 +7,7 @@
 #include <optional>
 #include <sstream>
 
+#include "PrecheckText.h"
 #include "boneless/MaterialFiles.h"
 
 namespace boneless::detail {
@@ -116,7 +117,7 @@ void readLibrary(const std::string& path, std::vector<ObjMaterial>& materials,
     std::string line;
     for (int number = 1; std::getline(in, line); ++number) {
         // A UTF-8 byte-order mark (.NET's writers put one) hid the first newmtl.
-        if (number == 1 && line.compare(0, 3, "\xEF\xBB\xBF") == 0) line.erase(0, 3);
+        if (number == 1 && precheck::startsWithByteOrderMark(line)) line.erase(0, 3);
         std::istringstream words(line);
         std::string key;
         words >> key;
@@ -223,7 +224,7 @@ std::string relocatedLibrary(const std::string& path,
     // Written with LF alone and no byte-order mark, which after the copy's own first line would
     // hide the first newmtl from every reader.
     for (bool first = true; std::getline(in, line); first = false) {
-        if (first && line.compare(0, 3, "\xEF\xBB\xBF") == 0) line.erase(0, 3);
+        if (first && precheck::startsWithByteOrderMark(line)) line.erase(0, 3);
         if (!line.empty() && line.back() == '\r') line.pop_back();
         std::istringstream words(line);
         std::string key;

@@ -249,9 +249,7 @@ class ObjParser {
     // "mtllib my mat.mtl" as Blender reads it: the rest of the line (quotes around it removed)
     // is one library when it names a file beside the OBJ; otherwise its words are libraries.
     void materialLibraries(std::string_view rest) {
-        std::string_view whole = rest;
-        while (!whole.empty() && isBlank(whole.front())) whole.remove_prefix(1);
-        while (!whole.empty() && isBlank(whole.back())) whole.remove_suffix(1);
+        std::string_view whole = wholeName(rest);
         if (whole.size() > 2 && whole.front() == '"' && whole.back() == '"')
             whole = whole.substr(1, whole.size() - 2);
         std::error_code ec;

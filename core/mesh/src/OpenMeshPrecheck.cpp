@@ -380,13 +380,14 @@ Precheck checkStl(const std::string& path) {
         }
         ++p.triangles;
     }
-    // A file cut short between its facets read as the triangles before the cut, and a map made on
-    // that fragment animated it.
-    const auto ends = [&](const char* word, const char* upper) {
+    // A file cut inside a facet read as the triangles before the cut, and a map made on that
+    // fragment animated it. One that ends after a whole facet without endsolid is let through:
+    // some writers leave it out, and nothing tells a cut there from one.
+    const auto ends = [&](const char* word) {
         const auto t = lines.empty() ? std::vector<std::string>{} : tokens(lines.back().second);
-        return !t.empty() && (t[0] == word || t[0] == upper);
+        return !t.empty() && asciiLower(t[0]) == word;
     };
-    if (!ends("endsolid", "ENDSOLID") && !ends("endfacet", "ENDFACET"))
+    if (!ends("endsolid") && !ends("endfacet"))
         throw MeshError(path,
                         "ascii STL file ends without 'endsolid', and not at the end of a facet: "
                         "it looks cut short",

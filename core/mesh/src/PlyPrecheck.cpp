@@ -263,12 +263,20 @@ void readPlyAscii(const std::string& path, const std::string& text, size_t bodyS
     // At an element's first item: a wrong word there most likely belongs to the element before,
     // whose count in the header is too small.
     std::string hint;
+    // Within a list, its length and line: the file ending there is that length's doing.
+    std::string listLength;
+    int listLine = 0;
     // The next word's value. A coordinate must be finite; another property (a normal) may be nan,
     // as in binary files.
     const auto next = [&](const std::string& what, bool integer, bool coordinate = false) {
-        if (!words.next(w, n))
+        if (!words.next(w, n)) {
+            if (!listLength.empty())
+                throw MeshError(
+                    path, what + ": list length '" + listLength + "' is more than the file holds",
+                    at(listLine));
             throw MeshError(path, "file ends in " + what + " (the header announces " +
                                       announced(elements) + ")");
+        }
         if (coordinate || integer) requireNumber(path, w, n, what);
         double v;
         const char* b = w.data() + (w[0] == '+');
@@ -312,10 +320,13 @@ void readPlyAscii(const std::string& path, const std::string& text, size_t bodyS
                         what + ": list length '" + std::string(w) + "' is more than the file holds",
                         at(n));
                 const bool corners = isFace && layout.indices == int(pi);
+                listLength = w;
+                listLine = n;
                 for (long long v = 0; v < values; ++v) {
                     const double corner = next(what, integer);
                     if (corners) soup.faceIndex.push_back(cornerIndex(path, corner, what));
                 }
+                listLength.clear();
                 if (corners) {
                     soup.endFace();
                     soup.faceLine.push_back(n);

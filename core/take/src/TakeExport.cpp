@@ -362,8 +362,6 @@ void checkRequest(const TriMesh& mesh, const Correspondence& map, const ExportRe
                   &mesh);
 }
 
-// take: what the sidecar says of the take (its samples are not read). The caller holds the
-// outputs' OutputLock.
 // What the sidecar's "source_fingerprints" records, taken before the solver is prepared: a map
 // saved while it was (seconds, minutes on a large mesh) was recorded as the one solved, and every
 // later batch skipped the take solved from the map before.
@@ -383,6 +381,8 @@ json sourceFingerprints(const TriMesh& mesh, const ExportRequest& request) {
     return fingerprints;
 }
 
+// take: what the sidecar says of the take (its samples are not read). The caller holds the
+// outputs' OutputLock.
 ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake& take,
                           const Correspondence& map, const ExportRequest& request,
                           const json& fingerprints, const ExportProgress& progress,
@@ -399,6 +399,9 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
     const fs::path out(request.outDir);
     ExportResult result;
     result.first = request.first;
+    // Told first: what the caller does with it (the CLI compares another alignment, seconds) is
+    // part of preparing, during which a stop writes nothing.
+    if (calibrated) calibrated(solver.calibration());
     // A stop asked for while the solver was prepared (Ctrl-C, Cancel): nothing is written, and an
     // earlier export in the folder stays whole. It was noticed after the first frame, written over
     // that export's.
@@ -445,8 +448,6 @@ ExportResult exportSolved(TakeSolver& solver, const TriMesh& mesh, const C3dTake
                      objFaces.get());
             restWritten = out / restFile;
         }
-        if (calibrated) calibrated(solver.calibration());
-        result.first = request.first;
         PerFrameFigures perFrame;
         result.workers = solveInOrder(
             solver, mesh, map, request.options, request.first, end,

@@ -133,7 +133,7 @@ TEST(GltfExport, MaterialsBecomePrimitivesWithTheirColourAndEmbeddedTexture) {
     std::ofstream(dir / "paint.png", std::ios::binary) << twoByTwoPng();
     std::ofstream(dir / "bumps.png", std::ios::binary) << twoByTwoPng() + "tail";
     std::ofstream(dir / "strip.mtl") << "newmtl painted\nKd 0.3 0.3 0.3\nmap_Kd paint.png\n"
-                                        "Ns 250\nmap_Bump -bm 0.5 bumps.png\n"
+                                        "Ns 250\nmap_Bump -bm 0.5 -s 3 bumps.png\n"
                                         "newmtl tinted\nKd 0.2 0.4 0.6\nd 0.5\n"
                                         "newmtl repainted\nmap_Kd -s 2 2 1 -o 0.5 0.25 0 "
                                         "./paint.png\n";
@@ -186,6 +186,11 @@ TEST(GltfExport, MaterialsBecomePrimitivesWithTheirColourAndEmbeddedTexture) {
     EXPECT_EQ(transform.Get("scale").Get(0).GetNumberAsDouble(), 2.0);
     EXPECT_EQ(transform.Get("scale").Get(1).GetNumberAsDouble(), 2.0);
     EXPECT_EQ(m.extensionsUsed, std::vector<std::string>{"KHR_texture_transform"});
+    const tinygltf::Value& bumpTransform =
+        m.materials[1].normalTexture.extensions.at("KHR_texture_transform");
+    EXPECT_EQ(bumpTransform.Get("scale").Get(0).GetNumberAsDouble(), 3.0);
+    EXPECT_EQ(bumpTransform.Get("scale").Get(1).GetNumberAsDouble(), 1.0);  // -s u alone
+    EXPECT_EQ(bumpTransform.Get("offset").Get(1).GetNumberAsDouble(), 0.0);
     const int bumps = m.materials[1].normalTexture.index;
     ASSERT_GE(bumps, 0);
     EXPECT_NE(bumps, texture);

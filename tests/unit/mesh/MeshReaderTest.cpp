@@ -1267,9 +1267,30 @@ TEST(MeshReaderFormats, ABodyWhoseFacesWindInwardIsSaidToBeInsideOut) {
     EXPECT_TRUE(anyWarningContains(r,
                                    "faces wind inward, normals pointing into the body, in the "
                                    "piece of face 0 (line 5)"));
-    // An open sheet has no inside: either winding is the user's choice.
-    Polygons tent = tentP;
-    for (auto& f : tent) std::swap(f[1], f[2]);
+    // An open sheet has no inside: either winding is the user's choice, however fine (a cape of
+    // 150 by 150 quads, whose few boundary edges once made it count as nearly closed).
+    const int n = 150;
+    Positions cape((n + 1) * (n + 1), 3);
+    Polygons quads, reversed;
+    for (int i = 0; i <= n; ++i)
+        for (int j = 0; j <= n; ++j)
+            cape.row(i * (n + 1) + j) << std::cos(M_PI * i / n), std::sin(M_PI * i / n),
+                2.0 * j / n;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            const int a = i * (n + 1) + j;
+            quads.push_back({a, a + n + 1, a + n + 2, a + 1});
+            reversed.push_back({a, a + 1, a + n + 2, a + n + 1});
+        }
+    for (const Polygons* P : {&quads, &reversed})
+        EXPECT_FALSE(
+            anyWarningContains(readMesh(writeFile("cape.obj", objText(cape, *P))), "inward"));
+    // The lining of a hollow shell faces into the hollow, as it should.
+    Positions shell(8, 3);
+    shell << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0.2, 0.2, 0.2, 0.4, 0.2, 0.2, 0.2, 0.4, 0.2, 0.2,
+        0.2, 0.4;
+    Polygons both = outward;
+    for (const auto& f : inward) both.push_back({f[0] + 4, f[1] + 4, f[2] + 4});
     EXPECT_FALSE(
-        anyWarningContains(readMesh(writeFile("tent.obj", objText(tentV(), tent))), "inward"));
+        anyWarningContains(readMesh(writeFile("shell.obj", objText(shell, both))), "inward"));
 }

@@ -14,7 +14,6 @@ using Mat3 = Eigen::Matrix3d;
 using Positions = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;  // #V by 3
 using Faces = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;         // #F by 3
 
-// A material as an OBJ library (.mtl) defines it, as far as a glTF material carries it.
 // A map statement's -o and -s (offset and scale of the texture coordinates, u then v).
 struct TextureTransform {
     std::array<double, 2> offset{0, 0}, scale{1, 1};
@@ -23,6 +22,7 @@ struct TextureTransform {
     }
 };
 
+// A material as an OBJ library (.mtl) defines it, as far as a glTF material carries it.
 struct ObjMaterial {
     std::string name;                             // "newmtl"
     std::array<double, 3> colour{0.8, 0.8, 0.8};  // "Kd", the diffuse colour

@@ -41,7 +41,7 @@ struct ExportRequest {
 struct ExportResult {
     int first = 0;
     int framesWritten = 0;
-    bool cancelled = false;  // with sidecarPath empty: before anything was written
+    bool cancelled = false;
     // How many solvers solved frames at once, each prepared on its own (one per core, as memory
     // allows, and one alone for a take too short to repay preparing another).
     int workers = 0;
@@ -49,6 +49,9 @@ struct ExportResult {
     // Runs of frames [first, last] that show no marker and hold a neighbour's pose (as the
     // sidecar's summary "frames_held" lists them).
     std::vector<std::pair<int, int>> held;
+    // Stopped once the solver was prepared, before anything was written: the folder is as it
+    // was, an earlier export in it whole.
+    bool wroteNothing() const { return cancelled && sidecarPath.empty(); }
 };
 
 // Called once the solver is prepared, with done 0, before anything is written (false: stop, the
@@ -82,9 +85,9 @@ const char* guessMeshUnits(double meshUnitsPerMm);
 
 // "" when the mesh, read in its guessed unit, is about the size of the actor the take aligns onto
 // it; else a warning that no common unit makes it a body's size ("mesh units look like m, but
-// the body would be 17 cm tall: check its scale ..."), with its height along the guessed up axis,
-// or, when the mesh is a body's size in that unit, that the take's markers make it ten or more
-// times that ("the take's markers make the body 19 m tall, where the mesh is 1.9 m tall in m:
+// the body would be 17 cm tall: check the mesh's scale ..."), with its height along the guessed up
+// axis, or, when the mesh is a body's size in that unit, that the take's markers make it ten or
+// more times that ("the take's markers make the body 19 m tall, where the mesh is 1.9 m tall in m:
 // check the take's units").
 std::string meshScaleWarning(const TriMesh& rest, const Similarity& takeToMesh, double takeUnitToMm,
                              const Vec3& takeUp);
