@@ -2,7 +2,6 @@
 // along the normal pushed it into the skin, and no check said so (a Maya negative-scale freeze).
 
 #include <algorithm>
-#include <numeric>
 
 #include "PolygonSoup.h"
 
@@ -10,14 +9,9 @@ namespace boneless::detail {
 
 std::vector<int> insideOutPieces(const Positions& V, const Faces& F) {
     const int T = static_cast<int>(F.rows());
-    std::vector<int> parent(V.rows());
-    std::iota(parent.begin(), parent.end(), 0);
-    const auto find = [&](int x) {
-        while (parent[x] != x) x = parent[x] = parent[parent[x]];
-        return x;
-    };
+    UnionFind parts(V.rows());
     for (int t = 0; t < T; ++t)
-        for (int k = 1; k < 3; ++k) parent[find(F(t, k))] = find(F(t, 0));
+        for (int k = 1; k < 3; ++k) parts.join(F(t, k), F(t, 0));
     struct Piece {
         int first = -1, triangles = 0;
         Vec3 sum = Vec3::Zero(), low = Vec3::Constant(1e300), high = -low;
@@ -26,7 +20,7 @@ std::vector<int> insideOutPieces(const Positions& V, const Faces& F) {
     std::vector<int> pieceOf(V.rows(), -1);
     std::vector<Piece> pieces;
     const auto pieceAt = [&](int t) -> Piece& {
-        int& p = pieceOf[find(F(t, 0))];
+        int& p = pieceOf[parts.find(F(t, 0))];
         if (p < 0) p = static_cast<int>(pieces.size()), pieces.emplace_back();
         return pieces[p];
     };

@@ -12,19 +12,6 @@ namespace boneless::detail {
 
 namespace {
 
-class UnionFind {
-  public:
-    explicit UnionFind(size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-    int find(int x) {
-        while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
-        return x;
-    }
-    void join(int a, int b) { parent_[find(a)] = find(b); }
-
-  private:
-    std::vector<int> parent_;
-};
-
 struct HalfEdge {
     uint64_t key;  // unordered vertex pair
     int tri, k;    // runs from corner k to corner k+1 of triangle tri

@@ -264,16 +264,17 @@ void readPlyAscii(const std::string& path, const std::string& text, size_t bodyS
     // whose count in the header is too small.
     std::string hint;
     // Within a list, its length and line: the file ending there is that length's doing.
-    std::string listLength;
+    std::string_view listLength;
     int listLine = 0;
     // The next word's value. A coordinate must be finite; another property (a normal) may be nan,
     // as in binary files.
     const auto next = [&](const std::string& what, bool integer, bool coordinate = false) {
         if (!words.next(w, n)) {
             if (!listLength.empty())
-                throw MeshError(
-                    path, what + ": list length '" + listLength + "' is more than the file holds",
-                    at(listLine));
+                throw MeshError(path,
+                                what + ": list length '" + std::string(listLength) +
+                                    "' is more than the file holds",
+                                at(listLine));
             throw MeshError(path, "file ends in " + what + " (the header announces " +
                                       announced(elements) + ")");
         }
@@ -326,7 +327,7 @@ void readPlyAscii(const std::string& path, const std::string& text, size_t bodyS
                     const double corner = next(what, integer);
                     if (corners) soup.faceIndex.push_back(cornerIndex(path, corner, what));
                 }
-                listLength.clear();
+                listLength = {};
                 if (corners) {
                     soup.endFace();
                     soup.faceLine.push_back(n);

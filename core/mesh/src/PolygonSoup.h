@@ -3,6 +3,7 @@
 // Internal to the mesh reader: what a format reader hands over before any checking.
 
 #include <cstdint>
+#include <numeric>
 #include <string>
 #include <unordered_set>
 #include <vector>
@@ -33,6 +34,20 @@ struct PolygonSoup {
     int faceCount() const { return static_cast<int>(faceStart.size()) - 1; }
     int fileFaceOf(int f) const { return fileFace.empty() ? f : fileFace[f]; }
     void endFace() { faceStart.push_back(static_cast<int>(faceIndex.size())); }
+};
+
+// Sets of indices joined pairwise (vertices of one piece, corners of one fan).
+class UnionFind {
+  public:
+    explicit UnionFind(size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
+    int find(int x) {
+        while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
+        return x;
+    }
+    void join(int a, int b) { parent_[find(a)] = find(b); }
+
+  private:
+    std::vector<int> parent_;
 };
 
 // "face 12 (line 40)", "vertex 3"
